@@ -1,0 +1,2 @@
+// Placeholder entry point; replaced by the CLI (host/cli) in the foundation work.
+int main() { return 0; }

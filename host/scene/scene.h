@@ -1,0 +1,67 @@
+// CPU-side scene description, the output of the loader and the input of every backend.
+//
+// All geometry is flattened to world-space triangles (object transforms applied at
+// load). Units are the scene's own ("scene units"); radiance values (emission) are in
+// W/(sr·m²) with m read as scene units. The y axis is up by convention of the data.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace tessera {
+
+/// An 8-bit texture as decoded from its file: `rgba8[y * width + x]` packs R in the low
+/// byte, then G, B, A (little-endian RGBA). Values are sRGB-encoded; kernels linearise.
+/// Row 0 is the top row of the image file, so a lookup uses y = (1 - v) * height.
+struct Texture {
+    std::filesystem::path path;
+    int width = 0;
+    int height = 0;
+    std::vector<uint32_t> rgba8;
+};
+
+/// A material. Only the Lambertian part is used by the `direct` method; `illum`
+/// and `ior` are kept for the specular cases the path tracer adds (MTL illum 5, 7).
+struct Material {
+    std::string name;
+    glm::vec3 albedo{0.5f};      ///< diffuse reflectance Kd, each channel in [0, 1]
+    glm::vec3 emission{0.0f};    ///< emitted radiance Ke, W/(sr·m²); non-zero makes an area light
+    int texture = -1;            ///< index into Scene::textures for map_Kd, or -1
+    int illum = 2;               ///< MTL illumination model
+    float ior = 1.0f;            ///< MTL Ni
+};
+
+/// Pinhole camera. `vfov_deg` is the full vertical field of view in degrees.
+struct Camera {
+    glm::vec3 position{0.0f, 1.0f, 3.0f};
+    glm::vec3 look_at{0.0f, 1.0f, 0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float vfov_deg = 40.0f;
+    int width = 512;
+    int height = 512;
+};
+
+/// The loaded scene. Per-triangle arrays are parallel: triangle i has vertices
+/// positions[3i..3i+2], shading normals normals[3i..3i+2] (unit length, world space,
+/// the geometric normal where the mesh has none), texture coordinates uvs[3i..3i+2]
+/// ((0,0) where the mesh has none) and material index material[i].
+/// The geometric normal (and so the front face of an emitter) is
+/// cross(p1 - p0, p2 - p0): counter-clockwise winding seen from the front.
+struct Scene {
+    std::string name;
+    std::filesystem::path source;   ///< the scene file it came from ("" for built-in)
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<uint32_t> material;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    Camera camera;
+
+    size_t triangle_count() const { return material.size(); }
+};
+
+}  // namespace tessera
