@@ -1,0 +1,57 @@
+// The backend seam. A backend knows how to trace rays and dispatch work; the light
+// transport it runs is the shared source in kernels/shared, identical on all backends.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "kernels/shared/layout.h"
+#include "render/effect_plan.h"
+#include "render/scene_buffers.h"
+
+namespace tessera {
+
+enum class BackendKind { OpenCL, Embree };
+
+/// Parses "opencl" or "embree"; throws InputError naming --backend otherwise.
+BackendKind parse_backend_kind(const std::string& s);
+
+struct BackendOptions {
+    BackendKind kind = BackendKind::OpenCL;
+    std::string device;  ///< OpenCL device spec (see select_cl_device); ignored by embree
+};
+
+class Backend {
+public:
+    virtual ~Backend() = default;
+
+    /// e.g. "opencl (Portable Computing Language: pthread-...)" or "embree (TBB, 2 threads)".
+    virtual std::string description() const = 0;
+
+    /// One pass (1 spp) of the `direct` method for every pixel of frame.width × height.
+    /// `out` is resized to width × height × TS_PASS_FLOATS (layout in layout.h),
+    /// row-major from the top-left pixel.
+    virtual void direct_pass(const TsFrame& frame, std::vector<float>& out) = 0;
+
+    /// Closest-hit queries. `rays` holds 8 floats per ray (org.xyz, tmin, dir.xyz,
+    /// tmax); `hits` is resized to 4 words per ray: t, u, v as floats and the triangle
+    /// index as uint bits (TS_NO_HIT on a miss, with t = tmax).
+    virtual void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) = 0;
+
+    /// Any-hit queries: `occluded[i]` = 1 if anything lies on ray i in (tmin, tmax).
+    virtual void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) = 0;
+};
+
+/// Creates a backend for `scene`. The OpenCL backend builds its BVH with Embree's
+/// builder and uploads every buffer; the Embree backend builds an Embree scene.
+/// `scene` must outlive the backend. Throws RuntimeError when the device cannot be
+/// used (with a hint to --backend embree).
+std::unique_ptr<Backend> make_backend(const BackendOptions& options, const SceneBuffers& scene,
+                                      const EffectPlan& plan);
+
+std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene);
+std::unique_ptr<Backend> make_opencl_backend(const SceneBuffers& scene, const EffectPlan& plan,
+                                             const std::string& device);
+
+}  // namespace tessera

@@ -1,0 +1,182 @@
+// The Embree CPU backend: rays traced with rtcIntersect1 / rtcOccluded1, pixels
+// dispatched over TBB. Shading is kernels/shared compiled as C++.
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/blocked_range2d.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+
+#include "backend/backend.h"
+#include "bvh/embree_device.h"
+#include "kernels/shared/geometry.h"
+#include "util/error.h"
+
+// The tracer the shared shading code calls on this backend.
+namespace tessera::ts {
+
+struct TsTracer {
+    RTCScene scene;
+};
+
+inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.org.x;
+    rh.ray.org_y = ray.org.y;
+    rh.ray.org_z = ray.org.z;
+    rh.ray.tnear = ray.tmin;
+    rh.ray.dir_x = ray.dir.x;
+    rh.ray.dir_y = ray.dir.y;
+    rh.ray.dir_z = ray.dir.z;
+    rh.ray.time = 0.0f;
+    rh.ray.tfar = ray.tmax;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(tr->scene, &ctx, &rh);
+    TsHit h;
+    h.t = rh.ray.tfar;
+    h.u = rh.hit.u;
+    h.v = rh.hit.v;
+    h.prim = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? TS_NO_HIT : rh.hit.primID;
+    if (h.prim == TS_NO_HIT) h.u = h.v = 0.0f;
+    return h;
+}
+
+inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = ray.org.x;
+    r.org_y = ray.org.y;
+    r.org_z = ray.org.z;
+    r.tnear = ray.tmin;
+    r.dir_x = ray.dir.x;
+    r.dir_y = ray.dir.y;
+    r.dir_z = ray.dir.z;
+    r.time = 0.0f;
+    r.tfar = ray.tmax;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(tr->scene, &ctx, &r);
+    return r.tfar < 0.0f ? 1 : 0;  // Embree sets tfar to -inf on occlusion
+}
+
+}  // namespace tessera::ts
+
+// Texture support is compiled in unconditionally on the CPU: a material without a
+// texture never reaches the lookup, so the result equals the OpenCL build without it.
+#define TS_HAS_TEXTURES 1
+#include "kernels/shared/direct.h"
+
+namespace tessera {
+namespace {
+
+ts::TsRay ray_from(const float* r) {
+    ts::TsRay ray;
+    ray.org = ts::make_float3(r[0], r[1], r[2]);
+    ray.tmin = r[3];
+    ray.dir = ts::make_float3(r[4], r[5], r[6]);
+    ray.tmax = r[7];
+    return ray;
+}
+
+class EmbreeBackend final : public Backend {
+public:
+    explicit EmbreeBackend(const SceneBuffers& scene) : buffers_(scene) {
+        RTCDevice dev = embree_device();
+        scene_ = rtcNewScene(dev);
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+        const size_t n = scene.triangle_count;
+        if (n > 0) {
+            RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
+            std::memcpy(v, scene.tri_pos.data(), 9 * n * sizeof(float));
+            auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
+            for (size_t i = 0; i < 3 * n; ++i) idx[i] = static_cast<unsigned>(i);
+            rtcCommitGeometry(g);
+            rtcAttachGeometry(scene_, g);
+            rtcReleaseGeometry(g);
+        }
+        rtcCommitScene(scene_);
+        check_embree("building the Embree scene");
+        tracer_.scene = scene_;
+    }
+    ~EmbreeBackend() override { rtcReleaseScene(scene_); }
+
+    std::string description() const override {
+        return "embree (Embree 3 single rays, TBB, " +
+               std::to_string(tbb::info::default_concurrency()) + " threads)";
+    }
+
+    void direct_pass(const TsFrame& frame, std::vector<float>& out) override {
+        out.resize(size_t(frame.width) * frame.height * TS_PASS_FLOATS);
+        ts::TsSceneView sv = scene_view(frame.light_count);
+        tbb::parallel_for(
+            tbb::blocked_range2d<unsigned>(0, frame.height, 8, 0, frame.width, 8),
+            [&](const tbb::blocked_range2d<unsigned>& r) {
+                set_ftz_daz();
+                for (unsigned y = r.rows().begin(); y < r.rows().end(); ++y)
+                    for (unsigned x = r.cols().begin(); x < r.cols().end(); ++x)
+                        ts::ts_direct_pixel(&sv, &tracer_, &frame, x, y,
+                                            &out[(size_t(y) * frame.width + x) * TS_PASS_FLOATS]);
+            });
+    }
+
+    void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) override {
+        const size_t n = rays.size() / 8;
+        hits.resize(4 * n);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
+            set_ftz_daz();
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                ts::TsHit h = ts::ts_trace_closest(&tracer_, ray_from(&rays[8 * i]));
+                hits[4 * i + 0] = h.t;
+                hits[4 * i + 1] = h.u;
+                hits[4 * i + 2] = h.v;
+                std::memcpy(&hits[4 * i + 3], &h.prim, 4);
+            }
+        });
+    }
+
+    void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) override {
+        const size_t n = rays.size() / 8;
+        occluded.resize(n);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
+            set_ftz_daz();
+            for (size_t i = r.begin(); i < r.end(); ++i)
+                occluded[i] = static_cast<uint32_t>(ts::ts_trace_occluded(&tracer_, ray_from(&rays[8 * i])));
+        });
+    }
+
+private:
+    ts::TsSceneView scene_view(uint32_t light_count) const {
+        const SceneBuffers& b = buffers_;
+        return ts::TsSceneView{b.tri_pos.data(),   b.tri_nrm.data(),  b.tri_uv.data(),
+                               b.tri_mat.data(),   b.materials.data(), b.tex_info.data(),
+                               b.tex_texels.data(), b.lights.data(),   b.light_cdf.data(),
+                               light_count};
+    }
+
+    const SceneBuffers& buffers_;
+    RTCScene scene_ = nullptr;
+    ts::TsTracer tracer_{};
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene) {
+    return std::make_unique<EmbreeBackend>(scene);
+}
+
+}  // namespace tessera

@@ -1,0 +1,186 @@
+#include "bvh/bvh_builder.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include <embree3/rtcore.h>
+
+#include "bvh/embree_device.h"
+#include "kernels/shared/layout.h"
+#include "util/error.h"
+
+namespace tessera {
+namespace {
+
+// Build-time nodes live in Embree's thread-local allocator until flattening.
+struct BuildNode {
+    bool leaf;
+    unsigned count;
+};
+struct InnerNode : BuildNode {
+    RTCBounds bounds[4];
+    const BuildNode* child[4];
+};
+struct LeafNode : BuildNode {
+    unsigned prim[TS_BVH_LEAF_MAX];
+};
+
+void* create_node(RTCThreadLocalAllocator alloc, unsigned int count, void*) {
+    auto* n = static_cast<InnerNode*>(rtcThreadLocalAlloc(alloc, sizeof(InnerNode), 16));
+    n->leaf = false;
+    n->count = count;
+    return n;
+}
+
+void set_children(void* node, void** children, unsigned int count, void*) {
+    auto* n = static_cast<InnerNode*>(node);
+    for (unsigned i = 0; i < count; ++i) n->child[i] = static_cast<const BuildNode*>(children[i]);
+}
+
+void set_bounds(void* node, const RTCBounds** bounds, unsigned int count, void*) {
+    auto* n = static_cast<InnerNode*>(node);
+    for (unsigned i = 0; i < count; ++i) n->bounds[i] = *bounds[i];
+}
+
+void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count,
+                  void*) {
+    auto* l = static_cast<LeafNode*>(rtcThreadLocalAlloc(alloc, sizeof(LeafNode), 16));
+    l->leaf = true;
+    l->count = static_cast<unsigned>(count);
+    for (size_t i = 0; i < count; ++i) l->prim[i] = prims[i].primID;
+    return l;
+}
+
+class Flattener {
+public:
+    Flattener(const std::vector<glm::vec3>& positions, FlatBvh& out) : pos_(positions), out_(out) {}
+
+    // Returns the child reference for `n` (see layout.h).
+    int flatten(const BuildNode* n, int depth) {
+        out_.depth = std::max(out_.depth, depth);
+        if (n->leaf) return emit_leaf(static_cast<const LeafNode*>(n));
+        const auto* in = static_cast<const InnerNode*>(n);
+        size_t index = new_node();
+        for (unsigned i = 0; i < in->count; ++i) {
+            int ref = flatten(in->child[i], depth + 1);
+            set_slot(index, i, in->bounds[i], ref);
+        }
+        return static_cast<int>(index);
+    }
+
+    // A root that is itself a leaf gets an inner node above it: kernels start at node 0.
+    void wrap_leaf_root(const BuildNode* leaf, const RTCBounds& bounds) {
+        size_t index = new_node();
+        set_slot(index, 0, bounds, flatten(leaf, 1));
+    }
+
+    size_t new_node() {
+        size_t index = out_.nodes.size() / TS_NODE_FLOATS;
+        out_.nodes.resize(out_.nodes.size() + TS_NODE_FLOATS, 0.0f);
+        float* f = &out_.nodes[index * TS_NODE_FLOATS];
+        const float inf = std::numeric_limits<float>::infinity();
+        for (int axis = 0; axis < 3; ++axis)
+            for (int c = 0; c < 4; ++c) {
+                f[axis * 8 + c] = inf;       // empty box: min = +inf ...
+                f[axis * 8 + 4 + c] = -inf;  // ... max = -inf
+            }
+        int empty = -1;
+        for (int c = 0; c < 4; ++c) std::memcpy(&f[TS_NODE_REFS + c], &empty, 4);
+        return index;
+    }
+
+private:
+    void set_slot(size_t index, unsigned slot, const RTCBounds& b, int ref) {
+        float* f = &out_.nodes[index * TS_NODE_FLOATS];
+        const float lo[3] = {b.lower_x, b.lower_y, b.lower_z};
+        const float hi[3] = {b.upper_x, b.upper_y, b.upper_z};
+        for (int axis = 0; axis < 3; ++axis) {
+            f[axis * 8 + slot] = lo[axis];
+            f[axis * 8 + 4 + slot] = hi[axis];
+        }
+        std::memcpy(&f[TS_NODE_REFS + slot], &ref, 4);
+    }
+
+    int emit_leaf(const LeafNode* l) {
+        uint32_t first = static_cast<uint32_t>(out_.tris.size() / TS_BVH_TRI_FLOATS);
+        for (unsigned i = 0; i < l->count; ++i) {
+            uint32_t prim = l->prim[i];
+            float t[TS_BVH_TRI_FLOATS] = {};
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec3& p = pos_[3 * prim + k];
+                t[4 * k + 0] = p.x;
+                t[4 * k + 1] = p.y;
+                t[4 * k + 2] = p.z;
+            }
+            std::memcpy(&t[3], &prim, 4);
+            out_.tris.insert(out_.tris.end(), t, t + TS_BVH_TRI_FLOATS);
+        }
+        return static_cast<int>(~((first << 3) | l->count));
+    }
+
+    const std::vector<glm::vec3>& pos_;
+    FlatBvh& out_;
+};
+
+}  // namespace
+
+size_t FlatBvh::node_count() const { return nodes.size() / TS_NODE_FLOATS; }
+
+FlatBvh build_bvh(const std::vector<glm::vec3>& positions, const BvhBuildSettings& settings) {
+    const size_t count = positions.size() / 3;
+    FlatBvh out;
+    Flattener flat(positions, out);
+    if (count == 0) {
+        flat.new_node();
+        return out;
+    }
+    std::vector<RTCBuildPrimitive> prims(count);
+    RTCBounds scene{};
+    for (size_t i = 0; i < count; ++i) {
+        glm::vec3 lo = glm::min(glm::min(positions[3 * i], positions[3 * i + 1]), positions[3 * i + 2]);
+        glm::vec3 hi = glm::max(glm::max(positions[3 * i], positions[3 * i + 1]), positions[3 * i + 2]);
+        prims[i] = RTCBuildPrimitive{lo.x, lo.y, lo.z, 0u, hi.x, hi.y, hi.z, static_cast<unsigned>(i)};
+        if (i == 0) scene = RTCBounds{lo.x, lo.y, lo.z, 0, hi.x, hi.y, hi.z, 0};
+        scene.lower_x = std::min(scene.lower_x, lo.x);
+        scene.lower_y = std::min(scene.lower_y, lo.y);
+        scene.lower_z = std::min(scene.lower_z, lo.z);
+        scene.upper_x = std::max(scene.upper_x, hi.x);
+        scene.upper_y = std::max(scene.upper_y, hi.y);
+        scene.upper_z = std::max(scene.upper_z, hi.z);
+    }
+    RTCBVH bvh = rtcNewBVH(embree_device());
+    RTCBuildArguments args = rtcDefaultBuildArguments();
+    args.byteSize = sizeof(args);
+    args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+    args.maxBranchingFactor = 4;
+    args.maxDepth = TS_BVH_MAX_DEPTH;
+    args.minLeafSize = 1;
+    args.maxLeafSize = TS_BVH_LEAF_MAX;
+    args.traversalCost = settings.traversal_cost;
+    args.intersectionCost = settings.intersection_cost;
+    args.bvh = bvh;
+    args.primitives = prims.data();
+    args.primitiveCount = prims.size();
+    args.primitiveArrayCapacity = prims.size();
+    args.createNode = create_node;
+    args.setNodeChildren = set_children;
+    args.setNodeBounds = set_bounds;
+    args.createLeaf = create_leaf;
+    auto* root = static_cast<const BuildNode*>(rtcBuildBVH(&args));
+    if (!root) {
+        rtcReleaseBVH(bvh);
+        check_embree("rtcBuildBVH");
+        throw RuntimeError("Embree: rtcBuildBVH returned no root");
+    }
+    out.nodes.reserve(count / 2 * TS_NODE_FLOATS);
+    out.tris.reserve(count * TS_BVH_TRI_FLOATS);
+    if (root->leaf)
+        flat.wrap_leaf_root(root, scene);
+    else
+        flat.flatten(root, 0);
+    rtcReleaseBVH(bvh);  // frees every build node; the flat arrays are all we keep
+    return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,99 @@
+#include "opencl/device.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "util/error.h"
+
+namespace tessera {
+
+std::string describe_cl_error(const cl::Error& e) {
+    return std::string(e.what()) + " (OpenCL error " + std::to_string(e.err()) + ")";
+}
+
+namespace {
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+}
+
+std::string trim(std::string s) {
+    while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back()))))
+        s.pop_back();
+    return s;
+}
+
+std::string type_name(cl_device_type t) {
+    if (t & CL_DEVICE_TYPE_GPU) return "GPU";
+    if (t & CL_DEVICE_TYPE_CPU) return "CPU";
+    if (t & CL_DEVICE_TYPE_ACCELERATOR) return "accelerator";
+    return "other";
+}
+
+std::string device_list_text(const std::vector<ClDeviceInfo>& devs) {
+    std::string s;
+    for (const auto& d : devs)
+        s += "\n  [" + std::to_string(d.index) + "] " + d.platform_name + ": " + d.name;
+    return s;
+}
+
+}  // namespace
+
+std::vector<ClDeviceInfo> list_cl_devices() {
+    std::vector<ClDeviceInfo> out;
+    std::vector<cl::Platform> platforms;
+    try {
+        cl::Platform::get(&platforms);
+    } catch (const cl::Error&) {
+        return out;  // CL_PLATFORM_NOT_FOUND_KHR: no ICD
+    }
+    for (const auto& p : platforms) {
+        std::vector<cl::Device> devices;
+        try {
+            p.getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        } catch (const cl::Error&) {
+            continue;  // a platform without devices
+        }
+        for (const auto& d : devices) {
+            ClDeviceInfo i;
+            i.index = static_cast<int>(out.size());
+            i.platform = p;
+            i.device = d;
+            i.platform_name = trim(p.getInfo<CL_PLATFORM_NAME>());
+            i.name = trim(d.getInfo<CL_DEVICE_NAME>());
+            i.version = trim(d.getInfo<CL_DEVICE_VERSION>());
+            i.driver = trim(d.getInfo<CL_DRIVER_VERSION>());
+            i.type = type_name(d.getInfo<CL_DEVICE_TYPE>());
+            i.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+            i.global_mem = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+            i.max_alloc = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+            out.push_back(std::move(i));
+        }
+    }
+    return out;
+}
+
+ClDeviceInfo select_cl_device(const std::string& spec) {
+    auto devs = list_cl_devices();
+    if (devs.empty())
+        throw RuntimeError(
+            "no OpenCL device found (is an ICD such as pocl-opencl-icd installed?); "
+            "use --backend embree to render on the CPU without OpenCL");
+    if (spec.empty()) {
+        for (const auto& d : devs)
+            if (d.type == "GPU") return d;
+        return devs.front();
+    }
+    if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); })) {
+        size_t i = std::stoul(spec);
+        if (i < devs.size()) return devs[i];
+    } else {
+        for (const auto& d : devs)
+            if (lower(d.platform_name + ": " + d.name).find(lower(spec)) != std::string::npos) return d;
+    }
+    throw RuntimeError("--device " + spec + ": no such OpenCL device; available:" +
+                       device_list_text(devs) + "\n(or use --backend embree)");
+}
+
+}  // namespace tessera

@@ -1,0 +1,65 @@
+#include "render/accumulator.h"
+
+#include <cmath>
+#include <limits>
+
+#include "kernels/shared/layout.h"
+
+namespace tessera {
+
+Accumulator::Accumulator(int width, int height)
+    : width_(width), height_(height),
+      sum_(size_t(width) * height * TS_PASS_FLOATS, 0.0),
+      sum_sq_(size_t(width) * height * 3, 0.0),
+      hits_(size_t(width) * height, 0) {}
+
+void Accumulator::add(const std::vector<float>& pass) {
+    const size_t n = size_t(width_) * height_;
+    for (size_t p = 0; p < n; ++p) {
+        const float* in = &pass[p * TS_PASS_FLOATS];
+        double* s = &sum_[p * TS_PASS_FLOATS];
+        for (int k = 0; k < 9; ++k) s[k] += in[k];
+        if (std::isfinite(in[9])) {
+            s[9] += in[9];
+            ++hits_[p];
+        }
+        for (int c = 0; c < 3; ++c) sum_sq_[3 * p + c] += double(in[c]) * in[c];
+    }
+    ++passes_;
+}
+
+Image Accumulator::mean_image(bool aovs, bool variance) const {
+    Image img;
+    img.width = width_;
+    img.height = height_;
+    const size_t n = size_t(width_) * height_;
+    const double inv = passes_ ? 1.0 / passes_ : 0.0;
+    auto channel = [&](const char* name, auto value) {
+        ImageChannel c{name, std::vector<float>(n)};
+        for (size_t p = 0; p < n; ++p) c.data[p] = static_cast<float>(value(p));
+        img.channels.push_back(std::move(c));
+    };
+    const char* rgb[] = {"R", "G", "B"};
+    for (int k = 0; k < 3; ++k) channel(rgb[k], [&](size_t p) { return sum_[p * TS_PASS_FLOATS + k] * inv; });
+    if (aovs) {
+        const char* names[] = {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z"};
+        for (int k = 0; k < 6; ++k)
+            channel(names[k], [&](size_t p) { return sum_[p * TS_PASS_FLOATS + 3 + k] * inv; });
+        channel("Z", [&](size_t p) {
+            return hits_[p] ? sum_[p * TS_PASS_FLOATS + 9] / hits_[p] : std::numeric_limits<double>::infinity();
+        });
+    }
+    if (variance) {
+        const char* names[] = {"variance.R", "variance.G", "variance.B"};
+        for (int k = 0; k < 3; ++k)
+            channel(names[k], [&](size_t p) {
+                if (passes_ < 2) return 0.0;
+                double mean = sum_[p * TS_PASS_FLOATS + k] * inv;
+                double var = (sum_sq_[3 * p + k] * inv - mean * mean) * passes_ / (passes_ - 1.0);
+                return std::max(var, 0.0) / passes_;
+            });
+    }
+    return img;
+}
+
+}  // namespace tessera

@@ -1,0 +1,38 @@
+#include "render/effect_plan.h"
+
+namespace tessera {
+
+EffectPlan plan_effects(const Scene& scene) {
+    EffectPlan p;
+    std::vector<bool> used(scene.materials.size(), false);
+    for (uint32_t m : scene.material) used[m] = true;
+    bool reflects = false;
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const Material& m = scene.materials[i];
+        if (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f) p.area_lights = true;
+        if (m.texture >= 0) p.textures = true;
+        if (m.albedo.x > 0.0f || m.albedo.y > 0.0f || m.albedo.z > 0.0f) reflects = true;
+    }
+    p.indirect = p.area_lights && reflects;
+    return p;
+}
+
+std::vector<std::string> EffectPlan::cl_defines() const {
+    std::vector<std::string> d;
+    if (textures) d.push_back("-DTS_HAS_TEXTURES");
+    if (medium) d.push_back("-DTS_HAS_MEDIUM");
+    return d;
+}
+
+std::vector<std::string> EffectPlan::describe() const {
+    auto yn = [](bool b) { return b ? std::string("yes") : std::string("no"); };
+    return {
+        "area lights (SS):     " + yn(area_lights),
+        "textures:             " + yn(textures),
+        "indirect diffuse (ID): " + yn(indirect) + (indirect ? "" : " (no reflecting surface or no light)"),
+        "medium (PM):          " + yn(medium) + (medium ? "" : " (scene declares none)"),
+    };
+}
+
+}  // namespace tessera

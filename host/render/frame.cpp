@@ -1,0 +1,37 @@
+#include "render/frame.h"
+
+#include <cmath>
+
+#include "util/error.h"
+
+namespace tessera {
+
+TsFrame make_frame(const Camera& camera, int width, int height, uint32_t shadow_samples,
+                   uint32_t seed, uint32_t light_count) {
+    glm::vec3 fw = camera.look_at - camera.position;
+    if (!(glm::length(fw) > 0.0f)) throw InputError("camera.look_at equals camera.position");
+    fw = glm::normalize(fw);
+    glm::vec3 right = glm::cross(fw, camera.up);
+    if (!(glm::length(right) > 1e-6f * glm::length(camera.up)))
+        throw InputError("camera.up is parallel to the viewing direction");
+    right = glm::normalize(right);
+    glm::vec3 up = glm::normalize(glm::cross(right, fw));
+    const float tan_half = std::tan(0.5f * glm::radians(camera.vfov_deg));
+    right *= tan_half * static_cast<float>(width) / static_cast<float>(height);
+    up *= tan_half;
+    TsFrame f{};
+    for (int i = 0; i < 3; ++i) {
+        f.cam_pos[i] = camera.position[i];
+        f.cam_forward[i] = fw[i];
+        f.cam_right[i] = right[i];
+        f.cam_up[i] = up[i];
+    }
+    f.width = static_cast<unsigned>(width);
+    f.height = static_cast<unsigned>(height);
+    f.shadow_samples = shadow_samples;
+    f.seed = seed;
+    f.light_count = light_count;
+    return f;
+}
+
+}  // namespace tessera

@@ -1,0 +1,91 @@
+#include "render/scene_buffers.h"
+
+#include <cstring>
+
+#include "kernels/shared/layout.h"
+
+namespace tessera {
+namespace {
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+void push3(std::vector<float>& v, const glm::vec3& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
+
+template <class T>
+void ensure_nonempty(std::vector<T>& v) {
+    if (v.empty()) v.push_back(T{});
+}
+
+void add_materials(const Scene& scene, SceneBuffers& b) {
+    for (const Material& m : scene.materials) {
+        float f[TS_MATERIAL_FLOATS] = {m.albedo.x, m.albedo.y, m.albedo.z, 0.0f,
+                                       m.emission.x, m.emission.y, m.emission.z, 0.0f};
+        int tex = m.texture;
+        std::memcpy(&f[3], &tex, 4);
+        b.materials.insert(b.materials.end(), f, f + TS_MATERIAL_FLOATS);
+    }
+}
+
+void add_textures(const Scene& scene, SceneBuffers& b) {
+    for (const Texture& t : scene.textures) {
+        b.tex_info.insert(b.tex_info.end(),
+                          {static_cast<uint32_t>(b.tex_texels.size()), static_cast<uint32_t>(t.width),
+                           static_cast<uint32_t>(t.height), 0u});
+        b.tex_texels.insert(b.tex_texels.end(), t.rgba8.begin(), t.rgba8.end());
+    }
+}
+
+void add_lights(const Scene& scene, SceneBuffers& b) {
+    double total = 0.0;
+    std::vector<double> power;
+    for (uint32_t i = 0; i < scene.triangle_count(); ++i) {
+        const glm::vec3& le = scene.materials[scene.material[i]].emission;
+        if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) continue;
+        glm::vec3 p0 = scene.positions[3 * i], e1 = scene.positions[3 * i + 1] - p0,
+                  e2 = scene.positions[3 * i + 2] - p0;
+        float area = 0.5f * glm::length(glm::cross(e1, e2));
+        if (!(area > 0.0f)) continue;  // a zero-area emitter carries no power
+        float f[TS_LIGHT_FLOATS] = {};
+        std::memcpy(f, &p0, 12);
+        std::memcpy(f + 3, &e1, 12);
+        std::memcpy(f + 6, &e2, 12);
+        std::memcpy(f + 9, &le, 12);
+        f[12] = area;
+        std::memcpy(&f[13], &i, 4);
+        b.lights.insert(b.lights.end(), f, f + TS_LIGHT_FLOATS);
+        power.push_back(static_cast<double>(luminance(le)) * area);
+        total += power.back();
+    }
+    b.light_count = static_cast<uint32_t>(power.size());
+    double run = 0.0;
+    for (size_t i = 0; i < power.size(); ++i) {
+        run += power[i];
+        b.light_cdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(run / total));
+    }
+}
+
+}  // namespace
+
+SceneBuffers make_scene_buffers(const Scene& scene) {
+    SceneBuffers b;
+    const size_t n = scene.triangle_count();
+    b.triangle_count = static_cast<uint32_t>(n);
+    b.tri_pos.reserve(9 * n);
+    b.tri_nrm.reserve(9 * n);
+    b.tri_uv.reserve(6 * n);
+    for (size_t i = 0; i < 3 * n; ++i) {
+        push3(b.tri_pos, scene.positions[i]);
+        push3(b.tri_nrm, scene.normals[i]);
+        b.tri_uv.insert(b.tri_uv.end(), {scene.uvs[i].x, scene.uvs[i].y});
+    }
+    b.tri_mat = scene.material;
+    add_materials(scene, b);
+    add_textures(scene, b);
+    add_lights(scene, b);
+    for (auto* v : {&b.tri_pos, &b.tri_nrm, &b.tri_uv, &b.materials, &b.lights, &b.light_cdf})
+        ensure_nonempty(*v);
+    for (auto* v : {&b.tri_mat, &b.tex_info, &b.tex_texels}) ensure_nonempty(*v);
+    return b;
+}
+
+}  // namespace tessera

@@ -1,0 +1,32 @@
+// The scene as flat buffers in the layouts of kernels/shared/layout.h: what both
+// backends read. The OpenCL backend uploads them; the Embree backend points the shared
+// shading code at them directly.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace tessera {
+
+struct SceneBuffers {
+    std::vector<float> tri_pos;      ///< 9 floats per triangle
+    std::vector<float> tri_nrm;      ///< 9 floats per triangle
+    std::vector<float> tri_uv;       ///< 6 floats per triangle
+    std::vector<uint32_t> tri_mat;   ///< 1 per triangle
+    std::vector<float> materials;    ///< TS_MATERIAL_FLOATS per material
+    std::vector<uint32_t> tex_info;  ///< 4 per texture
+    std::vector<uint32_t> tex_texels;
+    std::vector<float> lights;       ///< TS_LIGHT_FLOATS per emissive triangle
+    std::vector<float> light_cdf;    ///< 1 per light
+    uint32_t triangle_count = 0;
+    uint32_t light_count = 0;
+};
+
+/// Flattens `scene`. Every triangle whose material emits (any channel of Ke > 0) and
+/// whose area is positive becomes a light; lights are picked in proportion to
+/// power = luminance(Le) × area. Buffers that would be empty get one zero element, so
+/// every device buffer can be created.
+SceneBuffers make_scene_buffers(const Scene& scene);
+
+}  // namespace tessera

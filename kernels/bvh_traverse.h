@@ -1,0 +1,157 @@
+/* OpenCL BVH4 traversal (layout in shared/layout.h): closest hit and any hit.
+ *
+ * PoCL runs work-items of a work-group one after another and cannot vectorise a
+ * traversal loop across them (its exit depends on the ray), so SIMD comes from inside
+ * one ray: each node step tests the ray against the four child boxes with float4
+ * arithmetic. No barriers: every work-item traverses on its own.
+ *
+ * Box test: slab test with the near/far plane chosen by the ray direction's sign (so
+ * empty boxes, min = +inf and max = -inf, are never hit), and the far distance scaled
+ * by 1 + 2γ3 (Ize, "Robust BVH Ray Traversal", JCGT 2013) so rounding cannot cull a box
+ * the ray grazes. Triangle test: watertight (Woop, Benthin, Wald, "Watertight
+ * Ray/Triangle Intersection", JCGT 2013), so rays cannot slip between triangles that
+ * share an edge; the double-precision fallback for exactly-zero edge functions is left
+ * out (doubles are optional in OpenCL 1.2), which keeps watertightness and only
+ * resolves exact-edge ties by a fixed rule.
+ */
+#ifndef TS_BVH_TRAVERSE_H
+#define TS_BVH_TRAVERSE_H
+#include "shared/compat.h"
+#include "shared/geometry.h"
+#include "shared/layout.h"
+
+/* 1 + 2γ(3) with γ(n) = n ε / (1 − n ε), ε = 2^-24. */
+#define TS_BOX_TFAR_SCALE 1.0000003576278687f
+
+/* Per-ray constants of the watertight test: the axis permutation and the shear. */
+typedef struct TsWatertight {
+    int kx, ky, kz;
+    float sx, sy, sz;
+} TsWatertight;
+
+inline TsWatertight ts_watertight_setup(float3 d) {
+    float3 a = fabs(d);
+    int kz = (a.x > a.y) ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    int kx = kz == 2 ? 0 : kz + 1;
+    int ky = kx == 2 ? 0 : kx + 1;
+    if (ts_f3_get(d, kz) < 0.0f) { int t = kx; kx = ky; ky = t; } /* keep the winding */
+    TsWatertight w;
+    w.kx = kx; w.ky = ky; w.kz = kz;
+    float dz = ts_f3_get(d, kz);
+    w.sx = ts_f3_get(d, kx) / dz;
+    w.sy = ts_f3_get(d, ky) / dz;
+    w.sz = 1.0f / dz;
+    return w;
+}
+
+/* Returns 1 and sets (*t, *u, *v) if the ray hits the triangle with t in (tmin, tmax). */
+inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float tmin, float tmax,
+                                 __global const float* tri, float* t, float* u, float* v) {
+    float3 A = vload3(0, tri) - org, B = vload3(0, tri + 4) - org, C = vload3(0, tri + 8) - org;
+    float Az = ts_f3_get(A, w->kz), Bz = ts_f3_get(B, w->kz), Cz = ts_f3_get(C, w->kz);
+    float Ax = ts_f3_get(A, w->kx) - w->sx * Az, Ay = ts_f3_get(A, w->ky) - w->sy * Az;
+    float Bx = ts_f3_get(B, w->kx) - w->sx * Bz, By = ts_f3_get(B, w->ky) - w->sy * Bz;
+    float Cx = ts_f3_get(C, w->kx) - w->sx * Cz, Cy = ts_f3_get(C, w->ky) - w->sy * Cz;
+    float U = Cx * By - Cy * Bx;
+    float V = Ax * Cy - Ay * Cx;
+    float W = Bx * Ay - By * Ax;
+    if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
+    float det = U + V + W;
+    if (det == 0.0f) return 0;
+    float T = U * (w->sz * Az) + V * (w->sz * Bz) + W * (w->sz * Cz);
+    float rcp = 1.0f / det;
+    float tt = T * rcp;
+    if (!(tt > tmin && tt < tmax)) return 0;
+    *t = tt;
+    *u = V * rcp; /* weight of p1 */
+    *v = W * rcp; /* weight of p2 */
+    return 1;
+}
+
+/* Distances to the four child boxes of `node`; a child is hit where near <= far. */
+inline int4 ts_node_hits(__global const float* node, float3 org, float3 inv, int3 neg,
+                         float tmin, float tmax, float4* tnear_out) {
+    float4 lo_x = vload4(0, node + (neg.x ? 4 : 0)), hi_x = vload4(0, node + (neg.x ? 0 : 4));
+    float4 lo_y = vload4(0, node + (neg.y ? 12 : 8)), hi_y = vload4(0, node + (neg.y ? 8 : 12));
+    float4 lo_z = vload4(0, node + (neg.z ? 20 : 16)), hi_z = vload4(0, node + (neg.z ? 16 : 20));
+    float4 n_x = (lo_x - org.x) * inv.x, f_x = (hi_x - org.x) * inv.x;
+    float4 n_y = (lo_y - org.y) * inv.y, f_y = (hi_y - org.y) * inv.y;
+    float4 n_z = (lo_z - org.z) * inv.z, f_z = (hi_z - org.z) * inv.z;
+    float4 tn = fmax(fmax(n_x, n_y), fmax(n_z, (float4)(tmin)));
+    float4 tf = fmin(fmin(f_x, f_y), fmin(f_z, (float4)(tmax))) * TS_BOX_TFAR_SCALE;
+    *tnear_out = tn;
+    return tn <= tf;
+}
+
+/* Traversal shared by closest and any hit. `any` is a compile-time constant at each
+ * call site, so the compiler specialises the loop. */
+inline TsHit ts_bvh_traverse(__global const float* nodes, __global const float* tris, TsRay ray,
+                             int any) {
+    TsHit hit;
+    hit.prim = TS_NO_HIT;
+    hit.t = ray.tmax;
+    hit.u = hit.v = 0.0f;
+    /* A zero direction component would give 0 · inf = NaN in the slab test. */
+    float3 d = ray.dir;
+    float3 ds = make_float3(fabs(d.x) < 1e-30f ? copysign(1e-30f, d.x) : d.x,
+                            fabs(d.y) < 1e-30f ? copysign(1e-30f, d.y) : d.y,
+                            fabs(d.z) < 1e-30f ? copysign(1e-30f, d.z) : d.z);
+    float3 inv = 1.0f / ds;
+    int3 neg = (int3)(ds.x < 0.0f, ds.y < 0.0f, ds.z < 0.0f);
+    TsWatertight w = ts_watertight_setup(d);
+
+    int stack[TS_BVH_STACK_SIZE];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        int ref = stack[--sp];
+        if (ref >= 0) {
+            __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
+            float4 tn;
+            int4 m = ts_node_hits(node, ray.org, inv, neg, ray.tmin, hit.t, &tn);
+            int4 refs = as_int4(vload4(0, node + TS_NODE_REFS));
+            /* Push hit children far to near so the nearest is visited first. */
+            int cr[4];
+            float ct[4];
+            int n = 0;
+            if (m.x) { cr[n] = refs.x; ct[n++] = tn.x; }
+            if (m.y) { cr[n] = refs.y; ct[n++] = tn.y; }
+            if (m.z) { cr[n] = refs.z; ct[n++] = tn.z; }
+            if (m.w) { cr[n] = refs.w; ct[n++] = tn.w; }
+            for (int i = 1; i < n; ++i) { /* insertion sort, descending distance */
+                int r = cr[i];
+                float t = ct[i];
+                int j = i - 1;
+                while (j >= 0 && ct[j] < t) { cr[j + 1] = cr[j]; ct[j + 1] = ct[j]; --j; }
+                cr[j + 1] = r;
+                ct[j + 1] = t;
+            }
+            for (int i = 0; i < n && sp < TS_BVH_STACK_SIZE; ++i) stack[sp++] = cr[i];
+        } else {
+            uint v = ~(uint)ref;
+            uint first = v >> 3, count = v & 7u;
+            for (uint i = 0u; i < count; ++i) {
+                __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
+                float t, u, vv;
+                if (ts_intersect_triangle(&w, ray.org, ray.tmin, hit.t, tri, &t, &u, &vv)) {
+                    hit.t = t;
+                    hit.u = u;
+                    hit.v = vv;
+                    hit.prim = as_uint(tri[3]);
+                    if (any) return hit;
+                }
+            }
+        }
+    }
+    return hit;
+}
+
+inline TsHit ts_bvh_closest(__global const float* nodes, __global const float* tris, TsRay ray) {
+    return ts_bvh_traverse(nodes, tris, ray, 0);
+}
+
+inline int ts_bvh_occluded(__global const float* nodes, __global const float* tris, TsRay ray) {
+    return ts_bvh_traverse(nodes, tris, ray, 1).prim != TS_NO_HIT;
+}
+
+#endif /* TS_BVH_TRAVERSE_H */

@@ -1,0 +1,121 @@
+/* Portability layer: lets the shading and sampling sources in kernels/shared compile
+ * both as OpenCL C 1.2 (device kernels) and as C++20 (the Embree CPU backend), so the
+ * light transport is written once (the approach Cycles takes for its devices).
+ *
+ * Rules for shared code:
+ *   - vectors are `float3`, built with make_float3(); use dot/cross/normalize/length,
+ *     fmin/fmax/fabs/sqrt and the helpers below;
+ *   - buffers are `TS_GLOBAL const float*` / `TS_GLOBAL const uint*`; never float3 in a
+ *     buffer (OpenCL pads float3 to 16 bytes, C++ does not);
+ *   - functions are `TS_INLINE`; no recursion, no dynamic allocation;
+ *   - bit casts use as_uint()/as_float()/as_int().
+ */
+#ifndef TS_COMPAT_H
+#define TS_COMPAT_H
+
+#ifdef __OPENCL_VERSION__
+/* ---------------------------------------------------------------- OpenCL C */
+/* No contraction into FMA, so device and C++ (-ffp-contract=off) round alike. */
+#pragma OPENCL FP_CONTRACT OFF
+#define TS_GLOBAL __global
+#define TS_INLINE inline
+#define make_float3(x, y, z) ((float3)((x), (y), (z)))
+#define make_float2(x, y) ((float2)((x), (y)))
+#define TS_INF INFINITY
+#define TS_NAN NAN
+#define TS_NAMESPACE_BEGIN
+#define TS_NAMESPACE_END
+static inline float3 ts_f3_load(TS_GLOBAL const float* p) { return vload3(0, p); }
+
+#else
+/* ---------------------------------------------------------------- C++ */
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+#define TS_GLOBAL
+#define TS_INLINE inline
+#define TS_NAMESPACE_BEGIN namespace tessera::ts {
+#define TS_NAMESPACE_END }
+
+namespace tessera::ts {
+
+typedef uint32_t uint;
+
+struct float2 {
+    float x, y;
+};
+struct float3 {
+    float x, y, z;
+};
+
+inline float2 make_float2(float x, float y) { return float2{x, y}; }
+inline float3 make_float3(float x, float y, float z) { return float3{x, y, z}; }
+
+inline float3 operator+(float3 a, float3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline float3 operator-(float3 a, float3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline float3 operator-(float3 a) { return {-a.x, -a.y, -a.z}; }
+inline float3 operator*(float3 a, float3 b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+inline float3 operator*(float3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+inline float3 operator*(float s, float3 a) { return {a.x * s, a.y * s, a.z * s}; }
+inline float3 operator/(float3 a, float s) { return {a.x / s, a.y / s, a.z / s}; }
+inline float3 operator/(float3 a, float3 b) { return {a.x / b.x, a.y / b.y, a.z / b.z}; }
+inline float3& operator+=(float3& a, float3 b) { return a = a + b; }
+inline float3& operator*=(float3& a, float3 b) { return a = a * b; }
+inline float3& operator*=(float3& a, float s) { return a = a * s; }
+
+inline float dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline float3 cross(float3 a, float3 b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline float length(float3 a) { return std::sqrt(dot(a, a)); }
+inline float3 normalize(float3 a) { return a * (1.0f / length(a)); }
+inline float3 fabs(float3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+inline float3 fmin(float3 a, float3 b) {
+    return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
+}
+inline float3 fmax(float3 a, float3 b) {
+    return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
+}
+using std::cos;
+using std::fabs;
+using std::floor;
+using std::fmax;
+using std::fmin;
+using std::sin;
+using std::sqrt;
+using std::pow;
+using std::isfinite;
+inline float clamp(float x, float lo, float hi) { return std::fmin(std::fmax(x, lo), hi); }
+inline float mix(float a, float b, float t) { return a + (b - a) * t; }
+
+inline uint as_uint(float f) {
+    uint u;
+    std::memcpy(&u, &f, 4);
+    return u;
+}
+inline int as_int(float f) {
+    int i;
+    std::memcpy(&i, &f, 4);
+    return i;
+}
+inline float as_float(uint u) {
+    float f;
+    std::memcpy(&f, &u, 4);
+    return f;
+}
+inline float as_float(int i) {
+    float f;
+    std::memcpy(&f, &i, 4);
+    return f;
+}
+inline float3 ts_f3_load(const float* p) { return {p[0], p[1], p[2]}; }
+
+constexpr float TS_INF = std::numeric_limits<float>::infinity();
+constexpr float TS_NAN = std::numeric_limits<float>::quiet_NaN();
+
+}  // namespace tessera::ts
+#endif
+
+#endif /* TS_COMPAT_H */

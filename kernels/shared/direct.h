@@ -1,0 +1,89 @@
+/* The `direct` method: emission plus direct illumination from area lights (the SS
+ * component of the seed thesis), estimated at the first camera hit with
+ * `shadow_samples` stratified light samples per pass.
+ *
+ * Estimator (area form of the rendering equation, Lambertian BRDF albedo/π):
+ *   L(x) = Le(x) + albedo/π · (1/m) Σ_j Le(y_j) V(x,y_j) cosθx cosθy / (|x − y_j|² p(y_j))
+ * with p(y) = P(light) / area(light). The m samples are a Hammersley set
+ * ((j+½)/m, φ2(j)) on the light's square parameter domain and φ3(j) for light
+ * selection, Cranley–Patterson rotated per pixel and pass, so they are stratified
+ * within a pixel and independent between pixels and passes.
+ *
+ * The including backend must first define the type TsTracer and
+ *   TsHit ts_trace_closest(const TsTracer* tracer, TsRay ray);
+ *   int   ts_trace_occluded(const TsTracer* tracer, TsRay ray);   (1 = blocked)
+ * which is the only place the backends differ.
+ */
+#ifndef TS_DIRECT_H
+#define TS_DIRECT_H
+#include "shared/compat.h"
+#include "shared/geometry.h"
+#include "shared/layout.h"
+#include "shared/material.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+
+TS_NAMESPACE_BEGIN
+
+#define TS_INV_PI 0.318309886183790671538f
+
+/* Unoccluded contribution Le cosθx cosθy / (d² p) of one light sample at surface s, and
+ * the shadow ray that decides its visibility. Returns 0 when the light faces away. */
+TS_INLINE float3 ts_light_contribution(const TsSurface* s, TsLightSample ls, TsRay* shadow) {
+    float3 d = ls.position - s->position;
+    float dist2 = dot(d, d);
+    float3 wi = d / sqrt(dist2);
+    float cos_x = dot(s->shading_normal, wi);
+    float cos_y = -dot(ls.normal, wi);
+    float3 zero = make_float3(0.0f, 0.0f, 0.0f);
+    if (cos_x <= 0.0f || cos_y <= 0.0f || dot(s->geo_normal, wi) <= 0.0f) return zero;
+    /* Both ends offset off their surfaces; dir spans the gap so t runs over (0, 1). */
+    shadow->org = ts_offset_ray_origin(s->position, s->geo_normal);
+    float3 target = ts_offset_ray_origin(ls.position, ls.normal);
+    shadow->dir = target - shadow->org;
+    shadow->tmin = 0.0f;
+    shadow->tmax = 0.99999f;
+    return ls.radiance * (cos_x * cos_y / (dist2 * ls.pdf_area));
+}
+
+/* Direct irradiance / π (the quantity albedo multiplies) at s from m light samples. */
+TS_INLINE float3 ts_direct_irradiance(const TsSceneView* sv, const TsTracer* tracer,
+                                      const TsSurface* s, uint m, TsRng* rng) {
+    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
+    float r0 = ts_rng_next(rng), r1 = ts_rng_next(rng), r2 = ts_rng_next(rng);
+    for (uint j = 0u; j < m; ++j) {
+        float us = ts_rotate01(ts_radical_inverse3(j), r0);
+        float u = ts_rotate01(((float)j + 0.5f) / (float)m, r1);
+        float v = ts_rotate01(ts_radical_inverse2(j), r2);
+        TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, us, u, v);
+        TsRay shadow;
+        float3 c = ts_light_contribution(s, ls, &shadow);
+        if (c.x + c.y + c.z > 0.0f && !ts_trace_occluded(tracer, shadow)) sum += c;
+    }
+    return sum * (TS_INV_PI / (float)m);
+}
+
+/* One pass (1 spp) of the direct method for pixel (px, py); writes TS_PASS_FLOATS
+ * values to out (layout in shared/layout.h). */
+TS_INLINE void ts_direct_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                               uint px, uint py, float* out) {
+    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
+    float jx = ts_rng_next(&rng), jy = ts_rng_next(&rng);
+    TsRay ray = ts_camera_ray(f, px, py, jx, jy);
+    TsHit hit = ts_trace_closest(tracer, ray);
+    for (int i = 0; i < 9; ++i) out[i] = 0.0f;
+    out[9] = TS_INF;
+    if (hit.prim == TS_NO_HIT) return;
+    TsSurface s = ts_surface_at(sv, ray, hit);
+    float3 albedo = ts_material_albedo(sv, &s);
+    float3 L = ts_material_emission(sv, &s);
+    if (albedo.x + albedo.y + albedo.z > 0.0f && sv->light_count > 0u)
+        L += albedo * ts_direct_irradiance(sv, tracer, &s, f->shadow_samples, &rng);
+    out[0] = L.x; out[1] = L.y; out[2] = L.z;
+    out[3] = albedo.x; out[4] = albedo.y; out[5] = albedo.z;
+    out[6] = s.shading_normal.x; out[7] = s.shading_normal.y; out[8] = s.shading_normal.z;
+    out[9] = hit.t;
+}
+
+TS_NAMESPACE_END
+#endif /* TS_DIRECT_H */

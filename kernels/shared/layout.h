@@ -1,0 +1,81 @@
+/* Buffer layouts shared by the host (C++) and the kernels (OpenCL C). Declared once,
+ * here. Every buffer is an array of 32-bit `float` or `uint`; no float3 (its size
+ * differs between OpenCL and C++), no pointers.
+ *
+ * BVH (built by host/bvh/bvh_builder.cpp with Embree's rtcBuildBVH, MEDIUM quality =
+ * binned SAH, maxBranchingFactor 4, maxLeafSize 4, maxDepth TS_BVH_MAX_DEPTH):
+ *   nodes: TS_NODE_FLOATS floats per node, node 0 is the root. A 4-wide node keeps its
+ *   children's boxes as structure of arrays so one float4 load serves four children:
+ *     [ 0.. 3] child min x   [ 4.. 7] child max x
+ *     [ 8..11] child min y   [12..15] child max y
+ *     [16..19] child min z   [20..23] child max z
+ *     [24..27] child references (int bits, read with as_int)
+ *     [28..31] unused (pads the node to 128 bytes, two cache lines)
+ *   A child reference r >= 0 is an inner node index. r < 0 is a leaf: with v = ~r,
+ *   its triangles are bvh_tris entries [v >> 3, (v >> 3) + (v & 7)). An unused slot
+ *   holds r = -1 (a leaf of 0 triangles) and an empty box (min +inf, max -inf), which
+ *   the slab test rejects for every ray.
+ *   bvh_tris: TS_BVH_TRI_FLOATS floats per triangle, in leaf order:
+ *     [0..2] v0, [3] original triangle index (uint bits), [4..6] v1, [7] 0,
+ *     [8..10] v2, [11] 0.
+ *
+ * Shading data, indexed by the original (scene) triangle index `prim`:
+ *   tri_pos   9 floats: p0, p1, p2 (world space, scene units)
+ *   tri_nrm   9 floats: shading normals n0, n1, n2 (unit length)
+ *   tri_uv    6 floats: uv0, uv1, uv2
+ *   tri_mat   1 uint:   material index
+ * materials: TS_MATERIAL_FLOATS floats: [0..2] albedo (Kd, linear), [3] texture index
+ *   (int bits, -1 = none), [4..6] emitted radiance Le in W/(sr·m²), [7] unused.
+ * textures: tex_info 4 uints per texture: texel offset, width, height, unused;
+ *   tex_texels: uint RGBA8 (R in the low byte), sRGB-encoded, row 0 at the top.
+ * lights: TS_LIGHT_FLOATS floats per emissive triangle:
+ *   [0..2] p0, [3..5] e1 = p1 - p0, [6..8] e2 = p2 - p0, [9..11] Le (W/(sr·m²)),
+ *   [12] area (scene units²), [13] original triangle index (uint bits), [14..15] unused.
+ *   light_cdf: one float per light, the running sum of power (Le luminance × area)
+ *   normalised so the last entry is 1; light i is picked with probability
+ *   cdf[i] - cdf[i-1].
+ */
+#ifndef TS_LAYOUT_H
+#define TS_LAYOUT_H
+
+#define TS_NODE_FLOATS 32
+#define TS_NODE_REFS 24
+#define TS_BVH_TRI_FLOATS 12
+#define TS_BVH_MAX_DEPTH 48
+#define TS_BVH_STACK_SIZE 160 /* >= 3 · TS_BVH_MAX_DEPTH + 1: a 4-wide node pushes at most 3 more than it pops */
+#define TS_BVH_LEAF_MAX 4
+#define TS_MATERIAL_FLOATS 8
+#define TS_LIGHT_FLOATS 16
+#define TS_NO_HIT 0xffffffffu
+
+/* Fixed OpenCL work-group size for every kernel: PoCL runs a work-group as a loop over
+ * work-items, so one size keeps one compiled variant; 64 divides all our launch sizes
+ * after rounding up. */
+#define TS_WORKGROUP_SIZE 64
+
+/* Per-frame parameters, passed by value to the kernels and to the Embree path.
+ * Only 4-byte scalars, so the layout is the same in OpenCL C and C++.
+ * The camera ray through pixel (x, y) with sub-pixel offset (jx, jy) in [0,1)^2 is
+ *   dir = forward + (2 (x + jx) / width - 1) right + (1 - 2 (y + jy) / height) up,
+ * where |right| = tan(vfov/2) · width/height and |up| = tan(vfov/2). */
+typedef struct TsFrame {
+    float cam_pos[3];
+    float cam_forward[3];
+    float cam_right[3];
+    float cam_up[3];
+    unsigned int width;
+    unsigned int height;
+    unsigned int pass;           /* sample pass index, 0-based; one pass = 1 spp */
+    unsigned int shadow_samples; /* area-light samples per camera hit */
+    unsigned int seed;
+    unsigned int light_count;
+    unsigned int flags;          /* TS_FRAME_* bits */
+    unsigned int unused;
+} TsFrame;
+
+/* Per-pixel output of one pass: TS_PASS_FLOATS floats per pixel:
+ * [0..2] radiance (W/(sr·m²)), [3..5] albedo at the first hit, [6..8] shading normal
+ * at the first hit, [9] distance to the first hit (scene units; +inf on a miss). */
+#define TS_PASS_FLOATS 10
+
+#endif /* TS_LAYOUT_H */

@@ -1,0 +1,58 @@
+/* Material evaluation: Lambertian albedo (Kd, optionally × map_Kd) and emission. */
+#ifndef TS_MATERIAL_H
+#define TS_MATERIAL_H
+#include "shared/compat.h"
+#include "shared/geometry.h"
+#include "shared/layout.h"
+
+TS_NAMESPACE_BEGIN
+
+/* sRGB transfer curve inverse (IEC 61966-2-1), one 8-bit channel to linear. */
+TS_INLINE float ts_srgb_to_linear(uint c8) {
+    float c = (float)c8 * (1.0f / 255.0f);
+    return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
+}
+
+TS_INLINE float3 ts_texel(TS_GLOBAL const uint* texels, uint offset, uint w, int x, int y) {
+    uint t = texels[offset + (uint)y * w + (uint)x];
+    return make_float3(ts_srgb_to_linear(t & 0xffu), ts_srgb_to_linear((t >> 8) & 0xffu),
+                       ts_srgb_to_linear((t >> 16) & 0xffu));
+}
+
+/* Bilinear lookup with wrap-around addressing; v = 0 is the bottom row (OBJ). */
+TS_INLINE float3 ts_texture_lookup(const TsSceneView* sv, int tex, float2 uv) {
+    TS_GLOBAL const uint* info = sv->tex_info + 4u * (uint)tex;
+    uint off = info[0], w = info[1], h = info[2];
+    float fx = (uv.x - floor(uv.x)) * (float)w - 0.5f;
+    float fy = (1.0f - (uv.y - floor(uv.y))) * (float)h - 0.5f;
+    float x0f = floor(fx), y0f = floor(fy);
+    float ax = fx - x0f, ay = fy - y0f;
+    int iw = (int)w, ih = (int)h;
+    int x0 = ((int)x0f % iw + iw) % iw, y0 = ((int)y0f % ih + ih) % ih;
+    int x1 = (x0 + 1) % iw, y1 = (y0 + 1) % ih;
+    float3 a = ts_texel(sv->tex_texels, off, w, x0, y0) * (1.0f - ax) +
+               ts_texel(sv->tex_texels, off, w, x1, y0) * ax;
+    float3 b = ts_texel(sv->tex_texels, off, w, x0, y1) * (1.0f - ax) +
+               ts_texel(sv->tex_texels, off, w, x1, y1) * ax;
+    return a * (1.0f - ay) + b * ay;
+}
+
+/* Diffuse reflectance at a surface point, each channel in [0, 1]. */
+TS_INLINE float3 ts_material_albedo(const TsSceneView* sv, const TsSurface* s) {
+    TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s->material;
+    float3 kd = ts_f3_load(M);
+#ifdef TS_HAS_TEXTURES
+    int tex = as_int(M[3]);
+    if (tex >= 0) kd = kd * ts_texture_lookup(sv, tex, s->uv);
+#endif
+    return kd;
+}
+
+/* Radiance emitted toward the viewer: area lights emit from their front face only. */
+TS_INLINE float3 ts_material_emission(const TsSceneView* sv, const TsSurface* s) {
+    TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s->material;
+    return s->front_face ? ts_f3_load(M + 4) : make_float3(0.0f, 0.0f, 0.0f);
+}
+
+TS_NAMESPACE_END
+#endif /* TS_MATERIAL_H */
