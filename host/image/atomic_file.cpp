@@ -49,6 +49,15 @@ bool write_all(int fd, const char* data, std::size_t size) {
     return true;
 }
 
+/// Best effort: makes the rename itself durable. Failure here does not undo the write.
+void sync_directory(const fs::path& target) {
+    fs::path dir = target.parent_path();
+    int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
 /// The process umask, read without changing it (umask(2) would race with other threads).
 mode_t current_umask() {
     std::ifstream status("/proc/self/status");
@@ -94,6 +103,7 @@ void sync_and_rename(const fs::path& target, TempGuard& guard) {
     fs::rename(guard.path, target, ec);
     if (ec) fail(target, "rename failed", ec.value());
     guard.active = false;
+    sync_directory(target);
 }
 
 }  // namespace
@@ -117,6 +127,7 @@ void write_file_atomic(const fs::path& path, const void* data, std::size_t size)
     fs::rename(temp, path, ec);
     if (ec) fail(path, "rename failed", ec.value());
     guard.active = false;
+    sync_directory(path);
 }
 
 void replace_file_atomic(const fs::path& path,
