@@ -1,0 +1,143 @@
+#include "image/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "util/error.h"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const fs::path& target, const std::string& what, int err) {
+    throw RuntimeError("cannot write '" + target.string() + "': " + what + ": " +
+                       std::strerror(err));
+}
+
+/// Removes the temporary file unless released after a successful rename.
+struct TempGuard {
+    fs::path path;
+    bool active = true;
+    ~TempGuard() {
+        if (active) {
+            std::error_code ec;
+            fs::remove(path, ec);
+        }
+    }
+};
+
+/// Writes all of `size` bytes to `fd`, retrying on EINTR and short writes.
+bool write_all(int fd, const char* data, std::size_t size) {
+    while (size > 0) {
+        ssize_t n = ::write(fd, data, size);
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            return false;
+        }
+        data += n;
+        size -= static_cast<std::size_t>(n);
+    }
+    return true;
+}
+
+/// Best effort: makes the rename itself durable. Failure here does not undo the write.
+void sync_directory(const fs::path& target) {
+    fs::path dir = target.parent_path();
+    int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
+/// The process umask, read without changing it (umask(2) would race with other threads).
+mode_t current_umask() {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line))
+        if (line.rfind("Umask:", 0) == 0) return static_cast<mode_t>(std::stoul(line.substr(6), nullptr, 8));
+    return 022;
+}
+
+/// Creates the temporary file beside `target`; returns its open descriptor.
+int make_temp(const fs::path& target, fs::path& temp) {
+    if (target.filename().empty())
+        throw RuntimeError("cannot write '" + target.string() + "': not a file name");
+    fs::path dir = target.parent_path();
+    std::string pattern =
+        (dir.empty() ? fs::path(".") : dir).string() + "/." + target.filename().string() +
+        ".tmp.XXXXXX";
+    std::vector<char> buf(pattern.begin(), pattern.end());
+    buf.push_back('\0');
+    int fd = ::mkstemp(buf.data());
+    if (fd < 0) {
+        int err = errno;
+        fail(target, "cannot create a temporary file in '" +
+                         (dir.empty() ? std::string(".") : dir.string()) + "'",
+             err);
+    }
+    temp = fs::path(buf.data());
+    // mkstemp creates 0600; give the file the mode a plain open(O_CREAT, 0666) would.
+    ::fchmod(fd, 0666 & ~current_umask());
+    return fd;
+}
+
+void sync_and_rename(const fs::path& target, TempGuard& guard) {
+    int fd = ::open(guard.path.c_str(), O_RDONLY);
+    if (fd < 0) fail(target, "cannot reopen the temporary file", errno);
+    if (::fsync(fd) != 0) {
+        int err = errno;
+        ::close(fd);
+        fail(target, "fsync failed", err);
+    }
+    if (::close(fd) != 0) fail(target, "close failed", errno);
+    std::error_code ec;
+    fs::rename(guard.path, target, ec);
+    if (ec) fail(target, "rename failed", ec.value());
+    guard.active = false;
+    sync_directory(target);
+}
+
+}  // namespace
+
+void write_file_atomic(const fs::path& path, const void* data, std::size_t size) {
+    fs::path temp;
+    int fd = make_temp(path, temp);
+    TempGuard guard{temp};
+    if (!write_all(fd, static_cast<const char*>(data), size)) {
+        int err = errno;
+        ::close(fd);
+        fail(path, "write failed", err);
+    }
+    if (::fsync(fd) != 0) {
+        int err = errno;
+        ::close(fd);
+        fail(path, "fsync failed", err);
+    }
+    if (::close(fd) != 0) fail(path, "close failed", errno);
+    std::error_code ec;
+    fs::rename(temp, path, ec);
+    if (ec) fail(path, "rename failed", ec.value());
+    guard.active = false;
+    sync_directory(path);
+}
+
+void replace_file_atomic(const fs::path& path,
+                         const std::function<void(const fs::path& temp)>& write) {
+    fs::path temp;
+    int fd = make_temp(path, temp);
+    TempGuard guard{temp};
+    ::close(fd);
+    write(temp);
+    sync_and_rename(path, guard);
+}
+
+}  // namespace tessera

@@ -1,0 +1,78 @@
+// OpenEXR output and input: every channel as 32-bit float, planar slices.
+#include <ImfChannelList.h>
+#include <ImfCompression.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+
+#include <exception>
+#include <string>
+#include <system_error>
+
+#include "image/atomic_file.h"
+#include "image/image_check.h"
+#include "image/image_io.h"
+#include "util/error.h"
+
+namespace tessera {
+
+namespace fs = std::filesystem;
+
+void write_exr(const fs::path& path, const Image& image) {
+    detail::check_image(path, image);
+    replace_file_atomic(path, [&](const fs::path& temp) {
+        try {
+            Imf::Header header(image.width, image.height);
+            header.compression() = Imf::ZIP_COMPRESSION;
+            Imf::FrameBuffer frame;
+            const std::size_t xs = sizeof(float);
+            const std::size_t ys = sizeof(float) * static_cast<std::size_t>(image.width);
+            for (const ImageChannel& c : image.channels) {
+                header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
+                // OpenEXR only reads through the pointer when writing.
+                char* base = reinterpret_cast<char*>(const_cast<float*>(c.data.data()));
+                frame.insert(c.name, Imf::Slice(Imf::FLOAT, base, xs, ys));
+            }
+            Imf::OutputFile file(temp.c_str(), header);
+            file.setFrameBuffer(frame);
+            file.writePixels(image.height);
+        } catch (const std::exception& e) {
+            throw RuntimeError("cannot write '" + path.string() + "': " + e.what());
+        }
+    });
+}
+
+Image read_exr(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec))
+        throw InputError("cannot read '" + path.string() + "': " +
+                         (fs::exists(path, ec) ? "not a regular file" : "no such file"));
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        Image image;
+        image.width = dw.max.x - dw.min.x + 1;
+        image.height = dw.max.y - dw.min.y + 1;
+        if (image.width <= 0 || image.height <= 0)
+            throw InputError("cannot read '" + path.string() + "': empty data window");
+        const std::size_t pixels =
+            static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+        const Imf::ChannelList& list = file.header().channels();
+        for (auto it = list.begin(); it != list.end(); ++it)
+            image.channels.push_back({it.name(), std::vector<float>(pixels, 0.0f)});
+        Imf::FrameBuffer frame;
+        for (ImageChannel& c : image.channels)
+            frame.insert(c.name, Imf::Slice::Make(Imf::FLOAT, c.data.data(), dw));
+        file.setFrameBuffer(frame);
+        file.readPixels(dw.min.y, dw.max.y);
+        return image;
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw InputError("cannot read '" + path.string() + "': not a readable OpenEXR file (" +
+                         e.what() + ")");
+    }
+}
+
+}  // namespace tessera
