@@ -1,2 +1,29 @@
-// Placeholder entry point; replaced by the CLI (host/cli) in the foundation work.
-int main() { return 0; }
+// tessera: command-line entry point. Every failure ends as one line on stderr,
+// "tessera: error: ...", and a non-zero exit: 2 for bad input, 1 for runtime failures.
+#include <cstdio>
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/commands.h"
+#include "util/error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"Tessera: interactive global illumination on OpenCL devices and Embree"};
+    app.require_subcommand(1);
+    tessera::cli::add_render_command(app);
+    tessera::cli::add_devices_command(app);
+    tessera::cli::add_info_command(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const tessera::InputError& e) {
+        std::fprintf(stderr, "tessera: error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "tessera: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

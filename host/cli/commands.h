@@ -1,0 +1,12 @@
+// The `tessera` subcommands. Each registers itself on the CLI11 app and runs when its
+// subcommand was given; errors propagate as InputError / RuntimeError to main().
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace tessera::cli {
+
+void add_render_command(CLI::App& app);
+void add_devices_command(CLI::App& app);
+void add_info_command(CLI::App& app);
+
+}  // namespace tessera::cli

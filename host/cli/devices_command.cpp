@@ -1,0 +1,26 @@
+// `tessera devices`: lists OpenCL platforms and devices.
+#include <cstdio>
+
+#include "cli/commands.h"
+#include "opencl/device.h"
+
+namespace tessera::cli {
+
+void add_devices_command(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand("devices", "List OpenCL platforms and devices");
+    cmd->callback([] {
+        auto devs = list_cl_devices();
+        if (devs.empty()) {
+            std::printf("no OpenCL platform found (install an ICD, e.g. pocl-opencl-icd); "
+                        "--backend embree needs none\n");
+            return;
+        }
+        for (const auto& d : devs)
+            std::printf("[%d] %s: %s\n    %s, %s, driver %s, %u compute units, %.1f GiB, max alloc %.1f GiB\n",
+                        d.index, d.platform_name.c_str(), d.name.c_str(), d.type.c_str(), d.version.c_str(),
+                        d.driver.c_str(), d.compute_units, d.global_mem / 1073741824.0,
+                        d.max_alloc / 1073741824.0);
+    });
+}
+
+}  // namespace tessera::cli

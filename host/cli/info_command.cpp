@@ -1,0 +1,59 @@
+// `tessera info [SCENE]`: what a scene contains and which effects it calls for.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "cli/commands.h"
+#include "render/effect_plan.h"
+#include "render/scene_buffers.h"
+#include "scene/loader.h"
+
+namespace tessera::cli {
+namespace fs = std::filesystem;
+
+namespace {
+struct InfoArgs {
+    std::string scene;
+    std::string data_dir;
+};
+
+void run_info(const InfoArgs& a) {
+    const fs::path path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
+    Scene s = load_scene(path, make_data_path(a.data_dir.empty() ? std::nullopt
+                                                                 : std::optional<fs::path>(a.data_dir)));
+    SceneBuffers b = make_scene_buffers(s);
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& p : s.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    double light_area = 0.0;
+    for (uint32_t i = 0; i < b.light_count; ++i) light_area += b.lights[i * 16 + 12];
+    const EffectPlan plan = plan_effects(s);
+    std::printf("scene:      %s (%s)\n", s.name.c_str(), s.source.c_str());
+    std::printf("triangles:  %zu\n", s.triangle_count());
+    std::printf("lights:     %u emissive triangles, %.4g scene units^2\n", b.light_count, light_area);
+    std::printf("materials:  %zu, textures: %zu\n", s.materials.size(), s.textures.size());
+    std::printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    std::printf("camera:     %dx%d, vfov %g, at (%g, %g, %g)\n", s.camera.width, s.camera.height,
+                s.camera.vfov_deg, s.camera.position.x, s.camera.position.y, s.camera.position.z);
+    std::printf("effects:\n");
+    for (const auto& line : plan.describe()) std::printf("  %s\n", line.c_str());
+    std::string defs;
+    for (const auto& d : plan.cl_defines()) defs += " " + d;
+    std::printf("OpenCL plan: direct.cl built with -cl-std=CL1.2%s\n", defs.c_str());
+}
+}  // namespace
+
+void add_info_command(CLI::App& app) {
+    auto args = std::make_shared<InfoArgs>();
+    CLI::App* cmd = app.add_subcommand("info", "Describe a scene and the effects it calls for");
+    cmd->add_option("scene", args->scene, "Scene file (.json)");
+    cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data");
+    cmd->callback([args] { run_info(*args); });
+}
+
+}  // namespace tessera::cli

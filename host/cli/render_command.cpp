@@ -1,0 +1,98 @@
+// `tessera render [SCENE] [options]`: renders a scene to EXR (+ PNG preview).
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unistd.h>
+
+#include "backend/backend.h"
+#include "cli/commands.h"
+#include "image/image_io.h"
+#include "render/effect_plan.h"
+#include "render/renderer.h"
+#include "render/scene_buffers.h"
+#include "scene/loader.h"
+#include "util/error.h"
+
+namespace tessera::cli {
+namespace fs = std::filesystem;
+namespace {
+
+struct RenderArgs {
+    std::string scene;
+    std::string backend = "opencl";
+    std::string device;
+    std::string out;
+    std::string data_dir;
+    float exposure = 0.0f;
+    RenderSettings settings;
+};
+
+void print_progress(uint32_t done, uint32_t total, double elapsed) {
+    static const bool tty = ::isatty(STDERR_FILENO);
+    const double rate = done / std::max(elapsed, 1e-9);
+    const double eta = (total - done) / std::max(rate, 1e-9);
+    if (tty) {
+        std::fprintf(stderr, "\r  %u/%u spp  %.1f spp/s  ETA %.0f s   ", done, total, rate, eta);
+        if (done == total) std::fprintf(stderr, "\n");
+    } else if (done == total || done % std::max(1u, total / 10) == 0) {
+        std::fprintf(stderr, "  %u/%u spp, %.1f spp/s, ETA %.0f s\n", done, total, rate, eta);
+    }
+}
+
+void run_render(const RenderArgs& a) {
+    const fs::path scene_path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
+    const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
+    BackendOptions bo{parse_backend_kind(a.backend), a.device};
+    Scene scene = load_scene(scene_path, data);
+    const fs::path out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
+    if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
+
+    const EffectPlan plan = plan_effects(scene);
+    const SceneBuffers buffers = make_scene_buffers(scene);
+    std::unique_ptr<Backend> backend = make_backend(bo, buffers, plan);
+    std::fprintf(stderr, "tessera: %s, %zu triangles, %u lights, on %s\n", scene.name.c_str(),
+                 scene.triangle_count(), buffers.light_count, backend->description().c_str());
+    for (const auto& line : plan.describe()) std::fprintf(stderr, "  %s\n", line.c_str());
+
+    RenderStats stats;
+    Image img = render_frame(*backend, scene, buffers.light_count, a.settings, &stats, print_progress);
+
+    if (!out.parent_path().empty()) {
+        std::error_code ec;
+        fs::create_directories(out.parent_path(), ec);
+        if (ec) throw RuntimeError("cannot create output directory " + out.parent_path().string() + ": " + ec.message());
+    }
+    fs::path png = out;
+    png.replace_extension(".png");
+    write_exr(out, img);
+    write_png(png, img, a.exposure);
+    std::fprintf(stderr, "tessera: %u spp in %.2f s (median %.1f ms per pass)\n", stats.passes, stats.seconds,
+                 1e3 * stats.median_pass_seconds);
+    std::printf("%s\n%s\n", out.c_str(), png.c_str());
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene (default: the built-in Cornell box)");
+    cmd->add_option("scene", args->scene, "Scene file (.json)");
+    cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
+    cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
+    cmd->add_option("--method", args->settings.method, "Rendering method (direct)")->capture_default_str();
+    cmd->add_option("--spp", args->settings.spp, "Samples (passes) per pixel")->capture_default_str();
+    cmd->add_option("--shadow-samples", args->settings.shadow_samples, "Area-light samples per hit and pass")
+        ->capture_default_str();
+    cmd->add_option("--width", args->settings.width, "Image width (default: the scene camera's)");
+    cmd->add_option("--height", args->settings.height, "Image height (default: the scene camera's)");
+    cmd->add_option("--seed", args->settings.seed, "Random seed")->capture_default_str();
+    cmd->add_option("--out", args->out, "Output EXR (default out/<scene>.exr); a PNG preview is written beside it");
+    cmd->add_option("--exposure", args->exposure, "PNG preview exposure in stops")->capture_default_str();
+    cmd->add_flag("--aov", args->settings.aovs, "Also write albedo, normal and depth channels");
+    cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");
+    cmd->callback([args] { run_render(*args); });
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,54 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include "render/accumulator.h"
+#include "render/frame.h"
+#include "util/error.h"
+
+namespace tessera {
+namespace {
+
+void validate(const RenderSettings& s) {
+    if (s.method != "direct")
+        throw InputError("--method " + s.method + ": not available (implemented: direct)");
+    if (s.spp < 1 || s.spp > 1000000) throw InputError("--spp must be in 1..1000000");
+    if (s.shadow_samples < 1 || s.shadow_samples > 4096)
+        throw InputError("--shadow-samples must be in 1..4096");
+    if (s.width < 0 || s.width > 16384) throw InputError("--width must be in 1..16384");
+    if (s.height < 0 || s.height > 16384) throw InputError("--height must be in 1..16384");
+}
+
+}  // namespace
+
+Image render_frame(Backend& backend, const Scene& scene, uint32_t light_count,
+                   const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress) {
+    validate(settings);
+    const int w = settings.width > 0 ? settings.width : scene.camera.width;
+    const int h = settings.height > 0 ? settings.height : scene.camera.height;
+    TsFrame frame = make_frame(scene.camera, w, h, settings.shadow_samples, settings.seed, light_count);
+    Accumulator acc(w, h);
+    std::vector<float> pass;
+    std::vector<double> pass_seconds;
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    for (uint32_t i = 0; i < settings.spp; ++i) {
+        const auto t0 = clock::now();
+        frame.pass = i;
+        backend.direct_pass(frame, pass);
+        acc.add(pass);
+        pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
+        if (progress) progress(i + 1, settings.spp, std::chrono::duration<double>(clock::now() - start).count());
+    }
+    if (stats) {
+        stats->passes = settings.spp;
+        stats->seconds = std::chrono::duration<double>(clock::now() - start).count();
+        std::nth_element(pass_seconds.begin(), pass_seconds.begin() + pass_seconds.size() / 2, pass_seconds.end());
+        stats->median_pass_seconds = pass_seconds[pass_seconds.size() / 2];
+    }
+    return acc.mean_image(settings.aovs, settings.variance);
+}
+
+}  // namespace tessera

@@ -1,0 +1,64 @@
+// Scenes built in code for tests, so the tests state their geometry exactly.
+#pragma once
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace tessera::test {
+
+/// Adds a material and returns its index.
+inline uint32_t add_material(Scene& s, glm::vec3 albedo, glm::vec3 emission = glm::vec3(0.0f)) {
+    Material m;
+    m.name = "m" + std::to_string(s.materials.size());
+    m.albedo = albedo;
+    m.emission = emission;
+    s.materials.push_back(m);
+    return static_cast<uint32_t>(s.materials.size() - 1);
+}
+
+/// Adds the parallelogram corner + [0,1] e1 + [0,1] e2 as two triangles whose front
+/// face (geometric normal) is cross(e1, e2).
+inline void add_quad(Scene& s, glm::vec3 corner, glm::vec3 e1, glm::vec3 e2, uint32_t material) {
+    const glm::vec3 n = glm::normalize(glm::cross(e1, e2));
+    const glm::vec3 v[4] = {corner, corner + e1, corner + e1 + e2, corner + e2};
+    const glm::vec2 uv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int tri : {0, 1}) {
+        const int idx[3] = {0, tri == 0 ? 1 : 2, tri == 0 ? 2 : 3};
+        for (int k : idx) {
+            s.positions.push_back(v[k]);
+            s.normals.push_back(n);
+            s.uvs.push_back(uv[k]);
+        }
+        s.material.push_back(material);
+    }
+}
+
+/// A closed box [lo, hi] with inward-facing walls of the given albedo and a square
+/// light of half-size `light_half` just below the ceiling, facing down.
+inline Scene closed_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 albedo, glm::vec3 le, float light_half) {
+    Scene s;
+    s.name = "test-box";
+    const uint32_t wall = add_material(s, albedo);
+    const uint32_t light = add_material(s, glm::vec3(0.0f), le);
+    const glm::vec3 d = hi - lo;
+    add_quad(s, lo, {0, 0, d.z}, {d.x, 0, 0}, wall);                         // floor, +y
+    add_quad(s, {lo.x, hi.y, lo.z}, {d.x, 0, 0}, {0, 0, d.z}, wall);         // ceiling, -y
+    add_quad(s, lo, {d.x, 0, 0}, {0, d.y, 0}, wall);                         // back z=lo, +z
+    add_quad(s, {lo.x, lo.y, hi.z}, {0, d.y, 0}, {d.x, 0, 0}, wall);         // front z=hi, -z
+    add_quad(s, lo, {0, d.y, 0}, {0, 0, d.z}, wall);                         // left x=lo, +x
+    add_quad(s, {hi.x, lo.y, lo.z}, {0, 0, d.z}, {0, d.y, 0}, wall);         // right x=hi, -x
+    const glm::vec3 c = 0.5f * (lo + hi);
+    const float y = hi.y - 1e-3f * d.y;
+    add_quad(s, {c.x - light_half, y, c.z - light_half}, {2 * light_half, 0, 0}, {0, 0, 2 * light_half},
+             light);                                                         // faces -y
+    s.camera.position = {c.x, c.y, hi.z - 0.01f * d.z};
+    s.camera.look_at = {c.x, c.y, lo.z};
+    s.camera.up = {0, 1, 0};
+    s.camera.vfov_deg = 80.0f;
+    s.camera.width = s.camera.height = 32;
+    return s;
+}
+
+}  // namespace tessera::test
