@@ -28,6 +28,9 @@ nlohmann::json parse_json_file(const std::filesystem::path& file) {
         }
         throw InputError(file.string() + ":" + std::to_string(line) + ":" + std::to_string(col) +
                          ": malformed JSON (byte " + std::to_string(e.byte) + "): " + e.what());
+    } catch (const nlohmann::json::exception& e) {
+        // For example a number too large for a double (out_of_range.406).
+        throw InputError(file.string() + ": malformed JSON: " + e.what());
     }
 }
 

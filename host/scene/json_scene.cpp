@@ -87,9 +87,10 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
         const JsonField obj = objects.at(i);
         obj.require_object();
         const JsonField mesh_key = obj["mesh"];
+        const std::string rel = mesh_key.string();
         fs::path file;
         try {
-            file = data.resolve(mesh_key.string(), scene.source);
+            file = data.resolve(rel, scene.source);
         } catch (const InputError& e) {
             throw InputError(std::string(e.what()) + " (key '" + mesh_key.key() + "')");
         }
