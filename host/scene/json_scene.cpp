@@ -1,0 +1,180 @@
+// load_scene: the JSON scene format (documented in scenes/README.md) to a Scene.
+#include <cmath>
+#include <map>
+
+#include "scene/json_field.h"
+#include "scene/loader.h"
+#include "scene/obj_mesh.h"
+#include "scene/texture_file.h"
+#include "scene/transform.h"
+#include "util/error.h"
+
+namespace tessera {
+
+using scene_detail::JsonField;
+namespace fs = std::filesystem;
+
+namespace {
+
+Camera read_camera(const JsonField& j) {
+    j.require_object();
+    Camera cam;
+    cam.position = j["position"].vec3();
+    cam.look_at = j["look_at"].vec3();
+    if (auto up = j.find("up")) cam.up = up->vec3();
+    if (auto vfov = j.find("vfov")) {
+        cam.vfov_deg = vfov->number();
+        if (!(cam.vfov_deg > 0.0f && cam.vfov_deg < 180.0f))
+            vfov->fail("vertical field of view must be in (0, 180) degrees");
+    }
+    if (auto res = j.find("resolution")) {
+        if (res->size() != 2) res->fail("expected [width, height]");
+        cam.width = res->at(0).integer();
+        cam.height = res->at(1).integer();
+        for (const int v : {cam.width, cam.height})
+            if (v <= 0 || v > 16384) res->fail("each resolution must be in 1..16384 pixels");
+    }
+    const glm::vec3 view = cam.look_at - cam.position;
+    if (glm::dot(view, view) == 0.0f) j["look_at"].fail("look_at equals position");
+    const glm::vec3 side = glm::cross(view, cam.up);
+    if (glm::dot(side, side) == 0.0f) j.fail("'up' is zero or parallel to the view direction");
+    return cam;
+}
+
+scene_detail::Transform read_transform(const std::optional<JsonField>& j) {
+    glm::vec3 scale(1.0f), translate(0.0f);
+    std::vector<scene_detail::Rotation> rotations;
+    if (!j) return scene_detail::make_transform(scale, rotations, translate);
+    j->require_object();
+    if (auto s = j->find("scale")) {
+        scale = s->raw().is_array() ? s->vec3() : glm::vec3(s->number());
+        if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f)
+            s->fail("scale must not be zero (the transform would be singular)");
+    }
+    if (auto r = j->find("rotate")) {
+        for (size_t i = 0; i < r->size(); ++i) {
+            const JsonField rot = r->at(i);
+            rot.require_object();
+            const glm::vec3 axis = rot["axis"].vec3();
+            if (glm::dot(axis, axis) == 0.0f) rot["axis"].fail("rotation axis is zero");
+            rotations.push_back({axis, rot["degrees"].number()});
+        }
+    }
+    if (auto t = j->find("translate")) translate = t->vec3();
+    return scene_detail::make_transform(scale, rotations, translate);
+}
+
+glm::vec3 read_colour(const JsonField& j, bool at_most_one) {
+    const glm::vec3 c = j.vec3();
+    for (int i = 0; i < 3; ++i) {
+        if (c[i] < 0.0f) j.fail("colour components must be >= 0");
+        if (at_most_one && c[i] > 1.0f) j.fail("albedo components must be <= 1");
+    }
+    return c;
+}
+
+// Loads each OBJ once (instancing a mesh twice shares its materials and textures).
+struct MeshEntry {
+    scene_detail::ObjMesh mesh;
+    uint32_t material_base;
+};
+
+void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
+                  std::map<fs::path, int>& texture_ids) {
+    std::map<fs::path, MeshEntry> meshes;
+    if (objects.size() == 0) objects.fail("a scene needs at least one object");
+    for (size_t i = 0; i < objects.size(); ++i) {
+        const JsonField obj = objects.at(i);
+        obj.require_object();
+        const JsonField mesh_key = obj["mesh"];
+        const std::string rel = mesh_key.string();
+        fs::path file;
+        try {
+            file = data.resolve(rel, scene.source);
+        } catch (const InputError& e) {
+            throw InputError(std::string(e.what()) + " (key '" + mesh_key.key() + "')");
+        }
+        const auto transform = read_transform(obj.find("transform"));
+        auto it = meshes.find(file);
+        if (it == meshes.end()) {
+            MeshEntry entry{scene_detail::load_obj_mesh(file),
+                            static_cast<uint32_t>(scene.materials.size())};
+            for (Material m : entry.mesh.materials) {
+                if (m.texture >= 0) {
+                    const fs::path& tex = entry.mesh.texture_files[size_t(m.texture)];
+                    auto [t, added] = texture_ids.try_emplace(tex, int(scene.textures.size()));
+                    if (added) scene.textures.push_back(scene_detail::load_texture(tex));
+                    m.texture = t->second;
+                }
+                scene.materials.push_back(m);
+            }
+            it = meshes.emplace(file, std::move(entry)).first;
+        }
+        scene_detail::append_mesh(scene, it->second.mesh, transform, it->second.material_base);
+    }
+}
+
+void apply_material_overrides(const JsonField& overrides, Scene& scene) {
+    overrides.require_object();
+    for (const auto& [name, value] : overrides.raw().items()) {
+        const JsonField o(value, overrides.file(), overrides.key() + "." + name);
+        o.require_object();
+        bool found = false;
+        for (auto& m : scene.materials) {
+            if (m.name != name) continue;
+            found = true;
+            if (auto a = o.find("albedo")) m.albedo = read_colour(*a, true);
+            if (auto e = o.find("emission")) m.emission = read_colour(*e, false);
+        }
+        if (!found) o.fail("no loaded MTL material is named '" + name + "'");
+    }
+}
+
+void read_lights(const JsonField& lights, Scene& scene) {
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const JsonField l = lights.at(i);
+        l.require_object();
+        const std::string type = l["type"].string();
+        if (type != "quad") l["type"].fail("unknown light type '" + type + "' (supported: quad)");
+        const glm::vec3 e1 = l["edge1"].vec3(), e2 = l["edge2"].vec3();
+        const glm::vec3 n = glm::cross(e1, e2);
+        if (!(glm::dot(n, n) > 0.0f) || !std::isfinite(glm::dot(n, n)))
+            l.fail("edge1 and edge2 must be non-zero and not parallel");
+        scene_detail::append_quad_light(scene, l["corner"].vec3(), e1, e2,
+                                        read_colour(l["radiance"], false),
+                                        "json-light-" + std::to_string(i));
+    }
+}
+
+bool has_emitter(const Scene& scene) {
+    for (const uint32_t m : scene.material) {
+        const glm::vec3 e = scene.materials[m].emission;
+        if (e.x > 0.0f || e.y > 0.0f || e.z > 0.0f) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+Scene load_scene(const fs::path& scene_file, const DataPath& data) {
+    const nlohmann::json doc = scene_detail::parse_json_file(scene_file);
+    const JsonField root(doc, scene_file, "");
+    root.require_object();
+    Scene scene;
+    scene.source = scene_file;
+    scene.name = scene_file.stem().string();
+    if (auto name = root.find("name")) scene.name = name->string();
+    if (auto s = root.find("stands_in_for")) (void)s->string();  // free text, type-checked only
+    scene.camera = read_camera(root["camera"]);
+    std::map<fs::path, int> texture_ids;
+    read_objects(root["objects"], data, scene, texture_ids);
+    // Overrides apply to MTL materials only, so they run before the lights add theirs.
+    if (auto m = root.find("materials")) apply_material_overrides(*m, scene);
+    if (auto l = root.find("lights")) read_lights(*l, scene);
+    if (!has_emitter(scene))
+        throw InputError(scene_file.string() + ": scene " + scene.name +
+                         " has no lights (no MTL Ke and no JSON light)");
+    return scene;
+}
+
+}  // namespace tessera

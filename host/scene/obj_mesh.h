@@ -1,0 +1,33 @@
+// Reading one OBJ file (and its MTL) into object-space triangles, with validation.
+#pragma once
+#include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace tessera::scene_detail {
+
+/// One OBJ file flattened to triangles, in the file's own (object) space.
+/// Triangle i has corners positions/normals/uvs[3i..3i+2] and material[i], an index
+/// into `materials` (always valid: faces without `usemtl` get an appended default
+/// grey material). A normal is the zero vector where the file gives none; the caller
+/// replaces it with the geometric normal after transforming. Material::texture
+/// indexes `texture_files`, the resolved map_Kd paths (deduplicated).
+struct ObjMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<uint32_t> material;
+    std::vector<Material> materials;
+    std::vector<std::filesystem::path> texture_files;
+};
+
+/// Loads `obj_file` with tinyobjloader (triangulating polygons as fans). Throws
+/// InputError naming the OBJ (and MTL or texture) file for: a parse error, a missing
+/// MTL, a `usemtl` naming an unknown material, a non-finite vertex, an out-of-range
+/// index, a missing map_Kd file. Kd is clamped to [0, 1] per channel.
+ObjMesh load_obj_mesh(const std::filesystem::path& obj_file);
+
+}  // namespace tessera::scene_detail

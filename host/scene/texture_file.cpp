@@ -1,0 +1,35 @@
+#include "scene/texture_file.h"
+
+#include <memory>
+
+#include <stb_image.h>  // the implementation lives in Debian's libstb
+
+#include "util/error.h"
+
+namespace tessera::scene_detail {
+
+Texture load_texture(const std::filesystem::path& file) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
+        throw InputError(file.string() + ": texture file not found");
+    int w = 0, h = 0, channels = 0;
+    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+        stbi_load(file.string().c_str(), &w, &h, &channels, 4), stbi_image_free);
+    if (!pixels)
+        throw InputError(file.string() + ": cannot decode texture: " + stbi_failure_reason());
+    Texture tex;
+    tex.path = file;
+    tex.width = w;
+    tex.height = h;
+    tex.rgba8.resize(static_cast<size_t>(w) * static_cast<size_t>(h));
+    const stbi_uc* p = pixels.get();
+    // Pack explicitly (R in the low byte) rather than memcpy, so the layout does not
+    // depend on the host's byte order.
+    for (auto& texel : tex.rgba8) {
+        texel = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+        p += 4;
+    }
+    return tex;
+}
+
+}  // namespace tessera::scene_detail

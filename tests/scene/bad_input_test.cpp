@@ -1,0 +1,143 @@
+// Every kind of bad scene input throws InputError naming the file, key or setting.
+#include <fstream>
+
+#include "scene/scene_test_util.h"
+
+namespace tessera {
+namespace {
+
+using test::fixture;
+using test::load_error;
+
+TEST(BadInput, MissingSceneFile) {
+    const std::string e = load_error(fixture("no_such_scene.json"));
+    EXPECT_CONTAINS(e, "no_such_scene.json");
+    EXPECT_CONTAINS(e, "not found");
+}
+
+TEST(BadInput, MalformedJsonNamesFileAndLine) {
+    const std::string e = load_error(fixture("malformed.json"));
+    EXPECT_CONTAINS(e, "malformed.json:3:");  // the missing comma is on line 3
+    EXPECT_CONTAINS(e, "malformed JSON");
+}
+
+TEST(BadInput, OutOfRangeFaceIndex) {
+    const std::string e = load_error(fixture("bad_index.json"));
+    EXPECT_CONTAINS(e, "bad_index.obj");
+    EXPECT_CONTAINS(e, "out of range");
+}
+
+TEST(BadInput, NanVertexNamesObjAndLine) {
+    const std::string e = load_error(fixture("nan_vertex.json"));
+    EXPECT_CONTAINS(e, "nan_vertex.obj");
+    EXPECT_CONTAINS(e, "line 3");
+}
+
+TEST(BadInput, MissingMtlNamesTheMtl) {
+    const std::string e = load_error(fixture("missing_mtl.json"));
+    EXPECT_CONTAINS(e, "missing_mtl.obj");
+    EXPECT_CONTAINS(e, "does_not_exist.mtl");
+}
+
+TEST(BadInput, MissingTextureNamesTheTexture) {
+    const std::string e = load_error(fixture("missing_texture.json"));
+    EXPECT_CONTAINS(e, "no_such_texture.png");
+}
+
+TEST(BadInput, SceneWithoutLights) {
+    // quad.mtl defines an emissive material, but no face uses it.
+    const std::string e = load_error(fixture("no_lights.json"));
+    EXPECT_CONTAINS(e, "scene fixture-dark has no lights (no MTL Ke and no JSON light)");
+}
+
+TEST(BadInput, UnknownMaterialOverrideNamesTheKey) {
+    const std::string e = load_error(fixture("unknown_material.json"));
+    EXPECT_CONTAINS(e, "unknown_material.json");
+    EXPECT_CONTAINS(e, "materials.no_such_material");
+}
+
+TEST(BadInput, MissingMeshListsDirectoriesTried) {
+    DataPath data;
+    data.roots = {fixture("no_root_a"), fixture("no_root_b")};
+    const auto dir = std::filesystem::temp_directory_path() / "tessera_bad_mesh";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "s.json") << R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]},
+                                         "objects": [{"mesh": "gone.obj"}]})";
+    const std::string e = load_error(dir / "s.json", data);
+    EXPECT_CONTAINS(e, "gone.obj");
+    EXPECT_CONTAINS(e, "objects[0].mesh");
+    EXPECT_CONTAINS(e, "no_root_a");
+    EXPECT_CONTAINS(e, "no_root_b");
+    EXPECT_CONTAINS(e, dir.string());
+    std::filesystem::remove_all(dir);
+}
+
+// Scene files with one bad setting each; the quad mesh is referenced by absolute path.
+struct BadKey {
+    const char* json;  ///< body after "objects"; %M is replaced by the quad's path
+    const char* key;   ///< the key path the message must name
+};
+
+class BadKeyTest : public ::testing::TestWithParam<BadKey> {};
+
+TEST_P(BadKeyTest, NamesTheKey) {
+    std::string body = GetParam().json;
+    const std::string mesh = fixture("quad.obj").string();
+    for (size_t at; (at = body.find("%M")) != std::string::npos;) body.replace(at, 2, mesh);
+    const auto dir = std::filesystem::temp_directory_path() / "tessera_bad_key";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "bad.json") << body;
+    const std::string e = load_error(dir / "bad.json");
+    EXPECT_CONTAINS(e, "bad.json");
+    EXPECT_CONTAINS(e, GetParam().key);
+    std::filesystem::remove_all(dir);
+}
+
+#define CAM_OK R"("camera": {"position": [0,1,3], "look_at": [0,0,0]})"
+#define OBJ_OK R"("objects": [{"mesh": "%M"}])"
+#define LIGHT_OK \
+    R"("lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1]}])"
+
+INSTANTIATE_TEST_SUITE_P(
+    Scene, BadKeyTest,
+    ::testing::Values(
+        BadKey{"{" OBJ_OK "}", "camera"},
+        BadKey{"{" CAM_OK "}", "objects"},
+        BadKey{"[1, 2]", "top level"},
+        BadKey{R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "vfov": 180}, )" OBJ_OK "}",
+               "camera.vfov"},
+        BadKey{R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "vfov": 0}, )" OBJ_OK "}",
+               "camera.vfov"},
+        BadKey{R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "resolution": [0, 5]}, )" OBJ_OK "}",
+               "camera.resolution"},
+        BadKey{R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "resolution": [16385, 5]}, )" OBJ_OK "}",
+               "camera.resolution"},
+        BadKey{R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "resolution": [64.5, 5]}, )" OBJ_OK "}",
+               "camera.resolution[0]"},
+        BadKey{R"({"camera": {"position": [0,1e999,3], "look_at": [0,0,0]}, )" OBJ_OK "}",
+               "number overflow"},
+        BadKey{R"({"camera": {"position": [0,1e39,3], "look_at": [0,0,0]}, )" OBJ_OK "}",
+               "camera.position[1]"},
+        BadKey{R"({"camera": {"position": [0,1], "look_at": [0,0,0]}, )" OBJ_OK "}", "camera.position"},
+        BadKey{R"({"camera": {"position": "here", "look_at": [0,0,0]}, )" OBJ_OK "}", "camera.position"},
+        BadKey{R"({"camera": {"position": [0,0,0], "look_at": [0,0,0]}, )" OBJ_OK "}", "camera.look_at"},
+        BadKey{"{" CAM_OK R"(, "objects": {"mesh": "%M"}})", "objects"},
+        BadKey{"{" CAM_OK R"(, "objects": []})", "objects"},
+        BadKey{"{" CAM_OK R"(, "objects": [{"mesh": 3}]})", "objects[0].mesh"},
+        BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"scale": [1, 0, 1]}}], )" LIGHT_OK "}",
+               "objects[0].transform.scale"},
+        BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"rotate": [{"axis": [0,1,0]}]}}])"
+               ", " LIGHT_OK "}",
+               "objects[0].transform.rotate[0].degrees"},
+        BadKey{"{" CAM_OK ", " OBJ_OK R"(, "lights": [{"type": "sphere"}]})", "lights[0].type"},
+        BadKey{"{" CAM_OK ", " OBJ_OK
+               R"(, "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [2,0,0], "radiance": [1,1,1]}]})",
+               "lights[0]"},
+        BadKey{"{" CAM_OK ", " OBJ_OK
+               R"(, "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,-1,1]}]})",
+               "lights[0].radiance"},
+        BadKey{"{" CAM_OK ", " OBJ_OK ", " LIGHT_OK R"(, "materials": {"grey": {"albedo": [2, 0, 0]}}})",
+               "materials.grey.albedo"}));
+
+}  // namespace
+}  // namespace tessera

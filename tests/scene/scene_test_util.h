@@ -1,0 +1,41 @@
+// Shared helpers for the scene loader tests.
+#pragma once
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <glm/glm.hpp>
+
+#include "scene/loader.h"
+#include "util/error.h"
+
+namespace tessera::test {
+
+/// A file in tests/data.
+inline std::filesystem::path fixture(const std::string& name) {
+    return std::filesystem::path(TESSERA_TEST_DATA) / name;
+}
+
+/// Geometric normal of triangle i, cross(p1 - p0, p2 - p0), normalised.
+inline glm::vec3 geometric_normal(const Scene& s, size_t i) {
+    return glm::normalize(glm::cross(s.positions[3 * i + 1] - s.positions[3 * i],
+                                     s.positions[3 * i + 2] - s.positions[3 * i]));
+}
+
+/// Asserts that `text` contains `part` (gmock's HasSubstr is not linked here).
+#define EXPECT_CONTAINS(text, part)                                                   \
+    EXPECT_NE(std::string(text).find(part), std::string::npos)                        \
+        << "expected \"" << (text) << "\" to contain \"" << (part) << "\""
+
+/// The message of the InputError that loading `scene_file` throws ("" if none).
+inline std::string load_error(const std::filesystem::path& scene_file,
+                              const DataPath& data = DataPath{}) {
+    try {
+        load_scene(scene_file, data);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace tessera::test
