@@ -24,8 +24,8 @@ void expect_backends_agree(const Scene& scene, RenderSettings rs) {
     ASSERT_TRUE(test::all_finite(em));
     const double noise = test::rel_mse(em2, em);
     const double diff = test::rel_mse(cl, em);
-    RecordProperty("noise_relmse", std::to_string(noise));
-    RecordProperty("backend_relmse", std::to_string(diff));
+    ::testing::Test::RecordProperty("noise_relmse", std::to_string(noise));
+    ::testing::Test::RecordProperty("backend_relmse", std::to_string(diff));
     ASSERT_GT(noise, 0.0);
     EXPECT_LT(diff, 0.02 * noise) << "backend relMSE " << diff << " vs seed-to-seed relMSE " << noise;
 }
