@@ -91,11 +91,14 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& obj,
 
 void check_index(const fs::path& obj, const std::string& shape, size_t face, const char* kind,
                  int idx, size_t count, bool optional) {
-    if (optional && idx == -1) return;
-    if (idx < 0 || static_cast<size_t>(idx) >= count)
-        obj_error(obj, "shape '" + shape + "' face " + std::to_string(face + 1) + ": " + kind +
-                           " index " + std::to_string(idx >= 0 ? idx + 1 : idx) +
-                           " out of range (the file has " + std::to_string(count) + ")");
+    if (optional && idx == -1) return;  // -1: not given
+    if (idx >= 0 && static_cast<size_t>(idx) < count) return;
+    // tinyobjloader has already made the index 0-based (a relative one absolute), so a
+    // non-negative index is reported 1-based as written in a plain OBJ.
+    const std::string name = shape.empty() ? "(unnamed)" : shape;
+    obj_error(obj, "shape '" + name + "' face " + std::to_string(face + 1) + ": " + kind +
+                       " index " + std::to_string(idx >= 0 ? idx + 1 : idx) +
+                       " out of range (the file has " + std::to_string(count) + ")");
 }
 
 }  // namespace

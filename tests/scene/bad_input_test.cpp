@@ -72,6 +72,33 @@ TEST(BadInput, MissingMeshListsDirectoriesTried) {
     std::filesystem::remove_all(dir);
 }
 
+// OBJ bodies that tinyobjloader accepts (or half-accepts) but the loader must reject.
+class BadObjTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(BadObjTest, NamesTheObj) {
+    const auto dir = std::filesystem::temp_directory_path() / "tessera_bad_obj";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "broken.obj") << GetParam();
+    std::ofstream(dir / "s.json") << R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]},
+        "objects": [{"mesh": "broken.obj"}],
+        "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1]}]})";
+    const std::string e = load_error(dir / "s.json");
+    EXPECT_CONTAINS(e, "broken.obj");
+    std::filesystem::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Obj, BadObjTest,
+    ::testing::Values("v 0 0 0\nv 1 0 0\nv 0 0 1\nf -9 1 2\n",          // relative, before the start
+                      "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 4\n",           // one past the end
+                      "v 0 0 0\nv 1 0 0\nv 0 0 1\nvn 0 1 0\nf 1//1 2//2 3//1\n",  // normal index
+                      "v 0 0 0\nv 1 0 0\nv 0 0 1\nvt 0 0\nf 1/1 2/5 3/1\n",       // texcoord index
+                      "v 0 0 0\nv 1 0 inf\nv 0 0 1\nf 1 2 3\n",         // infinity
+                      "v 0 0 0\nv 1 0 1e39\nv 0 0 1\nf 1 2 3\n",        // overflows a float
+                      "v 0 0 0\nv 1 0 0\nv 0 0 1\nusemtl nothing\nf 1 2 3\n",  // no MTL defines it
+                      "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 0 1 2\n",           // OBJ indices start at 1
+                      "# no faces\nv 0 0 0\n"));
+
 // Scene files with one bad setting each; the quad mesh is referenced by absolute path.
 struct BadKey {
     const char* json;  ///< body after "objects"; %M is replaced by the quad's path

@@ -49,7 +49,7 @@ TEST(Material, TexturesDecodedAndDeduplicated) {
 }
 
 TEST(Material, FacesWithoutUsemtlGetDefaultGrey) {
-    // bad_index.obj has no materials; use nan-free quad geometry via a temp OBJ.
+    // An OBJ with no mtllib and no usemtl, written to a temporary folder.
     const auto dir = std::filesystem::temp_directory_path() / "tessera_material_test";
     std::filesystem::create_directories(dir);
     {
