@@ -16,8 +16,11 @@ int main(int argc, char** argv) {
     tessera::cli::add_info_command(app);
     try {
         app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
+    } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "tessera: error: %s (see --help)\n", e.what());
+        return e.get_exit_code() ? e.get_exit_code() : 2;
     } catch (const tessera::InputError& e) {
         std::fprintf(stderr, "tessera: error: %s\n", e.what());
         return 2;

@@ -1,0 +1,102 @@
+// `tessera` as a user runs it: bad input gives one clear message naming the file or
+// setting, a non-zero exit, and no output file; good input writes EXR and PNG.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliResult {
+    int exit_code;
+    std::string output;  // stdout and stderr together
+};
+
+CliResult run_tessera(const std::string& args) {
+    std::string cmd = std::string(TESSERA_EXE) + " " + args + " 2>&1";
+    FILE* p = ::popen(cmd.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf;
+    while (size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+    int status = ::pclose(p);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class RenderCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("tessera-cli-" + std::to_string(::getpid()) + "-" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    // Renders `scene_args` and expects failure naming `needle`, and no image written.
+    void expect_rejected(const std::string& scene_args, const std::string& needle,
+                         const std::string& spp = "--spp 1") {
+        const fs::path out = dir_ / "img.exr";
+        CliResult r = run_tessera("render " + scene_args + " " + spp + " --width 8 --height 8 --out " + out.string());
+        EXPECT_NE(r.exit_code, 0) << r.output;
+        EXPECT_NE(r.output.find("tessera: error:"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(needle), std::string::npos) << "message should name " << needle << ":\n" << r.output;
+        EXPECT_FALSE(fs::exists(out));
+        EXPECT_FALSE(fs::exists(dir_ / "img.png"));
+    }
+
+    fs::path dir_;
+};
+
+const std::string kData = TESSERA_TEST_DATA;
+
+TEST_F(RenderCli, MissingSceneFile) { expect_rejected(kData + "/does-not-exist.json", "does-not-exist.json"); }
+TEST_F(RenderCli, MalformedJson) { expect_rejected(kData + "/malformed.json", "malformed.json"); }
+TEST_F(RenderCli, ObjIndexOutOfRange) { expect_rejected(kData + "/bad_index.json", "bad_index.obj"); }
+TEST_F(RenderCli, ObjNanVertex) { expect_rejected(kData + "/nan_vertex.json", "nan_vertex.obj"); }
+TEST_F(RenderCli, MissingMtl) { expect_rejected(kData + "/missing_mtl.json", ".mtl"); }
+TEST_F(RenderCli, SceneWithoutLights) { expect_rejected(kData + "/no_lights.json", "no lights"); }
+TEST_F(RenderCli, UnknownDevice) {
+    expect_rejected(kData + "/light.json --device no-such-device-xyz", "no-such-device-xyz");
+}
+TEST_F(RenderCli, UnknownBackend) { expect_rejected(kData + "/light.json --backend vulkan", "--backend"); }
+TEST_F(RenderCli, UnknownMethod) { expect_rejected(kData + "/light.json --method magic", "--method"); }
+TEST_F(RenderCli, ZeroSpp) { expect_rejected(kData + "/light.json", "--spp", "--spp 0"); }
+TEST_F(RenderCli, UnknownOption) { expect_rejected(kData + "/light.json --bogus", "--bogus"); }
+
+TEST_F(RenderCli, UnwritableOutputKeepsNothingBehind) {
+    CliResult r = run_tessera("render " + kData + "/light.json --spp 1 --width 8 --height 8 --backend embree --out " +
+                        "/proc/tessera-no/img.exr");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.output.find("/proc/tessera-no"), std::string::npos) << r.output;
+}
+
+TEST_F(RenderCli, RendersExrAndPngOnBothBackends) {
+    for (const char* backend : {"embree", "opencl"}) {
+        const fs::path out = dir_ / (std::string(backend) + ".exr");
+        CliResult r = run_tessera("render --spp 1 --width 16 --height 16 --backend " + std::string(backend) + " --out " +
+                            out.string());
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_GT(fs::file_size(out), 0u);
+        EXPECT_GT(fs::file_size(dir_ / (std::string(backend) + ".png")), 0u);
+    }
+}
+
+TEST(InfoCli, ListsEffectsOfTheDefaultScene) {
+    CliResult r = run_tessera("info");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("triangles:  32"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("medium (PM):          no"), std::string::npos) << r.output;
+}
+
+TEST(DevicesCli, ListsPocl) {
+    CliResult r = run_tessera("devices");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("[0]"), std::string::npos) << r.output;
+}
+
+}  // namespace
