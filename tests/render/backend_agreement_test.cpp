@@ -7,6 +7,7 @@
 // renders that differ only in seed. The same-seed difference between backends must be
 // under 2% of that; a shading or sampling divergence between backends would instead
 // produce a difference of the order of the noise itself (ratio ~1).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -34,6 +35,18 @@ void expect_backends_agree(const Scene& scene, RenderSettings rs) {
                 noise);
     ASSERT_GT(noise, 0.0);
     EXPECT_LT(diff, 0.02 * noise) << "backend relMSE " << diff << " vs seed-to-seed relMSE " << noise;
+    // relMSE is dominated by a few edge pixels (an emitter next to black), so also
+    // bound how many pixels differ at all: the same samples must give the same value
+    // except where a tie or rounding sends one camera or shadow ray elsewhere.
+    size_t differ = 0, total = 0;
+    for (const char* c : {"R", "G", "B"}) {
+        const auto& a = cl.find(c)->data;
+        const auto& b = em.find(c)->data;
+        for (size_t i = 0; i < a.size(); ++i, ++total)
+            differ += std::abs(a[i] - b[i]) > 1e-3f * (std::abs(b[i]) + 0.01f);
+    }
+    std::printf("  %s: %zu of %zu pixel channels differ by more than 1e-3\n", scene.name.c_str(), differ, total);
+    EXPECT_LE(differ, total / 200);
 }
 
 TEST(BackendAgreement, ClosedBoxSameSeed) {
