@@ -12,6 +12,7 @@
 
 #include "backend/backend.h"
 #include "bvh/embree_device.h"
+#include "bvh/embree_scene.h"
 #include "kernels/shared/geometry.h"
 #include "util/error.h"
 
@@ -91,26 +92,7 @@ ts::TsRay ray_from(const float* r) {
 
 class EmbreeBackend final : public Backend {
 public:
-    explicit EmbreeBackend(const SceneBuffers& scene) : buffers_(scene) {
-        RTCDevice dev = embree_device();
-        scene_ = rtcNewScene(dev);
-        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-        rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
-        const size_t n = scene.triangle_count;
-        if (n > 0) {
-            RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n));
-            std::memcpy(v, scene.tri_pos.data(), 9 * n * sizeof(float));
-            auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-                g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), n));
-            for (size_t i = 0; i < 3 * n; ++i) idx[i] = static_cast<unsigned>(i);
-            rtcCommitGeometry(g);
-            rtcAttachGeometry(scene_, g);
-            rtcReleaseGeometry(g);
-        }
-        rtcCommitScene(scene_);
-        check_embree("building the Embree scene");
+    explicit EmbreeBackend(const SceneBuffers& scene) : buffers_(scene), scene_(build_embree_scene(scene)) {
         tracer_.scene = scene_;
     }
     ~EmbreeBackend() override { rtcReleaseScene(scene_); }
