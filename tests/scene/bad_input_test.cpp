@@ -59,7 +59,7 @@ TEST(BadInput, UnknownMaterialOverrideNamesTheKey) {
 TEST(BadInput, MissingMeshListsDirectoriesTried) {
     DataPath data;
     data.roots = {fixture("no_root_a"), fixture("no_root_b")};
-    const auto dir = std::filesystem::temp_directory_path() / "tessera_bad_mesh";
+    const auto dir = test::unique_temp_dir("tessera_bad_mesh");
     std::filesystem::create_directories(dir);
     std::ofstream(dir / "s.json") << R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]},
                                          "objects": [{"mesh": "gone.obj"}]})";
@@ -76,7 +76,7 @@ TEST(BadInput, MissingMeshListsDirectoriesTried) {
 class BadObjTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(BadObjTest, NamesTheObj) {
-    const auto dir = std::filesystem::temp_directory_path() / "tessera_bad_obj";
+    const auto dir = test::unique_temp_dir("tessera_bad_obj");
     std::filesystem::create_directories(dir);
     std::ofstream(dir / "broken.obj") << GetParam();
     std::ofstream(dir / "s.json") << R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]},
@@ -111,7 +111,7 @@ TEST_P(BadKeyTest, NamesTheKey) {
     std::string body = GetParam().json;
     const std::string mesh = fixture("quad.obj").string();
     for (size_t at; (at = body.find("%M")) != std::string::npos;) body.replace(at, 2, mesh);
-    const auto dir = std::filesystem::temp_directory_path() / "tessera_bad_key";
+    const auto dir = test::unique_temp_dir("tessera_bad_key");
     std::filesystem::create_directories(dir);
     std::ofstream(dir / "bad.json") << body;
     const std::string e = load_error(dir / "bad.json");

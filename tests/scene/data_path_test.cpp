@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 class DataPathTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        root_ = fs::temp_directory_path() / "tessera_data_path_test";
+        root_ = test::unique_temp_dir("tessera_data_path_test");
         fs::remove_all(root_);
         for (const char* d : {"scene", "cli", "env"}) {
             fs::create_directories(root_ / d);

@@ -50,7 +50,7 @@ TEST(Material, TexturesDecodedAndDeduplicated) {
 
 TEST(Material, FacesWithoutUsemtlGetDefaultGrey) {
     // An OBJ with no mtllib and no usemtl, written to a temporary folder.
-    const auto dir = std::filesystem::temp_directory_path() / "tessera_material_test";
+    const auto dir = test::unique_temp_dir("tessera_material_test");
     std::filesystem::create_directories(dir);
     {
         std::ofstream(dir / "plain.obj") << "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n";

@@ -1,5 +1,7 @@
 // Shared helpers for the scene loader tests.
 #pragma once
+#include <unistd.h>
+
 #include <filesystem>
 #include <string>
 
@@ -14,6 +16,16 @@ namespace tessera::test {
 /// A file in tests/data.
 inline std::filesystem::path fixture(const std::string& name) {
     return std::filesystem::path(TESSERA_TEST_DATA) / name;
+}
+
+/// A scratch directory path unique to this process and test, so tests that CTest runs
+/// in parallel never share files. The caller creates and removes it.
+inline std::filesystem::path unique_temp_dir(const std::string& tag) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "-" + info->name();
+    for (char& c : name)
+        if (c == '/') c = '-';
+    return std::filesystem::temp_directory_path() / (tag + "-" + std::to_string(::getpid()) + "-" + name);
 }
 
 /// Geometric normal of triangle i, cross(p1 - p0, p2 - p0), normalised.
