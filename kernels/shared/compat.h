@@ -29,9 +29,9 @@ static inline float3 ts_f3_load(TS_GLOBAL const float* p) { return vload3(0, p);
 
 #else
 /* ---------------------------------------------------------------- C++ */
+#include <bit>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
 #define TS_GLOBAL
@@ -90,26 +90,10 @@ using std::isfinite;
 inline float clamp(float x, float lo, float hi) { return std::fmin(std::fmax(x, lo), hi); }
 inline float mix(float a, float b, float t) { return a + (b - a) * t; }
 
-inline uint as_uint(float f) {
-    uint u;
-    std::memcpy(&u, &f, 4);
-    return u;
-}
-inline int as_int(float f) {
-    int i;
-    std::memcpy(&i, &f, 4);
-    return i;
-}
-inline float as_float(uint u) {
-    float f;
-    std::memcpy(&f, &u, 4);
-    return f;
-}
-inline float as_float(int i) {
-    float f;
-    std::memcpy(&f, &i, 4);
-    return f;
-}
+inline uint as_uint(float f) { return std::bit_cast<uint>(f); }
+inline int as_int(float f) { return std::bit_cast<int>(f); }
+inline float as_float(uint u) { return std::bit_cast<float>(u); }
+inline float as_float(int i) { return std::bit_cast<float>(i); }
 inline float3 ts_f3_load(const float* p) { return {p[0], p[1], p[2]}; }
 
 constexpr float TS_INF = std::numeric_limits<float>::infinity();
