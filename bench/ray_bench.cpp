@@ -33,6 +33,7 @@
 #include "kernels/shared/sampling.h"
 #include "render/frame.h"
 #include "render/renderer.h"
+#include "render/scene_view.h"
 #include "scene/loader.h"
 
 using namespace tessera;
@@ -72,6 +73,7 @@ RaySets make_rays(const Scene& scene, const SceneBuffers& b, Backend& embree, in
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     std::normal_distribution<float> g;
+    const ts::TsSceneView sv = make_scene_view(b);
     for (size_t i = 0; i < r.primary.size() / 8; ++i) {
         uint32_t prim;
         std::memcpy(&prim, &hits[4 * i + 3], 4);
@@ -79,9 +81,6 @@ RaySets make_rays(const Scene& scene, const SceneBuffers& b, Backend& embree, in
         const float* pr = &r.primary[8 * i];
         ts::TsRay ray{ts::make_float3(pr[0], pr[1], pr[2]), ts::make_float3(pr[4], pr[5], pr[6]), 0.0f, INFINITY};
         ts::TsHit hit{hits[4 * i], hits[4 * i + 1], hits[4 * i + 2], prim};
-        ts::TsSceneView sv{b.tri_pos.data(), b.tri_nrm.data(), b.tri_uv.data(), b.tri_mat.data(),
-                           b.materials.data(), b.tex_info.data(), b.tex_texels.data(), b.lights.data(),
-                           b.light_cdf.data(), b.light_count};
         ts::TsSurface s = ts::ts_surface_at(&sv, ray, hit);
         ts::float3 o = ts::ts_offset_ray_origin(s.position, s.geo_normal);
         ts::TsLightSample ls = ts::ts_sample_light(b.lights.data(), b.light_cdf.data(), b.light_count, u(rng),

@@ -13,6 +13,7 @@
 #include "backend/backend.h"
 #include "bvh/embree_device.h"
 #include "bvh/embree_scene.h"
+#include "render/scene_view.h"
 #include "kernels/shared/geometry.h"
 #include "util/error.h"
 
@@ -104,7 +105,8 @@ public:
 
     void direct_pass(const TsFrame& frame, std::vector<float>& out) override {
         out.resize(size_t(frame.width) * frame.height * TS_PASS_FLOATS);
-        ts::TsSceneView sv = scene_view(frame.light_count);
+        ts::TsSceneView sv = make_scene_view(buffers_);
+        sv.light_count = frame.light_count;
         tbb::parallel_for(
             tbb::blocked_range2d<unsigned>(0, frame.height, 8, 0, frame.width, 8),
             [&](const tbb::blocked_range2d<unsigned>& r) {
@@ -142,14 +144,6 @@ public:
     }
 
 private:
-    ts::TsSceneView scene_view(uint32_t light_count) const {
-        const SceneBuffers& b = buffers_;
-        return ts::TsSceneView{b.tri_pos.data(),   b.tri_nrm.data(),  b.tri_uv.data(),
-                               b.tri_mat.data(),   b.materials.data(), b.tex_info.data(),
-                               b.tex_texels.data(), b.lights.data(),   b.light_cdf.data(),
-                               light_count};
-    }
-
     const SceneBuffers& buffers_;
     RTCScene scene_ = nullptr;
     ts::TsTracer tracer_{};

@@ -26,7 +26,6 @@ public:
             ctx_ = cl::Context(dev_.device);
             queue_ = cl::CommandQueue(ctx_, dev_.device);
             FlatBvh bvh = build_bvh(positions_of(scene));
-            bvh_depth_ = bvh.depth;
             nodes_ = upload("BVH nodes", bvh.nodes);
             tris_ = upload("BVH triangles", bvh.tris);
             tri_pos_ = upload("triangle positions", scene.tri_pos);
@@ -148,7 +147,6 @@ private:
     EffectPlan plan_;
     cl::Context ctx_;
     cl::CommandQueue queue_;
-    int bvh_depth_ = 0;
     cl::Buffer nodes_, tris_, tri_pos_, tri_nrm_, tri_uv_, tri_mat_, materials_, tex_info_, tex_texels_,
         lights_, light_cdf_, out_;
     size_t out_bytes_ = 0;

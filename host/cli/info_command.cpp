@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "kernels/shared/layout.h"
 #include "render/effect_plan.h"
 #include "render/scene_buffers.h"
 #include "scene/loader.h"
@@ -31,7 +32,7 @@ void run_info(const InfoArgs& a) {
         hi = glm::max(hi, p);
     }
     double light_area = 0.0;
-    for (uint32_t i = 0; i < b.light_count; ++i) light_area += b.lights[i * 16 + 12];
+    for (uint32_t i = 0; i < b.light_count; ++i) light_area += b.lights[i * TS_LIGHT_FLOATS + 12];
     const EffectPlan plan = plan_effects(s);
     std::printf("scene:      %s (%s)\n", s.name.c_str(), s.source.c_str());
     std::printf("triangles:  %zu\n", s.triangle_count());
