@@ -203,8 +203,8 @@ int main(int argc, char** argv) {
     rs.shadow_samples = 16;
     rs.spp = static_cast<uint32_t>(repeats);
     RenderStats scl, sem;
-    render_frame(*cl, scene, b.light_count, rs, &scl);
-    render_frame(*em, scene, b.light_count, rs, &sem);
+    render_frame(*cl, scene, b, rs, &scl);
+    render_frame(*em, scene, b, rs, &sem);
     j["direct_frame"] = {{"shadow_samples", 16}, {"opencl_ms", 1e3 * scl.median_pass_seconds},
                          {"embree_ms", 1e3 * sem.median_pass_seconds},
                          {"opencl_over_embree_speed", sem.median_pass_seconds / scl.median_pass_seconds}};

@@ -8,6 +8,7 @@
 
 #include "kernels/shared/layout.h"
 #include "render/effect_plan.h"
+#include "render/method.h"
 #include "render/scene_buffers.h"
 
 namespace tessera {
@@ -29,10 +30,10 @@ public:
     /// e.g. "opencl (Portable Computing Language: pthread-...)" or "embree (TBB, 2 threads)".
     virtual std::string description() const = 0;
 
-    /// One pass (1 spp) of the `direct` method for every pixel of frame.width × height.
+    /// One pass (1 spp) of `method` for every pixel of frame.width × height.
     /// `out` is resized to width × height × TS_PASS_FLOATS (layout in layout.h),
     /// row-major from the top-left pixel.
-    virtual void direct_pass(const TsFrame& frame, std::vector<float>& out) = 0;
+    virtual void render_pass(Method method, const TsFrame& frame, std::vector<float>& out) = 0;
 
     /// Closest-hit queries. `rays` holds 8 floats per ray (org.xyz, tmin, dir.xyz,
     /// tmax); `hits` is resized to 4 words per ray: t, u, v as floats and the triangle

@@ -74,10 +74,13 @@ inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
 
 }  // namespace tessera::ts
 
-// Texture support is compiled in unconditionally on the CPU: a material without a
-// texture never reaches the lookup, so the result equals the OpenCL build without it.
+// Texture and medium support are compiled in unconditionally on the CPU: a material
+// without a texture never reaches the lookup, and a scene without a medium has
+// medium.present = 0, so results equal the OpenCL builds without them.
 #define TS_HAS_TEXTURES 1
+#define TS_HAS_MEDIUM 1
 #include "kernels/shared/direct.h"
+#include "kernels/shared/pt.h"
 
 namespace tessera {
 namespace {
@@ -103,7 +106,15 @@ public:
                std::to_string(tbb::info::default_concurrency()) + " threads)";
     }
 
-    void direct_pass(const TsFrame& frame, std::vector<float>& out) override {
+    void render_pass(Method method, const TsFrame& frame, std::vector<float>& out) override {
+        if (method == Method::Direct)
+            run_pixels(frame, out, ts::ts_direct_pixel);
+        else
+            run_pixels(frame, out, ts::ts_pt_pixel);
+    }
+
+    template <class PixelFn>
+    void run_pixels(const TsFrame& frame, std::vector<float>& out, PixelFn pixel) {
         out.resize(size_t(frame.width) * frame.height * TS_PASS_FLOATS);
         ts::TsSceneView sv = make_scene_view(buffers_);
         sv.light_count = frame.light_count;
@@ -113,7 +124,7 @@ public:
                 set_ftz_daz();
                 for (unsigned y = r.rows().begin(); y < r.rows().end(); ++y)
                     for (unsigned x = r.cols().begin(); x < r.cols().end(); ++x)
-                        ts::ts_direct_pixel(&sv, &tracer_, &frame, x, y,
+                        pixel(&sv, &tracer_, &frame, x, y,
                                             &out[(size_t(y) * frame.width + x) * TS_PASS_FLOATS]);
             });
     }

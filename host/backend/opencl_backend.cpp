@@ -37,6 +37,7 @@ public:
             tex_texels_ = upload("textures", scene.tex_texels);
             lights_ = upload("lights", scene.lights);
             light_cdf_ = upload("light CDF", scene.light_cdf);
+            medium_ = upload("medium", scene.medium);
         } catch (const cl::Error& e) {
             throw RuntimeError("OpenCL setup on " + dev_.name + " failed: " + describe_cl_error(e) +
                                " (try --backend embree)");
@@ -47,16 +48,16 @@ public:
         return "opencl (" + dev_.platform_name + ": " + dev_.name + ")";
     }
 
-    void direct_pass(const TsFrame& frame, std::vector<float>& out) override {
+    void render_pass(Method method, const TsFrame& frame, std::vector<float>& out) override {
         const size_t pixels = size_t(frame.width) * frame.height;
         out.resize(pixels * TS_PASS_FLOATS);
         run([&] {
             cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
-            cl::Kernel& k = kernel("direct.cl", "direct_pass");
+            cl::Kernel& k = method == Method::Direct ? kernel("direct.cl", "direct_pass") : kernel("pt.cl", "pt_pass");
             int a = 0;
             k.setArg(a++, sizeof(TsFrame), &frame);
             for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_,
-                                  &tex_info_, &tex_texels_, &lights_, &light_cdf_})
+                                  &tex_info_, &tex_texels_, &lights_, &light_cdf_, &medium_})
                 k.setArg(a++, *b);
             k.setArg(a++, buf);
             queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(pixels, TS_WORKGROUP_SIZE)),
@@ -148,7 +149,7 @@ private:
     cl::Context ctx_;
     cl::CommandQueue queue_;
     cl::Buffer nodes_, tris_, tri_pos_, tri_nrm_, tri_uv_, tri_mat_, materials_, tex_info_, tex_texels_,
-        lights_, light_cdf_, out_;
+        lights_, light_cdf_, medium_, out_;
     size_t out_bytes_ = 0;
     std::map<std::string, cl::Program> programs_;
     std::map<std::string, cl::Kernel> kernels_;

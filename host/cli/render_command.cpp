@@ -25,6 +25,7 @@ struct RenderArgs {
     std::string device;
     std::string out;
     std::string data_dir;
+    std::string method = "direct";
     float exposure = 0.0f;
     RenderSettings settings;
 };
@@ -45,6 +46,8 @@ void run_render(const RenderArgs& a) {
     const fs::path scene_path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
     const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
     BackendOptions bo{parse_backend_kind(a.backend), a.device};
+    RenderSettings settings = a.settings;
+    settings.method = parse_method(a.method);
     Scene scene = load_scene(scene_path, data);
     const fs::path out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
     if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
@@ -57,7 +60,7 @@ void run_render(const RenderArgs& a) {
     for (const auto& line : plan.describe()) std::fprintf(stderr, "  %s\n", line.c_str());
 
     RenderStats stats;
-    Image img = render_frame(*backend, scene, buffers.light_count, a.settings, &stats, print_progress);
+    Image img = render_frame(*backend, scene, buffers, settings, &stats, print_progress);
 
     if (!out.parent_path().empty()) {
         std::error_code ec;
@@ -81,7 +84,12 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("scene", args->scene, "Scene file (.json)");
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
-    cmd->add_option("--method", args->settings.method, "Rendering method (direct)")->capture_default_str();
+    cmd->add_option("--method", args->method, "Rendering method: direct or pt")->capture_default_str();
+    cmd->add_option("--max-depth", args->settings.max_depth, "pt: path vertices before a path is cut")
+        ->capture_default_str();
+    cmd->add_option("--max-scatter", args->settings.max_scatter,
+                    "pt: medium scattering vertices per path (1 = single scattering, 0 = unlimited)")
+        ->capture_default_str();
     cmd->add_option("--spp", args->settings.spp, "Samples (passes) per pixel")->capture_default_str();
     cmd->add_option("--shadow-samples", args->settings.shadow_samples, "Area-light samples per hit and pass")
         ->capture_default_str();

@@ -15,6 +15,7 @@ EffectPlan plan_effects(const Scene& scene) {
         if (m.albedo.x > 0.0f || m.albedo.y > 0.0f || m.albedo.z > 0.0f) reflects = true;
     }
     p.indirect = p.area_lights && reflects;
+    p.medium = scene.has_medium && (scene.medium.sigma_a != glm::vec3(0.0f) || scene.medium.sigma_s != glm::vec3(0.0f));
     return p;
 }
 

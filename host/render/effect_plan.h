@@ -13,7 +13,7 @@ struct EffectPlan {
     bool area_lights = false;  ///< some triangle emits: direct light / soft shadows (SS)
     bool textures = false;     ///< some material has map_Kd: texture lookups compiled in
     bool indirect = false;     ///< lights and a non-black surface: indirect diffuse (ID)
-    bool medium = false;       ///< a participating medium is declared (PM; later issue)
+    bool medium = false;       ///< a medium with non-zero coefficients is declared (PM)
 
     /// OpenCL build options that follow from the plan, e.g. "-DTS_HAS_TEXTURES".
     std::vector<std::string> cl_defines() const;

@@ -12,8 +12,7 @@ namespace tessera {
 namespace {
 
 void validate(const RenderSettings& s) {
-    if (s.method != "direct")
-        throw InputError("--method " + s.method + ": not available (implemented: direct)");
+    if (s.max_depth < 1 || s.max_depth > 100000) throw InputError("--max-depth must be in 1..100000");
     if (s.spp < 1 || s.spp > 1000000) throw InputError("--spp must be in 1..1000000");
     if (s.shadow_samples < 1 || s.shadow_samples > 4096)
         throw InputError("--shadow-samples must be in 1..4096");
@@ -23,12 +22,15 @@ void validate(const RenderSettings& s) {
 
 }  // namespace
 
-Image render_frame(Backend& backend, const Scene& scene, uint32_t light_count,
+Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress) {
     validate(settings);
     const int w = settings.width > 0 ? settings.width : scene.camera.width;
     const int h = settings.height > 0 ? settings.height : scene.camera.height;
-    TsFrame frame = make_frame(scene.camera, w, h, settings.shadow_samples, settings.seed, light_count);
+    TsFrame frame = make_frame(scene.camera, w, h, settings.shadow_samples, settings.seed, buffers.light_count);
+    frame.max_depth = settings.max_depth;
+    frame.max_scatter = settings.max_scatter;
+    frame.light_power = buffers.light_power;
     Accumulator acc(w, h);
     std::vector<float> pass;
     std::vector<double> pass_seconds;
@@ -37,7 +39,7 @@ Image render_frame(Backend& backend, const Scene& scene, uint32_t light_count,
     for (uint32_t i = 0; i < settings.spp; ++i) {
         const auto t0 = clock::now();
         frame.pass = i;
-        backend.direct_pass(frame, pass);
+        backend.render_pass(settings.method, frame, pass);
         acc.add(pass);
         pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
         if (progress) progress(i + 1, settings.spp, std::chrono::duration<double>(clock::now() - start).count());

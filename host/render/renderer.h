@@ -6,13 +6,17 @@
 #include <string>
 
 #include "backend/backend.h"
+#include "render/scene_buffers.h"
 #include "image/image_io.h"
+#include "render/method.h"
 #include "scene/scene.h"
 
 namespace tessera {
 
 struct RenderSettings {
-    std::string method = "direct";  ///< only "direct" exists so far
+    Method method = Method::Direct;
+    uint32_t max_depth = 128;       ///< pt: path vertices before a path is cut
+    uint32_t max_scatter = 0;       ///< pt: medium scattering vertices per path, 0 = unlimited
     uint32_t spp = 16;              ///< passes, one camera sample per pixel each
     uint32_t shadow_samples = 8;    ///< area-light samples per camera hit and pass
     uint32_t seed = 1;
@@ -32,9 +36,9 @@ struct RenderStats {
 using ProgressFn = std::function<void(uint32_t, uint32_t, double)>;
 
 /// Validates `settings` (throws InputError naming --spp, --shadow-samples, --width,
-/// --height or --method when out of range), then renders. `light_count` comes from the
+/// --height or --max-depth when out of range), then renders. `buffers` are the
 /// SceneBuffers the backend was made from.
-Image render_frame(Backend& backend, const Scene& scene, uint32_t light_count,
+Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats = nullptr,
                    const ProgressFn& progress = {});
 

@@ -7,7 +7,7 @@
 namespace tessera {
 namespace {
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+float luminance_of(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 void push3(std::vector<float>& v, const glm::vec3& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
 
@@ -16,12 +16,27 @@ void ensure_nonempty(std::vector<T>& v) {
     if (v.empty()) v.push_back(T{});
 }
 
+void add_medium(const Scene& scene, SceneBuffers& b) {
+    const Medium& m = scene.medium;
+    b.medium.assign(TS_MEDIUM_FLOATS, 0.0f);
+    // A declared medium with all-zero coefficients does nothing: leave it disabled.
+    if (!scene.has_medium || (m.sigma_a == glm::vec3(0.0f) && m.sigma_s == glm::vec3(0.0f))) return;
+    const float f[TS_MEDIUM_FLOATS] = {m.sigma_a.x, m.sigma_a.y, m.sigma_a.z, m.sigma_s.x, m.sigma_s.y,
+                                       m.sigma_s.z, m.g, m.bounded ? 1.0f : 0.0f, m.box_min.x, m.box_min.y,
+                                       m.box_min.z, m.box_max.x, m.box_max.y, m.box_max.z, 1.0f, 0.0f};
+    b.medium.assign(f, f + TS_MEDIUM_FLOATS);
+}
+
 void add_materials(const Scene& scene, SceneBuffers& b) {
     for (const Material& m : scene.materials) {
+        const uint32_t kind = material_kind(m);
+        const glm::vec3 ks = m.specular == glm::vec3(0.0f) ? glm::vec3(1.0f) : m.specular;
         float f[TS_MATERIAL_FLOATS] = {m.albedo.x, m.albedo.y, m.albedo.z, 0.0f,
-                                       m.emission.x, m.emission.y, m.emission.z, 0.0f};
+                                       m.emission.x, m.emission.y, m.emission.z, 0.0f,
+                                       ks.x, ks.y, ks.z, m.ior > 0.0f ? m.ior : 1.0f};
         int tex = m.texture;
         std::memcpy(&f[3], &tex, 4);
+        std::memcpy(&f[7], &kind, 4);
         b.materials.insert(b.materials.end(), f, f + TS_MATERIAL_FLOATS);
     }
 }
@@ -53,10 +68,11 @@ void add_lights(const Scene& scene, SceneBuffers& b) {
         f[12] = area;
         std::memcpy(&f[13], &i, 4);
         b.lights.insert(b.lights.end(), f, f + TS_LIGHT_FLOATS);
-        power.push_back(static_cast<double>(luminance(le)) * area);
+        power.push_back(static_cast<double>(luminance_of(le)) * area);
         total += power.back();
     }
     b.light_count = static_cast<uint32_t>(power.size());
+    b.light_power = static_cast<float>(total);
     double run = 0.0;
     for (size_t i = 0; i < power.size(); ++i) {
         run += power[i];
@@ -65,6 +81,12 @@ void add_lights(const Scene& scene, SceneBuffers& b) {
 }
 
 }  // namespace
+
+uint32_t material_kind(const Material& m) {
+    if (m.illum == 3 || m.illum == 5) return TS_MAT_MIRROR;
+    if (m.illum == 7) return TS_MAT_DIELECTRIC;
+    return TS_MAT_DIFFUSE;
+}
 
 SceneBuffers make_scene_buffers(const Scene& scene) {
     SceneBuffers b;
@@ -82,6 +104,7 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
     add_materials(scene, b);
     add_textures(scene, b);
     add_lights(scene, b);
+    add_medium(scene, b);
     for (auto* v : {&b.tri_pos, &b.tri_nrm, &b.tri_uv, &b.materials, &b.lights, &b.light_cdf})
         ensure_nonempty(*v);
     for (auto* v : {&b.tri_mat, &b.tex_info, &b.tex_texels}) ensure_nonempty(*v);

@@ -19,13 +19,19 @@ struct SceneBuffers {
     std::vector<uint32_t> tex_texels;
     std::vector<float> lights;       ///< TS_LIGHT_FLOATS per emissive triangle
     std::vector<float> light_cdf;    ///< 1 per light
+    std::vector<float> medium;       ///< TS_MEDIUM_FLOATS (all zero when there is none)
     uint32_t triangle_count = 0;
     uint32_t light_count = 0;
+    float light_power = 0.0f;        ///< Σ luminance(Le) × area over lights
 };
+
+/// TS_MAT_* for a material: MTL illum 3 and 5 are mirrors, illum 7 a dielectric
+/// (refraction with Fresnel), everything else Lambertian.
+uint32_t material_kind(const Material& m);
 
 /// Flattens `scene`. Every triangle whose material emits (any channel of Ke > 0) and
 /// whose area is positive becomes a light; lights are picked in proportion to
-/// power = luminance(Le) × area. Buffers that would be empty get one zero element, so
+/// power = luminance(Le) × area (Rec. 709 luminance weights). Buffers that would be empty get one zero element, so
 /// every device buffer can be created.
 SceneBuffers make_scene_buffers(const Scene& scene);
 

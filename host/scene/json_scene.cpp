@@ -146,6 +146,27 @@ void read_lights(const JsonField& lights, Scene& scene) {
     }
 }
 
+// "medium": {"sigma_a": [r,g,b], "sigma_s": [r,g,b], "g": 0.0,
+//            "box": {"min": [x,y,z], "max": [x,y,z]}}   (box optional)
+void read_medium(const JsonField& j, Scene& scene) {
+    j.require_object();
+    Medium& m = scene.medium;
+    m.sigma_a = read_colour(j["sigma_a"], false);
+    m.sigma_s = read_colour(j["sigma_s"], false);
+    if (auto g = j.find("g")) {
+        m.g = g->number();
+        if (!(m.g > -1.0f && m.g < 1.0f)) g->fail("must lie in (-1, 1)");
+    }
+    if (auto box = j.find("box")) {
+        m.bounded = true;
+        m.box_min = (*box)["min"].vec3();
+        m.box_max = (*box)["max"].vec3();
+        for (int a = 0; a < 3; ++a)
+            if (!(m.box_min[a] < m.box_max[a])) box->fail("min must be below max on every axis");
+    }
+    scene.has_medium = true;
+}
+
 bool has_emitter(const Scene& scene) {
     for (const uint32_t m : scene.material) {
         const glm::vec3 e = scene.materials[m].emission;
@@ -171,6 +192,7 @@ Scene load_scene(const fs::path& scene_file, const DataPath& data) {
     // Overrides apply to MTL materials only, so they run before the lights add theirs.
     if (auto m = root.find("materials")) apply_material_overrides(*m, scene);
     if (auto l = root.find("lights")) read_lights(*l, scene);
+    if (auto m = root.find("medium")) read_medium(*m, scene);
     if (!has_emitter(scene))
         throw InputError(scene_file.string() + ": scene " + scene.name +
                          " has no lights (no MTL Ke and no JSON light)");

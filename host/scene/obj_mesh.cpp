@@ -70,6 +70,7 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& obj,
     for (int c = 0; c < 3; ++c) {
         out.albedo[c] = std::clamp(static_cast<float>(m.diffuse[c]), 0.0f, 1.0f);
         out.emission[c] = static_cast<float>(m.emission[c]);
+        out.specular[c] = std::clamp(static_cast<float>(m.specular[c]), 0.0f, 1.0f);
         if (!std::isfinite(out.albedo[c]) || !std::isfinite(out.emission[c]) || out.emission[c] < 0)
             obj_error(obj, "material '" + m.name + "': Kd/Ke must be finite, Ke non-negative");
     }

@@ -30,8 +30,23 @@ struct Material {
     glm::vec3 albedo{0.5f};      ///< diffuse reflectance Kd, each channel in [0, 1]
     glm::vec3 emission{0.0f};    ///< emitted radiance Ke, W/(sr·m²); non-zero makes an area light
     int texture = -1;            ///< index into Scene::textures for map_Kd, or -1
-    int illum = 2;               ///< MTL illumination model
-    float ior = 1.0f;            ///< MTL Ni
+    glm::vec3 specular{0.0f};    ///< Ks, each channel in [0, 1]: mirror reflectance (illum 3, 5)
+    int illum = 2;               ///< MTL illumination model: 3, 5 mirror; 7 dielectric; else Lambertian
+    float ior = 1.0f;            ///< MTL Ni, the dielectric's index of refraction (illum 7)
+};
+
+/// A homogeneous participating medium. Coefficients are per scene unit (1/length);
+/// the extinction is sigma_a + sigma_s. Henyey–Greenstein phase function with
+/// asymmetry g in (-1, 1). Without a box the medium fills all space; with one it fills
+/// the axis-aligned box [box_min, box_max] (the boundary is not a surface: it neither
+/// reflects nor refracts).
+struct Medium {
+    glm::vec3 sigma_a{0.0f};
+    glm::vec3 sigma_s{0.0f};
+    float g = 0.0f;
+    bool bounded = false;
+    glm::vec3 box_min{0.0f};
+    glm::vec3 box_max{0.0f};
 };
 
 /// Pinhole camera. `vfov_deg` is the full vertical field of view in degrees.
@@ -60,6 +75,8 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Texture> textures;
     Camera camera;
+    bool has_medium = false;   ///< true when the scene file declares a "medium"
+    Medium medium;
 
     size_t triangle_count() const { return material.size(); }
 };

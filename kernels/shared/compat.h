@@ -75,10 +75,13 @@ inline float3 fabs(float3 a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs
 inline float3 fmin(float3 a, float3 b) {
     return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)};
 }
+inline float3 exp(float3 a) { return {std::exp(a.x), std::exp(a.y), std::exp(a.z)}; }
 inline float3 fmax(float3 a, float3 b) {
     return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)};
 }
 using std::cos;
+using std::exp;
+using std::log;
 using std::fabs;
 using std::floor;
 using std::fmax;

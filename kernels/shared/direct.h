@@ -25,8 +25,6 @@
 
 TS_NAMESPACE_BEGIN
 
-#define TS_INV_PI 0.318309886183790671538f
-
 /* Unoccluded contribution Le cosθx cosθy / (d² p) of one light sample at surface s, and
  * the shadow ray that decides its visibility. Returns 0 when the light faces away. */
 TS_INLINE float3 ts_light_contribution(const TsSurface* s, TsLightSample ls, TsRay* shadow) {

@@ -68,6 +68,7 @@ typedef struct TsSceneView {
     TS_GLOBAL const uint* tex_texels;
     TS_GLOBAL const float* lights;
     TS_GLOBAL const float* light_cdf;
+    TS_GLOBAL const float* medium;
     uint light_count;
 } TsSceneView;
 

@@ -25,7 +25,12 @@
  *   tri_uv    6 floats: uv0, uv1, uv2
  *   tri_mat   1 uint:   material index
  * materials: TS_MATERIAL_FLOATS floats: [0..2] albedo (Kd, linear), [3] texture index
- *   (int bits, -1 = none), [4..6] emitted radiance Le in W/(sr·m²), [7] unused.
+ *   (int bits, -1 = none), [4..6] emitted radiance Le in W/(sr·m²), [7] kind (uint bits:
+ *   TS_MAT_DIFFUSE, TS_MAT_MIRROR, TS_MAT_DIELECTRIC), [8..10] specular reflectance (Ks;
+ *   the mirror's), [11] index of refraction (dielectric).
+ * medium: TS_MEDIUM_FLOATS floats: [0..2] sigma_a, [3..5] sigma_s (per scene unit),
+ *   [6] Henyey–Greenstein g, [7] 1 if bounded by the box else 0, [8..10] box min,
+ *   [11..13] box max, [14] 1 if the scene has a medium at all, [15] unused.
  * textures: tex_info 4 uints per texture: texel offset, width, height, unused;
  *   tex_texels: uint RGBA8 (R in the low byte), sRGB-encoded, row 0 at the top.
  * lights: TS_LIGHT_FLOATS floats per emissive triangle:
@@ -44,7 +49,11 @@
 #define TS_BVH_MAX_DEPTH 48
 #define TS_BVH_STACK_SIZE 160 /* >= 3 · TS_BVH_MAX_DEPTH + 1: a 4-wide node pushes at most 3 more than it pops */
 #define TS_BVH_LEAF_MAX 4
-#define TS_MATERIAL_FLOATS 8
+#define TS_MATERIAL_FLOATS 12
+#define TS_MAT_DIFFUSE 0u
+#define TS_MAT_MIRROR 1u
+#define TS_MAT_DIELECTRIC 2u
+#define TS_MEDIUM_FLOATS 16
 #define TS_LIGHT_FLOATS 16
 #define TS_NO_HIT 0xffffffffu
 
@@ -69,7 +78,9 @@ typedef struct TsFrame {
     unsigned int shadow_samples; /* area-light samples per camera hit */
     unsigned int seed;
     unsigned int light_count;
-    unsigned int flags;          /* TS_FRAME_* bits */
+    unsigned int max_depth;      /* pt: path vertices (surface or medium) before stopping */
+    unsigned int max_scatter;    /* pt: medium scattering vertices per path; 0 = unlimited */
+    float light_power;           /* sum over lights of luminance(Le) × area (for pdfs) */
     unsigned int unused;
 } TsFrame;
 

@@ -44,5 +44,65 @@ TS_INLINE TsLightSample ts_sample_light(TS_GLOBAL const float* lights,
     return s;
 }
 
+#define TS_PI 3.14159265358979323846f
+#define TS_INV_PI 0.318309886183790671538f
+
+/* Rec. 709 luminance, the power measure used to pick lights (host: scene_buffers.cpp). */
+TS_INLINE float ts_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+/* Area pdf (scene units^-2) with which ts_sample_light picks a point on an emitter of
+ * radiance Le: power-proportional selection times uniform area sampling gives
+ * (luminance(Le) · area / total power) / area = luminance(Le) / total power. */
+TS_INLINE float ts_light_pdf_area(float3 le, float light_power) {
+    return light_power > 0.0f ? ts_luminance(le) / light_power : 0.0f;
+}
+
+/* An orthonormal basis (t, b, n) around unit n, without branches on the sign of n.z
+ * beyond one copysign (Duff et al., "Building an Orthonormal Basis, Revisited", JCGT 2017). */
+TS_INLINE void ts_basis(float3 n, float3* t, float3* b) {
+    float sign = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (sign + n.z);
+    float c = n.x * n.y * a;
+    *t = make_float3(1.0f + sign * n.x * n.x * a, sign * c, -sign * n.x);
+    *b = make_float3(c, sign + n.y * n.y * a, -n.y);
+}
+
+TS_INLINE float3 ts_from_local(float3 n, float3 v) {
+    float3 t, b;
+    ts_basis(n, &t, &b);
+    return t * v.x + b * v.y + n * v.z;
+}
+
+/* Cosine-weighted direction on the hemisphere around the local +z axis; pdf cosθ/π
+ * (per steradian). Malley's method: a uniform disk point lifted to the hemisphere. */
+TS_INLINE float3 ts_sample_cosine_hemisphere(float u, float v) {
+    float r = sqrt(u), phi = 2.0f * TS_PI * v;
+    return make_float3(r * cos(phi), r * sin(phi), sqrt(fmax(0.0f, 1.0f - u)));
+}
+
+/* Henyey–Greenstein phase function (per steradian) for the angle θ between the
+ * propagation directions before and after scattering: cosθ = dot(d_in, d_out).
+ * g > 0 scatters forward. (Henyey & Greenstein 1941; pbrt-v4 §11.3.1.) */
+TS_INLINE float ts_hg_phase(float cos_theta, float g) {
+    float d = 1.0f + g * g - 2.0f * g * cos_theta;
+    return (1.0f - g * g) / (4.0f * TS_PI * d * sqrt(d));
+}
+
+/* Samples a new propagation direction for light travelling along unit `d_in`, with
+ * density ts_hg_phase(dot(d_in, d_out), g). Inverts the HG cosine CDF; near g = 0 the
+ * closed form is ill-conditioned, so |g| < 1e-3 uses the isotropic cosine. */
+TS_INLINE float3 ts_sample_hg(float3 d_in, float g, float u, float v) {
+    float cos_t;
+    if (fabs(g) < 1e-3f) {
+        cos_t = 1.0f - 2.0f * u;
+    } else {
+        float sq = (1.0f - g * g) / (1.0f - g + 2.0f * g * u);
+        cos_t = (1.0f + g * g - sq * sq) / (2.0f * g);
+    }
+    cos_t = clamp(cos_t, -1.0f, 1.0f);
+    float sin_t = sqrt(fmax(0.0f, 1.0f - cos_t * cos_t)), phi = 2.0f * TS_PI * v;
+    return ts_from_local(d_in, make_float3(sin_t * cos(phi), sin_t * sin(phi), cos_t));
+}
+
 TS_NAMESPACE_END
 #endif /* TS_SAMPLING_H */

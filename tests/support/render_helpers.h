@@ -16,7 +16,7 @@ namespace tessera::test {
 inline Image render_with(BackendKind kind, const Scene& scene, const RenderSettings& settings) {
     SceneBuffers buffers = make_scene_buffers(scene);
     auto backend = make_backend(BackendOptions{kind, ""}, buffers, plan_effects(scene));
-    return render_frame(*backend, scene, buffers.light_count, settings);
+    return render_frame(*backend, scene, buffers, settings);
 }
 
 /// Mean over pixels of (a - b)² / (b² + 0.01), over R, G, B: the relative MSE of

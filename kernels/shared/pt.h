@@ -1,0 +1,202 @@
+/* The `pt` method: unidirectional volumetric path tracing, the reference every
+ * interactive method is judged against (the seed thesis used 2,500 spp).
+ *
+ * Surfaces: Lambertian (albedo/π, texture-modulated), perfect mirror, smooth dielectric.
+ * At each Lambertian vertex: next-event estimation (one power-sampled light point) and a
+ * cosine-sampled continuation, combined with multiple importance sampling, power
+ * heuristic (Veach 1997, §9.2): a light sample is weighted pl²/(pl² + pb²), an emitter
+ * hit by the continuation pb²/(pl² + pb²), both pdfs per steradian. Emitters seen from
+ * the camera or through specular bounces count in full.
+ *
+ * Media (compiled in with TS_HAS_MEDIUM): one homogeneous medium, filling space or a box.
+ * Each path segment samples a free-flight distance (shared/medium.h, spectral MIS over
+ * RGB); a distance short of the next surface is a scattering vertex, otherwise the
+ * surface is reached with the segment's transmittance carried by the weight. At a
+ * scattering vertex: next-event estimation to a light point, multiplied by the
+ * Henyey–Greenstein phase function and the Beer–Lambert transmittance of the shadow
+ * segment, then a phase-sampled continuation. Emitters hit right after a medium vertex
+ * add nothing: at medium vertices light sampling alone carries direct light (unbiased,
+ * no MIS there).
+ *   max_scatter = 0: full multiple scattering.
+ *   max_scatter = 1: single scattering, the transport model of the interactive methods'
+ *     PM component: a path may scatter in the medium once, where it connects to the
+ *     lights by next-event estimation and ends. Surface transport (and the attenuation of
+ *     every segment by the medium) is unchanged.
+ * Paths end after max_depth vertices or by Russian roulette from the fourth vertex on,
+ * with survival probability min(1, max(throughput)) but at least 0.05.
+ *
+ * Uses the tracer interface documented in shared/direct.h.
+ */
+#ifndef TS_PT_H
+#define TS_PT_H
+#include "shared/bsdf.h"
+#include "shared/compat.h"
+#include "shared/geometry.h"
+#include "shared/layout.h"
+#include "shared/material.h"
+#include "shared/medium.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+
+TS_NAMESPACE_BEGIN
+
+TS_INLINE float ts_max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+
+/* A light point seen from x: its radiance arriving at x (after the shadow test and the
+ * medium's transmittance) and the solid-angle pdf of having sampled it. */
+typedef struct TsLightConnection {
+    float3 wi;        /* unit direction from x to the light point */
+    float3 radiance;  /* Le · V · Tr, zero if blocked or facing away */
+    float pdf;        /* per steradian at x */
+} TsLightConnection;
+
+/* Samples a light point and traces the shadow ray from `org` (already offset off any
+ * surface) to it. */
+TS_INLINE TsLightConnection ts_connect_light(const TsSceneView* sv, const TsTracer* tracer,
+                                             const TsMedium* med, float3 org, float3 x, TsRng* rng) {
+    TsLightConnection c;
+    c.radiance = make_float3(0.0f, 0.0f, 0.0f);
+    c.pdf = 0.0f;
+    float us = ts_rng_next(rng), u = ts_rng_next(rng), v = ts_rng_next(rng);
+    TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, us, u, v);
+    float3 d = ls.position - x;
+    float dist2 = dot(d, d);
+    c.wi = d / sqrt(dist2);
+    float cos_y = -dot(ls.normal, c.wi);
+    if (!(cos_y > 0.0f) || !(dist2 > 0.0f)) return c;
+    c.pdf = ls.pdf_area * dist2 / cos_y;
+    TsRay shadow;
+    shadow.org = org;
+    shadow.dir = ts_offset_ray_origin(ls.position, ls.normal) - org;
+    shadow.tmin = 0.0f;
+    shadow.tmax = 0.99999f;
+    if (ts_trace_occluded(tracer, shadow)) return c;
+    c.radiance = ls.radiance;
+#ifdef TS_HAS_MEDIUM
+    c.radiance = c.radiance * ts_medium_transmittance(med, shadow.org, shadow.dir, 0.0f, 1.0f);
+#endif
+    return c;
+}
+
+TS_INLINE float ts_power_heuristic(float a, float b) {
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+/* Russian roulette; returns 0 when the path ends. */
+TS_INLINE int ts_roulette(float3* beta, uint depth, TsRng* rng) {
+    float u = ts_rng_next(rng);
+    if (depth < 3u) return 1;
+    float survive = clamp(ts_max3(*beta), 0.05f, 1.0f);
+    if (u >= survive) return 0;
+    *beta = *beta / survive;
+    return 1;
+}
+
+/* One pass (1 spp) of the path tracer for pixel (px, py); writes TS_PASS_FLOATS values
+ * (layout.h) to out, with albedo, normal and depth from the first camera hit. */
+TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                           uint px, uint py, float* out) {
+    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
+    float jx = ts_rng_next(&rng), jy = ts_rng_next(&rng);
+    TsRay ray = ts_camera_ray(f, px, py, jx, jy);
+    TsMedium med = ts_medium_load(sv->medium);
+    float3 L = make_float3(0.0f, 0.0f, 0.0f), beta = make_float3(1.0f, 1.0f, 1.0f);
+    float prev_pdf = 0.0f;
+    int prev_delta = 1, prev_medium = 0;
+    uint scatters = 0u;
+    for (int i = 0; i < 9; ++i) out[i] = 0.0f;
+    out[9] = TS_INF;
+
+    for (uint depth = 0u; depth < f->max_depth; ++depth) {
+        TsHit hit = ts_trace_closest(tracer, ray);
+#ifdef TS_HAS_MEDIUM
+        float t0 = ray.tmin, t1 = hit.prim == TS_NO_HIT ? TS_INF : hit.t;
+        if (ts_medium_clip(&med, ray.org, ray.dir, &t0, &t1)) {
+            float3 w;
+            int scattered;
+            float uc = ts_rng_next(&rng), ud = ts_rng_next(&rng);
+            float t = t0 + ts_medium_sample_distance(&med, t1 - t0, uc, ud, &w, &scattered);
+            if (!scattered && !isfinite(t1)) break; /* lost in an unbounded medium */
+            beta = beta * w;
+            if (scattered) {
+                float3 x = ray.org + ray.dir * t;
+                TsLightConnection c = ts_connect_light(sv, tracer, &med, x, x, &rng);
+                if (c.pdf > 0.0f)
+                    L += beta * c.radiance * (ts_hg_phase(dot(ray.dir, c.wi), med.g) / c.pdf);
+                if (f->max_scatter > 0u && ++scatters >= f->max_scatter) break;
+                ray.org = x;
+                ray.dir = ts_sample_hg(ray.dir, med.g, ts_rng_next(&rng), ts_rng_next(&rng));
+                ray.tmin = 0.0f;
+                ray.tmax = TS_INF;
+                prev_medium = 1;
+                prev_delta = 0;
+                if (!ts_roulette(&beta, depth, &rng)) break;
+                continue;
+            }
+        }
+#endif
+        if (hit.prim == TS_NO_HIT) break;
+        TsSurface s = ts_surface_at(sv, ray, hit);
+        TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s.material;
+        float3 albedo = ts_material_albedo(sv, &s);
+        if (depth == 0u) {
+            out[3] = albedo.x; out[4] = albedo.y; out[5] = albedo.z;
+            out[6] = s.shading_normal.x; out[7] = s.shading_normal.y; out[8] = s.shading_normal.z;
+            out[9] = hit.t;
+        }
+        float3 le = ts_material_emission(sv, &s);
+        if (le.x + le.y + le.z > 0.0f) {
+            if (prev_delta) {
+                L += beta * le;
+            } else if (!prev_medium) {
+                float cos_y = -dot(s.geo_normal, ray.dir);
+                float pl = ts_light_pdf_area(ts_f3_load(M + 4), f->light_power) * hit.t * hit.t / cos_y;
+                L += beta * le * ts_power_heuristic(prev_pdf, pl);
+            }
+        }
+        uint kind = as_uint(M[7]);
+        float3 ng = s.geo_normal;
+        if (kind == TS_MAT_MIRROR) {
+            beta = beta * ts_f3_load(M + 8);
+            ray.dir = ts_reflect(ray.dir, s.shading_normal);
+            if (dot(ray.dir, ng) <= 0.0f) break;
+            ray.org = ts_offset_ray_origin(s.position, ng);
+            prev_delta = 1;
+        } else if (kind == TS_MAT_DIELECTRIC) {
+            int transmitted;
+            ray.dir = ts_sample_dielectric(ray.dir, ng, s.front_face, M[11], ts_rng_next(&rng), &transmitted);
+            ray.org = ts_offset_ray_origin(s.position, transmitted ? -ng : ng);
+            prev_delta = 1;
+        } else {
+            if (ts_max3(albedo) <= 0.0f) break;
+            float3 ns = s.shading_normal;
+            float3 org = ts_offset_ray_origin(s.position, ng);
+            if (sv->light_count > 0u) {
+                TsLightConnection c = ts_connect_light(sv, tracer, &med, org, s.position, &rng);
+                float cos_x = dot(ns, c.wi);
+                if (c.pdf > 0.0f && cos_x > 0.0f && dot(ng, c.wi) > 0.0f) {
+                    float pb = cos_x * TS_INV_PI;
+                    L += beta * albedo * c.radiance *
+                         (TS_INV_PI * cos_x * ts_power_heuristic(c.pdf, pb) / c.pdf);
+                }
+            }
+            float3 wi = ts_from_local(ns, ts_sample_cosine_hemisphere(ts_rng_next(&rng), ts_rng_next(&rng)));
+            float cos_o = dot(ns, wi);
+            if (!(cos_o > 0.0f) || dot(ng, wi) <= 0.0f) break;
+            beta = beta * albedo;  /* (albedo/π) cosθ / (cosθ/π) */
+            prev_pdf = cos_o * TS_INV_PI;
+            prev_delta = 0;
+            ray.org = org;
+            ray.dir = wi;
+        }
+        ray.tmin = 0.0f;
+        ray.tmax = TS_INF;
+        prev_medium = 0;
+        if (!ts_roulette(&beta, depth, &rng)) break;
+    }
+    out[0] = L.x; out[1] = L.y; out[2] = L.z;
+}
+
+TS_NAMESPACE_END
+#endif /* TS_PT_H */

@@ -1,0 +1,40 @@
+/* The OpenCL backend's tracer for the shared shading code: BVH4 traversal
+ * (bvh_traverse.h) over the Embree-built BVH. See shared/direct.h for the interface. */
+#ifndef TS_TRACER_CL_H
+#define TS_TRACER_CL_H
+#include "bvh_traverse.h"
+
+typedef struct TsTracer {
+    __global const float* nodes;
+    __global const float* tris;
+} TsTracer;
+
+static inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
+    return ts_bvh_closest(tr->nodes, tr->tris, ray);
+}
+static inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
+    return ts_bvh_occluded(tr->nodes, tr->tris, ray);
+}
+
+/* The argument list every per-pixel method kernel takes, in this order. */
+#define TS_PIXEL_KERNEL_ARGS                                                              \
+    TsFrame frame, __global const float *nodes, __global const float *tris,              \
+        __global const float *tri_pos, __global const float *tri_nrm,                    \
+        __global const float *tri_uv, __global const uint *tri_mat,                      \
+        __global const float *materials, __global const uint *tex_info,                  \
+        __global const uint *tex_texels, __global const float *lights,                   \
+        __global const float *light_cdf, __global const float *medium, __global float *out
+
+/* Body of a per-pixel method kernel: one work-item per pixel runs `pixel_fn`
+ * (a ts_*_pixel function of the shared code) and stores its TS_PASS_FLOATS outputs. */
+#define TS_PIXEL_KERNEL_BODY(pixel_fn)                                                   \
+    uint i = get_global_id(0);                                                           \
+    if (i >= frame.width * frame.height) return;                                         \
+    TsTracer tracer = {nodes, tris};                                                     \
+    TsSceneView sv = {tri_pos, tri_nrm, tri_uv, tri_mat, materials, tex_info,            \
+                      tex_texels, lights, light_cdf, medium, frame.light_count};         \
+    float px[TS_PASS_FLOATS];                                                            \
+    pixel_fn(&sv, &tracer, &frame, i % frame.width, i / frame.width, px);                \
+    for (int k = 0; k < TS_PASS_FLOATS; ++k) out[(size_t)i * TS_PASS_FLOATS + k] = px[k];
+
+#endif /* TS_TRACER_CL_H */
