@@ -1,0 +1,96 @@
+// kernels/shared/medium.h compiled as C++: Beer–Lambert transmittance through the box,
+// the free-flight distance distribution, and the unbiasedness of the RGB weights.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "kernels/shared/medium.h"
+#include "support/chi_square.h"
+
+namespace tessera {
+namespace {
+
+using ts::make_float3;
+
+ts::TsMedium slab(ts::float3 sigma_a, ts::float3 sigma_s) {
+    float buf[TS_MEDIUM_FLOATS] = {sigma_a.x, sigma_a.y, sigma_a.z, sigma_s.x, sigma_s.y, sigma_s.z, 0.0f, 1.0f,
+                                   -1.0f,     -5.0f,     -5.0f,     1.0f,      5.0f,      5.0f,      1.0f, 0.0f};
+    return ts::ts_medium_load(buf);  // the slab -1 <= x <= 1 (5 units either way in y, z)
+}
+
+TEST(Medium, TransmittanceIsBeerLambertOverThePathInsideTheBox) {
+    ts::TsMedium m = slab(make_float3(0.1f, 0.5f, 2.0f), make_float3(0.2f, 0.0f, 0.0f));
+    // Along x through the 2-unit slab: exp(-sigma_t · 2), per channel.
+    ts::float3 tr = ts::ts_medium_transmittance(&m, make_float3(-3, 0, 0), make_float3(1, 0, 0), 0.0f, 10.0f);
+    EXPECT_NEAR(tr.x, std::exp(-0.3 * 2), 1e-6);
+    EXPECT_NEAR(tr.y, std::exp(-0.5 * 2), 1e-6);
+    EXPECT_NEAR(tr.z, std::exp(-2.0 * 2), 1e-6);
+    // Unnormalised direction, segment ending half-way into the slab: 1 unit inside.
+    tr = ts::ts_medium_transmittance(&m, make_float3(-3, 0, 0), make_float3(4, 0, 0), 0.0f, 0.75f);
+    EXPECT_NEAR(tr.y, std::exp(-0.5), 1e-6);
+    // At 60° to the slab normal the path inside is 2 / cos 60° = 4.
+    tr = ts::ts_medium_transmittance(&m, make_float3(-2, -3, 0), make_float3(0.5f, std::sqrt(0.75f), 0), 0.0f, 100.0f);
+    EXPECT_NEAR(tr.x, std::exp(-0.3 * 4), 1e-5);
+    // A segment that misses the box sees no medium.
+    tr = ts::ts_medium_transmittance(&m, make_float3(-3, 0, 0), make_float3(0, 1, 0), 0.0f, 100.0f);
+    EXPECT_EQ(tr.x, 1.0f);
+    // Very dense and very thin media stay finite and in [0, 1].
+    ts::TsMedium dense = slab(make_float3(500, 500, 500), make_float3(0, 0, 0));
+    ts::TsMedium thin = slab(make_float3(1e-6f, 1e-6f, 1e-6f), make_float3(0, 0, 0));
+    EXPECT_EQ(ts::ts_medium_transmittance(&dense, make_float3(-3, 0, 0), make_float3(1, 0, 0), 0, 10).x, 0.0f);
+    EXPECT_NEAR(ts::ts_medium_transmittance(&thin, make_float3(-3, 0, 0), make_float3(1, 0, 0), 0, 10).x,
+                1.0 - 2e-6, 1e-7);
+}
+
+TEST(Medium, FreeFlightDistancesAreExponential) {
+    // Grey medium: all channels share sigma_t = 0.7, so t ~ Exp(0.7). Fifty bins of equal
+    // probability under that law, on an (effectively) infinite segment.
+    ts::TsMedium m = slab(make_float3(0.2f, 0.2f, 0.2f), make_float3(0.5f, 0.5f, 0.5f));
+    const int bins = 50, n = 200000;
+    std::vector<double> observed(bins, 0.0), expected(bins, double(n) / bins);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < n; ++i) {
+        ts::float3 w;
+        int scattered;
+        float t = ts::ts_medium_sample_distance(&m, 1e30f, u(rng), u(rng), &w, &scattered);
+        ASSERT_TRUE(scattered);
+        double cdf = 1.0 - std::exp(-0.7 * t);
+        observed[std::min(bins - 1, int(cdf * bins))] += 1.0;
+        ASSERT_NEAR(w.x, 0.5 / 0.7, 1e-5);  // sigma_s / sigma_t: the single-scattering albedo
+    }
+    auto r = test::chi_square(observed, expected);
+    EXPECT_FALSE(r.reject) << "chi2 " << r.statistic << " dof " << r.dof << " z " << r.z;
+}
+
+TEST(Medium, RgbWeightsAreUnbiased) {
+    // Channels with different sigma_t: E[pass weight] = Tr_c(len) and
+    // E[scatter weight] = sigma_s,c (1 - Tr_c(len)) / sigma_t,c for every channel c.
+    const ts::float3 sa = make_float3(0.1f, 0.6f, 2.0f), ss = make_float3(0.1f, 0.4f, 1.0f);
+    ts::TsMedium m = slab(sa, ss);
+    const float len = 1.5f;
+    const int n = 400000;
+    double pass[3] = {}, scat[3] = {};
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < n; ++i) {
+        ts::float3 w;
+        int scattered;
+        ts::ts_medium_sample_distance(&m, len, u(rng), u(rng), &w, &scattered);
+        double* acc = scattered ? scat : pass;
+        acc[0] += w.x;
+        acc[1] += w.y;
+        acc[2] += w.z;
+    }
+    const float st[3] = {sa.x + ss.x, sa.y + ss.y, sa.z + ss.z}, s[3] = {ss.x, ss.y, ss.z};
+    for (int c = 0; c < 3; ++c) {
+        const double tr = std::exp(-st[c] * len);
+        EXPECT_NEAR(pass[c] / n, tr, 0.01 * tr + 2e-3) << "channel " << c;
+        const double sc = s[c] * (1.0 - tr) / st[c];
+        EXPECT_NEAR(scat[c] / n, sc, 0.01 * sc + 2e-3) << "channel " << c;
+    }
+}
+
+}  // namespace
+}  // namespace tessera
