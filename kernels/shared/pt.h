@@ -14,14 +14,15 @@
  * surface is reached with the segment's transmittance carried by the weight. At a
  * scattering vertex: next-event estimation to a light point, multiplied by the
  * Henyey–Greenstein phase function and the Beer–Lambert transmittance of the shadow
- * segment, then a phase-sampled continuation. Emitters hit right after a medium vertex
- * add nothing: at medium vertices light sampling alone carries direct light (unbiased,
- * no MIS there).
+ * segment, then a phase-sampled continuation; the two are combined with the power
+ * heuristic like surface vertices, the phase function being the continuation's pdf.
+ * (Light sampling alone has infinite variance there: near an emitting wall its weight
+ * cosθ_y/d² is not tempered by any cosine at the scattering point.)
  *   max_scatter = 0: full multiple scattering.
  *   max_scatter = 1: single scattering, the transport model of the interactive methods'
  *     PM component: a path may scatter in the medium once, where it connects to the
- *     lights by next-event estimation and ends. Surface transport (and the attenuation of
- *     every segment by the medium) is unchanged.
+ *     lights by next-event estimation (then at full weight) and ends. Surface transport
+ *     (and the attenuation of every segment by the medium) is unchanged.
  * Paths end after max_depth vertices or by Russian roulette from the fourth vertex on,
  * with survival probability min(1, max(throughput)) but at least 0.05.
  *
@@ -103,7 +104,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
     TsMedium med = ts_medium_load(sv->medium);
     float3 L = make_float3(0.0f, 0.0f, 0.0f), beta = make_float3(1.0f, 1.0f, 1.0f);
     float prev_pdf = 0.0f;
-    int prev_delta = 1, prev_medium = 0;
+    int prev_delta = 1;
     uint scatters = 0u;
     for (int i = 0; i < 9; ++i) out[i] = 0.0f;
     out[9] = TS_INF;
@@ -121,15 +122,20 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
             beta = beta * w;
             if (scattered) {
                 float3 x = ray.org + ray.dir * t;
+                int last = f->max_scatter > 0u && ++scatters >= f->max_scatter;
                 TsLightConnection c = ts_connect_light(sv, tracer, &med, x, x, &rng);
-                if (c.pdf > 0.0f)
-                    L += beta * c.radiance * (ts_hg_phase(dot(ray.dir, c.wi), med.g) / c.pdf);
-                if (f->max_scatter > 0u && ++scatters >= f->max_scatter) break;
+                if (c.pdf > 0.0f) {
+                    float phase = ts_hg_phase(dot(ray.dir, c.wi), med.g);
+                    float w = last ? 1.0f : ts_power_heuristic(c.pdf, phase);
+                    L += beta * c.radiance * (phase * w / c.pdf);
+                }
+                if (last) break;
+                float3 d = ts_sample_hg(ray.dir, med.g, ts_rng_next(&rng), ts_rng_next(&rng));
+                prev_pdf = ts_hg_phase(dot(ray.dir, d), med.g);
                 ray.org = x;
-                ray.dir = ts_sample_hg(ray.dir, med.g, ts_rng_next(&rng), ts_rng_next(&rng));
+                ray.dir = d;
                 ray.tmin = 0.0f;
                 ray.tmax = TS_INF;
-                prev_medium = 1;
                 prev_delta = 0;
                 if (!ts_roulette(&beta, depth, &rng)) break;
                 continue;
@@ -149,7 +155,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
         if (le.x + le.y + le.z > 0.0f) {
             if (prev_delta) {
                 L += beta * le;
-            } else if (!prev_medium) {
+            } else {
                 float cos_y = -dot(s.geo_normal, ray.dir);
                 float pl = ts_light_pdf_area(ts_f3_load(M + 4), f->light_power) * hit.t * hit.t / cos_y;
                 L += beta * le * ts_power_heuristic(prev_pdf, pl);
@@ -192,7 +198,6 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
         }
         ray.tmin = 0.0f;
         ray.tmax = TS_INF;
-        prev_medium = 0;
         if (!ts_roulette(&beta, depth, &rng)) break;
     }
     out[0] = L.x; out[1] = L.y; out[2] = L.z;
