@@ -23,13 +23,15 @@ constexpr uint32_t kMaxString = 1u << 16;
 /// Bytes in memory (the identity record), in the file's encoding.
 struct Bytes {
     std::vector<char> b;
-    template <class T> void put(T v) {
-        const char* p = reinterpret_cast<const char*>(&v);
-        b.insert(b.end(), p, p + sizeof v);
+    void raw(const void* p, std::size_t n) {
+        const std::size_t at = b.size();
+        b.resize(at + n);
+        if (n) std::memcpy(b.data() + at, p, n);
     }
+    template <class T> void put(T v) { raw(&v, sizeof v); }
     void put(const std::string& s) {
         put(uint32_t(s.size()));
-        b.insert(b.end(), s.begin(), s.end());
+        raw(s.data(), s.size());
     }
 };
 
@@ -177,7 +179,7 @@ fs::path checkpoint_path_for(const fs::path& out) {
 
 void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_target, const Accumulator& acc) {
     Bytes head;
-    head.b.assign(kMagic, kMagic + sizeof kMagic);
+    head.raw(kMagic, sizeof kMagic);
     head.put(kVersion);
     head.put(uint32_t(TS_PASS_FLOATS));
     head.put(int32_t(acc.width()));
@@ -186,7 +188,7 @@ void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_t
     head.put(spp_target);
     head.put(identity_hash(id));
     const Bytes ident = identity_bytes(id);
-    head.b.insert(head.b.end(), ident.b.begin(), ident.b.end());
+    head.raw(ident.b.data(), ident.b.size());
 
     replace_file_atomic(path, [&](const fs::path& temp) {
         std::ofstream out(temp, std::ios::binary | std::ios::trunc);

@@ -35,6 +35,8 @@ CheckpointSession::CheckpointSession(const CheckpointOptions* options, const Sce
     sa.sa_flags = SA_RESTART;
     sigaction(SIGINT, &sa, &old_int_);
     sigaction(SIGTERM, &sa, &old_term_);
+    // A SIGINT ignored on entry (nohup, `cmd &` in a script) stays ignored.
+    if (old_int_.sa_handler == SIG_IGN) sigaction(SIGINT, &old_int_, nullptr);
 }
 
 CheckpointSession::~CheckpointSession() {

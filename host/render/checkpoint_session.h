@@ -6,7 +6,8 @@
 // Signals: while a session with options is alive, SIGINT and SIGTERM handlers only set
 // a volatile std::sig_atomic_t flag; after_pass() checks it once per pass. A second
 // signal before that check restores the default action and re-raises, so a stuck pass
-// can still be killed. The previous handlers are put back when the session ends (also
+// can still be killed. A SIGINT that was ignored on entry (nohup, `cmd &` in a
+// non-interactive shell) is left ignored. The previous handlers are put back when the session ends (also
 // when it ends by an exception).
 #pragma once
 #include <chrono>

@@ -18,14 +18,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Run {
+struct CliRun {
     int exit_code;  // -1 if killed by a signal
     std::string output;
 };
 
 /// Runs tessera with `args`, stdout and stderr into one pipe. If `interrupt_on` is not
 /// empty, sends SIGINT once that text has appeared in the output.
-Run run_tessera(const std::vector<std::string>& args, const std::string& interrupt_on = "") {
+CliRun run_tessera(const std::vector<std::string>& args, const std::string& interrupt_on = "") {
     std::vector<char*> argv{const_cast<char*>(TESSERA_EXE)};  // built before fork: no malloc in the child
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -80,7 +80,7 @@ protected:
 
 TEST_F(CheckpointCli, InterruptThenResume) {
     const fs::path exr = dir_ / "img.exr", png = dir_ / "img.png", ckpt = dir_ / "img.ckpt";
-    Run r = run_tessera(render_args({}), "/50 spp");
+    CliRun r = run_tessera(render_args({}), "/50 spp");
     ASSERT_EQ(r.exit_code, 130) << r.output;
     EXPECT_NE(r.output.find("tessera: interrupted after "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(" of 50 spp"), std::string::npos) << r.output;
@@ -90,14 +90,14 @@ TEST_F(CheckpointCli, InterruptThenResume) {
     EXPECT_FALSE(fs::exists(exr));
     EXPECT_FALSE(fs::exists(png));
 
-    Run bad = run_tessera(render_args({"--resume", "--seed", "2"}));
+    CliRun bad = run_tessera(render_args({"--resume", "--seed", "2"}));
     EXPECT_EQ(bad.exit_code, 2) << bad.output;
     EXPECT_NE(bad.output.find("tessera: error: checkpoint " + ckpt.string()), std::string::npos) << bad.output;
     EXPECT_NE(bad.output.find("--seed 1, this run has --seed 2"), std::string::npos) << bad.output;
     EXPECT_TRUE(fs::exists(ckpt));
     EXPECT_FALSE(fs::exists(exr));
 
-    Run done = run_tessera(render_args({"--resume"}));
+    CliRun done = run_tessera(render_args({"--resume"}));
     ASSERT_EQ(done.exit_code, 0) << done.output;
     EXPECT_NE(done.output.find("50/50 spp"), std::string::npos) << done.output;
     EXPECT_GT(fs::file_size(exr), 0u);
@@ -106,7 +106,7 @@ TEST_F(CheckpointCli, InterruptThenResume) {
 }
 
 TEST_F(CheckpointCli, ResumeWithoutCheckpointNamesTheExpectedFile) {
-    Run r = run_tessera(render_args({"--resume"}));
+    CliRun r = run_tessera(render_args({"--resume"}));
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("--resume: no checkpoint " + (dir_ / "img.ckpt").string()), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "img.exr"));
@@ -114,13 +114,13 @@ TEST_F(CheckpointCli, ResumeWithoutCheckpointNamesTheExpectedFile) {
 
 TEST_F(CheckpointCli, CorruptCheckpointIsRefusedNamingIt) {
     { std::FILE* f = std::fopen((dir_ / "img.ckpt").c_str(), "wb"); std::fputs("TSCKPT01 junk", f); std::fclose(f); }
-    Run r = run_tessera(render_args({"--resume"}));
+    CliRun r = run_tessera(render_args({"--resume"}));
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("checkpoint " + (dir_ / "img.ckpt").string()), std::string::npos) << r.output;
 }
 
 TEST_F(CheckpointCli, NegativeIntervalIsRejected) {
-    Run r = run_tessera(render_args({"--checkpoint-interval", "-1"}));
+    CliRun r = run_tessera(render_args({"--checkpoint-interval", "-1"}));
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("--checkpoint-interval"), std::string::npos) << r.output;
 }
