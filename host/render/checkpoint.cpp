@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <system_error>
+#include <type_traits>
 #include <vector>
 
 #include "image/atomic_file.h"
@@ -54,7 +55,9 @@ uint64_t identity_hash(const RunIdentity& id) {
     return fnv1a64(b.b.data(), b.b.size());
 }
 
-template <class T> uint64_t hash_vec(const std::vector<T>& v, uint64_t h) { return fnv1a64(v.data(), v.size() * sizeof(T), h); }
+template <class T> uint64_t hash_vec(const std::vector<T>& v, uint64_t h) {
+    return fnv1a64(v.data(), v.size() * sizeof(T), h);
+}
 
 uint64_t scene_data_hash(const Scene& s) {
     uint64_t h = fnv1a64(nullptr, 0);
@@ -121,9 +124,9 @@ std::string describe_difference(const std::string& name, const RunIdentity& save
         };
         return head + option + " " + text(a) + ", this run has " + option + " " + text(b);
     };
+    auto scene = [](const std::string& p) { return p.empty() ? std::string("(built in code)") : p; };
     if (saved.scene_path != now.scene_path)
-        return head + "scene " + (saved.scene_path.empty() ? "(built in code)" : saved.scene_path) + ", this run has scene " +
-               (now.scene_path.empty() ? "(built in code)" : now.scene_path);
+        return head + "scene " + scene(saved.scene_path) + ", this run has scene " + scene(now.scene_path);
     if (saved.scene_file_hash != now.scene_file_hash || saved.scene_data_hash != now.scene_data_hash)
         return "checkpoint " + name + " was made from different scene data: " +
                (saved.scene_file_hash != now.scene_file_hash ? "the scene file " + now.scene_path
