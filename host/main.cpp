@@ -1,7 +1,9 @@
 // tessera: command-line entry point. Every failure ends as one line on stderr,
 // "tessera: error: ...", and a non-zero exit: 2 for bad input, 1 for runtime failures.
+// A render stopped by SIGINT/SIGTERM (after saving a checkpoint) exits with 130.
 #include <cstdio>
 #include <exception>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +23,9 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         std::fprintf(stderr, "tessera: error: %s (see --help)\n", e.what());
         return e.get_exit_code() ? e.get_exit_code() : 2;
+    } catch (const tessera::Interrupted& e) {
+        std::fprintf(stderr, "%stessera: %s\n", ::isatty(STDERR_FILENO) ? "\n" : "", e.what());
+        return 130;
     } catch (const tessera::InputError& e) {
         std::fprintf(stderr, "tessera: error: %s\n", e.what());
         return 2;

@@ -9,6 +9,8 @@
 #include "backend/backend.h"
 #include "cli/commands.h"
 #include "image/image_io.h"
+#include "render/checkpoint.h"
+#include "render/checkpoint_session.h"
 #include "render/effect_plan.h"
 #include "render/renderer.h"
 #include "render/scene_buffers.h"
@@ -27,12 +29,14 @@ struct RenderArgs {
     std::string data_dir;
     std::string method = "direct";
     float exposure = 0.0f;
+    bool resume = false;
     RenderSettings settings;
 };
 
-void print_progress(uint32_t done, uint32_t total, double elapsed) {
+// `restored`: passes loaded from a checkpoint, not part of this run's rate.
+void print_progress(uint32_t done, uint32_t total, double elapsed, uint32_t restored) {
     static const bool tty = ::isatty(STDERR_FILENO);
-    const double rate = done / std::max(elapsed, 1e-9);
+    const double rate = (done - restored) / std::max(elapsed, 1e-9);
     const double eta = (total - done) / std::max(rate, 1e-9);
     if (tty) {
         std::fprintf(stderr, "\r  %u/%u spp  %.1f spp/s  ETA %.0f s   ", done, total, rate, eta);
@@ -51,6 +55,15 @@ void run_render(const RenderArgs& a) {
     Scene scene = load_scene(scene_path, data);
     const fs::path out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
     if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
+    if (!out.parent_path().empty()) {  // before rendering: checkpoints are written there too
+        std::error_code ec;
+        fs::create_directories(out.parent_path(), ec);
+        if (ec) throw RuntimeError("cannot create output directory " + out.parent_path().string() + ": " + ec.message());
+    }
+    const CheckpointOptions ckpt{checkpoint_path_for(out), bo.kind, a.resume};
+    if (!a.resume && fs::exists(ckpt.path))
+        std::fprintf(stderr, "tessera: note: %s exists; starting over (it will be replaced; --resume continues it)\n",
+                     ckpt.path.c_str());
 
     const EffectPlan plan = plan_effects(scene);
     const SceneBuffers buffers = make_scene_buffers(scene);
@@ -60,19 +73,17 @@ void run_render(const RenderArgs& a) {
     for (const auto& line : plan.describe()) std::fprintf(stderr, "  %s\n", line.c_str());
 
     RenderStats stats;
-    Image img = render_frame(*backend, scene, buffers, settings, &stats, print_progress);
-
-    if (!out.parent_path().empty()) {
-        std::error_code ec;
-        fs::create_directories(out.parent_path(), ec);
-        if (ec) throw RuntimeError("cannot create output directory " + out.parent_path().string() + ": " + ec.message());
-    }
+    Image img = render_frame(*backend, scene, buffers, settings, &stats, print_progress, &ckpt);
     fs::path png = out;
     png.replace_extension(".png");
     write_exr(out, img);
     write_png(png, img, a.exposure);
-    std::fprintf(stderr, "tessera: %u spp in %.2f s (median %.1f ms per pass)\n", stats.passes, stats.seconds,
+    std::error_code ec;
+    fs::remove(ckpt.path, ec);  // the render is complete: its checkpoint is of no further use
+    std::fprintf(stderr, "tessera: %u spp in %.2f s (median %.1f ms per pass)", stats.passes, stats.seconds,
                  1e3 * stats.median_pass_seconds);
+    if (a.resume) std::fprintf(stderr, " after %u spp from the checkpoint", a.settings.spp - stats.passes);
+    std::fprintf(stderr, "\n");
     std::printf("%s\n%s\n", out.c_str(), png.c_str());
 }
 
@@ -99,6 +110,11 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--out", args->out, "Output EXR (default out/<scene>.exr); a PNG preview is written beside it");
     cmd->add_option("--exposure", args->exposure, "PNG preview exposure in stops")->capture_default_str();
     cmd->add_flag("--aov", args->settings.aovs, "Also write albedo, normal and depth channels");
+    cmd->add_flag("--resume", args->resume,
+                  "Continue from the checkpoint beside --out (<out>.ckpt) left by an interrupted render");
+    cmd->add_option("--checkpoint-interval", args->settings.checkpoint_interval_s,
+                    "Seconds between checkpoints (0: only when interrupted by SIGINT/SIGTERM)")
+        ->capture_default_str();
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");
     cmd->callback([args] { run_render(*args); });
 }

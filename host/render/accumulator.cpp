@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <utility>
 
 #include "kernels/shared/layout.h"
 
@@ -26,6 +28,16 @@ void Accumulator::add(const std::vector<float>& pass) {
         for (int c = 0; c < 3; ++c) sum_sq_[3 * p + c] += double(in[c]) * in[c];
     }
     ++passes_;
+}
+
+void Accumulator::restore(uint32_t passes, std::vector<double> sums, std::vector<double> sums_of_squares,
+                          std::vector<uint32_t> hit_counts) {
+    if (sums.size() != sum_.size() || sums_of_squares.size() != sum_sq_.size() || hit_counts.size() != hits_.size())
+        throw std::invalid_argument("Accumulator::restore: state of a different image size");
+    passes_ = passes;
+    sum_ = std::move(sums);
+    sum_sq_ = std::move(sums_of_squares);
+    hits_ = std::move(hit_counts);
 }
 
 Image Accumulator::mean_image(bool aovs, bool variance) const {

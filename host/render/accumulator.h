@@ -17,6 +17,21 @@ public:
     void add(const std::vector<float>& pass);
 
     uint32_t passes() const { return passes_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+    /// The raw state, for checkpoints (render/checkpoint.h) and nothing else: per-pixel
+    /// sums (TS_PASS_FLOATS each), sums of squared radiance (3 each) and hit counts (1
+    /// each), row-major from the top-left pixel.
+    const std::vector<double>& sums() const { return sum_; }
+    const std::vector<double>& sums_of_squares() const { return sum_sq_; }
+    const std::vector<uint32_t>& hit_counts() const { return hits_; }
+
+    /// Replaces the whole state with one read back from a checkpoint, so that later
+    /// add() calls continue exactly where the saved accumulator stopped. The vectors
+    /// must have the sizes of this accumulator's (throws std::invalid_argument if not).
+    void restore(uint32_t passes, std::vector<double> sums, std::vector<double> sums_of_squares,
+                 std::vector<uint32_t> hit_counts);
 
     /// The mean image: channels R, G, B (radiance, W/(sr·m²)); with `aovs` also
     /// albedo.R/G/B, N.X/Y/Z (mean shading normal) and Z (mean first-hit distance over

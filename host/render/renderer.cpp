@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "render/accumulator.h"
+#include "render/checkpoint_session.h"
 #include "render/frame.h"
 #include "util/error.h"
 
@@ -18,12 +19,14 @@ void validate(const RenderSettings& s) {
         throw InputError("--shadow-samples must be in 1..4096");
     if (s.width < 0 || s.width > 16384) throw InputError("--width must be in 1..16384");
     if (s.height < 0 || s.height > 16384) throw InputError("--height must be in 1..16384");
+    if (!(s.checkpoint_interval_s >= 0)) throw InputError("--checkpoint-interval must be >= 0");
 }
 
 }  // namespace
 
 Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
-                   const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress) {
+                   const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress,
+                   const CheckpointOptions* checkpoint) {
     validate(settings);
     const int w = settings.width > 0 ? settings.width : scene.camera.width;
     const int h = settings.height > 0 ? settings.height : scene.camera.height;
@@ -32,23 +35,27 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     frame.max_scatter = settings.max_scatter;
     frame.light_power = buffers.light_power;
     Accumulator acc(w, h);
+    CheckpointSession session(checkpoint, scene, settings, w, h);
+    const uint32_t first = session.restore(acc);
     std::vector<float> pass;
     std::vector<double> pass_seconds;
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
-    for (uint32_t i = 0; i < settings.spp; ++i) {
+    for (uint32_t i = first; i < settings.spp; ++i) {
         const auto t0 = clock::now();
         frame.pass = i;
         backend.render_pass(settings.method, frame, pass);
         acc.add(pass);
         pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
-        if (progress) progress(i + 1, settings.spp, std::chrono::duration<double>(clock::now() - start).count());
+        if (progress)
+            progress(i + 1, settings.spp, std::chrono::duration<double>(clock::now() - start).count(), first);
+        session.after_pass(acc);
     }
     if (stats) {
-        stats->passes = settings.spp;
+        stats->passes = settings.spp - first;
         stats->seconds = std::chrono::duration<double>(clock::now() - start).count();
         std::nth_element(pass_seconds.begin(), pass_seconds.begin() + pass_seconds.size() / 2, pass_seconds.end());
-        stats->median_pass_seconds = pass_seconds[pass_seconds.size() / 2];
+        stats->median_pass_seconds = pass_seconds.empty() ? 0.0 : pass_seconds[pass_seconds.size() / 2];
     }
     return acc.mean_image(settings.aovs, settings.variance);
 }

@@ -24,6 +24,10 @@ struct RenderSettings {
     int height = 0;
     bool aovs = false;              ///< add albedo, normal and depth channels
     bool variance = true;           ///< add variance.R/G/B channels
+
+    // Checkpoints (render/checkpoint_session.h); used only when render_frame is given
+    // CheckpointOptions.
+    double checkpoint_interval_s = 120.0;  ///< save every this many seconds; 0: only on a signal
 };
 
 struct RenderStats {
@@ -32,14 +36,20 @@ struct RenderStats {
     double median_pass_seconds = 0.0;
 };
 
-/// Called after each pass with (passes done, passes total, seconds elapsed).
-using ProgressFn = std::function<void(uint32_t, uint32_t, double)>;
+/// Called after each pass with (passes done, passes total, seconds elapsed in this call,
+/// passes restored from a checkpoint before this call: done − restored were rendered in
+/// the elapsed time).
+using ProgressFn = std::function<void(uint32_t, uint32_t, double, uint32_t)>;
+
+struct CheckpointOptions;  // render/checkpoint_session.h
 
 /// Validates `settings` (throws InputError naming --spp, --shadow-samples, --width,
 /// --height or --max-depth when out of range), then renders. `buffers` are the
-/// SceneBuffers the backend was made from.
+/// SceneBuffers the backend was made from. With `checkpoint`, the render resumes from
+/// and saves checkpoints (see CheckpointSession) and throws Interrupted on SIGINT or
+/// SIGTERM; stats then count only the passes rendered in this call.
 Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats = nullptr,
-                   const ProgressFn& progress = {});
+                   const ProgressFn& progress = {}, const CheckpointOptions* checkpoint = nullptr);
 
 }  // namespace tessera

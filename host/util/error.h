@@ -1,6 +1,7 @@
 // Error types for Tessera: every user-facing failure becomes one of these and is
 // reported by main() as a single line "tessera: error: <what>" with a non-zero exit.
 #pragma once
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +17,16 @@ struct InputError : std::runtime_error {
 /// an allocation the device refuses, an unwritable output path.
 struct RuntimeError : std::runtime_error {
     using std::runtime_error::runtime_error;
+};
+
+/// A render stopped by SIGINT or SIGTERM after its state was saved to a checkpoint
+/// (render/checkpoint.h). main() prints "tessera: <what>" and exits with status 130.
+struct Interrupted : std::runtime_error {
+    Interrupted(uint32_t done, uint32_t total, const std::string& checkpoint)
+        : std::runtime_error("interrupted after " + std::to_string(done) + " of " + std::to_string(total) +
+                             " spp; checkpoint saved to " + checkpoint + "; resume with --resume"),
+          passes_done(done), passes_total(total) {}
+    uint32_t passes_done, passes_total;
 };
 
 }  // namespace tessera

@@ -1,0 +1,273 @@
+#include "render/checkpoint.h"
+
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+#include <type_traits>
+#include <vector>
+
+#include "image/atomic_file.h"
+#include "kernels/shared/layout.h"
+#include "util/error.h"
+
+namespace tessera {
+namespace fs = std::filesystem;
+static_assert(std::endian::native == std::endian::little, "the checkpoint format is little-endian");
+
+namespace {
+
+constexpr char kMagic[8] = {'T', 'S', 'C', 'K', 'P', 'T', '0', '1'};
+constexpr uint32_t kVersion = 1;
+constexpr uint32_t kMaxString = 1u << 16;
+
+/// Bytes in memory (the identity record), in the file's encoding.
+struct Bytes {
+    std::vector<char> b;
+    void raw(const void* p, std::size_t n) {
+        const std::size_t at = b.size();
+        b.resize(at + n);
+        if (n) std::memcpy(b.data() + at, p, n);
+    }
+    template <class T> void put(T v) { raw(&v, sizeof v); }
+    void put(const std::string& s) {
+        put(uint32_t(s.size()));
+        raw(s.data(), s.size());
+    }
+};
+
+Bytes identity_bytes(const RunIdentity& id) {
+    Bytes r;
+    r.put(id.scene_path);
+    r.put(id.scene_file_hash);
+    r.put(id.scene_data_hash);
+    r.put(id.method);
+    r.put(id.seed);
+    r.put(id.shadow_samples);
+    r.put(id.max_depth);
+    r.put(id.max_scatter);
+    r.put(id.width);
+    r.put(id.height);
+    r.put(id.backend);
+    return r;
+}
+
+uint64_t identity_hash(const RunIdentity& id) {
+    Bytes b = identity_bytes(id);
+    return fnv1a64(b.b.data(), b.b.size());
+}
+
+template <class T> uint64_t hash_vec(const std::vector<T>& v, uint64_t h) {
+    return fnv1a64(v.data(), v.size() * sizeof(T), h);
+}
+
+uint64_t scene_data_hash(const Scene& s) {
+    uint64_t h = fnv1a64(nullptr, 0);
+    h = hash_vec(s.positions, h);
+    h = hash_vec(s.normals, h);
+    h = hash_vec(s.uvs, h);
+    h = hash_vec(s.material, h);
+    for (const Material& m : s.materials) {
+        const float f[7] = {m.albedo.x, m.albedo.y, m.albedo.z, m.emission.x, m.emission.y, m.emission.z, m.ior};
+        const int32_t i[2] = {m.texture, m.illum};
+        h = fnv1a64(f, sizeof f, h);
+        h = fnv1a64(i, sizeof i, h);
+    }
+    for (const Texture& t : s.textures) {
+        const int32_t wh[2] = {t.width, t.height};
+        h = fnv1a64(wh, sizeof wh, h);
+        h = hash_vec(t.rgba8, h);
+    }
+    const Camera& c = s.camera;
+    const float cam[10] = {c.position.x, c.position.y, c.position.z, c.look_at.x, c.look_at.y,
+                           c.look_at.z,  c.up.x,       c.up.y,       c.up.z,        c.vfov_deg};
+    return fnv1a64(cam, sizeof cam, h);
+}
+
+/// Sequential reads from the checkpoint file, hashing every byte read.
+struct Reader {
+    std::ifstream in;
+    std::string name;
+    uint64_t hash = fnv1a64(nullptr, 0);
+
+    [[noreturn]] void fail(const std::string& what) const { throw InputError("checkpoint " + name + ": " + what); }
+    void raw(void* dst, std::size_t n) {
+        if (!in.read(static_cast<char*>(dst), std::streamsize(n))) fail("truncated (file ends early)");
+        hash = fnv1a64(dst, n, hash);
+    }
+    template <class T> T get() {
+        T v;
+        raw(&v, sizeof v);
+        return v;
+    }
+    std::string str() {
+        const uint32_t n = get<uint32_t>();
+        if (n > kMaxString) fail("corrupt (string of " + std::to_string(n) + " bytes)");
+        std::string s(n, '\0');
+        raw(s.data(), n);
+        return s;
+    }
+    template <class T> std::vector<T> array(std::size_t n) {
+        std::vector<T> v(n);
+        raw(v.data(), n * sizeof(T));
+        return v;
+    }
+};
+
+/// "checkpoint X was made with --seed 1, this run has --seed 2" for the first field of
+/// the identity that differs ("" if none does).
+std::string describe_difference(const std::string& name, const RunIdentity& saved, const RunIdentity& now) {
+    const std::string head = "checkpoint " + name + " was made with ";
+    auto differs = [&](const char* option, const auto& a, const auto& b) -> std::string {
+        if (a == b) return "";
+        auto text = [](const auto& v) {
+            if constexpr (std::is_convertible_v<decltype(v), std::string>) return std::string(v);
+            else return std::to_string(v);
+        };
+        return head + option + " " + text(a) + ", this run has " + option + " " + text(b);
+    };
+    auto scene = [](const std::string& p) { return p.empty() ? std::string("(built in code)") : p; };
+    if (saved.scene_path != now.scene_path)
+        return head + "scene " + scene(saved.scene_path) + ", this run has scene " + scene(now.scene_path);
+    if (saved.scene_file_hash != now.scene_file_hash || saved.scene_data_hash != now.scene_data_hash)
+        return "checkpoint " + name + " was made from different scene data: " +
+               (saved.scene_file_hash != now.scene_file_hash ? "the scene file " + now.scene_path
+                                                             : std::string("a mesh, material or texture")) +
+               " has changed since";
+    for (const std::string& s : {differs("--method", saved.method, now.method),
+                                 differs("--seed", saved.seed, now.seed),
+                                 differs("--shadow-samples", saved.shadow_samples, now.shadow_samples),
+                                 differs("--max-depth", saved.max_depth, now.max_depth),
+                                 differs("--max-scatter", saved.max_scatter, now.max_scatter),
+                                 differs("--width", saved.width, now.width),
+                                 differs("--height", saved.height, now.height),
+                                 differs("--backend", saved.backend, now.backend)})
+        if (!s.empty()) return s;
+    return "";
+}
+
+}  // namespace
+
+uint64_t fnv1a64(const void* data, std::size_t size, uint64_t h) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) {
+        h ^= p[i];
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+RunIdentity make_run_identity(const Scene& scene, const RenderSettings& settings, int width, int height,
+                              BackendKind backend) {
+    RunIdentity id;
+    if (!scene.source.empty()) {
+        std::error_code ec;
+        fs::path p = fs::weakly_canonical(fs::absolute(scene.source), ec);
+        id.scene_path = (ec ? fs::absolute(scene.source).lexically_normal() : p).string();
+        std::ifstream in(scene.source, std::ios::binary);
+        std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!in.eof() && !in) throw InputError(scene.source.string() + ": cannot read scene file");
+        id.scene_file_hash = fnv1a64(bytes.data(), bytes.size());
+    }
+    id.scene_data_hash = scene_data_hash(scene);
+    id.method = method_name(settings.method);
+    id.seed = settings.seed;
+    id.shadow_samples = settings.shadow_samples;
+    id.max_depth = settings.max_depth;
+    id.max_scatter = settings.max_scatter;
+    id.width = width;
+    id.height = height;
+    id.backend = backend == BackendKind::OpenCL ? "opencl" : "embree";
+    return id;
+}
+
+fs::path checkpoint_path_for(const fs::path& out) {
+    fs::path p = out;
+    return p.replace_extension(".ckpt");
+}
+
+void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_target, const Accumulator& acc) {
+    Bytes head;
+    head.raw(kMagic, sizeof kMagic);
+    head.put(kVersion);
+    head.put(uint32_t(TS_PASS_FLOATS));
+    head.put(int32_t(acc.width()));
+    head.put(int32_t(acc.height()));
+    head.put(acc.passes());
+    head.put(spp_target);
+    head.put(identity_hash(id));
+    const Bytes ident = identity_bytes(id);
+    head.raw(ident.b.data(), ident.b.size());
+
+    replace_file_atomic(path, [&](const fs::path& temp) {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        uint64_t h = fnv1a64(nullptr, 0);
+        auto write = [&](const void* p, std::size_t n) {
+            out.write(static_cast<const char*>(p), std::streamsize(n));
+            h = fnv1a64(p, n, h);
+        };
+        write(head.b.data(), head.b.size());
+        write(acc.sums().data(), acc.sums().size() * sizeof(double));
+        write(acc.sums_of_squares().data(), acc.sums_of_squares().size() * sizeof(double));
+        write(acc.hit_counts().data(), acc.hit_counts().size() * sizeof(uint32_t));
+        out.write(reinterpret_cast<const char*>(&h), sizeof h);
+        out.close();
+        if (!out) throw RuntimeError("cannot write checkpoint " + path.string() + ": write failed");
+    });
+}
+
+uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulator& acc) {
+    Reader r{std::ifstream(path, std::ios::binary), path.string()};
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec) || !r.in) r.fail("cannot be read (missing or not a file)");
+    const uintmax_t file_size = fs::file_size(path, ec);
+
+    char magic[8];
+    r.raw(magic, sizeof magic);
+    if (std::memcmp(magic, kMagic, 6) != 0) r.fail("not a Tessera checkpoint (bad magic)");
+    const uint32_t version = r.get<uint32_t>();
+    if (std::memcmp(magic, kMagic, sizeof magic) != 0 || version != kVersion)
+        r.fail("format version " + std::to_string(version) + " is not supported (this build reads version " +
+               std::to_string(kVersion) + ")");
+    if (r.get<uint32_t>() != TS_PASS_FLOATS) r.fail("corrupt (floats per pixel differ from this build's)");
+    const int32_t w = r.get<int32_t>(), h = r.get<int32_t>();
+    if (w < 1 || h < 1 || w > 16384 || h > 16384) r.fail("corrupt (image size out of range)");
+    const uint32_t passes = r.get<uint32_t>();
+    r.get<uint32_t>();  // spp target of the saving run: informational
+    const uint64_t settings_hash = r.get<uint64_t>();
+    RunIdentity saved;
+    saved.scene_path = r.str();
+    saved.scene_file_hash = r.get<uint64_t>();
+    saved.scene_data_hash = r.get<uint64_t>();
+    saved.method = r.str();
+    saved.seed = r.get<uint32_t>();
+    saved.shadow_samples = r.get<uint32_t>();
+    saved.max_depth = r.get<uint32_t>();
+    saved.max_scatter = r.get<uint32_t>();
+    saved.width = r.get<int32_t>();
+    saved.height = r.get<int32_t>();
+    saved.backend = r.str();
+
+    const std::size_t n = std::size_t(w) * std::size_t(h);
+    const uintmax_t expected = uintmax_t(r.in.tellg()) + n * (TS_PASS_FLOATS * 8 + 3 * 8 + 4) + 8;
+    if (ec || file_size != expected)
+        r.fail("truncated or corrupt (" + std::to_string(file_size) + " bytes, expected " + std::to_string(expected) +
+               " for " + std::to_string(w) + "x" + std::to_string(h) + ")");
+    std::vector<double> sums = r.array<double>(n * TS_PASS_FLOATS);
+    std::vector<double> sums_sq = r.array<double>(n * 3);
+    std::vector<uint32_t> hits = r.array<uint32_t>(n);
+    const uint64_t computed = r.hash;
+    if (r.get<uint64_t>() != computed) r.fail("corrupt (checksum mismatch)");
+    if (saved.width != w || saved.height != h || settings_hash != identity_hash(saved))
+        r.fail("corrupt (header fields disagree)");
+
+    if (settings_hash != identity_hash(id) || !(saved == id)) {
+        const std::string what = describe_difference(r.name, saved, id);
+        throw InputError(what.empty() ? "checkpoint " + r.name + " was made with different settings" : what);
+    }
+    if (acc.width() != w || acc.height() != h) r.fail("image size differs from the accumulator's");
+    acc.restore(passes, std::move(sums), std::move(sums_sq), std::move(hits));
+    return passes;
+}
+
+}  // namespace tessera

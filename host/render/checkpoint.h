@@ -1,0 +1,83 @@
+// Checkpoints: the accumulation state of a render saved to disk, so that an interrupted
+// render can be resumed and finish with exactly the image an uninterrupted one gives.
+//
+// That works because pass i always draws the same samples (the RNG is counter-based on
+// seed, pixel and pass, kernels/shared/rng.h): restoring the Accumulator bit for bit and
+// adding passes N, N+1, ... in order gives the same double sums as never stopping.
+//
+// File format, version 1. All integers and doubles are little-endian (the host's own
+// byte order; big-endian hosts are rejected at compile time). Strings are a u32 byte
+// count followed by the bytes (no terminator).
+//
+//   char[8]  magic "TSCKPT01"
+//   u32      format version (1)
+//   u32      floats per pixel and pass (TS_PASS_FLOATS, 10)
+//   i32      width, i32 height
+//   u32      passes done (N: passes 0..N-1 are in the sums)
+//   u32      spp target of the run that wrote it (informational)
+//   u64      settings hash: FNV-1a 64 over the identity record's bytes as stored below
+//   identity record (RunIdentity), in this order:
+//     string scene file path (absolute, normalised; "" for a scene built in code)
+//     u64    FNV-1a 64 of the scene file's bytes (0 if no file)
+//     u64    FNV-1a 64 of the loaded scene data (triangles, materials, textures, camera)
+//     string method, u32 seed, u32 shadow samples, u32 max depth, u32 max scatter,
+//     i32 width, i32 height,
+//     string backend ("opencl" or "embree")
+//   f64[width·height·TS_PASS_FLOATS]  sums per pixel (Accumulator::sums)
+//   f64[width·height·3]               sums of squared radiance
+//   u32[width·height]                 hit counts
+//   u64      checksum: FNV-1a 64 over every byte before it
+//
+// The identity is stored field by field as well as hashed, so that a mismatch can name
+// the setting that differs ("... was made with --seed 1, this run has --seed 2").
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "backend/backend.h"
+#include "render/accumulator.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace tessera {
+
+/// Everything that determines the image of a render, apart from the pass count.
+struct RunIdentity {
+    std::string scene_path;
+    uint64_t scene_file_hash = 0;
+    uint64_t scene_data_hash = 0;
+    std::string method;
+    uint32_t seed = 0;
+    uint32_t shadow_samples = 0;
+    uint32_t max_depth = 0;
+    uint32_t max_scatter = 0;
+    int32_t width = 0, height = 0;
+    std::string backend;
+
+    bool operator==(const RunIdentity&) const = default;
+};
+
+/// The identity of rendering `scene` (its `source` file is read and hashed; throws
+/// InputError naming it if it cannot be read) with `settings` at width × height.
+RunIdentity make_run_identity(const Scene& scene, const RenderSettings& settings, int width, int height,
+                              BackendKind backend);
+
+/// 64-bit FNV-1a of `size` bytes, continuing from `h` (the offset basis by default).
+uint64_t fnv1a64(const void* data, std::size_t size, uint64_t h = 0xcbf29ce484222325ull);
+
+/// The checkpoint path for an output image: `out` with its extension replaced by .ckpt.
+std::filesystem::path checkpoint_path_for(const std::filesystem::path& out);
+
+/// Writes `acc` with `id` to `path` atomically (image/atomic_file.h): a failed or
+/// interrupted write leaves any previous checkpoint intact. Throws RuntimeError.
+void save_checkpoint(const std::filesystem::path& path, const RunIdentity& id, uint32_t spp_target,
+                     const Accumulator& acc);
+
+/// Reads `path` into `acc` (which must be sized id.width × id.height) after checking the
+/// magic, version, sizes, checksum and that it was made by a run with identity `id`.
+/// Returns the number of passes restored. Throws InputError naming `path` and what is
+/// wrong (missing, truncated, corrupt, or which setting differs).
+uint32_t load_checkpoint(const std::filesystem::path& path, const RunIdentity& id, Accumulator& acc);
+
+}  // namespace tessera

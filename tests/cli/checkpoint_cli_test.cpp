@@ -1,0 +1,128 @@
+// `tessera render` interrupted by SIGINT: exit 130 with a checkpoint and no image;
+// `--resume` then finishes it and removes the checkpoint; a resume with other settings
+// or without a checkpoint is refused naming the setting or the expected file.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int exit_code;  // -1 if killed by a signal
+    std::string output;
+};
+
+/// Runs tessera with `args`, stdout and stderr into one pipe. If `interrupt_on` is not
+/// empty, sends SIGINT once that text has appeared in the output.
+CliRun run_tessera(const std::vector<std::string>& args, const std::string& interrupt_on = "") {
+    std::vector<char*> argv{const_cast<char*>(TESSERA_EXE)};  // built before fork: no malloc in the child
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    int fds[2];
+    if (::pipe(fds) != 0) return {-2, "pipe failed"};
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::dup2(fds[1], STDOUT_FILENO);
+        ::dup2(fds[1], STDERR_FILENO);
+        ::close(fds[0]);
+        ::close(fds[1]);
+        ::execv(TESSERA_EXE, argv.data());
+        ::_exit(127);
+    }
+    ::close(fds[1]);
+    std::string out;
+    bool sent = false;
+    std::array<char, 4096> buf;
+    while (true) {
+        const ssize_t n = ::read(fds[0], buf.data(), buf.size());
+        if (n <= 0) break;
+        out.append(buf.data(), size_t(n));
+        if (!interrupt_on.empty() && !sent && out.find(interrupt_on) != std::string::npos) {
+            ::kill(pid, SIGINT);
+            sent = true;
+        }
+    }
+    ::close(fds[0]);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class CheckpointCli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("tessera-ckcli-" + std::to_string(::getpid()) + "-" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::vector<std::string> render_args(const std::vector<std::string>& extra) const {
+        // Slow enough (~0.1 s per pass on two cores) that SIGINT arrives mid-render.
+        std::vector<std::string> a{"render",  "--backend", "embree", "--spp", "50", "--width", "96",
+                                   "--height", "96", "--shadow-samples", "48", "--out", (dir_ / "img.exr").string()};
+        a.insert(a.end(), extra.begin(), extra.end());
+        return a;
+    }
+    fs::path dir_;
+};
+
+TEST_F(CheckpointCli, InterruptThenResume) {
+    const fs::path exr = dir_ / "img.exr", png = dir_ / "img.png", ckpt = dir_ / "img.ckpt";
+    CliRun r = run_tessera(render_args({}), "/50 spp");
+    ASSERT_EQ(r.exit_code, 130) << r.output;
+    EXPECT_NE(r.output.find("tessera: interrupted after "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(" of 50 spp"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("resume with --resume"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(ckpt.string()), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(ckpt));
+    EXPECT_FALSE(fs::exists(exr));
+    EXPECT_FALSE(fs::exists(png));
+
+    CliRun bad = run_tessera(render_args({"--resume", "--seed", "2"}));
+    EXPECT_EQ(bad.exit_code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("tessera: error: checkpoint " + ckpt.string()), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("--seed 1, this run has --seed 2"), std::string::npos) << bad.output;
+    EXPECT_TRUE(fs::exists(ckpt));
+    EXPECT_FALSE(fs::exists(exr));
+
+    CliRun done = run_tessera(render_args({"--resume"}));
+    ASSERT_EQ(done.exit_code, 0) << done.output;
+    EXPECT_NE(done.output.find("50/50 spp"), std::string::npos) << done.output;
+    EXPECT_GT(fs::file_size(exr), 0u);
+    EXPECT_GT(fs::file_size(png), 0u);
+    EXPECT_FALSE(fs::exists(ckpt));
+}
+
+TEST_F(CheckpointCli, ResumeWithoutCheckpointNamesTheExpectedFile) {
+    CliRun r = run_tessera(render_args({"--resume"}));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--resume: no checkpoint " + (dir_ / "img.ckpt").string()), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "img.exr"));
+}
+
+TEST_F(CheckpointCli, CorruptCheckpointIsRefusedNamingIt) {
+    { std::FILE* f = std::fopen((dir_ / "img.ckpt").c_str(), "wb"); std::fputs("TSCKPT01 junk", f); std::fclose(f); }
+    CliRun r = run_tessera(render_args({"--resume"}));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("checkpoint " + (dir_ / "img.ckpt").string()), std::string::npos) << r.output;
+}
+
+TEST_F(CheckpointCli, NegativeIntervalIsRejected) {
+    CliRun r = run_tessera(render_args({"--checkpoint-interval", "-1"}));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--checkpoint-interval"), std::string::npos) << r.output;
+}
+
+}  // namespace

@@ -1,0 +1,259 @@
+// Checkpoints: the saved accumulator comes back bit for bit, a bad or foreign file is
+// refused naming the file and what differs, and a render interrupted by SIGINT and
+// resumed gives exactly the image of an uninterrupted render.
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+
+#include <gtest/gtest.h>
+
+#include "kernels/shared/layout.h"
+#include "render/checkpoint.h"
+#include "render/checkpoint_session.h"
+#include "scene/loader.h"
+#include "util/error.h"
+
+#include "support/render_helpers.h"
+
+namespace tessera {
+namespace {
+namespace fs = std::filesystem;
+
+class Checkpoint : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("tessera-ckpt-" + std::to_string(::getpid()) + "-" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path dir_;
+};
+
+// Pseudo-random pass data: finite values, and Z = +inf (a miss) on some pixels.
+std::vector<float> synthetic_pass(int w, int h, uint32_t k) {
+    std::vector<float> p(size_t(w) * h * TS_PASS_FLOATS);
+    uint32_t x = 12345u + 7919u * k;
+    for (size_t i = 0; i < p.size(); ++i) {
+        x = x * 1664525u + 1013904223u;
+        p[i] = float(x >> 8) / float(1 << 24) * 3.0f;
+        if (i % TS_PASS_FLOATS == 9 && (x & 3) == 0) p[i] = std::numeric_limits<float>::infinity();
+    }
+    return p;
+}
+
+RunIdentity some_identity(int w, int h) {
+    RunIdentity id;
+    id.scene_path = "/scenes/box.json";
+    id.scene_file_hash = 42;
+    id.scene_data_hash = 43;
+    id.method = "direct";
+    id.seed = 1;
+    id.shadow_samples = 8;
+    id.width = w;
+    id.height = h;
+    id.backend = "embree";
+    return id;
+}
+
+void expect_bit_identical(const Image& a, const Image& b) {
+    ASSERT_EQ(a.channels.size(), b.channels.size());
+    for (size_t c = 0; c < a.channels.size(); ++c) {
+        EXPECT_EQ(a.channels[c].name, b.channels[c].name);
+        ASSERT_EQ(a.channels[c].data.size(), b.channels[c].data.size());
+        EXPECT_EQ(0, std::memcmp(a.channels[c].data.data(), b.channels[c].data.data(),
+                                 a.channels[c].data.size() * sizeof(float)))
+            << "channel " << a.channels[c].name << " differs";
+    }
+}
+
+// Expects `f` to throw InputError whose message contains every one of `needles`.
+template <class F> void expect_input_error(F f, std::initializer_list<std::string> needles) {
+    try {
+        f();
+        ADD_FAILURE() << "no InputError";
+    } catch (const InputError& e) {
+        for (const auto& n : needles) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(Checkpoint, RoundTripIsBitIdenticalAndContinues) {
+    const int w = 7, h = 5;
+    Accumulator a(w, h);
+    for (uint32_t k = 0; k < 9; ++k) a.add(synthetic_pass(w, h, k));
+    const fs::path file = dir_ / "x.ckpt";
+    save_checkpoint(file, some_identity(w, h), 20, a);
+    Accumulator b(w, h);
+    EXPECT_EQ(load_checkpoint(file, some_identity(w, h), b), 9u);
+    EXPECT_EQ(b.passes(), 9u);
+    EXPECT_EQ(a.sums(), b.sums());
+    EXPECT_EQ(a.hit_counts(), b.hit_counts());
+    expect_bit_identical(a.mean_image(true, true), b.mean_image(true, true));
+    a.add(synthetic_pass(w, h, 9));
+    b.add(synthetic_pass(w, h, 9));
+    expect_bit_identical(a.mean_image(true, true), b.mean_image(true, true));
+}
+
+TEST_F(Checkpoint, CorruptTruncatedOrMissingFileIsInputErrorNamingIt) {
+    const int w = 4, h = 4;
+    Accumulator a(w, h);
+    a.add(synthetic_pass(w, h, 0));
+    const fs::path file = dir_ / "x.ckpt";
+    save_checkpoint(file, some_identity(w, h), 4, a);
+    const auto good_size = fs::file_size(file);
+    auto load = [&] {
+        Accumulator b(w, h);
+        load_checkpoint(file, some_identity(w, h), b);
+    };
+    auto poke = [&](std::streamoff at, char byte) {
+        std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(at);
+        f.put(byte);
+    };
+
+    fs::resize_file(file, good_size - 3);
+    expect_input_error(load, {file.string(), "truncated"});
+    fs::resize_file(file, 20);
+    expect_input_error(load, {file.string(), "truncated"});
+
+    save_checkpoint(file, some_identity(w, h), 4, a);
+    poke(std::streamoff(good_size / 2), 0x55);  // inside the sums
+    expect_input_error(load, {file.string(), "checksum"});
+
+    save_checkpoint(file, some_identity(w, h), 4, a);
+    poke(0, 'X');
+    expect_input_error(load, {file.string(), "magic"});
+
+    save_checkpoint(file, some_identity(w, h), 4, a);
+    poke(7, '2');  // "TSCKPT02"
+    expect_input_error(load, {file.string(), "version"});
+
+    fs::remove(file);
+    expect_input_error(load, {file.string()});
+}
+
+TEST_F(Checkpoint, DifferentSettingsAreNamed) {
+    const int w = 4, h = 4;
+    Accumulator a(w, h);
+    a.add(synthetic_pass(w, h, 0));
+    const fs::path file = dir_ / "x.ckpt";
+    save_checkpoint(file, some_identity(w, h), 4, a);
+    auto load_with = [&](RunIdentity id) {
+        return [&file, id] {
+            Accumulator b(id.width, id.height);
+            load_checkpoint(file, id, b);
+        };
+    };
+    RunIdentity id = some_identity(w, h);
+    id.seed = 2;
+    expect_input_error(load_with(id), {"checkpoint " + file.string(), "made with --seed 1, this run has --seed 2"});
+    id = some_identity(w, h);
+    id.shadow_samples = 3;
+    expect_input_error(load_with(id), {file.string(), "--shadow-samples 8", "--shadow-samples 3"});
+    id = some_identity(w, h);
+    id.backend = "opencl";
+    expect_input_error(load_with(id), {file.string(), "--backend embree", "--backend opencl"});
+    id = some_identity(w, 8);
+    expect_input_error(load_with(id), {file.string(), "--height 4", "--height 8"});
+    id = some_identity(w, h);
+    id.scene_file_hash = 7;
+    expect_input_error(load_with(id), {file.string(), "scene file /scenes/box.json has changed"});
+    id = some_identity(w, h);
+    id.scene_path = "/other.json";
+    expect_input_error(load_with(id), {file.string(), "/scenes/box.json", "/other.json"});
+}
+
+// Renders the Cornell box with checkpoints; `interrupt_at` > 0 raises SIGINT from the
+// progress callback after that many passes (in total), like a Ctrl-C mid-render.
+Image render_ckpt(Backend& backend, const Scene& scene, const SceneBuffers& lights, const RenderSettings& rs,
+                  const CheckpointOptions& ck, uint32_t interrupt_at = 0) {
+    ProgressFn progress = [&](uint32_t done, uint32_t, double, uint32_t) {
+        if (done == interrupt_at) std::raise(SIGINT);
+    };
+    return render_frame(backend, scene, lights, rs, nullptr, progress, &ck);
+}
+
+class ResumeCornell : public ::testing::TestWithParam<BackendKind> {};
+
+TEST_P(ResumeCornell, InterruptedAndResumedRenderIsBitIdentical) {
+    const fs::path dir = fs::temp_directory_path() / ("tessera-resume-" + std::to_string(::getpid()) + "-" +
+                                                      std::to_string(int(GetParam())));
+    fs::create_directories(dir);
+    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
+    SceneBuffers buffers = make_scene_buffers(scene);
+    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
+    RenderSettings rs;
+    rs.width = rs.height = 16;
+    rs.spp = 7;
+    rs.shadow_samples = 2;
+    rs.aovs = true;
+    const Image whole = render_frame(*backend, scene, buffers, rs);
+
+    CheckpointOptions ck{dir / "cornell.ckpt", GetParam(), false};
+    struct sigaction before {};
+    sigaction(SIGINT, nullptr, &before);
+    try {
+        render_ckpt(*backend, scene, buffers, rs, ck, 3);
+        ADD_FAILURE() << "not interrupted";
+    } catch (const Interrupted& e) {
+        EXPECT_EQ(e.passes_done, 3u);
+        EXPECT_EQ(e.passes_total, 7u);
+        EXPECT_NE(std::string(e.what()).find("interrupted after 3 of 7 spp"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(ck.path.string()), std::string::npos) << e.what();
+    }
+    struct sigaction after {};
+    sigaction(SIGINT, nullptr, &after);
+    EXPECT_EQ(before.sa_handler, after.sa_handler) << "the SIGINT handler was not restored";
+    ASSERT_TRUE(fs::exists(ck.path));
+
+    // Resume, interrupt once more at pass 5, resume again to the end.
+    ck.resume = true;
+    EXPECT_THROW(render_ckpt(*backend, scene, buffers, rs, ck, 5), Interrupted);
+    RenderStats stats;
+    const Image resumed = render_frame(*backend, scene, buffers, rs, &stats, {}, &ck);
+    EXPECT_EQ(stats.passes, 2u) << "passes 5 and 6 only";
+    expect_bit_identical(whole, resumed);
+
+    // A seed other than the checkpoint's is refused, naming it.
+    RenderSettings other = rs;
+    other.seed = 2;
+    expect_input_error([&] { render_ckpt(*backend, scene, buffers, other, ck); },
+                       {ck.path.string(), "--seed 1", "--seed 2"});
+    // Fewer spp than the checkpoint holds is refused; more continues it.
+    other = rs;
+    other.spp = 4;
+    expect_input_error([&] { render_ckpt(*backend, scene, buffers, other, ck); }, {"--spp 4"});
+    fs::remove_all(dir);
+}
+
+TEST_P(ResumeCornell, IntervalCheckpointsResumeToTheSameImage) {
+    const fs::path dir = fs::temp_directory_path() / ("tessera-interval-" + std::to_string(::getpid()) + "-" +
+                                                      std::to_string(int(GetParam())));
+    fs::create_directories(dir);
+    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
+    SceneBuffers buffers = make_scene_buffers(scene);
+    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
+    RenderSettings rs;
+    rs.width = rs.height = 16;
+    rs.spp = 5;
+    rs.shadow_samples = 2;
+    rs.checkpoint_interval_s = 1e-9;  // after every pass but the last
+    CheckpointOptions ck{dir / "cornell.ckpt", GetParam(), false};
+    const Image whole = render_ckpt(*backend, scene, buffers, rs, ck);
+    ASSERT_TRUE(fs::exists(ck.path));
+    Accumulator acc(16, 16);
+    EXPECT_EQ(load_checkpoint(ck.path, make_run_identity(scene, rs, 16, 16, GetParam()), acc), 4u);
+    ck.resume = true;
+    RenderStats stats;
+    const Image resumed = render_frame(*backend, scene, buffers, rs, &stats, {}, &ck);
+    EXPECT_EQ(stats.passes, 1u);
+    expect_bit_identical(whole, resumed);
+    fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, ResumeCornell, ::testing::Values(BackendKind::Embree, BackendKind::OpenCL));
+
+}  // namespace
+}  // namespace tessera
