@@ -45,7 +45,7 @@ void run_info(const InfoArgs& a) {
     for (const auto& line : plan.describe()) std::printf("  %s\n", line.c_str());
     std::string defs;
     for (const auto& d : plan.cl_defines()) defs += " " + d;
-    std::printf("OpenCL plan: direct.cl built with -cl-std=CL1.2%s\n", defs.c_str());
+    std::printf("OpenCL plan: direct.cl / pt.cl (per --method) built with -cl-std=CL1.2%s\n", defs.c_str());
 }
 }  // namespace
 
