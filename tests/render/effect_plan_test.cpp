@@ -1,0 +1,44 @@
+// Effects follow the scene: the plan, and the OpenCL defines it produces.
+#include "render/effect_plan.h"
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "render/scene_buffers.h"
+#include "support/test_scenes.h"
+
+namespace tessera {
+namespace {
+
+bool has(const std::vector<std::string>& v, const std::string& x) { return std::find(v.begin(), v.end(), x) != v.end(); }
+
+TEST(EffectPlan, NoMediumMeansNoMediaWork) {
+    Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(5.0f), 0.3f);
+    EffectPlan p = plan_effects(s);
+    EXPECT_TRUE(p.area_lights);
+    EXPECT_TRUE(p.indirect);
+    EXPECT_FALSE(p.medium);
+    EXPECT_FALSE(p.textures);
+    EXPECT_FALSE(has(p.cl_defines(), "-DTS_HAS_MEDIUM"));
+    EXPECT_EQ(make_scene_buffers(s).medium[14], 0.0f);  // the kernels' "present" flag
+}
+
+TEST(EffectPlan, MediumIsCompiledInOnlyWhenItDoesSomething) {
+    Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(5.0f), 0.3f);
+    s.has_medium = true;  // declared, but all coefficients zero: nothing to simulate
+    EXPECT_FALSE(plan_effects(s).medium);
+    EXPECT_EQ(make_scene_buffers(s).medium[14], 0.0f);
+    s.medium.sigma_s = glm::vec3(0.1f);
+    EXPECT_TRUE(plan_effects(s).medium);
+    EXPECT_TRUE(has(plan_effects(s).cl_defines(), "-DTS_HAS_MEDIUM"));
+    EXPECT_EQ(make_scene_buffers(s).medium[14], 1.0f);
+}
+
+TEST(EffectPlan, BlackSurfacesNeedNoIndirectLight) {
+    Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
+    EXPECT_FALSE(plan_effects(s).indirect);
+}
+
+}  // namespace
+}  // namespace tessera
