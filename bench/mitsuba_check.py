@@ -272,6 +272,7 @@ class Export:
 
     def __init__(self, scene_file: Path, args, work: Path):
         self.scene_file = scene_file
+        self.flip_emitters = getattr(args, "flip_emitters", False)
         self.doc = json.loads(scene_file.read_text())
         self.name = self.doc.get("name", scene_file.stem)
         self.work = work
@@ -313,6 +314,8 @@ class Export:
             return
         path = self.work / f"shape{len(self.shapes)}.ply"
         emissive = any(c > 0 for c in ke)
+        if emissive and self.flip_emitters:  # negative control: lights emit on the wrong side
+            P, N, T = P[:, [0, 2, 1]], N[:, [0, 2, 1]], T[:, [0, 2, 1]]
         # Geometric normal cross(p1 - p0, p2 - p0): Mitsuba's face normal, the front side
         # of Tessera's one-sided area lights. Corners without a usable normal use it.
         ng = np.cross(P[:, 1] - P[:, 0], P[:, 2] - P[:, 0])
@@ -659,6 +662,9 @@ def main(argv=None):
     ap.add_argument("--z-limit", type=float, default=3.0)
     ap.add_argument("--work-dir", type=Path, help="where images and exported meshes go (default: a temp dir, kept)")
     ap.add_argument("--write-xml", type=Path, help="also write the Mitsuba scene as XML (assets beside it)")
+    ap.add_argument("--flip-emitters", action="store_true",
+                    help="negative control: reverse the winding of emitting triangles in the Mitsuba "
+                         "export (the check must then FAIL)")
     ap.add_argument("--results-dir", type=Path, default=REPO / "bench" / "results")
     ap.add_argument("--machine", help="machine description for the results (default: detected)")
     ap.add_argument("--note", action="append", default=[], help="free-text note for the results (repeatable)")
@@ -678,6 +684,8 @@ def main(argv=None):
     print(f"exported {exp.stats['triangles']} triangles in {len(exp.shapes)} shapes "
           f"({time.time() - t0:.1f} s) to {work}", flush=True)
     notes = list(args.note)
+    if args.flip_emitters:
+        notes.append("NEGATIVE CONTROL (--flip-emitters): Mitsuba's lights emit on the wrong side")
     if exp.medium is not None:
         notes.append("scene has a `medium` block: exported as a Mitsuba homogeneous medium (hg phase), "
                      "rendered with volpath; Tessera may ignore it")
