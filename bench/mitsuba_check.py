@@ -699,7 +699,8 @@ def main(argv=None):
     t_exr = work / "tessera.exr"
     r, cmd, t_sec = run_tessera(args, scene_file, exp, t_exr)
     if r.returncode != 0:
-        msg = (r.stderr or r.stdout).strip()
+        out = (r.stderr + "\n" + r.stdout).strip().splitlines()
+        msg = "\n  ".join([l for l in out if "error" in l] or out[-3:])
         if args.integrator == "path" and ("method" in msg or "pt" in msg):
             print(f"mitsuba_check: SKIPPED: tessera does not support --method pt yet:\n  {msg}")
             return 0
