@@ -79,9 +79,17 @@ TS_INLINE TsLightConnection ts_connect_light(const TsSceneView* sv, const TsTrac
     return c;
 }
 
+/* Power heuristic a² / (a² + b²) written as a ratio of the smaller pdf to the larger, so
+ * that pdfs beyond 1e19 (a light sampled from a point far away, d² in the pdf) cannot
+ * overflow a² into inf/inf. */
 TS_INLINE float ts_power_heuristic(float a, float b) {
-    float a2 = a * a, b2 = b * b;
-    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+    if (!(a > 0.0f)) return 0.0f;
+    if (a >= b) {
+        float r = b / a;
+        return 1.0f / (1.0f + r * r);
+    }
+    float r = a / b;
+    return r * r / (1.0f + r * r);
 }
 
 /* Russian roulette; returns 0 when the path ends. */
