@@ -393,13 +393,11 @@ class Export:
                 "phase": {"type": "hg", "g": float(m.get("g", 0.0))}}
 
     def integrator_dict(self, args):
-        if self.medium is not None:
-            depth = 2 if args.integrator == "direct" else args.max_depth
-            return {"type": "volpath", "max_depth": depth}
-        if args.integrator == "direct":
+        if args.integrator == "direct" and self.medium is None:
             return {"type": "direct", "emitter_samples": args.mitsuba_emitter_samples,
                     "bsdf_samples": args.mitsuba_bsdf_samples}
-        return {"type": "path", "max_depth": args.max_depth}
+        depth = 2 if args.integrator == "direct" else args.max_depth
+        return {"type": args.mitsuba_integrator, "max_depth": depth}
 
     def to_dict(self, args) -> dict:
         c = self.camera
@@ -500,9 +498,10 @@ class Export:
 # ----------------------------------------------------------------------------------
 # Rendering
 
-def render_mitsuba(scene_dict: dict, spp: int, batches: int, seed: int):
-    """Mean image and variance of the pixel mean, from `batches` independent renders."""
-    scene = mi.load_dict(scene_dict)
+def render_mitsuba(scene_xml: Path, spp: int, batches: int, seed: int):
+    """Mean image and variance of the pixel mean, from `batches` independent renders of
+    the exported XML scene."""
+    scene = mi.load_file(str(scene_xml))
     per = max(1, spp // batches)
     imgs = []
     for b in range(batches):
@@ -642,6 +641,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("scene", nargs="?", default=str(REPO / "scenes" / "cornell-box.json"))
     ap.add_argument("--integrator", choices=["direct", "path"], default="direct")
+    ap.add_argument("--mitsuba-integrator", default="volpath", choices=["volpath", "volpathmis", "path"],
+                    help="Mitsuba integrator for --integrator path (and for direct with a medium)")
     ap.add_argument("--max-depth", type=int, default=-1, help="Mitsuba path/volpath max_depth (-1: unlimited)")
     ap.add_argument("--pass-max-depth", action="store_true",
                     help="also pass --max-depth to tessera (when its pt method supports it)")
@@ -688,7 +689,7 @@ def main(argv=None):
         notes.append("NEGATIVE CONTROL (--flip-emitters): Mitsuba's lights emit on the wrong side")
     if exp.medium is not None:
         notes.append("scene has a `medium` block: exported as a Mitsuba homogeneous medium (hg phase), "
-                     "rendered with volpath; Tessera may ignore it")
+                     "rendered with the chosen Mitsuba volumetric integrator")
     if args.write_xml:
         exp.write_xml(args.write_xml, args)
         print(f"wrote {args.write_xml}")
@@ -717,7 +718,9 @@ def main(argv=None):
     print(f"rendering with Mitsuba {mi.__version__} ({sd['integrator']['type']}, "
           f"{args.mitsuba_spp} spp)...", flush=True)
     t1 = time.time()
-    m_img, m_var, m_spp = render_mitsuba(sd, args.mitsuba_spp, args.mitsuba_batches, args.seed)
+    scene_xml = work / "scene.xml"
+    exp.write_xml(scene_xml, args)
+    m_img, m_var, m_spp = render_mitsuba(scene_xml, args.mitsuba_spp, args.mitsuba_batches, args.seed)
     m_sec = time.time() - t1
     mi.Bitmap(m_img.astype(np.float32), mi.Bitmap.PixelFormat.RGB).write(str(work / "mitsuba.exr"))
     mi.Bitmap(m_var.astype(np.float32), mi.Bitmap.PixelFormat.RGB).write(str(work / "mitsuba_variance.exr"))
