@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/scratch_dir.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -59,14 +61,8 @@ CliRun run_tessera(const std::vector<std::string>& args, const std::string& inte
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-class CheckpointCli : public ::testing::Test {
+class CheckpointCli : public tessera::test::ScratchDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("tessera-ckcli-" + std::to_string(::getpid()) + "-" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
 
     std::vector<std::string> render_args(const std::vector<std::string>& extra) const {
         // Slow enough (~0.1 s per pass on two cores) that SIGINT arrives mid-render.
@@ -75,7 +71,6 @@ protected:
         a.insert(a.end(), extra.begin(), extra.end());
         return a;
     }
-    fs::path dir_;
 };
 
 TEST_F(CheckpointCli, InterruptThenResume) {

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/scratch_dir.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -28,14 +30,8 @@ CliResult run_tessera(const std::string& args) {
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-class RenderCli : public ::testing::Test {
+class RenderCli : public tessera::test::ScratchDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("tessera-cli-" + std::to_string(::getpid()) + "-" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
 
     // Renders `scene_args` and expects failure naming `needle`, and no image written.
     void expect_rejected(const std::string& scene_args, const std::string& needle,
@@ -49,7 +45,6 @@ protected:
         EXPECT_FALSE(fs::exists(dir_ / "img.png"));
     }
 
-    fs::path dir_;
 };
 
 const std::string kData = TESSERA_TEST_DATA;

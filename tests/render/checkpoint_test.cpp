@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/scratch_dir.h"
+
 #include "kernels/shared/layout.h"
 #include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
@@ -21,15 +23,8 @@ namespace tessera {
 namespace {
 namespace fs = std::filesystem;
 
-class Checkpoint : public ::testing::Test {
+class Checkpoint : public tessera::test::ScratchDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("tessera-ckpt-" + std::to_string(::getpid()) + "-" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    fs::path dir_;
 };
 
 // Pseudo-random pass data: finite values, and Z = +inf (a miss) on some pixels.
