@@ -23,9 +23,7 @@ namespace tessera {
 namespace {
 namespace fs = std::filesystem;
 
-class Checkpoint : public tessera::test::ScratchDirTest {
-protected:
-};
+class Checkpoint : public tessera::test::ScratchDirTest {};
 
 // Pseudo-random pass data: finite values, and Z = +inf (a miss) on some pixels.
 std::vector<float> synthetic_pass(int w, int h, uint32_t k) {
