@@ -7,5 +7,5 @@
 
 __kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
 void direct_pass(TS_PIXEL_KERNEL_ARGS) {
-    TS_PIXEL_KERNEL_BODY(ts_direct_pixel)
+    TS_PIXEL_KERNEL_BODY(ts_direct_pixel, TS_PASS_FLOATS)
 }

@@ -30,10 +30,20 @@ public:
     /// e.g. "opencl (Portable Computing Language: pthread-...)" or "embree (TBB, 2 threads)".
     virtual std::string description() const = 0;
 
-    /// One pass (1 spp) of `method` for every pixel of frame.width × height.
-    /// `out` is resized to width × height × TS_PASS_FLOATS (layout in layout.h),
+    /// Runs per-pixel kernel `k` for every pixel of frame.width × height. `out` is
+    /// resized to width × height × pixel_kernel_floats(k) (layouts in layout.h),
     /// row-major from the top-left pixel.
-    virtual void render_pass(Method method, const TsFrame& frame, std::vector<float>& out) = 0;
+    void render_pass(PixelKernel k, const TsFrame& frame, std::vector<float>& out) {
+        ++dispatches_[static_cast<int>(k)];
+        run_pixels(k, frame, out);
+    }
+
+    /// How many times kernel `k` was dispatched on this backend.
+    uint64_t dispatch_count(PixelKernel k) const { return dispatches_[static_cast<int>(k)]; }
+
+    /// Sets the VPLs the igi kernels gather from: TS_VPL_FLOATS per VPL, sorted by
+    /// sample set; set_start holds N + 1 offsets (set k is [set_start[k], set_start[k+1])).
+    virtual void set_vpls(const std::vector<float>& vpls, const std::vector<uint32_t>& set_start) = 0;
 
     /// Closest-hit queries. `rays` holds 8 floats per ray (org.xyz, tmin, dir.xyz,
     /// tmax); `hits` is resized to 4 words per ray: t, u, v as floats and the triangle
@@ -42,6 +52,12 @@ public:
 
     /// Any-hit queries: `occluded[i]` = 1 if anything lies on ray i in (tmin, tmax).
     virtual void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) = 0;
+
+protected:
+    virtual void run_pixels(PixelKernel k, const TsFrame& frame, std::vector<float>& out) = 0;
+
+private:
+    uint64_t dispatches_[kPixelKernelCount] = {};
 };
 
 /// Creates a backend for `scene`. The OpenCL backend builds its BVH with Embree's

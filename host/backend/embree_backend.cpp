@@ -74,12 +74,11 @@ inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
 
 }  // namespace tessera::ts
 
-// Texture and medium support are compiled in unconditionally on the CPU: a material
-// without a texture never reaches the lookup, and a scene without a medium has
-// medium.present = 0, so results equal the OpenCL builds without them.
-#define TS_HAS_TEXTURES 1
-#define TS_HAS_MEDIUM 1
+// TS_HAS_TEXTURES and TS_HAS_MEDIUM are defined for all C++ code (CMakeLists.txt): a
+// material without a texture never reaches the lookup, and a scene without a medium
+// has medium.present = 0, so results equal the OpenCL builds without them.
 #include "kernels/shared/direct.h"
+#include "kernels/shared/igi.h"
 #include "kernels/shared/pt.h"
 
 namespace tessera {
@@ -106,28 +105,44 @@ public:
                std::to_string(tbb::info::default_concurrency()) + " threads)";
     }
 
-    void render_pass(Method method, const TsFrame& frame, std::vector<float>& out) override {
-        if (method == Method::Direct)
-            run_pixels(frame, out, ts::ts_direct_pixel);
-        else
-            run_pixels(frame, out, ts::ts_pt_pixel);
+    void set_vpls(const std::vector<float>& vpls, const std::vector<uint32_t>& set_start) override {
+        vpls_ = vpls;
+        vpl_set_start_ = set_start;
     }
 
+protected:
+    void run_pixels(PixelKernel k, const TsFrame& frame, std::vector<float>& out) override {
+        switch (k) {
+            case PixelKernel::Direct: return dispatch(frame, out, k, ts::ts_direct_pixel);
+            case PixelKernel::PathTrace: return dispatch(frame, out, k, ts::ts_pt_pixel);
+            case PixelKernel::IgiSurface: return dispatch(frame, out, k, ts::ts_igi_surface_pixel);
+            case PixelKernel::IgiMedia: return dispatch(frame, out, k, ts::ts_igi_media_pixel);
+        }
+    }
+
+private:
+    // Work is split by work-item index in the same order as the OpenCL kernels
+    // (ts_pixel_of_work_item: de-interleaved by sample set when igi_tile > 1).
     template <class PixelFn>
-    void run_pixels(const TsFrame& frame, std::vector<float>& out, PixelFn pixel) {
-        out.resize(size_t(frame.width) * frame.height * TS_PASS_FLOATS);
+    void dispatch(const TsFrame& frame, std::vector<float>& out, PixelKernel k, PixelFn pixel) {
+        const size_t floats = static_cast<size_t>(pixel_kernel_floats(k));
+        const size_t pixels = size_t(frame.width) * frame.height;
+        out.resize(pixels * floats);
         ts::TsSceneView sv = make_scene_view(buffers_);
         sv.light_count = frame.light_count;
-        tbb::parallel_for(
-            tbb::blocked_range2d<unsigned>(0, frame.height, 8, 0, frame.width, 8),
-            [&](const tbb::blocked_range2d<unsigned>& r) {
-                set_ftz_daz();
-                for (unsigned y = r.rows().begin(); y < r.rows().end(); ++y)
-                    for (unsigned x = r.cols().begin(); x < r.cols().end(); ++x)
-                        pixel(&sv, &tracer_, &frame, x, y,
-                                            &out[(size_t(y) * frame.width + x) * TS_PASS_FLOATS]);
-            });
+        sv.vpls = vpls_.data();
+        sv.vpl_set_start = vpl_set_start_.data();
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 64), [&](const tbb::blocked_range<size_t>& r) {
+            set_ftz_daz();
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                uint32_t x, y;
+                ts::ts_pixel_of_work_item(&frame, static_cast<uint32_t>(i), &x, &y);
+                pixel(&sv, &tracer_, &frame, x, y, &out[(size_t(y) * frame.width + x) * floats]);
+            }
+        });
     }
+
+public:
 
     void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) override {
         const size_t n = rays.size() / 8;
@@ -158,6 +173,8 @@ private:
     const SceneBuffers& buffers_;
     RTCScene scene_ = nullptr;
     ts::TsTracer tracer_{};
+    std::vector<float> vpls_ = std::vector<float>(TS_VPL_FLOATS, 0.0f);
+    std::vector<uint32_t> vpl_set_start_ = std::vector<uint32_t>(2, 0u);
 };
 
 }  // namespace

@@ -38,6 +38,8 @@ public:
             lights_ = upload("lights", scene.lights);
             light_cdf_ = upload("light CDF", scene.light_cdf);
             medium_ = upload("medium", scene.medium);
+            vpls_ = upload("VPL", std::vector<float>(TS_VPL_FLOATS, 0.0f));
+            vpl_set_start_ = upload("VPL set table", std::vector<uint32_t>(2, 0u));
         } catch (const cl::Error& e) {
             throw RuntimeError("OpenCL setup on " + dev_.name + " failed: " + describe_cl_error(e) +
                                " (try --backend embree)");
@@ -48,16 +50,25 @@ public:
         return "opencl (" + dev_.platform_name + ": " + dev_.name + ")";
     }
 
-    void render_pass(Method method, const TsFrame& frame, std::vector<float>& out) override {
+    void set_vpls(const std::vector<float>& vpls, const std::vector<uint32_t>& set_start) override {
+        run([&] {
+            vpls_ = upload("VPL", vpls);
+            vpl_set_start_ = upload("VPL set table", set_start);
+        });
+    }
+
+protected:
+    void run_pixels(PixelKernel kind, const TsFrame& frame, std::vector<float>& out) override {
         const size_t pixels = size_t(frame.width) * frame.height;
-        out.resize(pixels * TS_PASS_FLOATS);
+        out.resize(pixels * static_cast<size_t>(pixel_kernel_floats(kind)));
         run([&] {
             cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
-            cl::Kernel& k = method == Method::Direct ? kernel("direct.cl", "direct_pass") : kernel("pt.cl", "pt_pass");
+            cl::Kernel& k = kernel(program_of(kind), pixel_kernel_name(kind));
             int a = 0;
             k.setArg(a++, sizeof(TsFrame), &frame);
             for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_,
-                                  &tex_info_, &tex_texels_, &lights_, &light_cdf_, &medium_})
+                                  &tex_info_, &tex_texels_, &lights_, &light_cdf_, &medium_, &vpls_,
+                                  &vpl_set_start_})
                 k.setArg(a++, *b);
             k.setArg(a++, buf);
             queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(pixels, TS_WORKGROUP_SIZE)),
@@ -66,6 +77,7 @@ public:
         });
     }
 
+public:
     void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) override {
         hits.resize(rays.size() / 2);
         trace("trace_closest", rays, hits.data(), hits.size() * sizeof(float));
@@ -77,6 +89,14 @@ public:
     }
 
 private:
+    static const char* program_of(PixelKernel k) {
+        switch (k) {
+            case PixelKernel::Direct: return "direct.cl";
+            case PixelKernel::PathTrace: return "pt.cl";
+            default: return "igi.cl";
+        }
+    }
+
     static std::vector<glm::vec3> positions_of(const SceneBuffers& s) {
         std::vector<glm::vec3> p(3 * size_t(s.triangle_count));
         if (!p.empty()) std::memcpy(p.data(), s.tri_pos.data(), p.size() * sizeof(glm::vec3));
@@ -149,7 +169,7 @@ private:
     cl::Context ctx_;
     cl::CommandQueue queue_;
     cl::Buffer nodes_, tris_, tri_pos_, tri_nrm_, tri_uv_, tri_mat_, materials_, tex_info_, tex_texels_,
-        lights_, light_cdf_, medium_, out_;
+        lights_, light_cdf_, medium_, vpls_, vpl_set_start_, out_;
     size_t out_bytes_ = 0;
     std::map<std::string, cl::Program> programs_;
     std::map<std::string, cl::Kernel> kernels_;

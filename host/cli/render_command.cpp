@@ -95,9 +95,19 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("scene", args->scene, "Scene file (.json)");
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
-    cmd->add_option("--method", args->method, "Rendering method: direct or pt")->capture_default_str();
+    cmd->add_option("--method", args->method, "Rendering method: direct, pt or igi")->capture_default_str();
     cmd->add_option("--max-depth", args->settings.max_depth, "pt: path vertices before a path is cut")
         ->capture_default_str();
+    cmd->add_option("--tile", args->settings.igi.tile, "igi: interleave tile edge n (n² sample sets), 1..8")
+        ->capture_default_str();
+    cmd->add_option("--vpl-paths", args->settings.igi.paths_per_set, "igi: light paths per sample set")
+        ->capture_default_str();
+    cmd->add_option("--clamp", args->settings.igi.clamp_c,
+                    "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables")
+        ->capture_default_str();
+    cmd->add_option("--march-steps", args->settings.igi.march_steps, "igi: medium ray-march steps per pixel")
+        ->capture_default_str();
+    cmd->add_flag("!--no-filter", args->settings.igi.filter, "igi: skip the discontinuity filter");
     cmd->add_option("--max-scatter", args->settings.max_scatter,
                     "pt: medium scattering vertices per path (1 = single scattering, 0 = unlimited)")
         ->capture_default_str();

@@ -4,6 +4,9 @@
 #include <chrono>
 #include <vector>
 
+#include <memory>
+
+#include "gi/igi_frame.h"
 #include "render/accumulator.h"
 #include "render/checkpoint_session.h"
 #include "render/frame.h"
@@ -20,6 +23,9 @@ void validate(const RenderSettings& s) {
     if (s.width < 0 || s.width > 16384) throw InputError("--width must be in 1..16384");
     if (s.height < 0 || s.height > 16384) throw InputError("--height must be in 1..16384");
     if (!(s.checkpoint_interval_s >= 0)) throw InputError("--checkpoint-interval must be >= 0");
+    if (s.igi.tile < 1 || s.igi.tile > 8) throw InputError("--tile must be in 1..8");
+    if (s.igi.paths_per_set < 1 || s.igi.paths_per_set > 65536) throw InputError("--vpl-paths must be in 1..65536");
+    if (!(s.igi.clamp_c >= 0.0f)) throw InputError("--clamp must be >= 0");
 }
 
 }  // namespace
@@ -37,6 +43,13 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     Accumulator acc(w, h);
     CheckpointSession session(checkpoint, scene, settings, w, h);
     const uint32_t first = session.restore(acc);
+    std::unique_ptr<IgiFrame> igi;
+    if (settings.method == Method::Igi) {
+        IgiSettings is = settings.igi;
+        is.set_shadow_samples = settings.shadow_samples;
+        igi = std::make_unique<IgiFrame>(backend, buffers, plan_effects(scene), is);
+    }
+    const PixelKernel kernel = settings.method == Method::Direct ? PixelKernel::Direct : PixelKernel::PathTrace;
     std::vector<float> pass;
     std::vector<double> pass_seconds;
     using clock = std::chrono::steady_clock;
@@ -44,7 +57,10 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     for (uint32_t i = first; i < settings.spp; ++i) {
         const auto t0 = clock::now();
         frame.pass = i;
-        backend.render_pass(settings.method, frame, pass);
+        if (igi)
+            igi->render(frame, pass);
+        else
+            backend.render_pass(kernel, frame, pass);
         acc.add(pass);
         pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
         if (progress)
@@ -57,7 +73,9 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
         std::nth_element(pass_seconds.begin(), pass_seconds.begin() + pass_seconds.size() / 2, pass_seconds.end());
         stats->median_pass_seconds = pass_seconds.empty() ? 0.0 : pass_seconds[pass_seconds.size() / 2];
     }
-    return acc.mean_image(settings.aovs, settings.variance);
+    Image image = acc.mean_image(settings.aovs, settings.variance);
+    if (igi && settings.aovs) igi->add_component_channels(image, settings.spp - first);
+    return image;
 }
 
 }  // namespace tessera

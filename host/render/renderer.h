@@ -6,6 +6,7 @@
 #include <string>
 
 #include "backend/backend.h"
+#include "gi/igi_frame.h"
 #include "render/scene_buffers.h"
 #include "image/image_io.h"
 #include "render/method.h"
@@ -17,6 +18,7 @@ struct RenderSettings {
     Method method = Method::Direct;
     uint32_t max_depth = 128;       ///< pt: path vertices before a path is cut
     uint32_t max_scatter = 0;       ///< pt: medium scattering vertices per path, 0 = unlimited
+    IgiSettings igi;                ///< igi (set_shadow_samples comes from shadow_samples)
     uint32_t spp = 16;              ///< passes, one camera sample per pixel each
     uint32_t shadow_samples = 8;    ///< area-light samples per camera hit and pass
     uint32_t seed = 1;

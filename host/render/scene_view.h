@@ -11,7 +11,8 @@ inline ts::TsSceneView make_scene_view(const SceneBuffers& b) {
     return ts::TsSceneView{b.tri_pos.data(),   b.tri_nrm.data(),   b.tri_uv.data(),
                            b.tri_mat.data(),   b.materials.data(), b.tex_info.data(),
                            b.tex_texels.data(), b.lights.data(),   b.light_cdf.data(),
-                           b.medium.data(),     b.light_count};
+                           b.medium.data(),     nullptr,            nullptr,
+                           b.light_count};
 }
 
 }  // namespace tessera

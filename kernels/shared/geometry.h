@@ -57,6 +57,32 @@ TS_INLINE TsRay ts_camera_ray(const TsFrame* f, uint px, uint py, float jx, floa
     return r;
 }
 
+/* Pixel shaded by work-item i. Without interleaving (igi_tile <= 1) row-major. With an
+ * n×n tile the image is split into N = n² sub-images, one per sample set k; work-items
+ * run through set 0's pixels, then set 1's, and so on, each sub-image row-major. */
+TS_INLINE void ts_pixel_of_work_item(const TsFrame* f, uint i, uint* px, uint* py) {
+    uint n = f->igi_tile;
+    if (n <= 1u) {
+        *px = i % f->width;
+        *py = i / f->width;
+        return;
+    }
+    /* Set k = (x mod n) + n (y mod n) holds the pixels x = kx + n·sx, y = ky + n·sy. */
+    uint total = 0u;
+    for (uint k = 0u; k < n * n; ++k) {
+        uint kx = k % n, ky = k / n;
+        uint sw = (f->width - kx + n - 1u) / n, sh = (f->height - ky + n - 1u) / n;
+        if (i < total + sw * sh) {
+            uint j = i - total;
+            *px = kx + n * (j % sw);
+            *py = ky + n * (j / sw);
+            return;
+        }
+        total += sw * sh;
+    }
+    *px = *py = 0u; /* unreachable for i < width · height */
+}
+
 /* Read-only views of the scene's shading buffers (layouts in shared/layout.h). */
 typedef struct TsSceneView {
     TS_GLOBAL const float* tri_pos;
@@ -69,6 +95,8 @@ typedef struct TsSceneView {
     TS_GLOBAL const float* lights;
     TS_GLOBAL const float* light_cdf;
     TS_GLOBAL const float* medium;
+    TS_GLOBAL const float* vpls;
+    TS_GLOBAL const uint* vpl_set_start;
     uint light_count;
 } TsSceneView;
 

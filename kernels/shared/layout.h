@@ -81,8 +81,29 @@ typedef struct TsFrame {
     unsigned int max_depth;      /* pt: path vertices (surface or medium) before stopping */
     unsigned int max_scatter;    /* pt: medium scattering vertices per path; 0 = unlimited */
     float light_power;           /* sum over lights of luminance(Le) × area (for pdfs) */
-    unsigned int unused;
+    unsigned int igi_tile;       /* igi: interleave tile edge n (n² sample sets) */
+    unsigned int igi_steps;      /* igi: ray-march steps per pixel along the camera ray */
+    float igi_g_clamp;           /* igi: bound b on the VPL geometry term (scene units^-2) */
+    float igi_rotation[3];       /* igi: per-frame Cranley–Patterson shift of the set samples */
+    float igi_march_far;         /* igi: march limit for rays that escape an unbounded medium */
 } TsFrame;
+
+/* VPLs (host/gi/vpl_generator.cpp): TS_VPL_FLOATS floats each, sorted by sample set:
+ * [0..2] position, [3..5] unit normal of the side it lights, [6..8] flux weight C/M
+ * (the path throughput times albedo/π, divided by the paths per set), [9] set index,
+ * [10] path index (uint bits), [11] unused. vpl_set_start[k] .. vpl_set_start[k+1]
+ * are set k's VPLs. */
+#define TS_VPL_FLOATS 12
+
+/* Per-pixel output of the igi surface kernel: TS_IGI_SURF_FLOATS floats:
+ * [0..2] E_ss, [3..5] E_id: direct (area-light) and indirect (VPL) irradiance / π, the
+ * quantities albedo multiplies; [6..8] albedo; [9..11] emitted radiance seen;
+ * [12..14] shading normal; [15] distance to the surface along the camera path (+inf on
+ * a miss); [16..18] throughput of specular bounces before it (1 for none). */
+#define TS_IGI_SURF_FLOATS 19
+/* Per-pixel output of the igi media kernel: [0..2] single-scattered radiance along the
+ * camera segment, [3..5] transmittance of that segment. */
+#define TS_IGI_MEDIA_FLOATS 6
 
 /* Per-pixel output of one pass: TS_PASS_FLOATS floats per pixel:
  * [0..2] radiance (W/(sr·m²)), [3..5] albedo at the first hit, [6..8] shading normal

@@ -19,10 +19,11 @@
  * (Light sampling alone has infinite variance there: near an emitting wall its weight
  * cosθ_y/d² is not tempered by any cosine at the scattering point.)
  *   max_scatter = 0: full multiple scattering.
- *   max_scatter = 1: single scattering, the transport model of the interactive methods'
- *     PM component: a path may scatter in the medium once, where it connects to the
- *     lights by next-event estimation (then at full weight) and ends. Surface transport
- *     (and the attenuation of every segment by the medium) is unchanged.
+ *   max_scatter = 1: single scattering, the transport model of the interactive methods
+ *     (IGI's PM component, shared/igi.h): the camera segment may scatter once, where the
+ *     path connects to the lights by next-event estimation (then at full weight) and
+ *     ends; every later segment is only attenuated (Beer–Lambert, no scattering).
+ *     Surface transport is unchanged.
  * Paths end after max_depth vertices or by Russian roulette from the fourth vertex on,
  * with survival probability min(1, max(throughput)) but at least 0.05.
  *
@@ -40,8 +41,6 @@
 #include "shared/sampling.h"
 
 TS_NAMESPACE_BEGIN
-
-TS_INLINE float ts_max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
 
 /* A light point seen from x: its radiance arriving at x (after the shadow test and the
  * medium's transmittance) and the solid-angle pdf of having sampled it. */
@@ -122,31 +121,37 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
 #ifdef TS_HAS_MEDIUM
         float t0 = ray.tmin, t1 = hit.prim == TS_NO_HIT ? TS_INF : hit.t;
         if (ts_medium_clip(&med, ray.org, ray.dir, &t0, &t1)) {
-            float3 w;
-            int scattered;
-            float uc = ts_rng_next(&rng), ud = ts_rng_next(&rng);
-            float t = t0 + ts_medium_sample_distance(&med, t1 - t0, uc, ud, &w, &scattered);
-            if (!scattered && !isfinite(t1)) break; /* lost in an unbounded medium */
-            beta = beta * w;
-            if (scattered) {
-                float3 x = ray.org + ray.dir * t;
-                int last = f->max_scatter > 0u && ++scatters >= f->max_scatter;
-                TsLightConnection c = ts_connect_light(sv, tracer, &med, x, x, &rng);
-                if (c.pdf > 0.0f) {
-                    float phase = ts_hg_phase(dot(ray.dir, c.wi), med.g);
-                    float w = last ? 1.0f : ts_power_heuristic(c.pdf, phase);
-                    L += beta * c.radiance * (phase * w / c.pdf);
+            if (f->max_scatter == 1u && depth > 0u) {
+                /* Single scattering happens on the camera segment; later ones attenuate. */
+                if (!isfinite(t1)) break;
+                beta = beta * ts_exp3(med.sigma_t * (-(t1 - t0)));
+            } else {
+                float3 w;
+                int scattered;
+                float uc = ts_rng_next(&rng), ud = ts_rng_next(&rng);
+                float t = t0 + ts_medium_sample_distance(&med, t1 - t0, uc, ud, &w, &scattered);
+                if (!scattered && !isfinite(t1)) break; /* lost in an unbounded medium */
+                beta = beta * w;
+                if (scattered) {
+                    float3 x = ray.org + ray.dir * t;
+                    int last = f->max_scatter > 0u && ++scatters >= f->max_scatter;
+                    TsLightConnection c = ts_connect_light(sv, tracer, &med, x, x, &rng);
+                    if (c.pdf > 0.0f) {
+                        float phase = ts_hg_phase(dot(ray.dir, c.wi), med.g);
+                        float mis = last ? 1.0f : ts_power_heuristic(c.pdf, phase);
+                        L += beta * c.radiance * (phase * mis / c.pdf);
+                    }
+                    if (last) break;
+                    float3 d = ts_sample_hg(ray.dir, med.g, ts_rng_next(&rng), ts_rng_next(&rng));
+                    prev_pdf = ts_hg_phase(dot(ray.dir, d), med.g);
+                    ray.org = x;
+                    ray.dir = d;
+                    ray.tmin = 0.0f;
+                    ray.tmax = TS_INF;
+                    prev_delta = 0;
+                    if (!ts_roulette(&beta, depth, &rng)) break;
+                    continue;
                 }
-                if (last) break;
-                float3 d = ts_sample_hg(ray.dir, med.g, ts_rng_next(&rng), ts_rng_next(&rng));
-                prev_pdf = ts_hg_phase(dot(ray.dir, d), med.g);
-                ray.org = x;
-                ray.dir = d;
-                ray.tmin = 0.0f;
-                ray.tmax = TS_INF;
-                prev_delta = 0;
-                if (!ts_roulette(&beta, depth, &rng)) break;
-                continue;
             }
         }
 #endif

@@ -47,6 +47,8 @@ TS_INLINE TsLightSample ts_sample_light(TS_GLOBAL const float* lights,
 #define TS_PI 3.14159265358979323846f
 #define TS_INV_PI 0.318309886183790671538f
 
+TS_INLINE float ts_max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
+
 /* Rec. 709 luminance, the power measure used to pick lights (host: scene_buffers.cpp). */
 TS_INLINE float ts_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 

@@ -11,7 +11,6 @@ inline TsHit ts_trace_closest(const TsTracer*, TsRay) { return TsHit{0, 0, 0, TS
 inline int ts_trace_occluded(const TsTracer*, TsRay) { return 0; }
 }  // namespace tessera::ts
 
-#define TS_HAS_MEDIUM 1
 #include "kernels/shared/pt.h"
 
 namespace tessera {

@@ -1,0 +1,77 @@
+// One frame of Instant Global Illumination (Wald et al. 2002) as the renderer runs it:
+// VPLs (host), the per-pixel kernels (backend), the discontinuity filter and the
+// composite (host). Everything but the kernels is host code shared by every backend.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "backend/backend.h"
+#include "gi/discontinuity_filter.h"
+#include "gi/vpl_generator.h"
+#include "image/image_io.h"
+#include "render/effect_plan.h"
+#include "render/scene_buffers.h"
+
+namespace tessera {
+
+/// IGI settings; defaults follow ALGORITHMS.md §§4, 5, 7 (our reading of IGI).
+struct IgiSettings {
+    uint32_t tile = 3;             ///< interleave tile edge n, 1..8 (n² sample sets)
+    uint32_t paths_per_set = 32;   ///< light paths (VPL sources) per set
+    uint32_t set_shadow_samples = 4;  ///< area-light samples per pixel (its set's share)
+    uint32_t march_steps = 8;      ///< medium ray-march steps per pixel (the N sets stratify them)
+    /// Geometry-term clamp b = 1 / (clamp_c · D)², D the scene's bounding-box diagonal:
+    /// scene-relative, so the same c gives the same image at any scale (ALGORITHMS.md §7,
+    /// default c = 0.05). clamp_c = 0 disables clamping (b = +inf).
+    float clamp_c = 0.05f;
+    bool filter = true;            ///< the discontinuity buffer (off: raw interleaved image)
+    DiscontinuitySettings discontinuity;
+};
+
+/// Timings and counts of the last frame, for the log and the benchmark.
+struct IgiFrameStats {
+    double vpl_seconds = 0, surface_seconds = 0, media_seconds = 0, filter_seconds = 0;
+    size_t vpls = 0;
+    uint64_t vpl_rays = 0;   ///< light-path rays
+    uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
+};
+
+class IgiFrame {
+public:
+    /// `scene` and `backend` must outlive this object.
+    IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan& plan, const IgiSettings& settings);
+
+    /// Geometry-term clamp b in scene units^-2 (+inf without clamping).
+    float g_clamp() const { return g_clamp_; }
+
+    /// Renders frame.pass: VPLs from path block `frame.pass`, the surface kernel, the media
+    /// kernel when the scene has a medium, the filter, and the composite
+    ///   L = T · throughput · (Le + albedo · (Ẽ_ss + Ẽ_id)) + L̃_pm
+    /// into TS_PASS_FLOATS per pixel (layout.h). Fills frame's igi fields itself.
+    void render(TsFrame frame, std::vector<float>& out);
+
+    /// Per-component AOVs summed over the frames rendered so far, divided by `frames`:
+    /// SS, ID (irradiance / π) and PM (radiance), each before and after filtering.
+    void add_component_channels(Image& image, uint32_t frames) const;
+
+    const IgiFrameStats& stats() const { return stats_; }
+
+private:
+    void composite(int width, const std::vector<float>& surf, const std::vector<float>& media,
+                   std::vector<float>& out);
+
+    Backend& backend_;
+    const SceneBuffers& scene_;
+    EffectPlan plan_;
+    IgiSettings settings_;
+    float g_clamp_ = 0.0f;
+    float march_far_ = 0.0f;
+    IgiFrameStats stats_;
+    // Raw and filtered components (3 floats per pixel each), summed over frames.
+    std::array<std::vector<double>, 6> component_sums_;
+    std::vector<float> ss_, id_, pm_, ss_f_, id_f_, pm_f_;
+};
+
+}  // namespace tessera

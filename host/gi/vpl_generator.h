@@ -1,0 +1,43 @@
+// Virtual point lights for instant radiosity (Keller 1997), generated on the host and
+// shared by every backend: the light paths are traced through Backend::trace_closest,
+// so all backends gather from the same VPLs (up to traversal ties).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "backend/backend.h"
+#include "render/scene_buffers.h"
+
+namespace tessera {
+
+/// Path index p of set k in frame f is f·sets·paths_per_set + k·paths_per_set + j: fixed
+/// indices, so a frame's paths are the same every time it is generated.
+struct VplSettings {
+    uint32_t sets = 9;             ///< interleave sets N = n²
+    uint32_t paths_per_set = 32;   ///< M light paths per set (ALGORITHMS.md §4 default)
+    uint32_t max_bounces = 5;      ///< surface hits per path
+    uint32_t frame = 0;            ///< selects the block of path indices
+    uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
+};
+
+struct VplList {
+    std::vector<float> vpls;          ///< TS_VPL_FLOATS per VPL, sorted by set
+    std::vector<uint32_t> set_start;  ///< sets + 1 offsets into vpls (in VPLs)
+    uint64_t rays = 0;                ///< light-path rays traced
+    size_t count() const { return set_start.empty() ? 0 : set_start.back(); }
+};
+
+/// Shoots the light paths and records a VPL at every diffuse surface hit.
+/// Estimator (pbrt-v2 IGI convention, ALGORITHMS.md §3.2): a path starts at a light
+/// picked in proportion to power, at a uniform point y0 (area pdf p_A including the
+/// selection) in a cosine-distributed direction, with weight α = Le·π / p_A. At a
+/// diffuse hit y with albedo ρ it leaves a VPL of weight C = α·ρ/π / M (M paths per
+/// set, so a pixel's sum over its set's VPLs is the set's estimate), then continues
+/// with probability q = min(1, luminance(ρ)) in a cosine direction, α ← α·ρ/q. Mirrors
+/// reflect (α ← α·Ks); dielectrics reflect or refract by Fresnel; neither stores a VPL.
+/// With a medium every segment attenuates α by its transmittance (no scattering, the
+/// single-scattering model of shared/igi.h). Halton dimensions: 0 light, 1-2 point,
+/// 3-4 direction, then per bounce 2 for the direction and 1 for roulette/Fresnel.
+VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSettings& settings);
+
+}  // namespace tessera

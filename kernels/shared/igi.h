@@ -1,0 +1,226 @@
+/* Instant Global Illumination (Wald et al., EGWR 2002), per-pixel part: the surface
+ * shading of one interleaved sample set, and the participating-media ray march. The
+ * host generates the VPLs (host/gi/vpl_generator.cpp), filters and composites
+ * (host/gi/igi_frame.cpp); ../shared/design/ALGORITHMS.md §§1, 4, 5, 7 is our reading.
+ *
+ * Interleaving (Keller & Heidrich 2001): pixel (x, y) uses sample set
+ * k = (x mod n) + n (y mod n). Set k owns
+ *   - light samples k·m .. k·m + m - 1 of one N·m-point Hammersley set (N = n²) over
+ *     (light selection, square of the light), shifted per frame by igi_rotation: every
+ *     pixel of the set uses the same points, so its noise is structured and the n×n
+ *     discontinuity filter, whose window holds each set once, removes it;
+ *   - the VPLs of its own light paths (vpl_set_start[k] .. vpl_set_start[k+1]);
+ *   - ray-march offsets (k + ξ)/N of the step, so the N sets stratify the march N-fold.
+ *
+ * Transport (equal to `pt --max-scatter 1`): surfaces get direct light from the area
+ * lights and indirect diffuse light from the VPLs, each connection attenuated by the
+ * medium's transmittance; the medium scatters light from the lights once, on the
+ * camera segment only; the surface behind is attenuated by that segment's transmittance.
+ *
+ * The VPL geometry term is clamped, G' = min(G, b) with b = igi_g_clamp (ALGORITHMS.md
+ * §7): it bounds each VPL's contribution at C·b, removing the 1/d² splotches near VPLs
+ * at the cost of energy lost at short range (corners come out darker).
+ *
+ * Uses the tracer interface documented in shared/direct.h.
+ */
+#ifndef TS_IGI_H
+#define TS_IGI_H
+#include "shared/bsdf.h"
+#include "shared/compat.h"
+#include "shared/direct.h"
+#include "shared/geometry.h"
+#include "shared/layout.h"
+#include "shared/material.h"
+#include "shared/medium.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+
+TS_NAMESPACE_BEGIN
+
+TS_INLINE uint ts_igi_set(uint px, uint py, uint n) { return (px % n) + n * (py % n); }
+
+/* Light sample j of the frame's N·m-point set (j < N·m), as three numbers in [0, 1):
+ * light selection, and the two coordinates on the light's parameter square. */
+TS_INLINE float3 ts_igi_light_point(const TsFrame* f, uint j) {
+    uint total = f->igi_tile * f->igi_tile * f->shadow_samples;
+    return make_float3(ts_rotate01(ts_radical_inverse3(j), f->igi_rotation[0]),
+                       ts_rotate01(((float)j + 0.5f) / (float)total, f->igi_rotation[1]),
+                       ts_rotate01(ts_radical_inverse2(j), f->igi_rotation[2]));
+}
+
+/* Transmittance of a shadow ray (1 without a medium). */
+TS_INLINE float3 ts_igi_shadow_transmittance(const TsMedium* med, TsRay shadow) {
+#ifdef TS_HAS_MEDIUM
+    return ts_medium_transmittance(med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
+#else
+    (void)med;
+    (void)shadow;
+    return make_float3(1.0f, 1.0f, 1.0f);
+#endif
+}
+
+/* E_ss: direct irradiance / π at s from set k's m light samples. */
+TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                               const TsMedium* med, const TsSurface* s, uint k) {
+    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
+    uint m = f->shadow_samples;
+    for (uint j = 0u; j < m; ++j) {
+        float3 q = ts_igi_light_point(f, k * m + j);
+        TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
+        TsRay shadow;
+        float3 c = ts_light_contribution(s, ls, &shadow);
+        if (c.x + c.y + c.z > 0.0f && !ts_trace_occluded(tracer, shadow))
+            sum += c * ts_igi_shadow_transmittance(med, shadow);
+    }
+    return sum * (TS_INV_PI / (float)m);
+}
+
+/* One VPL's clamped geometry term at surface point x with normal n, and the shadow ray
+ * that decides its visibility; 0 when either side faces away. G = cosθx cosθv / d² is
+ * clamped to b: the contribution C·G' of any VPL is at most C·b. */
+TS_INLINE float ts_vpl_geometry(float3 x, float3 n, float3 ng, TS_GLOBAL const float* vpl, float b,
+                                TsRay* shadow) {
+    float3 y = ts_f3_load(vpl), nv = ts_f3_load(vpl + 3);
+    float3 d = y - x;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0.0f)) return 0.0f;
+    float3 w = d / sqrt(dist2);
+    float cos_x = dot(n, w), cos_v = -dot(nv, w);
+    if (cos_x <= 0.0f || cos_v <= 0.0f || dot(ng, w) <= 0.0f) return 0.0f;
+    shadow->org = ts_offset_ray_origin(x, ng);
+    shadow->dir = ts_offset_ray_origin(y, nv) - shadow->org;
+    shadow->tmin = 0.0f;
+    shadow->tmax = 0.99999f;
+    return fmin(cos_x * cos_v / dist2, b);
+}
+
+/* E_id: indirect irradiance / π at s from set k's VPLs. */
+TS_INLINE float3 ts_igi_indirect(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                 const TsMedium* med, const TsSurface* s, uint k) {
+    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
+    uint end = sv->vpl_set_start[k + 1u];
+    for (uint v = sv->vpl_set_start[k]; v < end; ++v) {
+        TS_GLOBAL const float* vpl = sv->vpls + v * TS_VPL_FLOATS;
+        TsRay shadow;
+        float g = ts_vpl_geometry(s->position, s->shading_normal, s->geo_normal, vpl, f->igi_g_clamp, &shadow);
+        if (g > 0.0f && !ts_trace_occluded(tracer, shadow))
+            sum += ts_f3_load(vpl + 6) * ts_igi_shadow_transmittance(med, shadow) * g;
+    }
+    return sum * TS_INV_PI;
+}
+
+/* Follows mirror and dielectric bounces from the camera (at most 5) to the first
+ * diffuse surface; *throughput collects their reflectances. Dielectrics pick reflection
+ * or refraction by Fresnel with `u`. Returns the hit (TS_NO_HIT if the path escapes). */
+TS_INLINE TsHit ts_igi_find_diffuse(const TsSceneView* sv, const TsTracer* tracer, TsRay* ray,
+                                    float3* throughput, float* distance, TsRng* rng) {
+    *throughput = make_float3(1.0f, 1.0f, 1.0f);
+    *distance = 0.0f;
+    TsHit hit;
+    for (int bounce = 0; bounce < 6; ++bounce) {
+        hit = ts_trace_closest(tracer, *ray);
+        if (hit.prim == TS_NO_HIT) return hit;
+        *distance += hit.t;
+        TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * sv->tri_mat[hit.prim];
+        uint kind = as_uint(M[7]);
+        if (kind == TS_MAT_DIFFUSE || bounce == 5) return hit;
+        TsSurface s = ts_surface_at(sv, *ray, hit);
+        if (kind == TS_MAT_MIRROR) {
+            *throughput = *throughput * ts_f3_load(M + 8);
+            ray->dir = ts_reflect(ray->dir, s.shading_normal);
+            ray->org = ts_offset_ray_origin(s.position, s.geo_normal);
+        } else {
+            int transmitted;
+            ray->dir = ts_sample_dielectric(ray->dir, s.geo_normal, s.front_face, M[11], ts_rng_next(rng),
+                                            &transmitted);
+            ray->org = ts_offset_ray_origin(s.position, transmitted ? -s.geo_normal : s.geo_normal);
+        }
+        ray->tmin = 0.0f;
+        ray->tmax = TS_INF;
+    }
+    return hit;
+}
+
+/* The camera ray of pixel (px, py): through the centre on pass 0, jittered on later
+ * passes so that several passes antialias like the path tracer. */
+TS_INLINE TsRay ts_igi_camera_ray(const TsFrame* f, uint px, uint py, TsRng* rng) {
+    float jx = ts_rng_next(rng), jy = ts_rng_next(rng);
+    if (f->pass == 0u) jx = jy = 0.5f;
+    return ts_camera_ray(f, px, py, jx, jy);
+}
+
+/* Surface part of one igi frame for pixel (px, py); writes TS_IGI_SURF_FLOATS values. */
+TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                    uint px, uint py, float* out) {
+    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
+    TsRay ray = ts_igi_camera_ray(f, px, py, &rng);
+    TsMedium med = ts_medium_load(sv->medium);
+    for (int i = 0; i < TS_IGI_SURF_FLOATS; ++i) out[i] = 0.0f;
+    out[15] = TS_INF;
+    out[16] = out[17] = out[18] = 1.0f;
+    float3 throughput;
+    float distance;
+    TsHit hit = ts_igi_find_diffuse(sv, tracer, &ray, &throughput, &distance, &rng);
+    if (hit.prim == TS_NO_HIT) return;
+    TsSurface s = ts_surface_at(sv, ray, hit);
+    uint k = ts_igi_set(px, py, f->igi_tile);
+    float3 albedo = ts_material_albedo(sv, &s), le = ts_material_emission(sv, &s);
+    float3 e_ss = make_float3(0.0f, 0.0f, 0.0f), e_id = e_ss;
+    if (ts_max3(albedo) > 0.0f) {
+        if (sv->light_count > 0u) e_ss = ts_igi_direct(sv, tracer, f, &med, &s, k);
+        e_id = ts_igi_indirect(sv, tracer, f, &med, &s, k);
+    }
+    out[0] = e_ss.x; out[1] = e_ss.y; out[2] = e_ss.z;
+    out[3] = e_id.x; out[4] = e_id.y; out[5] = e_id.z;
+    out[6] = albedo.x; out[7] = albedo.y; out[8] = albedo.z;
+    out[9] = le.x; out[10] = le.y; out[11] = le.z;
+    out[12] = s.shading_normal.x; out[13] = s.shading_normal.y; out[14] = s.shading_normal.z;
+    out[15] = distance;
+    out[16] = throughput.x; out[17] = throughput.y; out[18] = throughput.z;
+}
+
+/* Media part of one igi frame for pixel (px, py): single scattering from the lights
+ * along the camera segment (up to the first surface), by a ray march of igi_steps steps
+ * whose start is offset by (k + ξ)/N of a step for set k, with set k's light samples
+ * taken in turn; and the segment's transmittance. Writes TS_IGI_MEDIA_FLOATS values. */
+TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                  uint px, uint py, float* out) {
+    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
+    TsRay ray = ts_igi_camera_ray(f, px, py, &rng);
+    TsMedium med = ts_medium_load(sv->medium);
+    float3 L = make_float3(0.0f, 0.0f, 0.0f), T = make_float3(1.0f, 1.0f, 1.0f);
+    TsHit hit = ts_trace_closest(tracer, ray);
+    float t0 = 0.0f, t1 = hit.prim == TS_NO_HIT ? f->igi_march_far : hit.t;
+    uint n = f->igi_tile, k = ts_igi_set(px, py, n), N = n * n, m = f->shadow_samples;
+    if (ts_medium_clip(&med, ray.org, ray.dir, &t0, &t1) && f->igi_steps > 0u) {
+        float step = (t1 - t0) / (float)f->igi_steps;
+        float xi = f->igi_rotation[0];
+        for (uint i = 0u; i < f->igi_steps; ++i) {
+            float t = t0 + ((float)i + ((float)k + xi) / (float)N) * step;
+            float3 x = ray.org + ray.dir * t;
+            float3 q = ts_igi_light_point(f, k * m + i % m);
+            TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
+            float3 d = ls.position - x;
+            float dist2 = dot(d, d);
+            float3 wi = d / sqrt(dist2);
+            float cos_y = -dot(ls.normal, wi);
+            if (!(cos_y > 0.0f)) continue;
+            TsRay shadow;
+            shadow.org = x;
+            shadow.dir = ts_offset_ray_origin(ls.position, ls.normal) - x;
+            shadow.tmin = 0.0f;
+            shadow.tmax = 0.99999f;
+            if (ts_trace_occluded(tracer, shadow)) continue;
+            float3 tr_cam = ts_exp3(med.sigma_t * (-(t - t0)));
+            float3 tr_light = ts_medium_transmittance(&med, shadow.org, shadow.dir, 0.0f, 1.0f);
+            float w = ts_hg_phase(dot(ray.dir, wi), med.g) * cos_y / (dist2 * ls.pdf_area) * step;
+            L += med.sigma_s * tr_cam * tr_light * ls.radiance * w;
+        }
+        T = ts_exp3(med.sigma_t * (-(t1 - t0)));
+    }
+    out[0] = L.x; out[1] = L.y; out[2] = L.z;
+    out[3] = T.x; out[4] = T.y; out[5] = T.z;
+}
+
+TS_NAMESPACE_END
+#endif /* TS_IGI_H */
