@@ -1,0 +1,169 @@
+// IGI end to end: VPL sets, the work the scene calls for, backend agreement, and
+// convergence to the path-traced reference of the same transport model.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "gi/igi_frame.h"
+#include "gi/vpl_generator.h"
+#include "render/frame.h"
+#include "scene/loader.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+
+namespace tessera {
+namespace {
+
+Scene cornell() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
+
+uint32_t path_of(const VplList& v, size_t i) {
+    uint32_t p;
+    std::memcpy(&p, &v.vpls[i * TS_VPL_FLOATS + 10], 4);
+    return p;
+}
+
+TEST(Vpls, SetsOwnDisjointPathBlocksAndRepeatExactly) {
+    Scene s = cornell();
+    SceneBuffers b = make_scene_buffers(s);
+    auto em = make_backend({BackendKind::Embree, ""}, b, plan_effects(s));
+    VplSettings vs;
+    vs.sets = 9;
+    vs.paths_per_set = 16;
+    vs.frame = 2;
+    VplList a = generate_vpls(*em, b, vs), again = generate_vpls(*em, b, vs);
+    ASSERT_GT(a.count(), 9u * 16u / 2);  // most paths leave a VPL in a closed box
+    EXPECT_EQ(a.vpls, again.vpls) << "fixed Halton indices: the same frame gives the same VPLs";
+    std::set<uint32_t> paths;
+    const uint32_t first = vs.frame * vs.sets * vs.paths_per_set;
+    for (uint32_t k = 0; k < vs.sets; ++k)
+        for (uint32_t i = a.set_start[k]; i < a.set_start[k + 1]; ++i) {
+            const uint32_t p = path_of(a, i);
+            ASSERT_GE(p, first + k * vs.paths_per_set);  // set k owns block k of this frame
+            ASSERT_LT(p, first + (k + 1) * vs.paths_per_set);
+            paths.insert(p);
+        }
+    EXPECT_LE(paths.size(), size_t(vs.sets) * vs.paths_per_set);
+    // The OpenCL backend traces the same paths to the same VPLs (same rays, same hits).
+    auto cl = make_backend({BackendKind::OpenCL, ""}, b, plan_effects(s));
+    VplList c = generate_vpls(*cl, b, vs);
+    ASSERT_EQ(c.set_start, a.set_start);
+    for (size_t i = 0; i < a.vpls.size(); ++i) ASSERT_NEAR(c.vpls[i], a.vpls[i], 1e-4f * (1 + std::abs(a.vpls[i])));
+}
+
+TEST(IgiWork, FollowsTheScene) {
+    // No medium: the media kernel is never dispatched. A medium: once per frame.
+    // Nothing reflects: no light paths are shot.
+    RenderSettings rs;
+    rs.method = Method::Igi;
+    rs.width = rs.height = 16;
+    rs.spp = 2;
+    Scene plain = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.6f), glm::vec3(5.0f), 0.3f);
+    Scene fog = plain;
+    fog.has_medium = true;
+    fog.medium.sigma_s = glm::vec3(0.2f);
+    for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
+        for (const Scene* s : {&plain, &fog}) {
+            SceneBuffers b = make_scene_buffers(*s);
+            auto be = make_backend({kind, ""}, b, plan_effects(*s));
+            render_frame(*be, *s, b, rs);
+            EXPECT_EQ(be->dispatch_count(PixelKernel::IgiSurface), 2u);
+            EXPECT_EQ(be->dispatch_count(PixelKernel::IgiMedia), s == &fog ? 2u : 0u);
+        }
+    }
+    Scene black = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
+    SceneBuffers b = make_scene_buffers(black);
+    auto be = make_backend({BackendKind::Embree, ""}, b, plan_effects(black));
+    IgiFrame igi(*be, b, plan_effects(black), IgiSettings{});
+    std::vector<float> out;
+    igi.render(make_frame(black.camera, 8, 8, 4, 1, b.light_count), out);
+    EXPECT_EQ(igi.stats().vpls, 0u);
+    EXPECT_EQ(igi.stats().vpl_rays, 0u);
+}
+
+TEST(IgiAgreement, BackendsRenderTheSameFrame) {
+    // Same seed: the same VPLs (previous test) and the same light samples, so the
+    // backends differ only by traversal rounding; the yardstick is the frame-to-frame
+    // noise (relMSE between two passes' VPL sets).
+    Scene s = cornell();
+    RenderSettings rs;
+    rs.method = Method::Igi;
+    rs.width = rs.height = 48;
+    rs.spp = 1;
+    Image cl = test::render_with(BackendKind::OpenCL, s, rs);
+    Image em = test::render_with(BackendKind::Embree, s, rs);
+    rs.seed = 7;
+    Image em2 = test::render_with(BackendKind::Embree, s, rs);
+    ASSERT_TRUE(test::all_finite(cl));
+    ASSERT_TRUE(test::all_finite(em));
+    const double diff = test::rel_mse(cl, em), noise = test::rel_mse(em2, em);
+    std::printf("  igi relMSE OpenCL vs Embree %.3g; seed vs seed %.3g\n", diff, noise);
+    EXPECT_LT(diff, 0.02 * noise);
+}
+
+// Mean of channel c over pixels at least one pixel away from any pixel brighter than 3
+// in `ref` (the emitter): there a few jittered camera samples decide how much of a
+// radiance-17 light a pixel covers, noise that says nothing about the lighting.
+double mean_away_from_emitter(const Image& img, const Image& ref, const char* c) {
+    const int w = img.width, h = img.height;
+    auto bright = [&](int x, int y) {
+        return ref.find("R")->data[y * w + x] + ref.find("G")->data[y * w + x] + ref.find("B")->data[y * w + x] > 3.0f;
+    };
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            bool near = false;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    near |= x + dx >= 0 && x + dx < w && y + dy >= 0 && y + dy < h && bright(x + dx, y + dy);
+            if (near) continue;
+            sum += img.find(c)->data[y * w + x];
+            ++n;
+        }
+    return sum / n;
+}
+
+TEST(IgiConvergence, ApproachesPathTracedSingleScatteringAsVplsGrow) {
+    // With the clamp off and no interleaving, IGI is an unbiased estimator of the
+    // transport that `pt --max-scatter 1` computes (diffuse surfaces; direct light by
+    // area samples, indirect by VPLs). Its error against a converged pt render must fall
+    // as the VPL count grows: the sweep 4, 16, 64, 256 paths per frame over 16 frames.
+    Scene s = cornell();
+    RenderSettings ref;
+    ref.method = Method::PathTrace;
+    ref.max_scatter = 1;
+    ref.width = ref.height = 24;
+    ref.spp = 4096;
+    const Image reference = test::render_with(BackendKind::Embree, s, ref);
+    double prev = INFINITY;
+    for (uint32_t paths : {4u, 16u, 64u, 256u}) {
+        RenderSettings rs;
+        rs.method = Method::Igi;
+        rs.width = rs.height = 24;
+        rs.spp = 16;
+        rs.shadow_samples = 16;
+        rs.igi.tile = 1;
+        rs.igi.clamp_c = 0.0f;
+        rs.igi.paths_per_set = paths;
+        const Image img = test::render_with(BackendKind::Embree, s, rs);
+        const double err = test::rel_mse(img, reference);
+        std::printf("  %u VPL paths per frame: relMSE %.4g", paths, err);
+        for (const char* c : {"R", "G", "B"}) {
+            const double ratio = mean_away_from_emitter(img, reference, c) / mean_away_from_emitter(reference, reference, c);
+            std::printf(", %s ratio %.4f", c, ratio);
+            // Unbiased without the clamp: at 256 paths × 16 frames the surface means agree
+            // with the path tracer within 1% (measured; 1024 × 64: 0.4%); 3% catches a lost
+            // bounce order (the old 5-bounce cap cost 2-3%) or a missing factor.
+            if (paths == 256u) EXPECT_NEAR(ratio, 1.0, 0.03) << c;
+        }
+        std::printf("\n");
+        EXPECT_LT(err, prev);
+        prev = err;
+    }
+}
+
+}  // namespace
+}  // namespace tessera

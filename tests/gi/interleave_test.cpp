@@ -1,0 +1,93 @@
+// Interleaved sampling (kernels/shared/igi.h, geometry.h): the sets partition the
+// pixels and the samples, and their union is the full sample set.
+#include <limits>
+#include <set>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "kernels/shared/geometry.h"
+
+// A tracer that traces nothing, for the functions tested here. Its unnamed namespace
+// gives it internal linkage: the Embree backend's TsTracer is another type, so the
+// shared inline functions taking a TsTracer* cannot be merged across the two (ODR).
+namespace tessera::ts {
+namespace {
+struct TsTracer {};
+[[maybe_unused]] TsHit ts_trace_closest(const TsTracer*, TsRay) { return TsHit{0, 0, 0, TS_NO_HIT}; }
+[[maybe_unused]] int ts_trace_occluded(const TsTracer*, TsRay) { return 0; }
+}  // namespace
+}  // namespace tessera::ts
+
+#include "kernels/shared/igi.h"
+
+namespace tessera {
+namespace {
+
+TEST(Interleave, WorkItemsVisitEveryPixelOnceGroupedBySet) {
+    for (uint32_t n = 1; n <= 8; ++n)
+        for (auto [w, h] : {std::pair<uint32_t, uint32_t>{13, 7}, {16, 16}, {5, 11}}) {
+            TsFrame f{};
+            f.width = w;
+            f.height = h;
+            f.igi_tile = n;
+            std::vector<int> seen(w * h, 0);
+            uint32_t prev_set = 0;
+            for (uint32_t i = 0; i < w * h; ++i) {
+                uint32_t x, y;
+                ts::ts_pixel_of_work_item(&f, i, &x, &y);
+                ASSERT_LT(x, w);
+                ASSERT_LT(y, h);
+                ++seen[y * w + x];
+                const uint32_t k = ts::ts_igi_set(x, y, n);
+                if (n > 1) ASSERT_GE(k, prev_set) << "work-items must run set by set";
+                prev_set = k;
+            }
+            for (int c : seen) ASSERT_EQ(c, 1) << "n " << n << " size " << w << "x" << h;
+        }
+}
+
+TEST(Interleave, SetsUnionToTheFullLightSampleSet) {
+    // Set k holds light samples k·m .. k·m+m-1 of the N·m-point set; together their
+    // stratified coordinate (j + ½)/(N·m), shifted by the frame rotation, takes every
+    // one of the N·m strata exactly once.
+    TsFrame f{};
+    f.igi_tile = 3;
+    f.shadow_samples = 4;
+    f.igi_rotation[1] = 0.37f;
+    const uint32_t N = 9, m = 4;
+    std::vector<int> strata(N * m, 0);
+    for (uint32_t k = 0; k < N; ++k)
+        for (uint32_t j = 0; j < m; ++j) {
+            ts::float3 q = ts::ts_igi_light_point(&f, k * m + j);
+            ++strata[static_cast<uint32_t>(q.y * N * m)];
+        }
+    for (int c : strata) EXPECT_EQ(c, 1);
+}
+
+TEST(VplGeometry, ClampBoundsEveryContribution) {
+    // A receiving plane z = 0 facing +z; VPLs on it, just above it and far away.
+    float vpl[TS_VPL_FLOATS] = {};
+    auto put = [&](float x, float y, float z, float nx, float ny, float nz) {
+        vpl[0] = x, vpl[1] = y, vpl[2] = z, vpl[3] = nx, vpl[4] = ny, vpl[5] = nz;
+    };
+    const ts::float3 x = ts::make_float3(0, 0, 0), n = ts::make_float3(0, 0, 1);
+    const float b = 100.0f;
+    ts::TsRay shadow;
+    put(0, 0, 1e-4f, 0, 0, -1);  // facing the receiver from 0.1 mm: G = 1e8, clamped
+    EXPECT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), b);
+    put(0, 0, 2.0f, 0, 0, -1);  // G = 1/4, below the clamp: unchanged
+    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), 0.25f);
+    put(1e-3f, 0, 0, 0, 0, 1);  // on the receiving plane: cosines 0, no NaN
+    EXPECT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), 0.0f);
+    put(0, 0, 0, 0, 0, 1);  // at the very point: d = 0
+    EXPECT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), 0.0f);
+    put(0, 0, 1, 0, 0, 1);  // facing away from the receiver
+    EXPECT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), 0.0f);
+    const float inf = std::numeric_limits<float>::infinity();
+    put(0, 0, 1e-4f, 0, 0, -1);  // clamping disabled: the raw 1/d², finite
+    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, inf, &shadow), 1e8f);
+}
+
+}  // namespace
+}  // namespace tessera
