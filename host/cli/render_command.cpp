@@ -80,6 +80,7 @@ void run_render(const RenderArgs& a) {
     write_png(png, img, a.exposure);
     std::error_code ec;
     fs::remove(ckpt.path, ec);  // the render is complete: its checkpoint is of no further use
+    if (!stats.detail.empty()) std::fprintf(stderr, "tessera: %s\n", stats.detail.c_str());
     std::fprintf(stderr, "tessera: %u spp in %.2f s (median %.1f ms per pass)", stats.passes, stats.seconds,
                  1e3 * stats.median_pass_seconds);
     if (a.resume) std::fprintf(stderr, " after %u spp from the checkpoint", a.settings.spp - stats.passes);

@@ -1,6 +1,7 @@
 #include "gi/igi_frame.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 
@@ -140,11 +141,23 @@ void IgiFrame::composite(int width, const std::vector<float>& surf, const std::v
     }
 }
 
+std::string IgiFrame::describe() const {
+    char buf[320];
+    std::snprintf(buf, sizeof buf,
+                  "igi: tile %ux%u, %zu VPLs from %u paths per set (%llu light-path rays), G clamp %.4g, "
+                  "last frame: VPLs %.1f ms, surface %.1f ms, media %.1f ms%s, filter+composite %.1f ms",
+                  settings_.tile, settings_.tile, stats_.vpls, settings_.paths_per_set,
+                  static_cast<unsigned long long>(stats_.vpl_rays), g_clamp_, 1e3 * stats_.vpl_seconds,
+                  1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
+                  1e3 * stats_.filter_seconds);
+    return buf;
+}
+
 void IgiFrame::add_component_channels(Image& image, uint32_t frames) const {
     static const char* names[6] = {"SS", "SS_filtered", "ID", "ID_filtered", "PM", "PM_filtered"};
     static const char* rgb[3] = {"R", "G", "B"};
     for (int i = 0; i < 6; ++i) {
-        if (component_sums_[i].empty()) continue;
+        if (component_sums_[i].empty() || (i >= 4 && !plan_.medium)) continue;  // PM only with a medium
         for (int c = 0; c < 3; ++c) {
             ImageChannel ch{std::string(names[i]) + "." + rgb[c], {}};
             ch.data.resize(component_sums_[i].size() / 3);

@@ -53,10 +53,14 @@ public:
     void render(TsFrame frame, std::vector<float>& out);
 
     /// Per-component AOVs summed over the frames rendered so far, divided by `frames`:
-    /// SS, ID (irradiance / π) and PM (radiance), each before and after filtering.
+    /// SS, ID (irradiance / π) and, when the scene has a medium, PM (radiance), each
+    /// before and after filtering (channels SS.R, SS_filtered.R, ...).
     void add_component_channels(Image& image, uint32_t frames) const;
 
     const IgiFrameStats& stats() const { return stats_; }
+
+    /// One line for the log: tile, VPLs, clamp and the last frame's stage times.
+    std::string describe() const;
 
 private:
     void composite(int width, const std::vector<float>& surf, const std::vector<float>& media,

@@ -36,6 +36,7 @@ struct RenderStats {
     uint32_t passes = 0;
     double seconds = 0.0;            ///< wall time of all passes (excludes set-up)
     double median_pass_seconds = 0.0;
+    std::string detail;              ///< method-specific log line ("" for none)
 };
 
 /// Called after each pass with (passes done, passes total, seconds elapsed in this call,

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "image/image_io.h"
 #include "support/scratch_dir.h"
 
 namespace fs = std::filesystem;
@@ -95,3 +96,28 @@ TEST(DevicesCli, ListsPocl) {
 }
 
 }  // namespace
+
+namespace tessera {
+namespace {
+
+class IgiCli : public tessera::test::ScratchDirTest {};
+
+TEST_F(IgiCli, AovWritesEachComponentBeforeAndAfterFiltering) {
+    const fs::path out = dir_ / "igi.exr";
+    auto r = run_tessera("render --method igi --aov --spp 1 --width 24 --height 24 --backend embree --out " +
+                         out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("igi: tile 3x3"), std::string::npos) << r.output;
+    Image img = read_exr(out);
+    for (const char* c : {"SS.R", "SS_filtered.G", "ID.B", "ID_filtered.R", "albedo.R", "N.X", "Z"})
+        EXPECT_NE(img.find(c), nullptr) << c;
+    EXPECT_EQ(img.find("PM.R"), nullptr) << "no medium, so no PM component";
+    // The composite is emission + albedo × (filtered SS + filtered ID) where no medium.
+    const auto &R = img.find("R")->data, &a = img.find("albedo.R")->data;
+    const auto &ss = img.find("SS_filtered.R")->data, &id = img.find("ID_filtered.R")->data;
+    const size_t centre = 12 * 24 + 12;  // the back wall
+    EXPECT_NEAR(R[centre], a[centre] * (ss[centre] + id[centre]), 1e-4f * R[centre]);
+}
+
+}  // namespace
+}  // namespace tessera
