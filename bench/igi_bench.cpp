@@ -1,0 +1,112 @@
+// IGI frame time at 512×512 on both backends, in one process: for each scene the median
+// frame time over several frames, the time of each stage (VPL generation, surface kernel
+// = SS + ID, media kernel = PM, filter + composite), rays per frame and rays per second.
+// Writes igi_bench.json and igi_bench.md.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "backend/backend.h"
+#include "gi/igi_frame.h"
+#include "render/frame.h"
+#include "scene/loader.h"
+
+using namespace tessera;
+namespace fs = std::filesystem;
+
+namespace {
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+struct Row {
+    std::string scene, backend;
+    double frame_ms, vpl_ms, surface_ms, media_ms, filter_ms;
+    double rays;  // per frame
+};
+
+Row measure(const Scene& scene, const SceneBuffers& b, BackendKind kind, const std::string& device, int size,
+            int frames) {
+    auto be = make_backend({kind, device}, b, plan_effects(scene));
+    IgiFrame igi(*be, b, plan_effects(scene), IgiSettings{});
+    TsFrame f = make_frame(scene.camera, size, size, IgiSettings{}.set_shadow_samples, 1, b.light_count);
+    f.light_power = b.light_power;
+    std::vector<float> out;
+    f.pass = 0;
+    igi.render(f, out);  // warm-up: builds or loads the OpenCL programs
+    std::vector<double> total, vpl, surf, media, filt;
+    for (int i = 0; i < frames; ++i) {
+        f.pass = static_cast<uint32_t>(i);
+        const auto t0 = std::chrono::steady_clock::now();
+        igi.render(f, out);
+        total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        vpl.push_back(igi.stats().vpl_seconds);
+        surf.push_back(igi.stats().surface_seconds);
+        media.push_back(igi.stats().media_seconds);
+        filt.push_back(igi.stats().filter_seconds);
+    }
+    return {scene.name, kind == BackendKind::OpenCL ? "opencl" : "embree", 1e3 * median(total), 1e3 * median(vpl),
+            1e3 * median(surf), 1e3 * median(media), 1e3 * median(filt),
+            double(igi.stats().vpl_rays + igi.stats().pixel_rays)};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Tessera IGI frame time (both backends)"};
+    std::vector<std::string> scenes;
+    for (const char* s : {"cornell-box", "cornell-box-fog", "sibenik", "sibenik-fog"})
+        scenes.push_back(std::string(TESSERA_SCENES_DIR) + "/" + s + ".json");
+    std::string out_dir = "bench/results", device;
+    int size = 512, frames = 3;
+    app.add_option("--scene", scenes)->capture_default_str();
+    app.add_option("--size", size)->capture_default_str();
+    app.add_option("--frames", frames, "timed frames per scene and backend")->capture_default_str();
+    app.add_option("--device", device);
+    app.add_option("--out", out_dir)->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+
+    nlohmann::json j;
+    j["size"] = size;
+    j["frames"] = frames;
+    j["settings"] = "IgiSettings defaults: tile 3x3, 32 VPL paths per set, 4 light samples per pixel, "
+                    "8 march steps, clamp c = 0.05";
+    std::string md = "# IGI frame time, " + std::to_string(size) + "x" + std::to_string(size) + ", median of " +
+                     std::to_string(frames) + " frames\n\nMachine: 2-core KVM guest. " +
+                     j["settings"].get<std::string>() +
+                     ". Rays per frame count light-path, camera, shadow and VPL rays (the VPL count is the "
+                     "set's average, an upper bound on traced VPL shadow rays).\n\n"
+                     "| scene | backend | frame (ms) | fps | VPLs (ms) | SS+ID (ms) | PM (ms) | filter (ms) | "
+                     "Mrays/frame | Mrays/s | OpenCL / Embree time |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const std::string& path : scenes) {
+        Scene scene = load_scene(path, make_data_path(std::nullopt));
+        SceneBuffers b = make_scene_buffers(scene);
+        Row cl = measure(scene, b, BackendKind::OpenCL, device, size, frames);
+        Row em = measure(scene, b, BackendKind::Embree, device, size, frames);
+        for (const Row& r : {cl, em}) {
+            char buf[400];
+            std::snprintf(buf, sizeof buf, "| %s | %s | %.0f | %.2f | %.1f | %.0f | %.0f | %.1f | %.1f | %.1f | %s |\n",
+                          r.scene.c_str(), r.backend.c_str(), r.frame_ms, 1e3 / r.frame_ms, r.vpl_ms, r.surface_ms,
+                          r.media_ms, r.filter_ms, r.rays * 1e-6, r.rays * 1e-3 / r.frame_ms,
+                          &r == &cl ? std::to_string(cl.frame_ms / em.frame_ms).substr(0, 4).c_str() : "");
+            md += buf;
+            j["rows"].push_back({{"scene", r.scene}, {"backend", r.backend}, {"frame_ms", r.frame_ms},
+                                 {"vpl_ms", r.vpl_ms}, {"surface_ms", r.surface_ms}, {"media_ms", r.media_ms},
+                                 {"filter_ms", r.filter_ms}, {"rays_per_frame", r.rays}});
+            std::fprintf(stderr, "%-16s %-6s %7.0f ms/frame\n", r.scene.c_str(), r.backend.c_str(), r.frame_ms);
+        }
+    }
+    fs::create_directories(out_dir);
+    std::ofstream(fs::path(out_dir) / "igi_bench.json") << j.dump(2) << "\n";
+    std::ofstream(fs::path(out_dir) / "igi_bench.md") << md;
+    return 0;
+}
