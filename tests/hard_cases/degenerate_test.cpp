@@ -70,10 +70,12 @@ TEST_P(Degenerate, LightFacingAwayFromEverythingRendersBlack) {
     const uint32_t light = add_material(s, glm::vec3(0.0f), glm::vec3(100.0f));
     add_quad(s, {-5, 0, -5}, {0, 0, 10}, {10, 0, 0}, floor);                     // +y
     add_quad(s, {-0.5f, 1, -0.5f}, {0, 0, 1}, {1, 0, 0}, light);                  // +y: faces the sky
-    s.camera.position = {0, 3, 3};
-    s.camera.look_at = {0, 0, 0};
+    s.camera.position = {0, 0.5f, 3};  // below the light: sees its back and the floor
+    s.camera.look_at = {0, 0.4f, 0};
+    s.camera.vfov_deg = 60.0f;
     s.camera.width = s.camera.height = 16;
     const Image img = render(s, 8);
+    ASSERT_GT(channel_max(img, "Z"), 0.0f);
     ASSERT_TRUE(all_finite(img));
     EXPECT_EQ(radiance_max(img), 0.0f);
 }

@@ -4,6 +4,7 @@
 // cases, the methods and backends they run and the checks they make.
 #pragma once
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,10 @@ struct HardCaseParam {
     HardCaseMethod method;
     BackendKind backend;
 };
+
+inline void PrintTo(const HardCaseParam& p, std::ostream* os) {
+    *os << p.method.name << " on " << (p.backend == BackendKind::Embree ? "embree" : "opencl");
+}
 
 inline std::vector<HardCaseParam> hard_case_params() {
     std::vector<HardCaseParam> out;
