@@ -82,7 +82,7 @@ RaySets make_rays(const Scene& scene, const SceneBuffers& b, Backend& embree, in
         ts::TsRay ray{ts::make_float3(pr[0], pr[1], pr[2]), ts::make_float3(pr[4], pr[5], pr[6]), 0.0f, INFINITY};
         ts::TsHit hit{hits[4 * i], hits[4 * i + 1], hits[4 * i + 2], prim};
         ts::TsSurface s = ts::ts_surface_at(&sv, ray, hit);
-        ts::float3 o = ts::ts_offset_ray_origin(s.position, s.geo_normal);
+        ts::float3 o = ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
         ts::TsLightSample ls = ts::ts_sample_light(b.lights.data(), b.light_cdf.data(), b.light_count, u(rng),
                                                    u(rng), u(rng));
         ts::float3 d = ls.position - o;

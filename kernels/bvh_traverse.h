@@ -61,7 +61,9 @@ inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float tmin, 
     float T = U * (w->sz * Az) + V * (w->sz * Bz) + W * (w->sz * Cz);
     float rcp = 1.0f / det;
     float tt = T * rcp;
-    if (!(tt > tmin && tt < tmax)) return 0;
+    /* tmin inclusive, as in Embree: a surface exactly at a ray's origin blocks it (an
+     * offset origin never lies on its own triangle, see ts_offset_ray_origin). */
+    if (!(tt >= tmin && tt < tmax)) return 0;
     *t = tt;
     *u = V * rcp; /* weight of p1 */
     *v = W * rcp; /* weight of p2 */

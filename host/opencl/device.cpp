@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 
 #include "util/error.h"
 
@@ -68,6 +69,13 @@ std::vector<ClDeviceInfo> list_cl_devices() {
             i.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
             i.global_mem = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
             i.max_alloc = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+            // TESSERA_CL_MAX_ALLOC (bytes) lowers the limit, to try a small device's
+            // limit on a large one (tests/cli/opencl_failure_test.cpp uses it).
+            if (const char* cap = std::getenv("TESSERA_CL_MAX_ALLOC")) {
+                char* end = nullptr;
+                const unsigned long long v = std::strtoull(cap, &end, 10);
+                if (end != cap && *end == '\0') i.max_alloc = std::min(i.max_alloc, v);
+            }
             out.push_back(std::move(i));
         }
     }

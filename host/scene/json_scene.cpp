@@ -110,7 +110,15 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
             }
             it = meshes.emplace(file, std::move(entry)).first;
         }
+        const size_t first = scene.positions.size();
         scene_detail::append_mesh(scene, it->second.mesh, transform, it->second.material_base);
+        // A finite vertex times a finite transform can still overflow (scale 3e38 and a
+        // translation of 3e38): infinite positions would poison the BVH and every pixel.
+        for (size_t v = first; v < scene.positions.size(); ++v) {
+            const glm::vec3 p = scene.positions[v];
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                obj.fail("the transformed mesh '" + rel + "' has a vertex coordinate that overflows a float");
+        }
     }
 }
 
@@ -139,7 +147,11 @@ void read_lights(const JsonField& lights, Scene& scene) {
         const glm::vec3 e1 = l["edge1"].vec3(), e2 = l["edge2"].vec3();
         const glm::vec3 n = glm::cross(e1, e2);
         if (!(glm::dot(n, n) > 0.0f) || !std::isfinite(glm::dot(n, n)))
-            l.fail("edge1 and edge2 must be non-zero and not parallel");
+            l.fail("edge1 and edge2 must be non-zero and not parallel (and their cross product finite)");
+        const glm::vec3 corner = l["corner"].vec3();
+        for (const glm::vec3 p : {corner + e1, corner + e2, corner + e1 + e2})
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+                l.fail("a corner of the quad overflows a float");
         scene_detail::append_quad_light(scene, l["corner"].vec3(), e1, e2,
                                         read_colour(l["radiance"], false),
                                         "json-light-" + std::to_string(i));

@@ -91,6 +91,7 @@ using std::sqrt;
 using std::pow;
 using std::isfinite;
 inline float clamp(float x, float lo, float hi) { return std::fmin(std::fmax(x, lo), hi); }
+inline float3 clamp(float3 x, float3 lo, float3 hi) { return fmin(fmax(x, lo), hi); }
 inline float mix(float a, float b, float t) { return a + (b - a) * t; }
 
 inline uint as_uint(float f) { return std::bit_cast<uint>(f); }

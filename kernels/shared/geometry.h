@@ -26,20 +26,34 @@ typedef struct TsHit {
 
 TS_INLINE float ts_f3_get(float3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y : a.z); }
 
-/* Offsets a surface point along the geometric normal `n` (pointing to the side the
- * new ray leaves from) by a few float ulps, so a ray started there cannot hit the
- * surface it starts on, at any scene scale. Wächter & Binder, "A Fast and Robust
- * Method for Avoiding Self-Intersection", Ray Tracing Gems (2019), ch. 6: integer ulp
- * offsets (256 ulps per unit normal component) away from the origin, and a fixed
- * 1/65536 offset within 1/32 of the origin where ulps are too small. */
-TS_INLINE float ts_offset_axis(float p, float n) {
-    int of = (int)(256.0f * n);
-    float pi = as_float(as_int(p) + (p < 0.0f ? -of : of));
-    return fabs(p) < 0.03125f ? p + 1.52587890625e-5f * n : pi;
-}
-TS_INLINE float3 ts_offset_ray_origin(float3 p, float3 n) {
-    return make_float3(ts_offset_axis(p.x, n.x), ts_offset_axis(p.y, n.y),
-                       ts_offset_axis(p.z, n.z));
+TS_INLINE float ts_max_abs3(float3 a) { return fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z))); }
+
+/* Offsets a surface point along the unit geometric normal `n` (pointing to the side the
+ * new ray leaves from), so that a ray started there cannot hit the surface it starts on,
+ * at any scene scale and any distance from the origin. `scale` bounds the magnitude of
+ * the coordinates the point was computed from: the largest absolute vertex coordinate of
+ * its triangle (TsSurface.pos_scale, TsLightSample.pos_scale).
+ *
+ * The offset is TS_OFFSET_ULPS float ulps of `scale` (2^-23 · scale each), taken along n.
+ * A point interpolated from its triangle's vertices lies within ~6 such ulps of the
+ * triangle's plane, and a ray–triangle test (ours in bvh_traverse.h, or Embree's) that
+ * works on vertices relative to the ray origin adds ~2 more; 32 leaves a 4x margin.
+ * Per axis the addition rounds by at most half an ulp of that coordinate (<= 2^-24 ·
+ * scale), so the displacement along n is at least 31 of those ulps.
+ *
+ * This replaces Wächter & Binder's integer offset ("A Fast and Robust Method for Avoiding
+ * Self-Intersection", Ray Tracing Gems, 2019, ch. 6: 256 ulps of each coordinate), which
+ * is sized for hit points computed as org + t dir. Ours are barycentric interpolations,
+ * eight times more accurate, and 256 ulps proved too much far from the origin: a box of
+ * size 2 placed 1e4 from the origin got offsets of 0.25 (12% of its size), which moved
+ * path vertices off the corners and brightened the image by 3%, and let a light resting
+ * within 0.25 of a wall shine through it (tests/hard_cases/scale_test.cpp). The same
+ * scene is now offset by 0.004. Like pbrt-v4 (Pharr et al., 4th ed., §6.8.6), the offset
+ * follows from the position's error bound, here the coarser max-coordinate form of it. */
+#define TS_OFFSET_ULPS 32.0f
+TS_INLINE float3 ts_offset_ray_origin(float3 p, float3 n, float scale) {
+    float d = TS_OFFSET_ULPS * 1.1920928955078125e-7f * scale + 1e-30f;
+    return p + n * d;
 }
 
 /* Camera ray through pixel (px + jx, py + jy); see TsFrame for the mapping. */
@@ -108,6 +122,8 @@ typedef struct TsSurface {
     float2 uv;
     uint material;
     int front_face;       /* 1 if the ray hit the side cross(e1, e2) points to */
+    float pos_scale;      /* largest absolute vertex coordinate (ts_offset_ray_origin) */
+    float3 origin;        /* where rays leave from: position, moved inside the triangle */
 } TsSurface;
 
 TS_INLINE TsSurface ts_surface_at(const TsSceneView* sv, TsRay ray, TsHit hit) {
@@ -117,7 +133,20 @@ TS_INLINE TsSurface ts_surface_at(const TsSceneView* sv, TsRay ray, TsHit hit) {
     float w = 1.0f - hit.u - hit.v;
     float3 p0 = ts_f3_load(P), p1 = ts_f3_load(P + 3), p2 = ts_f3_load(P + 6);
     TsSurface s;
-    s.position = p0 * w + p1 * hit.u + p2 * hit.v;
+    /* Rounding can put the interpolated point up to an ulp outside its triangle; at a
+     * concave edge that is the far side of the adjoining wall, from where the offset
+     * ray sees what the wall hides (a closed box far from the origin leaked light this
+     * way). The exact point lies in the triangle's bounding box, so clamp to it. */
+    s.position = clamp(p0 * w + p1 * hit.u + p2 * hit.v, fmin(p0, fmin(p1, p2)), fmax(p0, fmax(p1, p2)));
+    s.pos_scale = fmax(ts_max_abs3(p0), fmax(ts_max_abs3(p1), ts_max_abs3(p2)));
+    /* A point on (or within rounding of) an edge shared with a perpendicular wall: its
+     * offset origin would lie on that wall's plane, where a ray leaving along the wall
+     * is not blocked by it. Rays therefore leave from `origin`, the point pulled toward
+     * the centroid by the offset distance, inside its own triangle by that margin;
+     * shading uses the unmoved `position`. */
+    float3 to_c = (p0 + p1 + p2) * (1.0f / 3.0f) - s.position;
+    float dc = length(to_c), margin = TS_OFFSET_ULPS * 1.1920928955078125e-7f * s.pos_scale;
+    s.origin = dc > 0.0f ? s.position + to_c * fmin(1.0f, margin / dc) : s.position;
     float3 ng = normalize(cross(p1 - p0, p2 - p0));
     s.front_face = dot(ng, ray.dir) < 0.0f ? 1 : 0;
     if (!s.front_face) ng = -ng;

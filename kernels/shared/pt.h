@@ -67,7 +67,7 @@ TS_INLINE TsLightConnection ts_connect_light(const TsSceneView* sv, const TsTrac
     c.pdf = ls.pdf_area * dist2 / cos_y;
     TsRay shadow;
     shadow.org = org;
-    shadow.dir = ts_offset_ray_origin(ls.position, ls.normal) - org;
+    shadow.dir = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale) - org;
     shadow.tmin = 0.0f;
     shadow.tmax = 0.99999f;
     if (ts_trace_occluded(tracer, shadow)) return c;
@@ -180,17 +180,17 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
             beta = beta * ts_f3_load(M + 8);
             ray.dir = ts_reflect(ray.dir, s.shading_normal);
             if (dot(ray.dir, ng) <= 0.0f) break;
-            ray.org = ts_offset_ray_origin(s.position, ng);
+            ray.org = ts_offset_ray_origin(s.origin, ng, s.pos_scale);
             prev_delta = 1;
         } else if (kind == TS_MAT_DIELECTRIC) {
             int transmitted;
             ray.dir = ts_sample_dielectric(ray.dir, ng, s.front_face, M[11], ts_rng_next(&rng), &transmitted);
-            ray.org = ts_offset_ray_origin(s.position, transmitted ? -ng : ng);
+            ray.org = ts_offset_ray_origin(s.origin, transmitted ? -ng : ng, s.pos_scale);
             prev_delta = 1;
         } else {
             if (ts_max3(albedo) <= 0.0f) break;
             float3 ns = s.shading_normal;
-            float3 org = ts_offset_ray_origin(s.position, ng);
+            float3 org = ts_offset_ray_origin(s.origin, ng, s.pos_scale);
             if (sv->light_count > 0u) {
                 TsLightConnection c = ts_connect_light(sv, tracer, &med, org, s.position, &rng);
                 float cos_x = dot(ns, c.wi);

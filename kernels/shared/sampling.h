@@ -3,6 +3,7 @@
 #ifndef TS_SAMPLING_H
 #define TS_SAMPLING_H
 #include "shared/compat.h"
+#include "shared/geometry.h"
 #include "shared/layout.h"
 
 TS_NAMESPACE_BEGIN
@@ -20,6 +21,7 @@ typedef struct TsLightSample {
     float3 normal;     /* unit geometric normal of the emitting (front) face */
     float3 radiance;   /* Le, W/(sr·m²) */
     float pdf_area;    /* selection probability / light area, scene units^-2 */
+    float pos_scale;   /* largest absolute vertex coordinate of the light triangle */
 } TsLightSample;
 
 /* Picks a light in proportion to power by inverting light_cdf with `u_select`
@@ -38,6 +40,7 @@ TS_INLINE TsLightSample ts_sample_light(TS_GLOBAL const float* lights,
     float2 b = ts_triangle_barycentrics(u, v);
     TsLightSample s;
     s.position = p0 + e1 * b.x + e2 * b.y;
+    s.pos_scale = fmax(ts_max_abs3(p0), fmax(ts_max_abs3(p0 + e1), ts_max_abs3(p0 + e2)));
     s.normal = normalize(cross(e1, e2));
     s.radiance = ts_f3_load(L + 9);
     s.pdf_area = p_select / L[12];

@@ -15,6 +15,21 @@ TEST(BadInput, MissingSceneFile) {
     EXPECT_CONTAINS(e, "not found");
 }
 
+// Regression: positions overflowing a float after the object transform were accepted
+// (bounds "inf"); the fuzzer's scene invariants (tests/fuzz) call such a scene broken.
+TEST(BadInput, TransformOverflowNamesTheObject) {
+    const std::string e = load_error(fixture("transform_overflow.json"));
+    EXPECT_CONTAINS(e, "transform_overflow.json");
+    EXPECT_CONTAINS(e, "objects[0]");
+    EXPECT_CONTAINS(e, "overflows a float");
+}
+
+TEST(BadInput, LightCornerOverflowNamesTheLight) {
+    const std::string e = load_error(fixture("light_overflow.json"));
+    EXPECT_CONTAINS(e, "lights[0]");
+    EXPECT_CONTAINS(e, "overflows a float");
+}
+
 TEST(BadInput, MalformedJsonNamesFileAndLine) {
     const std::string e = load_error(fixture("malformed.json"));
     EXPECT_CONTAINS(e, "malformed.json:3:");  // the missing comma is on line 3
