@@ -35,7 +35,7 @@ bool start_path(const ts::TsSceneView& sv, const ScrambledHalton& h, uint64_t in
     if (!(ls.pdf_area > 0.0f)) return false;
     float3 d = ts::ts_from_local(ls.normal, ts::ts_sample_cosine_hemisphere(u(3), u(4)));
     p.alpha = ls.radiance * (TS_PI / ls.pdf_area);
-    p.ray = ray_from(ts::ts_offset_ray_origin(ls.position, ls.normal), d);
+    p.ray = ray_from(ts::ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale), d);
     return true;
 }
 
@@ -45,7 +45,7 @@ void store_vpl(std::vector<std::vector<float>>& per_set, const PathState& p, con
     uint32_t path = static_cast<uint32_t>(p.index);
     float v[TS_VPL_FLOATS] = {s.position.x,       s.position.y,       s.position.z,       s.shading_normal.x,
                               s.shading_normal.y, s.shading_normal.z, c.x,                c.y,
-                              c.z,                static_cast<float>(p.set), 0.0f,     0.0f};
+                              c.z,                static_cast<float>(p.set), 0.0f,     s.pos_scale};
     std::memcpy(&v[10], &path, 4);
     per_set[p.set].insert(per_set[p.set].end(), v, v + TS_VPL_FLOATS);
 }
@@ -59,13 +59,14 @@ bool continue_path(const ts::TsSceneView& sv, const ScrambledHalton& h, int dim,
     uint32_t kind = ts::as_uint(M[7]);
     if (kind == TS_MAT_MIRROR) {
         p.alpha = p.alpha * ts::ts_f3_load(M + 8);
-        p.ray = ray_from(ts::ts_offset_ray_origin(s.position, s.geo_normal), ts::ts_reflect(p.ray.dir, s.shading_normal));
+        p.ray = ray_from(ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale),
+                         ts::ts_reflect(p.ray.dir, s.shading_normal));
         return true;
     }
     if (kind == TS_MAT_DIELECTRIC) {
         int transmitted;
         float3 d = ts::ts_sample_dielectric(p.ray.dir, s.geo_normal, s.front_face, M[11], u(2), &transmitted);
-        p.ray = ray_from(ts::ts_offset_ray_origin(s.position, transmitted ? -s.geo_normal : s.geo_normal), d);
+        p.ray = ray_from(ts::ts_offset_ray_origin(s.origin, transmitted ? -s.geo_normal : s.geo_normal, s.pos_scale), d);
         return true;
     }
     float3 albedo = ts::ts_material_albedo(&sv, &s);
@@ -76,7 +77,7 @@ bool continue_path(const ts::TsSceneView& sv, const ScrambledHalton& h, int dim,
     float3 d = ts::ts_from_local(s.shading_normal, ts::ts_sample_cosine_hemisphere(u(0), u(1)));
     if (ts::dot(d, s.geo_normal) <= 0.0f) return false;
     p.alpha = p.alpha * albedo / q;
-    p.ray = ray_from(ts::ts_offset_ray_origin(s.position, s.geo_normal), d);
+    p.ray = ray_from(ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale), d);
     return true;
 }
 

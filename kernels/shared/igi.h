@@ -75,11 +75,11 @@ TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, co
     return sum * (TS_INV_PI / (float)m);
 }
 
-/* One VPL's clamped geometry term at surface point x with normal n, and the shadow ray
- * that decides its visibility; 0 when either side faces away. G = cosθx cosθv / d² is
- * clamped to b: the contribution C·G' of any VPL is at most C·b. */
-TS_INLINE float ts_vpl_geometry(float3 x, float3 n, float3 ng, TS_GLOBAL const float* vpl, float b,
-                                TsRay* shadow) {
+/* One VPL's clamped geometry term at surface s, and the shadow ray that decides its
+ * visibility; 0 when either side faces away. G = cosθx cosθv / d² is clamped to b: the
+ * contribution C·G' of any VPL is at most C·b. */
+TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, TsRay* shadow) {
+    float3 x = s->position, n = s->shading_normal, ng = s->geo_normal;
     float3 y = ts_f3_load(vpl), nv = ts_f3_load(vpl + 3);
     float3 d = y - x;
     float dist2 = dot(d, d);
@@ -87,8 +87,8 @@ TS_INLINE float ts_vpl_geometry(float3 x, float3 n, float3 ng, TS_GLOBAL const f
     float3 w = d / sqrt(dist2);
     float cos_x = dot(n, w), cos_v = -dot(nv, w);
     if (cos_x <= 0.0f || cos_v <= 0.0f || dot(ng, w) <= 0.0f) return 0.0f;
-    shadow->org = ts_offset_ray_origin(x, ng);
-    shadow->dir = ts_offset_ray_origin(y, nv) - shadow->org;
+    shadow->org = ts_offset_ray_origin(s->origin, ng, s->pos_scale);
+    shadow->dir = ts_offset_ray_origin(y, nv, vpl[11]) - shadow->org;
     shadow->tmin = 0.0f;
     shadow->tmax = 0.99999f;
     return fmin(cos_x * cos_v / dist2, b);
@@ -102,7 +102,7 @@ TS_INLINE float3 ts_igi_indirect(const TsSceneView* sv, const TsTracer* tracer, 
     for (uint v = sv->vpl_set_start[k]; v < end; ++v) {
         TS_GLOBAL const float* vpl = sv->vpls + v * TS_VPL_FLOATS;
         TsRay shadow;
-        float g = ts_vpl_geometry(s->position, s->shading_normal, s->geo_normal, vpl, f->igi_g_clamp, &shadow);
+        float g = ts_vpl_geometry(s, vpl, f->igi_g_clamp, &shadow);
         if (g > 0.0f && !ts_trace_occluded(tracer, shadow))
             sum += ts_f3_load(vpl + 6) * ts_igi_shadow_transmittance(med, shadow) * g;
     }
@@ -128,12 +128,12 @@ TS_INLINE TsHit ts_igi_find_diffuse(const TsSceneView* sv, const TsTracer* trace
         if (kind == TS_MAT_MIRROR) {
             *throughput = *throughput * ts_f3_load(M + 8);
             ray->dir = ts_reflect(ray->dir, s.shading_normal);
-            ray->org = ts_offset_ray_origin(s.position, s.geo_normal);
+            ray->org = ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
         } else {
             int transmitted;
             ray->dir = ts_sample_dielectric(ray->dir, s.geo_normal, s.front_face, M[11], ts_rng_next(rng),
                                             &transmitted);
-            ray->org = ts_offset_ray_origin(s.position, transmitted ? -s.geo_normal : s.geo_normal);
+            ray->org = ts_offset_ray_origin(s.origin, transmitted ? -s.geo_normal : s.geo_normal, s.pos_scale);
         }
         ray->tmin = 0.0f;
         ray->tmax = TS_INF;
@@ -141,11 +141,12 @@ TS_INLINE TsHit ts_igi_find_diffuse(const TsSceneView* sv, const TsTracer* trace
     return hit;
 }
 
-/* The camera ray of pixel (px, py): through the centre on pass 0, jittered on later
- * passes so that several passes antialias like the path tracer. */
+/* The camera ray of pixel (px, py), jittered within the pixel by the pixel's own random
+ * stream, like the path tracer's. (A ray through the pixel centre would hit edges of
+ * axis-aligned geometry exactly in symmetric views, leaving the choice of surface to a
+ * traversal tie; a jittered one hits an edge with probability 0.) */
 TS_INLINE TsRay ts_igi_camera_ray(const TsFrame* f, uint px, uint py, TsRng* rng) {
     float jx = ts_rng_next(rng), jy = ts_rng_next(rng);
-    if (f->pass == 0u) jx = jy = 0.5f;
     return ts_camera_ray(f, px, py, jx, jy);
 }
 
@@ -179,10 +180,37 @@ TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* trace
     out[16] = throughput.x; out[17] = throughput.y; out[18] = throughput.z;
 }
 
+/* Light arriving at medium point x from direction `wi` found by tracing a ray, and the
+ * pdf (per steradian) with which light sampling would have picked that emitter point:
+ * for the phase-sampled half of the ray march's MIS. Zero when the ray misses, hits a
+ * non-emitter or an emitter's back. */
+TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                      const TsMedium* med, float3 x, float3 wi, float* pdf_light) {
+    TsRay r;
+    r.org = x;
+    r.dir = wi;
+    r.tmin = 0.0f;
+    r.tmax = TS_INF;
+    *pdf_light = 0.0f;
+    TsHit h = ts_trace_closest(tracer, r);
+    if (h.prim == TS_NO_HIT) return make_float3(0.0f, 0.0f, 0.0f);
+    TsSurface s = ts_surface_at(sv, r, h);
+    float3 le = ts_material_emission(sv, &s);
+    if (!(ts_max3(le) > 0.0f)) return le;
+    float cos_y = -dot(s.geo_normal, wi);
+    *pdf_light = ts_light_pdf_area(le, f->light_power) * h.t * h.t / cos_y;
+    return le * ts_medium_transmittance(med, x, wi, 0.0f, h.t);
+}
+
 /* Media part of one igi frame for pixel (px, py): single scattering from the lights
  * along the camera segment (up to the first surface), by a ray march of igi_steps steps
- * whose start is offset by (k + ξ)/N of a step for set k, with set k's light samples
- * taken in turn; and the segment's transmittance. Writes TS_IGI_MEDIA_FLOATS values. */
+ * whose start is offset by (k + ξ)/N of a step for set k. Each step estimates the
+ * in-scattered light with two samples combined by the power heuristic (as the path
+ * tracer does at medium vertices): one of set k's light samples, taken in turn, and one
+ * Henyey–Greenstein direction traced to whatever emitter it meets. Light sampling alone
+ * leaves spikes for a peaked phase function (g near ±1: a light sample aligned with the
+ * view gets phase values near 1e5). Also the segment's transmittance. Writes
+ * TS_IGI_MEDIA_FLOATS values. */
 TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                   uint px, uint py, float* out) {
     TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
@@ -190,7 +218,9 @@ TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer,
     TsMedium med = ts_medium_load(sv->medium);
     float3 L = make_float3(0.0f, 0.0f, 0.0f), T = make_float3(1.0f, 1.0f, 1.0f);
     TsHit hit = ts_trace_closest(tracer, ray);
-    float t0 = 0.0f, t1 = hit.prim == TS_NO_HIT ? f->igi_march_far : hit.t;
+    /* An escaping ray ends at the medium's box, or for a medium filling space at
+     * igi_march_far, beyond which nothing can light it. */
+    float t0 = 0.0f, t1 = hit.prim != TS_NO_HIT ? hit.t : (med.bounded ? TS_INF : f->igi_march_far);
     uint n = f->igi_tile, k = ts_igi_set(px, py, n), N = n * n, m = f->shadow_samples;
     if (ts_medium_clip(&med, ray.org, ray.dir, &t0, &t1) && f->igi_steps > 0u) {
         float step = (t1 - t0) / (float)f->igi_steps;
@@ -198,23 +228,33 @@ TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer,
         for (uint i = 0u; i < f->igi_steps; ++i) {
             float t = t0 + ((float)i + ((float)k + xi) / (float)N) * step;
             float3 x = ray.org + ray.dir * t;
+            float3 in = make_float3(0.0f, 0.0f, 0.0f);
+            /* Light sampling. */
             float3 q = ts_igi_light_point(f, k * m + i % m);
             TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
             float3 d = ls.position - x;
             float dist2 = dot(d, d);
             float3 wi = d / sqrt(dist2);
             float cos_y = -dot(ls.normal, wi);
-            if (!(cos_y > 0.0f)) continue;
-            TsRay shadow;
-            shadow.org = x;
-            shadow.dir = ts_offset_ray_origin(ls.position, ls.normal) - x;
-            shadow.tmin = 0.0f;
-            shadow.tmax = 0.99999f;
-            if (ts_trace_occluded(tracer, shadow)) continue;
-            float3 tr_cam = ts_exp3(med.sigma_t * (-(t - t0)));
-            float3 tr_light = ts_medium_transmittance(&med, shadow.org, shadow.dir, 0.0f, 1.0f);
-            float w = ts_hg_phase(dot(ray.dir, wi), med.g) * cos_y / (dist2 * ls.pdf_area) * step;
-            L += med.sigma_s * tr_cam * tr_light * ls.radiance * w;
+            if (cos_y > 0.0f) {
+                TsRay shadow;
+                shadow.org = x;
+                shadow.dir = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale) - x;
+                shadow.tmin = 0.0f;
+                shadow.tmax = 0.99999f;
+                if (!ts_trace_occluded(tracer, shadow)) {
+                    float pl = ls.pdf_area * dist2 / cos_y;
+                    float phase = ts_hg_phase(dot(ray.dir, wi), med.g);
+                    float3 tr = ts_medium_transmittance(&med, shadow.org, shadow.dir, 0.0f, 1.0f);
+                    in += ls.radiance * tr * (phase * ts_power_heuristic(pl, phase) / pl);
+                }
+            }
+            /* Phase sampling: the weight phase/pdf is 1. */
+            float3 wp = ts_sample_hg(ray.dir, med.g, ts_rng_next(&rng), ts_rng_next(&rng));
+            float pl2;
+            float3 le = ts_igi_emitter_along(sv, tracer, f, &med, x, wp, &pl2);
+            if (pl2 > 0.0f) in += le * ts_power_heuristic(ts_hg_phase(dot(ray.dir, wp), med.g), pl2);
+            L += med.sigma_s * ts_exp3(med.sigma_t * (-(t - t0))) * in * step;
         }
         T = ts_exp3(med.sigma_t * (-(t1 - t0)));
     }

@@ -85,13 +85,16 @@ typedef struct TsFrame {
     unsigned int igi_steps;      /* igi: ray-march steps per pixel along the camera ray */
     float igi_g_clamp;           /* igi: bound b on the VPL geometry term (scene units^-2) */
     float igi_rotation[3];       /* igi: per-frame Cranley–Patterson shift of the set samples */
-    float igi_march_far;         /* igi: march limit for rays that escape an unbounded medium */
+    float igi_march_far;         /* igi: march limit for rays that escape a medium filling space:
+                                    past it (twice the scene diagonal beyond the camera's
+                                    distance to the origin) no geometry can light them */
 } TsFrame;
 
 /* VPLs (host/gi/vpl_generator.cpp): TS_VPL_FLOATS floats each, sorted by sample set:
  * [0..2] position, [3..5] unit normal of the side it lights, [6..8] flux weight C/M
  * (the path throughput times albedo/π, divided by the paths per set), [9] set index,
- * [10] path index (uint bits), [11] unused. vpl_set_start[k] .. vpl_set_start[k+1]
+ * [10] path index (uint bits), [11] the largest vertex coordinate of the triangle it lies
+ * on (for ts_offset_ray_origin). vpl_set_start[k] .. vpl_set_start[k+1]
  * are set k's VPLs. */
 #define TS_VPL_FLOATS 12
 

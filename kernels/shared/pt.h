@@ -78,19 +78,6 @@ TS_INLINE TsLightConnection ts_connect_light(const TsSceneView* sv, const TsTrac
     return c;
 }
 
-/* Power heuristic a² / (a² + b²) written as a ratio of the smaller pdf to the larger, so
- * that pdfs beyond 1e19 (a light sampled from a point far away, d² in the pdf) cannot
- * overflow a² into inf/inf. */
-TS_INLINE float ts_power_heuristic(float a, float b) {
-    if (!(a > 0.0f)) return 0.0f;
-    if (a >= b) {
-        float r = b / a;
-        return 1.0f / (1.0f + r * r);
-    }
-    float r = a / b;
-    return r * r / (1.0f + r * r);
-}
-
 /* Russian roulette; returns 0 when the path ends. */
 TS_INLINE int ts_roulette(float3* beta, uint depth, TsRng* rng) {
     float u = ts_rng_next(rng);

@@ -52,6 +52,20 @@ TS_INLINE TsLightSample ts_sample_light(TS_GLOBAL const float* lights,
 
 TS_INLINE float ts_max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
 
+/* Power heuristic a² / (a² + b²) written as a ratio of the smaller pdf to the larger, so
+ * that pdfs beyond 1e19 (a light sampled from a point far away, d² in the pdf) cannot
+ * overflow a² into inf/inf. */
+/* (Veach 1997, §9.2.) */
+TS_INLINE float ts_power_heuristic(float a, float b) {
+    if (!(a > 0.0f)) return 0.0f;
+    if (a >= b) {
+        float r = b / a;
+        return 1.0f / (1.0f + r * r);
+    }
+    float r = a / b;
+    return r * r / (1.0f + r * r);
+}
+
 /* Rec. 709 luminance, the power measure used to pick lights (host: scene_buffers.cpp). */
 TS_INLINE float ts_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 

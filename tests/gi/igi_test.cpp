@@ -167,3 +167,32 @@ TEST(IgiConvergence, ApproachesPathTracedSingleScatteringAsVplsGrow) {
 
 }  // namespace
 }  // namespace tessera
+
+#include "support/single_scatter.h"
+
+namespace tessera {
+namespace {
+
+TEST(IgiMedia, SingleScatteringMatchesQuadrature) {
+    // The ray march (light and phase samples, MIS) over many frames converges to the
+    // single-scattering integral the path tracer is tested against too. Measured within
+    // 0.3% at 512 frames of 16 steps; 2% leaves room for the noise of other seeds. (A
+    // march ended at the geometry's bounds instead of the medium's box came out 8x low.)
+    RenderSettings rs;
+    rs.method = Method::Igi;
+    rs.spp = 512;
+    rs.igi.march_steps = 16;
+    for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
+        Image img = test::render_with(kind, test::single_scatter_scene(), rs);
+        ASSERT_TRUE(test::all_finite(img));
+        const char* ch[] = {"R", "G", "B"};
+        for (int c = 0; c < 3; ++c) {
+            const double expected = test::single_scatter_reference(c);
+            std::printf("  igi PM %s: %.5g vs quadrature %.5g\n", ch[c], test::channel_mean(img, ch[c]), expected);
+            EXPECT_NEAR(test::channel_mean(img, ch[c]), expected, 0.02 * expected) << ch[c];
+        }
+    }
+}
+
+}  // namespace
+}  // namespace tessera

@@ -68,25 +68,29 @@ TEST(Interleave, SetsUnionToTheFullLightSampleSet) {
 TEST(VplGeometry, ClampBoundsEveryContribution) {
     // A receiving plane z = 0 facing +z; VPLs on it, just above it and far away.
     float vpl[TS_VPL_FLOATS] = {};
-    auto put = [&](float x, float y, float z, float nx, float ny, float nz) {
-        vpl[0] = x, vpl[1] = y, vpl[2] = z, vpl[3] = nx, vpl[4] = ny, vpl[5] = nz;
+    auto put = [&](float px, float py, float pz, float nx, float ny, float nz) {
+        vpl[0] = px, vpl[1] = py, vpl[2] = pz, vpl[3] = nx, vpl[4] = ny, vpl[5] = nz;
     };
-    const ts::float3 x = ts::make_float3(0, 0, 0), n = ts::make_float3(0, 0, 1);
+    ts::TsSurface s{};
+    s.position = s.origin = ts::make_float3(0, 0, 0);
+    s.shading_normal = s.geo_normal = ts::make_float3(0, 0, 1);
+    s.pos_scale = 1.0f;
+    vpl[11] = 1.0f;
     const float b = 100.0f;
     ts::TsRay shadow;
     put(0, 0, 1e-4f, 0, 0, -1);  // facing the receiver from 0.1 mm: G = 1e8, clamped
-    EXPECT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), b);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), b);
     put(0, 0, 2.0f, 0, 0, -1);  // G = 1/4, below the clamp: unchanged
-    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), 0.25f);
+    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), 0.25f);
     put(1e-3f, 0, 0, 0, 0, 1);  // on the receiving plane: cosines 0, no NaN
-    EXPECT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), 0.0f);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), 0.0f);
     put(0, 0, 0, 0, 0, 1);  // at the very point: d = 0
-    EXPECT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), 0.0f);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), 0.0f);
     put(0, 0, 1, 0, 0, 1);  // facing away from the receiver
-    EXPECT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, b, &shadow), 0.0f);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), 0.0f);
     const float inf = std::numeric_limits<float>::infinity();
     put(0, 0, 1e-4f, 0, 0, -1);  // clamping disabled: the raw 1/d², finite
-    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(x, n, n, vpl, inf, &shadow), 1e8f);
+    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, inf, &shadow), 1e8f);
 }
 
 }  // namespace

@@ -26,12 +26,16 @@ struct HardCaseMethod {
     Method method;
     Transport transport;
     bool media;  ///< the method renders participating media (else it ignores them)
+    /// Media by single scattering on the camera segment only (IGI's PM model): there is
+    /// no closed form for it in a scattering furnace, only the energy bound.
+    bool single_scatter = false;
 };
 
 /// Every method the hard cases run. Add a method here (one line) and every case runs it.
 inline const std::vector<HardCaseMethod> kHardCaseMethods = {
     {"direct", Method::Direct, Transport::Direct, false},
     {"pt", Method::PathTrace, Transport::Global, true},
+    {"igi", Method::Igi, Transport::Global, true, true},
 };
 
 inline const std::vector<BackendKind> kHardCaseBackends = {BackendKind::Embree, BackendKind::OpenCL};
