@@ -76,6 +76,7 @@ double rmse(const RgbImage& ref, const RgbImage& test) {
 
 double tone_map_srgb(double x, double exposure) {
     const double v = std::clamp(x * std::exp2(exposure), 0.0, 1.0);
+    if (v == 1.0) return 1.0;  // 1.055 - 0.055 rounds to 1 - 2^-53; peak must be exactly 1
     return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
 }
 
