@@ -8,5 +8,6 @@ namespace tessera::cli {
 void add_render_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
 void add_info_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 }  // namespace tessera::cli

@@ -8,6 +8,7 @@
 
 #include "backend/backend.h"
 #include "cli/commands.h"
+#include "image/atomic_file.h"
 #include "image/image_io.h"
 #include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
@@ -16,6 +17,8 @@
 #include "render/scene_buffers.h"
 #include "scene/loader.h"
 #include "util/error.h"
+
+#include <nlohmann/json.hpp>
 
 namespace tessera::cli {
 namespace fs = std::filesystem;
@@ -28,6 +31,7 @@ struct RenderArgs {
     std::string out;
     std::string data_dir;
     std::string method = "direct";
+    std::string stats_json;
     float exposure = 0.0f;
     bool resume = false;
     RenderSettings settings;
@@ -44,6 +48,22 @@ void print_progress(uint32_t done, uint32_t total, double elapsed, uint32_t rest
     } else if (done == total || done % std::max(1u, total / 10) == 0) {
         std::fprintf(stderr, "  %u/%u spp, %.1f spp/s, ETA %.0f s\n", done, total, rate, eta);
     }
+}
+
+// Timing of this run for the accuracy sweeps (bench/accuracy). A pass is one frame of a
+// progressive method: reaching `spp` passes costs about spp x median_pass_seconds.
+void write_stats_json(const RenderArgs& a, const RenderSettings& s, const RenderStats& stats) {
+    const nlohmann::json j = {
+        {"median_pass_seconds", stats.median_pass_seconds},
+        {"passes", stats.passes},  // rendered by this run (excludes passes restored by --resume)
+        {"seconds", stats.seconds},  // wall time of those passes, set-up excluded
+        {"method", a.method},
+        {"backend", a.backend},
+        {"spp", s.spp},
+        {"shadow_samples", s.shadow_samples},
+    };
+    const std::string text = j.dump(2) + "\n";
+    write_file_atomic(a.stats_json, text.data(), text.size());
 }
 
 void run_render(const RenderArgs& a) {
@@ -85,6 +105,7 @@ void run_render(const RenderArgs& a) {
                  1e3 * stats.median_pass_seconds);
     if (a.resume) std::fprintf(stderr, " after %u spp from the checkpoint", a.settings.spp - stats.passes);
     std::fprintf(stderr, "\n");
+    if (!a.stats_json.empty()) write_stats_json(a, settings, stats);
     std::printf("%s\n%s\n", out.c_str(), png.c_str());
 }
 
@@ -126,6 +147,8 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--checkpoint-interval", args->settings.checkpoint_interval_s,
                     "Seconds between checkpoints (0: only when interrupted by SIGINT/SIGTERM)")
         ->capture_default_str();
+    cmd->add_option("--stats-json", args->stats_json,
+                    "Write timing as JSON: {median_pass_seconds, passes, seconds, ...} (seconds exclude set-up)");
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");
     cmd->callback([args] { run_render(*args); });
 }

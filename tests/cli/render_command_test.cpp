@@ -5,9 +5,11 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "image/image_io.h"
 #include "support/scratch_dir.h"
@@ -96,6 +98,23 @@ TEST(DevicesCli, ListsPocl) {
 }
 
 }  // namespace
+
+// --stats-json: the timing the accuracy sweeps read (bench/accuracy).
+TEST_F(RenderCli, StatsJson) {
+    const fs::path out = dir_ / "img.exr", stats = dir_ / "stats.json";
+    CliResult r = run_tessera("render " + kData + "/light.json --spp 3 --width 8 --height 8 --backend embree --out " +
+                              out.string() + " --stats-json " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream f(stats);
+    ASSERT_TRUE(f) << r.output;
+    const nlohmann::json j = nlohmann::json::parse(f);
+    EXPECT_EQ(j["passes"], 3);
+    EXPECT_EQ(j["spp"], 3);
+    EXPECT_EQ(j["method"], "direct");
+    EXPECT_EQ(j["backend"], "embree");
+    EXPECT_GT(j["median_pass_seconds"].get<double>(), 0.0);
+    EXPECT_LE(j["median_pass_seconds"].get<double>(), j["seconds"].get<double>());
+}
 
 namespace tessera {
 namespace {

@@ -1,0 +1,52 @@
+"""The methods the accuracy sweep (bench/accuracy) knows, one table entry each.
+
+A method is its `tessera render --method` name plus a grid of quality settings: each grid
+key is a `tessera render` option without the leading `--`, each value a list to sweep. The
+key `spp` is special: it is the number of passes accumulated into one image. The time
+charged to an image is spp x the median time of one pass (a pass of a progressive method
+is one frame); every other key changes the cost of a pass, so the sweep times each
+combination of the other keys once, over several passes.
+
+`operating` is the setting quoted in the report's fps and FLIP tables (Tables 5.1 and 5.3
+of the seed thesis); `converges_to_reference` is False for a method whose limit is not the
+pt reference (its error floors). Adding a method (igi, ais, ais-max, ic, tic) is one entry.
+"""
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Method:
+    name: str
+    grid: dict
+    operating: dict
+    converges_to_reference: bool = True
+    note: str = ""
+    extra_args: tuple = field(default_factory=tuple)
+
+
+METHODS = {
+    "pt": Method(
+        "pt", {"spp": [1, 2, 4, 8, 16, 32, 64, 128]}, {"spp": 1},
+        note="volumetric path tracing; the reference method (error -> 0 as spp grows)"),
+    "direct": Method(
+        "direct", {"spp": [1, 4, 16, 64], "shadow-samples": [1, 4, 16]}, {"spp": 1, "shadow-samples": 4},
+        converges_to_reference=False,
+        note="direct light only: no indirect light, so its error against the pt reference floors"),
+    # Planned, to be filled in when the methods land (same shape):
+    # "igi": Method("igi", {"spp": [1], "tile": [2, 3, 4], "vpls": [64, 256, 1024], "shadow-samples": [1, 4]}, {...}),
+    # "ais": Method("ais", {... plus the guidance thresholds ...}, {...}),
+    # "ais-max": Method("ais-max", {...}, {...}),
+}
+
+
+def parse_grid_override(text):
+    """'pt:spp=1,4,16' -> ('pt', 'spp', [1, 4, 16]); values are ints where they parse, else floats."""
+    try:
+        method, rest = text.split(":", 1)
+        key, values = rest.split("=", 1)
+        vals = [int(v) if v.strip().lstrip("-").isdigit() else float(v) for v in values.split(",") if v.strip()]
+    except ValueError:
+        raise ValueError(f"--grid {text!r}: expected METHOD:OPTION=v1,v2,...") from None
+    if not vals:
+        raise ValueError(f"--grid {text!r}: no values")
+    return method, key, vals

@@ -1,0 +1,97 @@
+// `tessera compare REF.exr TEST.exr [--map FILE.png] [--flip-map FILE.png] [--json]`:
+// error metrics of a test image against a reference (metrics/image_metrics.h, metrics/flip.h).
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "image/image_io.h"
+#include "metrics/flip.h"
+#include "metrics/image_metrics.h"
+#include "util/error.h"
+
+namespace tessera::cli {
+namespace fs = std::filesystem;
+namespace {
+
+struct CompareArgs {
+    std::string ref, test, map, flip_map;
+    float exposure = 0.0f;
+    bool json = false;
+    bool no_flip = false;
+};
+
+void run_compare(const CompareArgs& a) {
+    const metrics::RgbImage ref = metrics::rgb_for_metrics(read_exr(a.ref), a.ref);
+    const metrics::RgbImage test = metrics::rgb_for_metrics(read_exr(a.test), a.test);
+    metrics::check_same_size(ref, a.ref, test, a.test);
+
+    const double rel = metrics::rel_mse(ref, test);
+    const double rmse = metrics::rmse(ref, test);
+    const double psnr = metrics::psnr_tonemapped(ref, test, a.exposure);
+    if (!a.map.empty())
+        metrics::write_error_map_png(a.map, ref.width, ref.height, metrics::rel_se_map(ref, test));
+    metrics::FlipResult flip;
+    if (a.no_flip)
+        flip.reason = "disabled by --no-flip";
+    else
+        flip = metrics::compute_flip(a.ref, a.test,
+                                     a.flip_map.empty() ? std::nullopt : std::optional<fs::path>(a.flip_map));
+
+    if (a.json) {
+        nlohmann::json j = {
+            {"reference", a.ref},
+            {"test", a.test},
+            {"width", ref.width},
+            {"height", ref.height},
+            {"relmse", rel},
+            {"rmse", rmse},
+            // JSON has no infinity: identical tone-mapped images give null here.
+            {"psnr_db", std::isinf(psnr) ? nlohmann::json(nullptr) : nlohmann::json(psnr)},
+            {"psnr_tonemap", "clamp(x*2^exposure,0,1) then sRGB OETF, peak 1"},
+            {"exposure", a.exposure},
+            {"flip", flip.available ? nlohmann::json{{"mean", flip.mean},
+                                                     {"p_gt_0_1", flip.pct_gt_0_1},
+                                                     {"p_gt_0_3", flip.pct_gt_0_3},
+                                                     {"implementation", flip.implementation}}
+                                    : nlohmann::json{{"unavailable", flip.reason}}},
+        };
+        std::printf("%s\n", j.dump(2).c_str());
+        return;
+    }
+    std::printf("reference  %s (%dx%d)\ntest       %s\n", a.ref.c_str(), ref.width, ref.height, a.test.c_str());
+    std::printf("relMSE     %.6g   (mean of (t-r)^2/(r^2+0.01) over pixels and RGB)\n", rel);
+    std::printf("RMSE       %.6g   (linear radiance)\n", rmse);
+    if (std::isinf(psnr))
+        std::printf("PSNR       inf dB (identical after tone mapping)\n");
+    else
+        std::printf("PSNR       %.3f dB (clamp(x*2^%g) then sRGB, peak 1)\n", psnr, a.exposure);
+    if (flip.available)
+        std::printf("FLIP       mean %.6f, %.3f%% of pixels > 0.1, %.3f%% > 0.3 (HDR-FLIP, %s)\n", flip.mean,
+                    flip.pct_gt_0_1, flip.pct_gt_0_3, flip.implementation.c_str());
+    else
+        std::printf("FLIP       unavailable: %s\n", flip.reason.c_str());
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app) {
+    auto args = std::make_shared<CompareArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "compare", "Error of TEST.exr against REF.exr: relMSE, RMSE, PSNR, HDR-FLIP (mean, % > 0.1, % > 0.3)");
+    cmd->add_option("reference", args->ref, "Reference EXR (R, G, B channels)")->required();
+    cmd->add_option("test", args->test, "Test EXR, same size")->required();
+    cmd->add_option("--map", args->map, "Write the per-pixel relative squared error as a false-colour PNG "
+                                        "(log scale, black 1e-4 to white 1)");
+    cmd->add_option("--flip-map", args->flip_map, "Write the FLIP error map (magma) as PNG");
+    cmd->add_option("--exposure", args->exposure, "Exposure in stops before the PSNR tone map")->capture_default_str();
+    cmd->add_flag("--json", args->json, "Print the metrics as JSON");
+    cmd->add_flag("--no-flip", args->no_flip, "Skip FLIP (no Python subprocess)");
+    cmd->callback([args] { run_compare(*args); });
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,111 @@
+// bench/accuracy and bench/accuracy_report end to end on a tiny sweep (Cornell box, 32x32,
+// both backends, few settings): the outputs parse, times are consistent, and the pt error
+// falls monotonically as spp grows against a reference rendered at far higher spp.
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/scratch_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int run(const std::string& cmd) {
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::vector<std::string> split(const std::string& line, char sep) {
+    std::vector<std::string> out;
+    std::stringstream s(line);
+    for (std::string f; std::getline(s, f, sep);) out.push_back(f);
+    if (!line.empty() && line.back() == sep) out.emplace_back();
+    return out;
+}
+
+class AccuracySweep : public tessera::test::ScratchDirTest {};
+
+}  // namespace
+
+TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
+    const std::string src = TESSERA_SOURCE_DIR;
+    const fs::path out = dir_ / "out", log = dir_ / "log.txt";
+    const std::string cmd = "python3 " + src + "/bench/accuracy --tessera " + TESSERA_EXE + " --scenes " + src +
+                            "/scenes/cornell-box.json --width 32 --height 32 --frames 3 --reference-spp 4096" +
+                            " --methods pt direct --grid pt:spp=1,4,16,64 --grid direct:spp=1,16" +
+                            " --grid direct:shadow-samples=1 --out-dir " + out.string() + " --work-dir " +
+                            (dir_ / "work").string() + " > " + log.string() + " 2>&1";
+    ASSERT_EQ(run(cmd), 0) << std::ifstream(log).rdbuf();
+
+    std::ifstream jf(out / "cornell-box.json");
+    ASSERT_TRUE(jf) << "no JSON written";
+    const nlohmann::json doc = nlohmann::json::parse(jf);
+    EXPECT_EQ(doc["width"], 32);
+    EXPECT_EQ(doc["reference"]["spp"], 4096);
+    EXPECT_EQ(doc["reference"]["kind"], "rendered by bench/accuracy");
+    const auto& rows = doc["rows"];
+    ASSERT_EQ(rows.size(), 2u * (4 + 2)) << "2 backends x (4 pt + 2 direct settings)";
+
+    // CSV: header plus one line per row, same relMSE values as the JSON.
+    std::ifstream cf(out / "cornell-box.csv");
+    std::string line;
+    ASSERT_TRUE(std::getline(cf, line));
+    const auto header = split(line, ',');
+    std::map<std::string, size_t> col;
+    for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+    ASSERT_TRUE(col.count("relmse") && col.count("time_s") && col.count("flip_mean"));
+    size_t n = 0;
+    while (std::getline(cf, line)) {
+        const auto f = split(line, ',');
+        ASSERT_EQ(f.size(), header.size()) << line;
+        EXPECT_NEAR(std::stod(f[col["relmse"]]), rows[n]["relmse"].get<double>(), 1e-12);
+        ++n;
+    }
+    EXPECT_EQ(n, rows.size());
+
+    const bool have_flip = rows[0]["flip_mean"].is_number();
+    for (const std::string backend : {"opencl", "embree"}) {
+        std::vector<nlohmann::json> pt;
+        double direct_best = 1e30;
+        for (const auto& r : rows) {
+            EXPECT_GT(r["median_pass_s"].get<double>(), 0.0);
+            EXPECT_NEAR(r["time_s"].get<double>(), r["spp"].get<int>() * r["median_pass_s"].get<double>(), 1e-12);
+            EXPECT_TRUE(std::isfinite(r["relmse"].get<double>()));
+            if (r["backend"] != backend) continue;
+            if (r["method"] == "pt") pt.push_back(r);
+            if (r["method"] == "direct") direct_best = std::min(direct_best, r["relmse"].get<double>());
+        }
+        ASSERT_EQ(pt.size(), 4u);
+        for (size_t i = 1; i < pt.size(); ++i) {
+            EXPECT_GT(pt[i]["spp"].get<int>(), pt[i - 1]["spp"].get<int>());
+            // relMSE of an unbiased estimator falls ~1/spp: x4 spp must at least halve it.
+            EXPECT_LT(pt[i]["relmse"].get<double>(), 0.5 * pt[i - 1]["relmse"].get<double>()) << backend << " " << i;
+            EXPECT_GT(pt[i]["psnr_db"].get<double>(), pt[i - 1]["psnr_db"].get<double>());
+            if (have_flip) EXPECT_LT(pt[i]["flip_mean"].get<double>(), pt[i - 1]["flip_mean"].get<double>());
+        }
+        // direct lacks indirect light: its error floors well above pt at 64 spp.
+        EXPECT_GT(direct_best, 3.0 * pt.back()["relmse"].get<double>()) << backend;
+    }
+
+    // The report reads those files and writes the tables (and the plot if matplotlib exists).
+    const bool mpl = run("python3 -c 'import matplotlib' > /dev/null 2>&1") == 0;
+    ASSERT_EQ(run("python3 " + src + "/bench/accuracy_report --dir " + out.string() + (mpl ? "" : " --no-plots") +
+                  " > " + log.string() + " 2>&1"),
+              0)
+        << std::ifstream(log).rdbuf();
+    std::stringstream md;
+    md << std::ifstream(out / "report.md").rdbuf();
+    EXPECT_NE(md.str().find("## Table 1: frames per second"), std::string::npos);
+    EXPECT_NE(md.str().find("| cornell-box |"), std::string::npos);
+    if (mpl) EXPECT_TRUE(fs::exists(out / "cornell-box.png"));
+}
