@@ -32,8 +32,14 @@ METHODS = {
         "direct", {"spp": [1, 4, 16, 64], "shadow-samples": [1, 4, 16]}, {"spp": 1, "shadow-samples": 4},
         converges_to_reference=False,
         note="direct light only: no indirect light, so its error against the pt reference floors"),
+    "igi": Method(
+        "igi", {"spp": [1, 2, 4, 8], "tile": [2, 3, 4], "vpl-paths": [8, 32, 128], "shadow-samples": [1, 4]},
+        {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
+        converges_to_reference=False,
+        note="instant global illumination; the clamped VPL geometry term darkens corners, so its error "
+             "against the pt reference floors (with --clamp 0 it converges, tests/gi/igi_test.cpp); "
+             "in media its model is single scattering on camera rays (pt --max-scatter 1)"),
     # Planned, to be filled in when the methods land (same shape):
-    # "igi": Method("igi", {"spp": [1], "tile": [2, 3, 4], "vpls": [64, 256, 1024], "shadow-samples": [1, 4]}, {...}),
     # "ais": Method("ais", {... plus the guidance thresholds ...}, {...}),
     # "ais-max": Method("ais-max", {...}, {...}),
 }
