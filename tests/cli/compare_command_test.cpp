@@ -121,7 +121,9 @@ TEST_F(CompareCli, WritesErrorMaps) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     ASSERT_TRUE(fs::exists(map));
     EXPECT_GT(fs::file_size(map), 50u);
-    if (flip_importable()) EXPECT_TRUE(fs::exists(fmap)) << r.output;
+    if (flip_importable()) {
+        EXPECT_TRUE(fs::exists(fmap)) << r.output;
+    }
 }
 
 TEST_F(CompareCli, MismatchedSizes) {
