@@ -6,9 +6,7 @@
 #include <tbb/parallel_for.h>
 
 namespace tessera {
-namespace {
-
-bool accepts(const GeometryBuffer& g, const DiscontinuitySettings& s, size_t p, size_t q) {
+bool discontinuity_accepts(const GeometryBuffer& g, const DiscontinuitySettings& s, size_t p, size_t q) {
     const float zp = g.depth[p], zq = g.depth[q];
     const bool mp = !std::isfinite(zp), mq = !std::isfinite(zq);
     if (mp || mq) return mp && mq;
@@ -18,12 +16,16 @@ bool accepts(const GeometryBuffer& g, const DiscontinuitySettings& s, size_t p, 
     return cos >= s.normal_cos && std::abs(zp - zq) <= s.depth_rel * zp;
 }
 
-}  // namespace
+void discontinuity_window(int n, int* lo, int* hi) {
+    *lo = n % 2 ? -(n - 1) / 2 : -n / 2;
+    *hi = *lo + n - 1;
+}
 
 void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& s, int channels,
                           const std::vector<float>& in, std::vector<float>& out, std::vector<uint8_t>* accepted) {
-    const int w = g.width, h = g.height, n = s.tile;
-    const int lo = n % 2 ? -(n - 1) / 2 : -n / 2, hi = lo + n - 1;
+    const int w = g.width, h = g.height;
+    int lo, hi;
+    discontinuity_window(s.tile, &lo, &hi);
     out.assign(in.size(), 0.0f);
     if (accepted) accepted->assign(size_t(w) * h, 0);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
@@ -38,7 +40,7 @@ void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& 
                         const int qx = x + dx, qy = y + dy;
                         if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
                         const size_t q = size_t(qy) * w + qx;
-                        if (q != p && !accepts(g, s, p, q)) continue;
+                        if (q != p && !discontinuity_accepts(g, s, p, q)) continue;
                         for (int c = 0; c < channels; ++c) sum[c] += in[q * channels + c];
                         ++count;
                     }

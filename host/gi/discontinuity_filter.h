@@ -3,6 +3,7 @@
 // the same surface, so the structured noise of interleaved sampling goes away while
 // edges stay sharp. Host code shared by every backend.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,13 @@ struct GeometryBuffer {
     std::vector<float> normal;
     std::vector<float> depth;
 };
+
+/// Whether pixel p accepts neighbour q (the test above; pixels whose rays escaped accept
+/// only each other).
+bool discontinuity_accepts(const GeometryBuffer& g, const DiscontinuitySettings& s, size_t p, size_t q);
+
+/// The window offsets lo..hi (inclusive, on each axis) for tile edge n.
+void discontinuity_window(int n, int* lo, int* hi);
 
 /// Filters `channels` interleaved floats per pixel of `in` into `out`. Window: offsets
 /// -(n-1)/2 .. (n-1)/2 for odd n, -n/2 .. n/2-1 for even n (each n×n window then holds
