@@ -31,14 +31,17 @@ static inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
  * Work-items are ordered by interleave set when frame.igi_tile > 1 (de-interleaved
  * shading, Segovia et al. 2006): consecutive work-items then share their set's VPLs and
  * light samples and stay coherent, and writing at the pixel's place re-interleaves. */
+#define TS_KERNEL_VIEWS                                                                   \
+    TsTracer tracer = {nodes, tris};                                                     \
+    TsSceneView sv = {tri_pos, tri_nrm, tri_uv, tri_mat, materials, tex_info, tex_texels, \
+                      lights, light_cdf, medium, vpls, vpl_set_start, frame.light_count};
+
 #define TS_PIXEL_KERNEL_BODY(pixel_fn, floats)                                           \
     uint i = get_global_id(0);                                                           \
     if (i >= frame.width * frame.height) return;                                         \
     uint px_, py_;                                                                       \
     ts_pixel_of_work_item(&frame, i, &px_, &py_);                                        \
-    TsTracer tracer = {nodes, tris};                                                     \
-    TsSceneView sv = {tri_pos, tri_nrm, tri_uv, tri_mat, materials, tex_info, tex_texels, \
-                      lights, light_cdf, medium, vpls, vpl_set_start, frame.light_count}; \
+    TS_KERNEL_VIEWS                                                                      \
     float v_[floats];                                                                    \
     pixel_fn(&sv, &tracer, &frame, px_, py_, v_);                                        \
     size_t o_ = ((size_t)py_ * frame.width + px_) * (floats);                            \

@@ -38,6 +38,21 @@ public:
         run_pixels(k, frame, out);
     }
 
+    /// Runs the AIS extra kernel (kernels/shared/igi.h ts_ais_item) over work items:
+    /// item i evaluates sample set codes[i] & 0xff for the TS_COMPONENT_* bits
+    /// codes[i] >> 8 at pixel pixels[i] (row-major index). `out` is resized to
+    /// TS_AIS_ITEM_FLOATS per item. No dispatch happens for an empty list.
+    void render_items(const TsFrame& frame, const std::vector<uint32_t>& pixels, const std::vector<uint32_t>& codes,
+                      std::vector<float>& out) {
+        out.resize(pixels.size() * TS_AIS_ITEM_FLOATS);
+        if (pixels.empty()) return;
+        ++item_dispatches_;
+        run_items(frame, pixels, codes, out);
+    }
+
+    /// How many times the AIS extra kernel was dispatched.
+    uint64_t item_dispatch_count() const { return item_dispatches_; }
+
     /// How many times kernel `k` was dispatched on this backend.
     uint64_t dispatch_count(PixelKernel k) const { return dispatches_[static_cast<int>(k)]; }
 
@@ -55,9 +70,12 @@ public:
 
 protected:
     virtual void run_pixels(PixelKernel k, const TsFrame& frame, std::vector<float>& out) = 0;
+    virtual void run_items(const TsFrame& frame, const std::vector<uint32_t>& pixels,
+                           const std::vector<uint32_t>& codes, std::vector<float>& out) = 0;
 
 private:
     uint64_t dispatches_[kPixelKernelCount] = {};
+    uint64_t item_dispatches_ = 0;
 };
 
 /// Creates a backend for `scene`. The OpenCL backend builds its BVH with Embree's

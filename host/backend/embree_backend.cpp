@@ -120,7 +120,26 @@ protected:
         }
     }
 
+    void run_items(const TsFrame& frame, const std::vector<uint32_t>& pixels, const std::vector<uint32_t>& codes,
+                   std::vector<float>& out) override {
+        ts::TsSceneView sv = scene_view(frame);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+            set_ftz_daz();
+            for (size_t i = r.begin(); i < r.end(); ++i)
+                ts::ts_ais_item(&sv, &tracer_, &frame, pixels[i] % frame.width, pixels[i] / frame.width,
+                                codes[i] & 0xffu, codes[i] >> 8, &out[i * TS_AIS_ITEM_FLOATS]);
+        });
+    }
+
 private:
+    ts::TsSceneView scene_view(const TsFrame& frame) const {
+        ts::TsSceneView sv = make_scene_view(buffers_);
+        sv.light_count = frame.light_count;
+        sv.vpls = vpls_.data();
+        sv.vpl_set_start = vpl_set_start_.data();
+        return sv;
+    }
+
     // Work is split by work-item index in the same order as the OpenCL kernels
     // (ts_pixel_of_work_item: de-interleaved by sample set when igi_tile > 1).
     template <class PixelFn>
@@ -128,10 +147,7 @@ private:
         const size_t floats = static_cast<size_t>(pixel_kernel_floats(k));
         const size_t pixels = size_t(frame.width) * frame.height;
         out.resize(pixels * floats);
-        ts::TsSceneView sv = make_scene_view(buffers_);
-        sv.light_count = frame.light_count;
-        sv.vpls = vpls_.data();
-        sv.vpl_set_start = vpl_set_start_.data();
+        ts::TsSceneView sv = scene_view(frame);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 64), [&](const tbb::blocked_range<size_t>& r) {
             set_ftz_daz();
             for (size_t i = r.begin(); i < r.end(); ++i) {

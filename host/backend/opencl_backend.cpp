@@ -64,17 +64,39 @@ protected:
         run([&] {
             cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
             cl::Kernel& k = kernel(program_of(kind), pixel_kernel_name(kind));
-            int a = 0;
-            k.setArg(a++, sizeof(TsFrame), &frame);
-            for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_,
-                                  &tex_info_, &tex_texels_, &lights_, &light_cdf_, &medium_, &vpls_,
-                                  &vpl_set_start_})
-                k.setArg(a++, *b);
-            k.setArg(a++, buf);
+            set_scene_args(k, frame, buf);
             queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(pixels, TS_WORKGROUP_SIZE)),
                                         cl::NDRange(TS_WORKGROUP_SIZE));
             queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
         });
+    }
+
+    void run_items(const TsFrame& frame, const std::vector<uint32_t>& pixels, const std::vector<uint32_t>& codes,
+                   std::vector<float>& out) override {
+        run([&] {
+            cl::Buffer ip = upload("AIS item pixels", pixels), ic = upload("AIS item codes", codes);
+            cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
+            cl::Kernel& k = kernel("igi.cl", "ais_extra_pass");
+            int a = set_scene_args(k, frame, buf);
+            k.setArg(a++, ip);
+            k.setArg(a++, ic);
+            k.setArg(a++, static_cast<cl_uint>(pixels.size()));
+            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(pixels.size(), TS_WORKGROUP_SIZE)),
+                                        cl::NDRange(TS_WORKGROUP_SIZE));
+            queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+        });
+    }
+
+    // The arguments every per-pixel kernel starts with (TS_PIXEL_KERNEL_ARGS); returns
+    // the index of the next argument.
+    int set_scene_args(cl::Kernel& k, const TsFrame& frame, cl::Buffer& out) {
+        int a = 0;
+        k.setArg(a++, sizeof(TsFrame), &frame);
+        for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
+                              &tex_texels_, &lights_, &light_cdf_, &medium_, &vpls_, &vpl_set_start_})
+            k.setArg(a++, *b);
+        k.setArg(a++, out);
+        return a;
     }
 
 public:

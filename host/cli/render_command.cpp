@@ -31,6 +31,7 @@ struct RenderArgs {
     std::string out;
     std::string data_dir;
     std::string method = "direct";
+    std::string components = "ss,id,pm";
     std::string stats_json;
     float exposure = 0.0f;
     bool resume = false;
@@ -72,6 +73,7 @@ void run_render(const RenderArgs& a) {
     BackendOptions bo{parse_backend_kind(a.backend), a.device};
     RenderSettings settings = a.settings;
     settings.method = parse_method(a.method);
+    settings.igi.components = parse_components(a.components);
     Scene scene = load_scene(scene_path, data);
     const fs::path out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
     if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
@@ -117,7 +119,10 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("scene", args->scene, "Scene file (.json)");
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
-    cmd->add_option("--method", args->method, "Rendering method: direct, pt or igi")->capture_default_str();
+    cmd->add_option("--method", args->method, "Rendering method: direct, pt, igi, ais or ais-max")
+        ->capture_default_str();
+    cmd->add_option("--components", args->components, "igi/ais: components to compute, e.g. ss,id,pm")
+        ->capture_default_str();
     cmd->add_option("--max-depth", args->settings.max_depth, "pt: path vertices before a path is cut")
         ->capture_default_str();
     cmd->add_option("--tile", args->settings.igi.tile, "igi: interleave tile edge n (n² sample sets), 1..8")

@@ -56,6 +56,7 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
     frame.shadow_samples = settings_.set_shadow_samples;
     frame.igi_steps = settings_.march_steps;
     frame.igi_g_clamp = g_clamp_;
+    frame.igi_components = effective_components();
     frame.igi_march_far = march_far_ + std::sqrt(frame.cam_pos[0] * frame.cam_pos[0] +
                                                  frame.cam_pos[1] * frame.cam_pos[1] +
                                                  frame.cam_pos[2] * frame.cam_pos[2]);
@@ -65,7 +66,7 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
 
     auto t0 = Clock::now();
     VplList vpls;
-    if (plan_.indirect) {
+    if (plan_.indirect && (frame.igi_components & TS_COMPONENT_ID)) {
         VplSettings vs;
         vs.sets = sets;
         vs.paths_per_set = settings_.paths_per_set;
@@ -87,57 +88,143 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
     const uint64_t pixels = uint64_t(frame.width) * frame.height;
     stats_.pixel_rays = pixels * (1 + settings_.set_shadow_samples + stats_.vpls / sets);
     stats_.media_seconds = 0.0;
-    if (plan_.medium) {
+    if (frame.igi_components & TS_COMPONENT_PM) {
         t0 = Clock::now();
         backend_.render_pass(PixelKernel::IgiMedia, frame, media);
         stats_.media_seconds = since(t0);
         stats_.pixel_rays += pixels * (1 + settings_.march_steps);
     }
     t0 = Clock::now();
-    composite(static_cast<int>(frame.width), surf, media, out);
-    stats_.filter_seconds = since(t0);
+    extract(static_cast<int>(frame.width), surf, media);
+    stats_.ais_seconds = 0.0;
+    stats_.ais_items = 0;
+    if (settings_.adaptive) {
+        const auto ta = Clock::now();
+        refine(frame, surf, media);
+        stats_.ais_seconds = since(ta);
+    }
+    reconstruct();
+    composite(surf, out);
+    add_to_sums();
+    stats_.filter_seconds = since(t0) - stats_.ais_seconds;
 }
 
-void IgiFrame::composite(int width, const std::vector<float>& surf, const std::vector<float>& media,
-                         std::vector<float>& out) {
+void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
-    GeometryBuffer g;
-    extract3(surf, TS_IGI_SURF_FLOATS, 0, ss_);
-    extract3(surf, TS_IGI_SURF_FLOATS, 3, id_);
-    pm_.assign(3 * pixels, 0.0f);
-    std::vector<float> transmittance(3 * pixels, 1.0f);
+    extract3(surf, TS_IGI_SURF_FLOATS, 0, raw_[kAisSS]);
+    extract3(surf, TS_IGI_SURF_FLOATS, 3, raw_[kAisID]);
+    raw_[kAisPM].assign(3 * pixels, 0.0f);
+    transmittance_.assign(3 * pixels, 1.0f);
     if (!media.empty()) {
-        extract3(media, TS_IGI_MEDIA_FLOATS, 0, pm_);
-        extract3(media, TS_IGI_MEDIA_FLOATS, 3, transmittance);
+        extract3(media, TS_IGI_MEDIA_FLOATS, 0, raw_[kAisPM]);
+        extract3(media, TS_IGI_MEDIA_FLOATS, 3, transmittance_);
     }
-    g.width = width;
-    g.height = static_cast<int>(pixels / static_cast<size_t>(width));
-    extract3(surf, TS_IGI_SURF_FLOATS, 12, g.normal);
-    g.depth.resize(pixels);
-    for (size_t p = 0; p < pixels; ++p) g.depth[p] = surf[p * TS_IGI_SURF_FLOATS + 15];
-    if (settings_.filter) {
-        discontinuity_filter(g, settings_.discontinuity, 3, ss_, ss_f_);
-        discontinuity_filter(g, settings_.discontinuity, 3, id_, id_f_);
-        discontinuity_filter(g, settings_.discontinuity, 3, pm_, pm_f_);
-    } else {
-        ss_f_ = ss_, id_f_ = id_, pm_f_ = pm_;
+    geometry_.width = width;
+    geometry_.height = static_cast<int>(pixels / static_cast<size_t>(width));
+    extract3(surf, TS_IGI_SURF_FLOATS, 12, geometry_.normal);
+    geometry_.depth.resize(pixels);
+    for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + 15];
+}
+
+// AIS: guidance from the base pass, the schedule, the extra sets, and each refined pixel's
+// component replaced by the mean over all the sets it evaluated (summed in double: own
+// set first, then the extra sets in increasing order).
+void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
+    const size_t pixels = raw_[kAisSS].size() / 3;
+    AisBaseBuffers base;
+    base.geometry = geometry_;
+    base.visibility.resize(pixels);
+    base.indirect.resize(pixels);
+    for (size_t p = 0; p < pixels; ++p) {
+        const float* v = &surf[p * TS_IGI_SURF_FLOATS];
+        base.visibility[p] = v[19];
+        base.indirect[p] = 0.2126f * v[3] + 0.7152f * v[4] + 0.0722f * v[5];
     }
+    if (!media.empty()) {
+        base.lit_fraction.resize(pixels);
+        base.medium_length.resize(pixels);
+        for (size_t p = 0; p < pixels; ++p) {
+            base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + 6];
+            base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + 7];
+        }
+    }
+    const uint32_t bits = effective_components();
+    const std::array<bool, kAisComponents> enabled = {(bits & TS_COMPONENT_SS) != 0, (bits & TS_COMPONENT_ID) != 0,
+                                                      (bits & TS_COMPONENT_PM) != 0 && !media.empty()};
+    guidance_ = compute_guidance(base, settings_.discontinuity, settings_.ais, enabled);
+    schedule_ = make_schedule(guidance_, settings_.ais, settings_.ais_mode, geometry_.width, geometry_.height,
+                              static_cast<int>(settings_.tile));
+    stats_.flagged = schedule_.flagged;
+    stats_.ais_items = schedule_.item_pixels.size();
+    static_assert(1u << kAisSS == TS_COMPONENT_SS && 1u << kAisID == TS_COMPONENT_ID &&
+                  1u << kAisPM == TS_COMPONENT_PM, "AIS component bits are the kernels' TS_COMPONENT_* bits");
+    std::vector<uint32_t> codes(schedule_.item_pixels.size());
+    for (size_t i = 0; i < codes.size(); ++i)
+        codes[i] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
+    std::vector<float> items;
+    backend_.render_items(frame, schedule_.item_pixels, codes, items);
+    std::array<std::vector<double>, kAisComponents> sum;
+    for (int c = 0; c < kAisComponents; ++c) {
+        if (schedule_.sets[c].empty()) continue;
+        sum[c].assign(raw_[c].begin(), raw_[c].end());
+    }
+    for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
+        const size_t p = schedule_.item_pixels[i];
+        for (int c = 0; c < kAisComponents; ++c)
+            if (schedule_.item_components[i] & (1u << c))
+                for (int j = 0; j < 3; ++j) sum[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + 3 * c + j];
+    }
+    for (int c = 0; c < kAisComponents; ++c) {
+        if (schedule_.sets[c].empty()) continue;
+        for (size_t p = 0; p < pixels; ++p)
+            for (int j = 0; j < 3; ++j)
+                raw_[c][3 * p + j] = static_cast<float>(sum[c][3 * p + j] / schedule_.sets[c][p]);
+    }
+}
+
+// Each component: the discontinuity filter, except at pixels that evaluated every set
+// (full rate), which keep their own estimate (ALGORITHMS.md §2.3, step 5).
+void IgiFrame::reconstruct() {
+    const int sets = static_cast<int>(settings_.tile * settings_.tile);
+    for (int c = 0; c < kAisComponents; ++c) {
+        if (settings_.filter)
+            discontinuity_filter(geometry_, settings_.discontinuity, 3, raw_[c], final_[c]);
+        else
+            final_[c] = raw_[c];
+        if (!settings_.adaptive || schedule_.sets[c].empty()) continue;
+        for (size_t p = 0; p < schedule_.sets[c].size(); ++p)
+            if (schedule_.sets[c][p] == sets)
+                for (int j = 0; j < 3; ++j) final_[c][3 * p + j] = raw_[c][3 * p + j];
+    }
+}
+
+void IgiFrame::composite(const std::vector<float>& surf, std::vector<float>& out) {
+    const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
     out.resize(pixels * TS_PASS_FLOATS);
     for (size_t p = 0; p < pixels; ++p) {
         const float* s = &surf[p * TS_IGI_SURF_FLOATS];
         float* o = &out[p * TS_PASS_FLOATS];
         for (int c = 0; c < 3; ++c) {
-            const float e = ss_f_[3 * p + c] + id_f_[3 * p + c];
-            o[c] = transmittance[3 * p + c] * s[16 + c] * (s[9 + c] + s[6 + c] * e) + pm_f_[3 * p + c];
+            const float e = final_[kAisSS][3 * p + c] + final_[kAisID][3 * p + c];
+            o[c] = transmittance_[3 * p + c] * s[16 + c] * (s[9 + c] + s[6 + c] * e) + final_[kAisPM][3 * p + c];
             o[3 + c] = s[6 + c];
             o[6 + c] = s[12 + c];
         }
         o[9] = s[15];
     }
-    const std::vector<float>* parts[6] = {&ss_, &ss_f_, &id_, &id_f_, &pm_, &pm_f_};
-    for (int i = 0; i < 6; ++i) {
-        if (component_sums_[i].size() != parts[i]->size()) component_sums_[i].assign(parts[i]->size(), 0.0);
-        for (size_t j = 0; j < parts[i]->size(); ++j) component_sums_[i][j] += (*parts[i])[j];
+}
+
+void IgiFrame::add_to_sums() {
+    auto add = [](std::vector<double>& sum, const auto& v) {
+        if (sum.size() != v.size()) sum.assign(v.size(), 0.0);
+        for (size_t j = 0; j < v.size(); ++j) sum[j] += v[j];
+    };
+    for (int c = 0; c < kAisComponents; ++c) {
+        add(component_sums_[2 * c], raw_[c]);
+        add(component_sums_[2 * c + 1], final_[c]);
+        if (!settings_.adaptive) continue;
+        if (!guidance_.g[c].empty()) add(component_sums_[6 + c], guidance_.g[c]);
+        if (!schedule_.sets[c].empty()) add(component_sums_[9 + c], schedule_.sets[c]);
     }
 }
 
@@ -150,22 +237,41 @@ std::string IgiFrame::describe() const {
                   static_cast<unsigned long long>(stats_.vpl_rays), g_clamp_, 1e3 * stats_.vpl_seconds,
                   1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
                   1e3 * stats_.filter_seconds);
-    return buf;
+    std::string line = buf;
+    if (settings_.adaptive) {
+        std::snprintf(buf, sizeof buf, "; %s: flagged SS %.1f%%, ID %.1f%%, PM %.1f%%, %zu extra set evaluations, %.1f ms",
+                      settings_.ais_mode == AisMode::AMax ? "ais-max" : "ais", 100 * stats_.flagged[kAisSS],
+                      100 * stats_.flagged[kAisID], 100 * stats_.flagged[kAisPM], stats_.ais_items,
+                      1e3 * stats_.ais_seconds);
+        line += buf;
+    }
+    return line;
 }
 
 void IgiFrame::add_component_channels(Image& image, uint32_t frames) const {
-    static const char* names[6] = {"SS", "SS_filtered", "ID", "ID_filtered", "PM", "PM_filtered"};
+    static const char* names[12] = {"SS", "SS_filtered", "ID", "ID_filtered", "PM", "PM_filtered",
+                                    "guidance.SS", "guidance.ID", "guidance.PM", "sets.SS", "sets.ID", "sets.PM"};
     static const char* rgb[3] = {"R", "G", "B"};
-    for (int i = 0; i < 6; ++i) {
-        if (component_sums_[i].empty() || (i >= 4 && !plan_.medium)) continue;  // PM only with a medium
-        for (int c = 0; c < 3; ++c) {
-            ImageChannel ch{std::string(names[i]) + "." + rgb[c], {}};
-            ch.data.resize(component_sums_[i].size() / 3);
+    const uint32_t bits = effective_components();
+    for (int i = 0; i < 12; ++i) {
+        const int component = i < 6 ? i / 2 : (i - 6) % 3;
+        if (component_sums_[i].empty() || !(bits & (1u << component))) continue;
+        const int channels = i < 6 ? 3 : 1;
+        for (int c = 0; c < channels; ++c) {
+            ImageChannel ch{channels == 3 ? std::string(names[i]) + "." + rgb[c] : std::string(names[i]), {}};
+            ch.data.resize(component_sums_[i].size() / channels);
             for (size_t p = 0; p < ch.data.size(); ++p)
-                ch.data[p] = static_cast<float>(component_sums_[i][3 * p + c] / frames);
+                ch.data[p] = static_cast<float>(component_sums_[i][channels * p + c] / frames);
             image.channels.push_back(std::move(ch));
         }
     }
+}
+
+uint32_t IgiFrame::effective_components() const {
+    uint32_t bits = settings_.components;
+    if (!plan_.medium) bits &= ~TS_COMPONENT_PM;
+    if (!plan_.area_lights) bits &= ~TS_COMPONENT_SS;
+    return bits;
 }
 
 }  // namespace tessera

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "backend/backend.h"
+#include "gi/ais_schedule.h"
 #include "gi/discontinuity_filter.h"
 #include "gi/vpl_generator.h"
 #include "image/image_io.h"
@@ -28,6 +29,14 @@ struct IgiSettings {
     float clamp_c = 0.05f;
     bool filter = true;            ///< the discontinuity buffer (off: raw interleaved image)
     DiscontinuitySettings discontinuity;
+    /// Components to compute (TS_COMPONENT_SS | _ID | _PM); the ones the scene does not
+    /// call for are dropped anyway (no medium: no PM).
+    uint32_t components = 7u;
+    /// Adaptive Interleaved Sampling: after the base pass, guidance maps and a schedule
+    /// give flagged pixels extra sample sets (ais_schedule.h); off for plain IGI.
+    bool adaptive = false;
+    AisMode ais_mode = AisMode::A;
+    AisThresholds ais;
 };
 
 /// Timings and counts of the last frame, for the log and the benchmark.
@@ -36,6 +45,9 @@ struct IgiFrameStats {
     size_t vpls = 0;
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
+    double ais_seconds = 0;  ///< guidance, schedule and the extra sets (AIS only)
+    size_t ais_items = 0;    ///< extra (pixel, set) evaluations (AIS only)
+    std::array<double, kAisComponents> flagged{};  ///< fraction of pixels flagged (AIS only)
 };
 
 class IgiFrame {
@@ -54,7 +66,8 @@ public:
 
     /// Per-component AOVs summed over the frames rendered so far, divided by `frames`:
     /// SS, ID (irradiance / π) and, when the scene has a medium, PM (radiance), each
-    /// before and after filtering (channels SS.R, SS_filtered.R, ...).
+    /// before and after filtering (channels SS.R, SS_filtered.R, ...); with AIS also
+    /// each component's guidance map and sample-set count (guidance.SS, sets.SS, ...).
     void add_component_channels(Image& image, uint32_t frames) const;
 
     const IgiFrameStats& stats() const { return stats_; }
@@ -62,9 +75,16 @@ public:
     /// One line for the log: tile, VPLs, clamp and the last frame's stage times.
     std::string describe() const;
 
+    /// The last frame's schedule (AIS only; empty otherwise).
+    const AisSchedule& schedule() const { return schedule_; }
+
 private:
-    void composite(int width, const std::vector<float>& surf, const std::vector<float>& media,
-                   std::vector<float>& out);
+    uint32_t effective_components() const;
+    void extract(int width, const std::vector<float>& surf, const std::vector<float>& media);
+    void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media);
+    void reconstruct();
+    void composite(const std::vector<float>& surf, std::vector<float>& out);
+    void add_to_sums();
 
     Backend& backend_;
     const SceneBuffers& scene_;
@@ -73,9 +93,14 @@ private:
     float g_clamp_ = 0.0f;
     float march_far_ = 0.0f;
     IgiFrameStats stats_;
-    // Raw and filtered components (3 floats per pixel each), summed over frames.
-    std::array<std::vector<double>, 6> component_sums_;
-    std::vector<float> ss_, id_, pm_, ss_f_, id_f_, pm_f_;
+    // Raw and reconstructed components (3 floats per pixel each), summed over frames;
+    // then guidance (1 per pixel per component) and set counts.
+    std::array<std::vector<double>, 12> component_sums_;
+    std::array<std::vector<float>, kAisComponents> raw_, final_;
+    std::vector<float> transmittance_;
+    GeometryBuffer geometry_;
+    AisGuidance guidance_;
+    AisSchedule schedule_;
 };
 
 }  // namespace tessera

@@ -8,9 +8,12 @@ enum class Method {
     Direct,     ///< emission + direct light from area lights (kernels/shared/direct.h)
     PathTrace,  ///< volumetric path tracing, the reference (kernels/shared/pt.h)
     Igi,        ///< instant global illumination (kernels/shared/igi.h, host/gi)
+    Ais,        ///< adaptive interleaved sampling, mode A (host/gi/ais_schedule.h)
+    AisMax,     ///< adaptive interleaved sampling, mode A-MAX
 };
 
-/// Parses "direct", "pt" or "igi"; throws InputError naming --method otherwise.
+/// Parses "direct", "pt", "igi", "ais" or "ais-max"; throws InputError naming --method
+/// otherwise.
 Method parse_method(const std::string& name);
 const char* method_name(Method m);
 
@@ -22,6 +25,10 @@ enum class PixelKernel {
     IgiMedia,    ///< TS_IGI_MEDIA_FLOATS per pixel
 };
 constexpr int kPixelKernelCount = 4;
+
+/// Parses a comma-separated list of "ss", "id", "pm" into TS_COMPONENT_* bits; throws
+/// InputError naming --components for anything else or an empty list.
+uint32_t parse_components(const std::string& list);
 
 /// Floats each pixel of `k`'s output holds.
 int pixel_kernel_floats(PixelKernel k);

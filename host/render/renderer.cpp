@@ -44,9 +44,11 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     CheckpointSession session(checkpoint, scene, settings, w, h);
     const uint32_t first = session.restore(acc);
     std::unique_ptr<IgiFrame> igi;
-    if (settings.method == Method::Igi) {
+    if (settings.method == Method::Igi || settings.method == Method::Ais || settings.method == Method::AisMax) {
         IgiSettings is = settings.igi;
         is.set_shadow_samples = settings.shadow_samples;
+        is.adaptive = settings.method != Method::Igi;
+        is.ais_mode = settings.method == Method::AisMax ? AisMode::AMax : AisMode::A;
         igi = std::make_unique<IgiFrame>(backend, buffers, plan_effects(scene), is);
     }
     const PixelKernel kernel = settings.method == Method::Direct ? PixelKernel::Direct : PixelKernel::PathTrace;

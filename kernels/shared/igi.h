@@ -59,19 +59,23 @@ TS_INLINE float3 ts_igi_shadow_transmittance(const TsMedium* med, TsRay shadow) 
 #endif
 }
 
-/* E_ss: direct irradiance / π at s from set k's m light samples. */
+/* E_ss: direct irradiance / π at s from set k's m light samples; *visible receives the
+ * fraction of them that reach the light (0 for samples the surface faces away from). */
 TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                               const TsMedium* med, const TsSurface* s, uint k) {
+                               const TsMedium* med, const TsSurface* s, uint k, float* visible) {
     float3 sum = make_float3(0.0f, 0.0f, 0.0f);
-    uint m = f->shadow_samples;
+    uint m = f->shadow_samples, seen = 0u;
     for (uint j = 0u; j < m; ++j) {
         float3 q = ts_igi_light_point(f, k * m + j);
         TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
         TsRay shadow;
         float3 c = ts_light_contribution(s, ls, &shadow);
-        if (c.x + c.y + c.z > 0.0f && !ts_trace_occluded(tracer, shadow))
+        if (c.x + c.y + c.z > 0.0f && !ts_trace_occluded(tracer, shadow)) {
             sum += c * ts_igi_shadow_transmittance(med, shadow);
+            ++seen;
+        }
     }
+    *visible = (float)seen / (float)m;
     return sum * (TS_INV_PI / (float)m);
 }
 
@@ -150,34 +154,62 @@ TS_INLINE TsRay ts_igi_camera_ray(const TsFrame* f, uint px, uint py, TsRng* rng
     return ts_camera_ray(f, px, py, jx, jy);
 }
 
-/* Surface part of one igi frame for pixel (px, py); writes TS_IGI_SURF_FLOATS values. */
+/* The first diffuse surface seen through pixel (px, py) on this frame: the same camera
+ * ray (same random stream) for the base pass and every AIS extra set. */
+typedef struct TsIgiView {
+    TsHit hit;
+    TsSurface s;
+    TsRay ray;
+    float3 throughput;
+    float distance;
+} TsIgiView;
+
+TS_INLINE TsIgiView ts_igi_view(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px,
+                                uint py) {
+    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
+    TsIgiView v;
+    v.ray = ts_igi_camera_ray(f, px, py, &rng);
+    v.hit = ts_igi_find_diffuse(sv, tracer, &v.ray, &v.throughput, &v.distance, &rng);
+    if (v.hit.prim != TS_NO_HIT) v.s = ts_surface_at(sv, v.ray, v.hit);
+    return v;
+}
+
+/* E_ss and E_id of sample set k at the view's surface, for the components in `mask`. */
+TS_INLINE void ts_igi_surface_set(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                  const TsIgiView* v, float3 albedo, uint k, uint mask, float3* e_ss,
+                                  float3* e_id, float* visible) {
+    TsMedium med = ts_medium_load(sv->medium);
+    *e_ss = make_float3(0.0f, 0.0f, 0.0f);
+    *e_id = *e_ss;
+    *visible = 0.0f;
+    if (!(ts_max3(albedo) > 0.0f)) return;
+    if ((mask & TS_COMPONENT_SS) && sv->light_count > 0u)
+        *e_ss = ts_igi_direct(sv, tracer, f, &med, &v->s, k, visible);
+    if (mask & TS_COMPONENT_ID) *e_id = ts_igi_indirect(sv, tracer, f, &med, &v->s, k);
+}
+
+/* Surface part of one igi frame for pixel (px, py), its own sample set; writes
+ * TS_IGI_SURF_FLOATS values. */
 TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                     uint px, uint py, float* out) {
-    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
-    TsRay ray = ts_igi_camera_ray(f, px, py, &rng);
-    TsMedium med = ts_medium_load(sv->medium);
     for (int i = 0; i < TS_IGI_SURF_FLOATS; ++i) out[i] = 0.0f;
     out[15] = TS_INF;
     out[16] = out[17] = out[18] = 1.0f;
-    float3 throughput;
-    float distance;
-    TsHit hit = ts_igi_find_diffuse(sv, tracer, &ray, &throughput, &distance, &rng);
-    if (hit.prim == TS_NO_HIT) return;
-    TsSurface s = ts_surface_at(sv, ray, hit);
-    uint k = ts_igi_set(px, py, f->igi_tile);
-    float3 albedo = ts_material_albedo(sv, &s), le = ts_material_emission(sv, &s);
-    float3 e_ss = make_float3(0.0f, 0.0f, 0.0f), e_id = e_ss;
-    if (ts_max3(albedo) > 0.0f) {
-        if (sv->light_count > 0u) e_ss = ts_igi_direct(sv, tracer, f, &med, &s, k);
-        e_id = ts_igi_indirect(sv, tracer, f, &med, &s, k);
-    }
+    TsIgiView v = ts_igi_view(sv, tracer, f, px, py);
+    if (v.hit.prim == TS_NO_HIT) return;
+    float3 albedo = ts_material_albedo(sv, &v.s), le = ts_material_emission(sv, &v.s);
+    float3 e_ss, e_id;
+    float visible;
+    ts_igi_surface_set(sv, tracer, f, &v, albedo, ts_igi_set(px, py, f->igi_tile), f->igi_components, &e_ss,
+                       &e_id, &visible);
     out[0] = e_ss.x; out[1] = e_ss.y; out[2] = e_ss.z;
     out[3] = e_id.x; out[4] = e_id.y; out[5] = e_id.z;
     out[6] = albedo.x; out[7] = albedo.y; out[8] = albedo.z;
     out[9] = le.x; out[10] = le.y; out[11] = le.z;
-    out[12] = s.shading_normal.x; out[13] = s.shading_normal.y; out[14] = s.shading_normal.z;
-    out[15] = distance;
-    out[16] = throughput.x; out[17] = throughput.y; out[18] = throughput.z;
+    out[12] = v.s.shading_normal.x; out[13] = v.s.shading_normal.y; out[14] = v.s.shading_normal.z;
+    out[15] = v.distance;
+    out[16] = v.throughput.x; out[17] = v.throughput.y; out[18] = v.throughput.z;
+    out[19] = visible;
 }
 
 /* Light arriving at medium point x from direction `wi` found by tracing a ray, and the
@@ -202,26 +234,30 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
     return le * ts_medium_transmittance(med, x, wi, 0.0f, h.t);
 }
 
-/* Media part of one igi frame for pixel (px, py): single scattering from the lights
+/* Media estimate of sample set k for pixel (px, py): single scattering from the lights
  * along the camera segment (up to the first surface), by a ray march of igi_steps steps
  * whose start is offset by (k + ξ)/N of a step for set k. Each step estimates the
  * in-scattered light with two samples combined by the power heuristic (as the path
  * tracer does at medium vertices): one of set k's light samples, taken in turn, and one
  * Henyey–Greenstein direction traced to whatever emitter it meets. Light sampling alone
  * leaves spikes for a peaked phase function (g near ±1: a light sample aligned with the
- * view gets phase values near 1e5). Also the segment's transmittance. Writes
- * TS_IGI_MEDIA_FLOATS values. */
-TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                  uint px, uint py, float* out) {
+ * view gets phase values near 1e5). Also the segment's transmittance, the lit fraction
+ * of the steps and the segment's length in the medium. Writes TS_IGI_MEDIA_FLOATS values. */
+TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px,
+                                uint py, uint k, float* out) {
     TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
     TsRay ray = ts_igi_camera_ray(f, px, py, &rng);
+    /* The phase samples of set k come from their own stream, so each set's estimate is
+     * independent of which other sets a pixel evaluates. */
+    TsRng prng = ts_rng_seed(f->seed ^ 0x5bd1e995u, (py * f->width + px) * 64u + k, f->pass);
     TsMedium med = ts_medium_load(sv->medium);
     float3 L = make_float3(0.0f, 0.0f, 0.0f), T = make_float3(1.0f, 1.0f, 1.0f);
+    uint lit = 0u;
     TsHit hit = ts_trace_closest(tracer, ray);
     /* An escaping ray ends at the medium's box, or for a medium filling space at
      * igi_march_far, beyond which nothing can light it. */
     float t0 = 0.0f, t1 = hit.prim != TS_NO_HIT ? hit.t : (med.bounded ? TS_INF : f->igi_march_far);
-    uint n = f->igi_tile, k = ts_igi_set(px, py, n), N = n * n, m = f->shadow_samples;
+    uint N = f->igi_tile * f->igi_tile, m = f->shadow_samples;
     if (ts_medium_clip(&med, ray.org, ray.dir, &t0, &t1) && f->igi_steps > 0u) {
         float step = (t1 - t0) / (float)f->igi_steps;
         float xi = f->igi_rotation[0];
@@ -243,6 +279,7 @@ TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer,
                 shadow.tmin = 0.0f;
                 shadow.tmax = 0.99999f;
                 if (!ts_trace_occluded(tracer, shadow)) {
+                    ++lit;
                     float pl = ls.pdf_area * dist2 / cos_y;
                     float phase = ts_hg_phase(dot(ray.dir, wi), med.g);
                     float3 tr = ts_medium_transmittance(&med, shadow.org, shadow.dir, 0.0f, 1.0f);
@@ -250,16 +287,52 @@ TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer,
                 }
             }
             /* Phase sampling: the weight phase/pdf is 1. */
-            float3 wp = ts_sample_hg(ray.dir, med.g, ts_rng_next(&rng), ts_rng_next(&rng));
+            float3 wp = ts_sample_hg(ray.dir, med.g, ts_rng_next(&prng), ts_rng_next(&prng));
             float pl2;
             float3 le = ts_igi_emitter_along(sv, tracer, f, &med, x, wp, &pl2);
             if (pl2 > 0.0f) in += le * ts_power_heuristic(ts_hg_phase(dot(ray.dir, wp), med.g), pl2);
             L += med.sigma_s * ts_exp3(med.sigma_t * (-(t - t0))) * in * step;
         }
         T = ts_exp3(med.sigma_t * (-(t1 - t0)));
+        out[6] = (float)lit / (float)f->igi_steps;
+        out[7] = t1 - t0;
     }
     out[0] = L.x; out[1] = L.y; out[2] = L.z;
     out[3] = T.x; out[4] = T.y; out[5] = T.z;
+}
+
+/* Media part of one igi frame for pixel (px, py), its own sample set. */
+TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                  uint px, uint py, float* out) {
+    out[6] = out[7] = 0.0f;
+    ts_igi_media_set(sv, tracer, f, px, py, ts_igi_set(px, py, f->igi_tile), out);
+}
+
+/* One AIS extra evaluation: sample set k for pixel (px, py), for the components in mask
+ * (TS_COMPONENT_*). Writes TS_AIS_ITEM_FLOATS values; the same camera ray, surface and
+ * set samples as the base pass would use for set k, so a pixel evaluated for every set
+ * gets exactly the full-rate (non-interleaved) estimate. */
+TS_INLINE void ts_ais_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px, uint py,
+                           uint k, uint mask, float* out) {
+    for (int i = 0; i < TS_AIS_ITEM_FLOATS; ++i) out[i] = 0.0f;
+    if (mask & (TS_COMPONENT_SS | TS_COMPONENT_ID)) {
+        TsIgiView v = ts_igi_view(sv, tracer, f, px, py);
+        if (v.hit.prim != TS_NO_HIT) {
+            float3 e_ss, e_id;
+            float visible;
+            ts_igi_surface_set(sv, tracer, f, &v, ts_material_albedo(sv, &v.s), k, mask, &e_ss, &e_id, &visible);
+            out[0] = e_ss.x; out[1] = e_ss.y; out[2] = e_ss.z;
+            out[3] = e_id.x; out[4] = e_id.y; out[5] = e_id.z;
+        }
+    }
+#ifdef TS_HAS_MEDIUM
+    if (mask & TS_COMPONENT_PM) {
+        float m[TS_IGI_MEDIA_FLOATS];
+        m[6] = m[7] = 0.0f;
+        ts_igi_media_set(sv, tracer, f, px, py, k, m);
+        out[6] = m[0]; out[7] = m[1]; out[8] = m[2];
+    }
+#endif
 }
 
 TS_NAMESPACE_END

@@ -88,6 +88,7 @@ typedef struct TsFrame {
     float igi_march_far;         /* igi: march limit for rays that escape a medium filling space:
                                     past it (twice the scene diagonal beyond the camera's
                                     distance to the origin) no geometry can light them */
+    unsigned int igi_components; /* igi/ais: TS_COMPONENT_* bits of what to compute */
 } TsFrame;
 
 /* VPLs (host/gi/vpl_generator.cpp): TS_VPL_FLOATS floats each, sorted by sample set:
@@ -102,11 +103,21 @@ typedef struct TsFrame {
  * [0..2] E_ss, [3..5] E_id: direct (area-light) and indirect (VPL) irradiance / π, the
  * quantities albedo multiplies; [6..8] albedo; [9..11] emitted radiance seen;
  * [12..14] shading normal; [15] distance to the surface along the camera path (+inf on
- * a miss); [16..18] throughput of specular bounces before it (1 for none). */
-#define TS_IGI_SURF_FLOATS 19
+ * a miss); [16..18] throughput of specular bounces before it (1 for none); [19] fraction
+ * of the light samples that reached the light unoccluded (AIS soft-shadow guidance). */
+#define TS_IGI_SURF_FLOATS 20
 /* Per-pixel output of the igi media kernel: [0..2] single-scattered radiance along the
- * camera segment, [3..5] transmittance of that segment. */
-#define TS_IGI_MEDIA_FLOATS 6
+ * camera segment, [3..5] transmittance of that segment, [6] fraction of the march steps
+ * whose light sample was unoccluded, [7] length of the segment inside the medium (AIS
+ * participating-media guidance). */
+#define TS_IGI_MEDIA_FLOATS 8
+/* Per-item output of the ais extra kernel (one pixel, one extra sample set):
+ * [0..2] E_ss, [3..5] E_id, [6..8] single-scattered radiance, for that set. */
+#define TS_AIS_ITEM_FLOATS 9
+/* Components (TsFrame.igi_components). */
+#define TS_COMPONENT_SS 1u
+#define TS_COMPONENT_ID 2u
+#define TS_COMPONENT_PM 4u
 
 /* Per-pixel output of one pass: TS_PASS_FLOATS floats per pixel:
  * [0..2] radiance (W/(sr·m²)), [3..5] albedo at the first hit, [6..8] shading normal
