@@ -50,9 +50,8 @@ IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan
     march_far_ = 2.0f * std::sqrt(diag2);
 }
 
-void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
-    const uint32_t n = settings_.tile, sets = n * n;
-    frame.igi_tile = n;
+TsFrame IgiFrame::prepare(TsFrame frame) const {
+    frame.igi_tile = settings_.tile;
     frame.shadow_samples = settings_.set_shadow_samples;
     frame.igi_steps = settings_.march_steps;
     frame.igi_g_clamp = g_clamp_;
@@ -63,7 +62,12 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
     // One Cranley–Patterson shift per frame, shared by all pixels (interleaved sampling).
     ts::TsRng rng = ts::ts_rng_seed(frame.seed, 0xffffffffu, frame.pass);
     for (float& r : frame.igi_rotation) r = ts::ts_rng_next(&rng);
+    return frame;
+}
 
+void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
+    const uint32_t sets = settings_.tile * settings_.tile;
+    frame = prepare(frame);
     auto t0 = Clock::now();
     VplList vpls;
     if (plan_.indirect && (frame.igi_components & TS_COMPONENT_ID)) {
@@ -182,10 +186,11 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
     }
 }
 
-// Each component: the discontinuity filter, except at pixels that evaluated every set
-// (full rate), which keep their own estimate (ALGORITHMS.md §2.3, step 5).
+// Each component: the discontinuity filter over the pixels left at the interleaved rate;
+// a pixel AIS gave extra sets keeps its own mean over them (issue 5: "filter only pixels
+// left at the interleaved rate"). It still enters its neighbours' filter windows as one
+// sample (ALGORITHMS.md §2.3, step 5).
 void IgiFrame::reconstruct() {
-    const int sets = static_cast<int>(settings_.tile * settings_.tile);
     for (int c = 0; c < kAisComponents; ++c) {
         if (settings_.filter)
             discontinuity_filter(geometry_, settings_.discontinuity, 3, raw_[c], final_[c]);
@@ -193,7 +198,7 @@ void IgiFrame::reconstruct() {
             final_[c] = raw_[c];
         if (!settings_.adaptive || schedule_.sets[c].empty()) continue;
         for (size_t p = 0; p < schedule_.sets[c].size(); ++p)
-            if (schedule_.sets[c][p] == sets)
+            if (schedule_.sets[c][p] > 1)
                 for (int j = 0; j < 3; ++j) final_[c][3 * p + j] = raw_[c][3 * p + j];
     }
 }

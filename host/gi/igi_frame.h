@@ -58,6 +58,14 @@ public:
     /// Geometry-term clamp b in scene units^-2 (+inf without clamping).
     float g_clamp() const { return g_clamp_; }
 
+    /// `frame` with the igi fields filled in as render() uses them (tile, set samples,
+    /// march steps, clamp, components, the frame's Cranley–Patterson shift).
+    TsFrame prepare(TsFrame frame) const;
+
+    /// A component of the last frame before filtering, 3 floats per pixel (AIS: each
+    /// refined pixel's mean over its sets).
+    const std::vector<float>& component(AisComponent c) const { return raw_[c]; }
+
     /// Renders frame.pass: VPLs from path block `frame.pass`, the surface kernel, the media
     /// kernel when the scene has a medium, the filter, and the composite
     ///   L = T · throughput · (Le + albedo · (Ẽ_ss + Ẽ_id)) + L̃_pm

@@ -1,0 +1,131 @@
+// Adaptive Interleaved Sampling end to end.
+#include <cstdio>
+
+#include <gtest/gtest.h>
+
+#include "gi/igi_frame.h"
+#include "render/frame.h"
+#include "scene/loader.h"
+#include "support/render_helpers.h"
+
+namespace tessera {
+namespace {
+
+Scene cornell() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
+
+const char* name(BackendKind k) { return k == BackendKind::Embree ? "embree" : "opencl"; }
+
+TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
+    // Thresholds below 0 flag every pixel, and A-MAX then gives each all N sets: every
+    // component must equal the non-interleaved estimate, the mean over all N sets of the
+    // same frame (own set first, then the others in increasing order), bit for bit.
+    Scene s = cornell();
+    SceneBuffers b = make_scene_buffers(s);
+    for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
+        auto be = make_backend({kind, ""}, b, plan_effects(s));
+        IgiSettings is;
+        is.adaptive = true;
+        is.ais_mode = AisMode::AMax;
+        is.ais.ss_trigger = is.ais.id_trigger = is.ais.pm_trigger = -1.0f;
+        IgiFrame igi(*be, b, plan_effects(s), is);
+        TsFrame f = make_frame(s.camera, 24, 24, is.set_shadow_samples, 3, b.light_count);
+        f.light_power = b.light_power;
+        std::vector<float> out;
+        igi.render(f, out);
+        // The reference: every (pixel, set) through the item kernel, with the frame and
+        // VPLs render() used.
+        const TsFrame prepared = igi.prepare(f);
+        const uint32_t N = 9, pixels = 24 * 24;
+        std::vector<uint32_t> px, codes;
+        for (uint32_t p = 0; p < pixels; ++p)
+            for (uint32_t j = 0; j < N; ++j) {
+                const uint32_t own = (p % 24) % 3 + 3 * ((p / 24) % 3);
+                px.push_back(p);
+                codes.push_back((own + j) % N | (TS_COMPONENT_SS | TS_COMPONENT_ID) << 8);
+            }
+        std::vector<float> items;
+        be->render_items(prepared, px, codes, items);
+        size_t mismatches = 0;
+        for (int c : {kAisSS, kAisID}) {
+            const std::vector<float>& got = igi.component(static_cast<AisComponent>(c));
+            for (uint32_t p = 0; p < pixels; ++p)
+                for (int j = 0; j < 3; ++j) {
+                    // own set first, then the rest in increasing set order
+                    const uint32_t own = (p % 24) % 3 + 3 * ((p / 24) % 3);
+                    double sum = items[(p * N) * TS_AIS_ITEM_FLOATS + 3 * c + j];
+                    for (uint32_t k = 0; k < N; ++k) {
+                        if (k == own) continue;
+                        const uint32_t slot = (k + N - own) % N;  // codes held (own + slot) % N
+                        sum += items[(p * N + slot) * TS_AIS_ITEM_FLOATS + 3 * c + j];
+                    }
+                    mismatches += got[3 * p + j] != static_cast<float>(sum / N);
+                }
+        }
+        EXPECT_EQ(mismatches, 0u) << name(kind);
+        for (uint8_t n : igi.schedule().sets[kAisSS]) ASSERT_EQ(n, N);
+    }
+}
+
+TEST(Ais, SchedulesAgreeAcrossBackends) {
+    // The schedule is host code over each backend's base pass; the base passes differ
+    // only by traversal rounding, so the schedules agree on >= 99.9% of pixels.
+    Scene s = cornell();
+    SceneBuffers b = make_scene_buffers(s);
+    std::array<AisSchedule, 2> sched;
+    int i = 0;
+    for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
+        auto be = make_backend({kind, ""}, b, plan_effects(s));
+        IgiSettings is;
+        is.adaptive = true;
+        IgiFrame igi(*be, b, plan_effects(s), is);
+        TsFrame f = make_frame(s.camera, 96, 96, is.set_shadow_samples, 1, b.light_count);
+        f.light_power = b.light_power;
+        std::vector<float> out;
+        igi.render(f, out);
+        sched[i++] = igi.schedule();
+    }
+    for (int c : {kAisSS, kAisID}) {
+        const auto &a = sched[0].sets[c], &e = sched[1].sets[c];
+        ASSERT_EQ(a.size(), e.size());
+        size_t same = 0;
+        for (size_t p = 0; p < a.size(); ++p) same += a[p] == e[p];
+        std::printf("  component %d: schedules agree on %zu of %zu pixels\n", c, same, a.size());
+        EXPECT_GE(same, a.size() - a.size() / 1000);
+    }
+}
+
+TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
+    // Against the path-traced reference of the same transport (pt --max-scatter 1) on
+    // the Cornell box at the same tile (3×3): A must beat IGI (extra sets where the
+    // guidance flags interleaving failures) and A-MAX must do at least as well as A
+    // (all sets wherever A grades). Measured relMSE over seeds 1-3: IGI 0.0193-0.0217,
+    // A 0.0171-0.0206, A-MAX 0.0167-0.0203: the order held for every seed and both
+    // trigger levels tried (0.25, 0.5); the clamp's darkening in corners is common to
+    // all three and sets the floor.
+    Scene s = cornell();
+    RenderSettings ref;
+    ref.method = Method::PathTrace;
+    ref.max_scatter = 1;
+    ref.width = ref.height = 64;
+    ref.spp = 2048;
+    const Image reference = test::render_with(BackendKind::Embree, s, ref);
+    for (uint32_t seed : {1u, 2u, 3u}) {
+        double err[3];
+        int i = 0;
+        for (Method m : {Method::Igi, Method::Ais, Method::AisMax}) {
+            RenderSettings rs;
+            rs.method = m;
+            rs.width = rs.height = 64;
+            rs.spp = 1;
+            rs.seed = seed;
+            rs.shadow_samples = 4;
+            err[i++] = test::rel_mse(test::render_with(BackendKind::Embree, s, rs), reference);
+        }
+        std::printf("  seed %u: relMSE igi %.5f, ais %.5f, ais-max %.5f\n", seed, err[0], err[1], err[2]);
+        EXPECT_LT(err[1], err[0]) << "seed " << seed;
+        EXPECT_LE(err[2], err[1]) << "seed " << seed;
+    }
+}
+
+}  // namespace
+}  // namespace tessera
