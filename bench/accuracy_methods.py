@@ -39,9 +39,17 @@ METHODS = {
         note="instant global illumination; the clamped VPL geometry term darkens corners, so its error "
              "against the pt reference floors (with --clamp 0 it converges, tests/gi/igi_test.cpp); "
              "in media its model is single scattering on camera rays (pt --max-scatter 1)"),
-    # Planned, to be filled in when the methods land (same shape):
-    # "ais": Method("ais", {... plus the guidance thresholds ...}, {...}),
-    # "ais-max": Method("ais-max", {...}, {...}),
+    "ais": Method(
+        "ais", {"spp": [1, 2, 4], "tile": [3, 4, 5], "vpl-paths": [8, 32, 128], "shadow-samples": [1, 4]},
+        {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
+        converges_to_reference=False,
+        note="adaptive interleaved sampling, mode A (graded extra sets where guidance flags); same clamp as igi"),
+    "ais-max": Method(
+        "ais-max", {"spp": [1, 2, 4], "tile": [3, 4, 5], "vpl-paths": [8, 32, 128], "shadow-samples": [1, 4]},
+        {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
+        converges_to_reference=False,
+        note="adaptive interleaved sampling, mode A-MAX (all sets for every flagged pixel)"),
+    # Planned, to be filled in when the methods land (same shape): "ic", "tic".
 }
 
 

@@ -3,6 +3,7 @@
 // kHardCaseMethods; the cases then run it on both backends. tests/README.md lists the
 // cases, the methods and backends they run and the checks they make.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <ostream>
 #include <string>
@@ -36,6 +37,8 @@ inline const std::vector<HardCaseMethod> kHardCaseMethods = {
     {"direct", Method::Direct, Transport::Direct, false},
     {"pt", Method::PathTrace, Transport::Global, true},
     {"igi", Method::Igi, Transport::Global, true, true},
+    {"ais", Method::Ais, Transport::Global, true, true},
+    {"ais-max", Method::AisMax, Transport::Global, true, true},
 };
 
 inline const std::vector<BackendKind> kHardCaseBackends = {BackendKind::Embree, BackendKind::OpenCL};
@@ -57,7 +60,9 @@ inline std::vector<HardCaseParam> hard_case_params() {
 }
 
 inline std::string hard_case_name(const ::testing::TestParamInfo<HardCaseParam>& info) {
-    return std::string(info.param.method.name) + "_" +
+    std::string method = info.param.method.name;  // gtest names allow [A-Za-z0-9_] only
+    std::replace(method.begin(), method.end(), '-', '_');
+    return method + "_" +
            (info.param.backend == BackendKind::Embree ? "Embree" : "OpenCL");
 }
 
