@@ -135,6 +135,15 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--march-steps", args->settings.igi.march_steps, "igi: medium ray-march steps per pixel")
         ->capture_default_str();
     cmd->add_flag("!--no-filter", args->settings.igi.filter, "igi: skip the discontinuity filter");
+    cmd->add_option("--ais-ss-trigger", args->settings.igi.ais.ss_trigger, "ais: SS guidance trigger")
+        ->capture_default_str();
+    cmd->add_option("--ais-id-trigger", args->settings.igi.ais.id_trigger, "ais: ID guidance trigger")
+        ->capture_default_str();
+    cmd->add_option("--ais-id-cov", args->settings.igi.ais.id_cov,
+                    "ais: coefficient of variation of indirect light that saturates ID guidance")
+        ->capture_default_str();
+    cmd->add_option("--ais-pm-trigger", args->settings.igi.ais.pm_trigger, "ais: PM guidance trigger")
+        ->capture_default_str();
     cmd->add_option("--max-scatter", args->settings.max_scatter,
                     "pt: medium scattering vertices per path (1 = single scattering, 0 = unlimited)")
         ->capture_default_str();

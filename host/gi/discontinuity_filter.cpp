@@ -13,7 +13,12 @@ bool discontinuity_accepts(const GeometryBuffer& g, const DiscontinuitySettings&
     const float* np = &g.normal[3 * p];
     const float* nq = &g.normal[3 * q];
     const float cos = np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2];
-    return cos >= s.normal_cos && std::abs(zp - zq) <= s.depth_rel * zp;
+    if (cos < s.normal_cos) return false;
+    if (g.position.empty()) return std::abs(zp - zq) <= s.depth_rel * zp;
+    const float* xp = &g.position[3 * p];
+    const float* xq = &g.position[3 * q];
+    const float plane = np[0] * (xq[0] - xp[0]) + np[1] * (xq[1] - xp[1]) + np[2] * (xq[2] - xp[2]);
+    return std::abs(plane) <= s.depth_rel * zp;
 }
 
 void discontinuity_window(int n, int* lo, int* hi) {

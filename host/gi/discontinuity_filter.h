@@ -9,24 +9,29 @@
 
 namespace tessera {
 
-/// Thresholds: a neighbour q of pixel p is accepted when n_p · n_q >= normal_cos and
-/// |z_p - z_q| <= depth_rel · z_p. Defaults from ALGORITHMS.md §1.2 [A]: 0.9 (normals
-/// within about 26°, looser than a curved surface's change across a 3-pixel window at
-/// typical distances, tighter than any crease) and 5% relative depth (below the depth
-/// step of a contact edge seen from a few scene units, above a slanted plane's change
-/// across the window at angles up to about 70°).
+/// Thresholds: a neighbour q of pixel p is accepted when n_p · n_q >= normal_cos and q's
+/// point lies within depth_rel · z_p of p's tangent plane, |n_p · (x_q - x_p)| (or, where
+/// the buffer has no positions, |z_p - z_q|) <= depth_rel · z_p. The plane distance is 0
+/// across a plane seen at any slant, where a depth difference grows with the slant and
+/// would flag plain walls seen at grazing angles as edges; it separates parallel surfaces
+/// at different depths as the depth test does. Defaults from ALGORITHMS.md §1.2 [A]: 0.9
+/// (normals within about 26°, looser than a curved surface's change across a 3-pixel
+/// window at typical distances, tighter than any crease) and 5% of the depth (below the
+/// step of a contact edge seen from a few scene units).
 struct DiscontinuitySettings {
     int tile = 3;             ///< window edge n: every n×n window holds each sample set once
     float normal_cos = 0.9f;
     float depth_rel = 0.05f;
 };
 
-/// Per-pixel geometry of the first diffuse hit: unit normal (3 floats) and distance
-/// (+inf where the camera ray escaped). Row-major, width × height.
+/// Per-pixel geometry of the first diffuse hit: unit normal (3 floats), distance (+inf
+/// where the camera ray escaped) and, optionally, the hit position (3 floats, world
+/// space; empty: the filter falls back to the depth test). Row-major, width × height.
 struct GeometryBuffer {
     int width = 0, height = 0;
     std::vector<float> normal;
     std::vector<float> depth;
+    std::vector<float> position;
 };
 
 /// Whether pixel p accepts neighbour q (the test above; pixels whose rays escaped accept

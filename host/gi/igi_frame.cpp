@@ -126,6 +126,7 @@ void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vec
     geometry_.width = width;
     geometry_.height = static_cast<int>(pixels / static_cast<size_t>(width));
     extract3(surf, TS_IGI_SURF_FLOATS, 12, geometry_.normal);
+    extract3(surf, TS_IGI_SURF_FLOATS, 20, geometry_.position);
     geometry_.depth.resize(pixels);
     for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + 15];
 }

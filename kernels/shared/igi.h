@@ -210,6 +210,7 @@ TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* trace
     out[15] = v.distance;
     out[16] = v.throughput.x; out[17] = v.throughput.y; out[18] = v.throughput.z;
     out[19] = visible;
+    out[20] = v.s.position.x; out[21] = v.s.position.y; out[22] = v.s.position.z;
 }
 
 /* Light arriving at medium point x from direction `wi` found by tracing a ray, and the

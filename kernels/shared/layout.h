@@ -104,8 +104,9 @@ typedef struct TsFrame {
  * quantities albedo multiplies; [6..8] albedo; [9..11] emitted radiance seen;
  * [12..14] shading normal; [15] distance to the surface along the camera path (+inf on
  * a miss); [16..18] throughput of specular bounces before it (1 for none); [19] fraction
- * of the light samples that reached the light unoccluded (AIS soft-shadow guidance). */
-#define TS_IGI_SURF_FLOATS 20
+ * of the light samples that reached the light unoccluded (AIS soft-shadow guidance);
+ * [20..22] the surface position (world space; for the filter's plane-distance test). */
+#define TS_IGI_SURF_FLOATS 23
 /* Per-pixel output of the igi media kernel: [0..2] single-scattered radiance along the
  * camera segment, [3..5] transmittance of that segment, [6] fraction of the march steps
  * whose light sample was unoccluded, [7] length of the segment inside the medium (AIS

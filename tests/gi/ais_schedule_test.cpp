@@ -69,6 +69,7 @@ TEST(AisSchedule, AGradesAMaxSaturatesAndExtraSetsFollowTheOwnSet) {
     g.g[kAisID].assign(W * H, 0.0f);
     g.g[kAisID][4 * W + 4] = 0.5f;  // own set (4 mod 3) + 3 (4 mod 3) = 4
     AisThresholds t;
+    t.id_trigger = 0.25f;  // flag g = 0.5
     AisSchedule a = make_schedule(g, t, AisMode::A, W, H, 3), m = make_schedule(g, t, AisMode::AMax, W, H, 3);
     EXPECT_EQ(a.sets[kAisID][4 * W + 4], 5);  // 1 + ceil(0.5 · 8)
     EXPECT_EQ(m.sets[kAisID][4 * W + 4], 9);

@@ -64,3 +64,52 @@ TEST(DiscontinuityFilter, NeverMixesSurfaceWithBackground) { expect_no_mixing(IN
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// A plane seen at a steep slant: depth grows 20% from one column to the next, far past
+// the 5% threshold, yet every point lies on one plane; with positions the filter must
+// treat it as one surface. A second plane parallel to it, 0.5 deeper, must stay apart.
+GeometryBuffer slanted(int w, int h, bool second_plane) {
+    GeometryBuffer g;
+    g.width = w;
+    g.height = h;
+    const float n[3] = {0.8f, 0.0f, 0.6f};  // unit normal of the plane 0.8 x + 0.6 z = d
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float d = second_plane && x >= w / 2 ? 3.5f : 3.0f;
+            const float px = 0.5f * x, pz = (d - 0.8f * px) / 0.6f;
+            g.position.insert(g.position.end(), {px, 0.1f * y, pz});
+            g.normal.insert(g.normal.end(), {n[0], n[1], n[2]});
+            g.depth.push_back(2.0f * (1.0f + 0.2f * x));  // the camera distance: steep growth
+        }
+    return g;
+}
+
+TEST(DiscontinuityFilter, PlaneAtASlantIsOneSurface) {
+    GeometryBuffer g = slanted(9, 6, false);
+    std::vector<float> in, out;
+    for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 9; ++x) in.push_back(float(x % 3));
+    std::vector<uint8_t> accepted;
+    discontinuity_filter(g, DiscontinuitySettings{3, 0.9f, 0.05f}, 1, in, out, &accepted);
+    EXPECT_EQ(accepted[2 * 9 + 4], 9) << "every neighbour lies on the plane";
+    EXPECT_FLOAT_EQ(out[2 * 9 + 4], 1.0f);
+    g.position.clear();  // the depth test alone calls every column an edge
+    discontinuity_filter(g, DiscontinuitySettings{3, 0.9f, 0.05f}, 1, in, out, &accepted);
+    EXPECT_EQ(accepted[2 * 9 + 4], 3);
+}
+
+TEST(DiscontinuityFilter, ParallelPlanesAtDifferentDepthsStayApart) {
+    GeometryBuffer g = slanted(10, 6, true);
+    std::vector<float> in, out;
+    for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 10; ++x) in.push_back(x < 5 ? 1.0f : 100.0f);
+    discontinuity_filter(g, DiscontinuitySettings{3, 0.9f, 0.05f}, 1, in, out);
+    for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 10; ++x) ASSERT_EQ(out[y * 10 + x], x < 5 ? 1.0f : 100.0f) << x << "," << y;
+}
+
+}  // namespace
+}  // namespace tessera

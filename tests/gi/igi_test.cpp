@@ -101,6 +101,14 @@ TEST(IgiAgreement, BackendsRenderTheSameFrame) {
     const double diff = test::rel_mse(cl, em), noise = test::rel_mse(em2, em);
     std::printf("  igi relMSE OpenCL vs Embree %.3g; seed vs seed %.3g\n", diff, noise);
     EXPECT_LT(diff, 0.02 * noise);
+    // Seed-to-seed relMSE is dominated by antialiasing at the light's edges, so also
+    // bound how many pixels differ between the backends at all.
+    size_t differ = 0, total = 0;
+    for (const char* c : {"R", "G", "B"}) {
+        const auto &a = cl.find(c)->data, &b = em.find(c)->data;
+        for (size_t i = 0; i < a.size(); ++i, ++total) differ += std::abs(a[i] - b[i]) > 1e-3f * (std::abs(b[i]) + 0.01f);
+    }
+    EXPECT_LE(differ, total / 200) << differ << " of " << total << " pixel channels differ";
 }
 
 // Mean of channel c over pixels at least one pixel away from any pixel brighter than 3
