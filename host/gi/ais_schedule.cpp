@@ -6,40 +6,7 @@
 namespace tessera {
 namespace {
 
-// Calls f(q) for every pixel q of p's filter window that p accepts (p itself included).
-template <class F>
-void for_accepted(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y, F&& f) {
-    int lo, hi;
-    discontinuity_window(s.tile, &lo, &hi);
-    const size_t p = size_t(y) * g.width + x;
-    for (int dy = lo; dy <= hi; ++dy)
-        for (int dx = lo; dx <= hi; ++dx) {
-            const int qx = x + dx, qy = y + dy;
-            if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
-            const size_t q = size_t(qy) * g.width + qx;
-            if (q == p || discontinuity_accepts(g, s, p, q)) f(q);
-        }
-}
-
-// Whether the filter cannot clean p: it accepts fewer than `min_acc` neighbours because
-// it rejects some inside the image (a window clipped by the image border is not an edge).
-bool unfilterable(const GeometryBuffer& g, const DiscontinuitySettings& s, int min_acc, int x, int y) {
-    int accepted = 0, in_image = 0;
-    int lo, hi;
-    discontinuity_window(s.tile, &lo, &hi);
-    const size_t p = size_t(y) * g.width + x;
-    for (int dy = lo; dy <= hi; ++dy)
-        for (int dx = lo; dx <= hi; ++dx) {
-            const int qx = x + dx, qy = y + dy;
-            if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
-            ++in_image;
-            const size_t q = size_t(qy) * g.width + qx;
-            accepted += q == p || discontinuity_accepts(g, s, p, q);
-        }
-    return accepted < min_acc && accepted < in_image;
-}
-
-// Calls f(q) for every pixel q of p's filter window, accepted or not.
+// Calls f(q) for every pixel q of p's filter window that lies in the image.
 template <class F>
 void for_window(const GeometryBuffer& g, int tile, int x, int y, F&& f) {
     int lo, hi;
@@ -49,6 +16,27 @@ void for_window(const GeometryBuffer& g, int tile, int x, int y, F&& f) {
             const int qx = x + dx, qy = y + dy;
             if (qx >= 0 && qy >= 0 && qx < g.width && qy < g.height) f(size_t(qy) * g.width + qx);
         }
+}
+
+// Calls f(q) for every pixel q of p's filter window that p accepts (p itself included).
+template <class F>
+void for_accepted(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y, F&& f) {
+    const size_t p = size_t(y) * g.width + x;
+    for_window(g, s.tile, x, y, [&](size_t q) {
+        if (q == p || discontinuity_accepts(g, s, p, q)) f(q);
+    });
+}
+
+// Whether the filter cannot clean p: it accepts fewer than `min_acc` neighbours because
+// it rejects some inside the image (a window clipped by the image border is not an edge).
+bool unfilterable(const GeometryBuffer& g, const DiscontinuitySettings& s, int min_acc, int x, int y) {
+    int accepted = 0, in_image = 0;
+    const size_t p = size_t(y) * g.width + x;
+    for_window(g, s.tile, x, y, [&](size_t q) {
+        ++in_image;
+        accepted += q == p || discontinuity_accepts(g, s, p, q);
+    });
+    return accepted < min_acc && accepted < in_image;
 }
 
 bool on_geometric_edge(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y) {

@@ -5,16 +5,7 @@
 
 #include "kernels/shared/geometry.h"
 
-// A tracer that traces nothing, for the functions tested here. Its unnamed namespace
-// gives it internal linkage: the Embree backend's TsTracer is another type, so the
-// shared inline functions taking a TsTracer* cannot be merged across the two (ODR).
-namespace tessera::ts {
-namespace {
-struct TsTracer {};
-[[maybe_unused]] TsHit ts_trace_closest(const TsTracer*, TsRay) { return TsHit{0, 0, 0, TS_NO_HIT}; }
-[[maybe_unused]] int ts_trace_occluded(const TsTracer*, TsRay) { return 0; }
-}  // namespace
-}  // namespace tessera::ts
+#include "support/null_tracer.h"
 
 #include "kernels/shared/pt.h"
 

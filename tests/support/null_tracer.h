@@ -1,0 +1,15 @@
+// A tracer that traces nothing, for tests of shared shading functions that take a
+// tracer but are exercised without geometry. Include after kernels/shared/geometry.h and
+// before the shared header under test. Its unnamed namespace gives it internal linkage:
+// the Embree backend's TsTracer is another type, so the shared inline functions taking a
+// TsTracer* cannot be merged across the two (ODR).
+#pragma once
+#include "kernels/shared/geometry.h"
+
+namespace tessera::ts {
+namespace {
+struct TsTracer {};
+[[maybe_unused]] TsHit ts_trace_closest(const TsTracer*, TsRay) { return TsHit{0, 0, 0, TS_NO_HIT}; }
+[[maybe_unused]] int ts_trace_occluded(const TsTracer*, TsRay) { return 0; }
+}  // namespace
+}  // namespace tessera::ts
