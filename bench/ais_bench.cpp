@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "backend/backend.h"
+#include "bench/igi_timing.h"
 #include "gi/igi_frame.h"
 #include "render/frame.h"
 #include "scene/loader.h"
@@ -26,35 +27,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
 // Frames per second of one configuration: the median of `frames` frames after one warm-up.
 double fps(Backend& be, const Scene& scene, const SceneBuffers& b, const IgiSettings& is, int size, int frames) {
-    IgiFrame igi(be, b, plan_effects(scene), is);
-    TsFrame f = make_frame(scene.camera, size, size, is.set_shadow_samples, 1, b.light_count);
-    f.light_power = b.light_power;
-    std::vector<float> out;
-    igi.render(f, out);
-    std::vector<double> t;
-    for (int i = 0; i < frames; ++i) {
-        f.pass = static_cast<uint32_t>(i + 1);
-        const auto t0 = std::chrono::steady_clock::now();
-        igi.render(f, out);
-        t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    }
-    return 1.0 / median(t);
+    return 1.0 / bench::time_igi_frames(be, scene, b, is, size, frames).frame;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Tessera AIS vs A-MAX vs IGI frame rates (Tables 5.1/5.2 layout)"};
-    std::vector<std::string> scenes;
-    for (const char* s : {"cornell-box", "cornell-box-fog", "sibenik", "sibenik-fog"})
-        scenes.push_back(std::string(TESSERA_SCENES_DIR) + "/" + s + ".json");
+    std::vector<std::string> scenes = bench::standard_scenes();
     std::string out_dir = "bench/results", device;
     int size = 512, frames = 2;
     app.add_option("--scene", scenes)->capture_default_str();

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "backend/backend.h"
+#include "bench/igi_timing.h"
 #include "gi/igi_frame.h"
 #include "render/frame.h"
 #include "scene/loader.h"
@@ -22,11 +23,6 @@ using namespace tessera;
 namespace fs = std::filesystem;
 
 namespace {
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
 
 struct Row {
     std::string scene, backend;
@@ -37,35 +33,16 @@ struct Row {
 Row measure(const Scene& scene, const SceneBuffers& b, BackendKind kind, const std::string& device, int size,
             int frames) {
     auto be = make_backend({kind, device}, b, plan_effects(scene));
-    IgiFrame igi(*be, b, plan_effects(scene), IgiSettings{});
-    TsFrame f = make_frame(scene.camera, size, size, IgiSettings{}.set_shadow_samples, 1, b.light_count);
-    f.light_power = b.light_power;
-    std::vector<float> out;
-    f.pass = 0;
-    igi.render(f, out);  // warm-up: builds or loads the OpenCL programs
-    std::vector<double> total, vpl, surf, media, filt;
-    for (int i = 0; i < frames; ++i) {
-        f.pass = static_cast<uint32_t>(i);
-        const auto t0 = std::chrono::steady_clock::now();
-        igi.render(f, out);
-        total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        vpl.push_back(igi.stats().vpl_seconds);
-        surf.push_back(igi.stats().surface_seconds);
-        media.push_back(igi.stats().media_seconds);
-        filt.push_back(igi.stats().filter_seconds);
-    }
-    return {scene.name, kind == BackendKind::OpenCL ? "opencl" : "embree", 1e3 * median(total), 1e3 * median(vpl),
-            1e3 * median(surf), 1e3 * median(media), 1e3 * median(filt),
-            double(igi.stats().vpl_rays + igi.stats().pixel_rays)};
+    const bench::IgiTiming t = bench::time_igi_frames(*be, scene, b, IgiSettings{}, size, frames);
+    return {scene.name, kind == BackendKind::OpenCL ? "opencl" : "embree", 1e3 * t.frame, 1e3 * t.vpl,
+            1e3 * t.surface, 1e3 * t.media, 1e3 * t.filter, double(t.last.vpl_rays + t.last.pixel_rays)};
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Tessera IGI frame time (both backends)"};
-    std::vector<std::string> scenes;
-    for (const char* s : {"cornell-box", "cornell-box-fog", "sibenik", "sibenik-fog"})
-        scenes.push_back(std::string(TESSERA_SCENES_DIR) + "/" + s + ".json");
+    std::vector<std::string> scenes = bench::standard_scenes();
     std::string out_dir = "bench/results", device;
     int size = 512, frames = 3;
     app.add_option("--scene", scenes)->capture_default_str();

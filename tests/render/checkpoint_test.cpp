@@ -168,12 +168,10 @@ Image render_ckpt(Backend& backend, const Scene& scene, const SceneBuffers& ligh
     return render_frame(backend, scene, lights, rs, nullptr, progress, &ck);
 }
 
-class ResumeCornell : public ::testing::TestWithParam<BackendKind> {};
+class ResumeCornell : public tessera::test::ScratchDirTest, public ::testing::WithParamInterface<BackendKind> {};
 
 TEST_P(ResumeCornell, InterruptedAndResumedRenderIsBitIdentical) {
-    const fs::path dir = fs::temp_directory_path() / ("tessera-resume-" + std::to_string(::getpid()) + "-" +
-                                                      std::to_string(int(GetParam())));
-    fs::create_directories(dir);
+    const fs::path& dir = dir_;
     const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
     SceneBuffers buffers = make_scene_buffers(scene);
     auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
@@ -218,13 +216,10 @@ TEST_P(ResumeCornell, InterruptedAndResumedRenderIsBitIdentical) {
     other = rs;
     other.spp = 4;
     expect_input_error([&] { render_ckpt(*backend, scene, buffers, other, ck); }, {"--spp 4"});
-    fs::remove_all(dir);
 }
 
 TEST_P(ResumeCornell, IntervalCheckpointsResumeToTheSameImage) {
-    const fs::path dir = fs::temp_directory_path() / ("tessera-interval-" + std::to_string(::getpid()) + "-" +
-                                                      std::to_string(int(GetParam())));
-    fs::create_directories(dir);
+    const fs::path& dir = dir_;
     const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
     SceneBuffers buffers = make_scene_buffers(scene);
     auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
@@ -243,7 +238,6 @@ TEST_P(ResumeCornell, IntervalCheckpointsResumeToTheSameImage) {
     const Image resumed = render_frame(*backend, scene, buffers, rs, &stats, {}, &ck);
     EXPECT_EQ(stats.passes, 1u);
     expect_bit_identical(whole, resumed);
-    fs::remove_all(dir);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ResumeCornell, ::testing::Values(BackendKind::Embree, BackendKind::OpenCL));

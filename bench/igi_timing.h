@@ -1,0 +1,56 @@
+// Timing IGI-family frames for the benchmarks (igi_bench, ais_bench): one warm-up frame
+// (it builds or loads the OpenCL programs), then `frames` timed frames, each with its own
+// path block, and the medians of the frame time and of each stage.
+#pragma once
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "gi/igi_frame.h"
+#include "render/frame.h"
+#include "scene/scene.h"
+
+namespace tessera::bench {
+
+inline double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+/// The four scenes the seed-style tables report: the Cornell box, Sibenik, and their fog.
+inline std::vector<std::string> standard_scenes() {
+    std::vector<std::string> s;
+    for (const char* n : {"cornell-box", "cornell-box-fog", "sibenik", "sibenik-fog"})
+        s.push_back(std::string(TESSERA_SCENES_DIR) + "/" + n + ".json");
+    return s;
+}
+
+/// Medians over the timed frames, in seconds; stats of the last frame for the counts.
+struct IgiTiming {
+    double frame = 0, vpl = 0, surface = 0, media = 0, filter = 0;
+    IgiFrameStats last;
+};
+
+inline IgiTiming time_igi_frames(Backend& be, const Scene& scene, const SceneBuffers& b, const IgiSettings& is,
+                                 int size, int frames) {
+    IgiFrame igi(be, b, plan_effects(scene), is);
+    TsFrame f = make_frame(scene.camera, size, size, is.set_shadow_samples, 1, b.light_count);
+    f.light_power = b.light_power;
+    std::vector<float> out;
+    igi.render(f, out);
+    std::vector<double> total, vpl, surf, media, filt;
+    for (int i = 0; i < frames; ++i) {
+        f.pass = static_cast<uint32_t>(i + 1);
+        const auto t0 = std::chrono::steady_clock::now();
+        igi.render(f, out);
+        total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        vpl.push_back(igi.stats().vpl_seconds);
+        surf.push_back(igi.stats().surface_seconds);
+        media.push_back(igi.stats().media_seconds);
+        filt.push_back(igi.stats().filter_seconds);
+    }
+    return {median(total), median(vpl), median(surf), median(media), median(filt), igi.stats()};
+}
+
+}  // namespace tessera::bench
