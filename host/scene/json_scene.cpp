@@ -111,6 +111,9 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
             it = meshes.emplace(file, std::move(entry)).first;
         }
         const size_t first = scene.positions.size();
+        std::string name = rel + "#" + std::to_string(i);
+        if (auto n = obj.find("name")) name = n->string();
+        scene.objects.push_back({name, static_cast<uint32_t>(scene.triangle_count()), 0u});
         scene_detail::append_mesh(scene, it->second.mesh, transform, it->second.material_base);
         // A finite vertex times a finite transform can still overflow (scale 3e38 and a
         // translation of 3e38): infinite positions would poison the BVH and every pixel.
@@ -119,6 +122,8 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                 obj.fail("the transformed mesh '" + rel + "' has a vertex coordinate that overflows a float");
         }
+        scene.objects.back().triangle_count =
+            static_cast<uint32_t>(scene.triangle_count()) - scene.objects.back().first_triangle;
     }
 }
 
@@ -152,9 +157,11 @@ void read_lights(const JsonField& lights, Scene& scene) {
         for (const glm::vec3 p : {corner + e1, corner + e2, corner + e1 + e2})
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                 l.fail("a corner of the quad overflows a float");
+        const auto first = static_cast<uint32_t>(scene.triangle_count());
         scene_detail::append_quad_light(scene, l["corner"].vec3(), e1, e2,
                                         read_colour(l["radiance"], false),
                                         "json-light-" + std::to_string(i));
+        scene.objects.push_back({"json-light-" + std::to_string(i), first, 2u});
     }
 }
 

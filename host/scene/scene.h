@@ -59,6 +59,15 @@ struct Camera {
     int height = 512;
 };
 
+/// A scene object: one `objects` entry of the scene file (or one JSON light), i.e. the
+/// triangles [first_triangle, first_triangle + triangle_count) placed by one transform.
+/// Objects are what an animation moves and what temporal caching tracks as occluders.
+struct SceneObject {
+    std::string name;          ///< the JSON "name", else "<mesh file>#<index>" or "json-light-<i>"
+    uint32_t first_triangle = 0;
+    uint32_t triangle_count = 0;
+};
+
 /// The loaded scene. Per-triangle arrays are parallel: triangle i has vertices
 /// positions[3i..3i+2], shading normals normals[3i..3i+2] (unit length, world space,
 /// the geometric normal where the mesh has none), texture coordinates uvs[3i..3i+2]
@@ -74,6 +83,9 @@ struct Scene {
     std::vector<uint32_t> material;
     std::vector<Material> materials;
     std::vector<Texture> textures;
+    /// Contiguous triangle ranges in file order, covering every triangle; empty for a
+    /// scene built in code (then all triangles count as one object).
+    std::vector<SceneObject> objects;
     Camera camera;
     bool has_medium = false;   ///< true when the scene file declares a "medium"
     Medium medium;
