@@ -15,6 +15,15 @@ namespace tessera {
 
 enum class BackendKind { OpenCL, Embree };
 
+/// An irradiance cache as the interpolation kernel reads it (kernels/shared/ic.h):
+/// TS_IC_NODE_FLOATS per octree node (root first), the nodes' record lists
+/// concatenated, and TS_IC_RECORD_FLOATS per record.
+struct IcCacheBuffers {
+    std::vector<float> nodes;
+    std::vector<uint32_t> refs;
+    std::vector<float> records;
+};
+
 /// Parses "opencl" or "embree"; throws InputError naming --backend otherwise.
 BackendKind parse_backend_kind(const std::string& s);
 
@@ -50,6 +59,21 @@ public:
         run_items(frame, pixels, codes, out);
     }
 
+    /// Instant caching: interpolates `cache` at every pixel of `gbuffer` (TS_IC_GBUF_FLOATS
+    /// per pixel, from PixelKernel::IcGbuffer) with error bound `error_bound` (Ward's a).
+    /// `out` is resized to 4 floats per pixel: E (irradiance / π) and the weight sum.
+    void ic_interpolate(const std::vector<float>& gbuffer, const IcCacheBuffers& cache, float error_bound,
+                        std::vector<float>& out) {
+        const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
+        out.assign(4 * pixels, 0.0f);
+        if (pixels == 0) return;
+        ++ic_dispatches_;
+        run_ic_interpolate(gbuffer, cache, error_bound, out);
+    }
+
+    /// How many times the ic interpolation kernel was dispatched.
+    uint64_t ic_dispatch_count() const { return ic_dispatches_; }
+
     /// How many times the AIS extra kernel was dispatched.
     uint64_t item_dispatch_count() const { return item_dispatches_; }
 
@@ -72,10 +96,13 @@ protected:
     virtual void run_pixels(PixelKernel k, const TsFrame& frame, std::vector<float>& out) = 0;
     virtual void run_items(const TsFrame& frame, const std::vector<uint32_t>& pixels,
                            const std::vector<uint32_t>& codes, std::vector<float>& out) = 0;
+    virtual void run_ic_interpolate(const std::vector<float>& gbuffer, const IcCacheBuffers& cache,
+                                    float error_bound, std::vector<float>& out) = 0;
 
 private:
     uint64_t dispatches_[kPixelKernelCount] = {};
     uint64_t item_dispatches_ = 0;
+    uint64_t ic_dispatches_ = 0;
 };
 
 /// Creates a backend for `scene`. The OpenCL backend builds its BVH with Embree's

@@ -78,6 +78,7 @@ inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
 // material without a texture never reaches the lookup, and a scene without a medium
 // has medium.present = 0, so results equal the OpenCL builds without them.
 #include "kernels/shared/direct.h"
+#include "kernels/shared/ic.h"
 #include "kernels/shared/igi.h"
 #include "kernels/shared/pt.h"
 
@@ -117,7 +118,20 @@ protected:
             case PixelKernel::PathTrace: return dispatch(frame, out, k, ts::ts_pt_pixel);
             case PixelKernel::IgiSurface: return dispatch(frame, out, k, ts::ts_igi_surface_pixel);
             case PixelKernel::IgiMedia: return dispatch(frame, out, k, ts::ts_igi_media_pixel);
+            case PixelKernel::IcGbuffer: return dispatch(frame, out, k, ts::ts_ic_gbuffer_pixel);
         }
+    }
+
+    void run_ic_interpolate(const std::vector<float>& gbuffer, const IcCacheBuffers& cache, float error_bound,
+                            std::vector<float>& out) override {
+        const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 256), [&](const tbb::blocked_range<size_t>& r) {
+            set_ftz_daz();
+            for (size_t p = r.begin(); p < r.end(); ++p)
+                ts::ts_ic_interpolate_pixel(gbuffer.data(), cache.nodes.data(), cache.refs.data(),
+                                            cache.records.data(), error_bound, static_cast<uint32_t>(p),
+                                            &out[4 * p]);
+        });
     }
 
     void run_items(const TsFrame& frame, const std::vector<uint32_t>& pixels, const std::vector<uint32_t>& codes,

@@ -87,6 +87,24 @@ protected:
         });
     }
 
+    void run_ic_interpolate(const std::vector<float>& gbuffer, const IcCacheBuffers& cache, float error_bound,
+                            std::vector<float>& out) override {
+        const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
+        run([&] {
+            cl::Buffer g = upload("ic G-buffer", gbuffer), n = upload("ic octree", cache.nodes);
+            cl::Buffer r = upload("ic record lists", cache.refs), rec = upload("ic records", cache.records);
+            cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
+            cl::Kernel& k = kernel("ic.cl", "ic_interpolate");
+            int a = 0;
+            k.setArg(a++, static_cast<cl_uint>(pixels));
+            k.setArg(a++, error_bound);
+            for (cl::Buffer* b : {&g, &n, &r, &rec, &buf}) k.setArg(a++, *b);
+            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(pixels, TS_WORKGROUP_SIZE)),
+                                        cl::NDRange(TS_WORKGROUP_SIZE));
+            queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+        });
+    }
+
     // The arguments every per-pixel kernel starts with (TS_PIXEL_KERNEL_ARGS); returns
     // the index of the next argument.
     int set_scene_args(cl::Kernel& k, const TsFrame& frame, cl::Buffer& out) {
@@ -115,6 +133,7 @@ private:
         switch (k) {
             case PixelKernel::Direct: return "direct.cl";
             case PixelKernel::PathTrace: return "pt.cl";
+            case PixelKernel::IcGbuffer: return "ic.cl";
             default: return "igi.cl";
         }
     }

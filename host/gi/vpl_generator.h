@@ -32,17 +32,8 @@ struct VplList {
     size_t count() const { return set_start.empty() ? 0 : set_start.back(); }
 };
 
-/// Shoots the light paths and records a VPL at every diffuse surface hit.
-/// Estimator (pbrt-v2 IGI convention, ALGORITHMS.md §3.2): a path starts at a light
-/// picked in proportion to power, at a uniform point y0 (area pdf p_A including the
-/// selection) in a cosine-distributed direction, with weight α = Le·π / p_A. At a
-/// diffuse hit y with albedo ρ it leaves a VPL of weight C = α·ρ/π / M (M paths per
-/// set, so a pixel's sum over its set's VPLs is the set's estimate), then continues
-/// with probability q = min(1, luminance(ρ)) in a cosine direction, α ← α·ρ/q. Mirrors
-/// reflect (α ← α·Ks); dielectrics reflect or refract by Fresnel; neither stores a VPL.
-/// With a medium every segment attenuates α by its transmittance (no scattering, the
-/// single-scattering model of shared/igi.h). Halton dimensions: 0 light, 1-2 point,
-/// 3-4 direction, then per bounce 2 for the direction and 1 for roulette/Fresnel.
+/// Shoots the light paths (gi/light_paths.h, which documents the estimator) and
+/// records a VPL at every diffuse surface hit, sorted by set.
 VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSettings& settings);
 
 }  // namespace tessera

@@ -13,7 +13,13 @@ Method parse_method(const std::string& name) {
     if (name == "igi") return Method::Igi;
     if (name == "ais") return Method::Ais;
     if (name == "ais-max") return Method::AisMax;
-    throw InputError("--method " + name + ": not available (implemented: direct, pt, igi, ais, ais-max)");
+    if (name == "ic") return Method::Ic;
+    if (name == "tic") return Method::Tic;
+    throw InputError("--method " + name + ": not available (implemented: direct, pt, igi, ais, ais-max, ic, tic)");
+}
+
+bool is_igi_method(Method m) {
+    return m == Method::Igi || m == Method::Ais || m == Method::AisMax || m == Method::Ic || m == Method::Tic;
 }
 
 const char* method_name(Method m) {
@@ -23,6 +29,8 @@ const char* method_name(Method m) {
         case Method::Igi: return "igi";
         case Method::Ais: return "ais";
         case Method::AisMax: return "ais-max";
+        case Method::Ic: return "ic";
+        case Method::Tic: return "tic";
     }
     return "?";
 }
@@ -48,6 +56,7 @@ int pixel_kernel_floats(PixelKernel k) {
         case PixelKernel::PathTrace: return TS_PASS_FLOATS;
         case PixelKernel::IgiSurface: return TS_IGI_SURF_FLOATS;
         case PixelKernel::IgiMedia: return TS_IGI_MEDIA_FLOATS;
+        case PixelKernel::IcGbuffer: return TS_IC_GBUF_FLOATS;
     }
     return 0;
 }
@@ -58,6 +67,7 @@ const char* pixel_kernel_name(PixelKernel k) {
         case PixelKernel::PathTrace: return "pt_pass";
         case PixelKernel::IgiSurface: return "igi_surface_pass";
         case PixelKernel::IgiMedia: return "igi_media_pass";
+        case PixelKernel::IcGbuffer: return "ic_gbuffer_pass";
     }
     return "?";
 }

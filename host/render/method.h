@@ -10,9 +10,14 @@ enum class Method {
     Igi,        ///< instant global illumination (kernels/shared/igi.h, host/gi)
     Ais,        ///< adaptive interleaved sampling, mode A (host/gi/ais_schedule.h)
     AisMax,     ///< adaptive interleaved sampling, mode A-MAX
+    Ic,         ///< instant caching: igi with indirect light from an irradiance cache (host/gi/instant_cache.h)
+    Tic,        ///< temporal instant caching: the cache kept and updated across frames
 };
 
-/// Parses "direct", "pt", "igi", "ais" or "ais-max"; throws InputError naming --method
+/// True for the methods built on the igi frame (igi, ais, ais-max, ic, tic).
+bool is_igi_method(Method m);
+
+/// Parses "direct", "pt", "igi", "ais", "ais-max", "ic" or "tic"; throws InputError naming --method
 /// otherwise.
 Method parse_method(const std::string& name);
 const char* method_name(Method m);
@@ -23,8 +28,9 @@ enum class PixelKernel {
     PathTrace,   ///< TS_PASS_FLOATS per pixel
     IgiSurface,  ///< TS_IGI_SURF_FLOATS per pixel
     IgiMedia,    ///< TS_IGI_MEDIA_FLOATS per pixel
+    IcGbuffer,   ///< TS_IC_GBUF_FLOATS per pixel
 };
-constexpr int kPixelKernelCount = 4;
+constexpr int kPixelKernelCount = 5;
 
 /// Parses a comma-separated list of "ss", "id", "pm" into TS_COMPONENT_* bits; throws
 /// InputError naming --components for anything else or an empty list.

@@ -120,6 +120,26 @@ typedef struct TsFrame {
 #define TS_COMPONENT_ID 2u
 #define TS_COMPONENT_PM 4u
 
+/* Instant caching (shared/ic.h, host/gi/irradiance_cache.h).
+ * Per-pixel output of the ic G-buffer kernel, TS_IC_GBUF_FLOATS floats: the first diffuse
+ * surface seen through the pixel (the igi surface kernel's camera ray, so the same
+ * surface): [0..2] position, [3..5] shading normal, [6..8] geometric normal (toward the
+ * viewer), [9..11] ray origin for leaving rays, [12] pos_scale, [13] triangle index (uint
+ * bits; TS_NO_HIT when the camera path finds no surface or a surface of albedo 0: no
+ * record can serve it), [14] distance along the camera path (scene units). */
+#define TS_IC_GBUF_FLOATS 15
+/* A cache record as the interpolation reads it: [0..2] position, [3..5] unit shading
+ * normal, [6..8] E = irradiance / π gathered from the VPLs (albedo-free), [9] validity
+ * radius R (scene units). */
+#define TS_IC_RECORD_FLOATS 10
+/* An octree node: [0..2] centre, [3] half edge (scene units), [4] index of the first of
+ * its 8 children (uint bits, stored consecutively in octant order x + 2y + 4z; 0 = leaf,
+ * as the root is node 0), [5] first entry of its record list in the reference array,
+ * [6] number of records, [7] unused. */
+#define TS_IC_NODE_FLOATS 8
+/* Depth bound of the octree (root = depth 0). */
+#define TS_IC_MAX_DEPTH 24
+
 /* Per-pixel output of one pass: TS_PASS_FLOATS floats per pixel:
  * [0..2] radiance (W/(sr·m²)), [3..5] albedo at the first hit, [6..8] shading normal
  * at the first hit, [9] distance to the first hit (scene units; +inf on a miss). */

@@ -24,16 +24,23 @@ typedef struct TsLightSample {
     float pos_scale;   /* largest absolute vertex coordinate of the light triangle */
 } TsLightSample;
 
-/* Picks a light in proportion to power by inverting light_cdf with `u_select`
- * (binary search), then a uniform point on it from (u, v). Requires light_count > 0. */
-TS_INLINE TsLightSample ts_sample_light(TS_GLOBAL const float* lights,
-                                        TS_GLOBAL const float* light_cdf,
-                                        uint light_count, float u_select, float u, float v) {
+/* The light `u_select` picks by inverting light_cdf (binary search). Requires
+ * light_count > 0. */
+TS_INLINE uint ts_select_light(TS_GLOBAL const float* light_cdf, uint light_count, float u_select) {
     uint lo = 0u, hi = light_count - 1u;
     while (lo < hi) {
         uint mid = (lo + hi) >> 1;
         if (u_select < light_cdf[mid]) hi = mid; else lo = mid + 1u;
     }
+    return lo;
+}
+
+/* Picks a light in proportion to power (ts_select_light with `u_select`), then a
+ * uniform point on it from (u, v). Requires light_count > 0. */
+TS_INLINE TsLightSample ts_sample_light(TS_GLOBAL const float* lights,
+                                        TS_GLOBAL const float* light_cdf,
+                                        uint light_count, float u_select, float u, float v) {
+    uint lo = ts_select_light(light_cdf, light_count, u_select);
     float p_select = light_cdf[lo] - (lo > 0u ? light_cdf[lo - 1u] : 0.0f);
     TS_GLOBAL const float* L = lights + lo * TS_LIGHT_FLOATS;
     float3 p0 = ts_f3_load(L + 0), e1 = ts_f3_load(L + 3), e2 = ts_f3_load(L + 6);

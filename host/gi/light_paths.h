@@ -1,0 +1,60 @@
+// Light paths of instant radiosity (Keller 1997) traced path by path with their
+// segments kept: what VPL generation (gi/vpl_generator.h) and the temporal instant cache
+// (gi/instant_cache.h) share. A path's Halton point fixes every random decision, so a
+// path re-traced in an unchanged scene reproduces its VPLs bit for bit; ALGORITHMS.md §3.2.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "backend/backend.h"
+#include "render/scene_buffers.h"
+
+namespace tessera {
+
+/// One traced ray of a light path: from org along dir (unnormalised is fine) to the hit
+/// at parameter t on triangle prim, or escaping (prim = TS_NO_HIT, t = +inf).
+struct PathSegment {
+    float org[3];
+    float dir[3];
+    float t;
+    uint32_t prim;
+};
+
+/// A light path and what it left: VPLs (TS_VPL_FLOATS each, layout.h, in path order) and
+/// the segments traced. `light` is the index of the emissive triangle it started on
+/// (SceneBuffers::lights order); a path whose start has zero pdf has no segments.
+struct LightPath {
+    uint64_t index = 0;   ///< Halton point
+    uint32_t set = 0;     ///< interleave set its VPLs belong to
+    uint32_t light = 0;
+    std::vector<float> vpls;
+    std::vector<PathSegment> segments;
+};
+
+struct LightPathSettings {
+    /// Surface hits per path. Paths end by Russian roulette; this cap only bounds the
+    /// work. IGI's customary 5 would drop the light of 6+ bounces (about ρ⁵ of the
+    /// indirect light, a few percent in a white room) and make IGI converge to something
+    /// other than the path-traced reference, so the cap is set where roulette has long
+    /// ended every path in practice.
+    uint32_t max_bounces = 64;
+    uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
+    float inv_paths = 1.0f;            ///< 1 / (paths per set): each VPL's weight carries it
+};
+
+/// Traces `paths` (index and set filled in; vpls, segments and light are overwritten),
+/// all bounces of all paths batched through Backend::trace_closest. Returns the number
+/// of rays traced.
+/// Estimator (pbrt-v2 IGI convention, ALGORITHMS.md §3.2): a path starts at a light
+/// picked in proportion to power, at a uniform point y0 (area pdf p_A including the
+/// selection) in a cosine-distributed direction, with weight α = Le·π / p_A. At a
+/// diffuse hit y with albedo ρ it leaves a VPL of weight C = α·ρ/π · inv_paths, then
+/// continues with probability q = min(1, luminance(ρ)) in a cosine direction, α ← α·ρ/q.
+/// Mirrors reflect (α ← α·Ks); dielectrics reflect or refract by Fresnel; neither stores
+/// a VPL. With a medium every segment attenuates α by its transmittance (no scattering,
+/// the single-scattering model of shared/igi.h). Halton dimensions: 0 light, 1-2 point,
+/// 3-4 direction, then per bounce 2 for the direction and 1 for roulette/Fresnel.
+uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
+                           std::vector<LightPath>& paths);
+
+}  // namespace tessera
