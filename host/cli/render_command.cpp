@@ -119,7 +119,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("scene", args->scene, "Scene file (.json)");
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
-    cmd->add_option("--method", args->method, "Rendering method: direct, pt, igi, ais or ais-max")
+    cmd->add_option("--method", args->method, "Rendering method: direct, pt, igi, ais, ais-max, ic or tic")
         ->capture_default_str();
     cmd->add_option("--components", args->components, "igi/ais: components to compute, e.g. ss,id,pm")
         ->capture_default_str();
@@ -133,6 +133,10 @@ void add_render_command(CLI::App& app) {
                     "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables")
         ->capture_default_str();
     cmd->add_option("--march-steps", args->settings.igi.march_steps, "igi: medium ray-march steps per pixel")
+        ->capture_default_str();
+    cmd->add_option("--ic-paths", args->settings.ic.paths, "ic/tic: light paths N_p (all records gather from all)")
+        ->capture_default_str();
+    cmd->add_option("--ic-error", args->settings.ic.error_bound, "ic/tic: Ward's error bound a")
         ->capture_default_str();
     cmd->add_flag("!--no-filter", args->settings.igi.filter, "igi: skip the discontinuity filter");
     cmd->add_option("--ais-ss-trigger", args->settings.igi.ais.ss_trigger, "ais: SS guidance trigger")

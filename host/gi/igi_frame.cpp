@@ -70,7 +70,8 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
     frame = prepare(frame);
     auto t0 = Clock::now();
     VplList vpls;
-    if (plan_.indirect && (frame.igi_components & TS_COMPONENT_ID)) {
+    const bool cached_id = cache_ && (frame.igi_components & TS_COMPONENT_ID);
+    if (plan_.indirect && (frame.igi_components & TS_COMPONENT_ID) && !cache_) {
         VplSettings vs;
         vs.sets = sets;
         vs.paths_per_set = settings_.paths_per_set;
@@ -87,7 +88,9 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
 
     t0 = Clock::now();
     std::vector<float> surf, media;
-    backend_.render_pass(PixelKernel::IgiSurface, frame, surf);
+    TsFrame surface_frame = frame;
+    if (cache_) surface_frame.igi_components &= ~TS_COMPONENT_ID;
+    backend_.render_pass(PixelKernel::IgiSurface, surface_frame, surf);
     stats_.surface_seconds = since(t0);
     const uint64_t pixels = uint64_t(frame.width) * frame.height;
     stats_.pixel_rays = pixels * (1 + settings_.set_shadow_samples + stats_.vpls / sets);
@@ -100,6 +103,12 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
     }
     t0 = Clock::now();
     extract(static_cast<int>(frame.width), surf, media);
+    if (cached_id) {
+        const auto tc = Clock::now();
+        if (plan_.indirect) cache_->indirect(backend_, scene_, frame, g_clamp_, raw_[kAisID]);
+        stats_.cache_seconds = since(tc);
+        t0 += Clock::now() - tc;
+    }
     stats_.ais_seconds = 0.0;
     stats_.ais_items = 0;
     if (settings_.adaptive) {
@@ -193,7 +202,7 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
 // sample (ALGORITHMS.md §2.3, step 5).
 void IgiFrame::reconstruct() {
     for (int c = 0; c < kAisComponents; ++c) {
-        if (settings_.filter)
+        if (settings_.filter && !(c == kAisID && cache_))
             discontinuity_filter(geometry_, settings_.discontinuity, 3, raw_[c], final_[c]);
         else
             final_[c] = raw_[c];
@@ -244,6 +253,7 @@ std::string IgiFrame::describe() const {
                   1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
                   1e3 * stats_.filter_seconds);
     std::string line = buf;
+    if (cache_) line += "; " + cache_->describe();
     if (settings_.adaptive) {
         std::snprintf(buf, sizeof buf, "; %s: flagged SS %.1f%%, ID %.1f%%, PM %.1f%%, %zu extra set evaluations, %.1f ms",
                       settings_.ais_mode == AisMode::AMax ? "ais-max" : "ais", 100 * stats_.flagged[kAisSS],

@@ -10,6 +10,7 @@
 #include "backend/backend.h"
 #include "gi/ais_schedule.h"
 #include "gi/discontinuity_filter.h"
+#include "gi/instant_cache.h"
 #include "gi/vpl_generator.h"
 #include "image/image_io.h"
 #include "render/effect_plan.h"
@@ -46,6 +47,7 @@ struct IgiFrameStats {
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
     double ais_seconds = 0;  ///< guidance, schedule and the extra sets (AIS only)
+    double cache_seconds = 0;  ///< the instant cache's indirect component (ic/tic only)
     size_t ais_items = 0;    ///< extra (pixel, set) evaluations (AIS only)
     std::array<double, kAisComponents> flagged{};  ///< fraction of pixels flagged (AIS only)
 };
@@ -83,6 +85,11 @@ public:
     /// One line for the log: tile, VPLs, clamp and the last frame's stage times.
     std::string describe() const;
 
+    /// Instant caching: the indirect component comes from `cache` (not owned; it must
+    /// outlive this object) instead of the interleaved VPL sets, and is not filtered (the
+    /// cache's interpolation already smooths it). nullptr restores plain igi.
+    void set_instant_cache(InstantCache* cache) { cache_ = cache; }
+
     /// The last frame's schedule (AIS only; empty otherwise).
     const AisSchedule& schedule() const { return schedule_; }
 
@@ -109,6 +116,7 @@ private:
     GeometryBuffer geometry_;
     AisGuidance guidance_;
     AisSchedule schedule_;
+    InstantCache* cache_ = nullptr;
 };
 
 }  // namespace tessera

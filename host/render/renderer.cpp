@@ -26,6 +26,8 @@ void validate(const RenderSettings& s) {
     if (s.igi.tile < 1 || s.igi.tile > 8) throw InputError("--tile must be in 1..8");
     if (s.igi.paths_per_set < 1 || s.igi.paths_per_set > 65536) throw InputError("--vpl-paths must be in 1..65536");
     if (!(s.igi.clamp_c >= 0.0f)) throw InputError("--clamp must be >= 0");
+    if (s.ic.paths < 1 || s.ic.paths > 65536) throw InputError("--ic-paths must be in 1..65536");
+    if (!(s.ic.error_bound > 0.0f && s.ic.error_bound <= 2.0f)) throw InputError("--ic-error must be in (0, 2]");
 }
 
 }  // namespace
@@ -44,12 +46,22 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     CheckpointSession session(checkpoint, scene, settings, w, h);
     const uint32_t first = session.restore(acc);
     std::unique_ptr<IgiFrame> igi;
-    if (settings.method == Method::Igi || settings.method == Method::Ais || settings.method == Method::AisMax) {
+    std::shared_ptr<InstantCache> cache;
+    if (is_igi_method(settings.method)) {
         IgiSettings is = settings.igi;
         is.set_shadow_samples = settings.shadow_samples;
-        is.adaptive = settings.method != Method::Igi;
+        is.adaptive = settings.method == Method::Ais || settings.method == Method::AisMax;
         is.ais_mode = settings.method == Method::AisMax ? AisMode::AMax : AisMode::A;
         igi = std::make_unique<IgiFrame>(backend, buffers, plan_effects(scene), is);
+        if (settings.method == Method::Ic || settings.method == Method::Tic) {
+            cache = settings.ic_state;
+            if (!cache) {
+                IcSettings ics = settings.ic;
+                ics.temporal = settings.method == Method::Tic;
+                cache = std::make_shared<InstantCache>(ics, scene.objects);
+            }
+            igi->set_instant_cache(cache.get());
+        }
     }
     const PixelKernel kernel = settings.method == Method::Direct ? PixelKernel::Direct : PixelKernel::PathTrace;
     std::vector<float> pass;

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "backend/backend.h"
@@ -19,6 +20,10 @@ struct RenderSettings {
     uint32_t max_depth = 128;       ///< pt: path vertices before a path is cut
     uint32_t max_scatter = 0;       ///< pt: medium scattering vertices per path, 0 = unlimited
     IgiSettings igi;                ///< igi (set_shadow_samples comes from shadow_samples)
+    IcSettings ic;                  ///< ic, tic (temporal is set from the method)
+    /// tic: the cache kept across the frames of a sequence (render it frame by frame with
+    /// the same settings); null: a cache for this call only.
+    std::shared_ptr<InstantCache> ic_state;
     uint32_t spp = 16;              ///< passes, one camera sample per pixel each
     uint32_t shadow_samples = 8;    ///< area-light samples per camera hit and pass
     uint32_t seed = 1;

@@ -1,29 +1,10 @@
-/* Instant caching (Debattista, Dubla et al., "Instant Caching for Interactive Global
- * Illumination", CGF 2009): an irradiance cache (Ward, Rubinstein & Clear 1988) whose
- * records gather indirect light from the VPLs. This file holds what the kernels and the
- * host share: the G-buffer kernel's per-pixel part, the weight of a record, and the octree
- * lookup that interpolates. Placement, gathering and the temporal update are host code
- * (host/gi/irradiance_cache.h, instant_cache.h); ALGORITHMS.md §3 is our reading.
- *
- * Weight (Ward 1988, shifted): with ε(x, n) = ‖x − x_i‖ / R_i + sqrt(1 − n·n_i), a record
- * is usable at (x, n) iff ε < a (Ward's w = 1/ε > 1/a), and it is weighted by
- *   w_i = 1/ε − 1/a,
- * not Ward's 1/ε: the shifted weight falls to 0 at the edge of the record's validity, so
- * the interpolated irradiance has no seams where a record stops counting (with 1/ε a
- * record enters the sum at weight 1/a). ε is floored at 1e-4·a, bounding w at 1e4/a for a
- * query on the record itself. A record lying in front of x, (x − x_i)·(n + n_i)/2 < −0.01·R_i,
- * is rejected (Ward's test, with a tolerance relative to the record's radius so it does
- * not depend on the scene's scale). No gradients: interpolation is the weighted mean.
- *
- * The octree (layout.h TS_IC_NODE_FLOATS) stores a record in every node of one level
- * whose box meets the bounding box of its validity sphere (radius a·R_i, the largest
- * distance at which ε < a); that level is the deepest whose half edge is still ≥ a·R_i.
- * A lookup walks from the root to the leaf containing x and tests the records of each
- * node on the way: any record usable at x is met, since its level's node containing x
- * meets its sphere. The walk reads only; the host inserts between dispatches. */
+/* Instant caching, the kernels' side: the G-buffer kernel's per-pixel part. The
+ * record weight and the octree lookup are in shared/ic_lookup.h (also compiled into host
+ * code that has no tracer); the method is described there. */
 #ifndef TS_IC_H
 #define TS_IC_H
 #include "shared/compat.h"
+#include "shared/ic_lookup.h"
 #include "shared/igi.h"
 #include "shared/layout.h"
 
@@ -46,59 +27,6 @@ TS_INLINE void ts_ic_gbuffer_pixel(const TsSceneView* sv, const TsTracer* tracer
     out[12] = s->pos_scale;
     out[13] = as_float(v.hit.prim);
     out[14] = v.distance;
-}
-
-/* The shifted Ward weight of `record` (TS_IC_RECORD_FLOATS) at (x, n) for error bound a;
- * 0 when the record is not usable there. */
-TS_INLINE float ts_ic_weight(TS_GLOBAL const float* record, float3 x, float3 n, float a) {
-    float3 xi = ts_f3_load(record), ni = ts_f3_load(record + 3);
-    float radius = record[9];
-    float3 d = x - xi;
-    if (dot(d, n + ni) * 0.5f < -0.01f * radius) return 0.0f;
-    float eps = length(d) / radius + sqrt(fmax(0.0f, 1.0f - dot(n, ni)));
-    if (!(eps < a)) return 0.0f;
-    return 1.0f / fmax(eps, 1e-4f * a) - 1.0f / a;
-}
-
-/* Interpolated E at (x, n) from the octree: writes Σ w_i E_i / Σ w_i to *e (0 when no
- * record is usable) and returns Σ w_i. Sums run in the walk's order (root first, each
- * node's records in reference order), the same on every backend. */
-TS_INLINE float ts_ic_interpolate(TS_GLOBAL const float* nodes, TS_GLOBAL const uint* refs,
-                                  TS_GLOBAL const float* records, float3 x, float3 n, float a, float3* e) {
-    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
-    float wsum = 0.0f;
-    uint node = 0u;
-    for (int depth = 0; depth <= TS_IC_MAX_DEPTH; ++depth) {
-        TS_GLOBAL const float* N = nodes + (size_t)node * TS_IC_NODE_FLOATS;
-        uint first = as_uint(N[5]), count = as_uint(N[6]);
-        for (uint r = first; r < first + count; ++r) {
-            TS_GLOBAL const float* rec = records + (size_t)refs[r] * TS_IC_RECORD_FLOATS;
-            float w = ts_ic_weight(rec, x, n, a);
-            if (w > 0.0f) {
-                sum += ts_f3_load(rec + 6) * w;
-                wsum += w;
-            }
-        }
-        uint child = as_uint(N[4]);
-        if (child == 0u) break;
-        uint octant = (x.x >= N[0] ? 1u : 0u) + (x.y >= N[1] ? 2u : 0u) + (x.z >= N[2] ? 4u : 0u);
-        node = child + octant;
-    }
-    *e = wsum > 0.0f ? sum / wsum : sum;
-    return wsum;
-}
-
-/* Interpolation for pixel p of the G-buffer: out[0..2] E, out[3] Σ w (0 where no record
- * is usable or the pixel has no surface). */
-TS_INLINE void ts_ic_interpolate_pixel(TS_GLOBAL const float* gbuffer, TS_GLOBAL const float* nodes,
-                                       TS_GLOBAL const uint* refs, TS_GLOBAL const float* records, float a,
-                                       uint p, float* out) {
-    TS_GLOBAL const float* g = gbuffer + (size_t)p * TS_IC_GBUF_FLOATS;
-    out[0] = out[1] = out[2] = out[3] = 0.0f;
-    if (as_uint(g[13]) == TS_NO_HIT) return;
-    float3 e;
-    out[3] = ts_ic_interpolate(nodes, refs, records, ts_f3_load(g), ts_f3_load(g + 3), a, &e);
-    out[0] = e.x; out[1] = e.y; out[2] = e.z;
 }
 
 TS_NAMESPACE_END

@@ -1,0 +1,266 @@
+#include "gi/instant_cache.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "kernels/shared/geometry.h"
+#include "kernels/shared/ic_lookup.h"
+#include "kernels/shared/medium.h"
+#include "kernels/shared/vpl.h"
+
+namespace tessera {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Rays per Backend::trace_closest call: bounds the ray and hit buffers (32 + 16 bytes a ray).
+constexpr size_t kRayBatch = size_t(1) << 20;
+
+bool has_surface(const float* g) { return ts::as_uint(g[13]) != TS_NO_HIT; }
+
+size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / TS_VPL_FLOATS; }
+
+}  // namespace
+
+void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vector<float>& vpls,
+                   const SceneBuffers& scene, float g_clamp, float* harmonic_mean) {
+    const ts::TsSurface s = ic_record_surface(r);
+    const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
+    double sum[3] = {0, 0, 0}, inv_dist = 0;
+    size_t seen = 0;
+    for (size_t j = 0; j < row.size(); ++j) {
+        if (row[j] != kIcVisible) continue;
+        const float* v = &vpls[j * TS_VPL_FLOATS];
+        ts::TsRay shadow;
+        const float g = ts::ts_vpl_geometry(&s, v, g_clamp, &shadow);
+        if (!(g > 0.0f)) continue;
+        const ts::float3 t = ts::ts_medium_transmittance(&med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
+        sum[0] += double(v[6]) * t.x * g;
+        sum[1] += double(v[7]) * t.y * g;
+        sum[2] += double(v[8]) * t.z * g;
+        const ts::float3 d = ts::make_float3(v[0], v[1], v[2]) - s.position;
+        inv_dist += 1.0 / std::sqrt(double(ts::dot(d, d)));
+        ++seen;
+    }
+    for (int c = 0; c < 3; ++c) r.e[c] = static_cast<float>(sum[c] / M_PI);
+    *harmonic_mean = seen > 0 && inv_dist > 0 ? static_cast<float>(seen / inv_dist) : INFINITY;
+}
+
+InstantCache::InstantCache(const IcSettings& settings, const std::vector<SceneObject>& objects)
+    : settings_(settings), cache_(settings.error_bound) {
+    for (const SceneObject& o : objects) object_first_.push_back(o.first_triangle);
+    if (object_first_.empty()) object_first_.push_back(0);
+}
+
+uint32_t InstantCache::object_of(uint32_t triangle) const {
+    auto it = std::upper_bound(object_first_.begin(), object_first_.end(), triangle);
+    return static_cast<uint32_t>(it - object_first_.begin()) - 1u;
+}
+
+void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block) {
+    paths_.assign(settings_.paths, LightPath{});
+    for (uint32_t j = 0; j < settings_.paths; ++j) paths_[j].index = uint64_t(block) * settings_.paths + j;
+    LightPathSettings ls;
+    ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
+    stats_.light_path_rays += trace_light_paths(backend, scene, ls, paths_);
+    stats_.paths_retraced = paths_.size();
+    concat_vpls();
+}
+
+void InstantCache::concat_vpls() {
+    vpls_.clear();
+    for (const LightPath& p : paths_) vpls_.insert(vpls_.end(), p.vpls.begin(), p.vpls.end());
+    stats_.vpls = vpl_count(vpls_);
+}
+
+// Traces the shadow ray of every pair whose geometry term is positive and writes each
+// pair's visibility into rows[record][vpl] (kIcFacing for the others). Returns rays traced.
+uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
+                                   float g_clamp, std::vector<Row>& rows) const {
+    uint64_t traced = 0;
+    std::vector<float> rays, hits;
+    std::vector<uint8_t> facing;
+    for (size_t begin = 0; begin < pairs.size(); begin += kRayBatch) {
+        const size_t n = std::min(kRayBatch, pairs.size() - begin);
+        rays.assign(8 * n, 0.0f);
+        facing.assign(n, 0);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const Pair& p = pairs[begin + i];
+                const ts::TsSurface s = ic_record_surface(cache_.records()[p.record]);
+                ts::TsRay sh;
+                if (!(ts::ts_vpl_geometry(&s, &vpls[size_t(p.vpl) * TS_VPL_FLOATS], g_clamp, &sh) > 0.0f)) {
+                    facing[i] = 1;
+                    continue;
+                }
+                float* o = &rays[8 * i];
+                o[0] = sh.org.x, o[1] = sh.org.y, o[2] = sh.org.z, o[3] = sh.tmin;
+                o[4] = sh.dir.x, o[5] = sh.dir.y, o[6] = sh.dir.z, o[7] = sh.tmax;
+            }
+        });
+        // Only the rays of pairs that face each other are traced.
+        std::vector<uint32_t> live;
+        for (size_t i = 0; i < n; ++i)
+            if (!facing[i]) live.push_back(static_cast<uint32_t>(i));
+        for (size_t k = 0; k < live.size(); ++k)
+            if (live[k] != k) std::memcpy(&rays[8 * k], &rays[8 * size_t(live[k])], 8 * sizeof(float));
+        rays.resize(8 * live.size());
+        backend.trace_closest(rays, hits);
+        traced += live.size();
+        for (size_t i = 0; i < n; ++i) rows[pairs[begin + i].record][pairs[begin + i].vpl] = kIcFacing;
+        for (size_t k = 0; k < live.size(); ++k) {
+            uint32_t prim;
+            std::memcpy(&prim, &hits[4 * k + 3], 4);
+            const Pair& p = pairs[begin + live[k]];
+            rows[p.record][p.vpl] = prim == TS_NO_HIT ? kIcVisible : static_cast<int32_t>(object_of(prim));
+        }
+    }
+    return traced;
+}
+
+// Coarse-to-fine placement (ALGORITHMS.md §3.4): on pixel grids of stride 8, 4, 2, 1,
+// every grid pixel no record covers gets one; each level's records are gathered and
+// inserted before the next level's coverage test, so a level never duplicates a coarser
+// one's work and the result does not depend on thread timing.
+void InstantCache::place(Backend& backend, const SceneBuffers& scene, const std::vector<float>& gbuffer,
+                         const TsFrame& frame, float g_clamp) {
+    const float footprint = 2.0f * std::sqrt(frame.cam_up[0] * frame.cam_up[0] + frame.cam_up[1] * frame.cam_up[1] +
+                                             frame.cam_up[2] * frame.cam_up[2]) / static_cast<float>(frame.height);
+    const size_t nv = vpl_count(vpls_);
+    for (const uint32_t stride : {8u, 4u, 2u, 1u}) {
+        std::vector<uint32_t> candidates;
+        for (uint32_t y = 0; y < frame.height; y += stride)
+            for (uint32_t x = 0; x < frame.width; x += stride) {
+                const uint32_t p = y * frame.width + x;
+                if (has_surface(&gbuffer[size_t(p) * TS_IC_GBUF_FLOATS])) candidates.push_back(p);
+            }
+        const IcCacheBuffers& b = cache_.buffers();
+        std::vector<uint8_t> covered(candidates.size(), 0);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const float* g = &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS];
+                ts::float3 e;
+                covered[i] = ts::ts_ic_interpolate(b.nodes.data(), b.refs.data(), b.records.data(), {g[0], g[1], g[2]},
+                                                   {g[3], g[4], g[5]}, settings_.error_bound, &e) > 0.0f;
+            }
+        });
+        const size_t first = cache_.records().size();
+        std::vector<Pair> pairs;
+        for (size_t i = 0; i < candidates.size(); ++i) {
+            if (covered[i]) continue;
+            IcRecord rec;
+            std::memcpy(rec.surface.data(), &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS],
+                        sizeof(float) * TS_IC_GBUF_FLOATS);
+            const auto id = static_cast<uint32_t>(cache_.records().size());
+            cache_.records().push_back(rec);  // inserted in the octree once its radius is known
+            rows_.emplace_back(nv, kIcFacing);
+            for (uint32_t j = 0; j < nv; ++j) pairs.push_back({id, j});
+        }
+        stats_.shadow_rays += trace_pairs(backend, vpls_, pairs, g_clamp, rows_);
+        std::vector<IcRecord> fresh(cache_.records().begin() + first, cache_.records().end());
+        cache_.records().resize(first);
+        for (size_t i = 0; i < fresh.size(); ++i) {
+            float hm;
+            ic_sum_record(fresh[i], rows_[first + i], vpls_, scene, g_clamp, &hm);
+            fresh[i].radius = ic_record_radius(hm, fresh[i].surface[14], footprint, settings_.min_radius_px,
+                                               settings_.max_radius_px);
+            cache_.insert(fresh[i]);
+        }
+        stats_.created += fresh.size();
+    }
+}
+
+void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, float g_clamp,
+                            std::vector<float>& e_id) {
+    stats_ = IcFrameStats{};
+    auto t0 = Clock::now();
+    if (!settings_.temporal || !have_previous_) {
+        cache_ = IrradianceCache(settings_.error_bound);
+        rows_.clear();
+        start_paths(backend, scene, settings_.temporal ? 0u : frame.pass);
+    } else {
+        update(backend, scene, g_clamp);
+    }
+    stats_.update_seconds = since(t0);
+
+    t0 = Clock::now();
+    std::vector<float> gbuffer;
+    backend.render_pass(PixelKernel::IcGbuffer, frame, gbuffer);
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (size_t i = 0; i + 2 < scene.tri_pos.size(); i += 3) {
+        const glm::vec3 p(scene.tri_pos[i], scene.tri_pos[i + 1], scene.tri_pos[i + 2]);
+        lo = glm::min(lo, p), hi = glm::max(hi, p);
+    }
+    cache_.rebuild(lo, hi);
+    place(backend, scene, gbuffer, frame, g_clamp);
+    stats_.place_seconds = since(t0);
+
+    t0 = Clock::now();
+    std::vector<float> interp;
+    backend.ic_interpolate(gbuffer, cache_.buffers(), settings_.error_bound, interp);
+    const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
+    e_id.assign(3 * pixels, 0.0f);
+    for (size_t p = 0; p < pixels; ++p) {
+        const float* g = &gbuffer[p * TS_IC_GBUF_FLOATS];
+        if (!has_surface(g)) continue;
+        glm::vec3 e(interp[4 * p], interp[4 * p + 1], interp[4 * p + 2]);
+        // Placement covered this pixel on the host; a kernel rounding a weight at the edge
+        // of a record's validity differently can still miss it.
+        if (!(interp[4 * p + 3] > 0.0f)) {
+            cache_.lookup({g[0], g[1], g[2]}, {g[3], g[4], g[5]}, &e);
+            ++stats_.fallback_pixels;
+        }
+        for (int c = 0; c < 3; ++c) e_id[3 * p + c] = e[c];
+    }
+    stats_.records = cache_.records().size();
+    stats_.interpolate_seconds = since(t0);
+    if (settings_.temporal) snapshot(scene, g_clamp);
+}
+
+std::vector<std::array<float, 3>> InstantCache::rebuilt_irradiance(Backend& backend, const SceneBuffers& scene,
+                                                                   float g_clamp) const {
+    std::vector<LightPath> paths(paths_.size());
+    for (size_t j = 0; j < paths.size(); ++j) paths[j].index = paths_[j].index;
+    LightPathSettings ls;
+    ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
+    trace_light_paths(backend, scene, ls, paths);
+    std::vector<float> vpls;
+    for (const LightPath& p : paths) vpls.insert(vpls.end(), p.vpls.begin(), p.vpls.end());
+    const size_t nv = vpl_count(vpls);
+    const std::vector<IcRecord>& records = cache_.records();
+    std::vector<Row> rows(records.size(), Row(nv, kIcFacing));
+    std::vector<Pair> pairs;
+    for (uint32_t i = 0; i < records.size(); ++i)
+        for (uint32_t j = 0; j < nv; ++j) pairs.push_back({i, j});
+    trace_pairs(backend, vpls, pairs, g_clamp, rows);
+    std::vector<std::array<float, 3>> e(records.size());
+    for (size_t i = 0; i < records.size(); ++i) {
+        IcRecord r = records[i];
+        float hm;
+        ic_sum_record(r, rows[i], vpls, scene, g_clamp, &hm);
+        e[i] = r.e;
+    }
+    return e;
+}
+
+std::string InstantCache::describe() const {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "%s: a %.2f, %u paths, %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed), %zu paths re-traced, "
+                  "rays: %llu light-path + %llu shadow, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms",
+                  settings_.temporal ? "tic" : "ic", settings_.error_bound, settings_.paths, stats_.vpls,
+                  stats_.records, stats_.created, stats_.removed, stats_.resummed, stats_.paths_retraced,
+                  static_cast<unsigned long long>(stats_.light_path_rays),
+                  static_cast<unsigned long long>(stats_.shadow_rays), 1e3 * stats_.update_seconds,
+                  1e3 * stats_.place_seconds, 1e3 * stats_.interpolate_seconds);
+    return buf;
+}
+
+}  // namespace tessera

@@ -1,0 +1,108 @@
+// Instant caching (Debattista, Dubla et al., CGF 2009) and its temporal form: the
+// indirect diffuse component of an igi frame read from an irradiance cache whose records
+// gather from all VPLs (ALGORITHMS.md §3). Host code shared by every backend: record
+// placement, the visibility bookkeeping and the temporal update run here; the G-buffer,
+// the shadow rays (Backend::trace_closest) and the interpolation (Backend::ic_interpolate)
+// run on the backend.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "backend/backend.h"
+#include "gi/irradiance_cache.h"
+#include "gi/light_paths.h"
+#include "render/scene_buffers.h"
+#include "scene/scene.h"
+
+namespace tessera {
+
+/// Settings; defaults from ALGORITHMS.md §3.2-3.4 ([A]: our reading, not the paper's).
+struct IcSettings {
+    uint32_t paths = 256;        ///< N_p light paths, one set: every record gathers from all VPLs
+    float error_bound = 0.3f;    ///< Ward's a: a record serves points with ε < a (shared/ic_lookup.h)
+    float min_radius_px = 1.5f;  ///< record radius bounds in pixel footprints (ic_record_radius)
+    float max_radius_px = 20.0f;
+    bool temporal = false;       ///< tic: keep VPL paths, records and visibility across frames
+};
+
+/// Counts and times of the last frame (of indirect()).
+struct IcFrameStats {
+    size_t records = 0, created = 0, removed = 0, resummed = 0;
+    size_t vpls = 0, paths_retraced = 0, vpls_changed = 0;
+    uint64_t light_path_rays = 0;  ///< rays of (re-)traced light paths
+    uint64_t shadow_rays = 0;      ///< record–VPL shadow rays
+    size_t fallback_pixels = 0;    ///< pixels the kernel found uncovered (rounding), shaded on the host
+    double update_seconds = 0, place_seconds = 0, interpolate_seconds = 0;
+    uint64_t indirect_rays() const { return light_path_rays + shadow_rays; }
+};
+
+/// Visibility of one record–VPL pair, as kept per record (one int32 per VPL):
+/// kIcFacing = the geometry term is 0 (no ray needed), kIcVisible = unoccluded, ≥ 0 the
+/// object (Scene::objects index) the shadow ray hit first.
+constexpr int32_t kIcFacing = -2;
+constexpr int32_t kIcVisible = -1;
+
+/// Sums record r's E = Σ_j C_j T_j min(G_j, b) / π over the VPLs its row marks visible
+/// (the igi estimator of shared/igi.h with all VPLs as one set; double sums in VPL order)
+/// and writes the harmonic mean distance to those VPLs to *harmonic_mean (+inf for none):
+/// the radius estimate of ALGORITHMS.md §3.3 that needs no extra rays.
+void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vector<float>& vpls,
+                   const SceneBuffers& scene, float g_clamp, float* harmonic_mean);
+
+class InstantCache {
+public:
+    /// `objects` are the scene's (stable over an animation); empty = one object.
+    InstantCache(const IcSettings& settings, const std::vector<SceneObject>& objects);
+
+    /// E_id (irradiance / π, 3 floats per pixel) for `frame` (prepared by the igi frame).
+    /// Non-temporal: a fresh cache from path block frame.pass. Temporal: path block 0
+    /// always; on the first call a fresh cache, later the changes since the previous call
+    /// (moved objects, materials, lights) are applied first (ALGORITHMS.md §3.5-3.6).
+    /// `g_clamp` is the igi geometry-term bound b.
+    void indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, float g_clamp,
+                  std::vector<float>& e_id);
+
+    /// E of every current record recomputed from scratch on `scene`: fresh light paths
+    /// (same indices), every shadow ray traced. The temporal update must equal this.
+    std::vector<std::array<float, 3>> rebuilt_irradiance(Backend& backend, const SceneBuffers& scene,
+                                                         float g_clamp) const;
+
+    /// The VPLs the records gather from (TS_VPL_FLOATS each, in path order).
+    const std::vector<float>& vpls() const { return vpls_; }
+    const IrradianceCache& cache() const { return cache_; }
+    const IcFrameStats& stats() const { return stats_; }
+    std::string describe() const;
+
+private:
+    struct Pair {
+        uint32_t record, vpl;
+    };
+    using Row = std::vector<int32_t>;
+    struct Change;  // what differs from the previous frame (temporal_update.cpp)
+
+    void start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block);
+    void concat_vpls();
+    void place(Backend& backend, const SceneBuffers& scene, const std::vector<float>& gbuffer,
+               const TsFrame& frame, float g_clamp);
+    uint64_t trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
+                         float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
+    void update(Backend& backend, const SceneBuffers& scene, float g_clamp);
+    void snapshot(const SceneBuffers& scene, float g_clamp);
+    uint32_t object_of(uint32_t triangle) const;
+
+    IcSettings settings_;
+    std::vector<uint32_t> object_first_;  // first triangle of each object, increasing
+    IrradianceCache cache_;
+    std::vector<LightPath> paths_;
+    std::vector<float> vpls_;
+    std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL
+    IcFrameStats stats_;
+    // The previous frame, for the temporal update.
+    bool have_previous_ = false;
+    std::vector<float> prev_tri_pos_, prev_materials_, prev_lights_, prev_light_cdf_;
+    float prev_g_clamp_ = 0.0f;
+};
+
+}  // namespace tessera

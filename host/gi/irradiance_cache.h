@@ -1,0 +1,81 @@
+// The irradiance cache of instant caching (ALGORITHMS.md §3.3-3.4): records, the octree
+// over their validity spheres, and its flat form (IcCacheBuffers) that the interpolation
+// kernel and the host's coverage test both read through kernels/shared/ic.h.
+//
+// Concurrency: lookups only read the flat buffers, so any number may run at once (the
+// host's coverage test runs them over TBB, the kernels over work-items); insertions are
+// made by one thread between lookup phases (a placement level, a dispatch) and the flat
+// buffers are re-made before the next phase. This keeps placement deterministic: the
+// same G-buffer gives the same records on every backend and every run.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "backend/backend.h"
+#include "kernels/shared/geometry.h"
+#include "kernels/shared/layout.h"
+
+namespace tessera {
+
+/// A record on the host: the surface it was made at, its validity radius and its
+/// gathered E = irradiance / π (albedo-free).
+struct IcRecord {
+    std::array<float, TS_IC_GBUF_FLOATS> surface{};  ///< the G-buffer entry (layout.h)
+    float radius = 0.0f;                              ///< R_i, scene units
+    std::array<float, 3> e{};                         ///< irradiance / π, W/m² / π
+    glm::vec3 position() const { return {surface[0], surface[1], surface[2]}; }
+};
+
+/// The shading code's surface of a record (what shared/vpl.h ts_vpl_geometry reads).
+ts::TsSurface ic_record_surface(const IcRecord& r);
+
+/// Ward's validity radius from the harmonic mean distance `harmonic_mean` (scene units; +inf
+/// when unknown), clamped to [min_px, max_px] pixel footprints at camera distance
+/// `camera_distance`; `footprint` is the pixel footprint per unit distance
+/// (2·tan(vfov/2) / height). The clamp (Tabellion & Lamorlette 2004; Křivánek et al.
+/// 2006) keeps records from crowding in corners (lower bound) and from smearing detail
+/// across the image (upper bound).
+float ic_record_radius(float harmonic_mean, float camera_distance, float footprint, float min_px, float max_px);
+
+class IrradianceCache {
+public:
+    /// `error_bound` is Ward's a (> 0): a record covers points within a·R_i.
+    explicit IrradianceCache(float error_bound) : a_(error_bound) {}
+
+    float error_bound() const { return a_; }
+    const std::vector<IcRecord>& records() const { return records_; }
+    std::vector<IcRecord>& records() { return records_; }
+
+    /// Re-makes the octree over all records, the root a cube around [lo, hi] and every
+    /// record's validity sphere. Call after records were removed or edited in place.
+    void rebuild(glm::vec3 lo, glm::vec3 hi);
+
+    /// Adds a record and inserts it in the octree (inside the root given to rebuild()).
+    void insert(const IcRecord& r);
+
+    /// The flat buffers (re-made lazily after changes).
+    const IcCacheBuffers& buffers();
+
+    /// Σ w_i at (x, n) and the interpolated E, the kernels' lookup run on the host.
+    float lookup(glm::vec3 x, glm::vec3 n, glm::vec3* e);
+
+private:
+    struct Node {
+        glm::vec3 centre;
+        float half;
+        uint32_t first_child = 0;  // 0: leaf
+        std::vector<uint32_t> refs;
+    };
+    void insert_into(uint32_t node, uint32_t record, glm::vec3 lo, glm::vec3 hi, float r, int depth);
+
+    float a_;
+    std::vector<IcRecord> records_;
+    std::vector<Node> nodes_;
+    IcCacheBuffers flat_;
+    bool dirty_ = true;
+};
+
+}  // namespace tessera

@@ -1,0 +1,222 @@
+// Temporal instant caching: the per-frame update of InstantCache (ALGORITHMS.md §3.5-3.6).
+// Everything a change cannot affect is kept; what it can affect is recomputed exactly as a
+// rebuild would compute it, so the updated cache equals a rebuilt one (same records, same
+// VPLs) up to the order of float sums.
+//
+// The tests, for the objects O that moved since the previous frame (any vertex differs):
+//   light path  re-traced (with its fixed Halton point) if its light changed (radiance or
+//               geometry; all paths if the light-selection CDF changed), a segment hit an
+//               object of O or a triangle whose material changed, or a segment meets
+//               the new bounding box of an object of O (a moved object may now block it;
+//               it cannot have blocked it before, or the segment would have hit it).
+//               A re-traced path's VPLs that land where they were keep their visibility
+//               (only their weight changes); the others are new.
+//   record      removed if it lies on an object of O or its validity sphere (x_i, R_i)
+//               meets the old or new box of an object of O (its radius and neighbourhood
+//               may be stale); placement recreates records where coverage is missing.
+//   pair        (record, VPL) re-traced if the VPL is new, its stored occluder is in O
+//               (the blocker moved), or it was unoccluded and its shadow segment meets the
+//               new box of an object of O. A pair blocked by a static object stays
+//               blocked; a pair whose geometry term was 0 stays 0 (neither end moved).
+//   E           re-summed (no rays) for records with a re-traced pair, and for all records
+//               when a VPL weight or the geometry-term bound changed.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "gi/instant_cache.h"
+#include "kernels/shared/vpl.h"
+#include "util/error.h"
+
+namespace tessera {
+namespace {
+
+constexpr int32_t kNeedsTrace = -3;  // a row entry of a new VPL column
+
+struct Box {
+    glm::vec3 lo{INFINITY}, hi{-INFINITY};
+    void grow(const float* p) {
+        for (int a = 0; a < 3; ++a) lo[a] = std::fmin(lo[a], p[a]), hi[a] = std::fmax(hi[a], p[a]);
+    }
+    // Whether org + t·dir for t in [t0, t1] meets the box (slab test; a zero direction
+    // component is handled by the infinities of 1/0).
+    bool meets(const float* org, const float* dir, float t0, float t1) const {
+        for (int a = 0; a < 3; ++a) {
+            const float inv = 1.0f / dir[a];
+            float n = (lo[a] - org[a]) * inv, f = (hi[a] - org[a]) * inv;
+            if (std::isnan(n) || std::isnan(f)) {  // dir[a] == 0 with org on a slab plane
+                if (org[a] < lo[a] || org[a] > hi[a]) return false;
+                continue;
+            }
+            if (n > f) std::swap(n, f);
+            t0 = std::fmax(t0, n), t1 = std::fmin(t1, f);
+            if (t0 > t1) return false;
+        }
+        return true;
+    }
+    bool meets_sphere(glm::vec3 c, float r) const {
+        const glm::vec3 d = glm::max(glm::vec3(0.0f), glm::max(lo - c, c - hi));
+        return glm::dot(d, d) <= r * r;
+    }
+};
+
+bool differ(const std::vector<float>& a, const std::vector<float>& b, size_t at, size_t n) {
+    return std::memcmp(&a[at], &b[at], n * sizeof(float)) != 0;
+}
+
+}  // namespace
+
+struct InstantCache::Change {
+    std::vector<uint32_t> moved;            // objects of O
+    std::vector<Box> old_box, new_box;      // per object
+    std::vector<uint8_t> is_moved;          // per object
+    std::vector<uint8_t> material_changed;  // per material
+    std::vector<uint8_t> light_changed;     // per light
+    bool all_paths = false;
+};
+
+void InstantCache::snapshot(const SceneBuffers& scene, float g_clamp) {
+    prev_tri_pos_ = scene.tri_pos;
+    prev_materials_ = scene.materials;
+    prev_lights_ = scene.lights;
+    prev_light_cdf_ = scene.light_cdf;
+    prev_g_clamp_ = g_clamp;
+    have_previous_ = true;
+}
+
+void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_clamp) {
+    if (scene.tri_pos.size() != prev_tri_pos_.size() || scene.materials.size() != prev_materials_.size())
+        throw RuntimeError("tic: the scene's triangles or materials changed in number between frames");
+    Change ch;
+    const size_t objects = object_first_.size();
+    ch.old_box.resize(objects), ch.new_box.resize(objects), ch.is_moved.assign(objects, 0);
+    for (uint32_t t = 0; t < scene.triangle_count; ++t) {
+        const uint32_t o = object_of(t);
+        if (differ(scene.tri_pos, prev_tri_pos_, 9 * size_t(t), 9)) ch.is_moved[o] = 1;
+        for (int v = 0; v < 3; ++v) {
+            ch.old_box[o].grow(&prev_tri_pos_[9 * size_t(t) + 3 * v]);
+            ch.new_box[o].grow(&scene.tri_pos[9 * size_t(t) + 3 * v]);
+        }
+    }
+    for (uint32_t o = 0; o < objects; ++o)
+        if (ch.is_moved[o]) ch.moved.push_back(o);
+    ch.material_changed.assign(scene.materials.size() / TS_MATERIAL_FLOATS, 0);
+    for (size_t m = 0; m < ch.material_changed.size(); ++m)
+        ch.material_changed[m] = differ(scene.materials, prev_materials_, m * TS_MATERIAL_FLOATS, TS_MATERIAL_FLOATS);
+    ch.all_paths = scene.light_cdf != prev_light_cdf_ || scene.lights.size() != prev_lights_.size();
+    ch.light_changed.assign(scene.light_count, 0);
+    if (!ch.all_paths)
+        for (size_t l = 0; l < scene.light_count; ++l)
+            ch.light_changed[l] = differ(scene.lights, prev_lights_, l * TS_LIGHT_FLOATS, TS_LIGHT_FLOATS);
+
+    // Light paths.
+    auto path_invalid = [&](const LightPath& p) {
+        if (ch.all_paths || (p.light < ch.light_changed.size() && ch.light_changed[p.light])) return true;
+        for (const PathSegment& s : p.segments) {
+            if (s.prim != TS_NO_HIT &&
+                (ch.is_moved[object_of(s.prim)] || ch.material_changed[scene.tri_mat[s.prim]]))
+                return true;
+            for (uint32_t o : ch.moved)
+                if (ch.new_box[o].meets(s.org, s.dir, 0.0f, s.t)) return true;
+        }
+        return false;
+    };
+    std::vector<uint32_t> redo;
+    for (uint32_t p = 0; p < paths_.size(); ++p)
+        if (path_invalid(paths_[p])) redo.push_back(p);
+    std::vector<LightPath> fresh(redo.size());
+    for (size_t i = 0; i < redo.size(); ++i) fresh[i].index = paths_[redo[i]].index, fresh[i].set = paths_[redo[i]].set;
+    LightPathSettings ls;
+    ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
+    if (!fresh.empty()) stats_.light_path_rays += trace_light_paths(backend, scene, ls, fresh);
+    stats_.paths_retraced = redo.size();
+
+    // New VPL columns: each kept VPL maps to its old column (same position, normal, scale).
+    std::vector<int64_t> old_column;
+    bool weights_changed = false;
+    {
+        std::vector<uint8_t> redone(paths_.size(), 0);
+        for (size_t i = 0; i < redo.size(); ++i) redone[redo[i]] = 1;
+        size_t base = 0, k = 0;
+        for (uint32_t p = 0; p < paths_.size(); ++p) {
+            const size_t old_n = paths_[p].vpls.size() / TS_VPL_FLOATS;
+            if (redone[p]) {
+                const LightPath& np = fresh[k++];
+                const size_t new_n = np.vpls.size() / TS_VPL_FLOATS;
+                for (size_t v = 0; v < new_n; ++v) {
+                    const float* a = &np.vpls[v * TS_VPL_FLOATS];
+                    const float* b = v < old_n ? &paths_[p].vpls[v * TS_VPL_FLOATS] : nullptr;
+                    const bool same = b && std::memcmp(a, b, 6 * sizeof(float)) == 0 && a[11] == b[11];
+                    old_column.push_back(same ? int64_t(base + v) : -1);
+                    if (!same) ++stats_.vpls_changed;
+                    weights_changed = weights_changed || !same || std::memcmp(a + 6, b + 6, 3 * sizeof(float)) != 0;
+                }
+                weights_changed = weights_changed || new_n != old_n;
+                paths_[p] = np;
+            } else {
+                for (size_t v = 0; v < old_n; ++v) old_column.push_back(int64_t(base + v));
+            }
+            base += old_n;
+        }
+    }
+    concat_vpls();
+
+    // Records: drop the stale ones, re-map the rest to the new columns.
+    std::vector<IcRecord>& records = cache_.records();
+    std::vector<IcRecord> kept;
+    std::vector<Row> rows;
+    for (size_t i = 0; i < records.size(); ++i) {
+        const IcRecord& r = records[i];
+        uint32_t prim;
+        std::memcpy(&prim, &r.surface[13], 4);
+        bool stale = ch.is_moved[object_of(prim)] != 0;
+        for (uint32_t o : ch.moved)
+            stale = stale || ch.old_box[o].meets_sphere(r.position(), r.radius) ||
+                    ch.new_box[o].meets_sphere(r.position(), r.radius);
+        if (stale) {
+            ++stats_.removed;
+            continue;
+        }
+        Row row(old_column.size());
+        for (size_t j = 0; j < row.size(); ++j) row[j] = old_column[j] >= 0 ? rows_[i][old_column[j]] : kNeedsTrace;
+        kept.push_back(r);
+        rows.push_back(std::move(row));
+    }
+    records.swap(kept);
+    rows_.swap(rows);
+
+    // Pairs to re-trace.
+    std::vector<std::vector<Pair>> per_record(records.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, records.size(), 16), [&](const tbb::blocked_range<size_t>& rr) {
+        for (size_t i = rr.begin(); i < rr.end(); ++i) {
+            const ts::TsSurface s = ic_record_surface(records[i]);
+            for (uint32_t j = 0; j < rows_[i].size(); ++j) {
+                const int32_t v = rows_[i][j];
+                bool trace = v == kNeedsTrace || (v >= 0 && ch.is_moved[v]);
+                if (!trace && v == kIcVisible && !ch.moved.empty()) {
+                    ts::TsRay sh;
+                    ts::ts_vpl_geometry(&s, &vpls_[size_t(j) * TS_VPL_FLOATS], g_clamp, &sh);
+                    const float org[3] = {sh.org.x, sh.org.y, sh.org.z}, dir[3] = {sh.dir.x, sh.dir.y, sh.dir.z};
+                    for (uint32_t o : ch.moved) trace = trace || ch.new_box[o].meets(org, dir, sh.tmin, sh.tmax);
+                }
+                if (trace) per_record[i].push_back({static_cast<uint32_t>(i), j});
+            }
+        }
+    });
+    std::vector<Pair> pairs;
+    for (const auto& v : per_record) pairs.insert(pairs.end(), v.begin(), v.end());
+    stats_.shadow_rays += trace_pairs(backend, vpls_, pairs, g_clamp, rows_);
+
+    const bool all = weights_changed || g_clamp != prev_g_clamp_;
+    for (size_t i = 0; i < records.size(); ++i) {
+        if (!all && per_record[i].empty()) continue;
+        float hm;
+        ic_sum_record(records[i], rows_[i], vpls_, scene, g_clamp, &hm);
+        ++stats_.resummed;
+    }
+}
+
+}  // namespace tessera
