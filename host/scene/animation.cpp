@@ -25,24 +25,44 @@ void find_segment(const std::vector<Key>& keys, int frame, size_t& i, size_t& j,
     t = float(frame - keys[i].frame) / float(keys[j].frame - keys[i].frame);
 }
 
+// Vertex indices of object o's triangles: [first, last).
+size_t first_vertex(const SceneObject& o) { return 3 * size_t(o.first_triangle); }
+size_t last_vertex(const SceneObject& o) { return 3 * (size_t(o.first_triangle) + o.triangle_count); }
+
 glm::vec3 bbox_centre(const Scene& s, const SceneObject& o) {
     glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    for (size_t v = 3 * size_t(o.first_triangle); v < 3 * size_t(o.first_triangle + o.triangle_count); ++v) {
+    for (size_t v = first_vertex(o); v < last_vertex(o); ++v) {
         lo = glm::min(lo, s.positions[v]);
         hi = glm::max(hi, s.positions[v]);
     }
     return 0.5f * (lo + hi);
 }
 
-void pose_object(const Scene& rest, Scene& out, const SceneObject& o, const ObjectKey& k) {
+// Key k's pose of the rest object o; normals are left to the caller.
+template <class Visit>
+void pose_positions(const Scene& rest, const SceneObject& o, const ObjectKey& k, Visit visit) {
     if (o.triangle_count == 0) return;
     const glm::vec3 pivot = bbox_centre(rest, o);
     const glm::mat3 r = glm::mat3_cast(k.rotation);
+    for (size_t v = first_vertex(o); v < last_vertex(o); ++v)
+        visit(v, pivot + k.translate + r * (k.scale * (rest.positions[v] - pivot)));
+}
+
+void pose_object(const Scene& rest, Scene& out, const SceneObject& o, const ObjectKey& k) {
+    pose_positions(rest, o, k, [&](size_t v, glm::vec3 p) { out.positions[v] = p; });
     // The inverse-transpose of scale·R is R/scale, and normals are renormalised: R alone.
-    for (size_t v = 3 * size_t(o.first_triangle); v < 3 * size_t(o.first_triangle + o.triangle_count); ++v) {
-        out.positions[v] = pivot + k.translate + r * (k.scale * (rest.positions[v] - pivot));
-        out.normals[v] = glm::normalize(r * rest.normals[v]);
-    }
+    const glm::mat3 r = glm::mat3_cast(k.rotation);
+    for (size_t v = first_vertex(o); v < last_vertex(o); ++v) out.normals[v] = glm::normalize(r * rest.normals[v]);
+}
+
+// Poses between keys are convex combinations of key poses (rotations keep lengths), so
+// finite key poses bound every frame's.
+bool key_pose_is_finite(const Scene& s, const SceneObject& o, const ObjectKey& k) {
+    bool finite = true;
+    pose_positions(s, o, k, [&](size_t, glm::vec3 p) {
+        finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    });
+    return finite;
 }
 
 ObjectKey object_key_at(const std::vector<ObjectKey>& keys, int frame) {
@@ -130,6 +150,9 @@ void read_object_tracks(const JsonField& j, Scene& scene, int frames) {
         if (track.objects.empty()) list.fail("the scene has no object named '" + name + "'");
         for_each_key(list, frames, [&](const JsonField& key, int frame) {
             track.keys.push_back(read_object_key(key, frame));
+            for (const uint32_t o : track.objects)
+                if (!key_pose_is_finite(scene, scene.objects[o], track.keys.back()))
+                    key.fail("the posed object has a vertex coordinate that overflows a float");
         });
         scene.animation.objects.push_back(std::move(track));
     }

@@ -87,7 +87,8 @@ class JsonField;
 /// every Material::emission_max to the largest emission its keys reach. Throws
 /// InputError naming the file and JSON key for: frames < 1, an unknown object or
 /// material name, an empty key list, key frames not strictly increasing or outside
-/// [0, frames), non-finite numbers, a zero rotation axis, a scale <= 0, albedo outside
+/// [0, frames), non-finite numbers, a key whose pose overflows a float, a zero
+/// rotation axis, a scale <= 0, albedo outside
 /// [0, 1], negative emission, and a camera key whose look_at equals its position or
 /// whose view direction is parallel to camera.up.
 void read_animation(const JsonField& j, Scene& scene);

@@ -255,6 +255,8 @@ INSTANTIATE_TEST_SUITE_P(
                      "animation.objects.floor[0].translate[0]", "not finite"},
         BadAnimation{R"({"frames": 3, "materials": {"grey": [{"frame": 0, "emission": [1, 1e39, 0]}]}})",
                      "animation.materials.grey[0].emission[1]", "not finite"},
+        BadAnimation{R"({"frames": 3, "objects": {"floor": [{"frame": 0, "translate": [3e38, 0, 0], "scale": 1e38}]}})",
+                     "animation.objects.floor[0]", "overflows a float"},
         BadAnimation{R"({"frames": 3, "objects": {"floor": [{"frame": 0, "rotate": {"axis": [0, 0, 0], "degrees": 5}}]}})",
                      "animation.objects.floor[0].rotate.axis", "axis is zero"},
         BadAnimation{R"({"frames": 3, "objects": {"floor": [{"frame": 0, "scale": 0}]}})",
