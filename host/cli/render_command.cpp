@@ -15,6 +15,7 @@
 #include "render/effect_plan.h"
 #include "render/renderer.h"
 #include "render/scene_buffers.h"
+#include "render/sequence.h"
 #include "scene/loader.h"
 #include "util/error.h"
 
@@ -33,6 +34,7 @@ struct RenderArgs {
     std::string method = "direct";
     std::string components = "ss,id,pm";
     std::string stats_json;
+    std::string frames;  ///< --frames A:B, "" for one still image
     float exposure = 0.0f;
     bool resume = false;
     RenderSettings settings;
@@ -67,6 +69,23 @@ void write_stats_json(const RenderArgs& a, const RenderSettings& s, const Render
     write_file_atomic(a.stats_json, text.data(), text.size());
 }
 
+void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, const fs::path& out,
+                  const BackendOptions& bo, RenderSettings& settings) {
+    std::fprintf(stderr, "tessera: %s, %zu triangles, frames %d..%d\n", scene.name.c_str(), scene.triangle_count(),
+                 frames.first, frames.last);
+    render_sequence(scene, frames, bo, settings, [&](int frame, const Image& img, const RenderStats& stats, double seconds) {
+        const fs::path exr = frame_output_path(out, frame);
+        fs::path png = exr;
+        png.replace_extension(".png");
+        write_exr(exr, img);
+        write_png(png, img, a.exposure);
+        std::fprintf(stderr, "tessera: frame %d: %.2f s (%u spp in %.2f s, the rest set-up)\n", frame, seconds,
+                     stats.passes, stats.seconds);
+        std::printf("%s\n%s\n", exr.c_str(), png.c_str());
+        std::fflush(stdout);
+    }, print_progress);
+}
+
 void run_render(const RenderArgs& a) {
     const fs::path scene_path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
     const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
@@ -74,14 +93,23 @@ void run_render(const RenderArgs& a) {
     RenderSettings settings = a.settings;
     settings.method = parse_method(a.method);
     settings.igi.components = parse_components(a.components);
+    if (!a.frames.empty() && a.resume)
+        throw InputError("--frames cannot be combined with --resume (checkpoints hold one still frame)");
+    if (!a.frames.empty() && !a.stats_json.empty())
+        throw InputError("--frames cannot be combined with --stats-json (it describes one still frame)");
     Scene scene = load_scene(scene_path, data);
     const fs::path out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
     if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
+    std::optional<FrameRange> frames;
+    if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
     if (!out.parent_path().empty()) {  // before rendering: checkpoints are written there too
         std::error_code ec;
         fs::create_directories(out.parent_path(), ec);
         if (ec) throw RuntimeError("cannot create output directory " + out.parent_path().string() + ": " + ec.message());
     }
+    if (frames) return run_sequence(a, scene, *frames, out, bo, settings);
+    // A still of an animated scene is its frame 0 (the rest pose with frame 0's keys).
+    if (scene.animation.animated()) scene = scene_at_frame(scene, 0);
     const CheckpointOptions ckpt{checkpoint_path_for(out), bo.kind, a.resume};
     if (!a.resume && fs::exists(ckpt.path))
         std::fprintf(stderr, "tessera: note: %s exists; starting over (it will be replaced; --resume continues it)\n",
@@ -165,6 +193,8 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--checkpoint-interval", args->settings.checkpoint_interval_s,
                     "Seconds between checkpoints (0: only when interrupted by SIGINT/SIGTERM)")
         ->capture_default_str();
+    cmd->add_option("--frames", args->frames,
+                    "Animated scene: render frames A..B (inclusive) to <out stem>.####.exr (+ .png)");
     cmd->add_option("--stats-json", args->stats_json,
                     "Write timing as JSON: {median_pass_seconds, passes, seconds, ...} (seconds exclude set-up)");
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");

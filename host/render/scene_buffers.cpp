@@ -9,6 +9,10 @@ namespace {
 
 float luminance_of(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// emission_max covers emission in a loaded scene; a scene built in code may have set
+// only emission.
+glm::vec3 selection_emission(const Material& m) { return glm::max(m.emission, m.emission_max); }
+
 void push3(std::vector<float>& v, const glm::vec3& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
 
 template <class T>
@@ -51,11 +55,16 @@ void add_textures(const Scene& scene, SceneBuffers& b) {
 }
 
 void add_lights(const Scene& scene, SceneBuffers& b) {
-    double total = 0.0;
+    double total = 0.0, frame_power = 0.0;
     std::vector<double> power;
     for (uint32_t i = 0; i < scene.triangle_count(); ++i) {
-        const glm::vec3& le = scene.materials[scene.material[i]].emission;
-        if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) continue;
+        const Material& m = scene.materials[scene.material[i]];
+        const glm::vec3& le = m.emission;
+        // Which triangles are lights, and how often each is picked, follow the animation's
+        // maximum, not this frame's emission: the list is then the same in every frame
+        // (light paths keep their light index) and a light dimmed to zero keeps its place.
+        const glm::vec3 weight = selection_emission(m);
+        if (!(weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f)) continue;
         glm::vec3 p0 = scene.positions[3 * i], e1 = scene.positions[3 * i + 1] - p0,
                   e2 = scene.positions[3 * i + 2] - p0;
         float area = 0.5f * glm::length(glm::cross(e1, e2));
@@ -68,11 +77,15 @@ void add_lights(const Scene& scene, SceneBuffers& b) {
         f[12] = area;
         std::memcpy(&f[13], &i, 4);
         b.lights.insert(b.lights.end(), f, f + TS_LIGHT_FLOATS);
-        power.push_back(static_cast<double>(luminance_of(le)) * area);
+        power.push_back(static_cast<double>(luminance_of(weight)) * area);
         total += power.back();
+        frame_power += static_cast<double>(luminance_of(le)) * area;
     }
     b.light_count = static_cast<uint32_t>(power.size());
-    b.light_power = static_cast<float>(total);
+    // The kernels' MIS pdf for an emitter hit is luminance(Le) / light_power with this
+    // frame's Le. With this frame's total it equals the true pick pdf whenever all lights
+    // are at the same fraction of their maximum (always so in a static scene).
+    b.light_power = static_cast<float>(frame_power);
     double run = 0.0;
     for (size_t i = 0; i < power.size(); ++i) {
         run += power[i];

@@ -70,4 +70,13 @@ glm::vec3 JsonField::vec3() const {
     return {at(0).number(), at(1).number(), at(2).number()};
 }
 
+glm::vec3 read_colour(const JsonField& j, bool at_most_one) {
+    const glm::vec3 c = j.vec3();
+    for (int i = 0; i < 3; ++i) {
+        if (c[i] < 0.0f) j.fail("colour components must be >= 0");
+        if (at_most_one && c[i] > 1.0f) j.fail("albedo components must be <= 1");
+    }
+    return c;
+}
+
 }  // namespace tessera::scene_detail

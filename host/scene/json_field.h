@@ -49,6 +49,10 @@ private:
 
 namespace tessera::scene_detail {
 
+/// An [r, g, b] colour with every channel >= 0, and also <= 1 when `at_most_one` (an
+/// albedo). Throws InputError naming the key otherwise.
+glm::vec3 read_colour(const JsonField& j, bool at_most_one);
+
 /// Reads and parses a JSON file. Throws InputError naming the file if it is missing
 /// or unreadable, and "<file>:<line>:<column>" (byte offset too) when malformed.
 nlohmann::json parse_json_file(const std::filesystem::path& file);

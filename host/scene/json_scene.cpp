@@ -12,6 +12,7 @@
 namespace tessera {
 
 using scene_detail::JsonField;
+using scene_detail::read_colour;
 namespace fs = std::filesystem;
 
 namespace {
@@ -62,15 +63,6 @@ scene_detail::Transform read_transform(const std::optional<JsonField>& j) {
     }
     if (auto t = j->find("translate")) translate = t->vec3();
     return scene_detail::make_transform(scale, rotations, translate);
-}
-
-glm::vec3 read_colour(const JsonField& j, bool at_most_one) {
-    const glm::vec3 c = j.vec3();
-    for (int i = 0; i < 3; ++i) {
-        if (c[i] < 0.0f) j.fail("colour components must be >= 0");
-        if (at_most_one && c[i] > 1.0f) j.fail("albedo components must be <= 1");
-    }
-    return c;
 }
 
 // Loads each OBJ once (instancing a mesh twice shares its materials and textures).
@@ -186,9 +178,11 @@ void read_medium(const JsonField& j, Scene& scene) {
     scene.has_medium = true;
 }
 
+// emission_max, not emission: a light that is dark in the rest pose but lit in some
+// frame makes a valid scene; one that is dark in every frame does not.
 bool has_emitter(const Scene& scene) {
     for (const uint32_t m : scene.material) {
-        const glm::vec3 e = scene.materials[m].emission;
+        const glm::vec3 e = scene.materials[m].emission_max;
         if (e.x > 0.0f || e.y > 0.0f || e.z > 0.0f) return true;
     }
     return false;
@@ -212,6 +206,9 @@ Scene load_scene(const fs::path& scene_file, const DataPath& data) {
     if (auto m = root.find("materials")) apply_material_overrides(*m, scene);
     if (auto l = root.find("lights")) read_lights(*l, scene);
     if (auto m = root.find("medium")) read_medium(*m, scene);
+    for (Material& m : scene.materials) m.emission_max = m.emission;
+    // Last: it names objects, MTL materials and JSON lights, and raises emission_max.
+    if (auto a = root.find("animation")) scene_detail::read_animation(*a, scene);
     if (!has_emitter(scene))
         throw InputError(scene_file.string() + ": scene " + scene.name +
                          " has no lights (no MTL Ke and no JSON light)");

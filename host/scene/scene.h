@@ -11,6 +11,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/animation.h"
+
 namespace tessera {
 
 /// An 8-bit texture as decoded from its file: `rgba8[y * width + x]` packs R in the low
@@ -29,6 +31,11 @@ struct Material {
     std::string name;
     glm::vec3 albedo{0.5f};      ///< diffuse reflectance Kd, each channel in [0, 1]
     glm::vec3 emission{0.0f};    ///< emitted radiance Ke, W/(sr·m²); non-zero makes an area light
+    /// Per-channel maximum of `emission` over the scene's animation, W/(sr·m²) (equal to
+    /// `emission` for a static scene; set by the loader). Light selection uses it, so the
+    /// light list and its probabilities stay fixed while a light dims, even to zero.
+    /// A scene built in code may leave it zero: make_scene_buffers then uses `emission`.
+    glm::vec3 emission_max{0.0f};
     int texture = -1;            ///< index into Scene::textures for map_Kd, or -1
     glm::vec3 specular{0.0f};    ///< Ks, each channel in [0, 1]: mirror reflectance (illum 3, 5)
     int illum = 2;               ///< MTL illumination model: 3, 5 mirror; 7 dielectric; else Lambertian
@@ -87,6 +94,9 @@ struct Scene {
     /// scene built in code (then all triangles count as one object).
     std::vector<SceneObject> objects;
     Camera camera;
+    /// Keyframes (frame_count 0: static). The arrays above are the rest pose; use
+    /// scene_at_frame() (scene/animation.h) for the scene at a frame.
+    Animation animation;
     bool has_medium = false;   ///< true when the scene file declares a "medium"
     Medium medium;
 

@@ -116,6 +116,30 @@ TEST_F(RenderCli, StatsJson) {
     EXPECT_LE(j["median_pass_seconds"].get<double>(), j["seconds"].get<double>());
 }
 
+// --frames: one EXR + PNG per frame, the frame number before the extension.
+TEST_F(RenderCli, FramesWritesOneFilePerFrame) {
+    const std::string scene = std::string(TESSERA_SCENES_DIR) + "/cornell-box-animated.json";
+    CliResult r = run_tessera("render " + scene + " --frames 0:1 --spp 1 --width 16 --height 16 --backend embree --out " +
+                              (dir_ / "seq.exr").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const char* name : {"seq.0000.exr", "seq.0000.png", "seq.0001.exr", "seq.0001.png"})
+        EXPECT_TRUE(fs::exists(dir_ / name)) << name << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "seq.exr"));
+    EXPECT_FALSE(fs::exists(dir_ / "seq.0002.exr"));
+    EXPECT_NE(r.output.find("frame 1:"), std::string::npos) << r.output;
+    const tessera::Image img = tessera::read_exr(dir_ / "seq.0001.exr");
+    EXPECT_EQ(img.width, 16);
+}
+
+TEST_F(RenderCli, BadFrames) {
+    const std::string scene = std::string(TESSERA_SCENES_DIR) + "/cornell-box-animated.json";
+    expect_rejected(scene + " --frames 0-1", "--frames");
+    expect_rejected(scene + " --frames 2:1", "--frames");
+    expect_rejected(scene + " --frames 0:30", "--frames");
+    expect_rejected(kData + "/light.json --frames 0:1", "--frames");
+    expect_rejected(scene + " --frames 0:1 --resume", "--resume");
+}
+
 namespace tessera {
 namespace {
 

@@ -1,0 +1,66 @@
+#include "render/sequence.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "render/effect_plan.h"
+#include "render/scene_buffers.h"
+#include "util/error.h"
+
+namespace tessera {
+namespace fs = std::filesystem;
+
+namespace {
+
+bool parse_int(const std::string& s, int& v) {
+    if (s.empty() || s.size() > 9) return false;
+    for (const char c : s)
+        if (c < '0' || c > '9') return false;
+    v = std::stoi(s);
+    return true;
+}
+
+}  // namespace
+
+FrameRange parse_frame_range(const std::string& text, const Scene& scene) {
+    const size_t colon = text.find(':');
+    FrameRange r;
+    if (colon == std::string::npos || !parse_int(text.substr(0, colon), r.first) ||
+        !parse_int(text.substr(colon + 1), r.last))
+        throw InputError("--frames " + text + ": expected A:B, two frame numbers >= 0");
+    if (r.last < r.first) throw InputError("--frames " + text + ": the last frame is before the first");
+    const int count = scene.animation.animated() ? scene.animation.frame_count : 1;
+    if (r.last >= count)
+        throw InputError("--frames " + text + ": scene " + scene.name + " has frames 0.." + std::to_string(count - 1) +
+                         (scene.animation.animated() ? "" : " (it has no animation)"));
+    return r;
+}
+
+fs::path frame_output_path(const fs::path& out, int frame) {
+    char number[16];
+    std::snprintf(number, sizeof number, ".%04d", frame);
+    fs::path p = out;
+    p.replace_filename(out.stem().string() + number + out.extension().string());
+    return p;
+}
+
+void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& backend_options,
+                     RenderSettings& settings, const FrameDoneFn& done, const ProgressFn& progress) {
+    for (int frame = range.first; frame <= range.last; ++frame) {
+        const auto start = std::chrono::steady_clock::now();
+        const Scene scene = scene_at_frame(rest, frame);
+        const SceneBuffers buffers = make_scene_buffers(scene);
+        const EffectPlan plan = plan_effects(scene);  // declared before the backend, which may keep it
+        // A fresh backend per frame: rebuilding the BVH and re-uploading every buffer is
+        // simple and correct for moving geometry; refitting and uploading only what
+        // changed is a later optimisation.
+        const std::unique_ptr<Backend> backend = make_backend(backend_options, buffers, plan);
+        RenderStats stats;
+        const Image image = render_frame(*backend, scene, buffers, settings, &stats, progress);
+        done(frame, image, stats,
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+}
+
+}  // namespace tessera

@@ -1,0 +1,42 @@
+// Rendering a range of frames of an animated scene (`tessera render --frames A:B`).
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "backend/backend.h"
+#include "image/image_io.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace tessera {
+
+/// Frames first..last, inclusive.
+struct FrameRange {
+    int first = 0;
+    int last = 0;
+};
+
+/// Parses `--frames A:B` (non-negative integers, A <= B) and checks it against the
+/// animation of `scene` (B < frame_count; only 0:0 for a static scene). Throws
+/// InputError naming --frames when it is malformed or out of range.
+FrameRange parse_frame_range(const std::string& text, const Scene& scene);
+
+/// The file frame `frame` of a sequence is written to: `out` with the frame number,
+/// zero-padded to 4 digits, inserted before the extension (out/box.exr, frame 7 →
+/// out/box.0007.exr).
+std::filesystem::path frame_output_path(const std::filesystem::path& out, int frame);
+
+/// Called after each frame with the frame number, its image, its render statistics and
+/// the frame's wall time in seconds including posing, flattening and backend set-up.
+using FrameDoneFn =
+    std::function<void(int frame, const Image& image, const RenderStats& stats, double seconds)>;
+
+/// Renders frames range.first..range.last of `rest` in order: each frame is posed with
+/// scene_at_frame, flattened and rendered on a backend built for it. `settings` is
+/// the same object for every frame (per-sequence state will live there). Throws what
+/// scene_at_frame, make_backend and render_frame throw.
+void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& backend,
+                     RenderSettings& settings, const FrameDoneFn& done, const ProgressFn& progress = {});
+
+}  // namespace tessera

@@ -1,0 +1,252 @@
+#include "scene/animation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "scene/json_field.h"
+#include "scene/scene.h"
+#include "util/error.h"
+
+namespace tessera {
+namespace {
+
+using scene_detail::JsonField;
+
+// The key segment holding `frame`: keys[i] and keys[j] with weight t of keys[j]. Outside
+// the keyed range both ends are the same key (hold).
+template <class Key>
+void find_segment(const std::vector<Key>& keys, int frame, size_t& i, size_t& j, float& t) {
+    if (frame <= keys.front().frame) { i = j = 0; t = 0.0f; return; }
+    if (frame >= keys.back().frame) { i = j = keys.size() - 1; t = 0.0f; return; }
+    j = 1;
+    while (keys[j].frame <= frame) ++j;
+    i = j - 1;
+    t = float(frame - keys[i].frame) / float(keys[j].frame - keys[i].frame);
+}
+
+// Vertex indices of object o's triangles: [first, last).
+size_t first_vertex(const SceneObject& o) { return 3 * size_t(o.first_triangle); }
+size_t last_vertex(const SceneObject& o) { return 3 * (size_t(o.first_triangle) + o.triangle_count); }
+
+glm::vec3 bbox_centre(const Scene& s, const SceneObject& o) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (size_t v = first_vertex(o); v < last_vertex(o); ++v) {
+        lo = glm::min(lo, s.positions[v]);
+        hi = glm::max(hi, s.positions[v]);
+    }
+    return 0.5f * (lo + hi);
+}
+
+// Key k's pose of the rest object o; normals are left to the caller.
+template <class Visit>
+void pose_positions(const Scene& rest, const SceneObject& o, const ObjectKey& k, Visit visit) {
+    if (o.triangle_count == 0) return;
+    const glm::vec3 pivot = bbox_centre(rest, o);
+    const glm::mat3 r = glm::mat3_cast(k.rotation);
+    for (size_t v = first_vertex(o); v < last_vertex(o); ++v)
+        visit(v, pivot + k.translate + r * (k.scale * (rest.positions[v] - pivot)));
+}
+
+void pose_object(const Scene& rest, Scene& out, const SceneObject& o, const ObjectKey& k) {
+    pose_positions(rest, o, k, [&](size_t v, glm::vec3 p) { out.positions[v] = p; });
+    // The inverse-transpose of scale·R is R/scale, and normals are renormalised: R alone.
+    const glm::mat3 r = glm::mat3_cast(k.rotation);
+    for (size_t v = first_vertex(o); v < last_vertex(o); ++v) out.normals[v] = glm::normalize(r * rest.normals[v]);
+}
+
+// Poses between keys are convex combinations of key poses (rotations keep lengths), so
+// finite key poses bound every frame's.
+bool key_pose_is_finite(const Scene& s, const SceneObject& o, const ObjectKey& k) {
+    bool finite = true;
+    pose_positions(s, o, k, [&](size_t, glm::vec3 p) {
+        finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+    });
+    return finite;
+}
+
+ObjectKey object_key_at(const std::vector<ObjectKey>& keys, int frame) {
+    size_t i, j;
+    float t;
+    find_segment(keys, frame, i, j, t);
+    const ObjectKey &a = keys[i], &b = keys[j];
+    ObjectKey k;
+    k.frame = frame;
+    k.translate = glm::mix(a.translate, b.translate, t);
+    k.rotation = glm::slerp(a.rotation, b.rotation, t);
+    k.scale = glm::mix(a.scale, b.scale, t);
+    return k;
+}
+
+glm::vec3 mix_opt(const std::optional<glm::vec3>& a, const std::optional<glm::vec3>& b, glm::vec3 rest, float t) {
+    return glm::mix(a.value_or(rest), b.value_or(rest), t);
+}
+
+Camera camera_at(const Camera& rest, const std::vector<CameraKey>& keys, int frame) {
+    Camera c = rest;
+    if (keys.empty()) return c;
+    size_t i, j;
+    float t;
+    find_segment(keys, frame, i, j, t);
+    c.position = glm::mix(keys[i].position, keys[j].position, t);
+    c.look_at = glm::mix(keys[i].look_at, keys[j].look_at, t);
+    return c;
+}
+
+// ---- parsing ----
+
+int read_key_frame(const JsonField& key, int frames, int previous) {
+    const JsonField f = key["frame"];
+    const int frame = f.integer();
+    if (frame < 0 || frame >= frames)
+        f.fail("frame " + std::to_string(frame) + " is outside the animation's frames 0.." +
+               std::to_string(frames - 1));
+    if (frame <= previous)
+        f.fail("key frames must increase (the previous key is at frame " + std::to_string(previous) + ")");
+    return frame;
+}
+
+// Checks the key list and calls read(key, frame) for each key.
+template <class Read>
+void for_each_key(const JsonField& list, int frames, Read read) {
+    if (list.size() == 0) list.fail("a track needs at least one key");
+    int previous = -1;
+    for (size_t i = 0; i < list.size(); ++i) {
+        const JsonField key = list.at(i);
+        key.require_object();
+        previous = read_key_frame(key, frames, previous);
+        read(key, previous);
+    }
+}
+
+ObjectKey read_object_key(const JsonField& j, int frame) {
+    ObjectKey k;
+    k.frame = frame;
+    if (auto t = j.find("translate")) k.translate = t->vec3();
+    if (auto r = j.find("rotate")) {
+        r->require_object();
+        const glm::vec3 axis = (*r)["axis"].vec3();
+        if (!(glm::dot(axis, axis) > 0.0f) || !std::isfinite(glm::dot(axis, axis)))
+            (*r)["axis"].fail("rotation axis is zero (or its length overflows a float)");
+        k.rotation = glm::angleAxis(glm::radians((*r)["degrees"].number()), glm::normalize(axis));
+    }
+    if (auto s = j.find("scale")) {
+        k.scale = s->number();
+        // A negative scale would mirror (turning triangles inside out) and interpolating
+        // towards it would pass through zero.
+        if (!(k.scale > 0.0f)) s->fail("scale must be > 0 (zero is singular, a negative one mirrors)");
+    }
+    return k;
+}
+
+void read_object_tracks(const JsonField& j, Scene& scene, int frames) {
+    j.require_object();
+    for (const auto& [name, value] : j.raw().items()) {
+        const JsonField list(value, j.file(), j.key() + "." + name);
+        ObjectTrack track;
+        track.name = name;
+        for (uint32_t i = 0; i < scene.objects.size(); ++i)
+            if (scene.objects[i].name == name) track.objects.push_back(i);
+        if (track.objects.empty()) list.fail("the scene has no object named '" + name + "'");
+        for_each_key(list, frames, [&](const JsonField& key, int frame) {
+            track.keys.push_back(read_object_key(key, frame));
+            for (const uint32_t o : track.objects)
+                if (!key_pose_is_finite(scene, scene.objects[o], track.keys.back()))
+                    key.fail("the posed object has a vertex coordinate that overflows a float");
+        });
+        scene.animation.objects.push_back(std::move(track));
+    }
+}
+
+void read_material_tracks(const JsonField& j, Scene& scene, int frames) {
+    j.require_object();
+    for (const auto& [name, value] : j.raw().items()) {
+        const JsonField list(value, j.file(), j.key() + "." + name);
+        MaterialTrack track;
+        track.name = name;
+        for (uint32_t i = 0; i < scene.materials.size(); ++i)
+            if (scene.materials[i].name == name) track.materials.push_back(i);
+        if (track.materials.empty()) list.fail("the scene has no material named '" + name + "'");
+        for_each_key(list, frames, [&](const JsonField& key, int frame) {
+            MaterialKey k;
+            k.frame = frame;
+            if (auto a = key.find("albedo")) k.albedo = scene_detail::read_colour(*a, true);
+            if (auto e = key.find("emission")) k.emission = scene_detail::read_colour(*e, false);
+            track.keys.push_back(k);
+        });
+        // Values between keys are convex combinations of key values: the keys bound them.
+        for (const uint32_t m : track.materials) {
+            Material& mat = scene.materials[m];
+            glm::vec3 top(0.0f);
+            for (const MaterialKey& k : track.keys) top = glm::max(top, k.emission.value_or(mat.emission));
+            mat.emission_max = top;
+        }
+        scene.animation.materials.push_back(std::move(track));
+    }
+}
+
+void check_view(const JsonField& key, glm::vec3 position, glm::vec3 look_at, glm::vec3 up) {
+    const glm::vec3 view = look_at - position;
+    if (glm::dot(view, view) == 0.0f) key.fail("look_at equals position");
+    const glm::vec3 side = glm::cross(view, up);
+    if (glm::dot(side, side) == 0.0f) key.fail("the view direction is parallel to camera.up");
+}
+
+void read_camera_track(const JsonField& list, Scene& scene, int frames) {
+    for_each_key(list, frames, [&](const JsonField& key, int frame) {
+        CameraKey k{frame, scene.camera.position, scene.camera.look_at};
+        if (auto p = key.find("position")) k.position = p->vec3();
+        if (auto l = key.find("look_at")) k.look_at = l->vec3();
+        check_view(key, k.position, k.look_at, scene.camera.up);
+        scene.animation.camera.push_back(k);
+    });
+    // Two valid keys can still interpolate to a degenerate view in between.
+    for (int f = 0; f < frames; ++f) {
+        const Camera c = camera_at(scene.camera, scene.animation.camera, f);
+        check_view(list, c.position, c.look_at, c.up);
+    }
+}
+
+}  // namespace
+
+Scene scene_at_frame(const Scene& rest, int frame) {
+    const Animation& a = rest.animation;
+    const int frames = std::max(a.frame_count, 1);
+    if (frame < 0 || frame >= frames)
+        throw InputError(rest.source.string() + ": frame " + std::to_string(frame) + " is outside the animation of " +
+                         rest.name + " (frames 0.." + std::to_string(frames - 1) + ")");
+    Scene out = rest;
+    for (const ObjectTrack& track : a.objects) {
+        const ObjectKey k = object_key_at(track.keys, frame);
+        for (const uint32_t o : track.objects) pose_object(rest, out, rest.objects[o], k);
+    }
+    for (const MaterialTrack& track : a.materials) {
+        size_t i, j;
+        float t;
+        find_segment(track.keys, frame, i, j, t);
+        for (const uint32_t m : track.materials) {
+            const Material& r = rest.materials[m];
+            out.materials[m].albedo = mix_opt(track.keys[i].albedo, track.keys[j].albedo, r.albedo, t);
+            out.materials[m].emission = mix_opt(track.keys[i].emission, track.keys[j].emission, r.emission, t);
+        }
+    }
+    out.camera = camera_at(rest.camera, a.camera, frame);
+    return out;
+}
+
+namespace scene_detail {
+
+void read_animation(const JsonField& j, Scene& scene) {
+    j.require_object();
+    const JsonField frames_key = j["frames"];
+    const int frames = frames_key.integer();
+    if (frames < 1) frames_key.fail("an animation needs frames >= 1");
+    scene.animation = Animation{};
+    scene.animation.frame_count = frames;
+    if (auto o = j.find("objects")) read_object_tracks(*o, scene, frames);
+    if (auto m = j.find("materials")) read_material_tracks(*m, scene, frames);
+    if (auto c = j.find("camera")) read_camera_track(*c, scene, frames);
+}
+
+}  // namespace scene_detail
+}  // namespace tessera

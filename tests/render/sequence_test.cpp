@@ -1,0 +1,70 @@
+// Frame ranges and output names of `tessera render --frames`, and render_sequence.
+#include "render/sequence.h"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "scene/scene_test_util.h"
+
+namespace tessera {
+namespace {
+
+Scene with_frames(int n) {
+    Scene s;
+    s.name = "seq";
+    s.animation.frame_count = n;
+    return s;
+}
+
+std::string range_error(const std::string& text, const Scene& scene) {
+    try {
+        parse_frame_range(text, scene);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Sequence, ParsesFrameRanges) {
+    const FrameRange r = parse_frame_range("3:7", with_frames(30));
+    EXPECT_EQ(r.first, 3);
+    EXPECT_EQ(r.last, 7);
+    EXPECT_EQ(parse_frame_range("29:29", with_frames(30)).first, 29);
+    EXPECT_EQ(parse_frame_range("0:0", with_frames(0)).last, 0);  // a still
+}
+
+TEST(Sequence, RejectsBadFrameRanges) {
+    for (const char* bad : {"", "3", "3:", ":3", "a:b", "-1:2", "1:2:3", "1.5:2", " 1:2"})
+        EXPECT_CONTAINS(range_error(bad, with_frames(30)), "--frames");
+    EXPECT_CONTAINS(range_error("5:4", with_frames(30)), "before the first");
+    EXPECT_CONTAINS(range_error("0:30", with_frames(30)), "frames 0..29");
+    EXPECT_CONTAINS(range_error("0:1", with_frames(0)), "no animation");
+}
+
+TEST(Sequence, FrameOutputPath) {
+    EXPECT_EQ(frame_output_path("out/box.exr", 7), std::filesystem::path("out/box.0007.exr"));
+    EXPECT_EQ(frame_output_path("a.b/c.d.exr", 123), std::filesystem::path("a.b/c.d.0123.exr"));
+    EXPECT_EQ(frame_output_path("box.exr", 12345), std::filesystem::path("box.12345.exr"));
+}
+
+TEST(Sequence, RendersEachFrameInOrder) {
+    const Scene rest = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-animated.json",
+                                  make_data_path(std::nullopt));
+    RenderSettings settings;
+    settings.width = 8;
+    settings.height = 8;
+    settings.spp = 1;
+    std::vector<int> frames;
+    render_sequence(rest, {2, 4}, BackendOptions{BackendKind::Embree, ""}, settings,
+                    [&](int frame, const Image& img, const RenderStats& stats, double seconds) {
+                        frames.push_back(frame);
+                        EXPECT_EQ(img.width, 8);
+                        EXPECT_EQ(stats.passes, 1u);
+                        EXPECT_GE(seconds, stats.seconds);
+                    });
+    EXPECT_EQ(frames, (std::vector<int>{2, 3, 4}));
+}
+
+}  // namespace
+}  // namespace tessera
