@@ -81,6 +81,7 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
         write_png(png, img, a.exposure);
         std::fprintf(stderr, "tessera: frame %d: %.2f s (%u spp in %.2f s, the rest set-up)\n", frame, seconds,
                      stats.passes, stats.seconds);
+        if (!stats.detail.empty()) std::fprintf(stderr, "  %s\n", stats.detail.c_str());
         std::printf("%s\n%s\n", exr.c_str(), png.c_str());
         std::fflush(stdout);
     }, print_progress);

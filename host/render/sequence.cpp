@@ -47,6 +47,11 @@ fs::path frame_output_path(const fs::path& out, int frame) {
 
 void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& backend_options,
                      RenderSettings& settings, const FrameDoneFn& done, const ProgressFn& progress) {
+    if (settings.method == Method::Tic && !settings.ic_state) {  // one cache for the whole sequence
+        IcSettings ics = settings.ic;
+        ics.temporal = true;
+        settings.ic_state = std::make_shared<InstantCache>(ics, rest.objects);
+    }
     for (int frame = range.first; frame <= range.last; ++frame) {
         const auto start = std::chrono::steady_clock::now();
         const Scene scene = scene_at_frame(rest, frame);

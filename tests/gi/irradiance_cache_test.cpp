@@ -1,0 +1,118 @@
+// The irradiance cache's parts on analytic configurations: Ward's (shifted) weight, the
+// record radius and gather, and the octree lookup against a brute-force sum.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "gi/instant_cache.h"
+#include "gi/irradiance_cache.h"
+#include "kernels/shared/ic_lookup.h"
+
+namespace tessera {
+namespace {
+
+IcRecord record_at(glm::vec3 x, glm::vec3 n, float radius, glm::vec3 e = glm::vec3(1.0f)) {
+    IcRecord r;
+    r.surface = {x.x, x.y, x.z, n.x, n.y, n.z, n.x, n.y, n.z, x.x, x.y, x.z, 1.0f, 0.0f, 1.0f};
+    r.radius = radius;
+    r.e = {e.x, e.y, e.z};
+    return r;
+}
+
+float weight(const IcRecord& r, glm::vec3 x, glm::vec3 n, float a) {
+    const float rec[TS_IC_RECORD_FLOATS] = {r.surface[0], r.surface[1], r.surface[2], r.surface[3], r.surface[4],
+                                            r.surface[5], r.e[0],        r.e[1],        r.e[2],        r.radius};
+    return ts::ts_ic_weight(rec, {x.x, x.y, x.z}, {n.x, n.y, n.z}, a);
+}
+
+TEST(WardWeight, MatchesTheFormulaAndTheValidityBounds) {
+    const IcRecord r = record_at({0, 0, 0}, {0, 0, 1}, 1.0f);
+    const float a = 0.5f;
+    // ε = d/R: w = 1/ε − 1/a.
+    EXPECT_FLOAT_EQ(weight(r, {0.25f, 0, 0}, {0, 0, 1}, a), 1.0f / 0.25f - 2.0f);
+    EXPECT_FLOAT_EQ(weight(r, {0, 0.4f, 0}, {0, 0, 1}, a), 1.0f / 0.4f - 2.0f);
+    // Fades to zero at the edge of validity, zero beyond it.
+    EXPECT_NEAR(weight(r, {0.4999f, 0, 0}, {0, 0, 1}, a), 0.0f, 1e-3f);
+    EXPECT_EQ(weight(r, {0.6f, 0, 0}, {0, 0, 1}, a), 0.0f);
+    // Normal term: 30° tilt gives sqrt(1 − cos 30°) = 0.366 on top of d/R = 0.1.
+    const float c30 = std::cos(0.5235988f), s30 = std::sin(0.5235988f);
+    EXPECT_NEAR(weight(r, {0.1f, 0, 0}, {s30, 0, c30}, a), 1.0f / (0.1f + std::sqrt(1.0f - c30)) - 2.0f, 1e-4f);
+    // 60° tilt: sqrt(0.5) = 0.707 > a, unusable even at the record.
+    EXPECT_EQ(weight(r, {0, 0, 0}, {std::sin(1.0471976f), 0, std::cos(1.0471976f)}, a), 0.0f);
+    // In front of the query point (the query lies behind the record's surface): rejected;
+    // behind it: usable.
+    EXPECT_EQ(weight(r, {0, 0, -0.1f}, {0, 0, 1}, a), 0.0f);
+    EXPECT_FLOAT_EQ(weight(r, {0, 0, 0.1f}, {0, 0, 1}, a), 1.0f / 0.1f - 2.0f);
+    // At the record itself the weight is bounded (ε floored at 1e-4·a).
+    EXPECT_FLOAT_EQ(weight(r, {0, 0, 0}, {0, 0, 1}, a), 1.0f / (1e-4f * a) - 1.0f / a);
+}
+
+TEST(RecordRadius, ClampsToPixelFootprints) {
+    // Footprint per unit distance 0.002, camera distance 2: one pixel = 0.004 units.
+    EXPECT_FLOAT_EQ(ic_record_radius(0.05f, 2.0f, 0.002f, 1.5f, 20.0f), 0.05f);
+    EXPECT_FLOAT_EQ(ic_record_radius(0.001f, 2.0f, 0.002f, 1.5f, 20.0f), 1.5f * 0.004f);
+    EXPECT_FLOAT_EQ(ic_record_radius(INFINITY, 2.0f, 0.002f, 1.5f, 20.0f), 20.0f * 0.004f);
+}
+
+TEST(RecordGather, SumsVisibleVplsAndTakesTheirHarmonicMeanDistance) {
+    // A record at the origin facing +z; VPLs straight above at heights 1, 3 and 2 facing
+    // down, weights C = 1, 2, 4; the third is occluded. G = 1/d² (both cosines 1).
+    IcRecord r = record_at({0, 0, 0}, {0, 0, 1}, 1.0f);
+    std::vector<float> vpls;
+    for (float h : {1.0f, 3.0f, 2.0f}) {
+        const float c = h == 1.0f ? 1.0f : h == 3.0f ? 2.0f : 4.0f;
+        vpls.insert(vpls.end(), {0, 0, h, 0, 0, -1, c, c, c, 0, 0, 1.0f});
+    }
+    const std::vector<int32_t> row = {kIcVisible, kIcVisible, 0};
+    SceneBuffers scene;
+    scene.medium.assign(TS_MEDIUM_FLOATS, 0.0f);
+    float hm;
+    ic_sum_record(r, row, vpls, scene, INFINITY, &hm);
+    // The shadow ray ends just short of the VPL (t < 0.99999), the sum uses the true G.
+    EXPECT_NEAR(r.e[0], (1.0f + 2.0f / 9.0f) / M_PI, 1e-6);
+    EXPECT_NEAR(hm, 2.0f / (1.0f + 1.0f / 3.0f), 1e-5);
+    // The clamp b bounds G: with b = 0.5 the first VPL contributes 0.5, not 1.
+    ic_sum_record(r, row, vpls, scene, 0.5f, &hm);
+    EXPECT_NEAR(r.e[0], (0.5f + 2.0f / 9.0f) / M_PI, 1e-6);
+}
+
+TEST(IcOctree, LookupEqualsBruteForceOverAllRecords) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const float a = 0.4f;
+    IrradianceCache cache(a);
+    std::vector<IcRecord> all;
+    cache.rebuild({0, 0, 0}, {1, 1, 1});
+    for (int i = 0; i < 400; ++i) {
+        // Records on two planes with radii over two orders of magnitude, so they land on
+        // many octree levels.
+        const bool floor = i % 2 == 0;
+        const glm::vec3 x = floor ? glm::vec3(u(rng), 0.0f, u(rng)) : glm::vec3(u(rng), u(rng), 1.0f);
+        const glm::vec3 n = floor ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
+        const IcRecord r = record_at(x, n, 0.005f * std::pow(40.0f, u(rng)), glm::vec3(u(rng), u(rng), u(rng)));
+        all.push_back(r);
+        cache.insert(r);
+    }
+    for (int rebuilt = 0; rebuilt < 2; ++rebuilt) {
+        for (int q = 0; q < 2000; ++q) {
+            const bool floor = q % 2 == 0;
+            const glm::vec3 x = floor ? glm::vec3(u(rng), 0.0f, u(rng)) : glm::vec3(u(rng), u(rng), 1.0f);
+            const glm::vec3 n = floor ? glm::vec3(0, 1, 0) : glm::vec3(0, 0, -1);
+            double wsum = 0.0, esum = 0.0;
+            for (const IcRecord& r : all) {
+                const float w = weight(r, x, n, a);
+                wsum += w;
+                esum += w * r.e[0];
+            }
+            glm::vec3 e;
+            const float w = cache.lookup(x, n, &e);
+            ASSERT_NEAR(w, wsum, 1e-4 * wsum + 1e-6) << "query " << q;
+            if (wsum > 0) ASSERT_NEAR(e.x, esum / wsum, 1e-4);
+        }
+        cache.rebuild({0, 0, 0}, {1, 1, 1});  // the same answers after a rebuild
+    }
+}
+
+}  // namespace
+}  // namespace tessera
