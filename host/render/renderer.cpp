@@ -87,7 +87,8 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
         std::nth_element(pass_seconds.begin(), pass_seconds.begin() + pass_seconds.size() / 2, pass_seconds.end());
         stats->median_pass_seconds = pass_seconds.empty() ? 0.0 : pass_seconds[pass_seconds.size() / 2];
     }
-    if (stats && igi) stats->detail = igi->describe();
+    if (stats && igi) stats->detail = igi->describe(), stats->igi = igi->stats();
+    if (stats && cache) stats->ic = cache->stats();
     Image image = acc.mean_image(settings.aovs, settings.variance);
     if (igi && settings.aovs) igi->add_component_channels(image, settings.spp - first);
     return image;

@@ -42,6 +42,8 @@ struct RenderStats {
     double seconds = 0.0;            ///< wall time of all passes (excludes set-up)
     double median_pass_seconds = 0.0;
     std::string detail;              ///< method-specific log line ("" for none)
+    IgiFrameStats igi;               ///< igi-family methods: the last pass's counts and stage times
+    IcFrameStats ic;                 ///< ic, tic: the last pass's cache counts (records, rays)
 };
 
 /// Called after each pass with (passes done, passes total, seconds elapsed in this call,
