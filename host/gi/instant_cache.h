@@ -4,6 +4,22 @@
 // placement, the visibility bookkeeping and the temporal update run here; the G-buffer,
 // the shadow rays (Backend::trace_closest) and the interpolation (Backend::ic_interpolate)
 // run on the backend.
+//
+// Choices the paper does not fix for us (ALGORITHMS.md §3 marks them [A]), and why:
+// - Radius: the harmonic mean distance to the VPLs a record sees, clamped to 1.5–20 pixel
+//   footprints; it needs no rays beyond the gather (Ward's hemisphere probe would add 32 a
+//   record), and the clamp dominates in open areas anyway.
+// - Weight: Ward's, shifted by 1/a so records fade out at their validity edge (no seams);
+//   no gradients (records are dense enough at a = 0.3; measured error in the tests).
+// - Records keep the occluding object of every record–VPL pair (not one visibility bit):
+//   the temporal update then knows which pairs a moving object can change (exact, see
+//   temporal_update.cpp). 4 bytes a pair: 20k records × 400 VPLs = 32 MB.
+// - Temporal invalidation re-traces a whole light path (same Halton point) rather than from
+//   the first invalid vertex, and re-traces suspect shadow rays in the full scene rather
+//   than against the moved object alone: simpler, still exact, and it costs light-path rays
+//   (hundreds a frame) and only the shadow rays the bounding-box test lets through.
+// - Every backend sees the same records: placement reads the G-buffer on the host and the
+//   octree lookup is one function (shared/ic_lookup.h) for host and kernels.
 #pragma once
 #include <array>
 #include <cstdint>

@@ -39,6 +39,8 @@ inline const std::vector<HardCaseMethod> kHardCaseMethods = {
     {"igi", Method::Igi, Transport::Global, true, true},
     {"ais", Method::Ais, Transport::Global, true, true},
     {"ais-max", Method::AisMax, Transport::Global, true, true},
+    {"ic", Method::Ic, Transport::Global, true, true},
+    {"tic", Method::Tic, Transport::Global, true, true},
 };
 
 inline const std::vector<BackendKind> kHardCaseBackends = {BackendKind::Embree, BackendKind::OpenCL};
