@@ -96,6 +96,9 @@ void run_render(const RenderArgs& a) {
     settings.igi.components = parse_components(a.components);
     if (!a.frames.empty() && a.resume)
         throw InputError("--frames cannot be combined with --resume (checkpoints hold one still frame)");
+    if (settings.method == Method::Tic && a.resume)
+        throw InputError("--method tic cannot be combined with --resume (a checkpoint does not hold the cache, so a "
+                         "resumed render would differ from the uninterrupted one)");
     if (!a.frames.empty() && !a.stats_json.empty())
         throw InputError("--frames cannot be combined with --stats-json (it describes one still frame)");
     Scene scene = load_scene(scene_path, data);

@@ -13,12 +13,17 @@
 #include "kernels/shared/ic_lookup.h"
 #include "kernels/shared/medium.h"
 #include "kernels/shared/vpl.h"
+#include "util/error.h"
 
 namespace tessera {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Record–VPL visibilities the cache may keep: 4 bytes each, so 2 GiB (ten times what
+// 512² at the default settings needs; a guard against --ic-paths in the tens of thousands).
+constexpr size_t kMaxPairs = size_t(1) << 29;
 
 // Rays per Backend::trace_closest call: bounds the ray and hit buffers (32 + 16 bytes a ray).
 constexpr size_t kRayBatch = size_t(1) << 20;
@@ -152,6 +157,12 @@ void InstantCache::place(Backend& backend, const SceneBuffers& scene, const std:
             }
         });
         const size_t first = cache_.records().size();
+        const size_t fresh_count = std::count(covered.begin(), covered.end(), uint8_t(0));
+        if (double(first + fresh_count) * double(nv) > double(kMaxPairs))
+            throw RuntimeError("ic: the cache would keep " + std::to_string((first + fresh_count) * nv) +
+                               " record-VPL visibilities (" + std::to_string(first + fresh_count) + " records x " +
+                               std::to_string(nv) + " VPLs), more than " + std::to_string(kMaxPairs) +
+                               "; lower --ic-paths, raise --ic-error or lower the resolution");
         std::vector<Pair> pairs;
         for (size_t i = 0; i < candidates.size(); ++i) {
             if (covered[i]) continue;

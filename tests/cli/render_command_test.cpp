@@ -140,6 +140,18 @@ TEST_F(RenderCli, BadFrames) {
     expect_rejected(scene + " --frames 0:1 --resume", "--resume");
 }
 
+TEST_F(RenderCli, TicSequenceLogsTheCacheAndRefusesResume) {
+    const std::string scene = std::string(TESSERA_SCENES_DIR) + "/cornell-box-animated.json";
+    CliResult r = run_tessera("render " + scene + " --method tic --frames 0:1 --spp 1 --width 16 --height 16 "
+                              "--ic-paths 16 --backend embree --out " + (dir_ / "tic.exr").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir_ / "tic.0001.exr"));
+    EXPECT_NE(r.output.find("tic: a 0.30, 16 paths"), std::string::npos) << r.output;
+    expect_rejected("--method tic --resume", "--resume");
+    expect_rejected("--method ic --ic-error 0", "--ic-error");
+    expect_rejected("--method ic --ic-paths 0", "--ic-paths");
+}
+
 namespace tessera {
 namespace {
 

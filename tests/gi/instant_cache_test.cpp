@@ -129,6 +129,16 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     EXPECT_GT(moving.retraced, 0u);
     EXPECT_LT(moving.retraced, moving.paths / 2);
     EXPECT_LT(moving.update_rays, moving.full_rays / 4);
+    // Only the light dims: every path is re-traced (its weight changes) but lands where it
+    // did, so no shadow ray is traced again and no record is removed.
+    Scene dims = rest;
+    dims.animation.objects.clear();
+    std::erase_if(dims.animation.materials, [](const MaterialTrack& t) { return t.name != "light"; });
+    ASSERT_EQ(dims.animation.materials.size(), 1u);
+    const TemporalRun dimming = run_and_compare_with_rebuild(GetParam(), dims);
+    EXPECT_EQ(dimming.retraced, dimming.paths);
+    EXPECT_EQ(dimming.update_rays, 0u);
+    EXPECT_EQ(dimming.removed, 0u);
 }
 
 TEST_P(InstantCacheOn, ChangeFreeFrameTracesNoIndirectRays) {
