@@ -37,7 +37,8 @@ void add_materials(const Scene& scene, SceneBuffers& b) {
         const glm::vec3 ks = m.specular == glm::vec3(0.0f) ? glm::vec3(1.0f) : m.specular;
         float f[TS_MATERIAL_FLOATS] = {m.albedo.x, m.albedo.y, m.albedo.z, 0.0f,
                                        m.emission.x, m.emission.y, m.emission.z, 0.0f,
-                                       ks.x, ks.y, ks.z, m.ior > 0.0f ? m.ior : 1.0f};
+                                       ks.x, ks.y, ks.z, m.ior > 0.0f ? m.ior : 1.0f,
+                                       luminance_of(selection_emission(m)), 0.0f, 0.0f, 0.0f};
         int tex = m.texture;
         std::memcpy(&f[3], &tex, 4);
         std::memcpy(&f[7], &kind, 4);
@@ -55,7 +56,7 @@ void add_textures(const Scene& scene, SceneBuffers& b) {
 }
 
 void add_lights(const Scene& scene, SceneBuffers& b) {
-    double total = 0.0, frame_power = 0.0;
+    double total = 0.0;
     std::vector<double> power;
     for (uint32_t i = 0; i < scene.triangle_count(); ++i) {
         const Material& m = scene.materials[scene.material[i]];
@@ -79,13 +80,11 @@ void add_lights(const Scene& scene, SceneBuffers& b) {
         b.lights.insert(b.lights.end(), f, f + TS_LIGHT_FLOATS);
         power.push_back(static_cast<double>(luminance_of(weight)) * area);
         total += power.back();
-        frame_power += static_cast<double>(luminance_of(le)) * area;
     }
     b.light_count = static_cast<uint32_t>(power.size());
-    // The kernels' MIS pdf for an emitter hit is luminance(Le) / light_power with this
-    // frame's Le. With this frame's total it equals the true pick pdf whenever all lights
-    // are at the same fraction of their maximum (always so in a static scene).
-    b.light_power = static_cast<float>(frame_power);
+    // The kernels' MIS pdf for an emitter hit is (the material's selection luminance) /
+    // light_power: the probability ts_sample_light picks that point with.
+    b.light_power = static_cast<float>(total);
     double run = 0.0;
     for (size_t i = 0; i < power.size(); ++i) {
         run += power[i];

@@ -22,7 +22,7 @@ struct SceneBuffers {
     std::vector<float> medium;       ///< TS_MEDIUM_FLOATS (all zero when there is none)
     uint32_t triangle_count = 0;
     uint32_t light_count = 0;
-    float light_power = 0.0f;        ///< Σ luminance(Le) × area over lights, this frame's Le
+    float light_power = 0.0f;        ///< Σ luminance(Le_max) × area over lights (the pick weights)
 };
 
 /// TS_MAT_* for a material: MTL illum 3 and 5 are mirrors, illum 7 a dielectric
@@ -35,13 +35,11 @@ uint32_t material_kind(const Material& m);
 /// proportion to power = luminance(Le_max) × area (Rec. 709 luminance weights), so the
 /// light list, light_count and light_cdf are the same in every frame of an animation;
 /// the radiance stored per light is this frame's `emission` (possibly zero).
-/// light_power is the total of this frame's luminance(emission) × area: the kernels'
-/// MIS weight for an emitter hit by a BSDF sample takes luminance(emission) /
-/// light_power as the pick pdf, which is exact while every light is at the same
-/// fraction of its emission_max (a static scene, all lights dimming together, or one
-/// light), and otherwise biases the MIS weights of the lights that differ (fixing that
-/// needs a per-light pick pdf in the kernels). Buffers that would be empty get one zero element, so every device
-/// buffer can be created.
+/// light_power is the total luminance(Le_max) × area; each material stores its
+/// luminance(Le_max) (materials [12]), so the kernels' MIS weight for an emitter hit by a
+/// BSDF sample uses the exact pick pdf luminance(Le_max) / light_power in every frame,
+/// however the lights dim. Buffers that would be empty get one zero element, so every
+/// device buffer can be created.
 SceneBuffers make_scene_buffers(const Scene& scene);
 
 }  // namespace tessera

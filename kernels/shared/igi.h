@@ -213,7 +213,8 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
     float3 le = ts_material_emission(sv, &s);
     if (!(ts_max3(le) > 0.0f)) return le;
     float cos_y = -dot(s.geo_normal, wi);
-    *pdf_light = ts_light_pdf_area(le, f->light_power) * h.t * h.t / cos_y;
+    TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s.material;
+    *pdf_light = ts_light_pdf_area(M[12], f->light_power) * h.t * h.t / cos_y;
     return le * ts_medium_transmittance(med, x, wi, 0.0f, h.t);
 }
 

@@ -27,7 +27,9 @@
  * materials: TS_MATERIAL_FLOATS floats: [0..2] albedo (Kd, linear), [3] texture index
  *   (int bits, -1 = none), [4..6] emitted radiance Le in W/(sr·m²), [7] kind (uint bits:
  *   TS_MAT_DIFFUSE, TS_MAT_MIRROR, TS_MAT_DIELECTRIC), [8..10] specular reflectance (Ks;
- *   the mirror's), [11] index of refraction (dielectric).
+ *   the mirror's), [11] index of refraction (dielectric), [12] selection luminance: the
+ *   luminance of the emission lights are picked by (the animation's maximum, so the
+ *   pick probabilities stay the same over frames; ts_light_pdf_area), [13..15] unused.
  * medium: TS_MEDIUM_FLOATS floats: [0..2] sigma_a, [3..5] sigma_s (per scene unit),
  *   [6] Henyey–Greenstein g, [7] 1 if bounded by the box else 0, [8..10] box min,
  *   [11..13] box max, [14] 1 if the scene has a medium at all, [15] unused.
@@ -49,7 +51,7 @@
 #define TS_BVH_MAX_DEPTH 48
 #define TS_BVH_STACK_SIZE 160 /* >= 3 · TS_BVH_MAX_DEPTH + 1: a 4-wide node pushes at most 3 more than it pops */
 #define TS_BVH_LEAF_MAX 4
-#define TS_MATERIAL_FLOATS 12
+#define TS_MATERIAL_FLOATS 16
 #define TS_MAT_DIFFUSE 0u
 #define TS_MAT_MIRROR 1u
 #define TS_MAT_DIELECTRIC 2u
@@ -80,7 +82,7 @@ typedef struct TsFrame {
     unsigned int light_count;
     unsigned int max_depth;      /* pt: path vertices (surface or medium) before stopping */
     unsigned int max_scatter;    /* pt: medium scattering vertices per path; 0 = unlimited */
-    float light_power;           /* sum over lights of luminance(Le) × area (for pdfs) */
+    float light_power;           /* sum over lights of selection luminance × area (for pdfs) */
     unsigned int igi_tile;       /* igi: interleave tile edge n (n² sample sets) */
     unsigned int igi_steps;      /* igi: ray-march steps per pixel along the camera ray */
     float igi_g_clamp;           /* igi: bound b on the VPL geometry term (scene units^-2) */

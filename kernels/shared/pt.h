@@ -157,7 +157,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                 L += beta * le;
             } else {
                 float cos_y = -dot(s.geo_normal, ray.dir);
-                float pl = ts_light_pdf_area(ts_f3_load(M + 4), f->light_power) * hit.t * hit.t / cos_y;
+                float pl = ts_light_pdf_area(M[12], f->light_power) * hit.t * hit.t / cos_y;
                 L += beta * le * ts_power_heuristic(prev_pdf, pl);
             }
         }

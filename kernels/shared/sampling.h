@@ -76,11 +76,12 @@ TS_INLINE float ts_power_heuristic(float a, float b) {
 /* Rec. 709 luminance, the power measure used to pick lights (host: scene_buffers.cpp). */
 TS_INLINE float ts_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
-/* Area pdf (scene units^-2) with which ts_sample_light picks a point on an emitter of
- * radiance Le: power-proportional selection times uniform area sampling gives
- * (luminance(Le) · area / total power) / area = luminance(Le) / total power. */
-TS_INLINE float ts_light_pdf_area(float3 le, float light_power) {
-    return light_power > 0.0f ? ts_luminance(le) / light_power : 0.0f;
+/* Area pdf (scene units^-2) with which ts_sample_light picks a point on an emitter whose
+ * material has selection luminance `selection` (materials [12], layout.h):
+ * power-proportional selection times uniform area sampling gives
+ * (selection · area / total power) / area = selection / total power. */
+TS_INLINE float ts_light_pdf_area(float selection, float light_power) {
+    return light_power > 0.0f ? selection / light_power : 0.0f;
 }
 
 /* An orthonormal basis (t, b, n) around unit n, without branches on the sign of n.z
