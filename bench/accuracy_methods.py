@@ -49,7 +49,19 @@ METHODS = {
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
         converges_to_reference=False,
         note="adaptive interleaved sampling, mode A-MAX (all sets for every flagged pixel)"),
-    # Planned, to be filled in when the methods land (same shape): "ic", "tic".
+    "ic": Method(
+        "ic", {"spp": [1, 2, 4], "ic-paths": [64, 256, 1024], "ic-error": [0.1, 0.3, 0.5], "shadow-samples": [1, 4]},
+        {"spp": 1, "ic-paths": 256, "ic-error": 0.3, "shadow-samples": 4},
+        converges_to_reference=False,
+        note="instant caching: igi's direct light and media, indirect light from an irradiance cache rebuilt "
+             "each pass from --ic-paths light paths (one set); same clamp as igi, so its error floors too"),
+    "tic": Method(
+        "tic", {"spp": [1, 2, 4], "ic-paths": [64, 256, 1024], "ic-error": [0.3], "shadow-samples": [1, 4]},
+        {"spp": 1, "ic-paths": 256, "ic-error": 0.3, "shadow-samples": 4},
+        converges_to_reference=False,
+        note="temporal instant caching on a still frame: the cache persists over the passes (one VPL set, "
+             "records added where new camera jitter needs them), so passes after the first cost little; "
+             "its frame-to-frame cost over animations is in ic_bench"),
 }
 
 
