@@ -21,10 +21,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Record–VPL visibilities the cache may keep: 4 bytes each, so 2 GiB (ten times what
-// 512² at the default settings needs; a guard against --ic-paths in the tens of thousands).
-constexpr size_t kMaxPairs = size_t(1) << 29;
-
 // Rays per Backend::trace_closest call: bounds the ray and hit buffers (32 + 16 bytes a ray).
 constexpr size_t kRayBatch = size_t(1) << 20;
 
@@ -60,8 +56,19 @@ void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vect
 
 InstantCache::InstantCache(const IcSettings& settings, const std::vector<SceneObject>& objects)
     : settings_(settings), cache_(settings.error_bound) {
+    if (!(settings.error_bound >= 1e-3f && settings.error_bound <= 2.0f))
+        throw InputError("--ic-error must be in [0.001, 2]");
+    if (!(settings.min_radius_px > 0.0f && settings.min_radius_px <= settings.max_radius_px))
+        throw InputError("ic: the record radius bounds must satisfy 0 < min <= max pixels");
     for (const SceneObject& o : objects) object_first_.push_back(o.first_triangle);
     if (object_first_.empty()) object_first_.push_back(0);
+}
+
+void InstantCache::check_pairs(size_t records, size_t vpls) {
+    if (double(records) * double(vpls) <= double(kMaxPairs)) return;
+    throw RuntimeError("ic: the cache would keep " + std::to_string(records * vpls) + " record-VPL visibilities (" +
+                       std::to_string(records) + " records x " + std::to_string(vpls) + " VPLs), more than " +
+                       std::to_string(kMaxPairs) + "; lower --ic-paths, raise --ic-error or lower the resolution");
 }
 
 uint32_t InstantCache::object_of(uint32_t triangle) const {
@@ -158,11 +165,7 @@ void InstantCache::place(Backend& backend, const SceneBuffers& scene, const std:
         });
         const size_t first = cache_.records().size();
         const size_t fresh_count = std::count(covered.begin(), covered.end(), uint8_t(0));
-        if (double(first + fresh_count) * double(nv) > double(kMaxPairs))
-            throw RuntimeError("ic: the cache would keep " + std::to_string((first + fresh_count) * nv) +
-                               " record-VPL visibilities (" + std::to_string(first + fresh_count) + " records x " +
-                               std::to_string(nv) + " VPLs), more than " + std::to_string(kMaxPairs) +
-                               "; lower --ic-paths, raise --ic-error or lower the resolution");
+        check_pairs(first + fresh_count, nv);
         std::vector<Pair> pairs;
         for (size_t i = 0; i < candidates.size(); ++i) {
             if (covered[i]) continue;
@@ -180,8 +183,9 @@ void InstantCache::place(Backend& backend, const SceneBuffers& scene, const std:
         for (size_t i = 0; i < fresh.size(); ++i) {
             float hm;
             ic_sum_record(fresh[i], rows_[first + i], vpls_, scene, g_clamp, &hm);
-            fresh[i].radius = ic_record_radius(hm, fresh[i].surface[14], footprint, settings_.min_radius_px,
-                                               settings_.max_radius_px);
+            fresh[i].pixel_size = fresh[i].surface[14] * footprint;
+            fresh[i].last_in_view = frame_count_;
+            fresh[i].radius = ic_record_radius(hm, fresh[i].pixel_size, settings_.min_radius_px, settings_.max_radius_px);
             cache_.insert(fresh[i]);
         }
         stats_.created += fresh.size();
@@ -232,11 +236,30 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     }
     stats_.records = cache_.records().size();
     stats_.interpolate_seconds = since(t0);
-    if (settings_.temporal) snapshot(scene, g_clamp);
+    if (settings_.temporal) {
+        mark_in_view(frame);
+        snapshot(scene, g_clamp);
+    }
+    ++frame_count_;
 }
 
-std::vector<std::array<float, 3>> InstantCache::rebuilt_irradiance(Backend& backend, const SceneBuffers& scene,
-                                                                   float g_clamp) const {
+// A record is in view when its position projects into the image (10% margin) in front of
+// the camera; occlusion is not tested (an occluded record may reappear soon).
+void InstantCache::mark_in_view(const TsFrame& f) {
+    const glm::vec3 cam(f.cam_pos[0], f.cam_pos[1], f.cam_pos[2]), fwd(f.cam_forward[0], f.cam_forward[1], f.cam_forward[2]),
+        right(f.cam_right[0], f.cam_right[1], f.cam_right[2]), up(f.cam_up[0], f.cam_up[1], f.cam_up[2]);
+    const float r2 = glm::dot(right, right), u2 = glm::dot(up, up);
+    for (IcRecord& r : cache_.records()) {
+        const glm::vec3 d = r.position() - cam;
+        const float t = glm::dot(d, fwd);
+        if (!(t > 0.0f)) continue;
+        const float sx = glm::dot(d, right) / (r2 * t), sy = glm::dot(d, up) / (u2 * t);
+        if (std::fabs(sx) <= 1.1f && std::fabs(sy) <= 1.1f) r.last_in_view = frame_count_;
+    }
+}
+
+std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const SceneBuffers& scene,
+                                                   float g_clamp) const {
     std::vector<LightPath> paths(paths_.size());
     for (size_t j = 0; j < paths.size(); ++j) paths[j].index = paths_[j].index;
     LightPathSettings ls;
@@ -251,14 +274,13 @@ std::vector<std::array<float, 3>> InstantCache::rebuilt_irradiance(Backend& back
     for (uint32_t i = 0; i < records.size(); ++i)
         for (uint32_t j = 0; j < nv; ++j) pairs.push_back({i, j});
     trace_pairs(backend, vpls, pairs, g_clamp, rows);
-    std::vector<std::array<float, 3>> e(records.size());
-    for (size_t i = 0; i < records.size(); ++i) {
-        IcRecord r = records[i];
+    std::vector<IcRecord> out(records);
+    for (size_t i = 0; i < out.size(); ++i) {
         float hm;
-        ic_sum_record(r, rows[i], vpls, scene, g_clamp, &hm);
-        e[i] = r.e;
+        ic_sum_record(out[i], rows[i], vpls, scene, g_clamp, &hm);
+        out[i].radius = ic_record_radius(hm, out[i].pixel_size, settings_.min_radius_px, settings_.max_radius_px);
     }
-    return e;
+    return out;
 }
 
 std::string InstantCache::describe() const {

@@ -41,11 +41,16 @@ struct IcSettings {
     float min_radius_px = 1.5f;  ///< record radius bounds in pixel footprints (ic_record_radius)
     float max_radius_px = 20.0f;
     bool temporal = false;       ///< tic: keep VPL paths, records and visibility across frames
+    /// tic: a record outside the view frustum for this many frames in a row is evicted
+    /// (ALGORITHMS.md §3.4's eviction of off-screen records): without it a moving camera
+    /// grows the cache, and the per-frame update with it, without bound.
+    uint32_t evict_after_frames = 30;
 };
 
 /// Counts and times of the last frame (of indirect()).
 struct IcFrameStats {
     size_t records = 0, created = 0, removed = 0, resummed = 0;
+    size_t evicted = 0;  ///< records dropped for being out of view (tic)
     size_t vpls = 0, paths_retraced = 0, vpls_changed = 0;
     uint64_t light_path_rays = 0;  ///< rays of (re-)traced light paths
     uint64_t shadow_rays = 0;      ///< record–VPL shadow rays
@@ -80,10 +85,10 @@ public:
     void indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, float g_clamp,
                   std::vector<float>& e_id);
 
-    /// E of every current record recomputed from scratch on `scene`: fresh light paths
-    /// (same indices), every shadow ray traced. The temporal update must equal this.
-    std::vector<std::array<float, 3>> rebuilt_irradiance(Backend& backend, const SceneBuffers& scene,
-                                                         float g_clamp) const;
+    /// The current records (same surfaces) with E and R recomputed from scratch on
+    /// `scene`: fresh light paths (same indices), every shadow ray traced. The temporal
+    /// update must equal this.
+    std::vector<IcRecord> rebuilt_records(Backend& backend, const SceneBuffers& scene, float g_clamp) const;
 
     /// The VPLs the records gather from (TS_VPL_FLOATS each, in path order).
     const std::vector<float>& vpls() const { return vpls_; }
@@ -106,7 +111,14 @@ private:
                          float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
     void update(Backend& backend, const SceneBuffers& scene, float g_clamp);
     void snapshot(const SceneBuffers& scene, float g_clamp);
+    void mark_in_view(const TsFrame& frame);
+    void evict_out_of_view();
     uint32_t object_of(uint32_t triangle) const;
+    /// Throws RuntimeError when records × vpls visibilities exceed kMaxPairs.
+    static void check_pairs(size_t records, size_t vpls);
+    /// Record–VPL visibilities the cache may keep: 4 bytes each, so 2 GiB (ten times what
+    /// 512² at the default settings needs; a guard against --ic-paths in the tens of thousands).
+    static constexpr size_t kMaxPairs = size_t(1) << 29;
 
     IcSettings settings_;
     std::vector<uint32_t> object_first_;  // first triangle of each object, increasing
@@ -117,6 +129,7 @@ private:
     IcFrameStats stats_;
     // The previous frame, for the temporal update.
     bool have_previous_ = false;
+    uint32_t frame_count_ = 0;  // indirect() calls so far
     std::vector<float> prev_tri_pos_, prev_materials_, prev_lights_, prev_light_cdf_;
     float prev_g_clamp_ = 0.0f;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "kernels/shared/ic_lookup.h"
 
@@ -19,9 +20,9 @@ ts::TsSurface ic_record_surface(const IcRecord& r) {
     return s;
 }
 
-float ic_record_radius(float harmonic_mean, float camera_distance, float footprint, float min_px, float max_px) {
-    const float px = camera_distance * footprint;
-    return std::clamp(harmonic_mean, min_px * px, max_px * px);
+float ic_record_radius(float harmonic_mean, float pixel_size, float min_px, float max_px) {
+    const float r = std::clamp(harmonic_mean, min_px * pixel_size, max_px * pixel_size);
+    return std::max({r, 1e-6f * pixel_size, std::numeric_limits<float>::min()});
 }
 
 void IrradianceCache::rebuild(glm::vec3 lo, glm::vec3 hi) {

@@ -25,6 +25,8 @@ namespace tessera {
 struct IcRecord {
     std::array<float, TS_IC_GBUF_FLOATS> surface{};  ///< the G-buffer entry (layout.h)
     float radius = 0.0f;                              ///< R_i, scene units
+    float pixel_size = 0.0f;  ///< a pixel's footprint at the record when it was made (radius clamp)
+    uint32_t last_in_view = 0;  ///< the last frame (InstantCache's count) whose view held it
     std::array<float, 3> e{};                         ///< irradiance / π, W/m² / π
     glm::vec3 position() const { return {surface[0], surface[1], surface[2]}; }
 };
@@ -33,12 +35,12 @@ struct IcRecord {
 ts::TsSurface ic_record_surface(const IcRecord& r);
 
 /// Ward's validity radius from the harmonic mean distance `harmonic_mean` (scene units; +inf
-/// when unknown), clamped to [min_px, max_px] pixel footprints at camera distance
-/// `camera_distance`; `footprint` is the pixel footprint per unit distance
-/// (2·tan(vfov/2) / height). The clamp (Tabellion & Lamorlette 2004; Křivánek et al.
-/// 2006) keeps records from crowding in corners (lower bound) and from smearing detail
-/// across the image (upper bound).
-float ic_record_radius(float harmonic_mean, float camera_distance, float footprint, float min_px, float max_px);
+/// when unknown), clamped to [min_px, max_px] × `pixel_size` (a pixel's footprint at the
+/// record, scene units). The clamp (Tabellion & Lamorlette 2004; Křivánek et al. 2006)
+/// keeps records from crowding in corners (lower bound) and from smearing detail across
+/// the image (upper bound). Never below 1e-6 × pixel_size or FLT_MIN (a camera on the
+/// surface would give 0, and a zero radius a NaN weight). Requires min_px <= max_px.
+float ic_record_radius(float harmonic_mean, float pixel_size, float min_px, float max_px);
 
 class IrradianceCache {
 public:
@@ -47,7 +49,11 @@ public:
 
     float error_bound() const { return a_; }
     const std::vector<IcRecord>& records() const { return records_; }
-    std::vector<IcRecord>& records() { return records_; }
+    /// Mutable access; the flat buffers are re-made before the next lookup.
+    std::vector<IcRecord>& records() {
+        dirty_ = true;
+        return records_;
+    }
 
     /// Re-makes the octree over all records, the root a cube around [lo, hi] and every
     /// record's validity sphere. Call after records were removed or edited in place.

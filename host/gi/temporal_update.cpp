@@ -18,6 +18,8 @@
 //               (the blocker moved), or it was unoccluded and its shadow segment meets the
 //               new box of an object of O. A pair blocked by a static object stays
 //               blocked; a pair whose geometry term was 0 stays 0 (neither end moved).
+//   eviction    a record out of the view frustum for evict_after_frames frames in a row
+//               is dropped first (it would only cost update work).
 //   E           re-summed (no rays) for records with a re-traced pair, and for all records
 //               when a VPL weight or the geometry-term bound changed.
 #include <algorithm>
@@ -40,6 +42,15 @@ struct Box {
     glm::vec3 lo{INFINITY}, hi{-INFINITY};
     void grow(const float* p) {
         for (int a = 0; a < 3; ++a) lo[a] = std::fmin(lo[a], p[a]), hi[a] = std::fmax(hi[a], p[a]);
+    }
+    // Widens the box by a few ulps of its coordinates: the float slab test must not miss a
+    // ray the (watertight) tracer finds grazing an edge of the object, least of all for a
+    // flat object whose box has zero thickness. Conservative: it costs a few extra rays.
+    void pad() {
+        for (int a = 0; a < 3; ++a) {
+            const float e = 1e-5f * std::max({1.0f, std::fabs(lo[a]), std::fabs(hi[a])});
+            lo[a] -= e, hi[a] += e;
+        }
     }
     // Whether org + t·dir for t in [t0, t1] meets the box (slab test; a zero direction
     // component is handled by the infinities of 1/0).
@@ -87,7 +98,24 @@ void InstantCache::snapshot(const SceneBuffers& scene, float g_clamp) {
     have_previous_ = true;
 }
 
+void InstantCache::evict_out_of_view() {
+    std::vector<IcRecord>& records = cache_.records();
+    size_t kept = 0;
+    for (size_t i = 0; i < records.size(); ++i) {
+        if (frame_count_ - records[i].last_in_view > settings_.evict_after_frames) continue;
+        if (kept != i) {  // a self-move would empty the row
+            records[kept] = records[i];
+            rows_[kept] = std::move(rows_[i]);
+        }
+        ++kept;
+    }
+    stats_.evicted = records.size() - kept;
+    records.resize(kept);
+    rows_.resize(kept);
+}
+
 void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_clamp) {
+    evict_out_of_view();
     if (scene.tri_pos.size() != prev_tri_pos_.size() || scene.materials.size() != prev_materials_.size())
         throw RuntimeError("tic: the scene's triangles or materials changed in number between frames");
     Change ch;
@@ -101,8 +129,10 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
             ch.new_box[o].grow(&scene.tri_pos[9 * size_t(t) + 3 * v]);
         }
     }
-    for (uint32_t o = 0; o < objects; ++o)
+    for (uint32_t o = 0; o < objects; ++o) {
+        ch.old_box[o].pad(), ch.new_box[o].pad();
         if (ch.is_moved[o]) ch.moved.push_back(o);
+    }
     ch.material_changed.assign(scene.materials.size() / TS_MATERIAL_FLOATS, 0);
     for (size_t m = 0; m < ch.material_changed.size(); ++m)
         ch.material_changed[m] = differ(scene.materials, prev_materials_, m * TS_MATERIAL_FLOATS, TS_MATERIAL_FLOATS);
@@ -166,6 +196,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
 
     // Records: drop the stale ones, re-map the rest to the new columns.
     std::vector<IcRecord>& records = cache_.records();
+    check_pairs(records.size(), old_column.size());
     std::vector<IcRecord> kept;
     std::vector<Row> rows;
     for (size_t i = 0; i < records.size(); ++i) {
@@ -198,7 +229,10 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
                 bool trace = v == kNeedsTrace || (v >= 0 && ch.is_moved[v]);
                 if (!trace && v == kIcVisible && !ch.moved.empty()) {
                     ts::TsRay sh;
-                    ts::ts_vpl_geometry(&s, &vpls_[size_t(j) * TS_VPL_FLOATS], g_clamp, &sh);
+                    if (!(ts::ts_vpl_geometry(&s, &vpls_[size_t(j) * TS_VPL_FLOATS], g_clamp, &sh) > 0.0f)) {
+                        per_record[i].push_back({static_cast<uint32_t>(i), j});  // cannot happen; be exact
+                        continue;
+                    }
                     const float org[3] = {sh.org.x, sh.org.y, sh.org.z}, dir[3] = {sh.dir.x, sh.dir.y, sh.dir.z};
                     for (uint32_t o : ch.moved) trace = trace || ch.new_box[o].meets(org, dir, sh.tmin, sh.tmax);
                 }
@@ -215,6 +249,9 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
         if (!all && per_record[i].empty()) continue;
         float hm;
         ic_sum_record(records[i], rows_[i], vpls_, scene, g_clamp, &hm);
+        // The visible VPLs may have changed, and with them the harmonic mean distance.
+        records[i].radius = ic_record_radius(hm, records[i].pixel_size, settings_.min_radius_px,
+                                             settings_.max_radius_px);
         ++stats_.resummed;
     }
 }

@@ -27,7 +27,7 @@ void validate(const RenderSettings& s) {
     if (s.igi.paths_per_set < 1 || s.igi.paths_per_set > 65536) throw InputError("--vpl-paths must be in 1..65536");
     if (!(s.igi.clamp_c >= 0.0f)) throw InputError("--clamp must be >= 0");
     if (s.ic.paths < 1 || s.ic.paths > 65536) throw InputError("--ic-paths must be in 1..65536");
-    if (!(s.ic.error_bound > 0.0f && s.ic.error_bound <= 2.0f)) throw InputError("--ic-error must be in (0, 2]");
+    if (!(s.ic.error_bound >= 1e-3f && s.ic.error_bound <= 2.0f)) throw InputError("--ic-error must be in [0.001, 2]");
 }
 
 }  // namespace
@@ -54,7 +54,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
         is.ais_mode = settings.method == Method::AisMax ? AisMode::AMax : AisMode::A;
         igi = std::make_unique<IgiFrame>(backend, buffers, plan_effects(scene), is);
         if (settings.method == Method::Ic || settings.method == Method::Tic) {
-            cache = settings.ic_state;
+            if (settings.method == Method::Tic) cache = settings.ic_state;
             if (!cache) {
                 IcSettings ics = settings.ic;
                 ics.temporal = settings.method == Method::Tic;

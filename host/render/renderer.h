@@ -22,7 +22,8 @@ struct RenderSettings {
     IgiSettings igi;                ///< igi (set_shadow_samples comes from shadow_samples)
     IcSettings ic;                  ///< ic, tic (temporal is set from the method)
     /// tic: the cache kept across the frames of a sequence (render it frame by frame with
-    /// the same settings); null: a cache for this call only.
+    /// the same settings; render_sequence makes one); null: a cache for this call only.
+    /// It must belong to the scene being rendered (its object table).
     std::shared_ptr<InstantCache> ic_state;
     uint32_t spp = 16;              ///< passes, one camera sample per pixel each
     uint32_t shadow_samples = 8;    ///< area-light samples per camera hit and pass

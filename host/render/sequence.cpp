@@ -46,8 +46,10 @@ fs::path frame_output_path(const fs::path& out, int frame) {
 }
 
 void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& backend_options,
-                     RenderSettings& settings, const FrameDoneFn& done, const ProgressFn& progress) {
-    if (settings.method == Method::Tic && !settings.ic_state) {  // one cache for the whole sequence
+                     const RenderSettings& sequence_settings, const FrameDoneFn& done,
+                     const ProgressFn& progress) {
+    RenderSettings settings = sequence_settings;
+    if (settings.method == Method::Tic) {  // one cache for this sequence, of this scene
         IcSettings ics = settings.ic;
         ics.temporal = true;
         settings.ic_state = std::make_shared<InstantCache>(ics, rest.objects);

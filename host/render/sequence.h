@@ -34,10 +34,10 @@ using FrameDoneFn =
 
 /// Renders frames range.first..range.last of `rest` in order: each frame is posed with
 /// scene_at_frame, flattened and rendered on a backend built for it. `settings` is
-/// the same object for every frame: with --method tic and no settings.ic_state, one
-/// temporal instant cache is made for the sequence and kept there. Throws what
+/// the same for every frame; with --method tic one temporal instant cache is made for
+/// the sequence (settings.ic_state is ignored) and kept across its frames. Throws what
 /// scene_at_frame, make_backend and render_frame throw.
 void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& backend,
-                     RenderSettings& settings, const FrameDoneFn& done, const ProgressFn& progress = {});
+                     const RenderSettings& settings, const FrameDoneFn& done, const ProgressFn& progress = {});
 
 }  // namespace tessera

@@ -92,17 +92,25 @@ TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest) {
         render_frame(*backend, scene, buffers, s);
         const InstantCache& c = *s.ic_state;
         const float b = IgiFrame(*backend, buffers, plan, s.igi).g_clamp();
-        const auto rebuilt = c.rebuilt_irradiance(*backend, buffers, b);
+        const auto rebuilt = c.rebuilt_records(*backend, buffers, b);
         const auto& records = c.cache().records();
         EXPECT_EQ(rebuilt.size(), records.size());
         EXPECT_GT(records.size(), 10u);
-        for (size_t i = 0; i < records.size() && i < rebuilt.size(); ++i)
-            for (int k = 0; k < 3; ++k)
-                if (std::fabs(records[i].e[k] - rebuilt[i][k]) > 1e-6f * std::fabs(rebuilt[i][k]) + 1e-12f) {
-                    ADD_FAILURE() << "frame " << f << " record " << i << " channel " << k << ": "
-                                  << records[i].e[k] << " updated vs " << rebuilt[i][k] << " rebuilt";
-                    return run;
-                }
+        // The interpolation kernel covers what the host's placement covered (a few pixels
+        // may round differently at a record's edge; a kernel that found nothing would
+        // leave all of them to the host fallback).
+        EXPECT_LE(c.stats().fallback_pixels, 16u) << "frame " << f;
+        auto close = [](float a, float b) { return std::fabs(a - b) <= 1e-6f * std::fabs(b) + 1e-12f; };
+        for (size_t i = 0; i < records.size() && i < rebuilt.size(); ++i) {
+            bool same = close(records[i].radius, rebuilt[i].radius);
+            for (int k = 0; k < 3; ++k) same = same && close(records[i].e[k], rebuilt[i].e[k]);
+            if (!same) {
+                ADD_FAILURE() << "frame " << f << " record " << i << ": E " << records[i].e[0] << " R "
+                              << records[i].radius << " updated vs E " << rebuilt[i].e[0] << " R "
+                              << rebuilt[i].radius << " rebuilt";
+                return run;
+            }
+        }
         if (f == 0) continue;
         run.removed += c.stats().removed;
         run.retraced += c.stats().paths_retraced;
@@ -139,6 +147,17 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     EXPECT_EQ(dimming.retraced, dimming.paths);
     EXPECT_EQ(dimming.update_rays, 0u);
     EXPECT_EQ(dimming.removed, 0u);
+    // The moving cube is itself a light, and the camera moves: light paths from the cube
+    // re-trace, the view adds records where it uncovers surfaces.
+    Scene lamp = moves;
+    for (Material& m : lamp.materials)
+        if (m.name == "cube") m.emission = m.emission_max = glm::vec3(3.0f, 2.0f, 1.0f);
+    const Camera& cam = lamp.camera;
+    lamp.animation.camera = {{0, cam.position, cam.look_at},
+                             {29, cam.position + glm::vec3(0.08f, 0.03f, 0.0f), cam.look_at}};
+    const TemporalRun lit = run_and_compare_with_rebuild(GetParam(), lamp);
+    EXPECT_GT(lit.retraced, 0u);
+    EXPECT_LT(lit.retraced, lit.paths);
 }
 
 TEST_P(InstantCacheOn, ChangeFreeFrameTracesNoIndirectRays) {
@@ -160,6 +179,34 @@ TEST_P(InstantCacheOn, ChangeFreeFrameTracesNoIndirectRays) {
     // Same records and E; only the order of the octree's record lists (rebuilt each frame)
     // changes the float sums of the interpolation.
     EXPECT_LT(test::rel_mse(second, first), 1e-12);
+}
+
+TEST_P(InstantCacheOn, EvictsRecordsLongOutOfView) {
+    Scene scene = load("cornell-box.json");
+    RenderSettings s = small(Method::Tic, 32);
+    s.ic.paths = 32;
+    s.ic.temporal = true;
+    s.ic.evict_after_frames = 2;
+    s.ic_state = std::make_shared<InstantCache>(s.ic, scene.objects);
+    const SceneBuffers buffers = make_scene_buffers(scene);
+    auto backend = make_backend({GetParam(), ""}, buffers, plan_effects(scene));
+    render_frame(*backend, scene, buffers, s);
+    const size_t records = s.ic_state->cache().records().size();
+    ASSERT_GT(records, 10u);
+    // Turn round: the camera looks out of the open box at nothing.
+    Scene away = scene;
+    away.camera.look_at = away.camera.position - (scene.camera.look_at - scene.camera.position);
+    size_t evicted = 0;
+    for (int f = 0; f < 3; ++f) {
+        render_frame(*backend, away, buffers, s);
+        evicted += s.ic_state->stats().evicted;
+        EXPECT_EQ(s.ic_state->stats().created, 0u);
+    }
+    EXPECT_EQ(evicted, records);
+    EXPECT_EQ(s.ic_state->cache().records().size(), 0u);
+    // Turning back recreates them.
+    render_frame(*backend, scene, buffers, s);
+    EXPECT_GT(s.ic_state->stats().created, 10u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, InstantCacheOn, ::testing::Values(BackendKind::Embree, BackendKind::OpenCL),

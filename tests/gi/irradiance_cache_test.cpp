@@ -49,10 +49,12 @@ TEST(WardWeight, MatchesTheFormulaAndTheValidityBounds) {
 }
 
 TEST(RecordRadius, ClampsToPixelFootprints) {
-    // Footprint per unit distance 0.002, camera distance 2: one pixel = 0.004 units.
-    EXPECT_FLOAT_EQ(ic_record_radius(0.05f, 2.0f, 0.002f, 1.5f, 20.0f), 0.05f);
-    EXPECT_FLOAT_EQ(ic_record_radius(0.001f, 2.0f, 0.002f, 1.5f, 20.0f), 1.5f * 0.004f);
-    EXPECT_FLOAT_EQ(ic_record_radius(INFINITY, 2.0f, 0.002f, 1.5f, 20.0f), 20.0f * 0.004f);
+    // One pixel = 0.004 units at the record.
+    EXPECT_FLOAT_EQ(ic_record_radius(0.05f, 0.004f, 1.5f, 20.0f), 0.05f);
+    EXPECT_FLOAT_EQ(ic_record_radius(0.001f, 0.004f, 1.5f, 20.0f), 1.5f * 0.004f);
+    EXPECT_FLOAT_EQ(ic_record_radius(INFINITY, 0.004f, 1.5f, 20.0f), 20.0f * 0.004f);
+    // A camera on the surface (pixel size 0) still gives a positive radius.
+    EXPECT_GT(ic_record_radius(0.05f, 0.0f, 1.5f, 20.0f), 0.0f);
 }
 
 TEST(RecordGather, SumsVisibleVplsAndTakesTheirHarmonicMeanDistance) {
