@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -173,6 +174,8 @@ int main(int argc, char** argv) {
     }
     fs::create_directories(out_dir);
     std::ofstream(fs::path(out_dir) / "ic_bench.json") << j.dump(2) << "\n";
-    std::ofstream(fs::path(out_dir) / "ic_bench.md") << md << "\n" << err;
+    std::ofstream(fs::path(out_dir) / "ic_bench.md")
+        << "# ic_bench: " << std::thread::hardware_concurrency() << " hardware threads; analysis in README.md\n\n"
+        << md << "\n" << err;
     return 0;
 }

@@ -41,6 +41,11 @@ void run_info(const InfoArgs& a) {
     std::printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     std::printf("camera:     %dx%d, vfov %g, at (%g, %g, %g)\n", s.camera.width, s.camera.height,
                 s.camera.vfov_deg, s.camera.position.x, s.camera.position.y, s.camera.position.z);
+    std::printf("objects:    %zu\n", s.objects.size());
+    if (s.animation.animated())
+        std::printf("animation:  %d frames; tracks: %zu objects, %zu materials, camera %s\n",
+                    s.animation.frame_count, s.animation.objects.size(), s.animation.materials.size(),
+                    s.animation.camera.empty() ? "fixed" : "keyed");
     std::printf("effects:\n");
     for (const auto& line : plan.describe()) std::printf("  %s\n", line.c_str());
     std::string defs;

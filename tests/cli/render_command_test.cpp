@@ -89,6 +89,14 @@ TEST(InfoCli, ListsEffectsOfTheDefaultScene) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("triangles:  32"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("medium (PM):          no"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("animation:"), std::string::npos) << r.output;
+}
+
+TEST(InfoCli, DescribesAnAnimation) {
+    CliResult r = run_tessera("info " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-animated.json");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("objects:    2"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("animation:  30 frames; tracks: 1 objects, 2 materials"), std::string::npos) << r.output;
 }
 
 TEST(DevicesCli, ListsPocl) {
