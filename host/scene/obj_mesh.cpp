@@ -121,6 +121,9 @@ ObjMesh load_obj_mesh(const fs::path& obj_file) {
     const auto& attrib = reader.GetAttrib();
     for (const float v : attrib.vertices)
         if (!std::isfinite(v)) obj_error(obj_file, "a vertex position is not finite");
+    // Texture lookups index texels with them: a non-finite one has no texel.
+    for (const float t : attrib.texcoords)
+        if (!std::isfinite(t)) obj_error(obj_file, "a texture coordinate (vt) is not finite");
 
     ObjMesh mesh;
     std::map<fs::path, int> texture_index;

@@ -110,6 +110,8 @@ INSTANTIATE_TEST_SUITE_P(
                       "v 0 0 0\nv 1 0 0\nv 0 0 1\nvt 0 0\nf 1/1 2/5 3/1\n",       // texcoord index
                       "v 0 0 0\nv 1 0 inf\nv 0 0 1\nf 1 2 3\n",         // infinity
                       "v 0 0 0\nv 1 0 1e39\nv 0 0 1\nf 1 2 3\n",        // overflows a float
+                      "v 0 0 0\nv 1 0 0\nv 0 0 1\nvt 0 0\nvt 4e44 1\nf 1/1 2/2 3/1\n",  // texcoord overflows
+                      "v 0 0 0\nv 1 0 0\nv 0 0 1\nvt 0 -5e40\nf 1/1 2/1 3/1\n",        // texcoord -inf
                       "v 0 0 0\nv 1 0 0\nv 0 0 1\nusemtl nothing\nf 1 2 3\n",  // no MTL defines it
                       "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 0 1 2\n",           // OBJ indices start at 1
                       "# no faces\nv 0 0 0\n"));
