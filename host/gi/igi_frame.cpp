@@ -14,20 +14,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-struct Bounds {
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-};
-
-Bounds scene_bounds(const SceneBuffers& s) {
-    Bounds b;
-    for (size_t i = 0; i < 3 * size_t(s.triangle_count); ++i)
-        for (int a = 0; a < 3; ++a) {
-            b.lo[a] = std::fmin(b.lo[a], s.tri_pos[3 * i + a]);
-            b.hi[a] = std::fmax(b.hi[a], s.tri_pos[3 * i + a]);
-        }
-    return b;
-}
-
 // Copies floats offset..offset+2 of each pixel's `stride` floats into a 3-per-pixel array.
 void extract3(const std::vector<float>& src, int stride, int offset, std::vector<float>& dst) {
     const size_t n = src.size() / stride;
@@ -41,7 +27,7 @@ void extract3(const std::vector<float>& src, int stride, int offset, std::vector
 IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan& plan, const IgiSettings& settings)
     : backend_(backend), scene_(scene), plan_(plan), settings_(settings) {
     settings_.discontinuity.tile = static_cast<int>(settings.tile);
-    const Bounds b = scene_bounds(scene);
+    const SceneBounds b = scene_bounds(scene);
     float diag2 = 0.0f;
     for (int a = 0; a < 3; ++a) diag2 += (b.hi[a] - b.lo[a]) * (b.hi[a] - b.lo[a]);
     const float c = settings.clamp_c;

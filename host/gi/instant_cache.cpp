@@ -208,12 +208,8 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     t0 = Clock::now();
     std::vector<float> gbuffer;
     backend.render_pass(PixelKernel::IcGbuffer, frame, gbuffer);
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (size_t i = 0; i + 2 < scene.tri_pos.size(); i += 3) {
-        const glm::vec3 p(scene.tri_pos[i], scene.tri_pos[i + 1], scene.tri_pos[i + 2]);
-        lo = glm::min(lo, p), hi = glm::max(hi, p);
-    }
-    cache_.rebuild(lo, hi);
+    const SceneBounds bounds = scene_bounds(scene);
+    cache_.rebuild(bounds.lo, bounds.hi);
     place(backend, scene, gbuffer, frame, g_clamp);
     stats_.place_seconds = since(t0);
 

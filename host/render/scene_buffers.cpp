@@ -123,4 +123,13 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
     return b;
 }
 
+SceneBounds scene_bounds(const SceneBuffers& b) {
+    SceneBounds out;
+    for (size_t i = 0; i + 2 < b.tri_pos.size(); i += 3) {
+        const glm::vec3 p(b.tri_pos[i], b.tri_pos[i + 1], b.tri_pos[i + 2]);
+        out.lo = glm::min(out.lo, p), out.hi = glm::max(out.hi, p);
+    }
+    return out;
+}
+
 }  // namespace tessera

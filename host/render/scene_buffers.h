@@ -2,8 +2,11 @@
 // backends read. The OpenCL backend uploads them; the Embree backend points the shared
 // shading code at them directly.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "scene/scene.h"
 
@@ -41,5 +44,12 @@ uint32_t material_kind(const Material& m);
 /// however the lights dim. Buffers that would be empty get one zero element, so every
 /// device buffer can be created.
 SceneBuffers make_scene_buffers(const Scene& scene);
+
+/// Axis-aligned bounds of every triangle vertex, scene units (lo > hi without triangles).
+struct SceneBounds {
+    glm::vec3 lo{INFINITY};
+    glm::vec3 hi{-INFINITY};
+};
+SceneBounds scene_bounds(const SceneBuffers& b);
 
 }  // namespace tessera
