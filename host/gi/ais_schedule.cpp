@@ -1,42 +1,65 @@
 #include "gi/ais_schedule.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace tessera {
 namespace {
 
-// Calls f(q) for every pixel q of p's filter window that lies in the image.
-template <class F>
-void for_window(const GeometryBuffer& g, int tile, int x, int y, F&& f) {
+// p's filter window as bit sets over window positions i = (dy − lo)·n + (dx − lo).
+struct WindowBits {
+    uint64_t in_image = 0;  ///< the position lies in the image
+    uint64_t accepted = 0;  ///< ... and p accepts it (p itself included)
+};
+
+WindowBits window_bits(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y) {
     int lo, hi;
-    discontinuity_window(tile, &lo, &hi);
+    discontinuity_window(s.tile, &lo, &hi);
+    const size_t p = size_t(y) * g.width + x;
+    WindowBits b;
+    int i = 0;
     for (int dy = lo; dy <= hi; ++dy)
-        for (int dx = lo; dx <= hi; ++dx) {
+        for (int dx = lo; dx <= hi; ++dx, ++i) {
             const int qx = x + dx, qy = y + dy;
-            if (qx >= 0 && qy >= 0 && qx < g.width && qy < g.height) f(size_t(qy) * g.width + qx);
+            if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
+            const size_t q = size_t(qy) * g.width + qx;
+            b.in_image |= 1ull << i;
+            if (q == p || discontinuity_accepts(g, s, p, q)) b.accepted |= 1ull << i;
         }
+    return b;
 }
 
-// Calls f(q) for every pixel q of p's filter window that p accepts (p itself included).
+// Calls f(q) for each window position of `bits` (pixel index q).
 template <class F>
-void for_accepted(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y, F&& f) {
-    const size_t p = size_t(y) * g.width + x;
-    for_window(g, s.tile, x, y, [&](size_t q) {
-        if (q == p || discontinuity_accepts(g, s, p, q)) f(q);
-    });
+void for_positions(uint64_t bits, int tile, int width, int x, int y, F&& f) {
+    int lo, hi;
+    discontinuity_window(tile, &lo, &hi);
+    for (; bits; bits &= bits - 1) {
+        const int i = std::countr_zero(bits);
+        f(size_t(y + lo + i / tile) * width + (x + lo + i % tile));
+    }
+}
+
+// The sets held by the window positions in `bits`.
+uint64_t sets_of(uint64_t bits, int tile, int x, int y) {
+    int lo, hi;
+    discontinuity_window(tile, &lo, &hi);
+    uint64_t sets = 0;
+    for (; bits; bits &= bits - 1) {
+        const int i = std::countr_zero(bits);
+        sets |= 1ull << interleave_set(x + lo + i % tile, y + lo + i / tile, tile);
+    }
+    return sets;
 }
 
 // Whether the filter cannot clean p: it accepts fewer than `min_acc` neighbours because
 // it rejects some inside the image (a window clipped by the image border is not an edge).
-bool unfilterable(const GeometryBuffer& g, const DiscontinuitySettings& s, int min_acc, int x, int y) {
-    int accepted = 0, in_image = 0;
-    const size_t p = size_t(y) * g.width + x;
-    for_window(g, s.tile, x, y, [&](size_t q) {
-        ++in_image;
-        accepted += q == p || discontinuity_accepts(g, s, p, q);
-    });
-    return accepted < min_acc && accepted < in_image;
+bool unfilterable(const WindowBits& b, int min_acc) {
+    return std::popcount(b.accepted) < min_acc && b.accepted != b.in_image;
 }
 
 bool on_geometric_edge(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y) {
@@ -50,45 +73,71 @@ bool on_geometric_edge(const GeometryBuffer& g, const DiscontinuitySettings& s, 
     return false;
 }
 
-float ss_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, int min_acc, int x, int y) {
+struct Value {
+    float g, grade;
+};
+
+Value ss_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const WindowBits& wb, int min_acc, int x,
+                  int y) {
     const size_t p = size_t(y) * b.geometry.width + x;
     float lo = INFINITY, hi = -INFINITY;
-    for_accepted(b.geometry, s, x, y, [&](size_t q) {
+    for_positions(wb.accepted, s.tile, b.geometry.width, x, y, [&](size_t q) {
         lo = std::min(lo, b.visibility[q]);
         hi = std::max(hi, b.visibility[q]);
     });
-    const float v = b.visibility[p];
-    if (v > 0.0f && v < 1.0f && unfilterable(b.geometry, s, min_acc, x, y)) return 1.0f;
-    return hi - lo;
+    const float v = b.visibility[p], range = hi - lo;
+    const bool edge = v > 0.0f && v < 1.0f && unfilterable(wb, min_acc);
+    return {edge ? 1.0f : range, range};
 }
 
-float id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const AisThresholds& t, int min_acc,
-                  int x, int y) {
+Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const AisThresholds& t,
+                  const WindowBits& wb, int min_acc, int x, int y) {
     double sum = 0.0, sum2 = 0.0;
     int count = 0;
-    for_accepted(b.geometry, s, x, y, [&](size_t q) {
+    for_positions(wb.accepted, s.tile, b.geometry.width, x, y, [&](size_t q) {
         sum += b.indirect[q];
         sum2 += double(b.indirect[q]) * b.indirect[q];
         ++count;
     });
-    if (unfilterable(b.geometry, s, min_acc, x, y) || on_geometric_edge(b.geometry, s, x, y)) return 1.0f;
     const double mean = sum / count;
-    if (!(mean > 0.0)) return 0.0f;
-    const double cov = std::sqrt(std::max(0.0, sum2 / count - mean * mean)) / mean;
-    return static_cast<float>(std::min(1.0, cov / t.id_cov));
+    const float var = mean > 0.0
+        ? static_cast<float>(std::min(1.0, std::sqrt(std::max(0.0, sum2 / count - mean * mean)) / mean / t.id_cov))
+        : 0.0f;
+    const bool edge = unfilterable(wb, min_acc) || on_geometric_edge(b.geometry, s, x, y);
+    return {edge ? 1.0f : var, var};
 }
 
-float pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, int x, int y) {
+Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const WindowBits& wb, int x, int y) {
     const size_t p = size_t(y) * b.geometry.width + x;
     const float lp = b.medium_length[p];
     float lo = INFINITY, hi = -INFINITY;
     bool length_edge = false;
-    for_window(b.geometry, s.tile, x, y, [&](size_t q) {
+    for_positions(wb.in_image, s.tile, b.geometry.width, x, y, [&](size_t q) {
         lo = std::min(lo, b.lit_fraction[q]);
         hi = std::max(hi, b.lit_fraction[q]);
         length_edge |= std::abs(b.medium_length[q] - lp) > s.depth_rel * lp;
     });
-    return length_edge ? 1.0f : hi - lo;
+    return {length_edge ? 1.0f : hi - lo, hi - lo};
+}
+
+// For each own set (the pixel's position in its tile), the other sets ordered by the
+// distance of the window position that holds them, farthest first (ties: lower set).
+std::vector<std::vector<int>> far_first_orders(int tile) {
+    int lo, hi;
+    discontinuity_window(tile, &lo, &hi);
+    std::vector<std::vector<int>> orders(size_t(tile) * tile);
+    for (int py = 0; py < tile; ++py)
+        for (int px = 0; px < tile; ++px) {
+            std::vector<std::pair<int, int>> by_distance;  // (−distance², set)
+            for (int dy = lo; dy <= hi; ++dy)
+                for (int dx = lo; dx <= hi; ++dx)
+                    if (dx || dy)
+                        by_distance.push_back({-(dx * dx + dy * dy),
+                                               interleave_set(px + dx + tile, py + dy + tile, tile)});
+            std::sort(by_distance.begin(), by_distance.end());
+            for (const auto& [d, set] : by_distance) orders[interleave_set(px, py, tile)].push_back(set);
+        }
+    return orders;
 }
 
 }  // namespace
@@ -99,18 +148,32 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
     const int sets = filter.tile * filter.tile;
     const int min_acc = t.min_accepted > 0 ? t.min_accepted : (sets + 1) / 2;
     AisGuidance out;
+    bool any = false;
     for (int c = 0; c < kAisComponents; ++c) {
         if (!enabled[c] || (c == kAisPM && base.lit_fraction.empty())) continue;
         out.g[c].assign(size_t(w) * h, 0.0f);
-        for (int y = 0; y < h; ++y)
+        out.grade[c].assign(size_t(w) * h, 0.0f);
+        any = true;
+    }
+    if (!any) return out;
+    out.missing.assign(size_t(w) * h, 0);
+    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t p = size_t(y) * w + x;
-                if (c != kAisPM && !std::isfinite(base.geometry.depth[p])) continue;  // nothing to shade
-                out.g[c][p] = c == kAisSS   ? ss_guidance(base, filter, min_acc, x, y)
-                              : c == kAisID ? id_guidance(base, filter, t, min_acc, x, y)
-                                            : pm_guidance(base, filter, x, y);
+                const WindowBits wb = window_bits(base.geometry, filter, x, y);
+                out.missing[p] = sets_of(wb.in_image & ~wb.accepted, filter.tile, x, y);
+                for (int c = 0; c < kAisComponents; ++c) {
+                    if (out.g[c].empty()) continue;
+                    if (c != kAisPM && !std::isfinite(base.geometry.depth[p])) continue;  // nothing to shade
+                    const Value v = c == kAisSS   ? ss_guidance(base, filter, wb, min_acc, x, y)
+                                    : c == kAisID ? id_guidance(base, filter, t, wb, min_acc, x, y)
+                                                  : pm_guidance(base, filter, wb, x, y);
+                    out.g[c][p] = v.g;
+                    out.grade[c][p] = v.grade;
+                }
             }
-    }
+    });
     return out;
 }
 
@@ -118,39 +181,59 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
                           int height, int tile) {
     const int sets = tile * tile;
     const size_t pixels = size_t(width) * height;
+    const uint64_t all = sets == 64 ? ~0ull : (1ull << sets) - 1;
     const float trigger[kAisComponents] = {t.ss_trigger, t.id_trigger, t.pm_trigger};
+    const std::vector<std::vector<int>> orders = far_first_orders(tile);
     AisSchedule s;
-    std::vector<std::vector<std::pair<uint32_t, uint8_t>>> by_set(sets);
-    std::vector<uint8_t> mask(size_t(sets), 0);
     for (int c = 0; c < kAisComponents; ++c) {
         if (guidance.g[c].empty()) continue;
-        s.sets[c].assign(pixels, 1);
+        s.masks[c].resize(pixels);
+        s.sets[c].resize(pixels);
         size_t flagged = 0;
         for (size_t p = 0; p < pixels; ++p) {
-            const float g = guidance.g[c][p];
-            if (!(g > trigger[c])) continue;
-            ++flagged;
-            const int n = mode == AisMode::AMax ? sets : 1 + static_cast<int>(std::ceil(g * (sets - 1)));
-            s.sets[c][p] = static_cast<uint8_t>(std::min(n, sets));
+            const int x = static_cast<int>(p % width), y = static_cast<int>(p / width);
+            const int own = interleave_set(x, y, tile);
+            uint64_t mask = 1ull << own;
+            if (guidance.g[c][p] > trigger[c]) {
+                ++flagged;
+                if (mode == AisMode::AMax) {
+                    mask = all;
+                } else {
+                    if (!guidance.missing.empty()) mask |= guidance.missing[p];
+                    const auto& signal = guidance.grade[c].empty() ? guidance.g[c] : guidance.grade[c];
+                    const float grade = std::clamp((signal[p] - trigger[c]) / (1.0f - trigger[c]), 0.0f, 1.0f);
+                    int more = static_cast<int>(std::ceil(grade * (sets - 1)));
+                    for (int k : orders[own]) {
+                        if (more <= 0) break;
+                        if (mask >> k & 1) continue;
+                        mask |= 1ull << k;
+                        --more;
+                    }
+                }
+            }
+            s.masks[c][p] = mask;
+            s.sets[c][p] = static_cast<uint8_t>(std::popcount(mask));
         }
         s.flagged[c] = pixels ? double(flagged) / pixels : 0.0;
     }
+    // Items grouped by set, then by pixel, over the pixels that have extra sets at all.
+    std::vector<uint32_t> refined;
     for (size_t p = 0; p < pixels; ++p) {
-        const int x = static_cast<int>(p % width), y = static_cast<int>(p / width);
-        const int own = (x % tile) + tile * (y % tile);
-        std::fill(mask.begin(), mask.end(), 0);
-        for (int c = 0; c < kAisComponents; ++c) {
-            if (s.sets[c].empty()) continue;
-            for (int j = 1; j < s.sets[c][p]; ++j) mask[(own + j) % sets] |= uint8_t(1u << c);
-        }
-        for (int k = 0; k < sets; ++k)
-            if (mask[k]) by_set[k].push_back({static_cast<uint32_t>(p), mask[k]});
+        uint64_t extra = 0;
+        for (int c = 0; c < kAisComponents; ++c)
+            if (!s.masks[c].empty()) extra |= s.masks[c][p];
+        if (std::popcount(extra) > 1) refined.push_back(static_cast<uint32_t>(p));
     }
     for (int k = 0; k < sets; ++k)
-        for (const auto& [p, m] : by_set[k]) {
+        for (uint32_t p : refined) {
+            if (k == interleave_set(static_cast<int>(p % width), static_cast<int>(p / width), tile)) continue;
+            uint8_t bits = 0;
+            for (int c = 0; c < kAisComponents; ++c)
+                if (!s.masks[c].empty() && (s.masks[c][p] >> k & 1)) bits |= uint8_t(1u << c);
+            if (!bits) continue;
             s.item_pixels.push_back(p);
             s.item_sets.push_back(static_cast<uint8_t>(k));
-            s.item_components.push_back(m);
+            s.item_components.push_back(bits);
         }
     return s;
 }

@@ -15,18 +15,27 @@ namespace tessera {
 /// The components AIS guides separately: soft shadows, indirect diffuse, participating media.
 enum AisComponent { kAisSS = 0, kAisID = 1, kAisPM = 2, kAisComponents = 3 };
 
-/// A: a flagged pixel gets a number of sets graded by its guidance, s = 1 + ⌈g·(N−1)⌉.
-/// A-MAX: every flagged pixel gets all N sets. (ALGORITHMS.md §2.5, reading 1.)
+/// A: a flagged pixel gets the sets its filter window is missing plus a number graded by
+/// the signal, ⌈grade·(N−1)⌉ (make_schedule). A-MAX: every flagged pixel gets all N sets.
+/// (ALGORITHMS.md §2.5, reading 1; completing the missing sets at edges instead of
+/// saturating them is our assumption: an edge pixel then holds every set once, as an
+/// interior pixel does after filtering, at about half of A-MAX's cost there.)
 enum class AisMode { A, AMax };
 
-/// Guidance thresholds; defaults from ALGORITHMS.md §2.4 [A], starting points to tune.
+/// Guidance thresholds; defaults from ALGORITHMS.md §2.4 [A], tuned on the Cornell box
+/// (128², tile 5, 16 paths per set, 4 spp, relMSE against a 2048 spp pt image; numbers in
+/// bench/results/README.md): each refinement below its trigger bought no measurable error.
 struct AisThresholds {
-    float ss_trigger = 0.0f;  ///< SS: flag when the visibility range over A(p) exceeds this
-    float id_cov = 1.0f;      ///< ID: coefficient of variation of E_id over A(p) that saturates g
-    /// ID: flag when g_ID exceeds this. 0.9 (measured on the Cornell box at 512²): 0.25
-    /// flagged 64% of the pixels, for set-to-set variation the filter removes anyway;
-    /// 0.9 flags 10%, geometric edges and strong variation.
-    float id_trigger = 0.9f;
+    /// SS: flag when the visibility range over A(p) exceeds this. 0.5, not §2.4's 0: with
+    /// 4 light samples a set, ranges of 0.25-0.5 are sample noise the filter averages;
+    /// flagging them cost 25% more items for a relMSE within 0.2%.
+    float ss_trigger = 0.5f;
+    /// ID: the coefficient of variation of E_id over A(p) that saturates g_var. 2: with 16-32
+    /// paths a set, CoVs of about 1 are VPL noise, which the filter's N-set mean already
+    /// averages (a pixel's own N sets are no less noisy).
+    float id_cov = 2.0f;
+    /// ID: flag when g_ID exceeds this: edges (g_geo = 1) and CoV > id_trigger · id_cov = 1.
+    float id_trigger = 0.5f;
     float pm_trigger = 0.1f;  ///< PM: flag when g_PM exceeds this
     int min_accepted = 0;     ///< |A(p)| below this counts as an unfilterable edge; 0: ⌈N/2⌉
 };
@@ -40,9 +49,20 @@ struct AisBaseBuffers {
     std::vector<float> medium_length; ///< PM: camera-segment length inside the medium
 };
 
-/// Guidance in [0, 1] per pixel and component (an empty map for a component not computed).
+/// Guidance per pixel and component (an empty map for a component not computed), all
+/// row-major width × height.
 struct AisGuidance {
+    /// Flag strength in [0, 1]: a pixel is flagged where g > the component's trigger
+    /// (A-MAX then gives it all N sets); the `--aov guidance` view.
     std::array<std::vector<float>, kAisComponents> g;
+    /// A's grade in [0, 1], the signal part of g alone (SS: visibility range; ID: g_var;
+    /// PM: g_shaft): how many own sets a flagged pixel takes beyond the missing ones
+    /// (make_schedule).
+    std::array<std::vector<float>, kAisComponents> grade;
+    /// Bit k set where the filter window holds set k on a pixel the filter rejects (the
+    /// sets the discontinuity filter is missing at p; 0 inside a surface). Empty when no
+    /// component is computed.
+    std::vector<uint64_t> missing;
 };
 
 /// Builds the guidance maps (no rays):
@@ -56,13 +76,27 @@ struct AisGuidance {
 ///   PM: g = max(g_len, g_shaft): g_len = 1 where medium path lengths in the window
 ///       differ by more than the filter's relative depth threshold; g_shaft = range of the
 ///       lit fraction over the window (volumetric shadow boundaries).
+/// grade is the signal part (visibility range, g_var, g_shaft); `missing` comes from the
+/// filter's accept test alone. Rows are computed in parallel; each pixel's values depend
+/// on the inputs only, so the result is deterministic.
 AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySettings& filter,
                              const AisThresholds& t, const std::array<bool, kAisComponents>& enabled);
 
-/// The extra work: for each component, each pixel's total set count (1 = the base pass
-/// only, N = full rate), and the flat list of (pixel, set) evaluations to dispatch. A
-/// pixel of own set k that needs s sets takes k+1, …, k+s−1 (mod N).
+/// The extra work: for each component, the sets each pixel evaluates, and the flat list
+/// of (pixel, set) evaluations to dispatch. A flagged pixel p with own set k gets:
+///   A-MAX: all N sets;
+///   A: its missing sets (so that, with the accepted neighbours, every set is present
+///      once: ais_reconstruct.h) plus ⌈a·(N−1)⌉ more, a = (grade − trigger) / (1 − trigger)
+///      clamped to [0, 1], the signal's strength above its trigger; taken from the
+///      window's farthest accepted neighbours first (the nearest stay in the estimate:
+///      least blur). At the trigger the filter's estimate is as good as the pixel's own;
+///      far above it, all sets.
+/// Unflagged pixels keep their own set only. Tile edge n ≤ 8, so a set fits in 64 bits.
+/// A guidance without `grade` maps grades by g; one without `missing` misses no sets.
 struct AisSchedule {
+    /// Per component and pixel: bit j set when the pixel evaluates set j (own set included).
+    std::array<std::vector<uint64_t>, kAisComponents> masks;
+    /// Per component and pixel: the number of sets evaluated (popcount of the mask).
     std::array<std::vector<uint8_t>, kAisComponents> sets;
     /// Work items: the pixel index and the set to evaluate, grouped by set (coherent
     /// dispatch: consecutive items share VPLs and light samples), then by pixel.
@@ -73,6 +107,9 @@ struct AisSchedule {
     /// Fraction of pixels flagged, per component.
     std::array<double, kAisComponents> flagged{};
 };
+
+/// The interleave set of pixel (x, y) for tile edge n: (x mod n) + n·(y mod n).
+inline int interleave_set(int x, int y, int n) { return x % n + n * (y % n); }
 
 AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, AisMode mode, int width,
                           int height, int tile);

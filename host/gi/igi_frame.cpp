@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "gi/ais_reconstruct.h"
 #include "kernels/shared/layout.h"
 #include "kernels/shared/rng.h"
 
@@ -126,9 +127,10 @@ void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vec
     for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + 15];
 }
 
-// AIS: guidance from the base pass, the schedule, the extra sets, and each refined pixel's
-// component replaced by the mean over all the sets it evaluated (summed in double: own
-// set first, then the extra sets in increasing order).
+// AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
+// raw component becomes the mean over all the sets it evaluated (summed in double: own
+// set first, then the extra sets in increasing order), its base estimate kept for the
+// neighbours' reconstruction.
 void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = raw_[kAisSS].size() / 3;
     AisBaseBuffers base;
@@ -163,39 +165,39 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
         codes[i] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
     std::vector<float> items;
     backend_.render_items(frame, schedule_.item_pixels, codes, items);
-    std::array<std::vector<double>, kAisComponents> sum;
     for (int c = 0; c < kAisComponents; ++c) {
+        base_[c] = raw_[c];
+        own_sum_[c].clear();
         if (schedule_.sets[c].empty()) continue;
-        sum[c].assign(raw_[c].begin(), raw_[c].end());
+        own_sum_[c].assign(raw_[c].begin(), raw_[c].end());
     }
     for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
         const size_t p = schedule_.item_pixels[i];
         for (int c = 0; c < kAisComponents; ++c)
             if (schedule_.item_components[i] & (1u << c))
-                for (int j = 0; j < 3; ++j) sum[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + 3 * c + j];
+                for (int j = 0; j < 3; ++j) own_sum_[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + 3 * c + j];
     }
     for (int c = 0; c < kAisComponents; ++c) {
         if (schedule_.sets[c].empty()) continue;
         for (size_t p = 0; p < pixels; ++p)
             for (int j = 0; j < 3; ++j)
-                raw_[c][3 * p + j] = static_cast<float>(sum[c][3 * p + j] / schedule_.sets[c][p]);
+                raw_[c][3 * p + j] = static_cast<float>(own_sum_[c][3 * p + j] / schedule_.sets[c][p]);
     }
 }
 
-// Each component: the discontinuity filter over the pixels left at the interleaved rate;
-// a pixel AIS gave extra sets keeps its own mean over them (issue 5: "filter only pixels
-// left at the interleaved rate"). It still enters its neighbours' filter windows as one
-// sample (ALGORITHMS.md §2.3, step 5).
+// Each component: the discontinuity filter over the interleaved estimates; with AIS,
+// pixels the schedule gave extra sets combine them with the accepted neighbours' sets
+// they did not evaluate (ais_reconstruct.h: every set once; all N sets: the pixel's own
+// full-rate mean, unfiltered, as issue 5 asks).
 void IgiFrame::reconstruct() {
     for (int c = 0; c < kAisComponents; ++c) {
-        if (settings_.filter && !(c == kAisID && cache_))
-            discontinuity_filter(geometry_, settings_.discontinuity, 3, raw_[c], final_[c]);
-        else
+        const bool refined = settings_.adaptive && !schedule_.sets[c].empty();
+        if (!settings_.filter || (c == kAisID && cache_))
             final_[c] = raw_[c];
-        if (!settings_.adaptive || schedule_.sets[c].empty()) continue;
-        for (size_t p = 0; p < schedule_.sets[c].size(); ++p)
-            if (schedule_.sets[c][p] > 1)
-                for (int j = 0; j < 3; ++j) final_[c][3 * p + j] = raw_[c][3 * p + j];
+        else if (refined)
+            ais_reconstruct(geometry_, settings_.discontinuity, base_[c], own_sum_[c], schedule_.masks[c], final_[c]);
+        else
+            discontinuity_filter(geometry_, settings_.discontinuity, 3, raw_[c], final_[c]);
     }
 }
 

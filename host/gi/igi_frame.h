@@ -112,6 +112,9 @@ private:
     // then guidance (1 per pixel per component) and set counts.
     std::array<std::vector<double>, 12> component_sums_;
     std::array<std::vector<float>, kAisComponents> raw_, final_;
+    // AIS: each pixel's own-set estimate and the sum over the sets it evaluated.
+    std::array<std::vector<float>, kAisComponents> base_;
+    std::array<std::vector<double>, kAisComponents> own_sum_;
     std::vector<float> transmittance_;
     GeometryBuffer geometry_;
     AisGuidance guidance_;

@@ -64,21 +64,53 @@ TEST(AisGuidance, DepthEdgeFlagsIndirectOnBothSides) {
     for (float v : g.g[kAisSS]) ASSERT_EQ(v, 0.0f) << "fully lit on both sides: no penumbra";
 }
 
-TEST(AisSchedule, AGradesAMaxSaturatesAndExtraSetsFollowTheOwnSet) {
+TEST(AisSchedule, AGradesFarthestSetsFirstAndAMaxSaturates) {
     AisGuidance g;
     g.g[kAisID].assign(W * H, 0.0f);
     g.g[kAisID][4 * W + 4] = 0.5f;  // own set (4 mod 3) + 3 (4 mod 3) = 4
     AisThresholds t;
-    t.id_trigger = 0.25f;  // flag g = 0.5
+    t.id_trigger = 0.0f;  // flag g = 0.5; A's strength above the trigger is 0.5
     AisSchedule a = make_schedule(g, t, AisMode::A, W, H, 3), m = make_schedule(g, t, AisMode::AMax, W, H, 3);
     EXPECT_EQ(a.sets[kAisID][4 * W + 4], 5);  // 1 + ceil(0.5 · 8)
+    t.id_trigger = 0.25f;  // strength (0.5 − 0.25) / 0.75 = 1/3: 1 + ceil(8/3)
+    EXPECT_EQ(make_schedule(g, t, AisMode::A, W, H, 3).sets[kAisID][4 * W + 4], 4);
     EXPECT_EQ(m.sets[kAisID][4 * W + 4], 9);
+    // The four extra sets are those of the window's corners (distance √2, farther than
+    // the edge neighbours): (3,3) → 0, (5,3) → 2, (3,5) → 6, (5,5) → 8; items by set.
+    const uint8_t corners[4] = {0, 2, 6, 8};
     ASSERT_EQ(a.item_pixels.size(), 4u);
     for (size_t i = 0; i < 4; ++i) {
         EXPECT_EQ(a.item_pixels[i], uint32_t(4 * W + 4));
-        EXPECT_EQ(a.item_sets[i], (4 + 1 + i) % 9) << "sets k+1, k+2, ... after the own set";
+        EXPECT_EQ(a.item_sets[i], corners[i]);
         EXPECT_EQ(a.item_components[i], 1u << kAisID);
     }
+    EXPECT_EQ(a.masks[kAisID][4 * W + 4], (1u << 4) | 1u | (1u << 2) | (1u << 6) | (1u << 8));
+    EXPECT_EQ(m.masks[kAisID][4 * W + 4], 0x1ffu);
+    EXPECT_EQ(a.masks[kAisID][0], 1u) << "unflagged: own set only";
+}
+
+TEST(AisSchedule, AAtADepthEdgeTakesExactlyTheMissingSets) {
+    // Depth step at x = 7 (as above), smooth indirect light (grade 0): pixel (6,4)
+    // rejects column 7 of its window, sets (7 mod 3) + 3·(y mod 3) for y = 3, 4, 5 =
+    // {1, 4, 7}; A evaluates those beside its own set 3 (4 sets), A-MAX all 9. Every
+    // flagged pixel in A has 1 + (rejected neighbours) sets.
+    AisBaseBuffers b = flat_wall();
+    for (int y = 0; y < H; ++y)
+        for (int x = 7; x < W; ++x) b.geometry.depth[y * W + x] = 2.6f;
+    AisGuidance g = compute_guidance(b, kFilter, AisThresholds{}, kSurface);
+    EXPECT_EQ(g.missing[4 * W + 6], (1u << 1) | (1u << 4) | (1u << 7));
+    EXPECT_EQ(g.grade[kAisID][4 * W + 6], 0.0f);
+    AisSchedule a = make_schedule(g, AisThresholds{}, AisMode::A, W, H, 3);
+    AisSchedule m = make_schedule(g, AisThresholds{}, AisMode::AMax, W, H, 3);
+    EXPECT_EQ(a.masks[kAisID][4 * W + 6], (1u << 3) | (1u << 1) | (1u << 4) | (1u << 7));
+    for (int y = 1; y < H - 1; ++y)
+        for (int x : {6, 7}) {
+            EXPECT_EQ(a.sets[kAisID][y * W + x], 4) << x << "," << y << ": own + 3 rejected";
+            EXPECT_EQ(m.sets[kAisID][y * W + x], 9);
+        }
+    size_t a_items = a.item_pixels.size(), m_items = m.item_pixels.size();
+    EXPECT_EQ(m_items, size_t(2 * H * 8));
+    EXPECT_EQ(a_items, size_t(2 * (H - 2) * 3 + 4 * 2)) << "rows 0 and 8 reject 2 pixels (window clipped)";
 }
 
 TEST(AisSchedule, RepeatRunsAreBitIdentical) {

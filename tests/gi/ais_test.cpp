@@ -96,12 +96,16 @@ TEST(Ais, SchedulesAgreeAcrossBackends) {
 
 TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
     // Against the path-traced reference of the same transport (pt --max-scatter 1) on
-    // the Cornell box at the same tile (3×3): A must beat IGI (extra sets where the
-    // guidance flags interleaving failures) and A-MAX must do at least as well as A
-    // (all sets wherever A grades). Measured relMSE over seeds 1-3 (plane-distance
-    // filter, ID trigger 0.9): IGI 0.0185-0.0211, A 0.0167-0.0203, A-MAX 0.0166-0.0203;
-    // the order held for every seed at ID triggers 0.25, 0.5 and 0.9. The clamp's
-    // darkening in corners is common to all three and sets the floor.
+    // the Cornell box at the same tile (3×3): A must beat IGI on every seed (extra sets
+    // where the guidance flags interleaving failures), and A-MAX must do at least as
+    // well as A. A-MAX evaluates a superset of A's sets at every pixel, but where A
+    // completes an edge pixel's missing sets from its accepted neighbours the two
+    // estimates have the same expectation and the same set count, so per seed they
+    // differ by noise: measured relMSE over seeds 1-3 (defaults of ais_schedule.h) IGI
+    // 0.0185-0.0211, A 0.0165-0.0203, A-MAX 0.0165-0.0202, A-MAX − A between −0.6% and
+    // +1.8% per seed and +0.3% summed. So A-MAX is asserted over the three seeds
+    // together, within 2% of A: a broken A-MAX (fewer sets, a wrong mean) misses by far
+    // more. The clamp's darkening in corners is common to all three and sets the floor.
     Scene s = cornell();
     RenderSettings ref;
     ref.method = Method::PathTrace;
@@ -109,6 +113,7 @@ TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
     ref.width = ref.height = 64;
     ref.spp = 2048;
     const Image reference = test::render_with(BackendKind::Embree, s, ref);
+    double a_sum = 0.0, amax_sum = 0.0;
     for (uint32_t seed : {1u, 2u, 3u}) {
         double err[3];
         int i = 0;
@@ -123,9 +128,11 @@ TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
         }
         std::printf("  seed %u: relMSE igi %.5f, ais %.5f, ais-max %.5f\n", seed, err[0], err[1], err[2]);
         EXPECT_LT(err[1], err[0]) << "seed " << seed;
-        EXPECT_LE(err[2], err[1]) << "seed " << seed;
+        EXPECT_LT(err[2], err[0]) << "seed " << seed;
+        a_sum += err[1];
+        amax_sum += err[2];
     }
+    EXPECT_LE(amax_sum, 1.02 * a_sum);
 }
-
 }  // namespace
 }  // namespace tessera
