@@ -30,10 +30,13 @@ struct AisThresholds {
     /// 4 light samples a set, ranges of 0.25-0.5 are sample noise the filter averages;
     /// flagging them cost 25% more items for a relMSE within 0.2%.
     float ss_trigger = 0.5f;
-    /// ID: the coefficient of variation of E_id over A(p) that saturates g_var. 2: with 16-32
-    /// paths a set, CoVs of about 1 are VPL noise, which the filter's N-set mean already
-    /// averages (a pixel's own N sets are no less noisy).
+    /// ID: the coefficient of variation of E_id over A(p) that saturates g_var, at
+    /// kIdCovPaths light paths per set (IgiFrame scales it by √(kIdCovPaths / paths), as
+    /// the CoV that VPL noise alone gives falls as 1/√paths). 2: CoVs of about 1 are VPL
+    /// noise, which the filter's N-set mean already averages (a pixel's own N sets are no
+    /// less noisy); refining them bought no relMSE.
     float id_cov = 2.0f;
+    static constexpr int kIdCovPaths = 32;
     /// ID: flag when g_ID exceeds this: edges (g_geo = 1) and CoV > id_trigger · id_cov = 1.
     float id_trigger = 0.5f;
     float pm_trigger = 0.1f;  ///< PM: flag when g_PM exceeds this

@@ -153,8 +153,12 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
     const uint32_t bits = effective_components();
     const std::array<bool, kAisComponents> enabled = {(bits & TS_COMPONENT_SS) != 0, (bits & TS_COMPONENT_ID) != 0,
                                                       (bits & TS_COMPONENT_PM) != 0 && !media.empty()};
-    guidance_ = compute_guidance(base, settings_.discontinuity, settings_.ais, enabled);
-    schedule_ = make_schedule(guidance_, settings_.ais, settings_.ais_mode, geometry_.width, geometry_.height,
+    // The set-to-set CoV that VPL noise alone gives falls as 1/√paths: id_cov is stated
+    // for kIdCovPaths paths per set and scaled to this frame's.
+    AisThresholds t = settings_.ais;
+    t.id_cov *= std::sqrt(float(AisThresholds::kIdCovPaths) / float(std::max(1u, settings_.paths_per_set)));
+    guidance_ = compute_guidance(base, settings_.discontinuity, t, enabled);
+    schedule_ = make_schedule(guidance_, t, settings_.ais_mode, geometry_.width, geometry_.height,
                               static_cast<int>(settings_.tile));
     stats_.flagged = schedule_.flagged;
     stats_.ais_items = schedule_.item_pixels.size();
