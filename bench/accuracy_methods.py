@@ -33,19 +33,20 @@ METHODS = {
         converges_to_reference=False,
         note="direct light only: no indirect light, so its error against the pt reference floors"),
     "igi": Method(
-        "igi", {"spp": [1, 2, 4, 8], "tile": [2, 3, 4], "vpl-paths": [8, 32, 128], "shadow-samples": [1, 4]},
+        "igi", {"spp": [1, 2, 4, 8, 16], "tile": [1, 2, 3, 4, 5, 8], "vpl-paths": [8, 32, 128],
+                "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
         converges_to_reference=False,
         note="instant global illumination; the clamped VPL geometry term darkens corners, so its error "
              "against the pt reference floors (with --clamp 0 it converges, tests/gi/igi_test.cpp); "
              "in media its model is single scattering on camera rays (pt --max-scatter 1)"),
     "ais": Method(
-        "ais", {"spp": [1, 2, 4], "tile": [3, 5, 8], "vpl-paths": [8, 32, 128], "shadow-samples": [1, 4]},
+        "ais", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
         converges_to_reference=False,
         note="adaptive interleaved sampling, mode A (graded extra sets where guidance flags); same clamp as igi"),
     "ais-max": Method(
-        "ais-max", {"spp": [1, 2, 4], "tile": [3, 5, 8], "vpl-paths": [8, 32, 128], "shadow-samples": [1, 4]},
+        "ais-max", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
         converges_to_reference=False,
         note="adaptive interleaved sampling, mode A-MAX (all sets for every flagged pixel)"),

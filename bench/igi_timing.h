@@ -29,6 +29,7 @@ inline std::vector<std::string> standard_scenes() {
 /// Medians over the timed frames, in seconds; stats of the last frame for the counts.
 struct IgiTiming {
     double frame = 0, vpl = 0, surface = 0, media = 0, filter = 0;
+    double ais = 0;  ///< AIS: guidance, schedule and the extra sets
     IgiFrameStats last;
 };
 
@@ -39,7 +40,7 @@ inline IgiTiming time_igi_frames(Backend& be, const Scene& scene, const SceneBuf
     f.light_power = b.light_power;
     std::vector<float> out;
     igi.render(f, out);
-    std::vector<double> total, vpl, surf, media, filt;
+    std::vector<double> total, vpl, surf, media, filt, ais;
     for (int i = 0; i < frames; ++i) {
         f.pass = static_cast<uint32_t>(i + 1);
         const auto t0 = std::chrono::steady_clock::now();
@@ -49,8 +50,9 @@ inline IgiTiming time_igi_frames(Backend& be, const Scene& scene, const SceneBuf
         surf.push_back(igi.stats().surface_seconds);
         media.push_back(igi.stats().media_seconds);
         filt.push_back(igi.stats().filter_seconds);
+        ais.push_back(igi.stats().ais_seconds);
     }
-    return {median(total), median(vpl), median(surf), median(media), median(filt), igi.stats()};
+    return {median(total), median(vpl), median(surf), median(media), median(filt), median(ais), igi.stats()};
 }
 
 }  // namespace tessera::bench

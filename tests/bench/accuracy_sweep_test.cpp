@@ -108,4 +108,27 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     EXPECT_NE(md.str().find("## Table 1: frames per second"), std::string::npos);
     EXPECT_NE(md.str().find("| cornell-box |"), std::string::npos);
     if (mpl) EXPECT_TRUE(fs::exists(out / "cornell-box.png"));
+    EXPECT_NE(md.str().find("## Table 2b"), std::string::npos);
+
+    // --merge re-sweeps one method and keeps the others' rows (same reference) ...
+    const std::string base = "python3 " + src + "/bench/accuracy --tessera " + TESSERA_EXE + " --scenes " + src +
+                             "/scenes/cornell-box.json --width 32 --height 32 --frames 3 --methods direct" +
+                             " --grid direct:spp=4 --grid direct:shadow-samples=1 --merge --out-dir " +
+                             out.string() + " --work-dir " + (dir_ / "work").string();
+    ASSERT_EQ(run(base + " --reference-spp 4096 > " + log.string() + " 2>&1"), 0) << std::ifstream(log).rdbuf();
+    const nlohmann::json merged = nlohmann::json::parse(std::ifstream(out / "cornell-box.json"));
+    size_t pt_rows = 0, direct_rows = 0;
+    for (const auto& r : merged["rows"]) {
+        pt_rows += r["method"] == "pt";
+        direct_rows += r["method"] == "direct";
+        if (r["method"] == "direct") EXPECT_EQ(r["spp"], 4);
+    }
+    EXPECT_EQ(pt_rows, 8u) << "pt kept from the first sweep";
+    EXPECT_EQ(direct_rows, 2u) << "direct replaced by the new sweep";
+    EXPECT_TRUE(merged["methods"].contains("pt"));
+    // ... and refuses to mix errors measured against another reference.
+    EXPECT_NE(run(base + " --reference-spp 64 > " + log.string() + " 2>&1"), 0);
+    std::stringstream err;
+    err << std::ifstream(log).rdbuf();
+    EXPECT_NE(err.str().find("another reference"), std::string::npos) << err.str();
 }
