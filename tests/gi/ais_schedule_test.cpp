@@ -64,6 +64,44 @@ TEST(AisGuidance, DepthEdgeFlagsIndirectOnBothSides) {
     for (float v : g.g[kAisSS]) ASSERT_EQ(v, 0.0f) << "fully lit on both sides: no penumbra";
 }
 
+TEST(AisGuidance, MediumFlagsLengthDiscontinuitiesAndShaftsNotSlopes) {
+    // A medium in front of the wall: the camera segment grows 10% per column (a slanted
+    // view: smooth, not flagged), the lit fraction is 1 everywhere. Then (a) a depth step
+    // at x = 7 with a 30% longer segment beyond it flags columns 6 and 7 (g_len = 1), and
+    // (b) a volumetric shadow from x = 6 (lit fraction 0) flags columns 5 and 6 (g_shaft 1).
+    const std::array<bool, kAisComponents> all{true, true, true};
+    AisBaseBuffers b = flat_wall();
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            b.medium_length.push_back(1.0f + 0.1f * x);
+            b.lit_fraction.push_back(1.0f);
+        }
+    AisGuidance g = compute_guidance(b, kFilter, AisThresholds{}, all);
+    for (float v : g.g[kAisPM]) ASSERT_EQ(v, 0.0f) << "a smooth length change is no discontinuity";
+    AisBaseBuffers step = b;
+    for (int y = 0; y < H; ++y)
+        for (int x = 7; x < W; ++x) {
+            step.geometry.depth[y * W + x] = 2.6f;
+            step.medium_length[y * W + x] *= 1.3f;
+        }
+    g = compute_guidance(step, kFilter, AisThresholds{}, all);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            ASSERT_EQ(g.g[kAisPM][y * W + x], (x == 6 || x == 7) ? 1.0f : 0.0f) << x << "," << y;
+    AisBaseBuffers shaft = b;
+    for (int y = 0; y < H; ++y)
+        for (int x = 6; x < W; ++x) shaft.lit_fraction[y * W + x] = 0.0f;
+    g = compute_guidance(shaft, kFilter, AisThresholds{}, all);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            ASSERT_EQ(g.g[kAisPM][y * W + x], (x == 5 || x == 6) ? 1.0f : 0.0f) << x << "," << y;
+            ASSERT_EQ(g.grade[kAisPM][y * W + x], g.g[kAisPM][y * W + x]);
+        }
+    const AisSchedule s = make_schedule(g, AisThresholds{}, AisMode::A, W, H, 3);
+    EXPECT_EQ(s.sets[kAisPM][4 * W + 5], 9) << "g_shaft 1: strength 1 above the trigger, all sets";
+    EXPECT_NEAR(s.flagged[kAisPM], 2.0 / W, 1e-12);
+}
+
 TEST(AisSchedule, AGradesFarthestSetsFirstAndAMaxSaturates) {
     AisGuidance g;
     g.g[kAisID].assign(W * H, 0.0f);
