@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gi/discontinuity_filter.h"
+#include "kernels/shared/sampling.h"
 
 namespace tessera {
 
@@ -116,8 +117,11 @@ struct AisSchedule {
     std::array<double, kAisComponents> flagged{};
 };
 
-/// The interleave set of pixel (x, y) for tile edge n: (x mod n) + n·(y mod n).
-inline int interleave_set(int x, int y, int n) { return x % n + n * (y % n); }
+/// The interleave set of pixel (x, y) (x, y ≥ 0) for tile edge n: the kernels' own
+/// ts_igi_set, (x mod n) + n·(y mod n), for the host's int indices.
+inline int interleave_set(int x, int y, int n) {
+    return static_cast<int>(ts::ts_igi_set(static_cast<unsigned>(x), static_cast<unsigned>(y), static_cast<unsigned>(n)));
+}
 
 AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, AisMode mode, int width,
                           int height, int tile);

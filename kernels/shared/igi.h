@@ -38,8 +38,6 @@
 
 TS_NAMESPACE_BEGIN
 
-TS_INLINE uint ts_igi_set(uint px, uint py, uint n) { return (px % n) + n * (py % n); }
-
 /* Light sample j of the frame's N·m-point set (j < N·m), as three numbers in [0, 1):
  * light selection, and the two coordinates on the light's parameter square. */
 TS_INLINE float3 ts_igi_light_point(const TsFrame* f, uint j) {

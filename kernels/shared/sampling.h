@@ -8,6 +8,11 @@
 
 TS_NAMESPACE_BEGIN
 
+/* Interleaved sampling (Keller & Heidrich 2001): the sample set k = (x mod n) + n (y mod n)
+ * of pixel (x, y) for interleave tile edge n (n² sets; every n×n window holds each once).
+ * Here, tracer-free, so that the host's AIS schedule uses the kernels' own mapping. */
+TS_INLINE uint ts_igi_set(uint px, uint py, uint n) { return (px % n) + n * (py % n); }
+
 /* Uniform point on the triangle p0 + b1 e1 + b2 e2 from (u, v) in [0,1)^2 via the
  * square-root warp (Shirley 1990); (u, v) stratification carries over to area. */
 TS_INLINE float2 ts_triangle_barycentrics(float u, float v) {
