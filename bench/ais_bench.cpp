@@ -91,17 +91,9 @@ int main(int argc, char** argv) {
                        " / " + num(100 * ta.last.flagged[kAisPM], "%.1f") + " |\n";
             j["adaptive"][scene.name][bname] = {{"A_ms", 1e3 * ta.ais}, {"A_items", ta.last.ais_items},
                                                 {"AMAX_ms", 1e3 * tm.ais}, {"AMAX_items", tm.last.ais_items}};
-            auto cell = [&](const std::string& k) {
-                char buf[32];
-                if (!f.count(k)) return std::string("-");
-                std::snprintf(buf, sizeof buf, "%.2f", f[k]);
-                return std::string(buf);
-            };
+            auto cell = [&](const std::string& k) { return f.count(k) ? num(f[k]) : std::string("-"); };
             auto ratio = [&](const std::string& a, const std::string& b2) {
-                char buf[32];
-                if (!f.count(a) || !f.count(b2)) return std::string("-");
-                std::snprintf(buf, sizeof buf, "%.2f", f[a] / f[b2]);
-                return std::string(buf);
+                return f.count(a) && f.count(b2) ? num(f[a] / f[b2]) : std::string("-");
             };
             t51 += "| " + scene.name + " | " + bname;
             for (const char* k : {"ID A", "ID A-MAX", "SS A", "SS A-MAX", "PM A", "PM A-MAX", "FULL A", "FULL A-MAX",
