@@ -180,6 +180,10 @@ void add_render_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--ais-pm-trigger", args->settings.igi.ais.pm_trigger, "ais: PM guidance trigger")
         ->capture_default_str();
+    cmd->add_option("--ais-complete", args->settings.igi.ais.complete_sets,
+                    "ais: distinct sets a flagged edge pixel completes its window to (0: ceil(N/2), N: all)")
+        ->check(CLI::Range(0, 64))
+        ->capture_default_str();
     cmd->add_option("--max-scatter", args->settings.max_scatter,
                     "pt: medium scattering vertices per path (1 = single scattering, 0 = unlimited)")
         ->capture_default_str();

@@ -145,6 +145,37 @@ std::vector<std::vector<int>> far_first_orders(int tile) {
     return orders;
 }
 
+// A's grade: the signal's strength above its trigger, in [0, 1].
+float grade_of(const AisGuidance& g, int c, size_t p, float trigger) {
+    const auto& signal = g.grade[c].empty() ? g.g[c] : g.grade[c];
+    return std::clamp((signal[p] - trigger) / (1.0f - trigger), 0.0f, 1.0f);
+}
+
+// A's sets for a flagged pixel p with own set `own`: missing sets until p holds `complete`
+// distinct sets, then ⌈grade·(N−1)⌉ more, both in `order` (farthest window position first).
+uint64_t a_mask(const AisGuidance& g, size_t p, int own, int complete, float grade,
+                const std::vector<int>& order, int sets) {
+    uint64_t mask = 1ull << own;
+    const uint64_t held = g.held.empty() ? mask : g.held[p] | mask;
+    if (!g.missing.empty()) {
+        int need = complete - std::popcount(held);
+        for (int k : order) {
+            if (need <= 0) break;
+            if (!(g.missing[p] >> k & 1)) continue;
+            mask |= 1ull << k;
+            --need;
+        }
+    }
+    int more = static_cast<int>(std::ceil(grade * (sets - 1)));
+    for (int k : order) {
+        if (more <= 0) break;
+        if (mask >> k & 1) continue;
+        mask |= 1ull << k;
+        --more;
+    }
+    return mask;
+}
+
 }  // namespace
 
 AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySettings& filter,
@@ -162,12 +193,14 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
     }
     if (!any) return out;
     out.missing.assign(size_t(w) * h, 0);
+    out.held.assign(size_t(w) * h, 0);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t p = size_t(y) * w + x;
                 const WindowBits wb = window_bits(base.geometry, filter, x, y);
                 out.missing[p] = sets_of(wb.in_image & ~wb.accepted, filter.tile, x, y);
+                out.held[p] = sets_of(wb.accepted, filter.tile, x, y);
                 for (int c = 0; c < kAisComponents; ++c) {
                     if (out.g[c].empty()) continue;
                     if (c != kAisPM && !std::isfinite(base.geometry.depth[p])) continue;  // nothing to shade
@@ -185,6 +218,7 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
 AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, AisMode mode, int width,
                           int height, int tile) {
     const int sets = tile * tile;
+    const int complete = t.complete_sets > 0 ? t.complete_sets : t.min_accepted > 0 ? t.min_accepted : (sets + 1) / 2;
     const size_t pixels = size_t(width) * height;
     const uint64_t all = sets == 64 ? ~0ull : (1ull << sets) - 1;
     const float trigger[kAisComponents] = {t.ss_trigger, t.id_trigger, t.pm_trigger};
@@ -204,16 +238,7 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
                 if (mode == AisMode::AMax) {
                     mask = all;
                 } else {
-                    if (!guidance.missing.empty()) mask |= guidance.missing[p];
-                    const auto& signal = guidance.grade[c].empty() ? guidance.g[c] : guidance.grade[c];
-                    const float grade = std::clamp((signal[p] - trigger[c]) / (1.0f - trigger[c]), 0.0f, 1.0f);
-                    int more = static_cast<int>(std::ceil(grade * (sets - 1)));
-                    for (int k : orders[own]) {
-                        if (more <= 0) break;
-                        if (mask >> k & 1) continue;
-                        mask |= 1ull << k;
-                        --more;
-                    }
+                    mask = a_mask(guidance, p, own, complete, grade_of(guidance, c, p, trigger[c]), orders[own], sets);
                 }
             }
             s.masks[c][p] = mask;

@@ -46,6 +46,13 @@ struct AisThresholds {
     /// passes) 0.1 flagged 38% of the pixels, 0.3 flags 20%, with the same relMSE.
     float pm_trigger = 0.3f;
     int min_accepted = 0;     ///< |A(p)| below this counts as an unfilterable edge; 0: ⌈N/2⌉
+    /// A: a flagged pixel evaluates the sets its filter window misses until it holds this
+    /// many distinct sets (own, accepted neighbours' and its own extra ones); 0: the edge
+    /// test's min_accepted (⌈N/2⌉), N: every missing set. ⌈N/2⌉ because a pixel holding
+    /// that many is one the filter counts as cleanable (ALGORITHMS.md §2.4's N_min); all
+    /// N doubles A's extra sets at edges (512², tile 3: 0.44 -> ... sets per pixel on the
+    /// Cornell box) for a relMSE change measured in bench/results/README.md.
+    int complete_sets = 0;
 };
 
 /// What the base pass leaves per pixel (row-major, width × height), host side.
@@ -71,6 +78,9 @@ struct AisGuidance {
     /// sets the discontinuity filter is missing at p; 0 inside a surface). Empty when no
     /// component is computed.
     std::vector<uint64_t> missing;
+    /// Bit k set where the filter window holds set k on a pixel the filter accepts (p's own
+    /// set included): the sets p's filtered estimate already has. Empty as `missing`.
+    std::vector<uint64_t> held;
 };
 
 /// Builds the guidance maps (no rays):
@@ -94,14 +104,16 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
 /// The extra work: for each component, the sets each pixel evaluates, and the flat list
 /// of (pixel, set) evaluations to dispatch. A flagged pixel p with own set k gets:
 ///   A-MAX: all N sets;
-///   A: its missing sets (so that, with the accepted neighbours, every set is present
-///      once: ais_reconstruct.h) plus ⌈a·(N−1)⌉ more, a = (grade − trigger) / (1 − trigger)
+///   A: missing sets until it holds `complete_sets` distinct sets with its accepted
+///      neighbours' (each set present at most once: ais_reconstruct.h), plus ⌈a·(N−1)⌉
+///      more, a = (grade − trigger) / (1 − trigger)
 ///      clamped to [0, 1], the signal's strength above its trigger; taken from the
 ///      window's farthest accepted neighbours first (the nearest stay in the estimate:
 ///      least blur). At the trigger the filter's estimate is as good as the pixel's own;
 ///      far above it, all sets.
 /// Unflagged pixels keep their own set only. Tile edge n ≤ 8, so a set fits in 64 bits.
-/// A guidance without `grade` maps grades by g; one without `missing` misses no sets.
+/// A guidance without `grade` maps grades by g; one without `missing` misses no sets and
+/// one without `held` counts only the pixel's own set as held.
 struct AisSchedule {
     /// Per component and pixel: bit j set when the pixel evaluates set j (own set included).
     std::array<std::vector<uint64_t>, kAisComponents> masks;

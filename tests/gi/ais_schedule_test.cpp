@@ -127,28 +127,45 @@ TEST(AisSchedule, AGradesFarthestSetsFirstAndAMaxSaturates) {
     EXPECT_EQ(a.masks[kAisID][0], 1u) << "unflagged: own set only";
 }
 
-TEST(AisSchedule, AAtADepthEdgeTakesExactlyTheMissingSets) {
+TEST(AisSchedule, AAtADepthEdgeCompletesMissingSetsUpToTheThreshold) {
     // Depth step at x = 7 (as above), smooth indirect light (grade 0): pixel (6,4)
     // rejects column 7 of its window, sets (7 mod 3) + 3·(y mod 3) for y = 3, 4, 5 =
-    // {1, 4, 7}; A evaluates those beside its own set 3 (4 sets), A-MAX all 9. Every
-    // flagged pixel in A has 1 + (rejected neighbours) sets.
+    // {1, 4, 7}, and holds the other 6 (own set 3 included).
     AisBaseBuffers b = flat_wall();
     for (int y = 0; y < H; ++y)
         for (int x = 7; x < W; ++x) b.geometry.depth[y * W + x] = 2.6f;
     AisGuidance g = compute_guidance(b, kFilter, AisThresholds{}, kSurface);
     EXPECT_EQ(g.missing[4 * W + 6], (1u << 1) | (1u << 4) | (1u << 7));
+    EXPECT_EQ(g.held[4 * W + 6], 0x1ffu & ~((1u << 1) | (1u << 4) | (1u << 7)));
     EXPECT_EQ(g.grade[kAisID][4 * W + 6], 0.0f);
+    AisThresholds all_sets;
+    all_sets.complete_sets = 9;
     AisSchedule a = make_schedule(g, AisThresholds{}, AisMode::A, W, H, 3);
+    AisSchedule full = make_schedule(g, all_sets, AisMode::A, W, H, 3);
     AisSchedule m = make_schedule(g, AisThresholds{}, AisMode::AMax, W, H, 3);
-    EXPECT_EQ(a.masks[kAisID][4 * W + 6], (1u << 3) | (1u << 1) | (1u << 4) | (1u << 7));
+    // Completing to all 9: own set 3 plus exactly the three missing ones.
+    EXPECT_EQ(full.masks[kAisID][4 * W + 6], (1u << 3) | (1u << 1) | (1u << 4) | (1u << 7));
+    // Completing to 7: one missing set, the farthest ((7,3) at √2 before (7,4) at 1; the
+    // tie with (7,5) goes to the lower set): set 1.
+    AisThresholds seven;
+    seven.complete_sets = 7;
+    EXPECT_EQ(make_schedule(g, seven, AisMode::A, W, H, 3).masks[kAisID][4 * W + 6], (1u << 3) | (1u << 1));
     for (int y = 1; y < H - 1; ++y)
         for (int x : {6, 7}) {
-            EXPECT_EQ(a.sets[kAisID][y * W + x], 4) << x << "," << y << ": own + 3 rejected";
+            EXPECT_EQ(a.sets[kAisID][y * W + x], 1) << x << "," << y << ": holds 6 >= ceil(9/2), own set only";
+            EXPECT_EQ(full.sets[kAisID][y * W + x], 4) << x << "," << y << ": own + 3 rejected";
             EXPECT_EQ(m.sets[kAisID][y * W + x], 9);
         }
-    size_t a_items = a.item_pixels.size(), m_items = m.item_pixels.size();
-    EXPECT_EQ(m_items, size_t(2 * H * 8));
-    EXPECT_EQ(a_items, size_t(2 * (H - 2) * 3 + 4 * 2)) << "rows 0 and 8 reject 2 pixels (window clipped)";
+    // Rows 0 and 8: the window is clipped to 6 pixels, 2 of them rejected, so the pixel
+    // holds 4 < 5 sets and takes one missing set (of the 2).
+    for (int y : {0, H - 1})
+        for (int x : {6, 7}) {
+            EXPECT_EQ(a.sets[kAisID][y * W + x], 2) << x << "," << y;
+            EXPECT_EQ(full.sets[kAisID][y * W + x], 3) << x << "," << y;
+        }
+    EXPECT_EQ(m.item_pixels.size(), size_t(2 * H * 8));
+    EXPECT_EQ(full.item_pixels.size(), size_t(2 * (H - 2) * 3 + 4 * 2));
+    EXPECT_EQ(a.item_pixels.size(), size_t(4));
 }
 
 TEST(AisSchedule, RepeatRunsAreBitIdentical) {
