@@ -1,0 +1,69 @@
+// bench/ais_bound end to end on a tiny render (Cornell box, 32x32, Embree, tile 3, 2
+// passes): the full-rate comparator is tile 1 with 9x the samples, and the stored bound
+// and A's equal-error speedup are the formulas of the script's docstring applied to the
+// stored errors and times.
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/scratch_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int run(const std::string& cmd) {
+    const int status = std::system(cmd.c_str());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class AisBound : public tessera::test::ScratchDirTest {};
+
+}  // namespace
+
+TEST_F(AisBound, TinyCornellRowFollowsItsFormulas) {
+    const std::string src = TESSERA_SOURCE_DIR;
+    const fs::path out = dir_ / "out", log = dir_ / "log.txt";
+    const std::string cmd = "python3 " + src + "/bench/ais_bound --tessera " + TESSERA_EXE + " --scenes " + src +
+                            "/scenes/cornell-box.json --width 32 --height 32 --backends embree --tiles 3 --passes 2" +
+                            " --reference-spp 256 --no-flip --out " + out.string() + " --work-dir " +
+                            (dir_ / "work").string() + " > " + log.string() + " 2>&1";
+    ASSERT_EQ(run(cmd), 0) << std::ifstream(log).rdbuf();
+    const nlohmann::json docs = nlohmann::json::parse(std::ifstream(out / "ais_bound.json"));
+    ASSERT_EQ(docs.size(), 1u);
+    ASSERT_EQ(docs[0]["rows"].size(), 1u);
+    const auto& r = docs[0]["rows"][0];
+    EXPECT_EQ(r["passes"], 2);
+    EXPECT_EQ(r["full_rate_setting"]["tile"], 1);
+    EXPECT_EQ(r["full_rate_setting"]["vpl-paths"], 72) << "9 sets x 8 paths";
+    EXPECT_EQ(r["full_rate_setting"]["shadow-samples"], 36) << "9 sets x 4 light samples";
+    const auto& e = r["error"];
+    const auto& t = r["time_s"];
+    for (const char* n : {"igi", "igi2", "full", "ais", "amax"}) {
+        EXPECT_GT(e[n]["relmse"].get<double>(), 0.0) << n;
+        EXPECT_GT(t[n].get<double>(), 0.0) << n;
+    }
+    // The bound and A's speedup from the stored numbers (s from k and 2k passes of igi).
+    const double s = std::log(e["igi"]["relmse"].get<double>() / e["igi2"]["relmse"].get<double>()) /
+                     std::log(t["igi2"].get<double>() / t["igi"].get<double>());
+    EXPECT_NEAR(r["relmse"]["slope"].get<double>(), s, 1e-9);
+    const double lim = std::min({e["full"]["relmse"].get<double>(), e["ais"]["relmse"].get<double>(),
+                                 e["amax"]["relmse"].get<double>()});
+    if (s > 0) {
+        EXPECT_NEAR(r["relmse"]["bound"].get<double>(), std::pow(e["igi"]["relmse"].get<double>() / lim, 1 / s), 1e-9);
+        EXPECT_NEAR(r["relmse"]["ais_vs_igi"].get<double>(),
+                    t["igi"].get<double>() * std::pow(e["igi"]["relmse"].get<double>() / e["ais"]["relmse"].get<double>(),
+                                                      1 / s) / t["ais"].get<double>(),
+                    1e-9);
+    }
+    EXPECT_NEAR(r["ais_vs_full_rate"].get<double>(), t["full"].get<double>() / t["ais"].get<double>(), 1e-12);
+    std::ifstream md(out / "ais_bound.md");
+    std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("t3 p8 l4 x2"), std::string::npos) << text;
+}
