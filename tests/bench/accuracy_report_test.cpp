@@ -1,24 +1,18 @@
 // bench/accuracy_report's equal-error arithmetic on synthetic rows, through Python: the
 // speedup at a target is the ratio of the times the two Pareto fronts need to reach it
 // (log-log interpolation), and the full-rate IGI comparator holds igi's tile-1 rows only.
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "support/scratch_dir.h"
+#include "support/shell.h"
 
 namespace fs = std::filesystem;
+using tessera::test::shell_status;
 
 namespace {
-
-int run(const std::string& cmd) {
-    const int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 class AccuracyReport : public tessera::test::ScratchDirTest {};
 
@@ -54,6 +48,6 @@ print("ok")
     const fs::path py = dir_ / "check.py", log = dir_ / "log.txt";
     std::ofstream(py) << script;
     const std::string report = std::string(TESSERA_SOURCE_DIR) + "/bench/accuracy_report";
-    EXPECT_EQ(run("python3 " + py.string() + " " + report + " > " + log.string() + " 2>&1"), 0)
+    EXPECT_EQ(shell_status("python3 " + py.string() + " " + report + " > " + log.string() + " 2>&1"), 0)
         << std::ifstream(log).rdbuf();
 }

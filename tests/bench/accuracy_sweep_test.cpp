@@ -1,10 +1,7 @@
 // bench/accuracy and bench/accuracy_report end to end on a tiny sweep (Cornell box, 32x32,
 // both backends, few settings): the outputs parse, times are consistent, and the pt error
 // falls monotonically as spp grows against a reference rendered at far higher spp.
-#include <sys/wait.h>
-
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -15,15 +12,12 @@
 #include <nlohmann/json.hpp>
 
 #include "support/scratch_dir.h"
+#include "support/shell.h"
 
 namespace fs = std::filesystem;
+using tessera::test::shell_status;
 
 namespace {
-
-int run(const std::string& cmd) {
-    const int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 std::vector<std::string> split(const std::string& line, char sep) {
     std::vector<std::string> out;
@@ -45,7 +39,7 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
                             " --methods pt direct --grid pt:spp=1,4,16,64 --grid direct:spp=1,16" +
                             " --grid direct:shadow-samples=1 --out-dir " + out.string() + " --work-dir " +
                             (dir_ / "work").string() + " > " + log.string() + " 2>&1";
-    ASSERT_EQ(run(cmd), 0) << std::ifstream(log).rdbuf();
+    ASSERT_EQ(shell_status(cmd), 0) << std::ifstream(log).rdbuf();
 
     std::ifstream jf(out / "cornell-box.json");
     ASSERT_TRUE(jf) << "no JSON written";
@@ -98,8 +92,8 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     }
 
     // The report reads those files and writes the tables (and the plot if matplotlib exists).
-    const bool mpl = run("python3 -c 'import matplotlib' > /dev/null 2>&1") == 0;
-    ASSERT_EQ(run("python3 " + src + "/bench/accuracy_report --dir " + out.string() + (mpl ? "" : " --no-plots") +
+    const bool mpl = shell_status("python3 -c 'import matplotlib' > /dev/null 2>&1") == 0;
+    ASSERT_EQ(shell_status("python3 " + src + "/bench/accuracy_report --dir " + out.string() + (mpl ? "" : " --no-plots") +
                   " > " + log.string() + " 2>&1"),
               0)
         << std::ifstream(log).rdbuf();
@@ -115,7 +109,7 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
                              "/scenes/cornell-box.json --width 32 --height 32 --frames 3 --methods direct" +
                              " --grid direct:spp=4 --grid direct:shadow-samples=1 --merge --out-dir " +
                              out.string() + " --work-dir " + (dir_ / "work").string();
-    ASSERT_EQ(run(base + " --reference-spp 4096 > " + log.string() + " 2>&1"), 0) << std::ifstream(log).rdbuf();
+    ASSERT_EQ(shell_status(base + " --reference-spp 4096 > " + log.string() + " 2>&1"), 0) << std::ifstream(log).rdbuf();
     const nlohmann::json merged = nlohmann::json::parse(std::ifstream(out / "cornell-box.json"));
     size_t pt_rows = 0, direct_rows = 0;
     for (const auto& r : merged["rows"]) {
@@ -127,7 +121,7 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     EXPECT_EQ(direct_rows, 2u) << "direct replaced by the new sweep";
     EXPECT_TRUE(merged["methods"].contains("pt"));
     // ... and refuses to mix errors measured against another reference.
-    EXPECT_NE(run(base + " --reference-spp 64 > " + log.string() + " 2>&1"), 0);
+    EXPECT_NE(shell_status(base + " --reference-spp 64 > " + log.string() + " 2>&1"), 0);
     std::stringstream err;
     err << std::ifstream(log).rdbuf();
     EXPECT_NE(err.str().find("another reference"), std::string::npos) << err.str();

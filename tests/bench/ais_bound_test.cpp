@@ -2,10 +2,7 @@
 // passes): the full-rate comparator is tile 1 with 9x the samples, and the stored bound
 // and A's equal-error speedup are the formulas of the script's docstring applied to the
 // stored errors and times.
-#include <sys/wait.h>
-
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -13,15 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "support/scratch_dir.h"
+#include "support/shell.h"
 
 namespace fs = std::filesystem;
+using tessera::test::shell_status;
 
 namespace {
-
-int run(const std::string& cmd) {
-    const int status = std::system(cmd.c_str());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 class AisBound : public tessera::test::ScratchDirTest {};
 
@@ -34,7 +28,7 @@ TEST_F(AisBound, TinyCornellRowFollowsItsFormulas) {
                             "/scenes/cornell-box.json --width 32 --height 32 --backends embree --tiles 3 --passes 2" +
                             " --reference-spp 256 --no-flip --out " + out.string() + " --work-dir " +
                             (dir_ / "work").string() + " > " + log.string() + " 2>&1";
-    ASSERT_EQ(run(cmd), 0) << std::ifstream(log).rdbuf();
+    ASSERT_EQ(shell_status(cmd), 0) << std::ifstream(log).rdbuf();
     const nlohmann::json docs = nlohmann::json::parse(std::ifstream(out / "ais_bound.json"));
     ASSERT_EQ(docs.size(), 1u);
     ASSERT_EQ(docs[0]["rows"].size(), 1u);
