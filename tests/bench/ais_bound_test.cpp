@@ -1,7 +1,7 @@
 // bench/ais_bound end to end on a tiny render (Cornell box, 32x32, Embree, tile 3, 2
-// passes): the full-rate comparator is tile 1 with 9x the samples, and the stored bound
-// and A's equal-error speedup are the formulas of the script's docstring applied to the
-// stored errors and times.
+// passes): the full-rate comparator is tile 1 with 9x the samples, and the stored bounds
+// and A's equal-error speedups are the formulas of the script's docstring applied to the
+// stored errors and times, against IGI's line and against a given IGI front.
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -24,10 +24,18 @@ class AisBound : public tessera::test::ScratchDirTest {};
 TEST_F(AisBound, TinyCornellRowFollowsItsFormulas) {
     const std::string src = TESSERA_SOURCE_DIR;
     const fs::path out = dir_ / "out", log = dir_ / "log.txt";
+    // An IGI front on one log-log line, relMSE = t^-2 from (1 s, 1) to (100 s, 1e-4), so the
+    // front reaches error e at t = e^-1/2; measured against the reference the run renders.
+    const fs::path front = dir_ / "front.json";
+    const fs::path ref = dir_ / "work" / "cornell-box" / "reference_pt_256spp_32x32.exr";
+    std::ofstream(front) << nlohmann::json{
+        {"scene", "cornell-box"}, {"width", 32}, {"height", 32}, {"date", "test"}, {"reference", {{"path", ref.string()}}},
+        {"rows", {{{"method", "igi"}, {"backend", "embree"}, {"time_s", 1.0}, {"relmse", 1.0}},
+                  {{"method", "igi"}, {"backend", "embree"}, {"time_s", 100.0}, {"relmse", 1e-4}}}}};
     const std::string cmd = "python3 " + src + "/bench/ais_bound --tessera " + TESSERA_EXE + " --scenes " + src +
                             "/scenes/cornell-box.json --width 32 --height 32 --backends embree --tiles 3 --passes 2" +
-                            " --reference-spp 256 --no-flip --out " + out.string() + " --work-dir " +
-                            (dir_ / "work").string() + " > " + log.string() + " 2>&1";
+                            " --reference-spp 256 --no-flip --front " + front.string() + " --out " + out.string() +
+                            " --work-dir " + (dir_ / "work").string() + " > " + log.string() + " 2>&1";
     ASSERT_EQ(shell_status(cmd), 0) << std::ifstream(log).rdbuf();
     const nlohmann::json docs = nlohmann::json::parse(std::ifstream(out / "ais_bound.json"));
     ASSERT_EQ(docs.size(), 1u);
@@ -56,6 +64,9 @@ TEST_F(AisBound, TinyCornellRowFollowsItsFormulas) {
                                                       1 / s) / t["ais"].get<double>(),
                     1e-9);
     }
+    EXPECT_NEAR(r["relmse"]["bound_vs_front"].get<double>(), std::pow(lim, -0.5) / t["igi"].get<double>(), 1e-9);
+    EXPECT_NEAR(r["relmse"]["ais_vs_front"].get<double>(),
+                std::pow(e["ais"]["relmse"].get<double>(), -0.5) / t["ais"].get<double>(), 1e-9);
     EXPECT_NEAR(r["ais_vs_full_rate"].get<double>(), t["full"].get<double>() / t["ais"].get<double>(), 1e-12);
     std::ifstream md(out / "ais_bound.md");
     std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
