@@ -38,6 +38,7 @@ std::string num(double v, const char* spec = "%.2f") {
 // IGI without interleaving that takes, at every pixel, the samples of all n² sets of `s`:
 // n²× the light paths, light samples and march steps at tile 1. Same sample counts as a
 // pixel AIS refines to every set, so its error is at most A's (measured in bench/accuracy).
+// bench/ais_bound's full_rate is the same mapping for `tessera render` options.
 IgiSettings full_rate(IgiSettings s) {
     const uint32_t sets = s.tile * s.tile;
     s.tile = 1;

@@ -145,6 +145,10 @@ std::vector<std::vector<int>> far_first_orders(int tile) {
     return orders;
 }
 
+// N_min: the accepted-neighbour count below which the filter cannot clean a pixel
+// (ALGORITHMS.md §2.4; default ⌈N/2⌉ of N = `sets`).
+int min_accepted(const AisThresholds& t, int sets) { return t.min_accepted > 0 ? t.min_accepted : (sets + 1) / 2; }
+
 // A's grade: the signal's strength above its trigger, in [0, 1].
 float grade_of(const AisGuidance& g, int c, size_t p, float trigger) {
     const auto& signal = g.grade[c].empty() ? g.g[c] : g.grade[c];
@@ -182,7 +186,7 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
                              const AisThresholds& t, const std::array<bool, kAisComponents>& enabled) {
     const int w = base.geometry.width, h = base.geometry.height;
     const int sets = filter.tile * filter.tile;
-    const int min_acc = t.min_accepted > 0 ? t.min_accepted : (sets + 1) / 2;
+    const int min_acc = min_accepted(t, sets);
     AisGuidance out;
     bool any = false;
     for (int c = 0; c < kAisComponents; ++c) {
@@ -218,7 +222,7 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
 AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, AisMode mode, int width,
                           int height, int tile) {
     const int sets = tile * tile;
-    const int complete = t.complete_sets > 0 ? t.complete_sets : t.min_accepted > 0 ? t.min_accepted : (sets + 1) / 2;
+    const int complete = t.complete_sets > 0 ? t.complete_sets : min_accepted(t, sets);
     const size_t pixels = size_t(width) * height;
     const uint64_t all = sets == 64 ? ~0ull : (1ull << sets) - 1;
     const float trigger[kAisComponents] = {t.ss_trigger, t.id_trigger, t.pm_trigger};
