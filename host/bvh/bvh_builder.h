@@ -10,7 +10,7 @@
 namespace tessera {
 
 /// Build settings: binned SAH (RTC_BUILD_QUALITY_MEDIUM; spatial splits measured no
-/// gain on comparable scenes, PERFORMANCE.md §0), branching factor 4 to match the
+/// gain on comparable scenes, docs/ray-tracing.md §1), branching factor 4 to match the
 /// float4 node test, at most 4 triangles per leaf, maxDepth TS_BVH_MAX_DEPTH (bounds
 /// the traversal stack). Costs: traversal 1, intersection 1.5 (a watertight triangle
 /// test costs about one and a half float4 node tests in the kernel).

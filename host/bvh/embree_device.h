@@ -6,7 +6,7 @@ namespace tessera {
 
 /// The process-wide Embree device, created on first use with
 /// `frequency_level=simd256` (without it Embree 3.13 picks BVH4 and 128-bit code on
-/// Skylake-SP class Xeons; see ../shared/design/PERFORMANCE.md §5). Errors reported by
+/// Skylake-SP class Xeons; see docs/ray-tracing.md §2). Errors reported by
 /// Embree are thrown as RuntimeError by check_embree().
 RTCDevice embree_device();
 

@@ -1,4 +1,4 @@
-// AIS reconstruction of one component after the adaptive pass (ALGORITHMS.md §2.3 step 5;
+// AIS reconstruction of one component after the adaptive pass (docs/ais.md §6;
 // the set-completion rule is our assumption, stated below). Host code shared by every
 // backend.
 #pragma once

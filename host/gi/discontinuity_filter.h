@@ -14,7 +14,7 @@ namespace tessera {
 /// the buffer has no positions, |z_p - z_q|) <= depth_rel · z_p. The plane distance is 0
 /// across a plane seen at any slant, where a depth difference grows with the slant and
 /// would flag plain walls seen at grazing angles as edges; it separates parallel surfaces
-/// at different depths as the depth test does. Defaults from ALGORITHMS.md §1.2 [A]: 0.9
+/// at different depths as the depth test does. Defaults (ours, docs/igi.md §8): 0.9
 /// (normals within about 26°, looser than a curved surface's change across a 3-pixel
 /// window at typical distances, tighter than any crease) and 5% of the depth (below the
 /// step of a contact edge seen from a few scene units).

@@ -18,14 +18,14 @@
 
 namespace tessera {
 
-/// IGI settings; defaults follow ALGORITHMS.md §§4, 5, 7 (our reading of IGI).
+/// IGI settings; docs/igi.md gives each default and its source.
 struct IgiSettings {
     uint32_t tile = 3;             ///< interleave tile edge n, 1..8 (n² sample sets)
     uint32_t paths_per_set = 32;   ///< light paths (VPL sources) per set
     uint32_t set_shadow_samples = 4;  ///< area-light samples per pixel (its set's share)
     uint32_t march_steps = 8;      ///< medium ray-march steps per pixel (the N sets stratify them)
     /// Geometry-term clamp b = 1 / (clamp_c · D)², D the scene's bounding-box diagonal:
-    /// scene-relative, so the same c gives the same image at any scale (ALGORITHMS.md §7,
+    /// scene-relative, so the same c gives the same image at any scale (docs/igi.md §4,
     /// default c = 0.05). clamp_c = 0 disables clamping (b = +inf).
     float clamp_c = 0.05f;
     bool filter = true;            ///< the discontinuity buffer (off: raw interleaved image)

@@ -137,7 +137,7 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
     return traced;
 }
 
-// Coarse-to-fine placement (ALGORITHMS.md §3.4): on pixel grids of stride 8, 4, 2, 1,
+// Coarse-to-fine placement (docs/instant-caching.md §7): on pixel grids of stride 8, 4, 2, 1,
 // every grid pixel no record covers gets one; each level's records are gathered and
 // inserted before the next level's coverage test, so a level never duplicates a coarser
 // one's work and the result does not depend on thread timing.

@@ -1,11 +1,11 @@
 // Instant caching (Debattista, Dubla et al., CGF 2009) and its temporal form: the
 // indirect diffuse component of an igi frame read from an irradiance cache whose records
-// gather from all VPLs (ALGORITHMS.md §3). Host code shared by every backend: record
+// gather from all VPLs (docs/instant-caching.md). Host code shared by every backend: record
 // placement, the visibility bookkeeping and the temporal update run here; the G-buffer,
 // the shadow rays (Backend::trace_closest) and the interpolation (Backend::ic_interpolate)
 // run on the backend.
 //
-// Choices the paper does not fix for us (ALGORITHMS.md §3 marks them [A]), and why:
+// Choices the paper does not fix for us (docs/instant-caching.md marks them ours), and why:
 // - Radius: the harmonic mean distance to the VPLs a record sees, clamped to 1.5–20 pixel
 //   footprints; it needs no rays beyond the gather (Ward's hemisphere probe would add 32 a
 //   record), and the clamp dominates in open areas anyway.
@@ -34,7 +34,7 @@
 
 namespace tessera {
 
-/// Settings; defaults from ALGORITHMS.md §3.2-3.4 ([A]: our reading, not the paper's).
+/// Settings; defaults from docs/instant-caching.md (ours, not the paper's).
 struct IcSettings {
     uint32_t paths = 256;        ///< N_p light paths, one set: every record gathers from all VPLs
     float error_bound = 0.3f;    ///< Ward's a: a record serves points with ε < a (shared/ic_lookup.h)
@@ -42,7 +42,7 @@ struct IcSettings {
     float max_radius_px = 20.0f;
     bool temporal = false;       ///< tic: keep VPL paths, records and visibility across frames
     /// tic: a record outside the view frustum for this many frames in a row is evicted
-    /// (ALGORITHMS.md §3.4's eviction of off-screen records): without it a moving camera
+    /// (docs/instant-caching.md §8): without it a moving camera
     /// grows the cache, and the per-frame update with it, without bound.
     uint32_t evict_after_frames = 30;
 };
@@ -68,7 +68,7 @@ constexpr int32_t kIcVisible = -1;
 /// Sums record r's E = Σ_j C_j T_j min(G_j, b) / π over the VPLs its row marks visible
 /// (the igi estimator of shared/igi.h with all VPLs as one set; double sums in VPL order)
 /// and writes the harmonic mean distance to those VPLs to *harmonic_mean (+inf for none):
-/// the radius estimate of ALGORITHMS.md §3.3 that needs no extra rays.
+/// the radius estimate of docs/instant-caching.md §4 that needs no extra rays.
 void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vector<float>& vpls,
                    const SceneBuffers& scene, float g_clamp, float* harmonic_mean);
 
@@ -80,7 +80,7 @@ public:
     /// E_id (irradiance / π, 3 floats per pixel) for `frame` (prepared by the igi frame).
     /// Non-temporal: a fresh cache from path block frame.pass. Temporal: path block 0
     /// always; on the first call a fresh cache, later the changes since the previous call
-    /// (moved objects, materials, lights) are applied first (ALGORITHMS.md §3.5-3.6).
+    /// (moved objects, materials, lights) are applied first (docs/instant-caching.md §8).
     /// `g_clamp` is the igi geometry-term bound b.
     void indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, float g_clamp,
                   std::vector<float>& e_id);

@@ -1,4 +1,4 @@
-// The irradiance cache of instant caching (ALGORITHMS.md §3.3-3.4): records, the octree
+// The irradiance cache of instant caching (docs/instant-caching.md §3-6): records, the octree
 // over their validity spheres, and its flat form (IcCacheBuffers) that the interpolation
 // kernel and the host's coverage test both read through kernels/shared/ic.h.
 //

@@ -1,7 +1,7 @@
 // Light paths of instant radiosity (Keller 1997) traced path by path with their
 // segments kept: what VPL generation (gi/vpl_generator.h) and the temporal instant cache
 // (gi/instant_cache.h) share. A path's Halton point fixes every random decision, so a
-// path re-traced in an unchanged scene reproduces its VPLs bit for bit; ALGORITHMS.md §3.2.
+// path re-traced in an unchanged scene reproduces its VPLs bit for bit; docs/igi.md §3.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -45,7 +45,7 @@ struct LightPathSettings {
 /// Traces `paths` (index and set filled in; vpls, segments and light are overwritten),
 /// all bounces of all paths batched through Backend::trace_closest. Returns the number
 /// of rays traced.
-/// Estimator (pbrt-v2 IGI convention, ALGORITHMS.md §3.2): a path starts at a light
+/// Estimator (pbrt-v2 IGI convention, docs/igi.md §3): a path starts at a light
 /// picked in proportion to power, at a uniform point y0 (area pdf p_A including the
 /// selection) in a cosine-distributed direction, with weight α = Le·π / p_A. At a
 /// diffuse hit y with albedo ρ it leaves a VPL of weight C = α·ρ/π · inv_paths, then

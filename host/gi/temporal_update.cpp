@@ -1,4 +1,4 @@
-// Temporal instant caching: the per-frame update of InstantCache (ALGORITHMS.md §3.5-3.6).
+// Temporal instant caching: the per-frame update of InstantCache (docs/instant-caching.md §8).
 // Everything a change cannot affect is kept; what it can affect is recomputed exactly as a
 // rebuild would compute it, so the updated cache equals a rebuilt one (same records, same
 // VPLs) up to the order of float sums.

@@ -14,7 +14,7 @@ namespace tessera {
 /// indices, so a frame's paths are the same every time it is generated.
 struct VplSettings {
     uint32_t sets = 9;             ///< interleave sets N = n²
-    uint32_t paths_per_set = 32;   ///< M light paths per set (ALGORITHMS.md §4 default)
+    uint32_t paths_per_set = 32;   ///< M light paths per set (docs/igi.md §3)
     /// Surface hits per path. Paths end by Russian roulette; this cap only bounds the
     /// work. IGI's customary 5 would drop the light of 6+ bounces (about ρ⁵ of the
     /// indirect light, a few percent in a white room) and make IGI converge to something

@@ -3,7 +3,7 @@
  * records gather indirect light from the VPLs. This file holds what the kernels and the
  * host share: the G-buffer kernel's per-pixel part, the weight of a record, and the octree
  * lookup that interpolates. Placement, gathering and the temporal update are host code
- * (host/gi/irradiance_cache.h, instant_cache.h); ALGORITHMS.md §3 is our reading.
+ * (host/gi/irradiance_cache.h, instant_cache.h); docs/instant-caching.md is our reading.
  *
  * Weight (Ward 1988, shifted): with ε(x, n) = ‖x − x_i‖ / R_i + sqrt(1 − n·n_i), a record
  * is usable at (x, n) iff ε < a (Ward's w = 1/ε > 1/a), and it is weighted by

@@ -1,7 +1,7 @@
 /* Instant Global Illumination (Wald et al., EGWR 2002), per-pixel part: the surface
  * shading of one interleaved sample set, and the participating-media ray march. The
  * host generates the VPLs (host/gi/vpl_generator.cpp), filters and composites
- * (host/gi/igi_frame.cpp); ../shared/design/ALGORITHMS.md §§1, 4, 5, 7 is our reading.
+ * (host/gi/igi_frame.cpp); docs/igi.md is our reading.
  *
  * Interleaving (Keller & Heidrich 2001): pixel (x, y) uses sample set
  * k = (x mod n) + n (y mod n). Set k owns
@@ -17,8 +17,8 @@
  * medium's transmittance; the medium scatters light from the lights once, on the
  * camera segment only; the surface behind is attenuated by that segment's transmittance.
  *
- * The VPL geometry term is clamped, G' = min(G, b) with b = igi_g_clamp (ALGORITHMS.md
- * §7): it bounds each VPL's contribution at C·b, removing the 1/d² splotches near VPLs
+ * The VPL geometry term is clamped, G' = min(G, b) with b = igi_g_clamp (docs/igi.md
+ * §4): it bounds each VPL's contribution at C·b, removing the 1/d² splotches near VPLs
  * at the cost of energy lost at short range (corners come out darker).
  *
  * Uses the tracer interface documented in shared/direct.h.
