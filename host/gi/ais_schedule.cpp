@@ -109,7 +109,7 @@ Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const
 
 // g_len looks only at the neighbours the filter rejects: a smooth change of the medium
 // length (a slanted wall) is no failure, as the box filter's mean of a linear ramp is its
-// centre value; flagging it marked 65% of the foggy Cornell box for no change in relMSE.
+// centre value (docs/ais.md §3).
 Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const WindowBits& wb, int x, int y) {
     const size_t p = size_t(y) * b.geometry.width + x;
     const float lp = b.medium_length[p];
@@ -146,7 +146,7 @@ std::vector<std::vector<int>> far_first_orders(int tile) {
 }
 
 // N_min: the accepted-neighbour count below which the filter cannot clean a pixel
-// (ALGORITHMS.md §2.4; default ⌈N/2⌉ of N = `sets`).
+// (docs/ais.md §3; default ⌈N/2⌉ of N = `sets`).
 int min_accepted(const AisThresholds& t, int sets) { return t.min_accepted > 0 ? t.min_accepted : (sets + 1) / 2; }
 
 // A's grade: the signal's strength above its trigger, in [0, 1].

@@ -1,4 +1,4 @@
-// Adaptive Interleaved Sampling (Dubla, Debattista & Chalmers; ALGORITHMS.md §2): from
+// Adaptive Interleaved Sampling (Dubla, Debattista & Chalmers; docs/ais.md): from
 // the base interleaved pass, per-component guidance maps decide where interleaving fails,
 // and a schedule assigns those pixels extra sample sets. Host code shared by every
 // backend and free of device-specific branches: the same base buffers always give the
@@ -18,41 +18,35 @@ enum AisComponent { kAisSS = 0, kAisID = 1, kAisPM = 2, kAisComponents = 3 };
 
 /// A: a flagged pixel gets enough of the sets its filter window is missing to hold
 /// ⌈N/2⌉, plus a number graded by the signal, ⌈grade·(N−1)⌉ (make_schedule). A-MAX: every
-/// flagged pixel gets all N sets. (ALGORITHMS.md §2.5, reading 1; completing missing sets
-/// at edges instead of saturating them is our assumption: the edge pixel then holds as
-/// many sets as a pixel the filter can clean, at a fraction of A-MAX's cost there.)
+/// flagged pixel gets all N sets. (docs/ais.md §4-5: reading 1 of A-MAX; completing
+/// missing sets at edges instead of saturating them is our assumption.)
 enum class AisMode { A, AMax };
 
-/// Guidance thresholds; defaults from ALGORITHMS.md §2.4 [A], tuned on the Cornell box
-/// (128², tile 5, 16 paths per set, 4 spp, relMSE against a 2048 spp pt image; numbers in
-/// bench/results/README.md): each refinement below its trigger bought no measurable error.
+/// Guidance thresholds (ours). docs/ais.md §7 gives how each default was chosen and what
+/// it measured.
 struct AisThresholds {
-    /// SS: flag when the visibility range over A(p) exceeds this. 0.5, not §2.4's 0: with
-    /// 4 light samples a set, ranges of 0.25-0.5 are sample noise the filter averages;
-    /// flagging them cost 25% more items for a relMSE within 0.2%.
+    /// SS: flag when the visibility range over A(p) exceeds this. 0.5: with 4 light
+    /// samples a set, ranges of 0.25-0.5 are sample noise the filter averages.
     float ss_trigger = 0.5f;
     /// ID: the coefficient of variation of E_id over A(p) that saturates g_var, at
     /// kIdCovPaths light paths per set (IgiFrame scales it by √(kIdCovPaths / paths), as
     /// the CoV that VPL noise alone gives falls as 1/√paths). 2: CoVs of about 1 are VPL
     /// noise, which the filter's N-set mean already averages (a pixel's own N sets are no
-    /// less noisy); refining them bought no relMSE.
+    /// less noisy).
     float id_cov = 2.0f;
     static constexpr int kIdCovPaths = 32;
     /// ID: flag when g_ID exceeds this: edges (g_geo = 1) and CoV > id_trigger · id_cov = 1.
     float id_trigger = 0.5f;
-    /// PM: flag when g_PM exceeds this. 0.3, not §2.4's 0.1: the lit fraction comes in
-    /// steps of 1/march steps (0.125 at 8) and neighbours march with different offsets, so
-    /// a range of one or two steps is sampling noise; on the foggy Cornell box (128², 4
-    /// passes) 0.1 flagged 38% of the pixels, 0.3 flags 20%, with the same relMSE.
+    /// PM: flag when g_PM exceeds this. 0.3: the lit fraction comes in steps of 1/march
+    /// steps (0.125 at 8) and neighbours march with different offsets, so a range of one
+    /// or two steps is sampling noise.
     float pm_trigger = 0.3f;
     int min_accepted = 0;     ///< |A(p)| below this counts as an unfilterable edge; 0: ⌈N/2⌉
     /// A: a flagged pixel evaluates the sets its filter window misses until it holds this
     /// many distinct sets (own, accepted neighbours' and its own extra ones); 0: the edge
     /// test's min_accepted (⌈N/2⌉), N: every missing set. ⌈N/2⌉ because a pixel holding
-    /// that many is one the filter counts as cleanable (ALGORITHMS.md §2.4's N_min). All N
-    /// bought error at a worse rate than extra passes do: Sibenik 256², tile 3, 8 paths,
-    /// 4 passes: 1.26 s instead of 0.74 s for relMSE 0.0264 instead of 0.0283; at 512²
-    /// 1.62 extra sets per pixel instead of 0.83 (bench/results/README.md).
+    /// that many is one the filter counts as cleanable (N_min, docs/ais.md §3); all N
+    /// buys error at a worse rate than extra passes do (docs/ais.md §7).
     int complete_sets = 0;
 };
 

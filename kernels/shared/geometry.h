@@ -41,15 +41,13 @@ TS_INLINE float ts_max_abs3(float3 a) { return fmax(fabs(a.x), fmax(fabs(a.y), f
  * Per axis the addition rounds by at most half an ulp of that coordinate (<= 2^-24 ·
  * scale), so the displacement along n is at least 31 of those ulps.
  *
- * This replaces Wächter & Binder's integer offset ("A Fast and Robust Method for Avoiding
+ * Not Wächter & Binder's integer offset ("A Fast and Robust Method for Avoiding
  * Self-Intersection", Ray Tracing Gems, 2019, ch. 6: 256 ulps of each coordinate), which
- * is sized for hit points computed as org + t dir. Ours are barycentric interpolations,
- * eight times more accurate, and 256 ulps proved too much far from the origin: a box of
- * size 2 placed 1e4 from the origin got offsets of 0.25 (12% of its size), which moved
- * path vertices off the corners and brightened the image by 3%, and let a light resting
- * within 0.25 of a wall shine through it (tests/hard_cases/scale_test.cpp). The same
- * scene is now offset by 0.004. Like pbrt-v4 (Pharr et al., 4th ed., §6.8.6), the offset
- * follows from the position's error bound, here the coarser max-coordinate form of it. */
+ * is sized for hit points computed as org + t dir: ours are barycentric interpolations,
+ * eight times more accurate, and 256 ulps is far too large away from the origin
+ * (docs/ray-tracing.md §3; tests/hard_cases/scale_test.cpp). Like pbrt-v4 (Pharr et al.,
+ * 4th ed., §6.8.6), the offset follows from the position's error bound, here the coarser
+ * max-coordinate form of it. */
 #define TS_OFFSET_ULPS 32.0f
 TS_INLINE float3 ts_offset_ray_origin(float3 p, float3 n, float scale) {
     float d = TS_OFFSET_ULPS * 1.1920928955078125e-7f * scale + 1e-30f;
