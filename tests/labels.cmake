@@ -1,0 +1,34 @@
+# Labels every test of tessera_tests with its tier (tests/README.md, "Tiers"): exactly one
+# of unit, statistical, cli, bench. Included by CTest after gtest_discover_tests' list
+# (tests/CMakeLists.txt), where tessera_tests_TESTS holds every discovered test name, e.g.
+# `Methods/Contact.CornerWhereTheLightMeetsTheWallsStaysBounded/pt_Embree`.
+# A test no pattern matches is unit: a new test that renders many samples belongs in
+# the statistical pattern, or `ctest -L unit` stops being fast.
+
+# Run the tessera executable.
+set(tessera_cli_tests "^[A-Za-z]+Cli\\.")
+# Run the bench/ scripts.
+set(tessera_bench_tests "^(AccuracyReport|AccuracySweep|AisBound)\\.")
+# Render many samples and compare statistics: hard cases, analytic and furnace tests,
+# chi-square and moment tests of the sampling routines, backend agreement, error orders.
+set(tessera_statistical_tests
+    "^Methods/"
+    "^Backends/(PtFurnace|PtMedium|PlaneUnderLight|InstantCacheOn)\\."
+    "^(BackendAgreement|PtAgreement|Traversal|IgiAgreement|IgiConvergence|IgiMedia|Ais|LightSelection)\\."
+    "^G/HenyeyGreenstein\\.SamplesMatchThePhaseFunction/"
+    "^Sampling\\.(CosineHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
+    "^Medium\\.(FreeFlightDistancesAreExponential|RgbWeightsAreUnbiased)$")
+list(JOIN tessera_statistical_tests "|" tessera_statistical_tests)
+
+foreach(test IN LISTS tessera_tests_TESTS)
+  if(test MATCHES "${tessera_cli_tests}")
+    set(label cli)
+  elseif(test MATCHES "${tessera_bench_tests}")
+    set(label bench)
+  elseif(test MATCHES "${tessera_statistical_tests}")
+    set(label statistical)
+  else()
+    set(label unit)
+  endif()
+  set_tests_properties("${test}" PROPERTIES LABELS ${label})
+endforeach()
