@@ -192,7 +192,7 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
 // Each component: the discontinuity filter over the interleaved estimates; with AIS,
 // pixels the schedule gave extra sets combine them with the accepted neighbours' sets
 // they did not evaluate (ais_reconstruct.h: each set at most once; all N sets: the pixel's own
-// full-rate mean, unfiltered, as issue 5 asks).
+// full-rate mean, unfiltered: docs/ais.md §6).
 void IgiFrame::reconstruct() {
     for (int c = 0; c < kAisComponents; ++c) {
         const bool refined = settings_.adaptive && !schedule_.sets[c].empty();
