@@ -9,5 +9,6 @@ void add_render_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_options_command(CLI::App& app);  // cli/parameter_options.cpp
 
 }  // namespace tessera::cli

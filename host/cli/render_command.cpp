@@ -8,11 +8,13 @@
 
 #include "backend/backend.h"
 #include "cli/commands.h"
+#include "cli/parameter_options.h"
 #include "image/atomic_file.h"
 #include "image/image_io.h"
 #include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
 #include "render/effect_plan.h"
+#include "render/parameters.h"
 #include "render/renderer.h"
 #include "render/scene_buffers.h"
 #include "render/sequence.h"
@@ -94,6 +96,7 @@ void run_render(const RenderArgs& a) {
     RenderSettings settings = a.settings;
     settings.method = parse_method(a.method);
     settings.igi.components = parse_components(a.components);
+    validate_settings(settings);  // before the scene loads: a bad option fails at once
     if (!a.frames.empty() && a.resume)
         throw InputError("--frames cannot be combined with --resume (checkpoints hold one still frame)");
     if (settings.method == Method::Tic && a.resume)
@@ -155,52 +158,11 @@ void add_render_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--components", args->components, "igi/ais: components to compute, e.g. ss,id,pm")
         ->capture_default_str();
-    cmd->add_option("--max-depth", args->settings.max_depth, "pt: path vertices before a path is cut")
-        ->capture_default_str();
-    cmd->add_option("--tile", args->settings.igi.tile, "igi: interleave tile edge n (n² sample sets), 1..8")
-        ->capture_default_str();
-    cmd->add_option("--vpl-paths", args->settings.igi.paths_per_set, "igi: light paths per sample set")
-        ->capture_default_str();
-    cmd->add_option("--clamp", args->settings.igi.clamp_c,
-                    "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables")
-        ->capture_default_str();
-    cmd->add_option("--march-steps", args->settings.igi.march_steps, "igi: medium ray-march steps per pixel")
-        ->capture_default_str();
-    cmd->add_option("--ic-paths", args->settings.ic.paths, "ic/tic: light paths N_p (all records gather from all)")
-        ->capture_default_str();
-    cmd->add_option("--ic-error", args->settings.ic.error_bound, "ic/tic: Ward's error bound a")
-        ->capture_default_str();
-    cmd->add_flag("!--no-filter", args->settings.igi.filter, "igi: skip the discontinuity filter");
-    cmd->add_option("--ais-ss-trigger", args->settings.igi.ais.ss_trigger, "ais: SS guidance trigger")
-        ->capture_default_str();
-    cmd->add_option("--ais-id-trigger", args->settings.igi.ais.id_trigger, "ais: ID guidance trigger")
-        ->capture_default_str();
-    cmd->add_option("--ais-id-cov", args->settings.igi.ais.id_cov,
-                    "ais: coefficient of variation of indirect light that saturates ID guidance")
-        ->capture_default_str();
-    cmd->add_option("--ais-pm-trigger", args->settings.igi.ais.pm_trigger, "ais: PM guidance trigger")
-        ->capture_default_str();
-    cmd->add_option("--ais-complete", args->settings.igi.ais.complete_sets,
-                    "ais: distinct sets a flagged edge pixel completes its window to (0: ceil(N/2), N: all)")
-        ->check(CLI::Range(0, 64))
-        ->capture_default_str();
-    cmd->add_option("--max-scatter", args->settings.max_scatter,
-                    "pt: medium scattering vertices per path (1 = single scattering, 0 = unlimited)")
-        ->capture_default_str();
-    cmd->add_option("--spp", args->settings.spp, "Samples (passes) per pixel")->capture_default_str();
-    cmd->add_option("--shadow-samples", args->settings.shadow_samples, "Area-light samples per hit and pass")
-        ->capture_default_str();
-    cmd->add_option("--width", args->settings.width, "Image width (default: the scene camera's)");
-    cmd->add_option("--height", args->settings.height, "Image height (default: the scene camera's)");
-    cmd->add_option("--seed", args->settings.seed, "Random seed")->capture_default_str();
+    add_parameter_options(*cmd, args->settings);  // --spp, --tile, ...: render/parameters.cpp
     cmd->add_option("--out", args->out, "Output EXR (default out/<scene>.exr); a PNG preview is written beside it");
     cmd->add_option("--exposure", args->exposure, "PNG preview exposure in stops")->capture_default_str();
-    cmd->add_flag("--aov", args->settings.aovs, "Also write albedo, normal and depth channels");
     cmd->add_flag("--resume", args->resume,
                   "Continue from the checkpoint beside --out (<out>.ckpt) left by an interrupted render");
-    cmd->add_option("--checkpoint-interval", args->settings.checkpoint_interval_s,
-                    "Seconds between checkpoints (0: only when interrupted by SIGINT/SIGTERM)")
-        ->capture_default_str();
     cmd->add_option("--frames", args->frames,
                     "Animated scene: render frames A..B (inclusive) to <out stem>.####.exr (+ .png)");
     cmd->add_option("--stats-json", args->stats_json,

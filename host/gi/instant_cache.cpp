@@ -56,8 +56,6 @@ void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vect
 
 InstantCache::InstantCache(const IcSettings& settings, const std::vector<SceneObject>& objects)
     : settings_(settings), cache_(settings.error_bound) {
-    if (!(settings.error_bound >= 1e-3f && settings.error_bound <= 2.0f))
-        throw InputError("--ic-error must be in [0.001, 2]");
     if (!(settings.min_radius_px > 0.0f && settings.min_radius_px <= settings.max_radius_px))
         throw InputError("ic: the record radius bounds must satisfy 0 < min <= max pixels");
     for (const SceneObject& o : objects) object_first_.push_back(o.first_triangle);

@@ -10,32 +10,15 @@
 #include "render/accumulator.h"
 #include "render/checkpoint_session.h"
 #include "render/frame.h"
+#include "render/parameters.h"
 #include "util/error.h"
 
 namespace tessera {
-namespace {
-
-void validate(const RenderSettings& s) {
-    if (s.max_depth < 1 || s.max_depth > 100000) throw InputError("--max-depth must be in 1..100000");
-    if (s.spp < 1 || s.spp > 1000000) throw InputError("--spp must be in 1..1000000");
-    if (s.shadow_samples < 1 || s.shadow_samples > 4096)
-        throw InputError("--shadow-samples must be in 1..4096");
-    if (s.width < 0 || s.width > 16384) throw InputError("--width must be in 1..16384");
-    if (s.height < 0 || s.height > 16384) throw InputError("--height must be in 1..16384");
-    if (!(s.checkpoint_interval_s >= 0)) throw InputError("--checkpoint-interval must be >= 0");
-    if (s.igi.tile < 1 || s.igi.tile > 8) throw InputError("--tile must be in 1..8");
-    if (s.igi.paths_per_set < 1 || s.igi.paths_per_set > 65536) throw InputError("--vpl-paths must be in 1..65536");
-    if (!(s.igi.clamp_c >= 0.0f)) throw InputError("--clamp must be >= 0");
-    if (s.ic.paths < 1 || s.ic.paths > 65536) throw InputError("--ic-paths must be in 1..65536");
-    if (!(s.ic.error_bound >= 1e-3f && s.ic.error_bound <= 2.0f)) throw InputError("--ic-error must be in [0.001, 2]");
-}
-
-}  // namespace
 
 Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress,
                    const CheckpointOptions* checkpoint) {
-    validate(settings);
+    validate_settings(settings);
     const int w = settings.width > 0 ? settings.width : scene.camera.width;
     const int h = settings.height > 0 ? settings.height : scene.camera.height;
     TsFrame frame = make_frame(scene.camera, w, h, settings.shadow_samples, settings.seed, buffers.light_count);

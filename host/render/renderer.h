@@ -54,8 +54,8 @@ using ProgressFn = std::function<void(uint32_t, uint32_t, double, uint32_t)>;
 
 struct CheckpointOptions;  // render/checkpoint_session.h
 
-/// Validates `settings` (throws InputError naming --spp, --shadow-samples, --width,
-/// --height or --max-depth when out of range), then renders. `buffers` are the
+/// Validates `settings` (validate_settings in render/parameters.h: throws InputError
+/// naming the option and value, e.g. "--spp 0: must be in 1..1000000"), then renders. `buffers` are the
 /// SceneBuffers the backend was made from. With `checkpoint`, the render resumes from
 /// and saves checkpoints (see CheckpointSession) and throws Interrupted on SIGINT or
 /// SIGTERM; stats then count only the passes rendered in this call.

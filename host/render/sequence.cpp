@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "render/effect_plan.h"
+#include "render/parameters.h"
 #include "render/scene_buffers.h"
 #include "util/error.h"
 
@@ -48,6 +49,7 @@ fs::path frame_output_path(const fs::path& out, int frame) {
 void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& backend_options,
                      const RenderSettings& sequence_settings, const FrameDoneFn& done,
                      const ProgressFn& progress) {
+    validate_settings(sequence_settings);  // before the tic cache is made from them
     RenderSettings settings = sequence_settings;
     if (settings.method == Method::Tic) {  // one cache for this sequence, of this scene
         IcSettings ics = settings.ic;

@@ -1,0 +1,46 @@
+#include "cli/parameter_options.h"
+
+#include <cstdio>
+#include <memory>
+#include <type_traits>
+
+#include "cli/commands.h"
+
+namespace tessera::cli {
+
+std::string parameter_help(const Parameter& p) {
+    if (*p.value_name == '\0') return p.doc;  // a flag
+    std::string help = std::string(p.doc) + "; " + range_text(p);
+    if (*p.unit) help += std::string(" ") + p.unit;
+    return help;
+}
+
+void add_parameter_options(CLI::App& cmd, RenderSettings& settings) {
+    for (const Parameter& p : render_parameters()) {
+        std::visit([&](auto get) {
+            auto& field = get(settings);
+            if constexpr (std::is_same_v<decltype(field), bool&>)
+                cmd.add_flag((p.negated ? "!" : "") + std::string(p.option), field, parameter_help(p));
+            else
+                cmd.add_option(p.option, field, parameter_help(p))->capture_default_str();
+        }, p.field);
+    }
+}
+
+void add_options_command(CLI::App& app) {
+    CLI::App* cmd = app.add_subcommand("options", "List the render settings: option, default, range, unit");
+    auto markdown = std::make_shared<bool>(false);
+    cmd->add_flag("--markdown", *markdown, "Print README's options table (markdown)");
+    cmd->callback([markdown] {
+        if (*markdown) {
+            std::fputs(options_markdown().c_str(), stdout);
+            return;
+        }
+        for (const Parameter& p : render_parameters()) {
+            const std::string name = *p.value_name ? std::string(p.option) + " " + p.value_name : p.option;
+            std::printf("%-26s default %-6s %s\n", name.c_str(), default_text(p).c_str(), parameter_help(p).c_str());
+        }
+    });
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,21 @@
+// The render settings of render/parameters.h as CLI11 options of `tessera render`, and
+// the `tessera options` command that prints them (README's table comes from it).
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "render/parameters.h"
+
+namespace tessera::cli {
+
+/// Registers one option per render_parameters() entry on `cmd`, storing into `settings`
+/// (which must outlive `cmd`'s parse). Help shows the doc, range and unit and the default
+/// (the field's value in `settings` at registration). Range checks are not done here:
+/// call validate_settings after parsing (render_frame runs it too).
+void add_parameter_options(CLI::App& cmd, RenderSettings& settings);
+
+/// The option's help line: "igi: light paths per sample set; 1..65536 paths".
+std::string parameter_help(const Parameter& p);
+
+}  // namespace tessera::cli

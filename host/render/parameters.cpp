@@ -1,0 +1,155 @@
+#include "render/parameters.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include "util/error.h"
+
+namespace tessera {
+namespace {
+
+constexpr double kNoMax = std::numeric_limits<double>::infinity();
+
+// The field `path` of RenderSettings (e.g. igi.tile) as a ParameterField.
+#define TS_SETTING(path) +[](RenderSettings& s) -> auto& { return s.path; }
+
+// Ranges: those render_frame has always enforced, plus bounds where a value outside makes
+// no sense (AIS triggers compare with guidance in [0, 1]; --ais-id-cov divides).
+const Parameter kParameters[] = {
+    {.option = "--spp", .value_name = "N", .field = TS_SETTING(spp), .min = 1, .max = 1000000,
+     .unit = "passes", .doc = "Samples (passes) per pixel, one camera sample per pixel each"},
+    {.option = "--shadow-samples", .value_name = "N", .field = TS_SETTING(shadow_samples), .min = 1, .max = 4096,
+     .unit = "samples", .doc = "Area-light samples per camera hit and pass"},
+    {.option = "--width", .value_name = "W", .field = TS_SETTING(width), .min = 0, .max = 16384, .unit = "px",
+     .doc = "Image width; 0: the scene camera's"},
+    {.option = "--height", .value_name = "H", .field = TS_SETTING(height), .min = 0, .max = 16384, .unit = "px",
+     .doc = "Image height; 0: the scene camera's"},
+    {.option = "--seed", .value_name = "S", .field = TS_SETTING(seed), .min = 0, .max = kNoMax,
+     .doc = "Random seed (samples are counter-based per seed, pixel and pass)"},
+    {.option = "--aov", .value_name = "", .field = TS_SETTING(aovs),
+     .doc = "Also write albedo, normal and depth channels (igi family: also per-component channels)"},
+    {.option = "--checkpoint-interval", .value_name = "SECONDS", .field = TS_SETTING(checkpoint_interval_s),
+     .min = 0, .max = kNoMax, .unit = "s",
+     .doc = "Seconds between checkpoints (0: only when interrupted by SIGINT/SIGTERM)"},
+    {.option = "--max-depth", .value_name = "N", .field = TS_SETTING(max_depth), .min = 1, .max = 100000,
+     .unit = "vertices", .doc = "pt: path vertices before a path is cut"},
+    {.option = "--max-scatter", .value_name = "N", .field = TS_SETTING(max_scatter), .min = 0, .max = kNoMax,
+     .unit = "vertices", .doc = "pt: medium scattering vertices per path (1: single scattering, 0: unlimited)"},
+    {.option = "--tile", .value_name = "N", .field = TS_SETTING(igi.tile), .min = 1, .max = 8, .unit = "px",
+     .doc = "igi: interleave tile edge n (n² sample sets)"},
+    {.option = "--vpl-paths", .value_name = "N", .field = TS_SETTING(igi.paths_per_set), .min = 1, .max = 65536,
+     .unit = "paths", .doc = "igi: light paths per sample set"},
+    {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = kNoMax,
+     .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables"},
+    {.option = "--march-steps", .value_name = "N", .field = TS_SETTING(igi.march_steps), .min = 0, .max = kNoMax,
+     .unit = "steps", .doc = "igi: medium ray-march steps per pixel (0: no march)"},
+    {.option = "--no-filter", .value_name = "", .field = TS_SETTING(igi.filter), .negated = true,
+     .doc = "igi: skip the discontinuity filter"},
+    {.option = "--ais-ss-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.ss_trigger), .min = 0, .max = 1,
+     .doc = "ais: SS guidance trigger (flag where the light-visibility range exceeds it)"},
+    {.option = "--ais-id-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.id_trigger), .min = 0, .max = 1,
+     .doc = "ais: ID guidance trigger"},
+    {.option = "--ais-id-cov", .value_name = "C", .field = TS_SETTING(igi.ais.id_cov), .min = 0, .max = kNoMax,
+     .min_exclusive = true, .doc = "ais: coefficient of variation of indirect light that saturates ID guidance"},
+    {.option = "--ais-pm-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.pm_trigger), .min = 0, .max = 1,
+     .doc = "ais: PM guidance trigger"},
+    {.option = "--ais-complete", .value_name = "N", .field = TS_SETTING(igi.ais.complete_sets), .min = 0, .max = 64,
+     .unit = "sets", .doc = "ais: distinct sets a flagged edge pixel completes its window to (0: ⌈N/2⌉, N: all)"},
+    {.option = "--ic-paths", .value_name = "N", .field = TS_SETTING(ic.paths), .min = 1, .max = 65536,
+     .unit = "paths", .doc = "ic/tic: light paths N_p (all records gather from all)"},
+    {.option = "--ic-error", .value_name = "A", .field = TS_SETTING(ic.error_bound), .min = 0.001, .max = 2,
+     .doc = "ic/tic: Ward's error bound a"},
+};
+
+#undef TS_SETTING
+
+bool is_flag(const Parameter& p) { return std::holds_alternative<bool& (*)(RenderSettings&)>(p.field); }
+
+bool is_integer(const Parameter& p) {
+    return std::holds_alternative<uint32_t& (*)(RenderSettings&)>(p.field) ||
+           std::holds_alternative<int& (*)(RenderSettings&)>(p.field);
+}
+
+// Shortest text that reads back as the same value ("0.05" for 0.05f, not 0.0500000007).
+template <class T>
+std::string shortest(T v) {
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+
+// A range bound of p: an integer for integer fields, else the shortest double.
+std::string bound_text(const Parameter& p, double v) {
+    return is_integer(p) ? std::to_string(static_cast<long long>(v)) : shortest(v);
+}
+
+// The field's value in `s` as text, in its own type.
+std::string value_text(const Parameter& p, const RenderSettings& s) {
+    // The accessors take a mutable RenderSettings; this only reads through them.
+    RenderSettings& m = const_cast<RenderSettings&>(s);
+    return std::visit([&](auto get) -> std::string {
+        const auto v = get(m);
+        if constexpr (std::is_same_v<decltype(v), const bool>)
+            return v != p.negated ? "on" : "off";
+        else if constexpr (std::is_integral_v<decltype(v)>)
+            return std::to_string(v);
+        else
+            return shortest(v);
+    }, p.field);
+}
+
+}  // namespace
+
+std::span<const Parameter> render_parameters() { return kParameters; }
+
+const Parameter* find_parameter(const std::string& option) {
+    for (const Parameter& p : kParameters)
+        if (option == p.option) return &p;
+    return nullptr;
+}
+
+double parameter_value(const Parameter& p, const RenderSettings& s) {
+    RenderSettings& m = const_cast<RenderSettings&>(s);  // read only
+    return std::visit([&](auto get) { return static_cast<double>(get(m)); }, p.field);
+}
+
+void validate_parameter(const Parameter& p, const RenderSettings& s) {
+    if (is_flag(p)) return;
+    const double v = parameter_value(p, s);
+    const bool above_min = p.min_exclusive ? v > p.min : v >= p.min;
+    if (above_min && v <= p.max) return;  // false for NaN
+    const std::string range = range_text(p);
+    throw InputError(std::string(p.option) + " " + value_text(p, s) + ": must be " +
+                     (range[0] == '>' ? range : "in " + range));
+}
+
+void validate_settings(const RenderSettings& s) {
+    for (const Parameter& p : kParameters) validate_parameter(p, s);
+}
+
+std::string range_text(const Parameter& p) {
+    if (is_flag(p)) return "flag";
+    const std::string lo = bound_text(p, p.min);
+    if (std::isinf(p.max)) return (p.min_exclusive ? "> " : ">= ") + lo;
+    if (is_integer(p)) return lo + ".." + bound_text(p, p.max);
+    return (p.min_exclusive ? "(" : "[") + lo + ", " + bound_text(p, p.max) + "]";
+}
+
+std::string default_text(const Parameter& p) {
+    static const RenderSettings defaults;
+    if (is_flag(p)) return "off";  // a flag's default is its absence
+    return value_text(p, defaults);
+}
+
+std::string options_markdown() {
+    std::string md = "| option | default | range | unit | description |\n|---|---|---|---|---|\n";
+    for (const Parameter& p : kParameters) {
+        const std::string name = *p.value_name ? std::string(p.option) + " " + p.value_name : p.option;
+        md += "| `" + name + "` | " + default_text(p) + " | " + range_text(p) + " | " + p.unit + " | " + p.doc +
+              " |\n";
+    }
+    return md;
+}
+
+}  // namespace tessera

@@ -1,0 +1,65 @@
+// The render settings a user sets, declared once: option name, the RenderSettings field it
+// sets, valid range, unit and a one-line doc. The default is the field's initializer in
+// RenderSettings (and the structs it holds), read from a default-constructed RenderSettings.
+// From this table: the `tessera render` options (cli/parameter_options.h), the range check
+// that render_frame and the CLI both run (validate_settings), and README's options table
+// (options_markdown; a test keeps README in step). To add a setting: one entry here.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <string>
+#include <variant>
+
+#include "render/renderer.h"
+
+namespace tessera {
+
+/// Where a parameter's value lives in RenderSettings: a function returning a reference to
+/// the field (a captureless lambda; members of the nested settings structs cannot be named
+/// by a pointer-to-member). The field's type selects the alternative.
+using ParameterField = std::variant<uint32_t& (*)(RenderSettings&), int& (*)(RenderSettings&),
+                                    float& (*)(RenderSettings&), double& (*)(RenderSettings&),
+                                    bool& (*)(RenderSettings&)>;
+
+/// One user-settable render setting. A bool field is a flag: giving the option sets the
+/// field to !negated.
+struct Parameter {
+    const char* option;          ///< the long option, e.g. "--tile"
+    const char* value_name;      ///< placeholder in usage lines, e.g. "N" ("" for a flag)
+    ParameterField field;
+    double min = 0;              ///< valid range [min, max] (min excluded when min_exclusive)
+    double max = 0;              ///< +inf: no bound but the field type's
+    bool min_exclusive = false;  ///< (min, max]: e.g. a divisor that must be > 0
+    bool negated = false;        ///< flags: the option clears the field (--no-filter)
+    const char* unit = "";       ///< e.g. "px", "s"; "" for a plain count or ratio
+    const char* doc = "";        ///< one line; "method: ..." when only some methods read it
+};
+
+/// Every parameter, in the order of `tessera render --help` and README's table.
+std::span<const Parameter> render_parameters();
+
+/// The parameter named `option` ("--tile"); nullptr when none is.
+const Parameter* find_parameter(const std::string& option);
+
+/// The field's value in `s`, widened to double (flags: 0 or 1).
+double parameter_value(const Parameter& p, const RenderSettings& s);
+
+/// Throws InputError "--tile 9: must be in 1..8" (option, value, range) when p's field in
+/// `s` is out of p's range (NaN included). Flags are always valid.
+void validate_parameter(const Parameter& p, const RenderSettings& s);
+
+/// validate_parameter for every parameter, in table order: the check render_frame runs on
+/// its settings and the CLI runs before loading the scene.
+void validate_settings(const RenderSettings& s);
+
+/// Valid range as README and the messages print it: "1..8" (integers), "[0.001, 2]"
+/// (reals), ">= 0" / "> 0" (no upper bound), "flag" for a flag.
+std::string range_text(const Parameter& p);
+
+/// The default, from RenderSettings{}: "3", "0.05", "120"; "off" for a flag.
+std::string default_text(const Parameter& p);
+
+/// The options table of README.md (markdown, one row per parameter, header included).
+std::string options_markdown();
+
+}  // namespace tessera
