@@ -595,8 +595,9 @@ def knot_mesh_text(scale, offset):
     return "\n".join(out) + "\n"
 
 
-# The knot's control mesh spans about x, y in [-3.1, 3.1], z in [-1.55, 1.55]: scaled by
-# 0.2 it is about 1.2 m across, lying flat (its z is the room's y after the JSON rotation).
+# Scaled by 0.2 the subdivided knot spans x ±0.604, y −0.656..0.471, z ±0.255 (about 1.2 m
+# across, 0.51 m high); the JSON turns its z to the room's y and lifts it by 0.856 so it
+# rests on the 0.6 m pedestal (1 mm above it).
 KNOT_SCALE = 0.2
 
 
@@ -617,10 +618,10 @@ def subdivided_small(out):
            "stands_in_for": "the seed's Subdivided (a room holding a high-polygon subdivision surface): our own "
                             "5 x 3 x 5 m room with a pedestal holding a Loop-subdivided trefoil knot of 221,184 "
                             "triangles (generated at build time into scenes/generated/), one ceiling light",
-           "camera": camera((4.4, 1.9, 4.6), (2.5, 0.95, 2.5), 50.0),
+           "camera": camera((4.4, 1.9, 4.6), (2.5, 0.85, 2.5), 50.0),
            "objects": [{"mesh": "standins/subdivided-room.obj"},
                        {"mesh": "generated/subdivided-knot.obj",
-                        "transform": {"rotate": [{"axis": [1, 0, 0], "degrees": -90}], "translate": [2.5, 0.95, 2.5]}}],
+                        "transform": {"rotate": [{"axis": [1, 0, 0], "degrees": -90}], "translate": [2.5, 0.856, 2.5]}}],
            "lights": [ceiling_light(2.5, 2.998, 2.5, 1.0, 1.0, [12, 11.5, 10.5])]}
     write(out / "subdivided.json", scene_json(doc))
     fog = fog_of(doc, "subdivided-fog",
