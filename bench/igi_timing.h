@@ -18,10 +18,14 @@ inline double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-/// The four scenes the seed-style tables report: the Cornell box, Sibenik, and their fog.
+/// The scenes the seed-style tables report, in the rows of the seed's Tables 5.1-5.3:
+/// Cornell, Deskar, Subdivided, Desk, Sibenik, Office, Conference, Shirley6, then the PM
+/// versions of Subdivided, Office and Shirley6 (stand-ins, scenes/README.md). Same list as
+/// bench/standard_scenes.py, which the Python benchmarks read.
 inline std::vector<std::string> standard_scenes() {
     std::vector<std::string> s;
-    for (const char* n : {"cornell-box", "cornell-box-fog", "sibenik", "sibenik-fog"})
+    for (const char* n : {"cornell-box", "deskar", "subdivided", "desk", "sibenik", "office", "conference", "shirley6",
+                          "subdivided-fog", "office-fog", "shirley6-fog"})
         s.push_back(std::string(TESSERA_SCENES_DIR) + "/" + n + ".json");
     return s;
 }

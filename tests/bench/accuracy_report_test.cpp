@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "bench/igi_timing.h"
 #include "support/scratch_dir.h"
 #include "support/shell.h"
 
@@ -46,6 +47,35 @@ for b, want in (("igi", 2.0), (r.FULL_RATE_IGI, 8.0)):
 print("ok")
 )PY";
     const fs::path py = dir_ / "check.py", log = dir_ / "log.txt";
+    std::ofstream(py) << script;
+    const std::string report = std::string(TESSERA_SOURCE_DIR) + "/bench/accuracy_report";
+    EXPECT_EQ(shell_status("python3 " + py.string() + " " + report + " > " + log.string() + " 2>&1"), 0)
+        << std::ifstream(log).rdbuf();
+}
+
+// The report's rows: the standard scenes in the seed's row order (the same list as the C++
+// benchmarks' bench::standard_scenes), others after them by name, and an Average row that
+// is the mean over the scenes with a value.
+TEST_F(AccuracyReport, SeedRowOrderAndAverage) {
+    std::string cpp_names;
+    for (const std::string& path : tessera::bench::standard_scenes())
+        cpp_names += "'" + fs::path(path).stem().string() + "', ";
+    const std::string script = R"PY(
+import importlib.machinery, importlib.util, sys
+loader = importlib.machinery.SourceFileLoader("accuracy_report", sys.argv[1])
+spec = importlib.util.spec_from_loader("accuracy_report", loader)
+r = importlib.util.module_from_spec(spec)
+loader.exec_module(r)
+import standard_scenes
+assert standard_scenes.STANDARD_SCENES == [)PY" + cpp_names + R"PY(], standard_scenes.STANDARD_SCENES
+names = ["zeta", "sibenik", "office-fog", "alpha", "cornell-box", "deskar", "shirley6"]
+got = sorted(names, key=r.row_order)
+assert got == ["cornell-box", "deskar", "sibenik", "shirley6", "office-fog", "alpha", "zeta"], got
+assert r.mean_or_none([1.0, None, 3.0]) == 2.0
+assert r.mean_or_none([None, None]) is None
+print("ok")
+)PY";
+    const fs::path py = dir_ / "order.py", log = dir_ / "log.txt";
     std::ofstream(py) << script;
     const std::string report = std::string(TESSERA_SOURCE_DIR) + "/bench/accuracy_report";
     EXPECT_EQ(shell_status("python3 " + py.string() + " " + report + " > " + log.string() + " 2>&1"), 0)

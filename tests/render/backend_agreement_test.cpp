@@ -22,40 +22,13 @@
 namespace tessera {
 namespace {
 
-void expect_backends_agree(const Scene& scene, RenderSettings rs) {
-    Image cl = test::render_with(BackendKind::OpenCL, scene, rs);
-    Image em = test::render_with(BackendKind::Embree, scene, rs);
-    rs.seed += 1000;
-    Image em2 = test::render_with(BackendKind::Embree, scene, rs);
-    ASSERT_TRUE(test::all_finite(cl));
-    ASSERT_TRUE(test::all_finite(em));
-    const double noise = test::rel_mse(em2, em);
-    const double diff = test::rel_mse(cl, em);
-    std::printf("  %s: relMSE OpenCL vs Embree (same seed) %.3g; seed vs seed %.3g\n", scene.name.c_str(), diff,
-                noise);
-    ASSERT_GT(noise, 0.0);
-    EXPECT_LT(diff, 0.02 * noise) << "backend relMSE " << diff << " vs seed-to-seed relMSE " << noise;
-    // relMSE is dominated by a few edge pixels (an emitter next to black), so also
-    // bound how many pixels differ at all: the same samples must give the same value
-    // except where a tie or rounding sends one camera or shadow ray elsewhere.
-    size_t differ = 0, total = 0;
-    for (const char* c : {"R", "G", "B"}) {
-        const auto& a = cl.find(c)->data;
-        const auto& b = em.find(c)->data;
-        for (size_t i = 0; i < a.size(); ++i, ++total)
-            differ += std::abs(a[i] - b[i]) > 1e-3f * (std::abs(b[i]) + 0.01f);
-    }
-    std::printf("  %s: %zu of %zu pixel channels differ by more than 1e-3\n", scene.name.c_str(), differ, total);
-    EXPECT_LE(differ, total / 200);
-}
-
 TEST(BackendAgreement, ClosedBoxSameSeed) {
     Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.7f), glm::vec3(10.0f), 0.3f);
     s.camera.width = s.camera.height = 48;
     RenderSettings rs;
     rs.spp = 4;
     rs.shadow_samples = 4;
-    expect_backends_agree(s, rs);
+    test::expect_backends_agree(s, rs);
 }
 
 TEST(BackendAgreement, CornellBoxSameSeed) {
@@ -64,7 +37,7 @@ TEST(BackendAgreement, CornellBoxSameSeed) {
     rs.width = rs.height = 64;
     rs.spp = 2;
     rs.shadow_samples = 4;
-    expect_backends_agree(s, rs);
+    test::expect_backends_agree(s, rs);
 }
 
 TEST(BackendAgreement, SibenikTexturedSameSeed) {
@@ -79,7 +52,7 @@ TEST(BackendAgreement, SibenikTexturedSameSeed) {
     rs.width = rs.height = 48;
     rs.spp = 2;
     rs.shadow_samples = 2;
-    expect_backends_agree(s, rs);
+    test::expect_backends_agree(s, rs);
 }
 
 }  // namespace
