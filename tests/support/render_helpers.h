@@ -83,7 +83,9 @@ inline void expect_backends_agree(const Scene& scene, RenderSettings rs, bool co
             differ += std::abs(a[i] - b[i]) > 1e-3f * (std::abs(b[i]) + 0.01f);
     }
     std::printf("  %s: %zu of %zu pixel channels differ by more than 1e-3\n", scene.name.c_str(), differ, total);
-    if (count_differing_pixels) EXPECT_LE(differ, total / 200);
+    if (count_differing_pixels) {
+        EXPECT_LE(differ, total / 200);
+    }
 }
 
 }  // namespace tessera::test
