@@ -106,14 +106,16 @@ int read_key_frame(const JsonField& key, int frames, int previous) {
     return frame;
 }
 
-// Checks the key list and calls read(key, frame) for each key.
+// Checks the key list (each key may hold `known` members) and calls read(key, frame) for
+// each key.
 template <class Read>
-void for_each_key(const JsonField& list, int frames, Read read) {
+void for_each_key(const JsonField& list, int frames, std::initializer_list<std::string_view> known, Read read) {
     if (list.size() == 0) list.fail("a track needs at least one key");
     int previous = -1;
     for (size_t i = 0; i < list.size(); ++i) {
         const JsonField key = list.at(i);
         key.require_object();
+        key.require_known_keys(known);
         previous = read_key_frame(key, frames, previous);
         read(key, previous);
     }
@@ -124,7 +126,7 @@ ObjectKey read_object_key(const JsonField& j, int frame) {
     k.frame = frame;
     if (auto t = j.find("translate")) k.translate = t->vec3();
     if (auto r = j.find("rotate")) {
-        r->require_object();
+        r->require_known_keys({"axis", "degrees"});
         const glm::vec3 axis = (*r)["axis"].vec3();
         if (!(glm::dot(axis, axis) > 0.0f) || !std::isfinite(glm::dot(axis, axis)))
             (*r)["axis"].fail("rotation axis is zero (or its length overflows a float)");
@@ -142,13 +144,14 @@ ObjectKey read_object_key(const JsonField& j, int frame) {
 void read_object_tracks(const JsonField& j, Scene& scene, int frames) {
     j.require_object();
     for (const auto& [name, value] : j.raw().items()) {
+        if (scene_detail::is_comment_key(name)) continue;
         const JsonField list(value, j.file(), j.key() + "." + name);
         ObjectTrack track;
         track.name = name;
         for (uint32_t i = 0; i < scene.objects.size(); ++i)
             if (scene.objects[i].name == name) track.objects.push_back(i);
         if (track.objects.empty()) list.fail("the scene has no object named '" + name + "'");
-        for_each_key(list, frames, [&](const JsonField& key, int frame) {
+        for_each_key(list, frames, {"frame", "translate", "rotate", "scale"}, [&](const JsonField& key, int frame) {
             track.keys.push_back(read_object_key(key, frame));
             for (const uint32_t o : track.objects)
                 if (!key_pose_is_finite(scene, scene.objects[o], track.keys.back()))
@@ -161,13 +164,14 @@ void read_object_tracks(const JsonField& j, Scene& scene, int frames) {
 void read_material_tracks(const JsonField& j, Scene& scene, int frames) {
     j.require_object();
     for (const auto& [name, value] : j.raw().items()) {
+        if (scene_detail::is_comment_key(name)) continue;
         const JsonField list(value, j.file(), j.key() + "." + name);
         MaterialTrack track;
         track.name = name;
         for (uint32_t i = 0; i < scene.materials.size(); ++i)
             if (scene.materials[i].name == name) track.materials.push_back(i);
         if (track.materials.empty()) list.fail("the scene has no material named '" + name + "'");
-        for_each_key(list, frames, [&](const JsonField& key, int frame) {
+        for_each_key(list, frames, {"frame", "albedo", "emission"}, [&](const JsonField& key, int frame) {
             MaterialKey k;
             k.frame = frame;
             if (auto a = key.find("albedo")) k.albedo = scene_detail::read_colour(*a, true);
@@ -185,25 +189,18 @@ void read_material_tracks(const JsonField& j, Scene& scene, int frames) {
     }
 }
 
-void check_view(const JsonField& key, glm::vec3 position, glm::vec3 look_at, glm::vec3 up) {
-    const glm::vec3 view = look_at - position;
-    if (glm::dot(view, view) == 0.0f) key.fail("look_at equals position");
-    const glm::vec3 side = glm::cross(view, up);
-    if (glm::dot(side, side) == 0.0f) key.fail("the view direction is parallel to camera.up");
-}
-
 void read_camera_track(const JsonField& list, Scene& scene, int frames) {
-    for_each_key(list, frames, [&](const JsonField& key, int frame) {
+    for_each_key(list, frames, {"frame", "position", "look_at"}, [&](const JsonField& key, int frame) {
         CameraKey k{frame, scene.camera.position, scene.camera.look_at};
         if (auto p = key.find("position")) k.position = p->vec3();
         if (auto l = key.find("look_at")) k.look_at = l->vec3();
-        check_view(key, k.position, k.look_at, scene.camera.up);
+        scene_detail::check_camera_view(key, k.position, k.look_at, scene.camera.up);
         scene.animation.camera.push_back(k);
     });
     // Two valid keys can still interpolate to a degenerate view in between.
     for (int f = 0; f < frames; ++f) {
         const Camera c = camera_at(scene.camera, scene.animation.camera, f);
-        check_view(list, c.position, c.look_at, c.up);
+        scene_detail::check_camera_view(list, c.position, c.look_at, c.up);
     }
 }
 
@@ -237,10 +234,11 @@ Scene scene_at_frame(const Scene& rest, int frame) {
 namespace scene_detail {
 
 void read_animation(const JsonField& j, Scene& scene) {
-    j.require_object();
+    j.require_known_keys({"frames", "objects", "materials", "camera"});
     const JsonField frames_key = j["frames"];
     const int frames = frames_key.integer();
-    if (frames < 1) frames_key.fail("an animation needs frames >= 1");
+    if (frames < 1 || frames > kMaxAnimationFrames)
+        frames_key.fail("an animation needs frames in 1.." + std::to_string(kMaxAnimationFrames));
     scene.animation = Animation{};
     scene.animation.frame_count = frames;
     if (auto o = j.find("objects")) read_object_tracks(*o, scene, frames);

@@ -82,10 +82,16 @@ namespace scene_detail {
 
 class JsonField;
 
+/// The most frames an animation may have: 100,000 is 55 minutes at 30 frames/s, far
+/// beyond a render's; a larger count is a typo, and the loader checks the camera of
+/// every frame (read_animation), which must stay quick.
+constexpr int kMaxAnimationFrames = 100000;
+
 /// Reads the "animation" block into scene.animation, checked against the loaded
 /// objects and materials (so it runs after objects, overrides and lights), and raises
 /// every Material::emission_max to the largest emission its keys reach. Throws
-/// InputError naming the file and JSON key for: frames < 1, an unknown object or
+/// InputError naming the file and JSON key for: an unknown key (a misspelling; comment
+/// keys aside), frames outside 1..kMaxAnimationFrames, an unknown object or
 /// material name, an empty key list, key frames not strictly increasing or outside
 /// [0, frames), non-finite numbers, a key whose pose overflows a float, a zero
 /// rotation axis, a scale <= 0, albedo outside

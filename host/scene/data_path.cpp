@@ -2,6 +2,7 @@
 #include <cstdlib>
 #include <system_error>
 
+#include "scene/input_file.h"
 #include "scene/loader.h"
 #include "util/error.h"
 
@@ -13,6 +14,7 @@ fs::path DataPath::resolve(const std::string& rel, const fs::path& scene_file) c
     std::error_code ec;
     const fs::path p(rel);
     if (p.is_absolute()) {
+        if (fs::exists(p, ec)) scene_detail::require_regular_file(p, "file named by " + scene_file.string());
         if (fs::is_regular_file(p, ec)) return p;
         throw InputError(scene_file.string() + ": file '" + rel + "' not found");
     }
@@ -24,6 +26,9 @@ fs::path DataPath::resolve(const std::string& rel, const fs::path& scene_file) c
     std::string tried;
     for (const auto& dir : dirs) {
         const fs::path candidate = dir / p;
+        // A directory (or other non-file) of that name is an error, not a miss: going on
+        // to the next directory would hide the user's mistake.
+        if (fs::exists(candidate, ec)) scene_detail::require_regular_file(candidate, "file named by " + scene_file.string());
         if (fs::is_regular_file(candidate, ec)) return candidate;
         tried += (tried.empty() ? "" : ", ") + dir.string();
     }

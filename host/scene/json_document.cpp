@@ -1,24 +1,99 @@
 // Reading a scene file into a JSON document (declared in scene/json_field.h).
-#include <fstream>
-#include <sstream>
+#include <set>
+#include <vector>
 
+#include "scene/input_file.h"
 #include "scene/json_field.h"
 #include "util/error.h"
 
 namespace tessera::scene_detail {
 
-nlohmann::json parse_json_file(const std::filesystem::path& file) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec))
-        throw InputError(file.string() + ": scene file not found");
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in) throw InputError(file.string() + ": cannot read scene file");
-    const std::string s = text.str();
+namespace {
+
+using json = nlohmann::json;
+
+// Follows the parser through the document to know the key path of the value being read,
+// for duplicate keys (which nlohmann::json would silently resolve to the last value) and
+// for a number that overflows (which its exception does not place).
+class KeyTracker {
+public:
+    KeyTracker(const std::filesystem::path& file) : file_(file) {}
+
+    bool event(json::parse_event_t event, const json& parsed) {
+        switch (event) {
+            case json::parse_event_t::object_start:
+            case json::parse_event_t::array_start:
+                frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}, next_path()});
+                break;
+            case json::parse_event_t::object_end:
+            case json::parse_event_t::array_end:
+                frames_.pop_back();
+                break;
+            case json::parse_event_t::key: {
+                Frame& f = frames_.back();
+                f.key = parsed.get<std::string>();
+                if (!f.keys.insert(f.key).second)
+                    throw InputError(file_.string() + ": duplicate key '" + join(f.path, f.key) +
+                                     "' (a key may appear once in an object)");
+                break;
+            }
+            case json::parse_event_t::value:
+                (void)next_path();
+                break;
+        }
+        return true;
+    }
+
+    /// The path of the value the parser is reading now ("" at the top level).
+    std::string current_path() const {
+        if (frames_.empty()) return "";
+        const Frame& f = frames_.back();
+        return f.array ? f.path + "[" + std::to_string(f.next) + "]" : join(f.path, f.key);
+    }
+
+private:
+    struct Frame {
+        bool array;
+        size_t next;                 // index of the next element (arrays)
+        std::string key;             // the last key read (objects)
+        std::set<std::string> keys;  // keys read so far (objects)
+        std::string path;
+    };
+
+    static std::string join(const std::string& path, const std::string& key) {
+        return path.empty() ? key : path + "." + key;
+    }
+
+    // The path of the element starting now; advances the enclosing array's index.
+    std::string next_path() {
+        if (frames_.empty()) return "";
+        std::string p = current_path();
+        if (frames_.back().array) ++frames_.back().next;
+        return p;
+    }
+
+    const std::filesystem::path& file_;
+    std::vector<Frame> frames_;
+};
+
+// nlohmann::json's parse_error text is "[json.exception.parse_error.101] parse error at
+// line 3, column 5: syntax error while parsing ..."; keep only what follows the location.
+std::string parse_error_reason(const std::string& what) {
+    const size_t column = what.find("column ");
+    const size_t colon = what.find(": ", column == std::string::npos ? 0 : column);
+    return colon == std::string::npos ? what : what.substr(colon + 2);
+}
+
+}  // namespace
+
+json parse_json_file(const std::filesystem::path& file) {
+    const std::string s = read_input_file(file, "scene file");
+    KeyTracker tracker(file);
     try {
-        return nlohmann::json::parse(s);
-    } catch (const nlohmann::json::parse_error& e) {
+        return json::parse(s, [&](int, json::parse_event_t event, json& parsed) {
+            return tracker.event(event, parsed);
+        });
+    } catch (const json::parse_error& e) {
         // e.byte is 1-based and points just past the offending character; turn it
         // into a line and column for the message.
         const size_t end = std::min(e.byte > 0 ? e.byte - 1 : 0, s.size());
@@ -27,10 +102,18 @@ nlohmann::json parse_json_file(const std::filesystem::path& file) {
             if (s[i] == '\n') { ++line; col = 1; } else { ++col; }
         }
         throw InputError(file.string() + ":" + std::to_string(line) + ":" + std::to_string(col) +
-                         ": malformed JSON (byte " + std::to_string(e.byte) + "): " + e.what());
-    } catch (const nlohmann::json::exception& e) {
-        // For example a number too large for a double (out_of_range.406).
-        throw InputError(file.string() + ": malformed JSON: " + e.what());
+                         ": malformed JSON: " + parse_error_reason(e.what()));
+    } catch (const json::out_of_range& e) {
+        // A number literal too large for a double (1e999): nlohmann::json reports
+        // "number overflow parsing '<literal>'" (out_of_range.406) without a place.
+        const std::string what = e.what();
+        const size_t quote = what.find('\'');
+        const std::string literal = quote == std::string::npos ? "" : " " + what.substr(quote);
+        const std::string key = tracker.current_path();
+        throw InputError(file.string() + ": " + (key.empty() ? "top level" : "key '" + key + "'") +
+                         ": number" + literal + " overflows a double (numbers must be finite)");
+    } catch (const json::exception& e) {
+        throw InputError(file.string() + ": malformed JSON: " + parse_error_reason(e.what()));
     }
 }
 

@@ -5,7 +5,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <initializer_list>
 #include <string>
+#include <string_view>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -32,11 +34,17 @@ public:
     glm::vec3 vec3() const;      ///< an array of exactly 3 finite numbers
     void require_object() const; ///< throws unless this is a JSON object
 
+    /// Throws unless every member of this object is one of `known` or a comment key
+    /// (is_comment_key). The message names the key's path and value and suggests the
+    /// closest known key (scenes/README.md: a misspelt key must not be ignored).
+    void require_known_keys(std::initializer_list<std::string_view> known) const;
+
     const nlohmann::json& raw() const { return *value_; }
     const std::string& key() const { return key_; }
     const std::filesystem::path& file() const { return *file_; }
 
-    /// Throws InputError "<file>: key '<key>': <what>".
+    /// Throws InputError "<file>: key '<key>' = <value>: <what>" (the value shortened to
+    /// 60 characters; "<file>: top level: <what>" for the root).
     [[noreturn]] void fail(const std::string& what) const;
 
 private:
@@ -49,12 +57,28 @@ private:
 
 namespace tessera::scene_detail {
 
+/// Keys any object may hold and the loader ignores: "comment" and those starting with
+/// '_' (in objects keyed by names, such as "materials", they are skipped too).
+bool is_comment_key(std::string_view key);
+
+/// The entry of `candidates` closest to `word` by edit distance (insertions, deletions,
+/// substitutions and swaps of neighbours each count 1), or "" when none is within
+/// max(2, half the longer word) edits, i.e. close enough to be a likely typo.
+std::string closest_match(std::string_view word, std::initializer_list<std::string_view> candidates);
+
 /// An [r, g, b] colour with every channel >= 0, and also <= 1 when `at_most_one` (an
 /// albedo). Throws InputError naming the key otherwise.
 glm::vec3 read_colour(const JsonField& j, bool at_most_one);
 
-/// Reads and parses a JSON file. Throws InputError naming the file if it is missing
-/// or unreadable, and "<file>:<line>:<column>" (byte offset too) when malformed.
+/// Checks a pinhole view (the `camera` block or an animation key, named by `where`):
+/// look_at − position must be non-zero and finite, and not parallel to `up` (nor `up`
+/// zero), with a finite cross product. Throws InputError naming `where` otherwise.
+void check_camera_view(const JsonField& where, glm::vec3 position, glm::vec3 look_at, glm::vec3 up);
+
+/// Reads and parses a JSON file. Throws InputError naming the file if it is missing, a
+/// directory or unreadable; "<file>:<line>:<column>: malformed JSON: <reason>" for a
+/// syntax error; and naming the key path for a duplicate key or a number literal that
+/// overflows a double (1e999).
 nlohmann::json parse_json_file(const std::filesystem::path& file);
 
 }  // namespace tessera::scene_detail

@@ -1,5 +1,6 @@
 // load_scene: the JSON scene format (documented in scenes/README.md) to a Scene.
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "scene/json_field.h"
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 namespace {
 
 Camera read_camera(const JsonField& j) {
-    j.require_object();
+    j.require_known_keys({"position", "look_at", "up", "vfov", "resolution"});
     Camera cam;
     cam.position = j["position"].vec3();
     cam.look_at = j["look_at"].vec3();
@@ -35,10 +36,7 @@ Camera read_camera(const JsonField& j) {
         for (const int v : {cam.width, cam.height})
             if (v <= 0 || v > 16384) res->fail("each resolution must be in 1..16384 pixels");
     }
-    const glm::vec3 view = cam.look_at - cam.position;
-    if (glm::dot(view, view) == 0.0f) j["look_at"].fail("look_at equals position");
-    const glm::vec3 side = glm::cross(view, cam.up);
-    if (glm::dot(side, side) == 0.0f) j.fail("'up' is zero or parallel to the view direction");
+    scene_detail::check_camera_view(j, cam.position, cam.look_at, cam.up);
     return cam;
 }
 
@@ -46,7 +44,7 @@ scene_detail::Transform read_transform(const std::optional<JsonField>& j) {
     glm::vec3 scale(1.0f), translate(0.0f);
     std::vector<scene_detail::Rotation> rotations;
     if (!j) return scene_detail::make_transform(scale, rotations, translate);
-    j->require_object();
+    j->require_known_keys({"scale", "rotate", "translate"});
     if (auto s = j->find("scale")) {
         scale = s->raw().is_array() ? s->vec3() : glm::vec3(s->number());
         if (scale.x == 0.0f || scale.y == 0.0f || scale.z == 0.0f)
@@ -55,14 +53,23 @@ scene_detail::Transform read_transform(const std::optional<JsonField>& j) {
     if (auto r = j->find("rotate")) {
         for (size_t i = 0; i < r->size(); ++i) {
             const JsonField rot = r->at(i);
-            rot.require_object();
+            rot.require_known_keys({"axis", "degrees"});
             const glm::vec3 axis = rot["axis"].vec3();
-            if (glm::dot(axis, axis) == 0.0f) rot["axis"].fail("rotation axis is zero");
+            if (!(glm::dot(axis, axis) > 0.0f) || !std::isfinite(glm::dot(axis, axis)))
+                rot["axis"].fail("rotation axis is zero (or its length overflows a float)");
             rotations.push_back({axis, rot["degrees"].number()});
         }
     }
     if (auto t = j->find("translate")) translate = t->vec3();
-    return scene_detail::make_transform(scale, rotations, translate);
+    const auto transform = scene_detail::make_transform(scale, rotations, translate);
+    // A scale so small that the determinant underflows the float range would lose the
+    // mirror test (flips_winding: -0 is not < 0) and make the normal matrix infinite.
+    // (One that overflows keeps its sign; overflowing positions are caught later.)
+    const float det = glm::determinant(glm::mat3(transform.matrix));
+    if (!(std::fabs(det) >= std::numeric_limits<float>::min()))
+        j->fail("the transform's determinant " + std::to_string(det) +
+                " is zero or below the float range (scale too small)");
+    return transform;
 }
 
 // Loads each OBJ once (instancing a mesh twice shares its materials and textures).
@@ -77,7 +84,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
     if (objects.size() == 0) objects.fail("a scene needs at least one object");
     for (size_t i = 0; i < objects.size(); ++i) {
         const JsonField obj = objects.at(i);
-        obj.require_object();
+        obj.require_known_keys({"name", "mesh", "transform"});
         const JsonField mesh_key = obj["mesh"];
         const std::string rel = mesh_key.string();
         fs::path file;
@@ -122,8 +129,9 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
 void apply_material_overrides(const JsonField& overrides, Scene& scene) {
     overrides.require_object();
     for (const auto& [name, value] : overrides.raw().items()) {
+        if (scene_detail::is_comment_key(name)) continue;
         const JsonField o(value, overrides.file(), overrides.key() + "." + name);
-        o.require_object();
+        o.require_known_keys({"albedo", "emission"});
         bool found = false;
         for (auto& m : scene.materials) {
             if (m.name != name) continue;
@@ -138,7 +146,7 @@ void apply_material_overrides(const JsonField& overrides, Scene& scene) {
 void read_lights(const JsonField& lights, Scene& scene) {
     for (size_t i = 0; i < lights.size(); ++i) {
         const JsonField l = lights.at(i);
-        l.require_object();
+        l.require_known_keys({"type", "corner", "edge1", "edge2", "radiance"});
         const std::string type = l["type"].string();
         if (type != "quad") l["type"].fail("unknown light type '" + type + "' (supported: quad)");
         const glm::vec3 e1 = l["edge1"].vec3(), e2 = l["edge2"].vec3();
@@ -160,7 +168,7 @@ void read_lights(const JsonField& lights, Scene& scene) {
 // "medium": {"sigma_a": [r,g,b], "sigma_s": [r,g,b], "g": 0.0,
 //            "box": {"min": [x,y,z], "max": [x,y,z]}}   (box optional)
 void read_medium(const JsonField& j, Scene& scene) {
-    j.require_object();
+    j.require_known_keys({"sigma_a", "sigma_s", "g", "box"});
     Medium& m = scene.medium;
     m.sigma_a = read_colour(j["sigma_a"], false);
     m.sigma_s = read_colour(j["sigma_s"], false);
@@ -169,6 +177,7 @@ void read_medium(const JsonField& j, Scene& scene) {
         if (!(m.g > -1.0f && m.g < 1.0f)) g->fail("must lie in (-1, 1)");
     }
     if (auto box = j.find("box")) {
+        box->require_known_keys({"min", "max"});
         m.bounded = true;
         m.box_min = (*box)["min"].vec3();
         m.box_max = (*box)["max"].vec3();
@@ -193,7 +202,8 @@ bool has_emitter(const Scene& scene) {
 Scene load_scene(const fs::path& scene_file, const DataPath& data) {
     const nlohmann::json doc = scene_detail::parse_json_file(scene_file);
     const JsonField root(doc, scene_file, "");
-    root.require_object();
+    root.require_known_keys(
+        {"name", "stands_in_for", "camera", "objects", "lights", "materials", "medium", "animation"});
     Scene scene;
     scene.source = scene_file;
     scene.name = scene_file.stem().string();

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include <tiny_obj_loader.h>
 
+#include "scene/input_file.h"
+#include "scene/mtl_scan.h"
+#include "scene/obj_scan.h"
 #include "util/error.h"
 
 namespace tessera::scene_detail {
@@ -21,68 +22,90 @@ namespace {
     throw InputError(obj.string() + ": " + what);
 }
 
-// tinyobjloader 2.0rc10 reads a coordinate it cannot parse ("nan", "inf") as 0
-// without a warning, so a corrupt vertex would silently move to the origin. This scan
-// re-reads only the coordinates of `v` lines, with strtod, to catch those; all other
-// parsing stays with tinyobjloader.
-void check_vertex_text(const fs::path& obj) {
-    std::ifstream in(obj);
-    std::string line;
-    for (size_t line_no = 1; std::getline(in, line); ++line_no) {
-        if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
-        std::istringstream tokens(line.substr(2));
-        std::string tok;
-        for (int i = 0; i < 3 && tokens >> tok; ++i) {
-            const double d = std::strtod(tok.c_str(), nullptr);
-            if (!std::isfinite(d) || !std::isfinite(static_cast<float>(d)))
-                obj_error(obj, "line " + std::to_string(line_no) + ": vertex coordinate '" + tok +
-                                   "' is not a finite number");
-        }
-    }
+[[noreturn]] void obj_line_error(const fs::path& obj, size_t line, const std::string& what) {
+    throw InputError(obj.string() + ":" + std::to_string(line) + ": " + what);
 }
 
-// Turns tinyobjloader warnings that mean bad input into errors. The strings matched
-// are the ones tinyobjloader 2.0rc10 emits (see LoadObj / MaterialFileReader).
+// Turns tinyobjloader warnings that mean bad input into errors. scan_obj, scan_mtl and
+// check_usemtl catch these cases first, with the line; this is the backstop should the
+// parser find one they do not. The strings matched are tinyobjloader 2.0rc10's (LoadObj,
+// MaterialFileReader, exportGroupsToShape).
 void check_warnings(const fs::path& obj, const std::string& warn) {
     std::istringstream lines(warn);
     std::string line;
     while (std::getline(lines, line)) {
-        if (line.find("Material file [") != std::string::npos) {
-            const auto a = line.find('[') + 1, b = line.find(']');
-            std::string mtl = line.substr(a, b - a);
-            while (!mtl.empty() && mtl.front() == ' ') mtl.erase(mtl.begin());
-            while (!mtl.empty() && mtl.back() == ' ') mtl.pop_back();
-            obj_error(obj, "MTL file '" + mtl + "' (named by mtllib) not found in " +
-                               obj.parent_path().string());
-        }
-        if (line.find("not found in .mtl") != std::string::npos)
-            obj_error(obj, "usemtl names a material the MTL does not define: " + line);
+        for (const char* bad : {"Material file [", "not found in .mtl", "invalid vertex index", "Degenerated face"})
+            if (line.find(bad) != std::string::npos) obj_error(obj, "OBJ rejected by the parser: " + line);
     }
 }
 
+// The line of the mtllib statement that read `mtl`.
+size_t mtllib_line(const ObjScan& scan, const fs::path& mtl) {
+    for (const auto& lib : scan.mtllibs)
+        if (lib.file == mtl) return lib.line;
+    return 0;
+}
+
+// Each usemtl must name a material of an MTL file read by an earlier mtllib line (as
+// tinyobjloader looks them up); otherwise its faces would silently get no material.
+void check_usemtl(const fs::path& obj, const ObjScan& scan, const std::map<std::string, MtlDefinition>& defined) {
+    for (const UseMtlLine& use : scan.usemtls) {
+        const auto it = defined.find(use.name);
+        if (it != defined.end() && mtllib_line(scan, it->second.file) < use.line) continue;
+        std::string files, names;
+        for (const auto& lib : scan.mtllibs)
+            if (lib.line < use.line) files += (files.empty() ? "" : ", ") + lib.file.string();
+        for (const auto& [name, def] : defined)
+            if (mtllib_line(scan, def.file) < use.line) names += (names.empty() ? "" : ", ") + name;
+        if (names.size() > 200) names = names.substr(0, 200) + "...";
+        obj_line_error(obj, use.line,
+                       "usemtl '" + use.name + "' names no material of " +
+                           (files.empty() ? std::string("an MTL file: no mtllib line comes before it")
+                                          : "the MTL file(s) read before it: " + files + " (defining " +
+                                                (names.empty() ? std::string("no material") : names) + ")"));
+    }
+}
+
+// Polygons of more than 4 corners go through tinyobjloader's ear clipping, which drops
+// the triangles of a polygon it cannot clip (self-intersecting, or not planar enough).
+void check_triangle_count(const fs::path& obj, const ObjScan& scan, const tinyobj::ObjReader& reader) {
+    size_t triangles = 0;
+    for (const auto& shape : reader.GetShapes()) triangles += shape.mesh.num_face_vertices.size();
+    if (triangles != scan.triangles)
+        obj_line_error(obj, scan.first_polygon_line,
+                       "a polygon of more than 4 corners (the first is on this line) could not be "
+                       "triangulated: the faces give " + std::to_string(scan.triangles) +
+                           " triangles, the parser made " + std::to_string(triangles) +
+                           "; split non-planar or self-intersecting polygons into triangles");
+}
+
 Material convert_material(const tinyobj::material_t& m, const fs::path& obj,
-                          std::map<fs::path, int>& texture_index,
-                          std::vector<fs::path>& texture_files) {
+                          const std::map<std::string, MtlDefinition>& defined,
+                          std::map<fs::path, int>& texture_index, std::vector<fs::path>& texture_files) {
+    const auto def = defined.find(m.name);
+    const std::string where =
+        (def == defined.end() ? obj.string() : def->second.file.string() + ":" + std::to_string(def->second.line)) +
+        ": material '" + m.name + "'";
     Material out;
     out.name = m.name;
-    // Kd above 1 would make the surface create energy; clamping is documented in
-    // scenes/README.md.
+    // scan_mtl has rejected negative and non-finite values with their line; this check of
+    // what the parser produced is the backstop. Kd above 1 would make the surface create
+    // energy: it is clamped (documented in scenes/README.md), and Ks likewise.
     for (int c = 0; c < 3; ++c) {
-        out.albedo[c] = std::clamp(static_cast<float>(m.diffuse[c]), 0.0f, 1.0f);
+        for (const float v : {m.diffuse[c], m.specular[c], m.emission[c]})
+            if (!(std::isfinite(v) && v >= 0.0f)) throw InputError(where + ": Kd, Ks and Ke must be finite and >= 0");
+        out.albedo[c] = std::min(static_cast<float>(m.diffuse[c]), 1.0f);
         out.emission[c] = static_cast<float>(m.emission[c]);
-        out.specular[c] = std::clamp(static_cast<float>(m.specular[c]), 0.0f, 1.0f);
-        if (!std::isfinite(out.albedo[c]) || !std::isfinite(out.emission[c]) || out.emission[c] < 0)
-            obj_error(obj, "material '" + m.name + "': Kd/Ke must be finite, Ke non-negative");
+        out.specular[c] = std::min(static_cast<float>(m.specular[c]), 1.0f);
     }
     out.illum = m.illum;
     out.ior = static_cast<float>(m.ior);
+    if (!(std::isfinite(out.ior) && out.ior >= 0.0f) || (out.illum == 7 && out.ior == 0.0f))
+        throw InputError(where + ": Ni must be finite and >= 0 (> 0 for illum 7)");
     if (!m.diffuse_texname.empty()) {
-        // map_Kd is relative to the MTL, which tinyobjloader looks up beside the OBJ.
+        // map_Kd is relative to the MTL, which is beside the OBJ (scan_obj).
         const fs::path file = (obj.parent_path() / m.diffuse_texname).lexically_normal();
-        std::error_code ec;
-        if (!fs::is_regular_file(file, ec))
-            obj_error(obj, "material '" + m.name + "': map_Kd texture '" + file.string() +
-                               "' not found");
+        require_regular_file(file, "texture (map_Kd of " + where + ")");
         auto [it, added] = texture_index.try_emplace(file, static_cast<int>(texture_files.size()));
         if (added) texture_files.push_back(file);
         out.texture = it->second;
@@ -105,9 +128,13 @@ void check_index(const fs::path& obj, const std::string& shape, size_t face, con
 }  // namespace
 
 ObjMesh load_obj_mesh(const fs::path& obj_file) {
-    std::error_code ec;
-    if (!fs::is_regular_file(obj_file, ec)) obj_error(obj_file, "OBJ file not found");
-    check_vertex_text(obj_file);
+    const ObjScan scan = scan_obj(obj_file, read_input_file(obj_file, "OBJ file"));
+    std::map<std::string, MtlDefinition> defined;
+    for (const MtlLibLine& lib : scan.mtllibs) {
+        const std::string why = "MTL file (mtllib at " + obj_file.string() + ":" + std::to_string(lib.line) + ")";
+        scan_mtl(lib.file, read_input_file(lib.file, why), defined);
+    }
+    check_usemtl(obj_file, scan, defined);
 
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
@@ -115,8 +142,9 @@ ObjMesh load_obj_mesh(const fs::path& obj_file) {
     tinyobj::ObjReader reader;
     const bool ok = reader.ParseFromFile(obj_file.string(), config);
     if (!ok || !reader.Error().empty())
-        obj_error(obj_file, "OBJ parse error: " + reader.Error());
+        obj_error(obj_file, "OBJ rejected by the parser: " + reader.Error());
     check_warnings(obj_file, reader.Warning());
+    check_triangle_count(obj_file, scan, reader);
 
     const auto& attrib = reader.GetAttrib();
     for (const float v : attrib.vertices)
@@ -128,7 +156,7 @@ ObjMesh load_obj_mesh(const fs::path& obj_file) {
     ObjMesh mesh;
     std::map<fs::path, int> texture_index;
     for (const auto& m : reader.GetMaterials())
-        mesh.materials.push_back(convert_material(m, obj_file, texture_index, mesh.texture_files));
+        mesh.materials.push_back(convert_material(m, obj_file, defined, texture_index, mesh.texture_files));
     const auto default_material = static_cast<uint32_t>(mesh.materials.size());
     bool uses_default = false;
 
@@ -174,7 +202,7 @@ ObjMesh load_obj_mesh(const fs::path& obj_file) {
         grey.albedo = glm::vec3(0.5f);
         mesh.materials.push_back(grey);
     }
-    if (mesh.material.empty()) obj_error(obj_file, "OBJ has no faces");
+    if (mesh.material.empty()) obj_error(obj_file, "OBJ has no faces (no f lines)");
     return mesh;
 }
 

@@ -24,10 +24,14 @@ struct ObjMesh {
     std::vector<std::filesystem::path> texture_files;
 };
 
-/// Loads `obj_file` with tinyobjloader (triangulating polygons as fans). Throws
-/// InputError naming the OBJ (and MTL or texture) file for: a parse error, a missing
-/// MTL, a `usemtl` naming an unknown material, a non-finite vertex, an out-of-range
-/// index, a missing map_Kd file. Kd is clamped to [0, 1] per channel.
+/// Loads `obj_file` with tinyobjloader (quads split along the shorter diagonal, larger
+/// polygons by ear clipping), after scan_obj (scene/obj_scan.h) and scan_mtl
+/// (scene/mtl_scan.h) have checked the text of the OBJ and of each MTL it names. Throws
+/// InputError naming the OBJ, MTL or texture file (with the line where there is one) for
+/// everything those list, and for: a missing, directory or unreadable file; a `usemtl`
+/// naming no material of the MTL files read before it (the message lists them); a
+/// polygon the parser cannot triangulate; a missing map_Kd file; no faces. Kd and Ks
+/// are clamped to at most 1 per channel.
 ObjMesh load_obj_mesh(const std::filesystem::path& obj_file);
 
 }  // namespace tessera::scene_detail

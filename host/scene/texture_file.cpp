@@ -4,19 +4,19 @@
 
 #include <stb_image.h>  // the implementation lives in Debian's libstb
 
+#include "scene/input_file.h"
 #include "util/error.h"
 
 namespace tessera::scene_detail {
 
 Texture load_texture(const std::filesystem::path& file) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec))
-        throw InputError(file.string() + ": texture file not found");
+    require_regular_file(file, "texture");
     int w = 0, h = 0, channels = 0;
     std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
         stbi_load(file.string().c_str(), &w, &h, &channels, 4), stbi_image_free);
     if (!pixels)
-        throw InputError(file.string() + ": cannot decode texture: " + stbi_failure_reason());
+        throw InputError(file.string() + ": texture is not a decodable image (stb_image: " + stbi_failure_reason() +
+                         "; it reads PNG, JPEG, TGA, BMP, PSD, GIF, HDR, PIC and PNM)");
     Texture tex;
     tex.path = file;
     tex.width = w;

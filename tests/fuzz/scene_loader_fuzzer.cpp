@@ -79,7 +79,9 @@ void check_scene(const tessera::Scene& s) {
         if (!finite3(m.emission) || m.emission.x < 0 || m.emission.y < 0 || m.emission.z < 0)
             broken("an emission is negative or not finite");
         if (m.texture >= static_cast<int>(s.textures.size())) broken("a texture index is out of range");
-        if (!(std::isfinite(m.ior) && m.ior > 0.0f) && m.illum == 7) broken("a dielectric's Ni is not positive");
+        if (!(std::isfinite(m.ior) && m.ior >= 0.0f)) broken("an Ni is negative or not finite");
+        if (!(m.ior > 0.0f) && m.illum == 7) broken("a dielectric's Ni is not positive");
+        if (m.illum < 0 || m.illum > 10) broken("an illum is outside 0..10");
     }
     for (const auto& t : s.textures)
         if (t.width <= 0 || t.height <= 0 || t.rgba8.size() != size_t(t.width) * size_t(t.height))

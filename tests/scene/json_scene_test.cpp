@@ -1,0 +1,189 @@
+// The scene-JSON layer of the input contract (host/scene/json_scene.cpp,
+// json_document.cpp, json_field.cpp): unknown keys (with a suggestion), duplicate keys,
+// numbers that overflow, wrong types, values out of range and syntax errors are each
+// rejected with the scene file, the key path and the value, before any mesh is used.
+#include <fstream>
+
+#include "scene/scene_test_util.h"
+#include "support/scratch_dir.h"
+
+namespace tessera {
+namespace {
+
+// The valid scene each case starts from: the quad fixture under one JSON light.
+#define CAM R"("camera": {"position": [0,1,3], "look_at": [0,0,0]})"
+#define OBJ R"("objects": [{"mesh": "%M"}])"
+#define LIGHT R"("lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1]}])"
+
+class SceneJson : public test::ScratchDirTest {
+protected:
+    // Writes `body` as bad.json, with %M replaced by the quad fixture's path.
+    std::filesystem::path write(std::string body) {
+        const std::string mesh = test::fixture("quad.obj").string();
+        for (size_t at; (at = body.find("%M")) != std::string::npos;) body.replace(at, 2, mesh);
+        std::ofstream(dir_ / "bad.json", std::ios::binary) << body;
+        return dir_ / "bad.json";
+    }
+};
+
+struct BadScene {
+    const char* name;
+    const char* json;
+    const char* key;    ///< the key path (or file:line:column) the message must name
+    const char* value;  ///< the offending value as shown
+    const char* what;
+};
+
+class BadSceneJson : public SceneJson, public ::testing::WithParamInterface<BadScene> {};
+
+TEST_P(BadSceneJson, NamesFileKeyAndValue) {
+    const std::string e = test::load_error(write(GetParam().json));
+    EXPECT_CONTAINS(e, (dir_ / "bad.json").string());
+    EXPECT_CONTAINS(e, GetParam().key);
+    EXPECT_CONTAINS(e, GetParam().value);
+    EXPECT_CONTAINS(e, GetParam().what);
+    // nlohmann::json's own wording must not reach the user.
+    EXPECT_EQ(e.find("json.exception"), std::string::npos) << e;
+    EXPECT_EQ(e.find("parse error at"), std::string::npos) << e;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Json, BadSceneJson,
+    ::testing::Values(
+        // Unknown keys, at every level, with the closest known key suggested.
+        BadScene{"TopLevelLightz", "{" CAM ", " OBJ R"(, "lightz": []})", "unknown key 'lightz'", "[]",
+                 "did you mean 'lights'?"},
+        BadScene{"TopLevelMaterails", "{" CAM ", " OBJ ", " LIGHT R"(, "materails": {}})", "unknown key 'materails'",
+                 "{}", "did you mean 'materials'?"},
+        BadScene{"CameraFov", R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "fov": 45}, )" OBJ "}",
+                 "unknown key 'camera.fov'", "= 45", "did you mean 'vfov'?"},
+        BadScene{"CameraPositon", R"({"camera": {"positon": [0,1,3], "look_at": [0,0,0]}, )" OBJ "}",
+                 "unknown key 'camera.positon'", "[0,1,3]", "did you mean 'position'?"},
+        BadScene{"ObjectMeshh", "{" CAM R"(, "objects": [{"meshh": "%M"}]})", "unknown key 'objects[0].meshh'",
+                 "quad.obj", "did you mean 'mesh'?"},
+        BadScene{"TransformRotation", "{" CAM R"(, "objects": [{"mesh": "%M", "transform": {"rotation": []}}]})",
+                 "unknown key 'objects[0].transform.rotation'", "[]", "did you mean 'rotate'?"},
+        BadScene{"RotateAngle",
+                 "{" CAM R"(, "objects": [{"mesh": "%M", "transform": {"rotate": [{"axis": [0,1,0], "angle": 5}]}}]})",
+                 "unknown key 'objects[0].transform.rotate[0].angle'", "= 5", "known keys here: axis, degrees"},
+        BadScene{"LightRadiannce", "{" CAM ", " OBJ R"(, "lights": [{"type": "quad", "corner": [0,2,0],
+                 "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1]}, {"type": "quad", "corner": [0,2,0],
+                 "edge1": [1,0,0], "edge2": [0,0,1], "radiannce": [1,1,1]}]})",
+                 "unknown key 'lights[1].radiannce'", "[1,1,1]", "did you mean 'radiance'?"},
+        BadScene{"OverrideAlbedoo", "{" CAM ", " OBJ ", " LIGHT R"(, "materials": {"grey": {"albedoo": [1,1,1]}}})",
+                 "unknown key 'materials.grey.albedoo'", "[1,1,1]", "did you mean 'albedo'?"},
+        BadScene{"MediumSigma", "{" CAM ", " OBJ ", " LIGHT R"(, "medium": {"sigma_a": [0,0,0], "sigma_s": [0,0,0],
+                 "sigma_t": [1,1,1]}})", "unknown key 'medium.sigma_t'", "[1,1,1]", "did you mean 'sigma_"},
+        BadScene{"MediumBoxMn", "{" CAM ", " OBJ ", " LIGHT R"(, "medium": {"sigma_a": [0,0,0], "sigma_s": [0,0,0],
+                 "box": {"mn": [0,0,0], "max": [1,1,1]}}})", "unknown key 'medium.box.mn'", "[0,0,0]",
+                 "did you mean 'min'?"},
+        BadScene{"FarFromAnyKey", "{" CAM ", " OBJ R"(, "xyzzy_plugh": 1})", "unknown key 'xyzzy_plugh'", "= 1",
+                 "known keys here: name, stands_in_for, camera"},
+        // Duplicate keys (nlohmann::json would keep the last one).
+        BadScene{"DuplicateTopLevel", "{" CAM ", " CAM ", " OBJ "}", "duplicate key 'camera'", "camera",
+                 "may appear once"},
+        BadScene{"DuplicateNested", "{" CAM ", " OBJ R"(, "lights": [{"type": "quad", "corner": [0,2,0],
+                 "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1], "radiance": [9,9,9]}]})",
+                 "duplicate key 'lights[0].radiance'", "radiance", "may appear once"},
+        BadScene{"DuplicateComment", R"({"comment": "a", "comment": "b", )" CAM ", " OBJ "}",
+                 "duplicate key 'comment'", "comment", "may appear once"},
+        // Numbers: overflow of a double (the literal) and of a float, NaN-like values.
+        BadScene{"LiteralOverflow", R"({"camera": {"position": [0,1e999,3], "look_at": [0,0,0]}, )" OBJ "}",
+                 "key 'camera.position[1]'", "'1e999'", "overflows a double"},
+        BadScene{"LiteralOverflowInObject", R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "vfov": -1e400}, )" OBJ "}",
+                 "key 'camera.vfov'", "'-1e400'", "overflows a double"},
+        BadScene{"FloatOverflow", R"({"camera": {"position": [0,1e39,3], "look_at": [0,0,0]}, )" OBJ "}",
+                 "key 'camera.position[1]'", "= 1e+39", "not finite"},
+        BadScene{"NanString", R"({"camera": {"position": [0,"NaN",3], "look_at": [0,0,0]}, )" OBJ "}",
+                 "key 'camera.position[1]'", "\"NaN\"", "expected a number, got string"},
+        BadScene{"ViewOverflow", R"({"camera": {"position": [0,0,3e38], "look_at": [0,0,-3e38]}, )" OBJ "}",
+                 "key 'camera'", "3e+38", "look_at - position overflows a float"},
+        BadScene{"UpParallel", R"({"camera": {"position": [0,1,3], "look_at": [0,1,0], "up": [0,0,2]}, )" OBJ "}",
+                 "key 'camera'", "\"up\":[0,0,2]", "up is zero or parallel"},
+        // Wrong types and ranges.
+        BadScene{"VfovString", R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "vfov": "wide"}, )" OBJ "}",
+                 "key 'camera.vfov'", "\"wide\"", "expected a number, got string"},
+        BadScene{"VfovRange", R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "vfov": 180}, )" OBJ "}",
+                 "key 'camera.vfov'", "= 180", "(0, 180)"},
+        BadScene{"ResolutionHuge", R"({"camera": {"position": [0,1,3], "look_at": [0,0,0],
+                 "resolution": [18446744073709551615, 5]}, )" OBJ "}",
+                 "key 'camera.resolution[0]'", "18446744073709551615", "integer out of range"},
+        BadScene{"ResolutionFloat", R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "resolution": [64.0, 5]}, )" OBJ "}",
+                 "key 'camera.resolution[0]'", "64.0", "expected an integer"},
+        BadScene{"NameNumber", R"({"name": 5, )" CAM ", " OBJ "}", "key 'name'", "= 5", "expected a string"},
+        BadScene{"LightsObject", "{" CAM ", " OBJ R"(, "lights": {"type": "quad"}})", "key 'lights'", "quad",
+                 "expected an array"},
+        BadScene{"ScaleTiny", "{" CAM R"(, "objects": [{"mesh": "%M", "transform": {"scale": 1e-20}}]})",
+                 "key 'objects[0].transform'", "1e-20", "determinant"},
+        BadScene{"AxisOverflow",
+                 "{" CAM R"(, "objects": [{"mesh": "%M", "transform": {"rotate": [{"axis": [3e38,3e38,3e38], "degrees": 5}]}}]})",
+                 "key 'objects[0].transform.rotate[0].axis'", "3e+38", "overflows a float"},
+        BadScene{"RadianceNegative", "{" CAM ", " OBJ R"(, "lights": [{"type": "quad", "corner": [0,2,0],
+                 "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,-1,1]}]})", "key 'lights[0].radiance'", "[1,-1,1]",
+                 ">= 0"},
+        BadScene{"MediumG", "{" CAM ", " OBJ ", " LIGHT R"(, "medium": {"sigma_a": [0,0,0], "sigma_s": [1,1,1], "g": 1}})",
+                 "key 'medium.g'", "= 1", "(-1, 1)"},
+        // Syntax: file:line:column once, no library text.
+        BadScene{"MissingComma", "{\n  \"camera\": {}\n  \"objects\": []\n}", "bad.json:3:",
+                 "malformed JSON: syntax error", "unexpected string literal"},
+        BadScene{"Empty", "", "bad.json:1:1: malformed JSON", "", "unexpected end of input"},
+        BadScene{"TrailingGarbage", "{" CAM ", " OBJ "} x", "bad.json:1:", "malformed JSON", "expected end of input"},
+        BadScene{"JsComment", "{// a comment\n" CAM ", " OBJ "}", "bad.json:1:2: malformed JSON", "", "invalid literal"},
+        BadScene{"NotAnObject", "[1, 2]", "top level", "", "expected an object, got array"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST_F(SceneJson, SyntaxErrorGivesLineAndColumnOnce) {
+    const std::string e = test::load_error(write("{\n  \"camera\": {}\n  \"objects\": []\n}"));
+    const std::string file = (dir_ / "bad.json").string();
+    ASSERT_EQ(e.rfind(file + ":3:", 0), 0u) << e;
+    const std::string rest = e.substr(file.size());
+    EXPECT_EQ(rest.find("line"), std::string::npos) << e;  // only the ":3:<column>:" form
+    EXPECT_EQ(rest.find("byte"), std::string::npos) << e;
+}
+
+// Comment keys are allowed everywhere: "comment" and keys starting with '_', also among
+// names (materials, animation tracks), with any value.
+TEST_F(SceneJson, CommentKeysAreIgnored) {
+    const Scene s = load_scene(write(R"({"comment": "top", "_version": 2,
+        "camera": {"position": [0,1,3], "look_at": [0,0,0], "_why": "framing"},
+        "objects": [{"mesh": "%M", "comment": {"any": ["value"]}, "transform": {"_": 0, "scale": 2}}],
+        "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1], "_": 1}],
+        "materials": {"comment": "overrides", "grey": {"albedo": [0.1, 0.2, 0.3], "_old": [1, 1, 1]}},
+        "medium": {"sigma_a": [0,0,0], "sigma_s": [0,0,0], "comment": "none", "box": {"min": [0,0,0], "max": [1,1,1], "_": 1}},
+        "animation": {"frames": 2, "comment": "x", "objects": {"_": 1}, "materials": {"comment": "x"},
+                      "camera": [{"frame": 0, "_": 1}]}})"),
+                               DataPath{});
+    glm::vec3 top(0.0f);  // the quad, 0..1 in x and z, scaled by 2
+    for (size_t v = 0; v < 6; ++v) top = glm::max(top, s.positions[v]);
+    EXPECT_EQ(top, glm::vec3(2, 0, 2));
+    bool found = false;
+    for (const Material& m : s.materials)
+        if (m.name == "grey") found = m.albedo == glm::vec3(0.1f, 0.2f, 0.3f);
+    EXPECT_TRUE(found);
+}
+
+TEST_F(SceneJson, SceneFileThatIsADirectory) {
+    std::filesystem::create_directories(dir_ / "dir.json");
+    const std::string e = test::load_error(dir_ / "dir.json");
+    EXPECT_CONTAINS(e, (dir_ / "dir.json").string() + ": scene file is a directory");
+}
+
+// Every scene the project ships loads (no unknown keys, no duplicates).
+TEST(ShippedScenes, AllLoad) {
+    const DataPath data = make_data_path(std::nullopt);
+    for (const auto* dir : {TESSERA_SCENES_DIR, TESSERA_SCENES_DIR "/../bench/scenes"}) {
+        for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+            if (entry.path().extension() != ".json") continue;
+            try {
+                load_scene(entry.path(), data);
+            } catch (const InputError& e) {
+                // Scenes on the shared data path may be absent on this machine.
+                if (std::string(e.what()).find("directories tried") == std::string::npos)
+                    ADD_FAILURE() << e.what();
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,0 +1,91 @@
+// The texture layer of the input contract (host/scene/texture_file.cpp and the map_Kd
+// lookup in obj_mesh.cpp): a texture that is missing, a directory, or not a decodable
+// image is rejected with the texture's path (and, where the MTL names it, the MTL file and
+// material) and the reason.
+#include <fstream>
+#include <iterator>
+
+#include "scene/scene_test_util.h"
+#include "scene/texture_file.h"
+#include "support/scratch_dir.h"
+
+namespace tessera {
+namespace {
+
+enum class Make { Nothing, Directory, Text, Empty, TruncatedPng, Png };
+
+struct BadTexture {
+    const char* name;
+    Make make;          ///< what is put at <dir>/tex.png
+    const char* what;   ///< the reason the message must give
+};
+
+class TextureFiles : public test::ScratchDirTest {
+protected:
+    void make_texture(Make make) {
+        const auto tex = dir_ / "tex.png";
+        std::ifstream png(test::fixture("checker.png"), std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(png)), std::istreambuf_iterator<char>());
+        switch (make) {
+            case Make::Nothing: break;
+            case Make::Directory: std::filesystem::create_directories(tex); break;
+            case Make::Text: std::ofstream(tex) << "not an image\n"; break;
+            case Make::Empty: std::ofstream{tex}; break;
+            case Make::TruncatedPng: std::ofstream(tex, std::ios::binary) << bytes.substr(0, bytes.size() / 2); break;
+            case Make::Png: std::ofstream(tex, std::ios::binary) << bytes; break;
+        }
+    }
+    std::filesystem::path write_scene() {
+        std::ofstream(dir_ / "mesh.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 0 1\nusemtl m\nf 1 3 2\n";
+        std::ofstream(dir_ / "m.mtl") << "newmtl m\nKd 1 1 1\nmap_Kd tex.png\n";
+        std::ofstream(dir_ / "s.json") << R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]},
+            "objects": [{"mesh": "mesh.obj"}],
+            "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1]}]})";
+        return dir_ / "s.json";
+    }
+};
+
+class TextureInput : public TextureFiles, public ::testing::WithParamInterface<BadTexture> {};
+
+TEST_P(TextureInput, NamesTheTextureAndTheReason) {
+    make_texture(GetParam().make);
+    const std::string e = test::load_error(write_scene());
+    EXPECT_CONTAINS(e, (dir_ / "tex.png").string() + ": ");
+    EXPECT_CONTAINS(e, GetParam().what);
+}
+
+TEST_P(TextureInput, LoadTextureAloneNamesTheFile) {
+    make_texture(GetParam().make);
+    try {
+        scene_detail::load_texture(dir_ / "tex.png");
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_CONTAINS(e.what(), (dir_ / "tex.png").string() + ": texture");
+        EXPECT_CONTAINS(e.what(), GetParam().what);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Texture, TextureInput,
+    ::testing::Values(BadTexture{"Missing", Make::Nothing, "not found"},
+                      BadTexture{"Directory", Make::Directory, "is a directory, not a file"},
+                      BadTexture{"NotAnImage", Make::Text, "texture is not a decodable image"},
+                      BadTexture{"Empty", Make::Empty, "texture is not a decodable image"},
+                      BadTexture{"TruncatedPng", Make::TruncatedPng, "texture is not a decodable image"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+// The map_Kd message also says which MTL line and material named the texture.
+TEST_F(TextureFiles, MapKdMessageNamesTheMaterial) {
+    const std::string e = test::load_error(write_scene());
+    EXPECT_CONTAINS(e, "map_Kd of " + (dir_ / "m.mtl").string() + ":1: material 'm'");
+}
+
+TEST_F(TextureFiles, ValidTextureLoads) {
+    make_texture(Make::Png);
+    const Scene s = load_scene(write_scene(), DataPath{});
+    ASSERT_EQ(s.textures.size(), 1u);
+    EXPECT_EQ(s.textures[0].width, 2);
+}
+
+}  // namespace
+}  // namespace tessera
