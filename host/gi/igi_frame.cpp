@@ -68,7 +68,8 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
         vpls.set_start.assign(sets + 1, 0u);
         vpls.vpls.assign(TS_VPL_FLOATS, 0.0f);
     }
-    backend_.set_vpls(vpls.vpls, vpls.set_start);
+    backend_.set_input(KernelInput::Vpls, vpls.vpls);
+    backend_.set_input(KernelInput::VplSetStart, vpls.set_start);
     stats_.vpls = vpls.count();
     stats_.vpl_rays = vpls.rays;
     stats_.vpl_seconds = since(t0);
@@ -77,14 +78,14 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
     std::vector<float> surf, media;
     TsFrame surface_frame = frame;
     if (cache_) surface_frame.igi_components &= ~TS_COMPONENT_ID;
-    backend_.render_pass(PixelKernel::IgiSurface, surface_frame, surf);
+    backend_.launch(KernelId::IgiSurface, surface_frame, surf);
     stats_.surface_seconds = since(t0);
     const uint64_t pixels = uint64_t(frame.width) * frame.height;
     stats_.pixel_rays = pixels * (1 + settings_.set_shadow_samples + stats_.vpls / sets);
     stats_.media_seconds = 0.0;
     if (frame.igi_components & TS_COMPONENT_PM) {
         t0 = Clock::now();
-        backend_.render_pass(PixelKernel::IgiMedia, frame, media);
+        backend_.launch(KernelId::IgiMedia, frame, media);
         stats_.media_seconds = since(t0);
         stats_.pixel_rays += pixels * (1 + settings_.march_steps);
     }
@@ -164,11 +165,13 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
     stats_.ais_items = schedule_.item_pixels.size();
     static_assert(1u << kAisSS == TS_COMPONENT_SS && 1u << kAisID == TS_COMPONENT_ID &&
                   1u << kAisPM == TS_COMPONENT_PM, "AIS component bits are the kernels' TS_COMPONENT_* bits");
-    std::vector<uint32_t> codes(schedule_.item_pixels.size());
-    for (size_t i = 0; i < codes.size(); ++i)
-        codes[i] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
+    std::vector<uint32_t> list(TS_AIS_ITEM_WORDS * schedule_.item_pixels.size());
+    for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
+        list[TS_AIS_ITEM_WORDS * i] = schedule_.item_pixels[i];
+        list[TS_AIS_ITEM_WORDS * i + 1] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
+    }
     std::vector<float> items;
-    backend_.render_items(frame, schedule_.item_pixels, codes, items);
+    backend_.launch_items(KernelId::AisItem, frame, list, items);
     for (int c = 0; c < kAisComponents; ++c) {
         base_[c] = raw_[c];
         own_sum_[c].clear();

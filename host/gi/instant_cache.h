@@ -2,7 +2,7 @@
 // indirect diffuse component of an igi frame read from an irradiance cache whose records
 // gather from all VPLs (ALGORITHMS.md §3). Host code shared by every backend: record
 // placement, the visibility bookkeeping and the temporal update run here; the G-buffer,
-// the shadow rays (Backend::trace_closest) and the interpolation (Backend::ic_interpolate)
+// the shadow rays (Backend::trace_closest) and the interpolation (KernelId::IcInterpolate)
 // run on the backend.
 //
 // Choices the paper does not fix for us (ALGORITHMS.md §3 marks them [A]), and why:

@@ -50,26 +50,4 @@ uint32_t parse_components(const std::string& list) {
     return bits;
 }
 
-int pixel_kernel_floats(PixelKernel k) {
-    switch (k) {
-        case PixelKernel::Direct:
-        case PixelKernel::PathTrace: return TS_PASS_FLOATS;
-        case PixelKernel::IgiSurface: return TS_IGI_SURF_FLOATS;
-        case PixelKernel::IgiMedia: return TS_IGI_MEDIA_FLOATS;
-        case PixelKernel::IcGbuffer: return TS_IC_GBUF_FLOATS;
-    }
-    return 0;
-}
-
-const char* pixel_kernel_name(PixelKernel k) {
-    switch (k) {
-        case PixelKernel::Direct: return "direct_pass";
-        case PixelKernel::PathTrace: return "pt_pass";
-        case PixelKernel::IgiSurface: return "igi_surface_pass";
-        case PixelKernel::IgiMedia: return "igi_media_pass";
-        case PixelKernel::IcGbuffer: return "ic_gbuffer_pass";
-    }
-    return "?";
-}
-
 }  // namespace tessera

@@ -63,7 +63,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
             igi->set_instant_cache(cache.get());
         }
     }
-    const PixelKernel kernel = settings.method == Method::Direct ? PixelKernel::Direct : PixelKernel::PathTrace;
+    const KernelId kernel = settings.method == Method::Direct ? KernelId::Direct : KernelId::PathTrace;
     std::vector<float> pass;
     std::vector<double> pass_seconds;
     using clock = std::chrono::steady_clock;
@@ -74,7 +74,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
         if (igi)
             igi->render(frame, pass);
         else
-            backend.render_pass(kernel, frame, pass);
+            backend.launch(kernel, frame, pass);
         acc.add(pass);
         pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
         if (progress)

@@ -12,7 +12,8 @@ inline ts::TsSceneView make_scene_view(const SceneBuffers& b) {
                            b.tri_mat.data(),   b.materials.data(), b.tex_info.data(),
                            b.tex_texels.data(), b.lights.data(),   b.light_cdf.data(),
                            b.medium.data(),     nullptr,            nullptr,
-                           b.light_count};
+                           nullptr,             nullptr,            nullptr,
+                           nullptr,             nullptr,            b.light_count};
 }
 
 }  // namespace tessera

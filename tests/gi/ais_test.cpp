@@ -36,15 +36,15 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
         // VPLs render() used.
         const TsFrame prepared = igi.prepare(f);
         const uint32_t N = 9, pixels = 24 * 24;
-        std::vector<uint32_t> px, codes;
+        std::vector<uint32_t> list;  // TS_AIS_ITEM_WORDS per item: pixel, set | components << 8
         for (uint32_t p = 0; p < pixels; ++p)
             for (uint32_t j = 0; j < N; ++j) {
                 const uint32_t own = (p % 24) % 3 + 3 * ((p / 24) % 3);
-                px.push_back(p);
-                codes.push_back((own + j) % N | (TS_COMPONENT_SS | TS_COMPONENT_ID) << 8);
+                list.push_back(p);
+                list.push_back((own + j) % N | (TS_COMPONENT_SS | TS_COMPONENT_ID) << 8);
             }
         std::vector<float> items;
-        be->render_items(prepared, px, codes, items);
+        be->launch_items(KernelId::AisItem, prepared, list, items);
         size_t mismatches = 0;
         for (int c : {kAisSS, kAisID}) {
             const std::vector<float>& got = igi.component(static_cast<AisComponent>(c));

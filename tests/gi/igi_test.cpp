@@ -69,8 +69,8 @@ TEST(IgiWork, FollowsTheScene) {
             SceneBuffers b = make_scene_buffers(*s);
             auto be = make_backend({kind, ""}, b, plan_effects(*s));
             render_frame(*be, *s, b, rs);
-            EXPECT_EQ(be->dispatch_count(PixelKernel::IgiSurface), 2u);
-            EXPECT_EQ(be->dispatch_count(PixelKernel::IgiMedia), s == &fog ? 2u : 0u);
+            EXPECT_EQ(be->dispatch_count(KernelId::IgiSurface), 2u);
+            EXPECT_EQ(be->dispatch_count(KernelId::IgiMedia), s == &fog ? 2u : 0u);
         }
     }
     Scene black = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
