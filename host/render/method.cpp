@@ -18,10 +18,6 @@ Method parse_method(const std::string& name) {
     throw InputError("--method " + name + ": not available (implemented: direct, pt, igi, ais, ais-max, ic, tic)");
 }
 
-bool is_igi_method(Method m) {
-    return m == Method::Igi || m == Method::Ais || m == Method::AisMax || m == Method::Ic || m == Method::Tic;
-}
-
 const char* method_name(Method m) {
     switch (m) {
         case Method::Direct: return "direct";

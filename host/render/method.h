@@ -15,9 +15,6 @@ enum class Method {
     Tic,        ///< temporal instant caching: the cache kept and updated across frames
 };
 
-/// True for the methods built on the igi frame (igi, ais, ais-max, ic, tic).
-bool is_igi_method(Method m);
-
 /// Parses "direct", "pt", "igi", "ais", "ais-max", "ic" or "tic"; throws InputError naming --method
 /// otherwise.
 Method parse_method(const std::string& name);

@@ -49,11 +49,7 @@ void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& 
                      const RenderSettings& sequence_settings, const FrameDoneFn& done,
                      const ProgressFn& progress) {
     RenderSettings settings = sequence_settings;
-    if (settings.method == Method::Tic) {  // one cache for this sequence, of this scene
-        IcSettings ics = settings.ic;
-        ics.temporal = true;
-        settings.ic_state = std::make_shared<InstantCache>(ics, rest.objects);
-    }
+    prepare_sequence(settings, rest);
     for (int frame = range.first; frame <= range.last; ++frame) {
         const auto start = std::chrono::steady_clock::now();
         const Scene scene = scene_at_frame(rest, frame);

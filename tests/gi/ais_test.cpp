@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gi/igi_frame.h"
+#include "gi/ais_frame.h"
 #include "render/frame.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
@@ -24,14 +24,13 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         auto be = make_backend({kind, ""}, b, plan_effects(s));
         IgiSettings is;
-        is.adaptive = true;
         is.ais_mode = AisMode::AMax;
         is.ais.ss_trigger = is.ais.id_trigger = is.ais.pm_trigger = -1.0f;
-        IgiFrame igi(*be, b, plan_effects(s), is);
+        AisFrame igi(*be, b, plan_effects(s), is);
         TsFrame f = make_frame(s.camera, 24, 24, is.set_shadow_samples, 3, b.light_count);
         f.light_power = b.light_power;
         std::vector<float> out;
-        igi.render(f, out);
+        igi.render_pass(f, out);
         // The reference: every (pixel, set) through the item kernel, with the frame and
         // VPLs render() used.
         const TsFrame prepared = igi.prepare(f);
@@ -76,12 +75,11 @@ TEST(Ais, SchedulesAgreeAcrossBackends) {
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         auto be = make_backend({kind, ""}, b, plan_effects(s));
         IgiSettings is;
-        is.adaptive = true;
-        IgiFrame igi(*be, b, plan_effects(s), is);
+        AisFrame igi(*be, b, plan_effects(s), is);
         TsFrame f = make_frame(s.camera, 96, 96, is.set_shadow_samples, 1, b.light_count);
         f.light_power = b.light_power;
         std::vector<float> out;
-        igi.render(f, out);
+        igi.render_pass(f, out);
         sched[i++] = igi.schedule();
     }
     for (int c : {kAisSS, kAisID}) {

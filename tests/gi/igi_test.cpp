@@ -78,7 +78,7 @@ TEST(IgiWork, FollowsTheScene) {
     auto be = make_backend({BackendKind::Embree, ""}, b, plan_effects(black));
     IgiFrame igi(*be, b, plan_effects(black), IgiSettings{});
     std::vector<float> out;
-    igi.render(make_frame(black.camera, 8, 8, 4, 1, b.light_count), out);
+    igi.render_pass(make_frame(black.camera, 8, 8, 4, 1, b.light_count), out);
     EXPECT_EQ(igi.stats().vpls, 0u);
     EXPECT_EQ(igi.stats().vpl_rays, 0u);
 }
