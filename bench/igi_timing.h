@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "gi/ais_frame.h"
-#include "render/frame.h"
+#include "device/frame.h"
 #include "scene/scene.h"
 
 namespace tessera::bench {

@@ -9,8 +9,8 @@
 
 #include "device/kernel_table.h"
 #include "kernels/shared/layout.h"
-#include "render/effect_plan.h"
-#include "render/scene_buffers.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
 
 namespace tessera {
 

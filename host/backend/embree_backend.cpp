@@ -16,7 +16,7 @@
 #include "backend/backend.h"
 #include "bvh/embree_device.h"
 #include "bvh/embree_scene.h"
-#include "render/scene_view.h"
+#include "device/scene_view.h"
 #include "kernels/shared/geometry.h"
 #include "util/error.h"
 

@@ -17,8 +17,8 @@
 #include "gi/vpl_generator.h"
 #include "image/image_io.h"
 #include "integrators/integrator.h"
-#include "render/effect_plan.h"
-#include "render/scene_buffers.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
 
 namespace tessera {
 

@@ -29,7 +29,7 @@
 #include "backend/backend.h"
 #include "gi/irradiance_cache.h"
 #include "gi/light_paths.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 #include "scene/scene.h"
 
 namespace tessera {

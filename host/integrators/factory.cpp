@@ -4,7 +4,7 @@
 #include "gi/ic_frame.h"
 #include "integrators/direct_integrator.h"
 #include "integrators/pt_integrator.h"
-#include "render/effect_plan.h"
+#include "device/effect_plan.h"
 
 namespace tessera {
 

@@ -10,7 +10,7 @@
 #include "gi/igi_frame.h"
 #include "gi/instant_cache.h"
 #include "integrators/integrator.h"
-#include "render/method.h"
+#include "integrators/method.h"
 #include "scene/scene.h"
 
 namespace tessera {

@@ -8,7 +8,7 @@
 
 #include "render/accumulator.h"
 #include "render/checkpoint_session.h"
-#include "render/frame.h"
+#include "device/frame.h"
 #include "util/error.h"
 
 namespace tessera {

@@ -9,7 +9,7 @@
 #include "backend/backend.h"
 #include "image/image_io.h"
 #include "integrators/factory.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 #include "scene/scene.h"
 
 namespace tessera {

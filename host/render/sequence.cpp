@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <memory>
 
-#include "render/effect_plan.h"
-#include "render/scene_buffers.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
 #include "util/error.h"
 
 namespace tessera {

@@ -9,7 +9,7 @@
 
 #include "gi/igi_frame.h"
 #include "gi/vpl_generator.h"
-#include "render/frame.h"
+#include "device/frame.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
 #include "support/test_scenes.h"

@@ -2,7 +2,7 @@
 // scene buffers, for C++ callers of that code (the Embree backend, the benchmark).
 #pragma once
 #include "kernels/shared/geometry.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 
 namespace tessera {
 

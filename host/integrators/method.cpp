@@ -1,4 +1,4 @@
-#include "render/method.h"
+#include "integrators/method.h"
 
 #include <algorithm>
 
