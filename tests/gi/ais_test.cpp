@@ -32,7 +32,7 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
         std::vector<float> out;
         igi.render_pass(f, out);
         // The reference: every (pixel, set) through the item kernel, with the frame and
-        // VPLs render() used.
+        // VPLs render_pass() used.
         const TsFrame prepared = igi.prepare(f);
         const uint32_t N = 9, pixels = 24 * 24;
         std::vector<uint32_t> list;  // TS_AIS_ITEM_WORDS per item: pixel, set | components << 8
