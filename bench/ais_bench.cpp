@@ -23,7 +23,7 @@
 #include "backend/backend.h"
 #include "bench/igi_timing.h"
 #include "gi/igi_frame.h"
-#include "render/frame.h"
+#include "device/frame.h"
 #include "scene/loader.h"
 
 using namespace tessera;
@@ -93,9 +93,8 @@ int main(int argc, char** argv) {
                 for (AisMode mode : {AisMode::A, AisMode::AMax}) {
                     IgiSettings is;
                     is.components = bits;
-                    is.adaptive = true;
                     is.ais_mode = mode;
-                    const bench::IgiTiming t = bench::time_igi_frames(*be, scene, b, is, size, frames);
+                    const bench::IgiTiming t = bench::time_igi_frames(*be, scene, b, is, size, frames, true);
                     f[cname + (mode == AisMode::A ? " A" : " A-MAX")] = 1.0 / t.frame;
                     if (cname == "FULL") full[mode] = t;
                 }

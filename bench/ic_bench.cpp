@@ -20,9 +20,9 @@
 #include "backend/backend.h"
 #include "bench/igi_timing.h"
 #include "metrics/image_metrics.h"
-#include "render/effect_plan.h"
+#include "device/effect_plan.h"
 #include "render/renderer.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 #include "scene/loader.h"
 
 using namespace tessera;

@@ -16,7 +16,7 @@
 #include "backend/backend.h"
 #include "bench/igi_timing.h"
 #include "gi/igi_frame.h"
-#include "render/frame.h"
+#include "device/frame.h"
 #include "scene/loader.h"
 
 using namespace tessera;

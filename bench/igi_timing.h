@@ -4,11 +4,12 @@
 #pragma once
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "gi/igi_frame.h"
-#include "render/frame.h"
+#include "gi/ais_frame.h"
+#include "device/frame.h"
 #include "scene/scene.h"
 
 namespace tessera::bench {
@@ -37,18 +38,22 @@ struct IgiTiming {
     IgiFrameStats last;
 };
 
+/// `adaptive`: AIS (AisFrame, mode is.ais_mode) instead of plain IGI.
 inline IgiTiming time_igi_frames(Backend& be, const Scene& scene, const SceneBuffers& b, const IgiSettings& is,
-                                 int size, int frames) {
-    IgiFrame igi(be, b, plan_effects(scene), is);
+                                 int size, int frames, bool adaptive = false) {
+    const std::unique_ptr<IgiFrame> frame_ptr =
+        adaptive ? std::make_unique<AisFrame>(be, b, plan_effects(scene), is)
+                 : std::make_unique<IgiFrame>(be, b, plan_effects(scene), is);
+    IgiFrame& igi = *frame_ptr;
     TsFrame f = make_frame(scene.camera, size, size, is.set_shadow_samples, 1, b.light_count);
     f.light_power = b.light_power;
     std::vector<float> out;
-    igi.render(f, out);
+    igi.render_pass(f, out);
     std::vector<double> total, vpl, surf, media, filt, ais;
     for (int i = 0; i < frames; ++i) {
         f.pass = static_cast<uint32_t>(i + 1);
         const auto t0 = std::chrono::steady_clock::now();
-        igi.render(f, out);
+        igi.render_pass(f, out);
         total.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
         vpl.push_back(igi.stats().vpl_seconds);
         surf.push_back(igi.stats().surface_seconds);

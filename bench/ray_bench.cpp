@@ -31,9 +31,9 @@
 #include "bvh/embree_scene.h"
 #include "kernels/shared/geometry.h"
 #include "kernels/shared/sampling.h"
-#include "render/frame.h"
+#include "device/frame.h"
 #include "render/renderer.h"
-#include "render/scene_view.h"
+#include "device/scene_view.h"
 #include "scene/loader.h"
 
 using namespace tessera;

@@ -5,7 +5,4 @@
 #include "tracer.h"
 #include "shared/direct.h"
 
-__kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
-void direct_pass(TS_PIXEL_KERNEL_ARGS) {
-    TS_PIXEL_KERNEL_BODY(ts_direct_pixel, TS_PASS_FLOATS)
-}
+TS_PIXEL_KERNEL(direct_pass, ts_direct_pixel, TS_PASS_FLOATS)

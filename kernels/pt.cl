@@ -5,7 +5,4 @@
 #include "tracer.h"
 #include "shared/pt.h"
 
-__kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
-void pt_pass(TS_PIXEL_KERNEL_ARGS) {
-    TS_PIXEL_KERNEL_BODY(ts_pt_pixel, TS_PASS_FLOATS)
-}
+TS_PIXEL_KERNEL(pt_pass, ts_pt_pixel, TS_PASS_FLOATS)

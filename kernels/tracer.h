@@ -16,35 +16,57 @@ static inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
     return ts_bvh_occluded(tr->nodes, tr->tris, ray);
 }
 
-/* The argument list every per-pixel method kernel takes, in this order. */
-#define TS_PIXEL_KERNEL_ARGS                                                              \
+/* The argument list every kernel of the kernel table (host/device/kernel_table.h) takes,
+ * in this order: the frame, the BVH, the scene's shading buffers, the named inputs
+ * (KernelInput order), the launch's item list, the output and the number of work items. */
+#define TS_KERNEL_ARGS                                                                    \
     TsFrame frame, __global const float *nodes, __global const float *tris,              \
         __global const float *tri_pos, __global const float *tri_nrm,                    \
         __global const float *tri_uv, __global const uint *tri_mat,                      \
         __global const float *materials, __global const uint *tex_info,                  \
         __global const uint *tex_texels, __global const float *lights,                   \
         __global const float *light_cdf, __global const float *medium,                   \
-        __global const float *vpls, __global const uint *vpl_set_start, __global float *out
+        __global const float *vpls, __global const uint *vpl_set_start,                  \
+        __global const float *ic_gbuffer, __global const float *ic_nodes,                \
+        __global const uint *ic_refs, __global const float *ic_records,                  \
+        __global const uint *items, __global float *out, uint work_items
 
-/* Body of a per-pixel kernel: one work-item per pixel runs `pixel_fn` (a ts_*_pixel
+#define TS_KERNEL_VIEWS                                                                   \
+    TsTracer tracer = {nodes, tris};                                                     \
+    TsSceneView sv = {tri_pos, tri_nrm, tri_uv, tri_mat, materials, tex_info, tex_texels, \
+                      lights, light_cdf, medium, vpls, vpl_set_start, ic_gbuffer,        \
+                      ic_nodes, ic_refs, ic_records, items, frame.light_count};
+
+/* A per-pixel kernel `name`: one work-item per pixel runs `pixel_fn` (a ts_*_pixel
  * function of the shared code) and stores its `floats` outputs at the pixel's place.
  * Work-items are ordered by interleave set when frame.igi_tile > 1 (de-interleaved
  * shading, Segovia et al. 2006): consecutive work-items then share their set's VPLs and
  * light samples and stay coherent, and writing at the pixel's place re-interleaves. */
-#define TS_KERNEL_VIEWS                                                                   \
-    TsTracer tracer = {nodes, tris};                                                     \
-    TsSceneView sv = {tri_pos, tri_nrm, tri_uv, tri_mat, materials, tex_info, tex_texels, \
-                      lights, light_cdf, medium, vpls, vpl_set_start, frame.light_count};
+#define TS_PIXEL_KERNEL(name, pixel_fn, floats)                                          \
+    __kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))              \
+    void name(TS_KERNEL_ARGS) {                                                          \
+        uint i = get_global_id(0);                                                       \
+        if (i >= frame.width * frame.height) return;                                     \
+        uint px_, py_;                                                                   \
+        ts_pixel_of_work_item(&frame, i, &px_, &py_);                                    \
+        TS_KERNEL_VIEWS                                                                  \
+        float v_[floats];                                                                \
+        pixel_fn(&sv, &tracer, &frame, px_, py_, v_);                                    \
+        size_t o_ = ((size_t)py_ * frame.width + px_) * (floats);                        \
+        for (int k = 0; k < (floats); ++k) out[o_ + k] = v_[k];                          \
+    }
 
-#define TS_PIXEL_KERNEL_BODY(pixel_fn, floats)                                           \
-    uint i = get_global_id(0);                                                           \
-    if (i >= frame.width * frame.height) return;                                         \
-    uint px_, py_;                                                                       \
-    ts_pixel_of_work_item(&frame, i, &px_, &py_);                                        \
-    TS_KERNEL_VIEWS                                                                      \
-    float v_[floats];                                                                    \
-    pixel_fn(&sv, &tracer, &frame, px_, py_, v_);                                        \
-    size_t o_ = ((size_t)py_ * frame.width + px_) * (floats);                            \
-    for (int k = 0; k < (floats); ++k) out[o_ + k] = v_[k];
+/* A per-item kernel `name`: work-item i (< work_items) runs `item_fn(sv, tracer, frame,
+ * i, out)` and stores its `floats` outputs at item i's place. */
+#define TS_ITEM_KERNEL(name, item_fn, floats)                                            \
+    __kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))              \
+    void name(TS_KERNEL_ARGS) {                                                          \
+        uint i = get_global_id(0);                                                       \
+        if (i >= work_items) return;                                                     \
+        TS_KERNEL_VIEWS                                                                  \
+        float v_[floats];                                                                \
+        item_fn(&sv, &tracer, &frame, i, v_);                                            \
+        for (int k = 0; k < (floats); ++k) out[(size_t)i * (floats) + k] = v_[k];        \
+    }
 
 #endif /* TS_TRACER_CL_H */

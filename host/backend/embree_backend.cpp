@@ -1,6 +1,9 @@
-// The Embree CPU backend: rays traced with rtcIntersect1 / rtcOccluded1, pixels
-// dispatched over TBB. Shading is kernels/shared compiled as C++.
+// The Embree CPU backend: rays traced with rtcIntersect1 / rtcOccluded1, the kernel
+// table's shared C++ functions dispatched over TBB. Shading is kernels/shared compiled
+// as C++.
+#include <array>
 #include <cstring>
+#include <type_traits>
 #include <memory>
 #include <string>
 
@@ -13,7 +16,7 @@
 #include "backend/backend.h"
 #include "bvh/embree_device.h"
 #include "bvh/embree_scene.h"
-#include "render/scene_view.h"
+#include "device/scene_view.h"
 #include "kernels/shared/geometry.h"
 #include "util/error.h"
 
@@ -98,6 +101,8 @@ class EmbreeBackend final : public Backend {
 public:
     explicit EmbreeBackend(const SceneBuffers& scene) : buffers_(scene), scene_(build_embree_scene(scene)) {
         tracer_.scene = scene_;
+        store_input(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
+        store_input(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
     }
     ~EmbreeBackend() override { rtcReleaseScene(scene_); }
 
@@ -106,68 +111,61 @@ public:
                std::to_string(tbb::info::default_concurrency()) + " threads)";
     }
 
-    void set_vpls(const std::vector<float>& vpls, const std::vector<uint32_t>& set_start) override {
-        vpls_ = vpls;
-        vpl_set_start_ = set_start;
-    }
-
 protected:
-    void run_pixels(PixelKernel k, const TsFrame& frame, std::vector<float>& out) override {
-        switch (k) {
-            case PixelKernel::Direct: return dispatch(frame, out, k, ts::ts_direct_pixel);
-            case PixelKernel::PathTrace: return dispatch(frame, out, k, ts::ts_pt_pixel);
-            case PixelKernel::IgiSurface: return dispatch(frame, out, k, ts::ts_igi_surface_pixel);
-            case PixelKernel::IgiMedia: return dispatch(frame, out, k, ts::ts_igi_media_pixel);
-            case PixelKernel::IcGbuffer: return dispatch(frame, out, k, ts::ts_ic_gbuffer_pixel);
-        }
+    void store_input(KernelInput in, const std::vector<float>& data) override {
+        float_inputs_[static_cast<int>(in)] = data;
+    }
+    void store_input(KernelInput in, const std::vector<uint32_t>& data) override {
+        uint_inputs_[static_cast<int>(in)] = data;
     }
 
-    void run_ic_interpolate(const std::vector<float>& gbuffer, const IcCacheBuffers& cache, float error_bound,
-                            std::vector<float>& out) override {
-        const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 256), [&](const tbb::blocked_range<size_t>& r) {
-            set_ftz_daz();
-            for (size_t p = r.begin(); p < r.end(); ++p)
-                ts::ts_ic_interpolate_pixel(gbuffer.data(), cache.nodes.data(), cache.refs.data(),
-                                            cache.records.data(), error_bound, static_cast<uint32_t>(p),
-                                            &out[4 * p]);
-        });
-    }
-
-    void run_items(const TsFrame& frame, const std::vector<uint32_t>& pixels, const std::vector<uint32_t>& codes,
-                   std::vector<float>& out) override {
+    void run_kernel(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
+                    std::vector<float>& out) override {
         ts::TsSceneView sv = scene_view(frame);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-            set_ftz_daz();
-            for (size_t i = r.begin(); i < r.end(); ++i)
-                ts::ts_ais_item(&sv, &tracer_, &frame, pixels[i] % frame.width, pixels[i] / frame.width,
-                                codes[i] & 0xffu, codes[i] >> 8, &out[i * TS_AIS_ITEM_FLOATS]);
-        });
+        sv.items = items.data();
+        switch (k) {
+#define TS_EMBREE_DISPATCH(id, name, program, floats, words, fn) \
+    case KernelId::id: return dispatch<floats, words>(sv, frame, count, out, ts::fn);
+            TS_KERNEL_TABLE(TS_EMBREE_DISPATCH)
+#undef TS_EMBREE_DISPATCH
+        }
     }
 
 private:
     ts::TsSceneView scene_view(const TsFrame& frame) const {
         ts::TsSceneView sv = make_scene_view(buffers_);
         sv.light_count = frame.light_count;
-        sv.vpls = vpls_.data();
-        sv.vpl_set_start = vpl_set_start_.data();
+        sv.vpls = input<float>(KernelInput::Vpls);
+        sv.vpl_set_start = input<uint32_t>(KernelInput::VplSetStart);
+        sv.ic_gbuffer = input<float>(KernelInput::IcGbuffer);
+        sv.ic_nodes = input<float>(KernelInput::IcNodes);
+        sv.ic_refs = input<uint32_t>(KernelInput::IcRefs);
+        sv.ic_records = input<float>(KernelInput::IcRecords);
         return sv;
     }
 
-    // Work is split by work-item index in the same order as the OpenCL kernels
-    // (ts_pixel_of_work_item: de-interleaved by sample set when igi_tile > 1).
-    template <class PixelFn>
-    void dispatch(const TsFrame& frame, std::vector<float>& out, PixelKernel k, PixelFn pixel) {
-        const size_t floats = static_cast<size_t>(pixel_kernel_floats(k));
-        const size_t pixels = size_t(frame.width) * frame.height;
-        out.resize(pixels * floats);
-        ts::TsSceneView sv = scene_view(frame);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 64), [&](const tbb::blocked_range<size_t>& r) {
+    template <class T>
+    const T* input(KernelInput in) const {
+        if constexpr (std::is_same_v<T, float>) return float_inputs_[static_cast<int>(in)].data();
+        else return uint_inputs_[static_cast<int>(in)].data();
+    }
+
+    // Pixel kernels (Words == 0): work is split by work-item index in the same order as
+    // the OpenCL kernels (ts_pixel_of_work_item: de-interleaved by sample set when
+    // igi_tile > 1), each pixel's output at its place. Item kernels: item i's output at
+    // place i.
+    template <int Floats, int Words, class Fn>
+    void dispatch(const ts::TsSceneView& sv, const TsFrame& frame, size_t count, std::vector<float>& out, Fn fn) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 64), [&](const tbb::blocked_range<size_t>& r) {
             set_ftz_daz();
             for (size_t i = r.begin(); i < r.end(); ++i) {
-                uint32_t x, y;
-                ts::ts_pixel_of_work_item(&frame, static_cast<uint32_t>(i), &x, &y);
-                pixel(&sv, &tracer_, &frame, x, y, &out[(size_t(y) * frame.width + x) * floats]);
+                if constexpr (Words == 0) {
+                    uint32_t x, y;
+                    ts::ts_pixel_of_work_item(&frame, static_cast<uint32_t>(i), &x, &y);
+                    fn(&sv, &tracer_, &frame, x, y, &out[(size_t(y) * frame.width + x) * Floats]);
+                } else {
+                    fn(&sv, &tracer_, &frame, static_cast<uint32_t>(i), &out[i * Floats]);
+                }
             }
         });
     }
@@ -203,8 +201,9 @@ private:
     const SceneBuffers& buffers_;
     RTCScene scene_ = nullptr;
     ts::TsTracer tracer_{};
-    std::vector<float> vpls_ = std::vector<float>(TS_VPL_FLOATS, 0.0f);
-    std::vector<uint32_t> vpl_set_start_ = std::vector<uint32_t>(2, 0u);
+    // Named inputs (KernelInput order), each in the array of its element type.
+    std::array<std::vector<float>, kKernelInputCount> float_inputs_;
+    std::array<std::vector<uint32_t>, kKernelInputCount> uint_inputs_;
 };
 
 }  // namespace

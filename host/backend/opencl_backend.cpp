@@ -1,6 +1,8 @@
 // The OpenCL backend: the BVH comes from Embree's builder (host/bvh), traversal and
 // shading run in kernels/*.cl on any OpenCL 1.2 device. Programs are built on first
-// use, so only the kernels a run needs are compiled, with the scene's defines.
+// use, so only the kernels a run needs are compiled, with the scene's defines. Every
+// kernel of the kernel table takes TS_KERNEL_ARGS (kernels/tracer.h), bound by run().
+#include <array>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -38,8 +40,12 @@ public:
             lights_ = upload("lights", scene.lights);
             light_cdf_ = upload("light CDF", scene.light_cdf);
             medium_ = upload("medium", scene.medium);
-            vpls_ = upload("VPL", std::vector<float>(TS_VPL_FLOATS, 0.0f));
-            vpl_set_start_ = upload("VPL set table", std::vector<uint32_t>(2, 0u));
+            store(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
+            store(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
+            for (KernelInput in : {KernelInput::IcGbuffer, KernelInput::IcNodes, KernelInput::IcRecords})
+                store(in, std::vector<float>());
+            store(KernelInput::IcRefs, std::vector<uint32_t>());
+            no_items_ = upload("item list", std::vector<uint32_t>(1, 0u));
         } catch (const cl::Error& e) {
             throw RuntimeError("OpenCL setup on " + dev_.name + " failed: " + describe_cl_error(e) +
                                " (try --backend embree)");
@@ -50,71 +56,34 @@ public:
         return "opencl (" + dev_.platform_name + ": " + dev_.name + ")";
     }
 
-    void set_vpls(const std::vector<float>& vpls, const std::vector<uint32_t>& set_start) override {
-        run([&] {
-            vpls_ = upload("VPL", vpls);
-            vpl_set_start_ = upload("VPL set table", set_start);
-        });
-    }
-
 protected:
-    void run_pixels(PixelKernel kind, const TsFrame& frame, std::vector<float>& out) override {
-        const size_t pixels = size_t(frame.width) * frame.height;
-        out.resize(pixels * static_cast<size_t>(pixel_kernel_floats(kind)));
-        run([&] {
-            cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
-            cl::Kernel& k = kernel(program_of(kind), pixel_kernel_name(kind));
-            set_scene_args(k, frame, buf);
-            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(pixels, TS_WORKGROUP_SIZE)),
-                                        cl::NDRange(TS_WORKGROUP_SIZE));
-            queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
-        });
+    void store_input(KernelInput in, const std::vector<float>& data) override {
+        run([&] { store(in, data); });
+    }
+    void store_input(KernelInput in, const std::vector<uint32_t>& data) override {
+        run([&] { store(in, data); });
     }
 
-    void run_items(const TsFrame& frame, const std::vector<uint32_t>& pixels, const std::vector<uint32_t>& codes,
-                   std::vector<float>& out) override {
+    void run_kernel(KernelId id, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
+             std::vector<float>& out) override {
+        const KernelInfo& info = kernel_info(id);
         run([&] {
-            cl::Buffer ip = upload("AIS item pixels", pixels), ic = upload("AIS item codes", codes);
+            cl::Buffer item_buf = items.empty() ? no_items_ : upload("item list", items);
             cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
-            cl::Kernel& k = kernel("igi.cl", "ais_extra_pass");
-            int a = set_scene_args(k, frame, buf);
-            k.setArg(a++, ip);
-            k.setArg(a++, ic);
-            k.setArg(a++, static_cast<cl_uint>(pixels.size()));
-            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(pixels.size(), TS_WORKGROUP_SIZE)),
-                                        cl::NDRange(TS_WORKGROUP_SIZE));
-            queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
-        });
-    }
-
-    void run_ic_interpolate(const std::vector<float>& gbuffer, const IcCacheBuffers& cache, float error_bound,
-                            std::vector<float>& out) override {
-        const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
-        run([&] {
-            cl::Buffer g = upload("ic G-buffer", gbuffer), n = upload("ic octree", cache.nodes);
-            cl::Buffer r = upload("ic record lists", cache.refs), rec = upload("ic records", cache.records);
-            cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
-            cl::Kernel& k = kernel("ic.cl", "ic_interpolate");
+            cl::Kernel& k = kernel(info.program, info.name);
             int a = 0;
-            k.setArg(a++, static_cast<cl_uint>(pixels));
-            k.setArg(a++, error_bound);
-            for (cl::Buffer* b : {&g, &n, &r, &rec, &buf}) k.setArg(a++, *b);
-            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(pixels, TS_WORKGROUP_SIZE)),
+            k.setArg(a++, sizeof(TsFrame), &frame);
+            for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
+                                  &tex_texels_, &lights_, &light_cdf_, &medium_})
+                k.setArg(a++, *b);
+            for (cl::Buffer& b : inputs_) k.setArg(a++, b);
+            k.setArg(a++, item_buf);
+            k.setArg(a++, buf);
+            k.setArg(a++, static_cast<cl_uint>(count));
+            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(count, TS_WORKGROUP_SIZE)),
                                         cl::NDRange(TS_WORKGROUP_SIZE));
             queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
         });
-    }
-
-    // The arguments every per-pixel kernel starts with (TS_PIXEL_KERNEL_ARGS); returns
-    // the index of the next argument.
-    int set_scene_args(cl::Kernel& k, const TsFrame& frame, cl::Buffer& out) {
-        int a = 0;
-        k.setArg(a++, sizeof(TsFrame), &frame);
-        for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
-                              &tex_texels_, &lights_, &light_cdf_, &medium_, &vpls_, &vpl_set_start_})
-            k.setArg(a++, *b);
-        k.setArg(a++, out);
-        return a;
     }
 
 public:
@@ -129,13 +98,11 @@ public:
     }
 
 private:
-    static const char* program_of(PixelKernel k) {
-        switch (k) {
-            case PixelKernel::Direct: return "direct.cl";
-            case PixelKernel::PathTrace: return "pt.cl";
-            case PixelKernel::IcGbuffer: return "ic.cl";
-            default: return "igi.cl";
-        }
+    // An empty input is stored as one zero element: OpenCL has no empty buffers, and a
+    // kernel reads an input only where the launch set it.
+    template <class T>
+    void store(KernelInput in, const std::vector<T>& data) {
+        inputs_[static_cast<int>(in)] = upload(input_info(in).name, data.empty() ? std::vector<T>(1, T(0)) : data);
     }
 
     static std::vector<glm::vec3> positions_of(const SceneBuffers& s) {
@@ -210,7 +177,9 @@ private:
     cl::Context ctx_;
     cl::CommandQueue queue_;
     cl::Buffer nodes_, tris_, tri_pos_, tri_nrm_, tri_uv_, tri_mat_, materials_, tex_info_, tex_texels_,
-        lights_, light_cdf_, medium_, vpls_, vpl_set_start_, out_;
+        lights_, light_cdf_, medium_, out_;
+    std::array<cl::Buffer, kKernelInputCount> inputs_;  // KernelInput order (TS_KERNEL_ARGS)
+    cl::Buffer no_items_;                               // bound for pixel kernels
     size_t out_bytes_ = 0;
     std::map<std::string, cl::Program> programs_;
     std::map<std::string, cl::Kernel> kernels_;

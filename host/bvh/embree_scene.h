@@ -2,7 +2,7 @@
 #pragma once
 #include <embree3/rtcore.h>
 
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 
 namespace tessera {
 

@@ -8,8 +8,8 @@
 
 #include "cli/commands.h"
 #include "kernels/shared/layout.h"
-#include "render/effect_plan.h"
-#include "render/scene_buffers.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
 #include "scene/loader.h"
 
 namespace tessera::cli {

@@ -29,7 +29,7 @@ struct AisThresholds {
     /// samples a set, ranges of 0.25-0.5 are sample noise the filter averages.
     float ss_trigger = 0.5f;
     /// ID: the coefficient of variation of E_id over A(p) that saturates g_var, at
-    /// kIdCovPaths light paths per set (IgiFrame scales it by √(kIdCovPaths / paths), as
+    /// kIdCovPaths light paths per set (AisFrame scales it by √(kIdCovPaths / paths), as
     /// the CoV that VPL noise alone gives falls as 1/√paths). 2: CoVs of about 1 are VPL
     /// noise, which the filter's N-set mean already averages (a pixel's own N sets are no
     /// less noisy).

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "gi/ais_reconstruct.h"
+#include "integrators/factory.h"
 #include "kernels/shared/layout.h"
 #include "kernels/shared/rng.h"
 
@@ -52,13 +52,12 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     return frame;
 }
 
-void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
+void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     const uint32_t sets = settings_.tile * settings_.tile;
-    frame = prepare(frame);
+    const TsFrame frame = prepare(unprepared);
     auto t0 = Clock::now();
     VplList vpls;
-    const bool cached_id = cache_ && (frame.igi_components & TS_COMPONENT_ID);
-    if (plan_.indirect && (frame.igi_components & TS_COMPONENT_ID) && !cache_) {
+    if (plan_.indirect && (frame.igi_components & TS_COMPONENT_ID) && interleaved_indirect()) {
         VplSettings vs;
         vs.sets = sets;
         vs.paths_per_set = settings_.paths_per_set;
@@ -68,7 +67,8 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
         vpls.set_start.assign(sets + 1, 0u);
         vpls.vpls.assign(TS_VPL_FLOATS, 0.0f);
     }
-    backend_.set_vpls(vpls.vpls, vpls.set_start);
+    backend_.set_input(KernelInput::Vpls, vpls.vpls);
+    backend_.set_input(KernelInput::VplSetStart, vpls.set_start);
     stats_.vpls = vpls.count();
     stats_.vpl_rays = vpls.rays;
     stats_.vpl_seconds = since(t0);
@@ -76,37 +76,27 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
     t0 = Clock::now();
     std::vector<float> surf, media;
     TsFrame surface_frame = frame;
-    if (cache_) surface_frame.igi_components &= ~TS_COMPONENT_ID;
-    backend_.render_pass(PixelKernel::IgiSurface, surface_frame, surf);
+    if (!interleaved_indirect()) surface_frame.igi_components &= ~TS_COMPONENT_ID;
+    backend_.launch(KernelId::IgiSurface, surface_frame, surf);
     stats_.surface_seconds = since(t0);
     const uint64_t pixels = uint64_t(frame.width) * frame.height;
     stats_.pixel_rays = pixels * (1 + settings_.set_shadow_samples + stats_.vpls / sets);
     stats_.media_seconds = 0.0;
     if (frame.igi_components & TS_COMPONENT_PM) {
         t0 = Clock::now();
-        backend_.render_pass(PixelKernel::IgiMedia, frame, media);
+        backend_.launch(KernelId::IgiMedia, frame, media);
         stats_.media_seconds = since(t0);
         stats_.pixel_rays += pixels * (1 + settings_.march_steps);
     }
     t0 = Clock::now();
     extract(static_cast<int>(frame.width), surf, media);
-    if (cached_id) {
-        const auto tc = Clock::now();
-        if (plan_.indirect) cache_->indirect(backend_, scene_, frame, g_clamp_, raw_[kAisID]);
-        stats_.cache_seconds = since(tc);
-        t0 += Clock::now() - tc;
-    }
-    stats_.ais_seconds = 0.0;
-    stats_.ais_items = 0;
-    if (settings_.adaptive) {
-        const auto ta = Clock::now();
-        refine(frame, surf, media);
-        stats_.ais_seconds = since(ta);
-    }
-    reconstruct();
+    const auto tr = Clock::now();
+    refine(frame, surf, media);
+    t0 += Clock::now() - tr;
+    for (int c = 0; c < kAisComponents; ++c) reconstruct_component(c);
     composite(surf, out);
     add_to_sums();
-    stats_.filter_seconds = since(t0) - stats_.ais_seconds;
+    stats_.filter_seconds = since(t0);
 }
 
 void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vector<float>& media) {
@@ -127,82 +117,11 @@ void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vec
     for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + 15];
 }
 
-// AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
-// raw component becomes the mean over all the sets it evaluated (summed in double: own
-// set first, then the extra sets in increasing order), its base estimate kept for the
-// neighbours' reconstruction.
-void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
-    const size_t pixels = raw_[kAisSS].size() / 3;
-    AisBaseBuffers base;
-    base.geometry = geometry_;
-    base.visibility.resize(pixels);
-    base.indirect.resize(pixels);
-    for (size_t p = 0; p < pixels; ++p) {
-        const float* v = &surf[p * TS_IGI_SURF_FLOATS];
-        base.visibility[p] = v[19];
-        base.indirect[p] = 0.2126f * v[3] + 0.7152f * v[4] + 0.0722f * v[5];
-    }
-    if (!media.empty()) {
-        base.lit_fraction.resize(pixels);
-        base.medium_length.resize(pixels);
-        for (size_t p = 0; p < pixels; ++p) {
-            base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + 6];
-            base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + 7];
-        }
-    }
-    const uint32_t bits = effective_components();
-    const std::array<bool, kAisComponents> enabled = {(bits & TS_COMPONENT_SS) != 0, (bits & TS_COMPONENT_ID) != 0,
-                                                      (bits & TS_COMPONENT_PM) != 0 && !media.empty()};
-    // The set-to-set CoV that VPL noise alone gives falls as 1/√paths: id_cov is stated
-    // for kIdCovPaths paths per set and scaled to this frame's.
-    AisThresholds t = settings_.ais;
-    t.id_cov *= std::sqrt(float(AisThresholds::kIdCovPaths) / float(std::max(1u, settings_.paths_per_set)));
-    guidance_ = compute_guidance(base, settings_.discontinuity, t, enabled);
-    schedule_ = make_schedule(guidance_, t, settings_.ais_mode, geometry_.width, geometry_.height,
-                              static_cast<int>(settings_.tile));
-    stats_.flagged = schedule_.flagged;
-    stats_.ais_items = schedule_.item_pixels.size();
-    static_assert(1u << kAisSS == TS_COMPONENT_SS && 1u << kAisID == TS_COMPONENT_ID &&
-                  1u << kAisPM == TS_COMPONENT_PM, "AIS component bits are the kernels' TS_COMPONENT_* bits");
-    std::vector<uint32_t> codes(schedule_.item_pixels.size());
-    for (size_t i = 0; i < codes.size(); ++i)
-        codes[i] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
-    std::vector<float> items;
-    backend_.render_items(frame, schedule_.item_pixels, codes, items);
-    for (int c = 0; c < kAisComponents; ++c) {
-        base_[c] = raw_[c];
-        own_sum_[c].clear();
-        if (schedule_.sets[c].empty()) continue;
-        own_sum_[c].assign(raw_[c].begin(), raw_[c].end());
-    }
-    for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
-        const size_t p = schedule_.item_pixels[i];
-        for (int c = 0; c < kAisComponents; ++c)
-            if (schedule_.item_components[i] & (1u << c))
-                for (int j = 0; j < 3; ++j) own_sum_[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + 3 * c + j];
-    }
-    for (int c = 0; c < kAisComponents; ++c) {
-        if (schedule_.sets[c].empty()) continue;
-        for (size_t p = 0; p < pixels; ++p)
-            for (int j = 0; j < 3; ++j)
-                raw_[c][3 * p + j] = static_cast<float>(own_sum_[c][3 * p + j] / schedule_.sets[c][p]);
-    }
-}
-
-// Each component: the discontinuity filter over the interleaved estimates; with AIS,
-// pixels the schedule gave extra sets combine them with the accepted neighbours' sets
-// they did not evaluate (ais_reconstruct.h: each set at most once; all N sets: the pixel's own
-// full-rate mean, unfiltered: docs/ais.md §6).
-void IgiFrame::reconstruct() {
-    for (int c = 0; c < kAisComponents; ++c) {
-        const bool refined = settings_.adaptive && !schedule_.sets[c].empty();
-        if (!settings_.filter || (c == kAisID && cache_))
-            final_[c] = raw_[c];
-        else if (refined)
-            ais_reconstruct(geometry_, settings_.discontinuity, base_[c], own_sum_[c], schedule_.masks[c], final_[c]);
-        else
-            discontinuity_filter(geometry_, settings_.discontinuity, 3, raw_[c], final_[c]);
-    }
+void IgiFrame::reconstruct_component(int c) {
+    if (!settings_.filter)
+        final_[c] = raw_[c];
+    else
+        discontinuity_filter(geometry_, settings_.discontinuity, 3, raw_[c], final_[c]);
 }
 
 void IgiFrame::composite(const std::vector<float>& surf, std::vector<float>& out) {
@@ -229,9 +148,6 @@ void IgiFrame::add_to_sums() {
     for (int c = 0; c < kAisComponents; ++c) {
         add(component_sums_[2 * c], raw_[c]);
         add(component_sums_[2 * c + 1], final_[c]);
-        if (!settings_.adaptive) continue;
-        if (!guidance_.g[c].empty()) add(component_sums_[6 + c], guidance_.g[c]);
-        if (!schedule_.sets[c].empty()) add(component_sums_[9 + c], schedule_.sets[c]);
     }
 }
 
@@ -244,34 +160,30 @@ std::string IgiFrame::describe() const {
                   static_cast<unsigned long long>(stats_.vpl_rays), g_clamp_, 1e3 * stats_.vpl_seconds,
                   1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
                   1e3 * stats_.filter_seconds);
-    std::string line = buf;
-    if (cache_) line += "; " + cache_->describe();
-    if (settings_.adaptive) {
-        std::snprintf(buf, sizeof buf, "; %s: flagged SS %.1f%%, ID %.1f%%, PM %.1f%%, %zu extra set evaluations, %.1f ms",
-                      settings_.ais_mode == AisMode::AMax ? "ais-max" : "ais", 100 * stats_.flagged[kAisSS],
-                      100 * stats_.flagged[kAisID], 100 * stats_.flagged[kAisPM], stats_.ais_items,
-                      1e3 * stats_.ais_seconds);
-        line += buf;
-    }
-    return line;
+    return buf;
 }
 
-void IgiFrame::add_component_channels(Image& image, uint32_t frames) const {
-    static const char* names[12] = {"SS", "SS_filtered", "ID", "ID_filtered", "PM", "PM_filtered",
-                                    "guidance.SS", "guidance.ID", "guidance.PM", "sets.SS", "sets.ID", "sets.PM"};
-    static const char* rgb[3] = {"R", "G", "B"};
+void IgiFrame::report(IntegratorStats& stats) const {
+    stats.detail = describe();
+    stats.igi = stats_;
+}
+
+void IgiFrame::add_aov_channels(Image& image, uint32_t frames) const {
+    static const char* names[6] = {"SS", "SS_filtered", "ID", "ID_filtered", "PM", "PM_filtered"};
     const uint32_t bits = effective_components();
-    for (int i = 0; i < 12; ++i) {
-        const int component = i < 6 ? i / 2 : (i - 6) % 3;
-        if (component_sums_[i].empty() || !(bits & (1u << component))) continue;
-        const int channels = i < 6 ? 3 : 1;
-        for (int c = 0; c < channels; ++c) {
-            ImageChannel ch{channels == 3 ? std::string(names[i]) + "." + rgb[c] : std::string(names[i]), {}};
-            ch.data.resize(component_sums_[i].size() / channels);
-            for (size_t p = 0; p < ch.data.size(); ++p)
-                ch.data[p] = static_cast<float>(component_sums_[i][channels * p + c] / frames);
-            image.channels.push_back(std::move(ch));
-        }
+    for (int i = 0; i < 6; ++i)
+        if (bits & (1u << (i / 2))) append_channels(image, component_sums_[i], names[i], 3, frames);
+}
+
+void IgiFrame::append_channels(Image& image, const std::vector<double>& sum, const std::string& name, int channels,
+                               uint32_t frames) {
+    static const char* rgb[3] = {"R", "G", "B"};
+    if (sum.empty()) return;
+    for (int c = 0; c < channels; ++c) {
+        ImageChannel ch{channels == 3 ? name + "." + rgb[c] : name, {}};
+        ch.data.resize(sum.size() / channels);
+        for (size_t p = 0; p < ch.data.size(); ++p) ch.data[p] = static_cast<float>(sum[channels * p + c] / frames);
+        image.channels.push_back(std::move(ch));
     }
 }
 

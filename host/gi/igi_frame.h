@@ -1,6 +1,10 @@
 // One frame of Instant Global Illumination (Wald et al. 2002) as the renderer runs it:
 // VPLs (host), the per-pixel kernels (backend), the discontinuity filter and the
 // composite (host). Everything but the kernels is host code shared by every backend.
+// IgiFrame is the `igi` integrator and the base of the igi family: AisFrame
+// (gi/ais_frame.h) refines the components with extra sample sets, IcFrame
+// (gi/ic_frame.h) takes the indirect component from an instant cache; both through the
+// protected stages below.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -10,11 +14,11 @@
 #include "backend/backend.h"
 #include "gi/ais_schedule.h"
 #include "gi/discontinuity_filter.h"
-#include "gi/instant_cache.h"
 #include "gi/vpl_generator.h"
 #include "image/image_io.h"
-#include "render/effect_plan.h"
-#include "render/scene_buffers.h"
+#include "integrators/integrator.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
 
 namespace tessera {
 
@@ -33,9 +37,7 @@ struct IgiSettings {
     /// Components to compute (TS_COMPONENT_SS | _ID | _PM); the ones the scene does not
     /// call for are dropped anyway (no medium: no PM).
     uint32_t components = 7u;
-    /// Adaptive Interleaved Sampling: after the base pass, guidance maps and a schedule
-    /// give flagged pixels extra sample sets (ais_schedule.h); off for plain IGI.
-    bool adaptive = false;
+    /// Adaptive Interleaved Sampling (AisFrame, ais_schedule.h): the mode and thresholds.
     AisMode ais_mode = AisMode::A;
     AisThresholds ais;
 };
@@ -52,7 +54,7 @@ struct IgiFrameStats {
     std::array<double, kAisComponents> flagged{};  ///< fraction of pixels flagged (AIS only)
 };
 
-class IgiFrame {
+class IgiFrame : public Integrator {
 public:
     /// `scene` and `backend` must outlive this object.
     IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan& plan, const IgiSettings& settings);
@@ -72,34 +74,39 @@ public:
     /// kernel when the scene has a medium, the filter, and the composite
     ///   L = T · throughput · (Le + albedo · (Ẽ_ss + Ẽ_id)) + L̃_pm
     /// into TS_PASS_FLOATS per pixel (layout.h). Fills frame's igi fields itself.
-    void render(TsFrame frame, std::vector<float>& out);
+    void render_pass(const TsFrame& frame, std::vector<float>& out) override;
 
     /// Per-component AOVs summed over the frames rendered so far, divided by `frames`:
     /// SS, ID (irradiance / π) and, when the scene has a medium, PM (radiance), each
-    /// before and after filtering (channels SS.R, SS_filtered.R, ...); with AIS also
-    /// each component's guidance map and sample-set count (guidance.SS, sets.SS, ...).
-    void add_component_channels(Image& image, uint32_t frames) const;
+    /// before and after filtering (channels SS.R, SS_filtered.R, ...).
+    void add_aov_channels(Image& image, uint32_t frames) const override;
 
     const IgiFrameStats& stats() const { return stats_; }
 
     /// One line for the log: tile, VPLs, clamp and the last frame's stage times.
-    std::string describe() const;
+    std::string describe() const override;
 
-    /// Instant caching: the indirect component comes from `cache` (not owned; it must
-    /// outlive this object) instead of the interleaved VPL sets, and is not filtered (the
-    /// cache's interpolation already smooths it). nullptr restores plain igi.
-    void set_instant_cache(InstantCache* cache) { cache_ = cache; }
+    /// describe() and stats() into `stats` (integrators/factory.h).
+    void report(IntegratorStats& stats) const override;
 
-    /// The last frame's schedule (AIS only; empty otherwise).
-    const AisSchedule& schedule() const { return schedule_; }
+protected:
+    /// True when the indirect component comes from the interleaved VPL sets (igi, ais);
+    /// false: no VPL sets are made, the surface kernel skips ID and refine() supplies it.
+    virtual bool interleaved_indirect() const { return true; }
+    /// Runs after the base pass, before reconstruction: may replace or refine the raw
+    /// components (raw_). Its time is not counted as the filter's.
+    virtual void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
+        (void)frame, (void)surf, (void)media;
+    }
+    /// final_[c] from raw_[c]: the discontinuity filter (or a copy with the filter off).
+    virtual void reconstruct_component(int c);
+    /// Adds this frame's raw and final components to the AOV sums.
+    virtual void add_to_sums();
+    /// Appends `sum` / frames as channel `name` (channels 1) or name.R/G/B (channels 3).
+    static void append_channels(Image& image, const std::vector<double>& sum, const std::string& name,
+                                int channels, uint32_t frames);
 
-private:
     uint32_t effective_components() const;
-    void extract(int width, const std::vector<float>& surf, const std::vector<float>& media);
-    void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media);
-    void reconstruct();
-    void composite(const std::vector<float>& surf, std::vector<float>& out);
-    void add_to_sums();
 
     Backend& backend_;
     const SceneBuffers& scene_;
@@ -108,18 +115,15 @@ private:
     float g_clamp_ = 0.0f;
     float march_far_ = 0.0f;
     IgiFrameStats stats_;
-    // Raw and reconstructed components (3 floats per pixel each), summed over frames;
-    // then guidance (1 per pixel per component) and set counts.
-    std::array<std::vector<double>, 12> component_sums_;
+    // Raw and reconstructed components (3 floats per pixel each), summed over frames.
+    std::array<std::vector<double>, 6> component_sums_;
     std::array<std::vector<float>, kAisComponents> raw_, final_;
-    // AIS: each pixel's own-set estimate and the sum over the sets it evaluated.
-    std::array<std::vector<float>, kAisComponents> base_;
-    std::array<std::vector<double>, kAisComponents> own_sum_;
     std::vector<float> transmittance_;
     GeometryBuffer geometry_;
-    AisGuidance guidance_;
-    AisSchedule schedule_;
-    InstantCache* cache_ = nullptr;
+
+private:
+    void extract(int width, const std::vector<float>& surf, const std::vector<float>& media);
+    void composite(const std::vector<float>& surf, std::vector<float>& out);
 };
 
 }  // namespace tessera

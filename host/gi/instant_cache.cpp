@@ -205,24 +205,32 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
 
     t0 = Clock::now();
     std::vector<float> gbuffer;
-    backend.render_pass(PixelKernel::IcGbuffer, frame, gbuffer);
+    backend.launch(KernelId::IcGbuffer, frame, gbuffer);
     const SceneBounds bounds = scene_bounds(scene);
     cache_.rebuild(bounds.lo, bounds.hi);
     place(backend, scene, gbuffer, frame, g_clamp);
     stats_.place_seconds = since(t0);
 
     t0 = Clock::now();
+    const IcCacheBuffers& flat = cache_.buffers();
+    backend.set_input(KernelInput::IcGbuffer, gbuffer);
+    backend.set_input(KernelInput::IcNodes, flat.nodes);
+    backend.set_input(KernelInput::IcRefs, flat.refs);
+    backend.set_input(KernelInput::IcRecords, flat.records);
+    TsFrame interp_frame = frame;
+    interp_frame.ic_error_bound = settings_.error_bound;
     std::vector<float> interp;
-    backend.ic_interpolate(gbuffer, cache_.buffers(), settings_.error_bound, interp);
+    backend.launch(KernelId::IcInterpolate, interp_frame, interp);
     const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
     e_id.assign(3 * pixels, 0.0f);
     for (size_t p = 0; p < pixels; ++p) {
         const float* g = &gbuffer[p * TS_IC_GBUF_FLOATS];
         if (!has_surface(g)) continue;
-        glm::vec3 e(interp[4 * p], interp[4 * p + 1], interp[4 * p + 2]);
+        const float* v = &interp[p * TS_IC_INTERP_FLOATS];
+        glm::vec3 e(v[0], v[1], v[2]);
         // Placement covered this pixel on the host; a kernel rounding a weight at the edge
         // of a record's validity differently can still miss it.
-        if (!(interp[4 * p + 3] > 0.0f)) {
+        if (!(v[3] > 0.0f)) {
             cache_.lookup({g[0], g[1], g[2]}, {g[3], g[4], g[5]}, &e);
             ++stats_.fallback_pixels;
         }

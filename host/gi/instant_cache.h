@@ -2,7 +2,7 @@
 // indirect diffuse component of an igi frame read from an irradiance cache whose records
 // gather from all VPLs (docs/instant-caching.md). Host code shared by every backend: record
 // placement, the visibility bookkeeping and the temporal update run here; the G-buffer,
-// the shadow rays (Backend::trace_closest) and the interpolation (Backend::ic_interpolate)
+// the shadow rays (Backend::trace_closest) and the interpolation (KernelId::IcInterpolate)
 // run on the backend.
 //
 // Choices the paper does not fix for us (docs/instant-caching.md marks them ours), and why:
@@ -29,7 +29,7 @@
 #include "backend/backend.h"
 #include "gi/irradiance_cache.h"
 #include "gi/light_paths.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 #include "scene/scene.h"
 
 namespace tessera {

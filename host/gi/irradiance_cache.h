@@ -14,11 +14,19 @@
 
 #include <glm/glm.hpp>
 
-#include "backend/backend.h"
 #include "kernels/shared/geometry.h"
 #include "kernels/shared/layout.h"
 
 namespace tessera {
+
+/// An irradiance cache as the interpolation kernel reads it (kernels/shared/ic.h):
+/// TS_IC_NODE_FLOATS per octree node (root first), the nodes' record lists
+/// concatenated, and TS_IC_RECORD_FLOATS per record.
+struct IcCacheBuffers {
+    std::vector<float> nodes;
+    std::vector<uint32_t> refs;
+    std::vector<float> records;
+};
 
 /// A record on the host: the surface it was made at, its validity radius and its
 /// gathered E = irradiance / π (albedo-free).

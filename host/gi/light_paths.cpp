@@ -8,7 +8,7 @@
 #include "kernels/shared/material.h"
 #include "kernels/shared/medium.h"
 #include "kernels/shared/sampling.h"
-#include "render/scene_view.h"
+#include "device/scene_view.h"
 
 namespace tessera {
 namespace {

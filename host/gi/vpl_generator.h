@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "backend/backend.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 
 namespace tessera {
 

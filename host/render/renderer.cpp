@@ -6,10 +6,9 @@
 
 #include <memory>
 
-#include "gi/igi_frame.h"
 #include "render/accumulator.h"
 #include "render/checkpoint_session.h"
-#include "render/frame.h"
+#include "device/frame.h"
 #include "render/parameters.h"
 #include "util/error.h"
 
@@ -28,25 +27,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     Accumulator acc(w, h);
     CheckpointSession session(checkpoint, scene, settings, w, h);
     const uint32_t first = session.restore(acc);
-    std::unique_ptr<IgiFrame> igi;
-    std::shared_ptr<InstantCache> cache;
-    if (is_igi_method(settings.method)) {
-        IgiSettings is = settings.igi;
-        is.set_shadow_samples = settings.shadow_samples;
-        is.adaptive = settings.method == Method::Ais || settings.method == Method::AisMax;
-        is.ais_mode = settings.method == Method::AisMax ? AisMode::AMax : AisMode::A;
-        igi = std::make_unique<IgiFrame>(backend, buffers, plan_effects(scene), is);
-        if (settings.method == Method::Ic || settings.method == Method::Tic) {
-            if (settings.method == Method::Tic) cache = settings.ic_state;
-            if (!cache) {
-                IcSettings ics = settings.ic;
-                ics.temporal = settings.method == Method::Tic;
-                cache = std::make_shared<InstantCache>(ics, scene.objects);
-            }
-            igi->set_instant_cache(cache.get());
-        }
-    }
-    const PixelKernel kernel = settings.method == Method::Direct ? PixelKernel::Direct : PixelKernel::PathTrace;
+    const std::unique_ptr<Integrator> integrator = make_integrator(backend, scene, buffers, settings);
     std::vector<float> pass;
     std::vector<double> pass_seconds;
     using clock = std::chrono::steady_clock;
@@ -54,10 +35,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     for (uint32_t i = first; i < settings.spp; ++i) {
         const auto t0 = clock::now();
         frame.pass = i;
-        if (igi)
-            igi->render(frame, pass);
-        else
-            backend.render_pass(kernel, frame, pass);
+        integrator->render_pass(frame, pass);
         acc.add(pass);
         pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
         if (progress)
@@ -70,10 +48,9 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
         std::nth_element(pass_seconds.begin(), pass_seconds.begin() + pass_seconds.size() / 2, pass_seconds.end());
         stats->median_pass_seconds = pass_seconds.empty() ? 0.0 : pass_seconds[pass_seconds.size() / 2];
     }
-    if (stats && igi) stats->detail = igi->describe(), stats->igi = igi->stats();
-    if (stats && cache) stats->ic = cache->stats();
+    if (stats) integrator->report(*stats);
     Image image = acc.mean_image(settings.aovs, settings.variance);
-    if (igi && settings.aovs) igi->add_component_channels(image, settings.spp - first);
+    if (settings.aovs) integrator->add_aov_channels(image, settings.spp - first);
     return image;
 }
 

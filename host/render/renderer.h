@@ -7,26 +7,17 @@
 #include <string>
 
 #include "backend/backend.h"
-#include "gi/igi_frame.h"
-#include "render/scene_buffers.h"
 #include "image/image_io.h"
-#include "render/method.h"
+#include "integrators/factory.h"
+#include "device/scene_buffers.h"
 #include "scene/scene.h"
 
 namespace tessera {
 
-struct RenderSettings {
-    Method method = Method::Direct;
-    uint32_t max_depth = 128;       ///< pt: path vertices before a path is cut
-    uint32_t max_scatter = 0;       ///< pt: medium scattering vertices per path, 0 = unlimited
-    IgiSettings igi;                ///< igi (set_shadow_samples comes from shadow_samples)
-    IcSettings ic;                  ///< ic, tic (temporal is set from the method)
-    /// tic: the cache kept across the frames of a sequence (render it frame by frame with
-    /// the same settings; render_sequence makes one); null: a cache for this call only.
-    /// It must belong to the scene being rendered (its object table).
-    std::shared_ptr<InstantCache> ic_state;
+/// The method and its settings (IntegratorSettings: method, max_depth, max_scatter, igi,
+/// ic, ic_state, shadow_samples), and the frame loop's.
+struct RenderSettings : IntegratorSettings {
     uint32_t spp = 16;              ///< passes, one camera sample per pixel each
-    uint32_t shadow_samples = 8;    ///< area-light samples per camera hit and pass
     uint32_t seed = 1;
     int width = 0;                  ///< 0: the scene camera's resolution
     int height = 0;
@@ -38,13 +29,11 @@ struct RenderSettings {
     double checkpoint_interval_s = 120.0;  ///< save every this many seconds; 0: only on a signal
 };
 
-struct RenderStats {
+/// The integrator's report (IntegratorStats: detail, igi, ic) and the frame loop's times.
+struct RenderStats : IntegratorStats {
     uint32_t passes = 0;
     double seconds = 0.0;            ///< wall time of all passes (excludes set-up)
     double median_pass_seconds = 0.0;
-    std::string detail;              ///< method-specific log line ("" for none)
-    IgiFrameStats igi;               ///< igi-family methods: the last pass's counts and stage times
-    IcFrameStats ic;                 ///< ic, tic: the last pass's cache counts (records, rays)
 };
 
 /// Called after each pass with (passes done, passes total, seconds elapsed in this call,

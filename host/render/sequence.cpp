@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <memory>
 
-#include "render/effect_plan.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
 #include "render/parameters.h"
-#include "render/scene_buffers.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -51,11 +51,7 @@ void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& 
                      const ProgressFn& progress) {
     validate_settings(sequence_settings);  // before the tic cache is made from them
     RenderSettings settings = sequence_settings;
-    if (settings.method == Method::Tic) {  // one cache for this sequence, of this scene
-        IcSettings ics = settings.ic;
-        ics.temporal = true;
-        settings.ic_state = std::make_shared<InstantCache>(ics, rest.objects);
-    }
+    prepare_sequence(settings, rest);
     for (int frame = range.first; frame <= range.last; ++frame) {
         const auto start = std::chrono::steady_clock::now();
         const Scene scene = scene_at_frame(rest, frame);

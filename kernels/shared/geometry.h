@@ -109,6 +109,13 @@ typedef struct TsSceneView {
     TS_GLOBAL const float* medium;
     TS_GLOBAL const float* vpls;
     TS_GLOBAL const uint* vpl_set_start;
+    /* Named inputs beyond the scene (host/device/kernel_table.h KernelInput); null or a
+     * placeholder where the launch does not use them. */
+    TS_GLOBAL const float* ic_gbuffer;
+    TS_GLOBAL const float* ic_nodes;
+    TS_GLOBAL const uint* ic_refs;
+    TS_GLOBAL const float* ic_records;
+    TS_GLOBAL const uint* items; /* the launch's item list (item kernels) */
     uint light_count;
 } TsSceneView;
 

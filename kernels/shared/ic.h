@@ -29,6 +29,15 @@ TS_INLINE void ts_ic_gbuffer_pixel(const TsSceneView* sv, const TsTracer* tracer
     out[14] = v.distance;
 }
 
+/* The interpolation kernel's pixel (px, py): the cache in sv's named inputs (ic_gbuffer,
+ * ic_nodes, ic_refs, ic_records) with Ward's a = f->ic_error_bound; TS_IC_INTERP_FLOATS. */
+TS_INLINE void ts_ic_interpolate_kernel_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                              uint px, uint py, float* out) {
+    (void)tracer;
+    ts_ic_interpolate_pixel(sv->ic_gbuffer, sv->ic_nodes, sv->ic_refs, sv->ic_records, f->ic_error_bound,
+                            py * f->width + px, out);
+}
+
 TS_NAMESPACE_END
 
 #endif /* TS_IC_H */

@@ -317,5 +317,13 @@ TS_INLINE void ts_ais_item(const TsSceneView* sv, const TsTracer* tracer, const 
 #endif
 }
 
+/* The ais extra kernel's work item i: item i of sv->items (TS_AIS_ITEM_WORDS, layout.h)
+ * through ts_ais_item. */
+TS_INLINE void ts_ais_extra_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                 float* out) {
+    uint p = sv->items[TS_AIS_ITEM_WORDS * i], code = sv->items[TS_AIS_ITEM_WORDS * i + 1u];
+    ts_ais_item(sv, tracer, f, p % f->width, p / f->width, code & 0xffu, code >> 8, out);
+}
+
 TS_NAMESPACE_END
 #endif /* TS_IGI_H */

@@ -91,6 +91,7 @@ typedef struct TsFrame {
                                     past it (twice the scene diagonal beyond the camera's
                                     distance to the origin) no geometry can light them */
     unsigned int igi_components; /* igi/ais: TS_COMPONENT_* bits of what to compute */
+    float ic_error_bound;        /* ic: Ward's a of the interpolation kernel (shared/ic_lookup.h) */
 } TsFrame;
 
 /* VPLs (host/gi/vpl_generator.cpp): TS_VPL_FLOATS floats each, sorted by sample set:
@@ -117,6 +118,9 @@ typedef struct TsFrame {
 /* Per-item output of the ais extra kernel (one pixel, one extra sample set):
  * [0..2] E_ss, [3..5] E_id, [6..8] single-scattered radiance, for that set. */
 #define TS_AIS_ITEM_FLOATS 9
+/* An item of the ais extra kernel's list: [0] pixel (row-major index), [1] sample set
+ * (low 8 bits) | TS_COMPONENT_* bits << 8. */
+#define TS_AIS_ITEM_WORDS 2
 /* Components (TsFrame.igi_components). */
 #define TS_COMPONENT_SS 1u
 #define TS_COMPONENT_ID 2u
@@ -130,6 +134,9 @@ typedef struct TsFrame {
  * bits; TS_NO_HIT when the camera path finds no surface or a surface of albedo 0: no
  * record can serve it), [14] distance along the camera path (scene units). */
 #define TS_IC_GBUF_FLOATS 15
+/* Per-pixel output of the ic interpolation kernel: [0..2] E = irradiance / π, [3] the
+ * weight sum (0: no usable record). */
+#define TS_IC_INTERP_FLOATS 4
 /* A cache record as the interpolation reads it: [0..2] position, [3..5] unit shading
  * normal, [6..8] E = irradiance / π gathered from the VPLs (albedo-free), [9] validity
  * radius R (scene units). */

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "backend/backend.h"
-#include "render/effect_plan.h"
-#include "render/scene_buffers.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
 #include "scene/loader.h"
 
 namespace tessera {

@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gi/igi_frame.h"
-#include "render/frame.h"
+#include "gi/ais_frame.h"
+#include "device/frame.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
 
@@ -24,27 +24,26 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         auto be = make_backend({kind, ""}, b, plan_effects(s));
         IgiSettings is;
-        is.adaptive = true;
         is.ais_mode = AisMode::AMax;
         is.ais.ss_trigger = is.ais.id_trigger = is.ais.pm_trigger = -1.0f;
-        IgiFrame igi(*be, b, plan_effects(s), is);
+        AisFrame igi(*be, b, plan_effects(s), is);
         TsFrame f = make_frame(s.camera, 24, 24, is.set_shadow_samples, 3, b.light_count);
         f.light_power = b.light_power;
         std::vector<float> out;
-        igi.render(f, out);
+        igi.render_pass(f, out);
         // The reference: every (pixel, set) through the item kernel, with the frame and
-        // VPLs render() used.
+        // VPLs render_pass() used.
         const TsFrame prepared = igi.prepare(f);
         const uint32_t N = 9, pixels = 24 * 24;
-        std::vector<uint32_t> px, codes;
+        std::vector<uint32_t> list;  // TS_AIS_ITEM_WORDS per item: pixel, set | components << 8
         for (uint32_t p = 0; p < pixels; ++p)
             for (uint32_t j = 0; j < N; ++j) {
                 const uint32_t own = (p % 24) % 3 + 3 * ((p / 24) % 3);
-                px.push_back(p);
-                codes.push_back((own + j) % N | (TS_COMPONENT_SS | TS_COMPONENT_ID) << 8);
+                list.push_back(p);
+                list.push_back((own + j) % N | (TS_COMPONENT_SS | TS_COMPONENT_ID) << 8);
             }
         std::vector<float> items;
-        be->render_items(prepared, px, codes, items);
+        be->launch_items(KernelId::AisItem, prepared, list, items);
         size_t mismatches = 0;
         for (int c : {kAisSS, kAisID}) {
             const std::vector<float>& got = igi.component(static_cast<AisComponent>(c));
@@ -76,12 +75,11 @@ TEST(Ais, SchedulesAgreeAcrossBackends) {
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         auto be = make_backend({kind, ""}, b, plan_effects(s));
         IgiSettings is;
-        is.adaptive = true;
-        IgiFrame igi(*be, b, plan_effects(s), is);
+        AisFrame igi(*be, b, plan_effects(s), is);
         TsFrame f = make_frame(s.camera, 96, 96, is.set_shadow_samples, 1, b.light_count);
         f.light_power = b.light_power;
         std::vector<float> out;
-        igi.render(f, out);
+        igi.render_pass(f, out);
         sched[i++] = igi.schedule();
     }
     for (int c : {kAisSS, kAisID}) {

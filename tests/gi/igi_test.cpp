@@ -9,7 +9,7 @@
 
 #include "gi/igi_frame.h"
 #include "gi/vpl_generator.h"
-#include "render/frame.h"
+#include "device/frame.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
 #include "support/test_scenes.h"
@@ -69,8 +69,8 @@ TEST(IgiWork, FollowsTheScene) {
             SceneBuffers b = make_scene_buffers(*s);
             auto be = make_backend({kind, ""}, b, plan_effects(*s));
             render_frame(*be, *s, b, rs);
-            EXPECT_EQ(be->dispatch_count(PixelKernel::IgiSurface), 2u);
-            EXPECT_EQ(be->dispatch_count(PixelKernel::IgiMedia), s == &fog ? 2u : 0u);
+            EXPECT_EQ(be->dispatch_count(KernelId::IgiSurface), 2u);
+            EXPECT_EQ(be->dispatch_count(KernelId::IgiMedia), s == &fog ? 2u : 0u);
         }
     }
     Scene black = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
@@ -78,7 +78,7 @@ TEST(IgiWork, FollowsTheScene) {
     auto be = make_backend({BackendKind::Embree, ""}, b, plan_effects(black));
     IgiFrame igi(*be, b, plan_effects(black), IgiSettings{});
     std::vector<float> out;
-    igi.render(make_frame(black.camera, 8, 8, 4, 1, b.light_count), out);
+    igi.render_pass(make_frame(black.camera, 8, 8, 4, 1, b.light_count), out);
     EXPECT_EQ(igi.stats().vpls, 0u);
     EXPECT_EQ(igi.stats().vpl_rays, 0u);
 }

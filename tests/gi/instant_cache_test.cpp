@@ -8,9 +8,9 @@
 
 #include "gi/igi_frame.h"
 #include "gi/instant_cache.h"
-#include "render/effect_plan.h"
+#include "device/effect_plan.h"
 #include "render/renderer.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 #include "scene/animation.h"
 #include "scene/scene_test_util.h"
 #include "support/scratch_dir.h"

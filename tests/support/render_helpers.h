@@ -9,9 +9,9 @@
 
 #include "backend/backend.h"
 #include "image/image_io.h"
-#include "render/effect_plan.h"
+#include "device/effect_plan.h"
 #include "render/renderer.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 #include "scene/scene.h"
 
 namespace tessera::test {

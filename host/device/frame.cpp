@@ -1,4 +1,4 @@
-#include "render/frame.h"
+#include "device/frame.h"
 
 #include <cmath>
 

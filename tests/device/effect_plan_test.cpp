@@ -1,11 +1,11 @@
 // Effects follow the scene: the plan, and the OpenCL defines it produces.
-#include "render/effect_plan.h"
+#include "device/effect_plan.h"
 
 #include <algorithm>
 
 #include <gtest/gtest.h>
 
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 #include "support/test_scenes.h"
 
 namespace tessera {

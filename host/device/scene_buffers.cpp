@@ -1,4 +1,4 @@
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 
 #include <cstring>
 

@@ -1,4 +1,4 @@
-#include "render/effect_plan.h"
+#include "device/effect_plan.h"
 
 namespace tessera {
 

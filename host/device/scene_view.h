@@ -2,7 +2,7 @@
 // scene buffers, for C++ callers of that code (the Embree backend, the benchmark).
 #pragma once
 #include "kernels/shared/geometry.h"
-#include "render/scene_buffers.h"
+#include "device/scene_buffers.h"
 
 namespace tessera {
 
@@ -12,7 +12,8 @@ inline ts::TsSceneView make_scene_view(const SceneBuffers& b) {
                            b.tri_mat.data(),   b.materials.data(), b.tex_info.data(),
                            b.tex_texels.data(), b.lights.data(),   b.light_cdf.data(),
                            b.medium.data(),     nullptr,            nullptr,
-                           b.light_count};
+                           nullptr,             nullptr,            nullptr,
+                           nullptr,             nullptr,            b.light_count};
 }
 
 }  // namespace tessera

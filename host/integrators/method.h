@@ -1,5 +1,6 @@
 // The rendering methods (--method) and their names.
 #pragma once
+#include <cstdint>
 #include <string>
 
 namespace tessera {
@@ -14,30 +15,13 @@ enum class Method {
     Tic,        ///< temporal instant caching: the cache kept and updated across frames
 };
 
-/// True for the methods built on the igi frame (igi, ais, ais-max, ic, tic).
-bool is_igi_method(Method m);
-
 /// Parses "direct", "pt", "igi", "ais", "ais-max", "ic" or "tic"; throws InputError naming --method
 /// otherwise.
 Method parse_method(const std::string& name);
 const char* method_name(Method m);
 
-/// The per-pixel kernels a backend dispatches. A method runs one or more of them.
-enum class PixelKernel {
-    Direct,      ///< TS_PASS_FLOATS per pixel
-    PathTrace,   ///< TS_PASS_FLOATS per pixel
-    IgiSurface,  ///< TS_IGI_SURF_FLOATS per pixel
-    IgiMedia,    ///< TS_IGI_MEDIA_FLOATS per pixel
-    IcGbuffer,   ///< TS_IC_GBUF_FLOATS per pixel
-};
-constexpr int kPixelKernelCount = 5;
-
 /// Parses a comma-separated list of "ss", "id", "pm" into TS_COMPONENT_* bits; throws
 /// InputError naming --components for anything else or an empty list.
 uint32_t parse_components(const std::string& list);
-
-/// Floats each pixel of `k`'s output holds.
-int pixel_kernel_floats(PixelKernel k);
-const char* pixel_kernel_name(PixelKernel k);
 
 }  // namespace tessera

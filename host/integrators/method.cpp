@@ -1,4 +1,4 @@
-#include "render/method.h"
+#include "integrators/method.h"
 
 #include <algorithm>
 
@@ -16,10 +16,6 @@ Method parse_method(const std::string& name) {
     if (name == "ic") return Method::Ic;
     if (name == "tic") return Method::Tic;
     throw InputError("--method " + name + ": not available (implemented: direct, pt, igi, ais, ais-max, ic, tic)");
-}
-
-bool is_igi_method(Method m) {
-    return m == Method::Igi || m == Method::Ais || m == Method::AisMax || m == Method::Ic || m == Method::Tic;
 }
 
 const char* method_name(Method m) {
@@ -48,28 +44,6 @@ uint32_t parse_components(const std::string& list) {
         start = end + 1;
     }
     return bits;
-}
-
-int pixel_kernel_floats(PixelKernel k) {
-    switch (k) {
-        case PixelKernel::Direct:
-        case PixelKernel::PathTrace: return TS_PASS_FLOATS;
-        case PixelKernel::IgiSurface: return TS_IGI_SURF_FLOATS;
-        case PixelKernel::IgiMedia: return TS_IGI_MEDIA_FLOATS;
-        case PixelKernel::IcGbuffer: return TS_IC_GBUF_FLOATS;
-    }
-    return 0;
-}
-
-const char* pixel_kernel_name(PixelKernel k) {
-    switch (k) {
-        case PixelKernel::Direct: return "direct_pass";
-        case PixelKernel::PathTrace: return "pt_pass";
-        case PixelKernel::IgiSurface: return "igi_surface_pass";
-        case PixelKernel::IgiMedia: return "igi_media_pass";
-        case PixelKernel::IcGbuffer: return "ic_gbuffer_pass";
-    }
-    return "?";
 }
 
 }  // namespace tessera

@@ -1,0 +1,129 @@
+#include "gi/ais_frame.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "gi/ais_reconstruct.h"
+#include "kernels/shared/layout.h"
+
+namespace tessera {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+void AisFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
+    const auto t0 = Clock::now();
+    add_sets(frame, surf, media);
+    stats_.ais_seconds = since(t0);
+}
+
+// AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
+// raw component becomes the mean over all the sets it evaluated (summed in double: own
+// set first, then the extra sets in increasing order), its base estimate kept for the
+// neighbours' reconstruction.
+void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
+    const size_t pixels = raw_[kAisSS].size() / 3;
+    AisBaseBuffers base;
+    base.geometry = geometry_;
+    base.visibility.resize(pixels);
+    base.indirect.resize(pixels);
+    for (size_t p = 0; p < pixels; ++p) {
+        const float* v = &surf[p * TS_IGI_SURF_FLOATS];
+        base.visibility[p] = v[19];
+        base.indirect[p] = 0.2126f * v[3] + 0.7152f * v[4] + 0.0722f * v[5];
+    }
+    if (!media.empty()) {
+        base.lit_fraction.resize(pixels);
+        base.medium_length.resize(pixels);
+        for (size_t p = 0; p < pixels; ++p) {
+            base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + 6];
+            base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + 7];
+        }
+    }
+    const uint32_t bits = effective_components();
+    const std::array<bool, kAisComponents> enabled = {(bits & TS_COMPONENT_SS) != 0, (bits & TS_COMPONENT_ID) != 0,
+                                                      (bits & TS_COMPONENT_PM) != 0 && !media.empty()};
+    // The set-to-set CoV that VPL noise alone gives falls as 1/√paths: id_cov is stated
+    // for kIdCovPaths paths per set and scaled to this frame's.
+    AisThresholds t = settings_.ais;
+    t.id_cov *= std::sqrt(float(AisThresholds::kIdCovPaths) / float(std::max(1u, settings_.paths_per_set)));
+    guidance_ = compute_guidance(base, settings_.discontinuity, t, enabled);
+    schedule_ = make_schedule(guidance_, t, settings_.ais_mode, geometry_.width, geometry_.height,
+                              static_cast<int>(settings_.tile));
+    stats_.flagged = schedule_.flagged;
+    stats_.ais_items = schedule_.item_pixels.size();
+    static_assert(1u << kAisSS == TS_COMPONENT_SS && 1u << kAisID == TS_COMPONENT_ID &&
+                  1u << kAisPM == TS_COMPONENT_PM, "AIS component bits are the kernels' TS_COMPONENT_* bits");
+    std::vector<uint32_t> list(TS_AIS_ITEM_WORDS * schedule_.item_pixels.size());
+    for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
+        list[TS_AIS_ITEM_WORDS * i] = schedule_.item_pixels[i];
+        list[TS_AIS_ITEM_WORDS * i + 1] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
+    }
+    std::vector<float> items;
+    backend_.launch_items(KernelId::AisItem, frame, list, items);
+    for (int c = 0; c < kAisComponents; ++c) {
+        base_[c] = raw_[c];
+        own_sum_[c].clear();
+        if (schedule_.sets[c].empty()) continue;
+        own_sum_[c].assign(raw_[c].begin(), raw_[c].end());
+    }
+    for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
+        const size_t p = schedule_.item_pixels[i];
+        for (int c = 0; c < kAisComponents; ++c)
+            if (schedule_.item_components[i] & (1u << c))
+                for (int j = 0; j < 3; ++j) own_sum_[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + 3 * c + j];
+    }
+    for (int c = 0; c < kAisComponents; ++c) {
+        if (schedule_.sets[c].empty()) continue;
+        for (size_t p = 0; p < pixels; ++p)
+            for (int j = 0; j < 3; ++j)
+                raw_[c][3 * p + j] = static_cast<float>(own_sum_[c][3 * p + j] / schedule_.sets[c][p]);
+    }
+}
+
+// Each component: the discontinuity filter over the interleaved estimates; with AIS,
+// pixels the schedule gave extra sets combine them with the accepted neighbours' sets
+// they did not evaluate (ais_reconstruct.h: each set at most once; all N sets: the pixel's own
+// full-rate mean, unfiltered: docs/ais.md §6).
+void AisFrame::reconstruct_component(int c) {
+    if (settings_.filter && !schedule_.sets[c].empty())
+        ais_reconstruct(geometry_, settings_.discontinuity, base_[c], own_sum_[c], schedule_.masks[c], final_[c]);
+    else
+        IgiFrame::reconstruct_component(c);
+}
+
+void AisFrame::add_to_sums() {
+    IgiFrame::add_to_sums();
+    auto add = [](std::vector<double>& sum, const auto& v) {
+        if (sum.size() != v.size()) sum.assign(v.size(), 0.0);
+        for (size_t j = 0; j < v.size(); ++j) sum[j] += v[j];
+    };
+    for (int c = 0; c < kAisComponents; ++c) {
+        if (!guidance_.g[c].empty()) add(guidance_sums_[c], guidance_.g[c]);
+        if (!schedule_.sets[c].empty()) add(guidance_sums_[3 + c], schedule_.sets[c]);
+    }
+}
+
+std::string AisFrame::describe() const {
+    char buf[320];
+    std::snprintf(buf, sizeof buf, "; %s: flagged SS %.1f%%, ID %.1f%%, PM %.1f%%, %zu extra set evaluations, %.1f ms",
+                  settings_.ais_mode == AisMode::AMax ? "ais-max" : "ais", 100 * stats_.flagged[kAisSS],
+                  100 * stats_.flagged[kAisID], 100 * stats_.flagged[kAisPM], stats_.ais_items,
+                  1e3 * stats_.ais_seconds);
+    return IgiFrame::describe() + buf;
+}
+
+void AisFrame::add_aov_channels(Image& image, uint32_t frames) const {
+    IgiFrame::add_aov_channels(image, frames);
+    static const char* names[6] = {"guidance.SS", "guidance.ID", "guidance.PM", "sets.SS", "sets.ID", "sets.PM"};
+    const uint32_t bits = effective_components();
+    for (int i = 0; i < 6; ++i)
+        if (bits & (1u << (i % 3))) append_channels(image, guidance_sums_[i], names[i], 1, frames);
+}
+
+}  // namespace tessera

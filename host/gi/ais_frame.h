@@ -1,0 +1,46 @@
+// Adaptive Interleaved Sampling (modes A and A-MAX) as an igi-family integrator: the igi
+// frame's base pass, then guidance maps and a schedule that give flagged pixels extra
+// sample sets (gi/ais_schedule.h), and their reconstruction (gi/ais_reconstruct.h).
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "gi/ais_schedule.h"
+#include "gi/igi_frame.h"
+
+namespace tessera {
+
+/// The `ais` / `ais-max` integrator; settings.ais_mode picks the mode.
+class AisFrame final : public IgiFrame {
+public:
+    using IgiFrame::IgiFrame;
+
+    /// IgiFrame's AOVs, then each component's guidance map and sample-set count
+    /// (guidance.SS, sets.SS, ...), summed over the frames and divided by `frames`.
+    void add_aov_channels(Image& image, uint32_t frames) const override;
+
+    /// IgiFrame's line and the last frame's flagged fractions, extra sets and time.
+    std::string describe() const override;
+
+    /// The last frame's schedule.
+    const AisSchedule& schedule() const { return schedule_; }
+
+protected:
+    void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) override;
+    void reconstruct_component(int c) override;
+    void add_to_sums() override;
+
+private:
+    void add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media);
+
+    // Each pixel's own-set estimate and the sum over the sets it evaluated.
+    std::array<std::vector<float>, kAisComponents> base_;
+    std::array<std::vector<double>, kAisComponents> own_sum_;
+    AisGuidance guidance_;
+    AisSchedule schedule_;
+    // Guidance (1 per pixel per component), then set counts, summed over frames.
+    std::array<std::vector<double>, 6> guidance_sums_;
+};
+
+}  // namespace tessera

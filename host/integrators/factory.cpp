@@ -1,0 +1,45 @@
+#include "integrators/factory.h"
+
+#include "gi/ais_frame.h"
+#include "gi/ic_frame.h"
+#include "integrators/direct_integrator.h"
+#include "integrators/pt_integrator.h"
+#include "device/effect_plan.h"
+
+namespace tessera {
+
+std::unique_ptr<Integrator> make_integrator(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
+                                            const IntegratorSettings& settings) {
+    IgiSettings is = settings.igi;
+    is.set_shadow_samples = settings.shadow_samples;
+    is.ais_mode = settings.method == Method::AisMax ? AisMode::AMax : AisMode::A;
+    switch (settings.method) {
+        case Method::Direct: return std::make_unique<DirectIntegrator>(backend);
+        case Method::PathTrace: return std::make_unique<PtIntegrator>(backend);
+        case Method::Igi: return std::make_unique<IgiFrame>(backend, buffers, plan_effects(scene), is);
+        case Method::Ais:
+        case Method::AisMax: return std::make_unique<AisFrame>(backend, buffers, plan_effects(scene), is);
+        case Method::Ic:
+        case Method::Tic: {
+            std::shared_ptr<InstantCache> cache;
+            if (settings.method == Method::Tic) cache = settings.ic_state;
+            if (!cache) {
+                IcSettings ics = settings.ic;
+                ics.temporal = settings.method == Method::Tic;
+                cache = std::make_shared<InstantCache>(ics, scene.objects);
+            }
+            return std::make_unique<IcFrame>(backend, buffers, plan_effects(scene), is, std::move(cache));
+        }
+    }
+    return nullptr;
+}
+
+void prepare_sequence(IntegratorSettings& settings, const Scene& rest) {
+    if (settings.method == Method::Tic) {  // one cache for this sequence, of this scene
+        IcSettings ics = settings.ic;
+        ics.temporal = true;
+        settings.ic_state = std::make_shared<InstantCache>(ics, rest.objects);
+    }
+}
+
+}  // namespace tessera

@@ -1,0 +1,40 @@
+// The integrator seam: one integrator per method family (direct, pt, igi, ais, ic/tic),
+// each in its own file behind this interface; make_integrator (integrators/factory.h)
+// picks one from the method. Integrators render through the generic Backend (rays,
+// kernel launches, named inputs) and know nothing of the frame loop above them.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "image/image_io.h"
+#include "kernels/shared/layout.h"
+
+namespace tessera {
+
+struct IntegratorStats;  // integrators/factory.h
+
+class Integrator {
+public:
+    virtual ~Integrator() = default;
+
+    /// Renders pass frame.pass of `frame` into TS_PASS_FLOATS per pixel (layout.h),
+    /// row-major from the top-left pixel; the frame loop accumulates the passes.
+    virtual void render_pass(const TsFrame& frame, std::vector<float>& out) = 0;
+
+    /// One line for the log about the last pass ("" for none).
+    virtual std::string describe() const { return {}; }
+
+    /// Writes describe() and the last pass's counts and stage times into `stats`; an
+    /// integrator with none leaves it unchanged.
+    virtual void report(IntegratorStats& stats) const { (void)stats; }
+
+    /// Adds the method's own AOV channels (sums over the passes rendered so far divided by
+    /// `passes`); none by default.
+    virtual void add_aov_channels(Image& image, uint32_t passes) const {
+        (void)image;
+        (void)passes;
+    }
+};
+
+}  // namespace tessera

@@ -1,0 +1,3 @@
+// Fixture for the layer check (tests/CMakeLists.txt): device data including the frame loop.
+#pragma once
+#include "render/renderer.h"
