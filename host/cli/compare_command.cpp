@@ -5,10 +5,13 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "image/image_io.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
@@ -25,7 +28,22 @@ struct CompareArgs {
     bool no_flip = false;
 };
 
-void run_compare(const CompareArgs& a) {
+// Before reading the images: the error maps can be written, the metric options are sane.
+void check_compare_options(const CompareArgs& a, const CLI::App& cmd) {
+    reject_empty_values(cmd);
+    std::vector<OutputFile> maps;
+    if (!a.map.empty()) maps.push_back({a.map, "--map"});
+    if (!a.flip_map.empty()) maps.push_back({a.flip_map, "--flip-map"});
+    check_outputs(maps, {});
+    for (const auto& [image, role] : {std::pair{a.ref, "reference"}, std::pair{a.test, "test"}})
+        for (const OutputFile& m : maps)
+            if (fs::exists(image) && fs::equivalent(image, m.path))
+                throw InputError(m.role + " " + m.path.string() + ": is the " + role + " image");
+    prepare_output_directories(maps);
+}
+
+void run_compare(const CompareArgs& a, const CLI::App& cmd) {
+    check_compare_options(a, cmd);
     const metrics::RgbImage ref = metrics::rgb_for_metrics(read_exr(a.ref), a.ref);
     const metrics::RgbImage test = metrics::rgb_for_metrics(read_exr(a.test), a.test);
     metrics::check_same_size(ref, a.ref, test, a.test);
@@ -88,10 +106,12 @@ void add_compare_command(CLI::App& app) {
     cmd->add_option("--map", args->map, "Write the per-pixel relative squared error as a false-colour PNG "
                                         "(log scale, black 1e-4 to white 1)");
     cmd->add_option("--flip-map", args->flip_map, "Write the FLIP error map (magma) as PNG");
-    cmd->add_option("--exposure", args->exposure, "Exposure in stops before the PSNR tone map")->capture_default_str();
+    cmd->add_option("--exposure", args->exposure, "Exposure in stops before the PSNR tone map")
+        ->capture_default_str()
+        ->check(finite_number("--exposure"));
     cmd->add_flag("--json", args->json, "Print the metrics as JSON");
     cmd->add_flag("--no-flip", args->no_flip, "Skip FLIP (no Python subprocess)");
-    cmd->callback([args] { run_compare(*args); });
+    cmd->callback([args, cmd] { run_compare(*args, *cmd); });
 }
 
 }  // namespace tessera::cli

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "kernels/shared/layout.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
@@ -21,7 +22,9 @@ struct InfoArgs {
     std::string data_dir;
 };
 
-void run_info(const InfoArgs& a) {
+void run_info(const InfoArgs& a, const CLI::App& cmd) {
+    reject_empty_values(cmd);
+    check_data_dir(a.data_dir);
     const fs::path path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
     Scene s = load_scene(path, make_data_path(a.data_dir.empty() ? std::nullopt
                                                                  : std::optional<fs::path>(a.data_dir)));
@@ -59,7 +62,7 @@ void add_info_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("info", "Describe a scene and the effects it calls for");
     cmd->add_option("scene", args->scene, "Scene file (.json)");
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data");
-    cmd->callback([args] { run_info(*args); });
+    cmd->callback([args, cmd] { run_info(*args, *cmd); });
 }
 
 }  // namespace tessera::cli

@@ -21,8 +21,19 @@ void add_parameter_options(CLI::App& cmd, RenderSettings& settings) {
             auto& field = get(settings);
             if constexpr (std::is_same_v<decltype(field), bool&>)
                 cmd.add_flag((p.negated ? "!" : "") + std::string(p.option), field, parameter_help(p));
-            else
-                cmd.add_option(p.option, field, parameter_help(p))->capture_default_str();
+            else {
+                CLI::Option* o = cmd.add_option(p.option, field, parameter_help(p));
+                // Checked as text, before CLI11 converts it: CLI11 would read "-1" for an
+                // unsigned as "Could not convert", "010" as octal, "" as 0, "inf" as inf.
+                o->check(CLI::Validator([&p](std::string& text) {
+                    text = check_parameter_text(p, text);  // throws InputError naming option and value
+                    return std::string();
+                }, ""));
+                if (p.zero_unset && field == 0)
+                    o->default_str(default_text(p));
+                else
+                    o->capture_default_str();
+            }
         }, p.field);
     }
 }

@@ -11,8 +11,9 @@ namespace tessera::cli {
 
 /// Registers one option per render_parameters() entry on `cmd`, storing into `settings`
 /// (which must outlive `cmd`'s parse). Help shows the doc, range and unit and the default
-/// (the field's value in `settings` at registration). Range checks are not done here:
-/// call validate_settings after parsing (render_frame runs it too).
+/// (the field's value in `settings` at registration). Each given value is checked as text
+/// by check_parameter_text while parsing (InputError naming option and value, thrown out
+/// of CLI::App::parse); validate_settings still runs after parsing (render_frame runs it too).
 void add_parameter_options(CLI::App& cmd, RenderSettings& settings);
 
 /// The option's help line: "igi: light paths per sample set; 1..65536 paths".

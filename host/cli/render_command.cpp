@@ -4,16 +4,20 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 #include <unistd.h>
 
 #include "backend/backend.h"
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "cli/parameter_options.h"
 #include "image/atomic_file.h"
 #include "image/image_io.h"
 #include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
 #include "device/effect_plan.h"
+#include "integrators/method.h"
+#include "render/interrupt.h"
 #include "render/parameters.h"
 #include "render/renderer.h"
 #include "device/scene_buffers.h"
@@ -57,7 +61,7 @@ void print_progress(uint32_t done, uint32_t total, double elapsed, uint32_t rest
 
 // Timing of this run for the accuracy sweeps (bench/accuracy). A pass is one frame of a
 // progressive method: reaching `spp` passes costs about spp x median_pass_seconds.
-void write_stats_json(const RenderArgs& a, const RenderSettings& s, const RenderStats& stats) {
+void write_stats_json(const fs::path& path, const RenderArgs& a, const RenderSettings& s, const RenderStats& stats) {
     const nlohmann::json j = {
         {"median_pass_seconds", stats.median_pass_seconds},
         {"passes", stats.passes},  // rendered by this run (excludes passes restored by --resume)
@@ -68,52 +72,119 @@ void write_stats_json(const RenderArgs& a, const RenderSettings& s, const Render
         {"shadow_samples", s.shadow_samples},
     };
     const std::string text = j.dump(2) + "\n";
-    write_file_atomic(a.stats_json, text.data(), text.size());
+    write_file_atomic(path, text.data(), text.size());
+}
+
+// The PNG preview written beside an EXR.
+fs::path png_beside(const fs::path& exr) {
+    fs::path png = exr;
+    png.replace_extension(".png");
+    return png;
+}
+
+// Every file the run writes, checkpoint included, with the names messages give them.
+std::vector<OutputFile> outputs_of(const RenderArgs& a, const fs::path& out, const std::optional<FrameRange>& frames) {
+    std::vector<OutputFile> files;
+    if (frames) {
+        for (int f = frames->first; f <= frames->last; ++f) {
+            const fs::path exr = frame_output_path(out, f);
+            files.push_back({exr, "frame " + std::to_string(f) + " of --out"});
+            files.push_back({png_beside(exr), "the PNG preview of frame " + std::to_string(f)});
+        }
+        return files;
+    }
+    files.push_back({out, "--out"});
+    files.push_back({png_beside(out), "the PNG preview beside --out"});
+    files.push_back({checkpoint_path_for(out), "the checkpoint beside --out"});
+    if (!a.stats_json.empty()) files.push_back({a.stats_json, "--stats-json"});
+    return files;
+}
+
+// Stops a run interrupted by a signal that no checkpoint session saw (set-up, sequences).
+void stop_if_interrupted(const std::string& when) {
+    if (interrupt_signal())
+        throw Interrupted("interrupted " + when + "; no checkpoint written (nothing of this run is saved)");
+}
+
+// Option combinations and values the settings table does not check, before any work.
+void check_render_options(const RenderArgs& a, const CLI::App& cmd, const BackendOptions& bo) {
+    check_data_dir(a.data_dir);
+    if (cmd.count("--device") && bo.kind != BackendKind::OpenCL)
+        throw InputError("--device " + a.device + ": only --backend opencl uses a device (this run has --backend " +
+                         a.backend + ")");
+    if (!a.frames.empty() && a.resume)
+        throw InputError("--frames cannot be combined with --resume (checkpoints hold one still frame)");
+    if (!a.frames.empty() && !a.stats_json.empty())
+        throw InputError("--frames cannot be combined with --stats-json (it describes one still frame)");
+}
+
+// Settings that make no sense for this scene.
+void check_scene_options(const RenderSettings& s, const Scene& scene, const fs::path& scene_path) {
+    if (is_igi_method(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
+        throw InputError("--march-steps 0: scene " + scene_path.string() +
+                         " has a medium, which --method " + method_name(s.method) +
+                         " ray-marches; give at least 1 step");
 }
 
 void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, const fs::path& out,
                   const BackendOptions& bo, RenderSettings& settings) {
     std::fprintf(stderr, "tessera: %s, %zu triangles, frames %d..%d\n", scene.name.c_str(), scene.triangle_count(),
                  frames.first, frames.last);
+    CommitGroup outputs;  // no frame is written unless every frame is
+    std::string written;
+    int frame_now = frames.first;
+    auto progress = [&](uint32_t done, uint32_t total, double elapsed, uint32_t restored) {
+        print_progress(done, total, elapsed, restored);
+        if (done < total)
+            stop_if_interrupted("in frame " + std::to_string(frame_now) + " after " + std::to_string(done) + " of " +
+                                std::to_string(total) + " spp (--frames renders keep no checkpoint; no frame written)");
+    };
     render_sequence(scene, frames, bo, settings, [&](int frame, const Image& img, const RenderStats& stats, double seconds) {
         const fs::path exr = frame_output_path(out, frame);
-        fs::path png = exr;
-        png.replace_extension(".png");
-        write_exr(exr, img);
-        write_png(png, img, a.exposure);
+        const fs::path png = png_beside(exr);
+        write_exr(outputs.add(exr), img);
+        write_png(outputs.add(png), img, a.exposure);
         std::fprintf(stderr, "tessera: frame %d: %.2f s (%u spp in %.2f s, the rest set-up)\n", frame, seconds,
                      stats.passes, stats.seconds);
         if (!stats.detail.empty()) std::fprintf(stderr, "  %s\n", stats.detail.c_str());
-        std::printf("%s\n%s\n", exr.c_str(), png.c_str());
-        std::fflush(stdout);
-    }, print_progress);
+        written += exr.string() + "\n" + png.string() + "\n";
+        frame_now = frame + 1;
+        if (frame < frames.last) stop_if_interrupted("after frame " + std::to_string(frame) + " (no frame written)");
+    }, progress);
+    {
+        const InterruptDeferral defer;
+        outputs.commit();
+    }
+    if (interrupt_signal())
+        std::fprintf(stderr, "tessera: interrupted after the last pass: every frame is complete and written\n");
+    std::fputs(written.c_str(), stdout);
 }
 
-void run_render(const RenderArgs& a) {
+void run_render(const RenderArgs& a, const CLI::App& cmd) {
+    const InterruptScope interrupts;  // from the start: a signal during set-up is reported, not fatal
+    reject_empty_values(cmd);
     const fs::path scene_path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
-    const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
     BackendOptions bo{parse_backend_kind(a.backend), a.device};
     RenderSettings settings = a.settings;
     settings.method = parse_method(a.method);
     settings.igi.components = parse_components(a.components);
     validate_settings(settings);  // before the scene loads: a bad option fails at once
-    if (!a.frames.empty() && a.resume)
-        throw InputError("--frames cannot be combined with --resume (checkpoints hold one still frame)");
+    check_render_options(a, cmd, bo);
     if (settings.method == Method::Tic && a.resume)
         throw InputError("--method tic cannot be combined with --resume (a checkpoint does not hold the cache, so a "
                          "resumed render would differ from the uninterrupted one)");
-    if (!a.frames.empty() && !a.stats_json.empty())
-        throw InputError("--frames cannot be combined with --stats-json (it describes one still frame)");
+    const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
     Scene scene = load_scene(scene_path, data);
     const fs::path out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
     if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
     std::optional<FrameRange> frames;
     if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
-    if (!out.parent_path().empty()) {  // before rendering: checkpoints are written there too
-        std::error_code ec;
-        fs::create_directories(out.parent_path(), ec);
-        if (ec) throw RuntimeError("cannot create output directory " + out.parent_path().string() + ": " + ec.message());
-    }
+    check_scene_options(settings, scene, scene_path);
+    // Every output before the first ray: a run that cannot write its results does no work.
+    const std::vector<OutputFile> files = outputs_of(a, out, frames);
+    check_outputs(files, scene_path);
+    stop_if_interrupted("while loading the scene");
+    prepare_output_directories(files);  // checkpoints are written there during the render too
     if (frames) return run_sequence(a, scene, *frames, out, bo, settings);
     // A still of an animated scene is its frame 0 (the rest pose with frame 0's keys).
     if (scene.animation.animated()) scene = scene_at_frame(scene, 0);
@@ -128,13 +199,19 @@ void run_render(const RenderArgs& a) {
     std::fprintf(stderr, "tessera: %s, %zu triangles, %u lights, on %s\n", scene.name.c_str(),
                  scene.triangle_count(), buffers.light_count, backend->description().c_str());
     for (const auto& line : plan.describe()) std::fprintf(stderr, "  %s\n", line.c_str());
+    stop_if_interrupted("before the first pass");
 
     RenderStats stats;
     Image img = render_frame(*backend, scene, buffers, settings, &stats, print_progress, &ckpt);
-    fs::path png = out;
-    png.replace_extension(".png");
-    write_exr(out, img);
-    write_png(png, img, a.exposure);
+    const fs::path png = png_beside(out);
+    CommitGroup outputs;  // all of them or none
+    write_exr(outputs.add(out), img);
+    write_png(outputs.add(png), img, a.exposure);
+    if (!a.stats_json.empty()) write_stats_json(outputs.add(a.stats_json), a, settings, stats);
+    {
+        const InterruptDeferral defer;
+        outputs.commit();
+    }
     std::error_code ec;
     fs::remove(ckpt.path, ec);  // the render is complete: its checkpoint is of no further use
     if (!stats.detail.empty()) std::fprintf(stderr, "tessera: %s\n", stats.detail.c_str());
@@ -142,7 +219,9 @@ void run_render(const RenderArgs& a) {
                  1e3 * stats.median_pass_seconds);
     if (a.resume) std::fprintf(stderr, " after %u spp from the checkpoint", a.settings.spp - stats.passes);
     std::fprintf(stderr, "\n");
-    if (!a.stats_json.empty()) write_stats_json(a, settings, stats);
+    if (interrupt_signal())
+        std::fprintf(stderr, "tessera: interrupted after the last pass: the render is complete and its outputs "
+                             "are written (no checkpoint needed)\n");
     std::printf("%s\n%s\n", out.c_str(), png.c_str());
 }
 
@@ -160,7 +239,9 @@ void add_render_command(CLI::App& app) {
         ->capture_default_str();
     add_parameter_options(*cmd, args->settings);  // --spp, --tile, ...: render/parameters.cpp
     cmd->add_option("--out", args->out, "Output EXR (default out/<scene>.exr); a PNG preview is written beside it");
-    cmd->add_option("--exposure", args->exposure, "PNG preview exposure in stops")->capture_default_str();
+    cmd->add_option("--exposure", args->exposure, "PNG preview exposure in stops")
+        ->capture_default_str()
+        ->check(finite_number("--exposure"));
     cmd->add_flag("--resume", args->resume,
                   "Continue from the checkpoint beside --out (<out>.ckpt) left by an interrupted render");
     cmd->add_option("--frames", args->frames,
@@ -168,7 +249,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--stats-json", args->stats_json,
                     "Write timing as JSON: {median_pass_seconds, passes, seconds, ...} (seconds exclude set-up)");
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");
-    cmd->callback([args] { run_render(*args); });
+    cmd->callback([args, cmd] { run_render(*args, *cmd); });
 }
 
 }  // namespace tessera::cli

@@ -140,4 +140,56 @@ void replace_file_atomic(const fs::path& path,
     sync_and_rename(path, guard);
 }
 
+CommitGroup::~CommitGroup() {
+    std::error_code ec;
+    for (const Entry& e : entries_) {
+        if (!e.renamed) fs::remove(e.temp, ec);
+        if (!e.backup.empty()) fs::remove(e.backup, ec);
+    }
+}
+
+fs::path CommitGroup::add(const fs::path& target) {
+    fs::path temp;
+    const int fd = make_temp(target, temp);
+    ::close(fd);
+    entries_.push_back({target, temp, {}});
+    return temp;
+}
+
+void CommitGroup::commit() {
+    // Keep each file about to be replaced under a second name (a hard link: no copy), so
+    // a later rename failing can put it back.
+    for (Entry& e : entries_) {
+        e.existed = fs::exists(e.target);
+        if (!fs::is_regular_file(e.target)) continue;
+        fs::path link;
+        ::close(make_temp(e.target, link));
+        fs::remove(link);
+        if (::link(e.target.c_str(), link.c_str()) == 0) e.backup = link;  // else: no roll-back for this one
+    }
+    for (Entry& e : entries_) {
+        std::error_code ec;
+        fs::rename(e.temp, e.target, ec);
+        if (ec) {
+            roll_back();
+            fail(e.target, "rename failed", ec.value());
+        }
+        e.renamed = true;
+    }
+    for (const Entry& e : entries_) sync_directory(e.target);
+}
+
+void CommitGroup::roll_back() {
+    std::error_code ec;
+    for (Entry& e : entries_) {
+        if (!e.renamed) continue;
+        if (!e.existed)
+            fs::remove(e.target, ec);
+        else if (!e.backup.empty() && (fs::rename(e.backup, e.target, ec), !ec))
+            e.backup.clear();
+        e.renamed = false;
+        e.temp.clear();
+    }
+}
+
 }  // namespace tessera

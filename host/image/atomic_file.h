@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <vector>
 
 namespace tessera {
 
@@ -18,5 +19,37 @@ void write_file_atomic(const std::filesystem::path& path, const void* data, std:
 /// `write` propagate unchanged.
 void replace_file_atomic(const std::filesystem::path& path,
                          const std::function<void(const std::filesystem::path& temp)>& write);
+
+/// The outputs of one run, written as one unit: each is filled in a temporary beside
+/// its target (add), and commit() renames them all over their targets only once every
+/// one is complete. A failing run (an exception before commit) leaves no new file and
+/// changes no existing one: the destructor removes every temporary.
+class CommitGroup {
+public:
+    CommitGroup() = default;
+    ~CommitGroup();
+    CommitGroup(const CommitGroup&) = delete;
+    CommitGroup& operator=(const CommitGroup&) = delete;
+
+    /// Creates an empty temporary `.<name>.tmp.XXXXXX` beside `target` and returns its
+    /// path, for the caller to fill (write_exr(temp, ...) replaces it atomically). Throws
+    /// RuntimeError naming `target` when the temporary cannot be made.
+    std::filesystem::path add(const std::filesystem::path& target);
+
+    /// Renames every temporary over its target, in the order added. If a rename fails,
+    /// the targets already renamed are put back as they were (a replaced file is
+    /// restored from a hard link made before; a new one is removed) and RuntimeError
+    /// names the target and the OS reason.
+    void commit();
+
+private:
+    struct Entry {
+        std::filesystem::path target, temp, backup;  // backup: empty when no old file was kept
+        bool existed = false;  // a file was at target before commit
+        bool renamed = false;
+    };
+    void roll_back();
+    std::vector<Entry> entries_;
+};
 
 }  // namespace tessera

@@ -2,24 +2,10 @@
 
 #include <system_error>
 
+#include "render/interrupt.h"
 #include "util/error.h"
 
 namespace tessera {
-namespace {
-
-volatile std::sig_atomic_t g_signal = 0;
-
-extern "C" void on_signal(int sig) {
-    if (g_signal) {  // second signal: give up on a clean stop
-        std::signal(sig, SIG_DFL);
-        std::raise(sig);
-        return;
-    }
-    g_signal = sig;
-}
-
-}  // namespace
-
 CheckpointSession::CheckpointSession(const CheckpointOptions* options, const Scene& scene,
                                      const RenderSettings& settings, int width, int height)
     : options_(options) {
@@ -28,22 +14,10 @@ CheckpointSession::CheckpointSession(const CheckpointOptions* options, const Sce
     spp_ = settings.spp;
     interval_s_ = settings.checkpoint_interval_s;
     last_save_ = std::chrono::steady_clock::now();
-    g_signal = 0;
-    struct sigaction sa {};
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;
-    sigaction(SIGINT, &sa, &old_int_);
-    sigaction(SIGTERM, &sa, &old_term_);
-    // A SIGINT ignored on entry (nohup, `cmd &` in a script) stays ignored.
-    if (old_int_.sa_handler == SIG_IGN) sigaction(SIGINT, &old_int_, nullptr);
+    interrupts_.emplace();
 }
 
-CheckpointSession::~CheckpointSession() {
-    if (!options_) return;
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
-}
+CheckpointSession::~CheckpointSession() = default;
 
 uint32_t CheckpointSession::restore(Accumulator& acc) {
     if (!options_ || !options_->resume) return 0;
@@ -61,12 +35,22 @@ uint32_t CheckpointSession::restore(Accumulator& acc) {
 void CheckpointSession::after_pass(const Accumulator& acc) {
     if (!options_ || acc.passes() >= spp_) return;
     const auto now = std::chrono::steady_clock::now();
-    const bool interrupted = g_signal != 0;
-    if (interrupted || (interval_s_ > 0 && std::chrono::duration<double>(now - last_save_).count() >= interval_s_)) {
+    const bool interrupted = interrupt_signal() != 0;
+    if (interrupted) {
+        const InterruptDeferral defer;  // a second signal must not cut the checkpoint short
+        try {
+            save_checkpoint(options_->path, id_, spp_, acc);
+        } catch (const std::exception& e) {
+            throw Interrupted("interrupted after " + std::to_string(acc.passes()) + " of " + std::to_string(spp_) +
+                              " spp; no checkpoint written: " + e.what());
+        }
+        throw Interrupted(acc.passes(), spp_, options_->path.string());
+    }
+    if (interval_s_ > 0 && std::chrono::duration<double>(now - last_save_).count() >= interval_s_) {
+        const InterruptDeferral defer;
         save_checkpoint(options_->path, id_, spp_, acc);
         last_save_ = std::chrono::steady_clock::now();
     }
-    if (interrupted) throw Interrupted(acc.passes(), spp_, options_->path.string());
 }
 
 }  // namespace tessera

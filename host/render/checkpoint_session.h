@@ -3,21 +3,19 @@
 // --resume, saves a checkpoint every RenderSettings::checkpoint_interval_s seconds, and
 // turns SIGINT/SIGTERM into "save, then throw Interrupted".
 //
-// Signals: while a session with options is alive, SIGINT and SIGTERM handlers only set
-// a volatile std::sig_atomic_t flag; after_pass() checks it once per pass. A second
-// signal before that check restores the default action and re-raises, so a stuck pass
-// can still be killed. A SIGINT that was ignored on entry (nohup, `cmd &` in a
-// non-interactive shell) is left ignored. The previous handlers are put back when the session ends (also
-// when it ends by an exception).
+// Signals: while a session with options is alive it holds an InterruptScope
+// (render/interrupt.h: the handlers only record the signal; a second one soon after the
+// first, or during a checkpoint write, is ignored); after_pass() checks it once per pass.
 #pragma once
 #include <chrono>
-#include <csignal>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 
 #include "backend/backend.h"
 #include "render/accumulator.h"
 #include "render/checkpoint.h"
+#include "render/interrupt.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
 
@@ -44,7 +42,8 @@ public:
     uint32_t restore(Accumulator& acc);
 
     /// Called after each pass is added. Saves a checkpoint when the interval has run
-    /// out, or when a signal arrived, and then throws Interrupted. Does neither once
+    /// out, or when a signal arrived, and then throws Interrupted (its message says
+    /// where the checkpoint is, or that none was written and why). Does neither once
     /// the spp target is reached.
     void after_pass(const Accumulator& acc);
 
@@ -54,7 +53,7 @@ private:
     uint32_t spp_ = 0;
     double interval_s_ = 0.0;
     std::chrono::steady_clock::time_point last_save_;
-    struct sigaction old_int_{}, old_term_{};
+    std::optional<InterruptScope> interrupts_;
 };
 
 }  // namespace tessera

@@ -1,8 +1,11 @@
 #include "render/parameters.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include "util/error.h"
 
@@ -21,10 +24,10 @@ const Parameter kParameters[] = {
      .unit = "passes", .doc = "Samples (passes) per pixel, one camera sample per pixel each"},
     {.option = "--shadow-samples", .value_name = "N", .field = TS_SETTING(shadow_samples), .min = 1, .max = 4096,
      .unit = "samples", .doc = "Area-light samples per camera hit and pass"},
-    {.option = "--width", .value_name = "W", .field = TS_SETTING(width), .min = 0, .max = 16384, .unit = "px",
-     .doc = "Image width; 0: the scene camera's"},
-    {.option = "--height", .value_name = "H", .field = TS_SETTING(height), .min = 0, .max = 16384, .unit = "px",
-     .doc = "Image height; 0: the scene camera's"},
+    {.option = "--width", .value_name = "W", .field = TS_SETTING(width), .min = 1, .max = 16384,
+     .zero_unset = true, .unit = "px", .doc = "Image width; not given: the scene camera's"},
+    {.option = "--height", .value_name = "H", .field = TS_SETTING(height), .min = 1, .max = 16384,
+     .zero_unset = true, .unit = "px", .doc = "Image height; not given: the scene camera's"},
     {.option = "--seed", .value_name = "S", .field = TS_SETTING(seed), .min = 0, .max = kNoMax,
      .doc = "Random seed (samples are counter-based per seed, pixel and pass)"},
     {.option = "--aov", .value_name = "", .field = TS_SETTING(aovs),
@@ -43,7 +46,7 @@ const Parameter kParameters[] = {
     {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = kNoMax,
      .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables"},
     {.option = "--march-steps", .value_name = "N", .field = TS_SETTING(igi.march_steps), .min = 0, .max = kNoMax,
-     .unit = "steps", .doc = "igi: medium ray-march steps per pixel (0: no march)"},
+     .unit = "steps", .doc = "igi: medium ray-march steps per pixel (0: none, an error on a scene with a medium)"},
     {.option = "--no-filter", .value_name = "", .field = TS_SETTING(igi.filter), .negated = true,
      .doc = "igi: skip the discontinuity filter"},
     {.option = "--ais-ss-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.ss_trigger), .min = 0, .max = 1,
@@ -117,11 +120,51 @@ double parameter_value(const Parameter& p, const RenderSettings& s) {
 void validate_parameter(const Parameter& p, const RenderSettings& s) {
     if (is_flag(p)) return;
     const double v = parameter_value(p, s);
+    if (p.zero_unset && v == 0) return;
     const bool above_min = p.min_exclusive ? v > p.min : v >= p.min;
     if (above_min && v <= p.max) return;  // false for NaN
     const std::string range = range_text(p);
     throw InputError(std::string(p.option) + " " + value_text(p, s) + ": must be " +
                      (range[0] == '>' ? range : "in " + range));
+}
+
+std::string check_parameter_text(const Parameter& p, const std::string& text) {
+    const std::string range = range_text(p);
+    const std::string in_range = range[0] == '>' ? range : "in " + range;
+    const std::string shown = text.empty() ? "''" : text;
+    auto fail = [&](const std::string& what) { throw InputError(std::string(p.option) + " " + shown + ": must be " + what); };
+    // Decimal only: no sign but '-', no hex, no spaces, no trailing text.
+    const char* b = text.data();
+    const char* e = b + text.size();
+    const bool negative = !text.empty() && text[0] == '-';
+    double v = 0;
+    if (is_integer(p)) {
+        if (text.size() <= size_t(negative) || text.find_first_not_of("0123456789", negative) != std::string::npos)
+            fail("an integer " + in_range);
+        long double wide = 0;
+        for (const char* c = b + negative; c != e; ++c) wide = wide * 10 + (*c - '0');
+        v = double(negative ? -wide : wide);
+    } else {
+        const auto r = std::from_chars(b, e, v);
+        if (text.empty() || r.ec == std::errc::invalid_argument || r.ptr != e) fail("a number " + in_range);
+        if (r.ec == std::errc::result_out_of_range || !std::isfinite(v)) fail("a finite number " + in_range);
+    }
+    if (p.zero_unset && v == 0) fail(in_range + " (leave the option out for the scene camera's)");
+    const bool above_min = p.min_exclusive ? v > p.min : v >= p.min;
+    if (!above_min || v > p.max) fail(in_range);
+    // Within p's range but beyond the field type's: only open ranges ("--seed" is a uint32_t).
+    std::visit([&](auto get) {
+        using T = std::remove_reference_t<decltype(get(std::declval<RenderSettings&>()))>;
+        if (v > double(std::numeric_limits<T>::max())) {
+            Parameter bounded = p;
+            bounded.max = double(std::numeric_limits<T>::max());
+            fail("in " + range_text(bounded));
+        }
+    }, p.field);
+    if (!is_integer(p)) return text;
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, static_cast<long long>(v));
+    return std::string(buf, r.ptr);  // canonical: CLI11 would read "010" as octal
 }
 
 void validate_settings(const RenderSettings& s) {
@@ -139,6 +182,7 @@ std::string range_text(const Parameter& p) {
 std::string default_text(const Parameter& p) {
     static const RenderSettings defaults;
     if (is_flag(p)) return "off";  // a flag's default is its absence
+    if (p.zero_unset && parameter_value(p, defaults) == 0) return "camera";
     return value_text(p, defaults);
 }
 

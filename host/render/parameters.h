@@ -31,6 +31,8 @@ struct Parameter {
     double max = 0;              ///< +inf: no bound but the field type's
     bool min_exclusive = false;  ///< (min, max]: e.g. a divisor that must be > 0
     bool negated = false;        ///< flags: the option clears the field (--no-filter)
+    bool zero_unset = false;     ///< the field's 0 means "option not given" (the camera's size);
+                                 ///< a value given on the command line must be in [min, max]
     const char* unit = "";       ///< e.g. "px", "s"; "" for a plain count or ratio
     const char* doc = "";        ///< one line; "method: ..." when only some methods read it
 };
@@ -45,8 +47,17 @@ const Parameter* find_parameter(const std::string& option);
 double parameter_value(const Parameter& p, const RenderSettings& s);
 
 /// Throws InputError "--tile 9: must be in 1..8" (option, value, range) when p's field in
-/// `s` is out of p's range (NaN included). Flags are always valid.
+/// `s` is out of p's range (NaN included). Flags are always valid; 0 is valid for a
+/// zero_unset parameter (not given).
 void validate_parameter(const Parameter& p, const RenderSettings& s);
+
+/// Checks the text given for p on the command line before it is converted: a decimal
+/// number (an integer for integer fields), finite, in p's range and in the field type's
+/// (0 not allowed for a zero_unset parameter). Returns the text to convert (integers
+/// canonical decimal: "010" is 10, not octal). Throws InputError naming option and value:
+/// "--spp -1: must be in 1..1000000", "--clamp inf: must be a finite number >= 0",
+/// "--spp '': must be in 1..1000000".
+std::string check_parameter_text(const Parameter& p, const std::string& text);
 
 /// validate_parameter for every parameter, in table order: the check render_frame runs on
 /// its settings and the CLI runs before loading the scene.
@@ -56,7 +67,8 @@ void validate_settings(const RenderSettings& s);
 /// (reals), ">= 0" / "> 0" (no upper bound), "flag" for a flag.
 std::string range_text(const Parameter& p);
 
-/// The default, from RenderSettings{}: "3", "0.05", "120"; "off" for a flag.
+/// The default, from RenderSettings{}: "3", "0.05", "120"; "off" for a flag; "camera"
+/// for a zero_unset parameter (the scene camera's value).
 std::string default_text(const Parameter& p);
 
 /// The options table of README.md (markdown, one row per parameter, header included).

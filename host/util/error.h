@@ -19,13 +19,15 @@ struct RuntimeError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-/// A render stopped by SIGINT or SIGTERM after its state was saved to a checkpoint
-/// (render/checkpoint.h). main() prints "tessera: <what>" and exits with status 130.
+/// A render stopped by SIGINT or SIGTERM, after its state was saved to a checkpoint
+/// (render/checkpoint.h) or with a message saying why none was. main() prints "tessera: <what>" and exits with status 130.
 struct Interrupted : std::runtime_error {
     Interrupted(uint32_t done, uint32_t total, const std::string& checkpoint)
         : std::runtime_error("interrupted after " + std::to_string(done) + " of " + std::to_string(total) +
                              " spp; checkpoint saved to " + checkpoint + "; resume with --resume"),
           passes_done(done), passes_total(total) {}
+    /// Stopped with no checkpoint: `message` says so and why ("... no checkpoint written: ...").
+    explicit Interrupted(const std::string& message) : std::runtime_error(message), passes_done(0), passes_total(0) {}
     uint32_t passes_done, passes_total;
 };
 

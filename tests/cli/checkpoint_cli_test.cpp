@@ -25,9 +25,11 @@ struct CliRun {
     std::string output;
 };
 
-/// Runs tessera with `args`, stdout and stderr into one pipe. If `interrupt_on` is not
-/// empty, sends SIGINT once that text has appeared in the output.
-CliRun run_tessera(const std::vector<std::string>& args, const std::string& interrupt_on = "") {
+/// Runs tessera with `args`, stdout and stderr into one pipe, in a process group of its
+/// own. If `interrupt_on` is not empty, sends SIGINT once that text has appeared in the
+/// output; with `group_too`, at once a second one to the process group, as `timeout -s
+/// INT` and a terminal's Ctrl-C do.
+CliRun run_tessera(const std::vector<std::string>& args, const std::string& interrupt_on = "", bool group_too = false) {
     std::vector<char*> argv{const_cast<char*>(TESSERA_EXE)};  // built before fork: no malloc in the child
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
@@ -35,6 +37,7 @@ CliRun run_tessera(const std::vector<std::string>& args, const std::string& inte
     if (::pipe(fds) != 0) return {-2, "pipe failed"};
     const pid_t pid = ::fork();
     if (pid == 0) {
+        ::setpgid(0, 0);
         ::dup2(fds[1], STDOUT_FILENO);
         ::dup2(fds[1], STDERR_FILENO);
         ::close(fds[0]);
@@ -52,6 +55,7 @@ CliRun run_tessera(const std::vector<std::string>& args, const std::string& inte
         out.append(buf.data(), size_t(n));
         if (!interrupt_on.empty() && !sent && out.find(interrupt_on) != std::string::npos) {
             ::kill(pid, SIGINT);
+            if (group_too) ::kill(-pid, SIGINT);
             sent = true;
         }
     }
@@ -98,6 +102,38 @@ TEST_F(CheckpointCli, InterruptThenResume) {
     EXPECT_GT(fs::file_size(exr), 0u);
     EXPECT_GT(fs::file_size(png), 0u);
     EXPECT_FALSE(fs::exists(ckpt));
+}
+
+// Two SIGINTs back to back (issue 17: they once killed the render with no checkpoint):
+// the second is ignored, the first leaves a checkpoint that --resume finishes. Sent on
+// the line printed just before the first pass, or on the first progress line.
+TEST_F(CheckpointCli, TwoSignalsAtOnceStillLeaveACheckpoint) {
+    const fs::path ckpt = dir_ / "img.ckpt";
+    const std::vector<std::string> args = {"render", "--backend", "embree", "--spp", "20", "--width", "96", "--height",
+                                           "96", "--shadow-samples", "48", "--out", (dir_ / "img.exr").string()};
+    for (int run = 0; run < 4; ++run) {
+        SCOPED_TRACE(run);
+        const CliRun r = run_tessera(args, run % 2 ? "/20 spp" : " triangles", true);
+        ASSERT_EQ(r.exit_code, 130) << r.output;
+        if (r.output.find("no checkpoint written") != std::string::npos) {
+            // Before the first pass ended: said so, and nothing on disk.
+            EXPECT_NE(r.output.find("tessera: interrupted before the first pass; no checkpoint written"),
+                      std::string::npos) << r.output;
+            EXPECT_FALSE(fs::exists(ckpt));
+            continue;
+        }
+        EXPECT_NE(r.output.find("of 20 spp; checkpoint saved to " + ckpt.string() + "; resume with --resume"),
+                  std::string::npos) << r.output;
+        std::vector<std::string> resume = args;
+        resume.push_back("--resume");
+        const CliRun done = run_tessera(resume);
+        ASSERT_EQ(done.exit_code, 0) << done.output;
+        EXPECT_NE(done.output.find("20/20 spp"), std::string::npos) << done.output;
+        EXPECT_FALSE(fs::exists(ckpt));
+        EXPECT_GT(fs::file_size(dir_ / "img.exr"), 0u);
+        fs::remove(dir_ / "img.exr");
+        fs::remove(dir_ / "img.png");
+    }
 }
 
 TEST_F(CheckpointCli, ResumeWithoutCheckpointNamesTheExpectedFile) {

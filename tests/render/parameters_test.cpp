@@ -74,6 +74,11 @@ TEST(Parameters, DefaultsAreValidAndPrintExactly) {
             EXPECT_EQ(parameter_value(p, defaults), p.negated ? 1.0 : 0.0) << p.option;
             continue;
         }
+        if (p.zero_unset) {  // 0: not given, the scene camera's
+            EXPECT_EQ(default_text(p), "camera") << p.option;
+            EXPECT_EQ(parameter_value(p, defaults), 0.0) << p.option;
+            continue;
+        }
         // The printed default reads back as the initializer, bit for bit, in the field's type.
         const std::string text = default_text(p);
         const bool is_float = std::holds_alternative<float& (*)(RenderSettings&)>(p.field);
@@ -96,7 +101,7 @@ TEST(Parameters, KnownDefaultsAndRanges) {
     check("--ic-error", "0.3", "[0.001, 2]");
     check("--ais-id-cov", "2", "> 0");
     check("--checkpoint-interval", "120", ">= 0");
-    check("--width", "0", "0..16384");
+    check("--width", "camera", "1..16384");
     check("--no-filter", "off", "flag");
 }
 
@@ -124,7 +129,8 @@ TEST(Parameters, EveryRangeHoldsAtItsBoundsAndRejectsBeyondNamingOptionAndValue)
         const bool unsigned_field = std::holds_alternative<uint32_t& (*)(RenderSettings&)>(p.field);
         if (p.min_exclusive || !(unsigned_field && p.min == 0)) {
             s = RenderSettings{};
-            set_value(p, s, p.min_exclusive ? p.min : beyond(p, p.min, -1));
+            // A zero_unset field's 0 means "not given" and is valid: -1 is the first value below.
+            set_value(p, s, p.min_exclusive ? p.min : p.zero_unset ? -1 : beyond(p, p.min, -1));
             const std::string m = rejection(s);
             EXPECT_EQ(m.rfind(std::string(p.option) + " ", 0), 0u) << m;
             EXPECT_NE(m.find(must), std::string::npos) << m;
@@ -137,6 +143,40 @@ TEST(Parameters, EveryRangeHoldsAtItsBoundsAndRejectsBeyondNamingOptionAndValue)
     }
 }
 
+// The message check_parameter_text gives for `text`, "" when it accepts it.
+std::string text_rejection(const char* option, const std::string& text) {
+    try {
+        check_parameter_text(*find_parameter(option), text);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// Command-line text: one message form for every bad value, before CLI11 converts it.
+TEST(Parameters, CommandLineTextIsCheckedBeforeConversion) {
+    EXPECT_EQ(text_rejection("--spp", "-1"), "--spp -1: must be in 1..1000000");
+    EXPECT_EQ(text_rejection("--spp", ""), "--spp '': must be an integer in 1..1000000");
+    EXPECT_EQ(text_rejection("--spp", "1.5"), "--spp 1.5: must be an integer in 1..1000000");
+    EXPECT_EQ(text_rejection("--spp", "0x10"), "--spp 0x10: must be an integer in 1..1000000");
+    EXPECT_EQ(text_rejection("--spp", " 4"), "--spp  4: must be an integer in 1..1000000");
+    EXPECT_EQ(text_rejection("--width", "0"),
+              "--width 0: must be in 1..16384 (leave the option out for the scene camera's)");
+    EXPECT_EQ(text_rejection("--seed", "-1"), "--seed -1: must be >= 0");
+    EXPECT_EQ(text_rejection("--seed", "99999999999"), "--seed 99999999999: must be in 0..4294967295");
+    EXPECT_EQ(text_rejection("--clamp", "inf"), "--clamp inf: must be a finite number >= 0");
+    EXPECT_EQ(text_rejection("--clamp", "nan"), "--clamp nan: must be a finite number >= 0");
+    EXPECT_EQ(text_rejection("--clamp", "1e400"), "--clamp 1e400: must be a finite number >= 0");
+    EXPECT_EQ(text_rejection("--clamp", "1e39"), "--clamp 1e39: must be in [0, 3.4028234663852886e+38]");
+    EXPECT_EQ(text_rejection("--ic-error", "0.5x"), "--ic-error 0.5x: must be a number in [0.001, 2]");
+    EXPECT_EQ(text_rejection("--checkpoint-interval", "-0.5"), "--checkpoint-interval -0.5: must be >= 0");
+    EXPECT_EQ(text_rejection("--spp", "1000000"), "");
+    EXPECT_EQ(text_rejection("--clamp", "0"), "");
+    // Integers are passed on in canonical decimal: CLI11 would read "010" as octal 8.
+    EXPECT_EQ(check_parameter_text(*find_parameter("--spp"), "010"), "10");
+    EXPECT_EQ(check_parameter_text(*find_parameter("--ic-error"), "0.25"), "0.25");
+}
+
 TEST(Parameters, MessagesNameOptionValueAndRange) {
     RenderSettings s;
     s.igi.tile = 9;
@@ -146,7 +186,10 @@ TEST(Parameters, MessagesNameOptionValueAndRange) {
     EXPECT_EQ(rejection(s), "--spp 0: must be in 1..1000000");
     s = {};
     s.width = -1;
-    EXPECT_EQ(rejection(s), "--width -1: must be in 0..16384");
+    EXPECT_EQ(rejection(s), "--width -1: must be in 1..16384");
+    s = {};
+    s.width = 0;  // not given: the camera's
+    EXPECT_EQ(rejection(s), "");
     s = {};
     s.ic.error_bound = 2.5f;
     EXPECT_EQ(rejection(s), "--ic-error 2.5: must be in [0.001, 2]");

@@ -1,0 +1,105 @@
+#include "cli/option_checks.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <set>
+#include <system_error>
+
+#include "util/error.h"
+
+namespace tessera::cli {
+namespace fs = std::filesystem;
+
+CLI::Validator finite_number(const std::string& option) {
+    return CLI::Validator([option](std::string& text) {
+        double v = 0;
+        const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v))
+            throw InputError(option + " " + (text.empty() ? "''" : text) + ": must be a finite number");
+        return std::string();
+    }, "");
+}
+
+void reject_empty_values(const CLI::App& cmd) {
+    for (const CLI::Option* o : cmd.get_options()) {
+        if (o->count() == 0) continue;
+        for (const std::string& v : o->results())
+            if (v.empty()) {
+                const std::string name = o->get_lnames().empty() ? o->get_name() : "--" + o->get_lnames()[0];
+                throw InputError(name + " '': must not be empty");
+            }
+    }
+}
+
+void check_data_dir(const std::string& data_dir) {
+    if (data_dir.empty()) return;
+    std::error_code ec;
+    if (!fs::exists(data_dir, ec)) throw InputError("--data-dir " + data_dir + ": no such directory");
+    if (!fs::is_directory(data_dir, ec)) throw InputError("--data-dir " + data_dir + ": not a directory");
+}
+
+namespace {
+
+// The file `p` names, for comparing outputs with each other and with the input.
+fs::path identity(const fs::path& p) {
+    std::error_code ec;
+    const fs::path c = fs::weakly_canonical(p, ec);
+    return ec ? fs::absolute(p).lexically_normal() : c;
+}
+
+void check_output(const OutputFile& o) {
+    const std::string name = o.role + " " + o.path.string();
+    const std::string file = o.path.filename().string();
+    if (file.empty() || file == "." || file == "..") throw InputError(name + ": not a file name");
+    std::error_code ec;
+    const fs::file_status st = fs::status(o.path, ec);
+    if (fs::is_directory(st)) throw InputError(name + ": is a directory");
+    if (fs::exists(st) && !fs::is_regular_file(st)) throw InputError(name + ": not a regular file");
+    // The directory: the nearest existing ancestor must be a directory (the rest is made).
+    fs::path dir = o.path.parent_path();
+    if (dir.empty()) dir = ".";
+    while (!fs::exists(dir, ec) && dir.has_parent_path() && dir.parent_path() != dir) dir = dir.parent_path();
+    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+        throw InputError(name + ": " + dir.string() + " is not a directory");
+}
+
+}  // namespace
+
+void check_outputs(const std::vector<OutputFile>& outputs, const fs::path& input) {
+    const fs::path in = input.empty() ? fs::path() : identity(input);
+    std::vector<fs::path> seen;
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        check_output(outputs[i]);
+        const fs::path id = identity(outputs[i].path);
+        if (!in.empty() && id == in)
+            throw InputError(outputs[i].role + " " + outputs[i].path.string() + ": is the scene file");
+        for (size_t j = 0; j < i; ++j)
+            if (seen[j] == id)
+                throw InputError(outputs[i].role + " " + outputs[i].path.string() + ": is also " + outputs[j].role);
+        seen.push_back(id);
+    }
+}
+
+void prepare_output_directories(const std::vector<OutputFile>& outputs) {
+    std::set<fs::path> done;
+    for (const OutputFile& o : outputs) {
+        const fs::path dir = o.path.parent_path().empty() ? fs::path(".") : o.path.parent_path();
+        if (!done.insert(dir).second) continue;
+        const std::string name = o.role + " " + o.path.string();
+        std::error_code ec;
+        fs::create_directories(dir, ec);
+        if (ec) throw RuntimeError(name + ": cannot create the directory " + dir.string() + ": " + ec.message());
+        std::string probe = (dir / ".tessera-write-test.XXXXXX").string();
+        const int fd = ::mkstemp(probe.data());
+        if (fd < 0) throw RuntimeError(name + ": cannot write in " + dir.string() + ": " + std::strerror(errno));
+        ::close(fd);
+        ::unlink(probe.c_str());
+    }
+}
+
+}  // namespace tessera::cli

@@ -1,0 +1,41 @@
+// Checks of command-line values that the render settings table (render/parameters.h)
+// does not cover, shared by the subcommands. Each throws InputError naming the option
+// and the value, before any work.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tessera::cli {
+
+/// A validator for a real-valued option that must be a finite decimal number
+/// ("--exposure nan: must be a finite number").
+CLI::Validator finite_number(const std::string& option);
+
+/// Every option and positional of `cmd` that was given with an empty value:
+/// "--out '': must not be empty".
+void reject_empty_values(const CLI::App& cmd);
+
+/// --data-dir, when given (not empty), must name an existing directory.
+void check_data_dir(const std::string& data_dir);
+
+/// An output file of the run, with what the messages call it ("--out", "--stats-json",
+/// "the PNG preview beside --out", "the checkpoint beside --out").
+struct OutputFile {
+    std::filesystem::path path;
+    std::string role;
+};
+
+/// Checks every output before any work: a file name; not a directory or other
+/// non-regular file; its directory exists or can be made (the nearest existing ancestor
+/// is a directory); no two outputs the same file, and none of them `input` (the scene).
+/// InputError "<role> <path>: is a directory". Creates nothing.
+void check_outputs(const std::vector<OutputFile>& outputs, const std::filesystem::path& input);
+
+/// Makes the outputs' directories and checks each is writable by creating and removing
+/// a temporary file there. RuntimeError naming the output, the directory and the OS reason.
+void prepare_output_directories(const std::vector<OutputFile>& outputs);
+
+}  // namespace tessera::cli

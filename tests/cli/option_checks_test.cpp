@@ -1,0 +1,180 @@
+// The input contract of the command line (issue 17): every bad option value and every
+// output that cannot be written is rejected before any work, with one message naming
+// the option (or file) and the value, exit status 2 (bad input) or 1 (the environment),
+// and no file created or changed: each case first writes sentinel files where the run
+// would write, and checks their bytes and the directory listing afterwards.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "support/scratch_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliResult {
+    int exit_code;
+    std::string output;  // stdout and stderr together
+};
+
+CliResult run_tessera(const std::string& args) {
+    const std::string cmd = std::string(TESSERA_EXE) + " " + args + " 2>&1";
+    FILE* p = ::popen(cmd.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf;
+    while (size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+    const int status = ::pclose(p);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Every file under `dir` with its bytes (directories as "<dir>").
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+        files[fs::relative(e.path(), dir).string()] = e.is_directory() ? "<dir>" : slurp(e.path());
+    return files;
+}
+
+const std::string kData = TESSERA_TEST_DATA;
+const std::string kScenes = std::string(TESSERA_SOURCE_DIR) + "/scenes";
+
+struct Case {
+    std::string args;     // after `tessera`; $D is replaced by the scratch directory
+    std::string message;  // the error message (after "tessera: error: "), $D replaced
+    int exit_code = 2;
+    std::function<void(const fs::path& dir)> setup = {};  // besides the sentinels
+};
+
+class ContractCli : public tessera::test::ScratchDirTest {
+protected:
+    std::string expand(std::string s) const {
+        for (size_t at; (at = s.find("$D")) != std::string::npos;) s.replace(at, 2, dir_.string());
+        return s;
+    }
+
+    void expect_rejected(const Case& c) {
+        SCOPED_TRACE(c.args);
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        // Sentinels where the run writes: they must keep their bytes.
+        for (const char* name : {"img.exr", "img.png", "img.ckpt", "stats.json", "anim.0000.exr", "anim.0000.png"})
+            std::ofstream(dir_ / name) << "SENTINEL " << name;
+        if (c.setup) c.setup(dir_);
+        const auto before = snapshot(dir_);
+        const CliResult r = run_tessera(expand(c.args));
+        EXPECT_EQ(r.exit_code, c.exit_code) << r.output;
+        // Bad input: the whole line; the environment (exit 1): the OS reason follows.
+        const std::string line = "tessera: error: " + expand(c.message) + (c.exit_code == 2 ? "\n" : ": ");
+        EXPECT_NE(r.output.find(line), std::string::npos) << r.output;
+        // The line before the first pass ("tessera: <scene>, N triangles, ...") never came.
+        EXPECT_EQ(r.output.find(" triangles"), std::string::npos) << "rendering started:\n" << r.output;
+        EXPECT_EQ(snapshot(dir_), before) << "a file was created or changed";
+    }
+};
+
+const std::string kRender = "render " + kData + "/light.json --backend embree --spp 1 ";
+const std::string kOut = " --out $D/img.exr";
+
+// Option values out of range, not finite, empty or meaningless here.
+TEST_F(ContractCli, BadOptionValuesAreRejectedBeforeAnyWork) {
+    const std::vector<Case> cases = {
+        {kRender + "--width 0" + kOut, "--width 0: must be in 1..16384 (leave the option out for the scene camera's)"},
+        {kRender + "--height 0" + kOut, "--height 0: must be in 1..16384 (leave the option out for the scene camera's)"},
+        {kRender + "--width -5" + kOut, "--width -5: must be in 1..16384"},
+        {kRender.substr(0, kRender.size() - 8) + "--spp -1" + kOut, "--spp -1: must be in 1..1000000"},
+        {kRender.substr(0, kRender.size() - 8) + "--spp ''" + kOut, "--spp '': must be an integer in 1..1000000"},
+        {kRender.substr(0, kRender.size() - 8) + "--spp 2.5" + kOut, "--spp 2.5: must be an integer in 1..1000000"},
+        {kRender + "--seed -1" + kOut, "--seed -1: must be >= 0"},
+        {kRender + "--seed 4294967296" + kOut, "--seed 4294967296: must be in 0..4294967295"},
+        {kRender + "--clamp inf" + kOut, "--clamp inf: must be a finite number >= 0"},
+        {kRender + "--ic-error nan" + kOut, "--ic-error nan: must be a finite number in [0.001, 2]"},
+        {kRender + "--checkpoint-interval -1" + kOut, "--checkpoint-interval -1: must be >= 0"},
+        {kRender + "--exposure nan" + kOut, "--exposure nan: must be a finite number"},
+        {kRender + "--exposure inf" + kOut, "--exposure inf: must be a finite number"},
+        {kRender + "--exposure ''" + kOut, "--exposure '': must be a finite number"},
+        {kRender + "--out ''", "--out '': must not be empty"},
+        {kRender + "--stats-json ''" + kOut, "--stats-json '': must not be empty"},
+        {kRender + "--data-dir ''" + kOut, "--data-dir '': must not be empty"},
+        {kRender + "--frames ''" + kOut, "--frames '': must not be empty"},
+        {kRender + "--method ''" + kOut, "--method '': must not be empty"},
+        {kRender + "--components ''" + kOut, "--components '': must not be empty"},
+        {kRender + "--device ''" + kOut, "--device '': must not be empty"},
+        {"render '' --backend embree" + kOut, "scene '': must not be empty"},
+        {kRender + "--device 0" + kOut, "--device 0: only --backend opencl uses a device (this run has --backend embree)"},
+        {kRender + "--data-dir $D/nowhere" + kOut, "--data-dir $D/nowhere: no such directory"},
+        {kRender + "--data-dir $D/img.exr" + kOut, "--data-dir $D/img.exr: not a directory"},
+        {"render " + kScenes + "/cornell-box-fog.json --backend embree --spp 1 --method igi --march-steps 0" + kOut,
+         "--march-steps 0: scene " + kScenes + "/cornell-box-fog.json has a medium, which --method igi ray-marches; "
+         "give at least 1 step"},
+        {"info ''", "scene '': must not be empty"},
+        {"info " + kData + "/light.json --data-dir $D/nowhere", "--data-dir $D/nowhere: no such directory"},
+        {"compare $D/img.exr $D/img.exr --exposure nan", "--exposure nan: must be a finite number"},
+        {"compare $D/img.exr $D/img.exr --map ''", "--map '': must not be empty"},
+    };
+    for (const Case& c : cases) expect_rejected(c);
+}
+
+// Outputs that cannot be written: found before the first ray, nothing written.
+TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
+    auto mkdir = [](const char* name) {
+        return [=](const fs::path& d) {
+            fs::remove(d / name);  // a sentinel file may be there
+            fs::create_directory(d / name);
+        };
+    };
+    const std::string anim = "render " + kScenes + "/cornell-box-animated.json --backend embree --spp 1 "
+                             "--width 8 --height 8 --frames 0:2 --out $D/anim.exr";
+    const std::vector<Case> cases = {
+        {kRender + kOut, "the PNG preview beside --out $D/img.png: is a directory", 2, mkdir("img.png")},
+        {kRender + "--out $D/dir.exr", "--out $D/dir.exr: is a directory", 2, mkdir("dir.exr")},
+        {kRender + kOut, "the checkpoint beside --out $D/img.ckpt: is a directory", 2, mkdir("img.ckpt")},
+        {kRender + "--out $D/stats.json/img.exr", "--out $D/stats.json/img.exr: $D/stats.json is not a directory"},
+        {kRender + kOut + " --stats-json $D/sub", "--stats-json $D/sub: is a directory", 2, mkdir("sub")},
+        {kRender + kOut + " --stats-json $D/img.png", "--stats-json $D/img.png: is also the PNG preview beside --out"},
+        {kRender + kOut + " --stats-json /proc/tessera-stats.json", "--stats-json /proc/tessera-stats.json: cannot write "
+                                                                    "in /proc", 1},
+        {kRender + kOut + " --stats-json /proc/tessera/stats.json",
+         "--stats-json /proc/tessera/stats.json: cannot create the directory /proc/tessera", 1},
+        {kRender + kOut + " --stats-json /dev/null", "--stats-json /dev/null: not a regular file"},
+        {kRender + "--out $D/", "--out $D/: must end in .exr"},
+        {anim, "frame 1 of --out $D/anim.0001.exr: is a directory", 2, mkdir("anim.0001.exr")},
+        {anim, "the PNG preview of frame 2 $D/anim.0002.png: is a directory", 2, mkdir("anim.0002.png")},
+        {"compare " + kData + "/x.exr " + kData + "/y.exr --map $D/sub", "--map $D/sub: is a directory", 2, mkdir("sub")},
+    };
+    for (const Case& c : cases) expect_rejected(c);
+}
+
+// A valid run replaces every output, leaves no temporary file and no checkpoint.
+TEST_F(ContractCli, AValidRunWritesEveryOutputAndNothingElse) {
+    for (const char* name : {"img.exr", "img.png", "stats.json"}) std::ofstream(dir_ / name) << "OLD";
+    const CliResult r = run_tessera(kRender + "--width 8 --height 8" + expand(kOut) + " --stats-json " +
+                                    (dir_ / "stats.json").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::vector<std::string> names;
+    for (const auto& [name, bytes] : snapshot(dir_)) {
+        names.push_back(name);
+        EXPECT_NE(bytes, "OLD") << name << " was not replaced";
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"img.exr", "img.png", "stats.json"}));
+    EXPECT_NE(slurp(dir_ / "stats.json").find("\"median_pass_seconds\""), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,88 @@
+// CommitGroup: the outputs of a run are renamed into place together, or not at all.
+#include "image/atomic_file.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "support/scratch_dir.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+
+namespace tessera {
+namespace {
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+size_t entries(const fs::path& dir) { return size_t(std::distance(fs::directory_iterator(dir), {})); }
+
+class CommitGroupTest : public test::ScratchDirTest {};
+
+TEST_F(CommitGroupTest, CommitReplacesAndCreatesEveryTarget) {
+    std::ofstream(dir_ / "a") << "old a";
+    {
+        CommitGroup g;
+        std::ofstream(g.add(dir_ / "a")) << "new a";
+        std::ofstream(g.add(dir_ / "b")) << "new b";
+        EXPECT_EQ(slurp(dir_ / "a"), "old a");  // nothing visible before commit
+        EXPECT_FALSE(fs::exists(dir_ / "b"));
+        g.commit();
+    }
+    EXPECT_EQ(slurp(dir_ / "a"), "new a");
+    EXPECT_EQ(slurp(dir_ / "b"), "new b");
+    EXPECT_EQ(entries(dir_), 2u);  // no temporary, no backup left
+}
+
+TEST_F(CommitGroupTest, NoCommitLeavesEverythingAsItWas) {
+    std::ofstream(dir_ / "a") << "old a";
+    {
+        CommitGroup g;
+        std::ofstream(g.add(dir_ / "a")) << "new a";
+        std::ofstream(g.add(dir_ / "b")) << "new b";
+    }  // an exception before commit ends here too
+    EXPECT_EQ(slurp(dir_ / "a"), "old a");
+    EXPECT_EQ(entries(dir_), 1u);
+}
+
+// The third rename fails (its target is a non-empty directory): the first two targets
+// are put back, the replaced one with its old bytes, the new one removed.
+TEST_F(CommitGroupTest, AFailedRenameRollsBackTheOthers) {
+    std::ofstream(dir_ / "a") << "old a";
+    fs::create_directories(dir_ / "c" / "inside");
+    CommitGroup g;
+    std::ofstream(g.add(dir_ / "a")) << "new a";
+    std::ofstream(g.add(dir_ / "b")) << "new b";
+    std::ofstream(g.add(dir_ / "c")) << "new c";
+    try {
+        g.commit();
+        FAIL() << "commit over a directory succeeded";
+    } catch (const RuntimeError& e) {
+        EXPECT_NE(std::string(e.what()).find((dir_ / "c").string()), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("rename failed"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(slurp(dir_ / "a"), "old a");
+    EXPECT_FALSE(fs::exists(dir_ / "b"));
+    EXPECT_TRUE(fs::is_directory(dir_ / "c" / "inside"));
+}
+
+TEST_F(CommitGroupTest, AddNamesTheTargetWhenNoTemporaryCanBeMade) {
+    CommitGroup g;
+    try {
+        g.add(dir_ / "missing" / "a");
+        FAIL();
+    } catch (const RuntimeError& e) {
+        EXPECT_NE(std::string(e.what()).find((dir_ / "missing" / "a").string()), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace tessera
