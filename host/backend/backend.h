@@ -61,11 +61,12 @@ public:
 
     /// Instant caching: interpolates `cache` at every pixel of `gbuffer` (TS_IC_GBUF_FLOATS
     /// per pixel, from PixelKernel::IcGbuffer) with error bound `error_bound` (Ward's a).
-    /// `out` is resized to 4 floats per pixel: E (irradiance / π) and the weight sum.
+    /// `out` is resized to TS_IC_INTERP_FLOATS floats per pixel (layout.h): E (irradiance / π)
+    /// and the weight sum.
     void ic_interpolate(const std::vector<float>& gbuffer, const IcCacheBuffers& cache, float error_bound,
                         std::vector<float>& out) {
         const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
-        out.assign(4 * pixels, 0.0f);
+        out.assign(TS_IC_INTERP_FLOATS * pixels, 0.0f);
         if (pixels == 0) return;
         ++ic_dispatches_;
         run_ic_interpolate(gbuffer, cache, error_bound, out);
@@ -84,8 +85,8 @@ public:
     /// sample set; set_start holds N + 1 offsets (set k is [set_start[k], set_start[k+1])).
     virtual void set_vpls(const std::vector<float>& vpls, const std::vector<uint32_t>& set_start) = 0;
 
-    /// Closest-hit queries. `rays` holds 8 floats per ray (org.xyz, tmin, dir.xyz,
-    /// tmax); `hits` is resized to 4 words per ray: t, u, v as floats and the triangle
+    /// Closest-hit queries. `rays` holds TS_RAY_FLOATS floats per ray (org.xyz, tmin, dir.xyz,
+    /// tmax; layout.h); `hits` is resized to TS_HIT_FLOATS words per ray: t, u, v as floats and the triangle
     /// index as uint bits (TS_NO_HIT on a miss, with t = tmax).
     virtual void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) = 0;
 

@@ -111,20 +111,20 @@ void IgiFrame::render(TsFrame frame, std::vector<float>& out) {
 
 void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
-    extract3(surf, TS_IGI_SURF_FLOATS, 0, raw_[kAisSS]);
-    extract3(surf, TS_IGI_SURF_FLOATS, 3, raw_[kAisID]);
+    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_E_SS, raw_[kAisSS]);
+    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_E_ID, raw_[kAisID]);
     raw_[kAisPM].assign(3 * pixels, 0.0f);
     transmittance_.assign(3 * pixels, 1.0f);
     if (!media.empty()) {
-        extract3(media, TS_IGI_MEDIA_FLOATS, 0, raw_[kAisPM]);
-        extract3(media, TS_IGI_MEDIA_FLOATS, 3, transmittance_);
+        extract3(media, TS_IGI_MEDIA_FLOATS, TS_IGI_MEDIA_RADIANCE, raw_[kAisPM]);
+        extract3(media, TS_IGI_MEDIA_FLOATS, TS_IGI_MEDIA_TRANSMITTANCE, transmittance_);
     }
     geometry_.width = width;
     geometry_.height = static_cast<int>(pixels / static_cast<size_t>(width));
-    extract3(surf, TS_IGI_SURF_FLOATS, 12, geometry_.normal);
-    extract3(surf, TS_IGI_SURF_FLOATS, 20, geometry_.position);
+    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_NORMAL, geometry_.normal);
+    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_POSITION, geometry_.position);
     geometry_.depth.resize(pixels);
-    for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + 15];
+    for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + TS_IGI_SURF_DISTANCE];
 }
 
 // AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
@@ -139,15 +139,15 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
     base.indirect.resize(pixels);
     for (size_t p = 0; p < pixels; ++p) {
         const float* v = &surf[p * TS_IGI_SURF_FLOATS];
-        base.visibility[p] = v[19];
-        base.indirect[p] = 0.2126f * v[3] + 0.7152f * v[4] + 0.0722f * v[5];
+        base.visibility[p] = v[TS_IGI_SURF_VISIBLE];
+        base.indirect[p] = 0.2126f * v[TS_IGI_SURF_E_ID] + 0.7152f * v[TS_IGI_SURF_E_ID + 1] + 0.0722f * v[TS_IGI_SURF_E_ID + 2];
     }
     if (!media.empty()) {
         base.lit_fraction.resize(pixels);
         base.medium_length.resize(pixels);
         for (size_t p = 0; p < pixels; ++p) {
-            base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + 6];
-            base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + 7];
+            base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LIT];
+            base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LENGTH];
         }
     }
     const uint32_t bits = effective_components();
@@ -179,7 +179,7 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
         const size_t p = schedule_.item_pixels[i];
         for (int c = 0; c < kAisComponents; ++c)
             if (schedule_.item_components[i] & (1u << c))
-                for (int j = 0; j < 3; ++j) own_sum_[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + 3 * c + j];
+                for (int j = 0; j < 3; ++j) own_sum_[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + TS_AIS_ITEM_COMPONENT(c) + j];
     }
     for (int c = 0; c < kAisComponents; ++c) {
         if (schedule_.sets[c].empty()) continue;
@@ -213,11 +213,13 @@ void IgiFrame::composite(const std::vector<float>& surf, std::vector<float>& out
         float* o = &out[p * TS_PASS_FLOATS];
         for (int c = 0; c < 3; ++c) {
             const float e = final_[kAisSS][3 * p + c] + final_[kAisID][3 * p + c];
-            o[c] = transmittance_[3 * p + c] * s[16 + c] * (s[9 + c] + s[6 + c] * e) + final_[kAisPM][3 * p + c];
-            o[3 + c] = s[6 + c];
-            o[6 + c] = s[12 + c];
+            o[TS_PASS_RADIANCE + c] = transmittance_[3 * p + c] * s[TS_IGI_SURF_THROUGHPUT + c] *
+                                          (s[TS_IGI_SURF_EMISSION + c] + s[TS_IGI_SURF_ALBEDO + c] * e) +
+                                      final_[kAisPM][3 * p + c];
+            o[TS_PASS_ALBEDO + c] = s[TS_IGI_SURF_ALBEDO + c];
+            o[TS_PASS_NORMAL + c] = s[TS_IGI_SURF_NORMAL + c];
         }
-        o[9] = s[15];
+        o[TS_PASS_DEPTH] = s[TS_IGI_SURF_DISTANCE];
     }
 }
 

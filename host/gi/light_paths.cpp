@@ -39,10 +39,13 @@ bool start_path(const ts::TsSceneView& sv, const ScrambledHalton& h, InFlight& p
 void store_vpl(LightPath& path, float3 alpha, const ts::TsSurface& s, float3 albedo, float inv_paths) {
     float3 c = alpha * albedo * (TS_INV_PI * inv_paths);
     const auto index = static_cast<uint32_t>(path.index);
-    float v[TS_VPL_FLOATS] = {s.position.x,       s.position.y,       s.position.z,       s.shading_normal.x,
-                              s.shading_normal.y, s.shading_normal.z, c.x,                c.y,
-                              c.z,                static_cast<float>(path.set), 0.0f,  s.pos_scale};
-    std::memcpy(&v[10], &index, 4);
+    float v[TS_VPL_FLOATS];
+    ts::ts_f3_store(v + TS_VPL_POSITION, s.position);
+    ts::ts_f3_store(v + TS_VPL_NORMAL, s.shading_normal);
+    ts::ts_f3_store(v + TS_VPL_FLUX, c);
+    v[TS_VPL_SET] = static_cast<float>(path.set);
+    std::memcpy(&v[TS_VPL_PATH], &index, 4);
+    v[TS_VPL_POS_SCALE] = s.pos_scale;
     path.vpls.insert(path.vpls.end(), v, v + TS_VPL_FLOATS);
 }
 
@@ -52,16 +55,16 @@ bool continue_path(const ts::TsSceneView& sv, const ScrambledHalton& h, int dim,
                    InFlight& p, float inv_paths) {
     auto u = [&](int d) { return static_cast<float>(h.sample(p.path->index, dim + d)); };
     const float* M = sv.materials + TS_MATERIAL_FLOATS * s.material;
-    uint32_t kind = ts::as_uint(M[7]);
+    uint32_t kind = ts::as_uint(M[TS_MAT_KIND]);
     if (kind == TS_MAT_MIRROR) {
-        p.alpha = p.alpha * ts::ts_f3_load(M + 8);
+        p.alpha = p.alpha * ts::ts_f3_load(M + TS_MAT_SPECULAR);
         p.ray = ray_from(ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale),
                          ts::ts_reflect(p.ray.dir, s.shading_normal));
         return true;
     }
     if (kind == TS_MAT_DIELECTRIC) {
         int transmitted;
-        float3 d = ts::ts_sample_dielectric(p.ray.dir, s.geo_normal, s.front_face, M[11], u(2), &transmitted);
+        float3 d = ts::ts_sample_dielectric(p.ray.dir, s.geo_normal, s.front_face, M[TS_MAT_IOR], u(2), &transmitted);
         p.ray = ray_from(ts::ts_offset_ray_origin(s.origin, transmitted ? -s.geo_normal : s.geo_normal, s.pos_scale), d);
         return true;
     }
@@ -99,17 +102,22 @@ uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const Li
     uint64_t traced = 0;
     std::vector<float> rays, hits;
     for (uint32_t bounce = 0; bounce < settings.max_bounces && !live.empty(); ++bounce) {
-        rays.clear();
-        for (const InFlight& p : live)
-            rays.insert(rays.end(), {p.ray.org.x, p.ray.org.y, p.ray.org.z, p.ray.tmin, p.ray.dir.x, p.ray.dir.y,
-                                     p.ray.dir.z, p.ray.tmax});
+        rays.assign(TS_RAY_FLOATS * live.size(), 0.0f);
+        for (size_t i = 0; i < live.size(); ++i) {
+            float* r = &rays[TS_RAY_FLOATS * i];
+            ts::ts_f3_store(r + TS_RAY_ORG, live[i].ray.org);
+            r[TS_RAY_TMIN] = live[i].ray.tmin;
+            ts::ts_f3_store(r + TS_RAY_DIR, live[i].ray.dir);
+            r[TS_RAY_TMAX] = live[i].ray.tmax;
+        }
         backend.trace_closest(rays, hits);
         traced += live.size();
         std::vector<InFlight> alive;
         for (size_t i = 0; i < live.size(); ++i) {
             InFlight p = live[i];
-            ts::TsHit hit{hits[4 * i], hits[4 * i + 1], hits[4 * i + 2], 0u};
-            std::memcpy(&hit.prim, &hits[4 * i + 3], 4);
+            const float* h = &hits[TS_HIT_FLOATS * i];
+            ts::TsHit hit{h[TS_HIT_T], h[TS_HIT_U], h[TS_HIT_V], 0u};
+            std::memcpy(&hit.prim, &h[TS_HIT_PRIM], 4);
             p.path->segments.push_back(segment_of(p.ray, hit));
             if (hit.prim == TS_NO_HIT) continue;
             p.alpha = p.alpha * ts::ts_medium_transmittance(&med, p.ray.org, p.ray.dir, 0.0f, hit.t);

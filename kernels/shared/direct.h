@@ -69,18 +69,18 @@ TS_INLINE void ts_direct_pixel(const TsSceneView* sv, const TsTracer* tracer, co
     float jx = ts_rng_next(&rng), jy = ts_rng_next(&rng);
     TsRay ray = ts_camera_ray(f, px, py, jx, jy);
     TsHit hit = ts_trace_closest(tracer, ray);
-    for (int i = 0; i < 9; ++i) out[i] = 0.0f;
-    out[9] = TS_INF;
+    for (int i = 0; i < TS_PASS_DEPTH; ++i) out[i] = 0.0f;
+    out[TS_PASS_DEPTH] = TS_INF;
     if (hit.prim == TS_NO_HIT) return;
     TsSurface s = ts_surface_at(sv, ray, hit);
     float3 albedo = ts_material_albedo(sv, &s);
     float3 L = ts_material_emission(sv, &s);
     if (albedo.x + albedo.y + albedo.z > 0.0f && sv->light_count > 0u)
         L += albedo * ts_direct_irradiance(sv, tracer, &s, f->shadow_samples, &rng);
-    out[0] = L.x; out[1] = L.y; out[2] = L.z;
-    out[3] = albedo.x; out[4] = albedo.y; out[5] = albedo.z;
-    out[6] = s.shading_normal.x; out[7] = s.shading_normal.y; out[8] = s.shading_normal.z;
-    out[9] = hit.t;
+    ts_f3_store(out + TS_PASS_RADIANCE, L);
+    ts_f3_store(out + TS_PASS_ALBEDO, albedo);
+    ts_f3_store(out + TS_PASS_NORMAL, s.shading_normal);
+    out[TS_PASS_DEPTH] = hit.t;
 }
 
 TS_NAMESPACE_END

@@ -127,9 +127,9 @@ typedef struct TsSurface {
 } TsSurface;
 
 TS_INLINE TsSurface ts_surface_at(const TsSceneView* sv, TsRay ray, TsHit hit) {
-    TS_GLOBAL const float* P = sv->tri_pos + 9u * hit.prim;
-    TS_GLOBAL const float* N = sv->tri_nrm + 9u * hit.prim;
-    TS_GLOBAL const float* T = sv->tri_uv + 6u * hit.prim;
+    TS_GLOBAL const float* P = sv->tri_pos + TS_TRI_POS_FLOATS * hit.prim;
+    TS_GLOBAL const float* N = sv->tri_nrm + TS_TRI_NRM_FLOATS * hit.prim;
+    TS_GLOBAL const float* T = sv->tri_uv + TS_TRI_UV_FLOATS * hit.prim;
     float w = 1.0f - hit.u - hit.v;
     float3 p0 = ts_f3_load(P), p1 = ts_f3_load(P + 3), p2 = ts_f3_load(P + 6);
     TsSurface s;

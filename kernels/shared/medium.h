@@ -18,13 +18,13 @@ typedef struct TsMedium {
 
 TS_INLINE TsMedium ts_medium_load(TS_GLOBAL const float* m) {
     TsMedium r;
-    r.sigma_s = ts_f3_load(m + 3);
-    r.sigma_t = ts_f3_load(m) + r.sigma_s;
-    r.g = m[6];
-    r.bounded = m[7] != 0.0f;
-    r.box_min = ts_f3_load(m + 8);
-    r.box_max = ts_f3_load(m + 11);
-    r.present = m[14] != 0.0f;
+    r.sigma_s = ts_f3_load(m + TS_MEDIUM_SIGMA_S);
+    r.sigma_t = ts_f3_load(m + TS_MEDIUM_SIGMA_A) + r.sigma_s;
+    r.g = m[TS_MEDIUM_G];
+    r.bounded = m[TS_MEDIUM_BOUNDED] != 0.0f;
+    r.box_min = ts_f3_load(m + TS_MEDIUM_BOX_MIN);
+    r.box_max = ts_f3_load(m + TS_MEDIUM_BOX_MAX);
+    r.present = m[TS_MEDIUM_PRESENT] != 0.0f;
     return r;
 }
 

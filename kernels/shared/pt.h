@@ -100,8 +100,8 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
     float prev_pdf = 0.0f;
     int prev_delta = 1;
     uint scatters = 0u;
-    for (int i = 0; i < 9; ++i) out[i] = 0.0f;
-    out[9] = TS_INF;
+    for (int i = 0; i < TS_PASS_DEPTH; ++i) out[i] = 0.0f;
+    out[TS_PASS_DEPTH] = TS_INF;
 
     for (uint depth = 0u; depth < f->max_depth; ++depth) {
         TsHit hit = ts_trace_closest(tracer, ray);
@@ -147,9 +147,9 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
         TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s.material;
         float3 albedo = ts_material_albedo(sv, &s);
         if (depth == 0u) {
-            out[3] = albedo.x; out[4] = albedo.y; out[5] = albedo.z;
-            out[6] = s.shading_normal.x; out[7] = s.shading_normal.y; out[8] = s.shading_normal.z;
-            out[9] = hit.t;
+            ts_f3_store(out + TS_PASS_ALBEDO, albedo);
+            ts_f3_store(out + TS_PASS_NORMAL, s.shading_normal);
+            out[TS_PASS_DEPTH] = hit.t;
         }
         float3 le = ts_material_emission(sv, &s);
         if (le.x + le.y + le.z > 0.0f) {
@@ -157,21 +157,21 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                 L += beta * le;
             } else {
                 float cos_y = -dot(s.geo_normal, ray.dir);
-                float pl = ts_light_pdf_area(M[12], f->light_power) * hit.t * hit.t / cos_y;
+                float pl = ts_light_pdf_area(M[TS_MAT_SELECTION], f->light_power) * hit.t * hit.t / cos_y;
                 L += beta * le * ts_power_heuristic(prev_pdf, pl);
             }
         }
-        uint kind = as_uint(M[7]);
+        uint kind = as_uint(M[TS_MAT_KIND]);
         float3 ng = s.geo_normal;
         if (kind == TS_MAT_MIRROR) {
-            beta = beta * ts_f3_load(M + 8);
+            beta = beta * ts_f3_load(M + TS_MAT_SPECULAR);
             ray.dir = ts_reflect(ray.dir, s.shading_normal);
             if (dot(ray.dir, ng) <= 0.0f) break;
             ray.org = ts_offset_ray_origin(s.origin, ng, s.pos_scale);
             prev_delta = 1;
         } else if (kind == TS_MAT_DIELECTRIC) {
             int transmitted;
-            ray.dir = ts_sample_dielectric(ray.dir, ng, s.front_face, M[11], ts_rng_next(&rng), &transmitted);
+            ray.dir = ts_sample_dielectric(ray.dir, ng, s.front_face, M[TS_MAT_IOR], ts_rng_next(&rng), &transmitted);
             ray.org = ts_offset_ray_origin(s.origin, transmitted ? -ng : ng, s.pos_scale);
             prev_delta = 1;
         } else {
@@ -200,7 +200,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
         ray.tmax = TS_INF;
         if (!ts_roulette(&beta, depth, &rng)) break;
     }
-    out[0] = L.x; out[1] = L.y; out[2] = L.z;
+    ts_f3_store(out + TS_PASS_RADIANCE, L);
 }
 
 TS_NAMESPACE_END

@@ -14,7 +14,7 @@ TS_NAMESPACE_BEGIN
  * contribution C·G' of any VPL is at most C·b. */
 TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, TsRay* shadow) {
     float3 x = s->position, n = s->shading_normal, ng = s->geo_normal;
-    float3 y = ts_f3_load(vpl), nv = ts_f3_load(vpl + 3);
+    float3 y = ts_f3_load(vpl + TS_VPL_POSITION), nv = ts_f3_load(vpl + TS_VPL_NORMAL);
     float3 d = y - x;
     float dist2 = dot(d, d);
     if (!(dist2 > 0.0f)) return 0.0f;
@@ -22,7 +22,7 @@ TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, 
     float cos_x = dot(n, w), cos_v = -dot(nv, w);
     if (cos_x <= 0.0f || cos_v <= 0.0f || dot(ng, w) <= 0.0f) return 0.0f;
     shadow->org = ts_offset_ray_origin(s->origin, ng, s->pos_scale);
-    shadow->dir = ts_offset_ray_origin(y, nv, vpl[11]) - shadow->org;
+    shadow->dir = ts_offset_ray_origin(y, nv, vpl[TS_VPL_POS_SCALE]) - shadow->org;
     shadow->tmin = 0.0f;
     shadow->tmax = 0.99999f;
     return fmin(cos_x * cos_v / dist2, b);
