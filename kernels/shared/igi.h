@@ -109,18 +109,8 @@ TS_INLINE TsHit ts_igi_find_diffuse(const TsSceneView* sv, const TsTracer* trace
         uint kind = as_uint(M[TS_MAT_KIND]);
         if (kind == TS_MAT_DIFFUSE || bounce == 5) return hit;
         TsSurface s = ts_surface_at(sv, *ray, hit);
-        if (kind == TS_MAT_MIRROR) {
-            *throughput = *throughput * ts_f3_load(M + TS_MAT_SPECULAR);
-            ray->dir = ts_reflect(ray->dir, s.shading_normal);
-            ray->org = ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
-        } else {
-            int transmitted;
-            ray->dir = ts_sample_dielectric(ray->dir, s.geo_normal, s.front_face, M[TS_MAT_IOR], ts_rng_next(rng),
-                                            &transmitted);
-            ray->org = ts_offset_ray_origin(s.origin, transmitted ? -s.geo_normal : s.geo_normal, s.pos_scale);
-        }
-        ray->tmin = 0.0f;
-        ray->tmax = TS_INF;
+        float u = kind == TS_MAT_MIRROR ? 0.0f : ts_rng_next(rng); /* the dielectric's Fresnel choice */
+        (void)ts_specular_bounce(M, kind, &s, u, ray, throughput);
     }
     return hit;
 }

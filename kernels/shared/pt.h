@@ -163,16 +163,9 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
         }
         uint kind = as_uint(M[TS_MAT_KIND]);
         float3 ng = s.geo_normal;
-        if (kind == TS_MAT_MIRROR) {
-            beta = beta * ts_f3_load(M + TS_MAT_SPECULAR);
-            ray.dir = ts_reflect(ray.dir, s.shading_normal);
-            if (dot(ray.dir, ng) <= 0.0f) break;
-            ray.org = ts_offset_ray_origin(s.origin, ng, s.pos_scale);
-            prev_delta = 1;
-        } else if (kind == TS_MAT_DIELECTRIC) {
-            int transmitted;
-            ray.dir = ts_sample_dielectric(ray.dir, ng, s.front_face, M[TS_MAT_IOR], ts_rng_next(&rng), &transmitted);
-            ray.org = ts_offset_ray_origin(s.origin, transmitted ? -ng : ng, s.pos_scale);
+        if (ts_is_specular(kind)) {
+            float u = kind == TS_MAT_DIELECTRIC ? ts_rng_next(&rng) : 0.0f;
+            if (!ts_specular_bounce(M, kind, &s, u, &ray, &beta)) break;
             prev_delta = 1;
         } else {
             if (ts_max3(albedo) <= 0.0f) break;
