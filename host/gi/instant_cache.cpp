@@ -34,7 +34,8 @@ void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vect
                    const SceneBuffers& scene, float g_clamp, float* harmonic_mean) {
     const ts::TsSurface s = ic_record_surface(r);
     const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
-    double sum[3] = {0, 0, 0}, inv_dist = 0;
+    ts::TsDouble3 sum{0, 0, 0};  // the gather sum of shared/vpl.h, in double
+    double inv_dist = 0;
     size_t seen = 0;
     for (size_t j = 0; j < row.size(); ++j) {
         if (row[j] != kIcVisible) continue;
@@ -42,16 +43,13 @@ void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vect
         ts::TsRay shadow;
         const float g = ts::ts_vpl_geometry(&s, v, g_clamp, &shadow);
         if (!(g > 0.0f)) continue;
-        const ts::float3 t = ts::ts_medium_transmittance(&med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
-        const float* flux = v + TS_VPL_FLUX;
-        sum[0] += double(flux[0]) * t.x * g;
-        sum[1] += double(flux[1]) * t.y * g;
-        sum[2] += double(flux[2]) * t.z * g;
+        ts::ts_vpl_gather_add(&sum, v, &med, shadow, g);
         const ts::float3 d = ts::ts_f3_load(v + TS_VPL_POSITION) - s.position;
         inv_dist += 1.0 / std::sqrt(double(ts::dot(d, d)));
         ++seen;
     }
-    for (int c = 0; c < 3; ++c) r.e[c] = static_cast<float>(sum[c] / M_PI);
+    const ts::float3 e = ts::ts_vpl_gather_result(sum);
+    r.e = {e.x, e.y, e.z};
     *harmonic_mean = seen > 0 && inv_dist > 0 ? static_cast<float>(seen / inv_dist) : INFINITY;
 }
 

@@ -47,17 +47,6 @@ TS_INLINE float3 ts_igi_light_point(const TsFrame* f, uint j) {
                        ts_rotate01(ts_radical_inverse2(j), f->igi_rotation[2]));
 }
 
-/* Transmittance of a shadow ray (1 without a medium). */
-TS_INLINE float3 ts_igi_shadow_transmittance(const TsMedium* med, TsRay shadow) {
-#ifdef TS_HAS_MEDIUM
-    return ts_medium_transmittance(med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
-#else
-    (void)med;
-    (void)shadow;
-    return make_float3(1.0f, 1.0f, 1.0f);
-#endif
-}
-
 /* E_ss: direct irradiance / π at s from set k's m light samples; *visible receives the
  * fraction of them that reach the light (0 for samples the surface faces away from). */
 TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
@@ -70,7 +59,7 @@ TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, co
         TsRay shadow;
         float3 c = ts_light_contribution(s, ls, &shadow);
         if (c.x + c.y + c.z > 0.0f && !ts_trace_occluded(tracer, shadow)) {
-            sum += c * ts_igi_shadow_transmittance(med, shadow);
+            sum += c * ts_shadow_transmittance(med, shadow);
             ++seen;
         }
     }
@@ -78,7 +67,7 @@ TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, co
     return sum * (TS_INV_PI / (float)m);
 }
 
-/* E_id: indirect irradiance / π at s from set k's VPLs. */
+/* E_id: indirect irradiance / π at s from set k's VPLs (the gather sum of shared/vpl.h). */
 TS_INLINE float3 ts_igi_indirect(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                  const TsMedium* med, const TsSurface* s, uint k) {
     float3 sum = make_float3(0.0f, 0.0f, 0.0f);
@@ -87,10 +76,9 @@ TS_INLINE float3 ts_igi_indirect(const TsSceneView* sv, const TsTracer* tracer, 
         TS_GLOBAL const float* vpl = sv->vpls + v * TS_VPL_FLOATS;
         TsRay shadow;
         float g = ts_vpl_geometry(s, vpl, f->igi_g_clamp, &shadow);
-        if (g > 0.0f && !ts_trace_occluded(tracer, shadow))
-            sum += ts_f3_load(vpl + TS_VPL_FLUX) * ts_igi_shadow_transmittance(med, shadow) * g;
+        if (g > 0.0f && !ts_trace_occluded(tracer, shadow)) ts_vpl_gather_add(&sum, vpl, med, shadow, g);
     }
-    return sum * TS_INV_PI;
+    return ts_vpl_gather_result(sum);
 }
 
 /* Follows mirror and dielectric bounces from the camera (at most 5) to the first

@@ -3,6 +3,7 @@
 #ifndef TS_MEDIUM_H
 #define TS_MEDIUM_H
 #include "shared/compat.h"
+#include "shared/geometry.h"
 #include "shared/layout.h"
 
 TS_NAMESPACE_BEGIN
@@ -87,6 +88,19 @@ TS_INLINE float ts_medium_sample_distance(const TsMedium* m, float len, float u_
     *weight = tr / ts_mean3(tr);
     *scattered = 0;
     return len;
+}
+
+/* Transmittance along a shadow ray over its (tmin, tmax); 1 where the medium is compiled
+ * out (OpenCL builds without TS_HAS_MEDIUM; every C++ build has it, and a scene without a
+ * medium gives 1 through ts_medium_clip). */
+TS_INLINE float3 ts_shadow_transmittance(const TsMedium* med, TsRay shadow) {
+#ifdef TS_HAS_MEDIUM
+    return ts_medium_transmittance(med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
+#else
+    (void)med;
+    (void)shadow;
+    return make_float3(1.0f, 1.0f, 1.0f);
+#endif
 }
 
 TS_NAMESPACE_END

@@ -1,11 +1,14 @@
-/* The VPL connection of instant radiosity (Keller 1997), shared by the igi kernels
- * (shared/igi.h) and the instant cache's host-side gathering (host/gi/instant_cache.cpp),
- * so both weigh a VPL identically. VPL layout: layout.h TS_VPL_FLOATS. */
+/* The VPL connection and gather sum of instant radiosity (Keller 1997), shared by the
+ * igi kernels (shared/igi.h) and the instant cache's host-side gathering
+ * (host/gi/instant_cache.cpp), so both weigh a VPL identically. VPL layout: layout.h
+ * TS_VPL_FLOATS. */
 #ifndef TS_VPL_H
 #define TS_VPL_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
 #include "shared/layout.h"
+#include "shared/medium.h"
+#include "shared/sampling.h"
 
 TS_NAMESPACE_BEGIN
 
@@ -27,6 +30,43 @@ TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, 
     shadow->tmax = 0.99999f;
     return fmin(cos_x * cos_v / dist2, b);
 }
+
+/* The gather sum E = (1/π) Σ_v C_v · Tr_v · G'_v over the VPLs v whose shadow ray was
+ * found unoccluded: C the VPL's flux weight, Tr the medium's transmittance along the
+ * shadow ray, G' the clamped geometry term (ts_vpl_geometry). ts_vpl_gather_add adds one
+ * VPL's term, ts_vpl_gather_result applies the 1/π; the caller owns the loop, since
+ * visibility comes from a tracer in the kernels and from stored rows in the instant cache.
+ *
+ * The accumulator's type is the caller's: the kernels sum in float (float3); the instant
+ * cache's records sum in double (TsDouble3, C++ only), as a record's E is formed once
+ * from all the VPLs of a frame (thousands of terms, not one set's) and then reused by
+ * many pixels. Both forms build each term in the accumulator's precision as (C · Tr) · G'
+ * and add it; OpenCL C has no templates and doubles are optional there, hence the
+ * C++-only overloads rather than one generic body. */
+TS_INLINE void ts_vpl_gather_add(float3* sum, TS_GLOBAL const float* vpl, const TsMedium* med, TsRay shadow,
+                                 float g) {
+    *sum += ts_f3_load(vpl + TS_VPL_FLUX) * ts_shadow_transmittance(med, shadow) * g;
+}
+
+TS_INLINE float3 ts_vpl_gather_result(float3 sum) { return sum * TS_INV_PI; }
+
+#ifdef __cplusplus
+struct TsDouble3 {
+    double x, y, z;
+};
+
+inline void ts_vpl_gather_add(TsDouble3* sum, const float* vpl, const TsMedium* med, TsRay shadow, float g) {
+    const float3 c = ts_f3_load(vpl + TS_VPL_FLUX), tr = ts_shadow_transmittance(med, shadow);
+    sum->x += double(c.x) * tr.x * g;
+    sum->y += double(c.y) * tr.y * g;
+    sum->z += double(c.z) * tr.z * g;
+}
+
+inline float3 ts_vpl_gather_result(TsDouble3 sum) {
+    const double pi = 3.14159265358979323846;
+    return make_float3(static_cast<float>(sum.x / pi), static_cast<float>(sum.y / pi), static_cast<float>(sum.z / pi));
+}
+#endif
 
 TS_NAMESPACE_END
 
