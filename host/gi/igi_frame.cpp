@@ -6,8 +6,10 @@
 #include <limits>
 
 #include "gi/ais_reconstruct.h"
+#include "kernels/shared/composite.h"
 #include "kernels/shared/layout.h"
 #include "kernels/shared/rng.h"
+#include "kernels/shared/sampling.h"
 
 namespace tessera {
 namespace {
@@ -140,7 +142,7 @@ void IgiFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
     for (size_t p = 0; p < pixels; ++p) {
         const float* v = &surf[p * TS_IGI_SURF_FLOATS];
         base.visibility[p] = v[TS_IGI_SURF_VISIBLE];
-        base.indirect[p] = 0.2126f * v[TS_IGI_SURF_E_ID] + 0.7152f * v[TS_IGI_SURF_E_ID + 1] + 0.0722f * v[TS_IGI_SURF_E_ID + 2];
+        base.indirect[p] = ts::ts_luminance(ts::ts_f3_load(v + TS_IGI_SURF_E_ID));
     }
     if (!media.empty()) {
         base.lit_fraction.resize(pixels);
@@ -211,11 +213,13 @@ void IgiFrame::composite(const std::vector<float>& surf, std::vector<float>& out
     for (size_t p = 0; p < pixels; ++p) {
         const float* s = &surf[p * TS_IGI_SURF_FLOATS];
         float* o = &out[p * TS_PASS_FLOATS];
+        auto at = [p](const std::vector<float>& v) { return ts::ts_f3_load(&v[3 * p]); };
+        ts::ts_f3_store(o + TS_PASS_RADIANCE,
+                        ts::ts_igi_composite(at(transmittance_), ts::ts_f3_load(s + TS_IGI_SURF_THROUGHPUT),
+                                             ts::ts_f3_load(s + TS_IGI_SURF_EMISSION),
+                                             ts::ts_f3_load(s + TS_IGI_SURF_ALBEDO), at(final_[kAisSS]),
+                                             at(final_[kAisID]), at(final_[kAisPM])));
         for (int c = 0; c < 3; ++c) {
-            const float e = final_[kAisSS][3 * p + c] + final_[kAisID][3 * p + c];
-            o[TS_PASS_RADIANCE + c] = transmittance_[3 * p + c] * s[TS_IGI_SURF_THROUGHPUT + c] *
-                                          (s[TS_IGI_SURF_EMISSION + c] + s[TS_IGI_SURF_ALBEDO + c] * e) +
-                                      final_[kAisPM][3 * p + c];
             o[TS_PASS_ALBEDO + c] = s[TS_IGI_SURF_ALBEDO + c];
             o[TS_PASS_NORMAL + c] = s[TS_IGI_SURF_NORMAL + c];
         }

@@ -3,11 +3,12 @@
 #include <cstring>
 
 #include "kernels/shared/layout.h"
+#include "kernels/shared/sampling.h"
 
 namespace tessera {
 namespace {
 
-float luminance_of(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+float luminance_of(const glm::vec3& c) { return ts::ts_luminance(ts::make_float3(c.x, c.y, c.z)); }
 
 // emission_max covers emission in a loaded scene; a scene built in code may have set
 // only emission.
