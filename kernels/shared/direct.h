@@ -35,12 +35,8 @@ TS_INLINE float3 ts_light_contribution(const TsSurface* s, TsLightSample ls, TsR
     float cos_y = -dot(ls.normal, wi);
     float3 zero = make_float3(0.0f, 0.0f, 0.0f);
     if (cos_x <= 0.0f || cos_y <= 0.0f || dot(s->geo_normal, wi) <= 0.0f) return zero;
-    /* Both ends offset off their surfaces; dir spans the gap so t runs over (0, 1). */
-    shadow->org = ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale);
-    float3 target = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale);
-    shadow->dir = target - shadow->org;
-    shadow->tmin = 0.0f;
-    shadow->tmax = 0.99999f;
+    *shadow = ts_shadow_ray(ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale), ls.position, ls.normal,
+                            ls.pos_scale);
     return ls.radiance * (cos_x * cos_y / (dist2 * ls.pdf_area));
 }
 

@@ -233,11 +233,7 @@ TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, c
             float3 wi = d / sqrt(dist2);
             float cos_y = -dot(ls.normal, wi);
             if (cos_y > 0.0f) {
-                TsRay shadow;
-                shadow.org = x;
-                shadow.dir = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale) - x;
-                shadow.tmin = 0.0f;
-                shadow.tmax = 0.99999f;
+                TsRay shadow = ts_shadow_ray(x, ls.position, ls.normal, ls.pos_scale);
                 if (!ts_trace_occluded(tracer, shadow)) {
                     ++lit;
                     float pl = ls.pdf_area * dist2 / cos_y;

@@ -65,11 +65,7 @@ TS_INLINE TsLightConnection ts_connect_light(const TsSceneView* sv, const TsTrac
     float cos_y = -dot(ls.normal, c.wi);
     if (!(cos_y > 0.0f) || !(dist2 > 0.0f)) return c;
     c.pdf = ls.pdf_area * dist2 / cos_y;
-    TsRay shadow;
-    shadow.org = org;
-    shadow.dir = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale) - org;
-    shadow.tmin = 0.0f;
-    shadow.tmax = 0.99999f;
+    TsRay shadow = ts_shadow_ray(org, ls.position, ls.normal, ls.pos_scale);
     if (ts_trace_occluded(tracer, shadow)) return c;
     c.radiance = ls.radiance;
 #ifdef TS_HAS_MEDIUM

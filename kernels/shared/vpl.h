@@ -24,10 +24,7 @@ TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, 
     float3 w = d / sqrt(dist2);
     float cos_x = dot(n, w), cos_v = -dot(nv, w);
     if (cos_x <= 0.0f || cos_v <= 0.0f || dot(ng, w) <= 0.0f) return 0.0f;
-    shadow->org = ts_offset_ray_origin(s->origin, ng, s->pos_scale);
-    shadow->dir = ts_offset_ray_origin(y, nv, vpl[TS_VPL_POS_SCALE]) - shadow->org;
-    shadow->tmin = 0.0f;
-    shadow->tmax = 0.99999f;
+    *shadow = ts_shadow_ray(ts_offset_ray_origin(s->origin, ng, s->pos_scale), y, nv, vpl[TS_VPL_POS_SCALE]);
     return fmin(cos_x * cos_v / dist2, b);
 }
 
