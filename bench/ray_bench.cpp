@@ -74,13 +74,14 @@ RaySets make_rays(const Scene& scene, const SceneBuffers& b, Backend& embree, in
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     std::normal_distribution<float> g;
     const ts::TsSceneView sv = make_scene_view(b);
-    for (size_t i = 0; i < r.primary.size() / 8; ++i) {
+    for (size_t i = 0; i < r.primary.size() / TS_RAY_FLOATS; ++i) {
+        const float* hi = &hits[TS_HIT_FLOATS * i];
         uint32_t prim;
-        std::memcpy(&prim, &hits[4 * i + 3], 4);
+        std::memcpy(&prim, &hi[TS_HIT_PRIM], 4);
         if (prim == TS_NO_HIT) continue;
-        const float* pr = &r.primary[8 * i];
-        ts::TsRay ray{ts::make_float3(pr[0], pr[1], pr[2]), ts::make_float3(pr[4], pr[5], pr[6]), 0.0f, INFINITY};
-        ts::TsHit hit{hits[4 * i], hits[4 * i + 1], hits[4 * i + 2], prim};
+        const float* pr = &r.primary[TS_RAY_FLOATS * i];
+        ts::TsRay ray{ts::ts_f3_load(pr + TS_RAY_ORG), ts::ts_f3_load(pr + TS_RAY_DIR), 0.0f, INFINITY};
+        ts::TsHit hit{hi[TS_HIT_T], hi[TS_HIT_U], hi[TS_HIT_V], prim};
         ts::TsSurface s = ts::ts_surface_at(&sv, ray, hit);
         ts::float3 o = ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
         ts::TsLightSample ls = ts::ts_sample_light(b.lights.data(), b.light_cdf.data(), b.light_count, u(rng),
@@ -107,15 +108,15 @@ void trace_packets(RTCScene scene, const std::vector<float>& rays, int w, int h)
         for (int t = r.begin(); t < r.end(); ++t) {
             const int tx = t % tiles_x, ty = t / tiles_x;
             for (int k = 0; k < 16; ++k) {
-                const float* ray = &rays[8 * (size_t(ty * 4 + k / 4) * w + tx * 4 + k % 4)];
-                rh.ray.org_x[k] = ray[0];
-                rh.ray.org_y[k] = ray[1];
-                rh.ray.org_z[k] = ray[2];
-                rh.ray.tnear[k] = ray[3];
-                rh.ray.dir_x[k] = ray[4];
-                rh.ray.dir_y[k] = ray[5];
-                rh.ray.dir_z[k] = ray[6];
-                rh.ray.tfar[k] = ray[7];
+                const float* ray = &rays[TS_RAY_FLOATS * (size_t(ty * 4 + k / 4) * w + tx * 4 + k % 4)];
+                rh.ray.org_x[k] = ray[TS_RAY_ORG + 0];
+                rh.ray.org_y[k] = ray[TS_RAY_ORG + 1];
+                rh.ray.org_z[k] = ray[TS_RAY_ORG + 2];
+                rh.ray.tnear[k] = ray[TS_RAY_TMIN];
+                rh.ray.dir_x[k] = ray[TS_RAY_DIR + 0];
+                rh.ray.dir_y[k] = ray[TS_RAY_DIR + 1];
+                rh.ray.dir_z[k] = ray[TS_RAY_DIR + 2];
+                rh.ray.tfar[k] = ray[TS_RAY_TMAX];
                 rh.ray.time[k] = 0.0f;
                 rh.ray.mask[k] = 0xffffffffu;
                 rh.ray.flags[k] = 0;
@@ -176,7 +177,7 @@ int main(int argc, char** argv) {
     };
     std::vector<Row> rows;
     auto run_set = [&](const char* name, const std::vector<float>& r, bool closest) {
-        Row row{name, r.size() / 8, 0, 0, 0};
+        Row row{name, r.size() / TS_RAY_FLOATS, 0, 0, 0};
         if (closest) {
             row.cl = mrays(row.n, median_seconds(repeats, [&] { cl->trace_closest(r, hits); }));
             row.em = mrays(row.n, median_seconds(repeats, [&] { em->trace_closest(r, hits); }));

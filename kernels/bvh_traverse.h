@@ -47,7 +47,8 @@ inline TsWatertight ts_watertight_setup(float3 d) {
 /* Returns 1 and sets (*t, *u, *v) if the ray hits the triangle with t in (tmin, tmax). */
 inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float tmin, float tmax,
                                  __global const float* tri, float* t, float* u, float* v) {
-    float3 A = vload3(0, tri) - org, B = vload3(0, tri + 4) - org, C = vload3(0, tri + 8) - org;
+    float3 A = vload3(0, tri + TS_BVH_TRI_VERTEX(0)) - org, B = vload3(0, tri + TS_BVH_TRI_VERTEX(1)) - org,
+           C = vload3(0, tri + TS_BVH_TRI_VERTEX(2)) - org;
     float Az = ts_f3_get(A, w->kz), Bz = ts_f3_get(B, w->kz), Cz = ts_f3_get(C, w->kz);
     float Ax = ts_f3_get(A, w->kx) - w->sx * Az, Ay = ts_f3_get(A, w->ky) - w->sy * Az;
     float Bx = ts_f3_get(B, w->kx) - w->sx * Bz, By = ts_f3_get(B, w->ky) - w->sy * Bz;
@@ -73,9 +74,12 @@ inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float tmin, 
 /* Distances to the four child boxes of `node`; a child is hit where near <= far. */
 inline int4 ts_node_hits(__global const float* node, float3 org, float3 inv, int3 neg,
                          float tmin, float tmax, float4* tnear_out) {
-    float4 lo_x = vload4(0, node + (neg.x ? 4 : 0)), hi_x = vload4(0, node + (neg.x ? 0 : 4));
-    float4 lo_y = vload4(0, node + (neg.y ? 12 : 8)), hi_y = vload4(0, node + (neg.y ? 8 : 12));
-    float4 lo_z = vload4(0, node + (neg.z ? 20 : 16)), hi_z = vload4(0, node + (neg.z ? 16 : 20));
+    float4 lo_x = vload4(0, node + (neg.x ? TS_NODE_MAX(0) : TS_NODE_MIN(0)));
+    float4 hi_x = vload4(0, node + (neg.x ? TS_NODE_MIN(0) : TS_NODE_MAX(0)));
+    float4 lo_y = vload4(0, node + (neg.y ? TS_NODE_MAX(1) : TS_NODE_MIN(1)));
+    float4 hi_y = vload4(0, node + (neg.y ? TS_NODE_MIN(1) : TS_NODE_MAX(1)));
+    float4 lo_z = vload4(0, node + (neg.z ? TS_NODE_MAX(2) : TS_NODE_MIN(2)));
+    float4 hi_z = vload4(0, node + (neg.z ? TS_NODE_MIN(2) : TS_NODE_MAX(2)));
     float4 n_x = (lo_x - org.x) * inv.x, f_x = (hi_x - org.x) * inv.x;
     float4 n_y = (lo_y - org.y) * inv.y, f_y = (hi_y - org.y) * inv.y;
     float4 n_z = (lo_z - org.z) * inv.z, f_z = (hi_z - org.z) * inv.z;
@@ -139,7 +143,7 @@ inline TsHit ts_bvh_traverse(__global const float* nodes, __global const float* 
                     hit.t = t;
                     hit.u = u;
                     hit.v = vv;
-                    hit.prim = as_uint(tri[3]);
+                    hit.prim = as_uint(tri[TS_BVH_TRI_PRIM]);
                     if (any) return hit;
                 }
             }

@@ -1,18 +1,18 @@
 /* Ray-batch kernels: trace rays given by the host and return hits. Used by the
  * traversal tests (against Embree) and the ray-throughput benchmark.
- * rays: 8 floats per ray: org.xyz, tmin, dir.xyz, tmax.
- * trace_closest writes 4 words per ray: t, u, v (floats), prim (uint bits).
+ * rays: TS_RAY_FLOATS floats per ray (layout.h: org.xyz, tmin, dir.xyz, tmax).
+ * trace_closest writes TS_HIT_FLOATS words per ray: t, u, v (floats), prim (uint bits).
  * trace_occluded writes 1 uint per ray: 1 if anything lies in (tmin, tmax). */
 #include "shared/layout.h"
 #include "bvh_traverse.h"
 
 static inline TsRay ts_load_ray(__global const float* rays, uint i) {
-    __global const float* r = rays + 8u * i;
+    __global const float* r = rays + TS_RAY_FLOATS * i;
     TsRay ray;
-    ray.org = vload3(0, r);
-    ray.tmin = r[3];
-    ray.dir = vload3(0, r + 4);
-    ray.tmax = r[7];
+    ray.org = vload3(0, r + TS_RAY_ORG);
+    ray.tmin = r[TS_RAY_TMIN];
+    ray.dir = vload3(0, r + TS_RAY_DIR);
+    ray.tmax = r[TS_RAY_TMAX];
     return ray;
 }
 
@@ -22,10 +22,11 @@ void trace_closest(__global const float* nodes, __global const float* tris,
     uint i = get_global_id(0);
     if (i >= count) return;
     TsHit h = ts_bvh_closest(nodes, tris, ts_load_ray(rays, i));
-    hits[4u * i + 0] = h.t;
-    hits[4u * i + 1] = h.u;
-    hits[4u * i + 2] = h.v;
-    hits[4u * i + 3] = as_float(h.prim);
+    __global float* o = hits + TS_HIT_FLOATS * i;
+    o[TS_HIT_T] = h.t;
+    o[TS_HIT_U] = h.u;
+    o[TS_HIT_V] = h.v;
+    o[TS_HIT_PRIM] = as_float(h.prim);
 }
 
 __kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))

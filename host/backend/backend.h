@@ -52,8 +52,8 @@ public:
     void set_input(KernelInput in, const std::vector<float>& data);
     void set_input(KernelInput in, const std::vector<uint32_t>& data);
 
-    /// Closest-hit queries. `rays` holds 8 floats per ray (org.xyz, tmin, dir.xyz,
-    /// tmax); `hits` is resized to 4 words per ray: t, u, v as floats and the triangle
+    /// Closest-hit queries. `rays` holds TS_RAY_FLOATS floats per ray (org.xyz, tmin, dir.xyz,
+    /// tmax; layout.h); `hits` is resized to TS_HIT_FLOATS words per ray: t, u, v as floats and the triangle
     /// index as uint bits (TS_NO_HIT on a miss, with t = tmax).
     virtual void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) = 0;
 

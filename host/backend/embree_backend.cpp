@@ -90,10 +90,10 @@ namespace {
 
 ts::TsRay ray_from(const float* r) {
     ts::TsRay ray;
-    ray.org = ts::make_float3(r[0], r[1], r[2]);
-    ray.tmin = r[3];
-    ray.dir = ts::make_float3(r[4], r[5], r[6]);
-    ray.tmax = r[7];
+    ray.org = ts::ts_f3_load(r + TS_RAY_ORG);
+    ray.tmin = r[TS_RAY_TMIN];
+    ray.dir = ts::ts_f3_load(r + TS_RAY_DIR);
+    ray.tmax = r[TS_RAY_TMAX];
     return ray;
 }
 
@@ -173,27 +173,28 @@ private:
 public:
 
     void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) override {
-        const size_t n = rays.size() / 8;
-        hits.resize(4 * n);
+        const size_t n = rays.size() / TS_RAY_FLOATS;
+        hits.resize(TS_HIT_FLOATS * n);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
             set_ftz_daz();
             for (size_t i = r.begin(); i < r.end(); ++i) {
-                ts::TsHit h = ts::ts_trace_closest(&tracer_, ray_from(&rays[8 * i]));
-                hits[4 * i + 0] = h.t;
-                hits[4 * i + 1] = h.u;
-                hits[4 * i + 2] = h.v;
-                std::memcpy(&hits[4 * i + 3], &h.prim, 4);
+                ts::TsHit h = ts::ts_trace_closest(&tracer_, ray_from(&rays[TS_RAY_FLOATS * i]));
+                float* o = &hits[TS_HIT_FLOATS * i];
+                o[TS_HIT_T] = h.t;
+                o[TS_HIT_U] = h.u;
+                o[TS_HIT_V] = h.v;
+                std::memcpy(&o[TS_HIT_PRIM], &h.prim, 4);
             }
         });
     }
 
     void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) override {
-        const size_t n = rays.size() / 8;
+        const size_t n = rays.size() / TS_RAY_FLOATS;
         occluded.resize(n);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
             set_ftz_daz();
             for (size_t i = r.begin(); i < r.end(); ++i)
-                occluded[i] = static_cast<uint32_t>(ts::ts_trace_occluded(&tracer_, ray_from(&rays[8 * i])));
+                occluded[i] = static_cast<uint32_t>(ts::ts_trace_occluded(&tracer_, ray_from(&rays[TS_RAY_FLOATS * i])));
         });
     }
 

@@ -88,12 +88,12 @@ protected:
 
 public:
     void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) override {
-        hits.resize(rays.size() / 2);
+        hits.resize(rays.size() / TS_RAY_FLOATS * TS_HIT_FLOATS);
         trace("trace_closest", rays, hits.data(), hits.size() * sizeof(float));
     }
 
     void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) override {
-        occluded.resize(rays.size() / 8);
+        occluded.resize(rays.size() / TS_RAY_FLOATS);
         trace("trace_occluded", rays, occluded.data(), occluded.size() * sizeof(uint32_t));
     }
 
@@ -153,7 +153,7 @@ private:
     }
 
     void trace(const char* name, const std::vector<float>& rays, void* result, size_t result_bytes) {
-        const size_t n = rays.size() / 8;
+        const size_t n = rays.size() / TS_RAY_FLOATS;
         if (n == 0) return;
         run([&] {
             check_alloc("ray", rays.size() * sizeof(float));

@@ -82,8 +82,8 @@ public:
         const float inf = std::numeric_limits<float>::infinity();
         for (int axis = 0; axis < 3; ++axis)
             for (int c = 0; c < 4; ++c) {
-                f[axis * 8 + c] = inf;       // empty box: min = +inf ...
-                f[axis * 8 + 4 + c] = -inf;  // ... max = -inf
+                f[TS_NODE_MIN(axis) + c] = inf;   // empty box: min = +inf ...
+                f[TS_NODE_MAX(axis) + c] = -inf;  // ... max = -inf
             }
         int empty = -1;
         for (int c = 0; c < 4; ++c) std::memcpy(&f[TS_NODE_REFS + c], &empty, 4);
@@ -96,8 +96,8 @@ private:
         const float lo[3] = {b.lower_x, b.lower_y, b.lower_z};
         const float hi[3] = {b.upper_x, b.upper_y, b.upper_z};
         for (int axis = 0; axis < 3; ++axis) {
-            f[axis * 8 + slot] = lo[axis];
-            f[axis * 8 + 4 + slot] = hi[axis];
+            f[TS_NODE_MIN(axis) + slot] = lo[axis];
+            f[TS_NODE_MAX(axis) + slot] = hi[axis];
         }
         std::memcpy(&f[TS_NODE_REFS + slot], &ref, 4);
     }
@@ -109,11 +109,11 @@ private:
             float t[TS_BVH_TRI_FLOATS] = {};
             for (int k = 0; k < 3; ++k) {
                 const glm::vec3& p = pos_[3 * prim + k];
-                t[4 * k + 0] = p.x;
-                t[4 * k + 1] = p.y;
-                t[4 * k + 2] = p.z;
+                t[TS_BVH_TRI_VERTEX(k) + 0] = p.x;
+                t[TS_BVH_TRI_VERTEX(k) + 1] = p.y;
+                t[TS_BVH_TRI_VERTEX(k) + 2] = p.z;
             }
-            std::memcpy(&t[3], &prim, 4);
+            std::memcpy(&t[TS_BVH_TRI_PRIM], &prim, 4);
             out_.tris.insert(out_.tris.end(), t, t + TS_BVH_TRI_FLOATS);
         }
         return static_cast<int>(~((first << 3) | l->count));

@@ -35,7 +35,7 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
         hi = glm::max(hi, p);
     }
     double light_area = 0.0;
-    for (uint32_t i = 0; i < b.light_count; ++i) light_area += b.lights[i * TS_LIGHT_FLOATS + 12];
+    for (uint32_t i = 0; i < b.light_count; ++i) light_area += b.lights[i * TS_LIGHT_FLOATS + TS_LIGHT_AREA];
     const EffectPlan plan = plan_effects(s);
     std::printf("scene:      %s (%s)\n", s.name.c_str(), s.source.c_str());
     std::printf("triangles:  %zu\n", s.triangle_count());

@@ -120,7 +120,8 @@ void check_render_options(const RenderArgs& a, const CLI::App& cmd, const Backen
 
 // Settings that make no sense for this scene.
 void check_scene_options(const RenderSettings& s, const Scene& scene, const fs::path& scene_path) {
-    if (is_igi_method(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
+    const bool igi_family = s.method != Method::Direct && s.method != Method::PathTrace;  // they march media
+    if (igi_family && s.igi.march_steps == 0 && plan_effects(scene).medium)
         throw InputError("--march-steps 0: scene " + scene_path.string() +
                          " has a medium, which --method " + method_name(s.method) +
                          " ray-marches; give at least 1 step");

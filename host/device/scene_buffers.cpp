@@ -3,17 +3,19 @@
 #include <cstring>
 
 #include "kernels/shared/layout.h"
+#include "kernels/shared/sampling.h"
 
 namespace tessera {
 namespace {
 
-float luminance_of(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+float luminance_of(const glm::vec3& c) { return ts::ts_luminance(ts::make_float3(c.x, c.y, c.z)); }
 
 // emission_max covers emission in a loaded scene; a scene built in code may have set
 // only emission.
 glm::vec3 selection_emission(const Material& m) { return glm::max(m.emission, m.emission_max); }
 
 void push3(std::vector<float>& v, const glm::vec3& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
+void put3(float* f, const glm::vec3& a) { f[0] = a.x, f[1] = a.y, f[2] = a.z; }
 
 template <class T>
 void ensure_nonempty(std::vector<T>& v) {
@@ -25,32 +27,40 @@ void add_medium(const Scene& scene, SceneBuffers& b) {
     b.medium.assign(TS_MEDIUM_FLOATS, 0.0f);
     // A declared medium with all-zero coefficients does nothing: leave it disabled.
     if (!scene.has_medium || (m.sigma_a == glm::vec3(0.0f) && m.sigma_s == glm::vec3(0.0f))) return;
-    const float f[TS_MEDIUM_FLOATS] = {m.sigma_a.x, m.sigma_a.y, m.sigma_a.z, m.sigma_s.x, m.sigma_s.y,
-                                       m.sigma_s.z, m.g, m.bounded ? 1.0f : 0.0f, m.box_min.x, m.box_min.y,
-                                       m.box_min.z, m.box_max.x, m.box_max.y, m.box_max.z, 1.0f, 0.0f};
-    b.medium.assign(f, f + TS_MEDIUM_FLOATS);
+    float* f = b.medium.data();
+    put3(f + TS_MEDIUM_SIGMA_A, m.sigma_a);
+    put3(f + TS_MEDIUM_SIGMA_S, m.sigma_s);
+    f[TS_MEDIUM_G] = m.g;
+    f[TS_MEDIUM_BOUNDED] = m.bounded ? 1.0f : 0.0f;
+    put3(f + TS_MEDIUM_BOX_MIN, m.box_min);
+    put3(f + TS_MEDIUM_BOX_MAX, m.box_max);
+    f[TS_MEDIUM_PRESENT] = 1.0f;
 }
 
 void add_materials(const Scene& scene, SceneBuffers& b) {
     for (const Material& m : scene.materials) {
         const uint32_t kind = material_kind(m);
         const glm::vec3 ks = m.specular == glm::vec3(0.0f) ? glm::vec3(1.0f) : m.specular;
-        float f[TS_MATERIAL_FLOATS] = {m.albedo.x, m.albedo.y, m.albedo.z, 0.0f,
-                                       m.emission.x, m.emission.y, m.emission.z, 0.0f,
-                                       ks.x, ks.y, ks.z, m.ior > 0.0f ? m.ior : 1.0f,
-                                       luminance_of(selection_emission(m)), 0.0f, 0.0f, 0.0f};
+        float f[TS_MATERIAL_FLOATS] = {};
+        put3(f + TS_MAT_ALBEDO, m.albedo);
+        put3(f + TS_MAT_EMISSION, m.emission);
+        put3(f + TS_MAT_SPECULAR, ks);
+        f[TS_MAT_IOR] = m.ior > 0.0f ? m.ior : 1.0f;
+        f[TS_MAT_SELECTION] = luminance_of(selection_emission(m));
         int tex = m.texture;
-        std::memcpy(&f[3], &tex, 4);
-        std::memcpy(&f[7], &kind, 4);
+        std::memcpy(&f[TS_MAT_TEXTURE], &tex, 4);
+        std::memcpy(&f[TS_MAT_KIND], &kind, 4);
         b.materials.insert(b.materials.end(), f, f + TS_MATERIAL_FLOATS);
     }
 }
 
 void add_textures(const Scene& scene, SceneBuffers& b) {
     for (const Texture& t : scene.textures) {
-        b.tex_info.insert(b.tex_info.end(),
-                          {static_cast<uint32_t>(b.tex_texels.size()), static_cast<uint32_t>(t.width),
-                           static_cast<uint32_t>(t.height), 0u});
+        uint32_t info[TS_TEX_INFO_UINTS] = {};
+        info[TS_TEX_OFFSET] = static_cast<uint32_t>(b.tex_texels.size());
+        info[TS_TEX_WIDTH] = static_cast<uint32_t>(t.width);
+        info[TS_TEX_HEIGHT] = static_cast<uint32_t>(t.height);
+        b.tex_info.insert(b.tex_info.end(), info, info + TS_TEX_INFO_UINTS);
         b.tex_texels.insert(b.tex_texels.end(), t.rgba8.begin(), t.rgba8.end());
     }
 }
@@ -71,12 +81,12 @@ void add_lights(const Scene& scene, SceneBuffers& b) {
         float area = 0.5f * glm::length(glm::cross(e1, e2));
         if (!(area > 0.0f)) continue;  // a zero-area emitter carries no power
         float f[TS_LIGHT_FLOATS] = {};
-        std::memcpy(f, &p0, 12);
-        std::memcpy(f + 3, &e1, 12);
-        std::memcpy(f + 6, &e2, 12);
-        std::memcpy(f + 9, &le, 12);
-        f[12] = area;
-        std::memcpy(&f[13], &i, 4);
+        put3(f + TS_LIGHT_P0, p0);
+        put3(f + TS_LIGHT_E1, e1);
+        put3(f + TS_LIGHT_E2, e2);
+        put3(f + TS_LIGHT_RADIANCE, le);
+        f[TS_LIGHT_AREA] = area;
+        std::memcpy(&f[TS_LIGHT_PRIM], &i, 4);
         b.lights.insert(b.lights.end(), f, f + TS_LIGHT_FLOATS);
         power.push_back(static_cast<double>(luminance_of(weight)) * area);
         total += power.back();

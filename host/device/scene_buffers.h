@@ -39,7 +39,7 @@ uint32_t material_kind(const Material& m);
 /// light list, light_count and light_cdf are the same in every frame of an animation;
 /// the radiance stored per light is this frame's `emission` (possibly zero).
 /// light_power is the total luminance(Le_max) × area; each material stores its
-/// luminance(Le_max) (materials [12]), so the kernels' MIS weight for an emitter hit by a
+/// luminance(Le_max) (materials TS_MAT_SELECTION), so the kernels' MIS weight for an emitter hit by a
 /// BSDF sample uses the exact pick pdf luminance(Le_max) / light_power in every frame,
 /// however the lights dim. Buffers that would be empty get one zero element, so every
 /// device buffer can be created.

@@ -7,6 +7,7 @@
 
 #include "gi/ais_reconstruct.h"
 #include "kernels/shared/layout.h"
+#include "kernels/shared/sampling.h"
 
 namespace tessera {
 namespace {
@@ -34,15 +35,15 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
     base.indirect.resize(pixels);
     for (size_t p = 0; p < pixels; ++p) {
         const float* v = &surf[p * TS_IGI_SURF_FLOATS];
-        base.visibility[p] = v[19];
-        base.indirect[p] = 0.2126f * v[3] + 0.7152f * v[4] + 0.0722f * v[5];
+        base.visibility[p] = v[TS_IGI_SURF_VISIBLE];
+        base.indirect[p] = ts::ts_luminance(ts::ts_f3_load(v + TS_IGI_SURF_E_ID));
     }
     if (!media.empty()) {
         base.lit_fraction.resize(pixels);
         base.medium_length.resize(pixels);
         for (size_t p = 0; p < pixels; ++p) {
-            base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + 6];
-            base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + 7];
+            base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LIT];
+            base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LENGTH];
         }
     }
     const uint32_t bits = effective_components();
@@ -61,8 +62,8 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
                   1u << kAisPM == TS_COMPONENT_PM, "AIS component bits are the kernels' TS_COMPONENT_* bits");
     std::vector<uint32_t> list(TS_AIS_ITEM_WORDS * schedule_.item_pixels.size());
     for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
-        list[TS_AIS_ITEM_WORDS * i] = schedule_.item_pixels[i];
-        list[TS_AIS_ITEM_WORDS * i + 1] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
+        list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL] = schedule_.item_pixels[i];
+        list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
     }
     std::vector<float> items;
     backend_.launch_items(KernelId::AisItem, frame, list, items);
@@ -76,7 +77,7 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
         const size_t p = schedule_.item_pixels[i];
         for (int c = 0; c < kAisComponents; ++c)
             if (schedule_.item_components[i] & (1u << c))
-                for (int j = 0; j < 3; ++j) own_sum_[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + 3 * c + j];
+                for (int j = 0; j < 3; ++j) own_sum_[c][3 * p + j] += items[i * TS_AIS_ITEM_FLOATS + TS_AIS_ITEM_COMPONENT(c) + j];
     }
     for (int c = 0; c < kAisComponents; ++c) {
         if (schedule_.sets[c].empty()) continue;

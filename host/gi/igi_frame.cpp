@@ -6,8 +6,10 @@
 #include <limits>
 
 #include "integrators/factory.h"
+#include "kernels/shared/composite.h"
 #include "kernels/shared/layout.h"
 #include "kernels/shared/rng.h"
+#include "kernels/shared/sampling.h"
 
 namespace tessera {
 namespace {
@@ -101,20 +103,20 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
 
 void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
-    extract3(surf, TS_IGI_SURF_FLOATS, 0, raw_[kAisSS]);
-    extract3(surf, TS_IGI_SURF_FLOATS, 3, raw_[kAisID]);
+    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_E_SS, raw_[kAisSS]);
+    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_E_ID, raw_[kAisID]);
     raw_[kAisPM].assign(3 * pixels, 0.0f);
     transmittance_.assign(3 * pixels, 1.0f);
     if (!media.empty()) {
-        extract3(media, TS_IGI_MEDIA_FLOATS, 0, raw_[kAisPM]);
-        extract3(media, TS_IGI_MEDIA_FLOATS, 3, transmittance_);
+        extract3(media, TS_IGI_MEDIA_FLOATS, TS_IGI_MEDIA_RADIANCE, raw_[kAisPM]);
+        extract3(media, TS_IGI_MEDIA_FLOATS, TS_IGI_MEDIA_TRANSMITTANCE, transmittance_);
     }
     geometry_.width = width;
     geometry_.height = static_cast<int>(pixels / static_cast<size_t>(width));
-    extract3(surf, TS_IGI_SURF_FLOATS, 12, geometry_.normal);
-    extract3(surf, TS_IGI_SURF_FLOATS, 20, geometry_.position);
+    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_NORMAL, geometry_.normal);
+    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_POSITION, geometry_.position);
     geometry_.depth.resize(pixels);
-    for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + 15];
+    for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + TS_IGI_SURF_DISTANCE];
 }
 
 void IgiFrame::reconstruct_component(int c) {
@@ -130,13 +132,17 @@ void IgiFrame::composite(const std::vector<float>& surf, std::vector<float>& out
     for (size_t p = 0; p < pixels; ++p) {
         const float* s = &surf[p * TS_IGI_SURF_FLOATS];
         float* o = &out[p * TS_PASS_FLOATS];
+        auto at = [p](const std::vector<float>& v) { return ts::ts_f3_load(&v[3 * p]); };
+        ts::ts_f3_store(o + TS_PASS_RADIANCE,
+                        ts::ts_igi_composite(at(transmittance_), ts::ts_f3_load(s + TS_IGI_SURF_THROUGHPUT),
+                                             ts::ts_f3_load(s + TS_IGI_SURF_EMISSION),
+                                             ts::ts_f3_load(s + TS_IGI_SURF_ALBEDO), at(final_[kAisSS]),
+                                             at(final_[kAisID]), at(final_[kAisPM])));
         for (int c = 0; c < 3; ++c) {
-            const float e = final_[kAisSS][3 * p + c] + final_[kAisID][3 * p + c];
-            o[c] = transmittance_[3 * p + c] * s[16 + c] * (s[9 + c] + s[6 + c] * e) + final_[kAisPM][3 * p + c];
-            o[3 + c] = s[6 + c];
-            o[6 + c] = s[12 + c];
+            o[TS_PASS_ALBEDO + c] = s[TS_IGI_SURF_ALBEDO + c];
+            o[TS_PASS_NORMAL + c] = s[TS_IGI_SURF_NORMAL + c];
         }
-        o[9] = s[15];
+        o[TS_PASS_DEPTH] = s[TS_IGI_SURF_DISTANCE];
     }
 }
 

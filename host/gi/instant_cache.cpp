@@ -24,7 +24,7 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 // Rays per Backend::trace_closest call: bounds the ray and hit buffers (32 + 16 bytes a ray).
 constexpr size_t kRayBatch = size_t(1) << 20;
 
-bool has_surface(const float* g) { return ts::as_uint(g[13]) != TS_NO_HIT; }
+bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_NO_HIT; }
 
 size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / TS_VPL_FLOATS; }
 
@@ -34,7 +34,8 @@ void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vect
                    const SceneBuffers& scene, float g_clamp, float* harmonic_mean) {
     const ts::TsSurface s = ic_record_surface(r);
     const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
-    double sum[3] = {0, 0, 0}, inv_dist = 0;
+    ts::TsDouble3 sum{0, 0, 0};  // the gather sum of shared/vpl.h, in double
+    double inv_dist = 0;
     size_t seen = 0;
     for (size_t j = 0; j < row.size(); ++j) {
         if (row[j] != kIcVisible) continue;
@@ -42,15 +43,13 @@ void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vect
         ts::TsRay shadow;
         const float g = ts::ts_vpl_geometry(&s, v, g_clamp, &shadow);
         if (!(g > 0.0f)) continue;
-        const ts::float3 t = ts::ts_medium_transmittance(&med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
-        sum[0] += double(v[6]) * t.x * g;
-        sum[1] += double(v[7]) * t.y * g;
-        sum[2] += double(v[8]) * t.z * g;
-        const ts::float3 d = ts::make_float3(v[0], v[1], v[2]) - s.position;
+        ts::ts_vpl_gather_add(&sum, v, &med, shadow, g);
+        const ts::float3 d = ts::ts_f3_load(v + TS_VPL_POSITION) - s.position;
         inv_dist += 1.0 / std::sqrt(double(ts::dot(d, d)));
         ++seen;
     }
-    for (int c = 0; c < 3; ++c) r.e[c] = static_cast<float>(sum[c] / M_PI);
+    const ts::float3 e = ts::ts_vpl_gather_result(sum);
+    r.e = {e.x, e.y, e.z};
     *harmonic_mean = seen > 0 && inv_dist > 0 ? static_cast<float>(seen / inv_dist) : INFINITY;
 }
 
@@ -99,7 +98,7 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
     std::vector<uint8_t> facing;
     for (size_t begin = 0; begin < pairs.size(); begin += kRayBatch) {
         const size_t n = std::min(kRayBatch, pairs.size() - begin);
-        rays.assign(8 * n, 0.0f);
+        rays.assign(TS_RAY_FLOATS * n, 0.0f);
         facing.assign(n, 0);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
@@ -110,9 +109,11 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
                     facing[i] = 1;
                     continue;
                 }
-                float* o = &rays[8 * i];
-                o[0] = sh.org.x, o[1] = sh.org.y, o[2] = sh.org.z, o[3] = sh.tmin;
-                o[4] = sh.dir.x, o[5] = sh.dir.y, o[6] = sh.dir.z, o[7] = sh.tmax;
+                float* o = &rays[TS_RAY_FLOATS * i];
+                ts::ts_f3_store(o + TS_RAY_ORG, sh.org);
+                o[TS_RAY_TMIN] = sh.tmin;
+                ts::ts_f3_store(o + TS_RAY_DIR, sh.dir);
+                o[TS_RAY_TMAX] = sh.tmax;
             }
         });
         // Only the rays of pairs that face each other are traced.
@@ -120,14 +121,15 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
         for (size_t i = 0; i < n; ++i)
             if (!facing[i]) live.push_back(static_cast<uint32_t>(i));
         for (size_t k = 0; k < live.size(); ++k)
-            if (live[k] != k) std::memcpy(&rays[8 * k], &rays[8 * size_t(live[k])], 8 * sizeof(float));
-        rays.resize(8 * live.size());
+            if (live[k] != k)
+                std::memcpy(&rays[TS_RAY_FLOATS * k], &rays[TS_RAY_FLOATS * size_t(live[k])], TS_RAY_FLOATS * sizeof(float));
+        rays.resize(TS_RAY_FLOATS * live.size());
         backend.trace_closest(rays, hits);
         traced += live.size();
         for (size_t i = 0; i < n; ++i) rows[pairs[begin + i].record][pairs[begin + i].vpl] = kIcFacing;
         for (size_t k = 0; k < live.size(); ++k) {
             uint32_t prim;
-            std::memcpy(&prim, &hits[4 * k + 3], 4);
+            std::memcpy(&prim, &hits[TS_HIT_FLOATS * k + TS_HIT_PRIM], 4);
             const Pair& p = pairs[begin + live[k]];
             rows[p.record][p.vpl] = prim == TS_NO_HIT ? kIcVisible : static_cast<int32_t>(object_of(prim));
         }
@@ -157,8 +159,9 @@ void InstantCache::place(Backend& backend, const SceneBuffers& scene, const std:
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 const float* g = &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS];
                 ts::float3 e;
-                covered[i] = ts::ts_ic_interpolate(b.nodes.data(), b.refs.data(), b.records.data(), {g[0], g[1], g[2]},
-                                                   {g[3], g[4], g[5]}, settings_.error_bound, &e) > 0.0f;
+                covered[i] = ts::ts_ic_interpolate(b.nodes.data(), b.refs.data(), b.records.data(),
+                                                   ts::ts_f3_load(g + TS_IC_GBUF_POSITION),
+                                                   ts::ts_f3_load(g + TS_IC_GBUF_NORMAL), settings_.error_bound, &e) > 0.0f;
             }
         });
         const size_t first = cache_.records().size();
@@ -181,7 +184,7 @@ void InstantCache::place(Backend& backend, const SceneBuffers& scene, const std:
         for (size_t i = 0; i < fresh.size(); ++i) {
             float hm;
             ic_sum_record(fresh[i], rows_[first + i], vpls_, scene, g_clamp, &hm);
-            fresh[i].pixel_size = fresh[i].surface[14] * footprint;
+            fresh[i].pixel_size = fresh[i].surface[TS_IC_GBUF_DISTANCE] * footprint;
             fresh[i].last_in_view = frame_count_;
             fresh[i].radius = ic_record_radius(hm, fresh[i].pixel_size, settings_.min_radius_px, settings_.max_radius_px);
             cache_.insert(fresh[i]);
@@ -226,12 +229,13 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     for (size_t p = 0; p < pixels; ++p) {
         const float* g = &gbuffer[p * TS_IC_GBUF_FLOATS];
         if (!has_surface(g)) continue;
-        const float* v = &interp[p * TS_IC_INTERP_FLOATS];
-        glm::vec3 e(v[0], v[1], v[2]);
+        const float* in = &interp[TS_IC_INTERP_FLOATS * p];
+        glm::vec3 e(in[TS_IC_INTERP_E], in[TS_IC_INTERP_E + 1], in[TS_IC_INTERP_E + 2]);
         // Placement covered this pixel on the host; a kernel rounding a weight at the edge
         // of a record's validity differently can still miss it.
-        if (!(v[3] > 0.0f)) {
-            cache_.lookup({g[0], g[1], g[2]}, {g[3], g[4], g[5]}, &e);
+        if (!(in[TS_IC_INTERP_WEIGHT] > 0.0f)) {
+            const float *x = g + TS_IC_GBUF_POSITION, *n = g + TS_IC_GBUF_NORMAL;
+            cache_.lookup({x[0], x[1], x[2]}, {n[0], n[1], n[2]}, &e);
             ++stats_.fallback_pixels;
         }
         for (int c = 0; c < 3; ++c) e_id[3 * p + c] = e[c];

@@ -12,11 +12,11 @@ namespace tessera {
 ts::TsSurface ic_record_surface(const IcRecord& r) {
     ts::TsSurface s{};
     const float* g = r.surface.data();
-    s.position = {g[0], g[1], g[2]};
-    s.shading_normal = {g[3], g[4], g[5]};
-    s.geo_normal = {g[6], g[7], g[8]};
-    s.origin = {g[9], g[10], g[11]};
-    s.pos_scale = g[12];
+    s.position = ts::ts_f3_load(g + TS_IC_GBUF_POSITION);
+    s.shading_normal = ts::ts_f3_load(g + TS_IC_GBUF_NORMAL);
+    s.geo_normal = ts::ts_f3_load(g + TS_IC_GBUF_GEO_NORMAL);
+    s.origin = ts::ts_f3_load(g + TS_IC_GBUF_ORIGIN);
+    s.pos_scale = g[TS_IC_GBUF_POS_SCALE];
     return s;
 }
 
@@ -86,11 +86,12 @@ const IcCacheBuffers& IrradianceCache::buffers() {
     for (size_t i = 0; i < nodes_.size(); ++i) {
         float* n = &flat_.nodes[i * TS_IC_NODE_FLOATS];
         const Node& src = nodes_[i];
-        n[0] = src.centre.x, n[1] = src.centre.y, n[2] = src.centre.z, n[3] = src.half;
+        n[TS_IC_NODE_CENTRE] = src.centre.x, n[TS_IC_NODE_CENTRE + 1] = src.centre.y;
+        n[TS_IC_NODE_CENTRE + 2] = src.centre.z, n[TS_IC_NODE_HALF] = src.half;
         const auto first = static_cast<uint32_t>(flat_.refs.size()), count = static_cast<uint32_t>(src.refs.size());
-        std::memcpy(&n[4], &src.first_child, 4);
-        std::memcpy(&n[5], &first, 4);
-        std::memcpy(&n[6], &count, 4);
+        std::memcpy(&n[TS_IC_NODE_CHILD], &src.first_child, 4);
+        std::memcpy(&n[TS_IC_NODE_FIRST], &first, 4);
+        std::memcpy(&n[TS_IC_NODE_COUNT], &count, 4);
         flat_.refs.insert(flat_.refs.end(), src.refs.begin(), src.refs.end());
     }
     if (flat_.refs.empty()) flat_.refs.push_back(0);  // device buffers cannot be empty
@@ -98,8 +99,11 @@ const IcCacheBuffers& IrradianceCache::buffers() {
     for (size_t i = 0; i < records_.size(); ++i) {
         float* r = &flat_.records[i * TS_IC_RECORD_FLOATS];
         const IcRecord& src = records_[i];
-        std::copy(src.surface.begin(), src.surface.begin() + 6, r);
-        r[6] = src.e[0], r[7] = src.e[1], r[8] = src.e[2], r[9] = src.radius;
+        const float* g = src.surface.data();
+        std::copy(g + TS_IC_GBUF_POSITION, g + TS_IC_GBUF_POSITION + 3, r + TS_IC_RECORD_POSITION);
+        std::copy(g + TS_IC_GBUF_NORMAL, g + TS_IC_GBUF_NORMAL + 3, r + TS_IC_RECORD_NORMAL);
+        std::copy(src.e.begin(), src.e.end(), r + TS_IC_RECORD_E);
+        r[TS_IC_RECORD_RADIUS] = src.radius;
     }
     dirty_ = false;
     return flat_;

@@ -36,7 +36,9 @@ struct IcRecord {
     float pixel_size = 0.0f;  ///< a pixel's footprint at the record when it was made (radius clamp)
     uint32_t last_in_view = 0;  ///< the last frame (InstantCache's count) whose view held it
     std::array<float, 3> e{};                         ///< irradiance / π, W/m² / π
-    glm::vec3 position() const { return {surface[0], surface[1], surface[2]}; }
+    glm::vec3 position() const {
+        return {surface[TS_IC_GBUF_POSITION], surface[TS_IC_GBUF_POSITION + 1], surface[TS_IC_GBUF_POSITION + 2]};
+    }
 };
 
 /// The shading code's surface of a record (what shared/vpl.h ts_vpl_geometry reads).

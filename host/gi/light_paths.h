@@ -45,7 +45,8 @@ struct LightPathSettings {
 /// Traces `paths` (index and set filled in; vpls, segments and light are overwritten),
 /// all bounces of all paths batched through Backend::trace_closest. Returns the number
 /// of rays traced.
-/// Estimator (pbrt-v2 IGI convention, docs/igi.md §3): a path starts at a light
+/// Emission and scattering are kernels/shared/light_path.h (one material switch with the
+/// camera paths). Estimator (pbrt-v2 IGI convention, docs/igi.md §3): a path starts at a light
 /// picked in proportion to power, at a uniform point y0 (area pdf p_A including the
 /// selection) in a cosine-distributed direction, with weight α = Le·π / p_A. At a
 /// diffuse hit y with albedo ρ it leaves a VPL of weight C = α·ρ/π · inv_paths, then

@@ -179,10 +179,13 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
                 for (size_t v = 0; v < new_n; ++v) {
                     const float* a = &np.vpls[v * TS_VPL_FLOATS];
                     const float* b = v < old_n ? &paths_[p].vpls[v * TS_VPL_FLOATS] : nullptr;
-                    const bool same = b && std::memcmp(a, b, 6 * sizeof(float)) == 0 && a[11] == b[11];
+                    // Same position, normal and offset scale: the same VPL for every record.
+                    static_assert(TS_VPL_NORMAL == TS_VPL_POSITION + 3, "position and normal are adjacent");
+                    const bool same = b && std::memcmp(a + TS_VPL_POSITION, b + TS_VPL_POSITION, 6 * sizeof(float)) == 0 &&
+                                      a[TS_VPL_POS_SCALE] == b[TS_VPL_POS_SCALE];
                     old_column.push_back(same ? int64_t(base + v) : -1);
                     if (!same) ++stats_.vpls_changed;
-                    weights_changed = weights_changed || !same || std::memcmp(a + 6, b + 6, 3 * sizeof(float)) != 0;
+                    weights_changed = weights_changed || !same || std::memcmp(a + TS_VPL_FLUX, b + TS_VPL_FLUX, 3 * sizeof(float)) != 0;
                 }
                 weights_changed = weights_changed || new_n != old_n;
                 paths_[p] = np;
@@ -202,7 +205,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     for (size_t i = 0; i < records.size(); ++i) {
         const IcRecord& r = records[i];
         uint32_t prim;
-        std::memcpy(&prim, &r.surface[13], 4);
+        std::memcpy(&prim, &r.surface[TS_IC_GBUF_PRIM], 4);
         bool stale = ch.is_moved[object_of(prim)] != 0;
         for (uint32_t o : ch.moved)
             stale = stale || ch.old_box[o].meets_sphere(r.position(), r.radius) ||

@@ -20,12 +20,12 @@ void Accumulator::add(const std::vector<float>& pass) {
     for (size_t p = 0; p < n; ++p) {
         const float* in = &pass[p * TS_PASS_FLOATS];
         double* s = &sum_[p * TS_PASS_FLOATS];
-        for (int k = 0; k < 9; ++k) s[k] += in[k];
-        if (std::isfinite(in[9])) {
-            s[9] += in[9];
+        for (int k = 0; k < TS_PASS_DEPTH; ++k) s[k] += in[k];
+        if (std::isfinite(in[TS_PASS_DEPTH])) {
+            s[TS_PASS_DEPTH] += in[TS_PASS_DEPTH];
             ++hits_[p];
         }
-        for (int c = 0; c < 3; ++c) sum_sq_[3 * p + c] += double(in[c]) * in[c];
+        for (int c = 0; c < 3; ++c) sum_sq_[3 * p + c] += double(in[TS_PASS_RADIANCE + c]) * in[TS_PASS_RADIANCE + c];
     }
     ++passes_;
 }
@@ -52,13 +52,14 @@ Image Accumulator::mean_image(bool aovs, bool variance) const {
         img.channels.push_back(std::move(c));
     };
     const char* rgb[] = {"R", "G", "B"};
-    for (int k = 0; k < 3; ++k) channel(rgb[k], [&](size_t p) { return sum_[p * TS_PASS_FLOATS + k] * inv; });
+    for (int k = 0; k < 3; ++k) channel(rgb[k], [&](size_t p) { return sum_[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + k] * inv; });
     if (aovs) {
+        static_assert(TS_PASS_NORMAL == TS_PASS_ALBEDO + 3, "albedo and normal are adjacent");
         const char* names[] = {"albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z"};
         for (int k = 0; k < 6; ++k)
-            channel(names[k], [&](size_t p) { return sum_[p * TS_PASS_FLOATS + 3 + k] * inv; });
+            channel(names[k], [&](size_t p) { return sum_[p * TS_PASS_FLOATS + TS_PASS_ALBEDO + k] * inv; });
         channel("Z", [&](size_t p) {
-            return hits_[p] ? sum_[p * TS_PASS_FLOATS + 9] / hits_[p] : std::numeric_limits<double>::infinity();
+            return hits_[p] ? sum_[p * TS_PASS_FLOATS + TS_PASS_DEPTH] / hits_[p] : std::numeric_limits<double>::infinity();
         });
     }
     if (variance) {
@@ -66,7 +67,7 @@ Image Accumulator::mean_image(bool aovs, bool variance) const {
         for (int k = 0; k < 3; ++k)
             channel(names[k], [&](size_t p) {
                 if (passes_ < 2) return 0.0;
-                double mean = sum_[p * TS_PASS_FLOATS + k] * inv;
+                double mean = sum_[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + k] * inv;
                 double var = (sum_sq_[3 * p + k] * inv - mean * mean) * passes_ / (passes_ - 1.0);
                 return std::max(var, 0.0) / passes_;
             });

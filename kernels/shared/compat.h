@@ -26,6 +26,8 @@
 #define TS_NAMESPACE_BEGIN
 #define TS_NAMESPACE_END
 static inline float3 ts_f3_load(TS_GLOBAL const float* p) { return vload3(0, p); }
+/* Writes v to p[0..2] of a work-item's own (private) output record. */
+static inline void ts_f3_store(float* p, float3 v) { p[0] = v.x; p[1] = v.y; p[2] = v.z; }
 
 #else
 /* ---------------------------------------------------------------- C++ */
@@ -99,6 +101,7 @@ inline int as_int(float f) { return std::bit_cast<int>(f); }
 inline float as_float(uint u) { return std::bit_cast<float>(u); }
 inline float as_float(int i) { return std::bit_cast<float>(i); }
 inline float3 ts_f3_load(const float* p) { return {p[0], p[1], p[2]}; }
+inline void ts_f3_store(float* p, float3 v) { p[0] = v.x, p[1] = v.y, p[2] = v.z; }
 
 constexpr float TS_INF = std::numeric_limits<float>::infinity();
 constexpr float TS_NAN = std::numeric_limits<float>::quiet_NaN();

@@ -35,12 +35,8 @@ TS_INLINE float3 ts_light_contribution(const TsSurface* s, TsLightSample ls, TsR
     float cos_y = -dot(ls.normal, wi);
     float3 zero = make_float3(0.0f, 0.0f, 0.0f);
     if (cos_x <= 0.0f || cos_y <= 0.0f || dot(s->geo_normal, wi) <= 0.0f) return zero;
-    /* Both ends offset off their surfaces; dir spans the gap so t runs over (0, 1). */
-    shadow->org = ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale);
-    float3 target = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale);
-    shadow->dir = target - shadow->org;
-    shadow->tmin = 0.0f;
-    shadow->tmax = 0.99999f;
+    *shadow = ts_shadow_ray(ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale), ls.position, ls.normal,
+                            ls.pos_scale);
     return ls.radiance * (cos_x * cos_y / (dist2 * ls.pdf_area));
 }
 
@@ -69,18 +65,18 @@ TS_INLINE void ts_direct_pixel(const TsSceneView* sv, const TsTracer* tracer, co
     float jx = ts_rng_next(&rng), jy = ts_rng_next(&rng);
     TsRay ray = ts_camera_ray(f, px, py, jx, jy);
     TsHit hit = ts_trace_closest(tracer, ray);
-    for (int i = 0; i < 9; ++i) out[i] = 0.0f;
-    out[9] = TS_INF;
+    for (int i = 0; i < TS_PASS_DEPTH; ++i) out[i] = 0.0f;
+    out[TS_PASS_DEPTH] = TS_INF;
     if (hit.prim == TS_NO_HIT) return;
     TsSurface s = ts_surface_at(sv, ray, hit);
     float3 albedo = ts_material_albedo(sv, &s);
     float3 L = ts_material_emission(sv, &s);
     if (albedo.x + albedo.y + albedo.z > 0.0f && sv->light_count > 0u)
         L += albedo * ts_direct_irradiance(sv, tracer, &s, f->shadow_samples, &rng);
-    out[0] = L.x; out[1] = L.y; out[2] = L.z;
-    out[3] = albedo.x; out[4] = albedo.y; out[5] = albedo.z;
-    out[6] = s.shading_normal.x; out[7] = s.shading_normal.y; out[8] = s.shading_normal.z;
-    out[9] = hit.t;
+    ts_f3_store(out + TS_PASS_RADIANCE, L);
+    ts_f3_store(out + TS_PASS_ALBEDO, albedo);
+    ts_f3_store(out + TS_PASS_NORMAL, s.shading_normal);
+    out[TS_PASS_DEPTH] = hit.t;
 }
 
 TS_NAMESPACE_END

@@ -54,6 +54,20 @@ TS_INLINE float3 ts_offset_ray_origin(float3 p, float3 n, float scale) {
     return p + n * d;
 }
 
+/* The shadow ray from `org` (already offset off its own surface, or a point in a medium)
+ * to the point p of unit normal n on a light or a VPL, n facing org's side. p is offset
+ * off its surface too (`scale` as for ts_offset_ray_origin), and dir spans the gap, so t
+ * runs over (0, 1); tmax = 0.99999 stops the test just short of the far end. Every
+ * connection to a light or VPL point (shared/direct.h, pt.h, igi.h, vpl.h) is built here. */
+TS_INLINE TsRay ts_shadow_ray(float3 org, float3 p, float3 n, float scale) {
+    TsRay r;
+    r.org = org;
+    r.dir = ts_offset_ray_origin(p, n, scale) - org;
+    r.tmin = 0.0f;
+    r.tmax = 0.99999f;
+    return r;
+}
+
 /* Camera ray through pixel (px + jx, py + jy); see TsFrame for the mapping. */
 TS_INLINE TsRay ts_camera_ray(const TsFrame* f, uint px, uint py, float jx, float jy) {
     float sx = 2.0f * ((float)px + jx) / (float)f->width - 1.0f;
@@ -132,9 +146,9 @@ typedef struct TsSurface {
 } TsSurface;
 
 TS_INLINE TsSurface ts_surface_at(const TsSceneView* sv, TsRay ray, TsHit hit) {
-    TS_GLOBAL const float* P = sv->tri_pos + 9u * hit.prim;
-    TS_GLOBAL const float* N = sv->tri_nrm + 9u * hit.prim;
-    TS_GLOBAL const float* T = sv->tri_uv + 6u * hit.prim;
+    TS_GLOBAL const float* P = sv->tri_pos + TS_TRI_POS_FLOATS * hit.prim;
+    TS_GLOBAL const float* N = sv->tri_nrm + TS_TRI_NRM_FLOATS * hit.prim;
+    TS_GLOBAL const float* T = sv->tri_uv + TS_TRI_UV_FLOATS * hit.prim;
     float w = 1.0f - hit.u - hit.v;
     float3 p0 = ts_f3_load(P), p1 = ts_f3_load(P + 3), p2 = ts_f3_load(P + 6);
     TsSurface s;

@@ -15,18 +15,18 @@ TS_NAMESPACE_BEGIN
 TS_INLINE void ts_ic_gbuffer_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px,
                                    uint py, float* out) {
     for (int i = 0; i < TS_IC_GBUF_FLOATS; ++i) out[i] = 0.0f;
-    out[13] = as_float(TS_NO_HIT);
+    out[TS_IC_GBUF_PRIM] = as_float(TS_NO_HIT);
     TsIgiView v = ts_igi_view(sv, tracer, f, px, py);
     if (v.hit.prim == TS_NO_HIT) return;
     if (!(ts_max3(ts_material_albedo(sv, &v.s)) > 0.0f)) return;
     const TsSurface* s = &v.s;
-    out[0] = s->position.x; out[1] = s->position.y; out[2] = s->position.z;
-    out[3] = s->shading_normal.x; out[4] = s->shading_normal.y; out[5] = s->shading_normal.z;
-    out[6] = s->geo_normal.x; out[7] = s->geo_normal.y; out[8] = s->geo_normal.z;
-    out[9] = s->origin.x; out[10] = s->origin.y; out[11] = s->origin.z;
-    out[12] = s->pos_scale;
-    out[13] = as_float(v.hit.prim);
-    out[14] = v.distance;
+    ts_f3_store(out + TS_IC_GBUF_POSITION, s->position);
+    ts_f3_store(out + TS_IC_GBUF_NORMAL, s->shading_normal);
+    ts_f3_store(out + TS_IC_GBUF_GEO_NORMAL, s->geo_normal);
+    ts_f3_store(out + TS_IC_GBUF_ORIGIN, s->origin);
+    out[TS_IC_GBUF_POS_SCALE] = s->pos_scale;
+    out[TS_IC_GBUF_PRIM] = as_float(v.hit.prim);
+    out[TS_IC_GBUF_DISTANCE] = v.distance;
 }
 
 /* The interpolation kernel's pixel (px, py): the cache in sv's named inputs (ic_gbuffer,

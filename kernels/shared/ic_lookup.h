@@ -31,8 +31,8 @@ TS_NAMESPACE_BEGIN
 /* The shifted Ward weight of `record` (TS_IC_RECORD_FLOATS) at (x, n) for error bound a;
  * 0 when the record is not usable there. */
 TS_INLINE float ts_ic_weight(TS_GLOBAL const float* record, float3 x, float3 n, float a) {
-    float3 xi = ts_f3_load(record), ni = ts_f3_load(record + 3);
-    float radius = record[9];
+    float3 xi = ts_f3_load(record + TS_IC_RECORD_POSITION), ni = ts_f3_load(record + TS_IC_RECORD_NORMAL);
+    float radius = record[TS_IC_RECORD_RADIUS];
     float3 d = x - xi;
     if (dot(d, n + ni) * 0.5f < -0.01f * radius) return 0.0f;
     float eps = length(d) / radius + sqrt(fmax(0.0f, 1.0f - dot(n, ni)));
@@ -50,35 +50,37 @@ TS_INLINE float ts_ic_interpolate(TS_GLOBAL const float* nodes, TS_GLOBAL const 
     uint node = 0u;
     for (int depth = 0; depth <= TS_IC_MAX_DEPTH; ++depth) {
         TS_GLOBAL const float* N = nodes + (size_t)node * TS_IC_NODE_FLOATS;
-        uint first = as_uint(N[5]), count = as_uint(N[6]);
+        uint first = as_uint(N[TS_IC_NODE_FIRST]), count = as_uint(N[TS_IC_NODE_COUNT]);
         for (uint r = first; r < first + count; ++r) {
             TS_GLOBAL const float* rec = records + (size_t)refs[r] * TS_IC_RECORD_FLOATS;
             float w = ts_ic_weight(rec, x, n, a);
             if (w > 0.0f) {
-                sum += ts_f3_load(rec + 6) * w;
+                sum += ts_f3_load(rec + TS_IC_RECORD_E) * w;
                 wsum += w;
             }
         }
-        uint child = as_uint(N[4]);
+        uint child = as_uint(N[TS_IC_NODE_CHILD]);
         if (child == 0u) break;
-        uint octant = (x.x >= N[0] ? 1u : 0u) + (x.y >= N[1] ? 2u : 0u) + (x.z >= N[2] ? 4u : 0u);
+        TS_GLOBAL const float* c = N + TS_IC_NODE_CENTRE;
+        uint octant = (x.x >= c[0] ? 1u : 0u) + (x.y >= c[1] ? 2u : 0u) + (x.z >= c[2] ? 4u : 0u);
         node = child + octant;
     }
     *e = wsum > 0.0f ? sum / wsum : sum;
     return wsum;
 }
 
-/* Interpolation for pixel p of the G-buffer: out[0..2] E, out[3] Σ w (0 where no record
- * is usable or the pixel has no surface). */
+/* Interpolation for pixel p of the G-buffer: writes TS_IC_INTERP_FLOATS values (layout.h):
+ * E and Σ w, both 0 where no record is usable or the pixel has no surface. */
 TS_INLINE void ts_ic_interpolate_pixel(TS_GLOBAL const float* gbuffer, TS_GLOBAL const float* nodes,
                                        TS_GLOBAL const uint* refs, TS_GLOBAL const float* records, float a,
                                        uint p, float* out) {
     TS_GLOBAL const float* g = gbuffer + (size_t)p * TS_IC_GBUF_FLOATS;
-    out[0] = out[1] = out[2] = out[3] = 0.0f;
-    if (as_uint(g[13]) == TS_NO_HIT) return;
+    for (int i = 0; i < TS_IC_INTERP_FLOATS; ++i) out[i] = 0.0f;
+    if (as_uint(g[TS_IC_GBUF_PRIM]) == TS_NO_HIT) return;
     float3 e;
-    out[3] = ts_ic_interpolate(nodes, refs, records, ts_f3_load(g), ts_f3_load(g + 3), a, &e);
-    out[0] = e.x; out[1] = e.y; out[2] = e.z;
+    out[TS_IC_INTERP_WEIGHT] = ts_ic_interpolate(nodes, refs, records, ts_f3_load(g + TS_IC_GBUF_POSITION),
+                                                 ts_f3_load(g + TS_IC_GBUF_NORMAL), a, &e);
+    ts_f3_store(out + TS_IC_INTERP_E, e);
 }
 
 TS_NAMESPACE_END

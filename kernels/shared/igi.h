@@ -47,17 +47,6 @@ TS_INLINE float3 ts_igi_light_point(const TsFrame* f, uint j) {
                        ts_rotate01(ts_radical_inverse2(j), f->igi_rotation[2]));
 }
 
-/* Transmittance of a shadow ray (1 without a medium). */
-TS_INLINE float3 ts_igi_shadow_transmittance(const TsMedium* med, TsRay shadow) {
-#ifdef TS_HAS_MEDIUM
-    return ts_medium_transmittance(med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
-#else
-    (void)med;
-    (void)shadow;
-    return make_float3(1.0f, 1.0f, 1.0f);
-#endif
-}
-
 /* E_ss: direct irradiance / π at s from set k's m light samples; *visible receives the
  * fraction of them that reach the light (0 for samples the surface faces away from). */
 TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
@@ -70,7 +59,7 @@ TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, co
         TsRay shadow;
         float3 c = ts_light_contribution(s, ls, &shadow);
         if (c.x + c.y + c.z > 0.0f && !ts_trace_occluded(tracer, shadow)) {
-            sum += c * ts_igi_shadow_transmittance(med, shadow);
+            sum += c * ts_shadow_transmittance(med, shadow);
             ++seen;
         }
     }
@@ -78,7 +67,7 @@ TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, co
     return sum * (TS_INV_PI / (float)m);
 }
 
-/* E_id: indirect irradiance / π at s from set k's VPLs. */
+/* E_id: indirect irradiance / π at s from set k's VPLs (the gather sum of shared/vpl.h). */
 TS_INLINE float3 ts_igi_indirect(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                  const TsMedium* med, const TsSurface* s, uint k) {
     float3 sum = make_float3(0.0f, 0.0f, 0.0f);
@@ -87,10 +76,9 @@ TS_INLINE float3 ts_igi_indirect(const TsSceneView* sv, const TsTracer* tracer, 
         TS_GLOBAL const float* vpl = sv->vpls + v * TS_VPL_FLOATS;
         TsRay shadow;
         float g = ts_vpl_geometry(s, vpl, f->igi_g_clamp, &shadow);
-        if (g > 0.0f && !ts_trace_occluded(tracer, shadow))
-            sum += ts_f3_load(vpl + 6) * ts_igi_shadow_transmittance(med, shadow) * g;
+        if (g > 0.0f && !ts_trace_occluded(tracer, shadow)) ts_vpl_gather_add(&sum, vpl, med, shadow, g);
     }
-    return sum * TS_INV_PI;
+    return ts_vpl_gather_result(sum);
 }
 
 /* Follows mirror and dielectric bounces from the camera (at most 5) to the first
@@ -106,21 +94,11 @@ TS_INLINE TsHit ts_igi_find_diffuse(const TsSceneView* sv, const TsTracer* trace
         if (hit.prim == TS_NO_HIT) return hit;
         *distance += hit.t;
         TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * sv->tri_mat[hit.prim];
-        uint kind = as_uint(M[7]);
+        uint kind = as_uint(M[TS_MAT_KIND]);
         if (kind == TS_MAT_DIFFUSE || bounce == 5) return hit;
         TsSurface s = ts_surface_at(sv, *ray, hit);
-        if (kind == TS_MAT_MIRROR) {
-            *throughput = *throughput * ts_f3_load(M + 8);
-            ray->dir = ts_reflect(ray->dir, s.shading_normal);
-            ray->org = ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
-        } else {
-            int transmitted;
-            ray->dir = ts_sample_dielectric(ray->dir, s.geo_normal, s.front_face, M[11], ts_rng_next(rng),
-                                            &transmitted);
-            ray->org = ts_offset_ray_origin(s.origin, transmitted ? -s.geo_normal : s.geo_normal, s.pos_scale);
-        }
-        ray->tmin = 0.0f;
-        ray->tmax = TS_INF;
+        float u = kind == TS_MAT_MIRROR ? 0.0f : ts_rng_next(rng); /* the dielectric's Fresnel choice */
+        (void)ts_specular_bounce(M, kind, &s, u, ray, throughput);
     }
     return hit;
 }
@@ -173,8 +151,8 @@ TS_INLINE void ts_igi_surface_set(const TsSceneView* sv, const TsTracer* tracer,
 TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                     uint px, uint py, float* out) {
     for (int i = 0; i < TS_IGI_SURF_FLOATS; ++i) out[i] = 0.0f;
-    out[15] = TS_INF;
-    out[16] = out[17] = out[18] = 1.0f;
+    out[TS_IGI_SURF_DISTANCE] = TS_INF;
+    ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, make_float3(1.0f, 1.0f, 1.0f));
     TsIgiView v = ts_igi_view(sv, tracer, f, px, py);
     if (v.hit.prim == TS_NO_HIT) return;
     float3 albedo = ts_material_albedo(sv, &v.s), le = ts_material_emission(sv, &v.s);
@@ -182,15 +160,15 @@ TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* trace
     float visible;
     ts_igi_surface_set(sv, tracer, f, &v, albedo, ts_igi_set(px, py, f->igi_tile), f->igi_components, &e_ss,
                        &e_id, &visible);
-    out[0] = e_ss.x; out[1] = e_ss.y; out[2] = e_ss.z;
-    out[3] = e_id.x; out[4] = e_id.y; out[5] = e_id.z;
-    out[6] = albedo.x; out[7] = albedo.y; out[8] = albedo.z;
-    out[9] = le.x; out[10] = le.y; out[11] = le.z;
-    out[12] = v.s.shading_normal.x; out[13] = v.s.shading_normal.y; out[14] = v.s.shading_normal.z;
-    out[15] = v.distance;
-    out[16] = v.throughput.x; out[17] = v.throughput.y; out[18] = v.throughput.z;
-    out[19] = visible;
-    out[20] = v.s.position.x; out[21] = v.s.position.y; out[22] = v.s.position.z;
+    ts_f3_store(out + TS_IGI_SURF_E_SS, e_ss);
+    ts_f3_store(out + TS_IGI_SURF_E_ID, e_id);
+    ts_f3_store(out + TS_IGI_SURF_ALBEDO, albedo);
+    ts_f3_store(out + TS_IGI_SURF_EMISSION, le);
+    ts_f3_store(out + TS_IGI_SURF_NORMAL, v.s.shading_normal);
+    out[TS_IGI_SURF_DISTANCE] = v.distance;
+    ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, v.throughput);
+    out[TS_IGI_SURF_VISIBLE] = visible;
+    ts_f3_store(out + TS_IGI_SURF_POSITION, v.s.position);
 }
 
 /* Light arriving at medium point x from direction `wi` found by tracing a ray, and the
@@ -212,7 +190,7 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
     if (!(ts_max3(le) > 0.0f)) return le;
     float cos_y = -dot(s.geo_normal, wi);
     TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s.material;
-    *pdf_light = ts_light_pdf_area(M[12], f->light_power) * h.t * h.t / cos_y;
+    *pdf_light = ts_light_pdf_area(M[TS_MAT_SELECTION], f->light_power) * h.t * h.t / cos_y;
     return le * ts_medium_transmittance(med, x, wi, 0.0f, h.t);
 }
 
@@ -255,11 +233,7 @@ TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, c
             float3 wi = d / sqrt(dist2);
             float cos_y = -dot(ls.normal, wi);
             if (cos_y > 0.0f) {
-                TsRay shadow;
-                shadow.org = x;
-                shadow.dir = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale) - x;
-                shadow.tmin = 0.0f;
-                shadow.tmax = 0.99999f;
+                TsRay shadow = ts_shadow_ray(x, ls.position, ls.normal, ls.pos_scale);
                 if (!ts_trace_occluded(tracer, shadow)) {
                     ++lit;
                     float pl = ls.pdf_area * dist2 / cos_y;
@@ -276,17 +250,17 @@ TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, c
             L += med.sigma_s * ts_exp3(med.sigma_t * (-(t - t0))) * in * step;
         }
         T = ts_exp3(med.sigma_t * (-(t1 - t0)));
-        out[6] = (float)lit / (float)f->igi_steps;
-        out[7] = t1 - t0;
+        out[TS_IGI_MEDIA_LIT] = (float)lit / (float)f->igi_steps;
+        out[TS_IGI_MEDIA_LENGTH] = t1 - t0;
     }
-    out[0] = L.x; out[1] = L.y; out[2] = L.z;
-    out[3] = T.x; out[4] = T.y; out[5] = T.z;
+    ts_f3_store(out + TS_IGI_MEDIA_RADIANCE, L);
+    ts_f3_store(out + TS_IGI_MEDIA_TRANSMITTANCE, T);
 }
 
 /* Media part of one igi frame for pixel (px, py), its own sample set. */
 TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                   uint px, uint py, float* out) {
-    out[6] = out[7] = 0.0f;
+    out[TS_IGI_MEDIA_LIT] = out[TS_IGI_MEDIA_LENGTH] = 0.0f;
     ts_igi_media_set(sv, tracer, f, px, py, ts_igi_set(px, py, f->igi_tile), out);
 }
 
@@ -303,16 +277,16 @@ TS_INLINE void ts_ais_item(const TsSceneView* sv, const TsTracer* tracer, const 
             float3 e_ss, e_id;
             float visible;
             ts_igi_surface_set(sv, tracer, f, &v, ts_material_albedo(sv, &v.s), k, mask, &e_ss, &e_id, &visible);
-            out[0] = e_ss.x; out[1] = e_ss.y; out[2] = e_ss.z;
-            out[3] = e_id.x; out[4] = e_id.y; out[5] = e_id.z;
+            ts_f3_store(out + TS_AIS_ITEM_E_SS, e_ss);
+            ts_f3_store(out + TS_AIS_ITEM_E_ID, e_id);
         }
     }
 #ifdef TS_HAS_MEDIUM
     if (mask & TS_COMPONENT_PM) {
         float m[TS_IGI_MEDIA_FLOATS];
-        m[6] = m[7] = 0.0f;
+        m[TS_IGI_MEDIA_LIT] = m[TS_IGI_MEDIA_LENGTH] = 0.0f;
         ts_igi_media_set(sv, tracer, f, px, py, k, m);
-        out[6] = m[0]; out[7] = m[1]; out[8] = m[2];
+        for (int c = 0; c < 3; ++c) out[TS_AIS_ITEM_PM + c] = m[TS_IGI_MEDIA_RADIANCE + c];
     }
 #endif
 }
@@ -321,7 +295,7 @@ TS_INLINE void ts_ais_item(const TsSceneView* sv, const TsTracer* tracer, const 
  * through ts_ais_item. */
 TS_INLINE void ts_ais_extra_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
                                  float* out) {
-    uint p = sv->items[TS_AIS_ITEM_WORDS * i], code = sv->items[TS_AIS_ITEM_WORDS * i + 1u];
+    uint p = sv->items[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL], code = sv->items[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE];
     ts_ais_item(sv, tracer, f, p % f->width, p / f->width, code & 0xffu, code >> 8, out);
 }
 

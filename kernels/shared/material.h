@@ -21,8 +21,8 @@ TS_INLINE float3 ts_texel(TS_GLOBAL const uint* texels, uint offset, uint w, int
 
 /* Bilinear lookup with wrap-around addressing; v = 0 is the bottom row (OBJ). */
 TS_INLINE float3 ts_texture_lookup(const TsSceneView* sv, int tex, float2 uv) {
-    TS_GLOBAL const uint* info = sv->tex_info + 4u * (uint)tex;
-    uint off = info[0], w = info[1], h = info[2];
+    TS_GLOBAL const uint* info = sv->tex_info + TS_TEX_INFO_UINTS * (uint)tex;
+    uint off = info[TS_TEX_OFFSET], w = info[TS_TEX_WIDTH], h = info[TS_TEX_HEIGHT];
     float fx = (uv.x - floor(uv.x)) * (float)w - 0.5f;
     float fy = (1.0f - (uv.y - floor(uv.y))) * (float)h - 0.5f;
     float x0f = floor(fx), y0f = floor(fy);
@@ -40,9 +40,9 @@ TS_INLINE float3 ts_texture_lookup(const TsSceneView* sv, int tex, float2 uv) {
 /* Diffuse reflectance at a surface point, each channel in [0, 1]. */
 TS_INLINE float3 ts_material_albedo(const TsSceneView* sv, const TsSurface* s) {
     TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s->material;
-    float3 kd = ts_f3_load(M);
+    float3 kd = ts_f3_load(M + TS_MAT_ALBEDO);
 #ifdef TS_HAS_TEXTURES
-    int tex = as_int(M[3]);
+    int tex = as_int(M[TS_MAT_TEXTURE]);
     if (tex >= 0) kd = kd * ts_texture_lookup(sv, tex, s->uv);
 #endif
     return kd;
@@ -51,7 +51,7 @@ TS_INLINE float3 ts_material_albedo(const TsSceneView* sv, const TsSurface* s) {
 /* Radiance emitted toward the viewer: area lights emit from their front face only. */
 TS_INLINE float3 ts_material_emission(const TsSceneView* sv, const TsSurface* s) {
     TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s->material;
-    return s->front_face ? ts_f3_load(M + 4) : make_float3(0.0f, 0.0f, 0.0f);
+    return s->front_face ? ts_f3_load(M + TS_MAT_EMISSION) : make_float3(0.0f, 0.0f, 0.0f);
 }
 
 TS_NAMESPACE_END

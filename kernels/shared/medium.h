@@ -3,6 +3,7 @@
 #ifndef TS_MEDIUM_H
 #define TS_MEDIUM_H
 #include "shared/compat.h"
+#include "shared/geometry.h"
 #include "shared/layout.h"
 
 TS_NAMESPACE_BEGIN
@@ -18,13 +19,13 @@ typedef struct TsMedium {
 
 TS_INLINE TsMedium ts_medium_load(TS_GLOBAL const float* m) {
     TsMedium r;
-    r.sigma_s = ts_f3_load(m + 3);
-    r.sigma_t = ts_f3_load(m) + r.sigma_s;
-    r.g = m[6];
-    r.bounded = m[7] != 0.0f;
-    r.box_min = ts_f3_load(m + 8);
-    r.box_max = ts_f3_load(m + 11);
-    r.present = m[14] != 0.0f;
+    r.sigma_s = ts_f3_load(m + TS_MEDIUM_SIGMA_S);
+    r.sigma_t = ts_f3_load(m + TS_MEDIUM_SIGMA_A) + r.sigma_s;
+    r.g = m[TS_MEDIUM_G];
+    r.bounded = m[TS_MEDIUM_BOUNDED] != 0.0f;
+    r.box_min = ts_f3_load(m + TS_MEDIUM_BOX_MIN);
+    r.box_max = ts_f3_load(m + TS_MEDIUM_BOX_MAX);
+    r.present = m[TS_MEDIUM_PRESENT] != 0.0f;
     return r;
 }
 
@@ -87,6 +88,19 @@ TS_INLINE float ts_medium_sample_distance(const TsMedium* m, float len, float u_
     *weight = tr / ts_mean3(tr);
     *scattered = 0;
     return len;
+}
+
+/* Transmittance along a shadow ray over its (tmin, tmax); 1 where the medium is compiled
+ * out (OpenCL builds without TS_HAS_MEDIUM; every C++ build has it, and a scene without a
+ * medium gives 1 through ts_medium_clip). */
+TS_INLINE float3 ts_shadow_transmittance(const TsMedium* med, TsRay shadow) {
+#ifdef TS_HAS_MEDIUM
+    return ts_medium_transmittance(med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
+#else
+    (void)med;
+    (void)shadow;
+    return make_float3(1.0f, 1.0f, 1.0f);
+#endif
 }
 
 TS_NAMESPACE_END

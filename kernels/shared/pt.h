@@ -65,11 +65,7 @@ TS_INLINE TsLightConnection ts_connect_light(const TsSceneView* sv, const TsTrac
     float cos_y = -dot(ls.normal, c.wi);
     if (!(cos_y > 0.0f) || !(dist2 > 0.0f)) return c;
     c.pdf = ls.pdf_area * dist2 / cos_y;
-    TsRay shadow;
-    shadow.org = org;
-    shadow.dir = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale) - org;
-    shadow.tmin = 0.0f;
-    shadow.tmax = 0.99999f;
+    TsRay shadow = ts_shadow_ray(org, ls.position, ls.normal, ls.pos_scale);
     if (ts_trace_occluded(tracer, shadow)) return c;
     c.radiance = ls.radiance;
 #ifdef TS_HAS_MEDIUM
@@ -100,8 +96,8 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
     float prev_pdf = 0.0f;
     int prev_delta = 1;
     uint scatters = 0u;
-    for (int i = 0; i < 9; ++i) out[i] = 0.0f;
-    out[9] = TS_INF;
+    for (int i = 0; i < TS_PASS_DEPTH; ++i) out[i] = 0.0f;
+    out[TS_PASS_DEPTH] = TS_INF;
 
     for (uint depth = 0u; depth < f->max_depth; ++depth) {
         TsHit hit = ts_trace_closest(tracer, ray);
@@ -147,9 +143,9 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
         TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s.material;
         float3 albedo = ts_material_albedo(sv, &s);
         if (depth == 0u) {
-            out[3] = albedo.x; out[4] = albedo.y; out[5] = albedo.z;
-            out[6] = s.shading_normal.x; out[7] = s.shading_normal.y; out[8] = s.shading_normal.z;
-            out[9] = hit.t;
+            ts_f3_store(out + TS_PASS_ALBEDO, albedo);
+            ts_f3_store(out + TS_PASS_NORMAL, s.shading_normal);
+            out[TS_PASS_DEPTH] = hit.t;
         }
         float3 le = ts_material_emission(sv, &s);
         if (le.x + le.y + le.z > 0.0f) {
@@ -157,22 +153,15 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                 L += beta * le;
             } else {
                 float cos_y = -dot(s.geo_normal, ray.dir);
-                float pl = ts_light_pdf_area(M[12], f->light_power) * hit.t * hit.t / cos_y;
+                float pl = ts_light_pdf_area(M[TS_MAT_SELECTION], f->light_power) * hit.t * hit.t / cos_y;
                 L += beta * le * ts_power_heuristic(prev_pdf, pl);
             }
         }
-        uint kind = as_uint(M[7]);
+        uint kind = as_uint(M[TS_MAT_KIND]);
         float3 ng = s.geo_normal;
-        if (kind == TS_MAT_MIRROR) {
-            beta = beta * ts_f3_load(M + 8);
-            ray.dir = ts_reflect(ray.dir, s.shading_normal);
-            if (dot(ray.dir, ng) <= 0.0f) break;
-            ray.org = ts_offset_ray_origin(s.origin, ng, s.pos_scale);
-            prev_delta = 1;
-        } else if (kind == TS_MAT_DIELECTRIC) {
-            int transmitted;
-            ray.dir = ts_sample_dielectric(ray.dir, ng, s.front_face, M[11], ts_rng_next(&rng), &transmitted);
-            ray.org = ts_offset_ray_origin(s.origin, transmitted ? -ng : ng, s.pos_scale);
+        if (ts_is_specular(kind)) {
+            float u = kind == TS_MAT_DIELECTRIC ? ts_rng_next(&rng) : 0.0f;
+            if (!ts_specular_bounce(M, kind, &s, u, &ray, &beta)) break;
             prev_delta = 1;
         } else {
             if (ts_max3(albedo) <= 0.0f) break;
@@ -200,7 +189,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
         ray.tmax = TS_INF;
         if (!ts_roulette(&beta, depth, &rng)) break;
     }
-    out[0] = L.x; out[1] = L.y; out[2] = L.z;
+    ts_f3_store(out + TS_PASS_RADIANCE, L);
 }
 
 TS_NAMESPACE_END

@@ -48,14 +48,14 @@ TS_INLINE TsLightSample ts_sample_light(TS_GLOBAL const float* lights,
     uint lo = ts_select_light(light_cdf, light_count, u_select);
     float p_select = light_cdf[lo] - (lo > 0u ? light_cdf[lo - 1u] : 0.0f);
     TS_GLOBAL const float* L = lights + lo * TS_LIGHT_FLOATS;
-    float3 p0 = ts_f3_load(L + 0), e1 = ts_f3_load(L + 3), e2 = ts_f3_load(L + 6);
+    float3 p0 = ts_f3_load(L + TS_LIGHT_P0), e1 = ts_f3_load(L + TS_LIGHT_E1), e2 = ts_f3_load(L + TS_LIGHT_E2);
     float2 b = ts_triangle_barycentrics(u, v);
     TsLightSample s;
     s.position = p0 + e1 * b.x + e2 * b.y;
     s.pos_scale = fmax(ts_max_abs3(p0), fmax(ts_max_abs3(p0 + e1), ts_max_abs3(p0 + e2)));
     s.normal = normalize(cross(e1, e2));
-    s.radiance = ts_f3_load(L + 9);
-    s.pdf_area = p_select / L[12];
+    s.radiance = ts_f3_load(L + TS_LIGHT_RADIANCE);
+    s.pdf_area = p_select / L[TS_LIGHT_AREA];
     return s;
 }
 
@@ -78,11 +78,13 @@ TS_INLINE float ts_power_heuristic(float a, float b) {
     return r * r / (1.0f + r * r);
 }
 
-/* Rec. 709 luminance, the power measure used to pick lights (host: scene_buffers.cpp). */
+/* Rec. 709 luminance: the power measure lights are picked by (host/render/scene_buffers.cpp),
+ * the light paths' roulette (shared/light_path.h) and AIS's indirect guidance
+ * (host/gi/igi_frame.cpp); the one copy of the weights. */
 TS_INLINE float ts_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 /* Area pdf (scene units^-2) with which ts_sample_light picks a point on an emitter whose
- * material has selection luminance `selection` (materials [12], layout.h):
+ * material has selection luminance `selection` (materials TS_MAT_SELECTION, layout.h):
  * power-proportional selection times uniform area sampling gives
  * (selection · area / total power) / area = selection / total power. */
 TS_INLINE float ts_light_pdf_area(float selection, float light_power) {

@@ -1,11 +1,14 @@
-/* The VPL connection of instant radiosity (Keller 1997), shared by the igi kernels
- * (shared/igi.h) and the instant cache's host-side gathering (host/gi/instant_cache.cpp),
- * so both weigh a VPL identically. VPL layout: layout.h TS_VPL_FLOATS. */
+/* The VPL connection and gather sum of instant radiosity (Keller 1997), shared by the
+ * igi kernels (shared/igi.h) and the instant cache's host-side gathering
+ * (host/gi/instant_cache.cpp), so both weigh a VPL identically. VPL layout: layout.h
+ * TS_VPL_FLOATS. */
 #ifndef TS_VPL_H
 #define TS_VPL_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
 #include "shared/layout.h"
+#include "shared/medium.h"
+#include "shared/sampling.h"
 
 TS_NAMESPACE_BEGIN
 
@@ -14,19 +17,53 @@ TS_NAMESPACE_BEGIN
  * contribution C·G' of any VPL is at most C·b. */
 TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, TsRay* shadow) {
     float3 x = s->position, n = s->shading_normal, ng = s->geo_normal;
-    float3 y = ts_f3_load(vpl), nv = ts_f3_load(vpl + 3);
+    float3 y = ts_f3_load(vpl + TS_VPL_POSITION), nv = ts_f3_load(vpl + TS_VPL_NORMAL);
     float3 d = y - x;
     float dist2 = dot(d, d);
     if (!(dist2 > 0.0f)) return 0.0f;
     float3 w = d / sqrt(dist2);
     float cos_x = dot(n, w), cos_v = -dot(nv, w);
     if (cos_x <= 0.0f || cos_v <= 0.0f || dot(ng, w) <= 0.0f) return 0.0f;
-    shadow->org = ts_offset_ray_origin(s->origin, ng, s->pos_scale);
-    shadow->dir = ts_offset_ray_origin(y, nv, vpl[11]) - shadow->org;
-    shadow->tmin = 0.0f;
-    shadow->tmax = 0.99999f;
+    *shadow = ts_shadow_ray(ts_offset_ray_origin(s->origin, ng, s->pos_scale), y, nv, vpl[TS_VPL_POS_SCALE]);
     return fmin(cos_x * cos_v / dist2, b);
 }
+
+/* The gather sum E = (1/π) Σ_v C_v · Tr_v · G'_v over the VPLs v whose shadow ray was
+ * found unoccluded: C the VPL's flux weight, Tr the medium's transmittance along the
+ * shadow ray, G' the clamped geometry term (ts_vpl_geometry). ts_vpl_gather_add adds one
+ * VPL's term, ts_vpl_gather_result applies the 1/π; the caller owns the loop, since
+ * visibility comes from a tracer in the kernels and from stored rows in the instant cache.
+ *
+ * The accumulator's type is the caller's: the kernels sum in float (float3); the instant
+ * cache's records sum in double (TsDouble3, C++ only), as a record's E is formed once
+ * from all the VPLs of a frame (thousands of terms, not one set's) and then reused by
+ * many pixels. Both forms build each term in the accumulator's precision as (C · Tr) · G'
+ * and add it; OpenCL C has no templates and doubles are optional there, hence the
+ * C++-only overloads rather than one generic body. */
+TS_INLINE void ts_vpl_gather_add(float3* sum, TS_GLOBAL const float* vpl, const TsMedium* med, TsRay shadow,
+                                 float g) {
+    *sum += ts_f3_load(vpl + TS_VPL_FLUX) * ts_shadow_transmittance(med, shadow) * g;
+}
+
+TS_INLINE float3 ts_vpl_gather_result(float3 sum) { return sum * TS_INV_PI; }
+
+#ifdef __cplusplus
+struct TsDouble3 {
+    double x, y, z;
+};
+
+inline void ts_vpl_gather_add(TsDouble3* sum, const float* vpl, const TsMedium* med, TsRay shadow, float g) {
+    const float3 c = ts_f3_load(vpl + TS_VPL_FLUX), tr = ts_shadow_transmittance(med, shadow);
+    sum->x += double(c.x) * tr.x * g;
+    sum->y += double(c.y) * tr.y * g;
+    sum->z += double(c.z) * tr.z * g;
+}
+
+inline float3 ts_vpl_gather_result(TsDouble3 sum) {
+    const double pi = 3.14159265358979323846;
+    return make_float3(static_cast<float>(sum.x / pi), static_cast<float>(sum.y / pi), static_cast<float>(sum.z / pi));
+}
+#endif
 
 TS_NAMESPACE_END
 

@@ -39,7 +39,7 @@ std::vector<float> random_rays(const Scene& s, uint32_t seed) {
 
 uint32_t prim_of(const std::vector<float>& hits, size_t i) {
     uint32_t p;
-    std::memcpy(&p, &hits[4 * i + 3], 4);
+    std::memcpy(&p, &hits[TS_HIT_FLOATS * i + TS_HIT_PRIM], 4);
     return p;
 }
 
@@ -67,7 +67,7 @@ void expect_traversal_agrees(const Scene& scene) {
     size_t same = 0, same_or_tie = 0, hits = 0, t_ok = 0;
     for (size_t i = 0; i < kRays; ++i) {
         const uint32_t pc = prim_of(hc, i), pe = prim_of(he, i);
-        const float tc = hc[4 * i], te = he[4 * i];
+        const float tc = hc[TS_HIT_FLOATS * i + TS_HIT_T], te = he[TS_HIT_FLOATS * i + TS_HIT_T];
         const bool t_close = std::abs(tc - te) <= 1e-4f * te + abs_tol;
         same += pc == pe;
         same_or_tie += pc == pe || (pc != TS_NO_HIT && pe != TS_NO_HIT && std::abs(tc - te) <= 1e-5f * te);
@@ -86,8 +86,8 @@ void expect_traversal_agrees(const Scene& scene) {
     // half the rays are blocked and none ends exactly at a surface.
     std::mt19937 rng(5);
     for (size_t i = 0; i < kRays; ++i) {
-        float t = prim_of(he, i) == TS_NO_HIT ? 1e3f : he[4 * i];
-        rays[8 * i + 7] = t * (rng() & 1 ? 1.5f : 0.5f);
+        float t = prim_of(he, i) == TS_NO_HIT ? 1e3f : he[TS_HIT_FLOATS * i + TS_HIT_T];
+        rays[TS_RAY_FLOATS * i + TS_RAY_TMAX] = t * (rng() & 1 ? 1.5f : 0.5f);
     }
     std::vector<uint32_t> oc, oe;
     cl->trace_occluded(rays, oc);

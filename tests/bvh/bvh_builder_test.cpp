@@ -23,12 +23,12 @@ void check_subtree(const FlatBvh& bvh, int ref, const Box& box, std::vector<int>
         for (uint32_t i = v >> 3; i < (v >> 3) + (v & 7u); ++i) {
             const float* t = &bvh.tris[i * TS_BVH_TRI_FLOATS];
             uint32_t prim;
-            std::memcpy(&prim, &t[3], 4);
+            std::memcpy(&prim, &t[TS_BVH_TRI_PRIM], 4);
             ++seen.at(prim);
             for (int k = 0; k < 3; ++k)
                 for (int a = 0; a < 3; ++a) {
-                    EXPECT_GE(t[4 * k + a], box.lo[a]);
-                    EXPECT_LE(t[4 * k + a], box.hi[a]);
+                    EXPECT_GE(t[TS_BVH_TRI_VERTEX(k) + a], box.lo[a]);
+                    EXPECT_LE(t[TS_BVH_TRI_VERTEX(k) + a], box.hi[a]);
                 }
         }
         return;
@@ -39,8 +39,8 @@ void check_subtree(const FlatBvh& bvh, int ref, const Box& box, std::vector<int>
         std::memcpy(&child, &n[TS_NODE_REFS + c], 4);
         Box b;
         for (int a = 0; a < 3; ++a) {
-            b.lo[a] = n[a * 8 + c];
-            b.hi[a] = n[a * 8 + 4 + c];
+            b.lo[a] = n[TS_NODE_MIN(a) + c];
+            b.hi[a] = n[TS_NODE_MAX(a) + c];
         }
         if (child == -1) {  // unused slot: an empty box
             EXPECT_GT(b.lo.x, b.hi.x);

@@ -51,11 +51,11 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
                 for (int j = 0; j < 3; ++j) {
                     // own set first, then the rest in increasing set order
                     const uint32_t own = (p % 24) % 3 + 3 * ((p / 24) % 3);
-                    double sum = items[(p * N) * TS_AIS_ITEM_FLOATS + 3 * c + j];
+                    double sum = items[(p * N) * TS_AIS_ITEM_FLOATS + TS_AIS_ITEM_COMPONENT(c) + j];
                     for (uint32_t k = 0; k < N; ++k) {
                         if (k == own) continue;
                         const uint32_t slot = (k + N - own) % N;  // codes held (own + slot) % N
-                        sum += items[(p * N + slot) * TS_AIS_ITEM_FLOATS + 3 * c + j];
+                        sum += items[(p * N + slot) * TS_AIS_ITEM_FLOATS + TS_AIS_ITEM_COMPONENT(c) + j];
                     }
                     mismatches += got[3 * p + j] != static_cast<float>(sum / N);
                 }

@@ -21,7 +21,7 @@ Scene cornell() { return load_scene(default_scene_path(), make_data_path(std::nu
 
 uint32_t path_of(const VplList& v, size_t i) {
     uint32_t p;
-    std::memcpy(&p, &v.vpls[i * TS_VPL_FLOATS + 10], 4);
+    std::memcpy(&p, &v.vpls[i * TS_VPL_FLOATS + TS_VPL_PATH], 4);
     return p;
 }
 

@@ -60,13 +60,15 @@ TEST(VplGeometry, ClampBoundsEveryContribution) {
     // A receiving plane z = 0 facing +z; VPLs on it, just above it and far away.
     float vpl[TS_VPL_FLOATS] = {};
     auto put = [&](float px, float py, float pz, float nx, float ny, float nz) {
-        vpl[0] = px, vpl[1] = py, vpl[2] = pz, vpl[3] = nx, vpl[4] = ny, vpl[5] = nz;
+        float* p = vpl + TS_VPL_POSITION;
+        float* n = vpl + TS_VPL_NORMAL;
+        p[0] = px, p[1] = py, p[2] = pz, n[0] = nx, n[1] = ny, n[2] = nz;
     };
     ts::TsSurface s{};
     s.position = s.origin = ts::make_float3(0, 0, 0);
     s.shading_normal = s.geo_normal = ts::make_float3(0, 0, 1);
     s.pos_scale = 1.0f;
-    vpl[11] = 1.0f;
+    vpl[TS_VPL_POS_SCALE] = 1.0f;
     const float b = 100.0f;
     ts::TsRay shadow;
     put(0, 0, 1e-4f, 0, 0, -1);  // facing the receiver from 0.1 mm: G = 1e8, clamped

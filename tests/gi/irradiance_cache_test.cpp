@@ -21,8 +21,13 @@ IcRecord record_at(glm::vec3 x, glm::vec3 n, float radius, glm::vec3 e = glm::ve
 }
 
 float weight(const IcRecord& r, glm::vec3 x, glm::vec3 n, float a) {
-    const float rec[TS_IC_RECORD_FLOATS] = {r.surface[0], r.surface[1], r.surface[2], r.surface[3], r.surface[4],
-                                            r.surface[5], r.e[0],        r.e[1],        r.e[2],        r.radius};
+    float rec[TS_IC_RECORD_FLOATS];
+    for (int c = 0; c < 3; ++c) {
+        rec[TS_IC_RECORD_POSITION + c] = r.surface[TS_IC_GBUF_POSITION + c];
+        rec[TS_IC_RECORD_NORMAL + c] = r.surface[TS_IC_GBUF_NORMAL + c];
+        rec[TS_IC_RECORD_E + c] = r.e[c];
+    }
+    rec[TS_IC_RECORD_RADIUS] = r.radius;
     return ts::ts_ic_weight(rec, {x.x, x.y, x.z}, {n.x, n.y, n.z}, a);
 }
 

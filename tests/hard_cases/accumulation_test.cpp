@@ -16,10 +16,11 @@ TEST(LongAccumulation, ThreeThousandPassesOfAConstantStayExact) {
     std::vector<float> pass(size_t(w) * h * TS_PASS_FLOATS);
     for (size_t p = 0; p < size_t(w) * h; ++p) {
         float* o = &pass[p * TS_PASS_FLOATS];
-        o[0] = 0.1f; o[1] = 1e-7f; o[2] = 3.3333333f;  // radiance
-        o[3] = 0.7f; o[4] = 0.7f; o[5] = 0.7f;         // albedo
-        o[6] = 0.0f; o[7] = 1.0f; o[8] = 0.0f;         // normal
-        o[9] = 12345.678f;                              // depth
+        float* L = o + TS_PASS_RADIANCE;
+        L[0] = 0.1f; L[1] = 1e-7f; L[2] = 3.3333333f;
+        for (int c = 0; c < 3; ++c) o[TS_PASS_ALBEDO + c] = 0.7f;
+        for (int c = 0; c < 3; ++c) o[TS_PASS_NORMAL + c] = c == 1 ? 1.0f : 0.0f;
+        o[TS_PASS_DEPTH] = 12345.678f;
     }
     float naive = 0.0f;
     for (int i = 0; i < 3000; ++i) {

@@ -118,10 +118,10 @@ TEST(Sampling, LightSelectionFollowsPower) {
     float lights[3 * TS_LIGHT_FLOATS] = {};
     for (int l = 0; l < 3; ++l) {
         float* L = lights + l * TS_LIGHT_FLOATS;
-        L[3] = 1;   // e1 = x
-        L[7] = 1;   // e2 = y
-        L[9] = L[10] = L[11] = float(l + 1);  // radiance tags the light
-        L[12] = 0.5f;
+        L[TS_LIGHT_E1 + 0] = 1;  // e1 = x
+        L[TS_LIGHT_E2 + 1] = 1;  // e2 = y
+        for (int c = 0; c < 3; ++c) L[TS_LIGHT_RADIANCE + c] = float(l + 1);  // radiance tags the light
+        L[TS_LIGHT_AREA] = 0.5f;
     }
     std::vector<double> observed(3, 0.0), expected = {kSamples / 8.0, 2 * kSamples / 8.0, 5 * kSamples / 8.0};
     std::mt19937 rng(5);

@@ -1,0 +1,81 @@
+/* Light paths of instant radiosity (Keller 1997): emission at a light and scattering at
+ * each surface hit, leaving the VPLs the igi kernels (shared/igi.h) and the instant
+ * cache gather from. The host traces them (host/gi/light_paths.cpp: rays batched
+ * through the backend, one Halton point per path fixing every random decision); the
+ * transport is here, next to the camera paths', so there is one material switch
+ * (ts_specular_bounce) for all paths. ALGORITHMS.md §3.2 is our reading.
+ *
+ * Estimator (pbrt-v2 IGI convention): a path starts at a light picked in proportion to
+ * power, at a uniform point y0 (area pdf p_A including the selection) in a
+ * cosine-distributed direction, with weight α = Le·π / p_A (the cosine of the emission
+ * cancels the cosine pdf). Each segment attenuates α by the medium's transmittance (no
+ * scattering: the single-scattering model of shared/igi.h). At a diffuse hit y with
+ * albedo ρ the path leaves a VPL of flux weight C = α·ρ/π · inv_paths, then continues
+ * with probability q = min(1, luminance(ρ)) in a cosine direction, α ← α·ρ/q. Mirrors and
+ * dielectrics scatter it (ts_specular_bounce) and leave no VPL. */
+#ifndef TS_LIGHT_PATH_H
+#define TS_LIGHT_PATH_H
+#include "shared/bsdf.h"
+#include "shared/compat.h"
+#include "shared/geometry.h"
+#include "shared/layout.h"
+#include "shared/material.h"
+#include "shared/medium.h"
+#include "shared/sampling.h"
+
+TS_NAMESPACE_BEGIN
+
+/* Starts a light path from five numbers in [0, 1): light selection (`u_select`, as
+ * ts_sample_light), the point on the light (u, v) and the direction (d0, d1). Sets
+ * *alpha = Le·π / p_A and *ray (from the point offset off the light, t in (0, inf)).
+ * Returns 0, setting neither, when the point has zero pdf. Requires light_count > 0. */
+TS_INLINE int ts_light_path_start(const TsSceneView* sv, float u_select, float u, float v, float d0, float d1,
+                                  float3* alpha, TsRay* ray) {
+    TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, u_select, u, v);
+    if (!(ls.pdf_area > 0.0f)) return 0;
+    float3 d = ts_from_local(ls.normal, ts_sample_cosine_hemisphere(d0, d1));
+    *alpha = ls.radiance * (TS_PI / ls.pdf_area);
+    ray->org = ts_offset_ray_origin(ls.position, ls.normal, ls.pos_scale);
+    ray->dir = d;
+    ray->tmin = 0.0f;
+    ray->tmax = TS_INF;
+    return 1;
+}
+
+/* Bits of ts_light_path_vertex's result. */
+#define TS_LIGHT_PATH_VPL 1u       /* the vertex left a VPL: *s and *vpl_flux are set */
+#define TS_LIGHT_PATH_CONTINUES 2u /* the path goes on along *ray with weight *alpha */
+
+/* The vertex where *ray (weight *alpha) hits `hit` (not TS_NO_HIT): attenuates *alpha by
+ * the segment's transmittance, sets *s to the surface there, and scatters. `u` holds the
+ * vertex's three numbers in [0, 1): x, y the cosine direction, z the roulette (diffuse)
+ * or the Fresnel choice (dielectric). `inv_paths` is 1 / (paths per set). A diffuse
+ * surface of albedo ρ > 0 leaves a VPL of flux *vpl_flux = α·ρ/π · inv_paths; a surface
+ * of albedo 0 ends the path. Returns TS_LIGHT_PATH_* bits. */
+TS_INLINE uint ts_light_path_vertex(const TsSceneView* sv, const TsMedium* med, TsHit hit, float3 u,
+                                    float inv_paths, float3* alpha, TsRay* ray, TsSurface* s, float3* vpl_flux) {
+    *alpha = *alpha * ts_medium_transmittance(med, ray->org, ray->dir, 0.0f, hit.t);
+    *s = ts_surface_at(sv, *ray, hit);
+    TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s->material;
+    uint kind = as_uint(M[TS_MAT_KIND]);
+    if (ts_is_specular(kind)) {
+        (void)ts_specular_bounce(M, kind, s, u.z, ray, alpha);
+        return TS_LIGHT_PATH_CONTINUES;
+    }
+    float3 albedo = ts_material_albedo(sv, s);
+    if (!(ts_max3(albedo) > 0.0f)) return 0u;
+    *vpl_flux = *alpha * albedo * (TS_INV_PI * inv_paths);
+    float q = fmin(1.0f, ts_luminance(albedo));
+    if (!(u.z < q)) return TS_LIGHT_PATH_VPL;
+    float3 d = ts_from_local(s->shading_normal, ts_sample_cosine_hemisphere(u.x, u.y));
+    if (dot(d, s->geo_normal) <= 0.0f) return TS_LIGHT_PATH_VPL;
+    *alpha = *alpha * albedo / q;
+    ray->org = ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale);
+    ray->dir = d;
+    ray->tmin = 0.0f;
+    ray->tmax = TS_INF;
+    return TS_LIGHT_PATH_VPL | TS_LIGHT_PATH_CONTINUES;
+}
+
+TS_NAMESPACE_END
+#endif /* TS_LIGHT_PATH_H */
