@@ -9,6 +9,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "support/shell.h"
 #include <nlohmann/json.hpp>
 
 #include "image/image_io.h"
@@ -19,19 +21,9 @@ using tessera::Image;
 
 namespace {
 
-struct CliResult {
-    int exit_code;
-    std::string output;  // stdout and stderr together
-};
-
-CliResult run_shell(const std::string& cmd) {
-    FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    while (size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-    const int status = ::pclose(p);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using tessera::test::CliResult;
+using tessera::test::run_shell;
+using tessera::test::run_tessera;
 
 CliResult run_compare(const std::string& args, const std::string& env = "") {
     return run_shell(env + " " + std::string(TESSERA_EXE) + " compare " + args);

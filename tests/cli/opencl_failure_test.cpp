@@ -11,25 +11,15 @@
 #include <gtest/gtest.h>
 
 #include "support/scratch_dir.h"
+#include "support/shell.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliResult {
-    int exit_code;
-    std::string output;
-};
-
-CliResult run_tessera(const std::string& env, const std::string& args) {
-    const std::string cmd = env + " " + std::string(TESSERA_EXE) + " " + args + " 2>&1";
-    FILE* p = ::popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    while (size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-    const int status = ::pclose(p);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using tessera::test::CliResult;
+using tessera::test::run_shell;
+using tessera::test::run_tessera;
 
 const std::string kScene = std::string(TESSERA_TEST_DATA) + "/light.json";
 // The ICD loader (ocl-icd) reads the vendor list from OCL_ICD_VENDORS instead of
@@ -41,7 +31,7 @@ class OpenCLFailureCli : public tessera::test::ScratchDirTest {};
 TEST_F(OpenCLFailureCli, NoPlatformSuggestsEmbree) {
     const fs::path out = dir_ / "img.exr";
     const CliResult r =
-        run_tessera(kNoPlatform, "render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " + out.string());
+        run_tessera("render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " + out.string(), kNoPlatform);
     EXPECT_NE(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("tessera: error: no OpenCL device found"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("--backend embree"), std::string::npos) << r.output;
@@ -51,21 +41,21 @@ TEST_F(OpenCLFailureCli, NoPlatformSuggestsEmbree) {
 TEST_F(OpenCLFailureCli, NoPlatformStillRendersWithEmbree) {
     const fs::path out = dir_ / "img.exr";
     const CliResult r =
-        run_tessera(kNoPlatform, "render " + kScene + " --backend embree --spp 1 --width 8 --height 8 --out " + out.string());
+        run_tessera("render " + kScene + " --backend embree --spp 1 --width 8 --height 8 --out " + out.string(), kNoPlatform);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_TRUE(fs::exists(out));
 }
 
 TEST_F(OpenCLFailureCli, NoPlatformDevicesCommandSaysSo) {
-    const CliResult r = run_tessera(kNoPlatform, "devices");
+    const CliResult r = run_tessera("devices", kNoPlatform);
     EXPECT_NE(r.output.find("no OpenCL"), std::string::npos) << r.output;
 }
 
 TEST_F(OpenCLFailureCli, BufferLargerThanTheDeviceAllows) {
     const fs::path out = dir_ / "img.exr";
     // 64 bytes: less than the scene's BVH node buffer (128 bytes per node).
-    const CliResult r = run_tessera("TESSERA_CL_MAX_ALLOC=64", "render " + kScene +
-                                        " --backend opencl --spp 1 --width 8 --height 8 --out " + out.string());
+    const CliResult r = run_tessera("render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " + out.string(),
+                                    "TESSERA_CL_MAX_ALLOC=64");
     EXPECT_NE(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("tessera: error: OpenCL: the "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("allows in one allocation (64)"), std::string::npos) << r.output;
@@ -76,8 +66,8 @@ TEST_F(OpenCLFailureCli, BufferLargerThanTheDeviceAllows) {
 TEST_F(OpenCLFailureCli, OutputBufferLargerThanTheDeviceAllows) {
     const fs::path out = dir_ / "img.exr";
     // Scene buffers fit in 1 MiB; a 1024 x 1024 pass output (40 bytes a pixel) does not.
-    const CliResult r = run_tessera("TESSERA_CL_MAX_ALLOC=1048576", "render " + kScene +
-                                        " --backend opencl --spp 1 --width 1024 --height 1024 --out " + out.string());
+    const CliResult r = run_tessera("render " + kScene + " --backend opencl --spp 1 --width 1024 --height 1024 --out " + out.string(),
+                                    "TESSERA_CL_MAX_ALLOC=1048576");
     EXPECT_NE(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("the output buffer needs"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out));

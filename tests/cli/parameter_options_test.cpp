@@ -17,23 +17,14 @@
 
 #include <gtest/gtest.h>
 
+#include "support/shell.h"
+
 namespace tessera::cli {
 namespace {
 
-struct CliResult {
-    int exit_code;
-    std::string output;  // stdout and stderr together
-};
-
-CliResult run_tessera(const std::string& args) {
-    const std::string cmd = std::string(TESSERA_EXE) + " " + args + " 2>&1";
-    FILE* p = ::popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    while (size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-    const int status = ::pclose(p);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using tessera::test::CliResult;
+using tessera::test::run_shell;
+using tessera::test::run_tessera;
 
 // The long options (--name) that start lines of `text`'s option list, as CLI11's help
 // prints them ("  --tile UINT [3] ...", "  -h,--help ...").

@@ -9,6 +9,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
+
+#include "support/shell.h"
 #include <nlohmann/json.hpp>
 
 #include "image/image_io.h"
@@ -18,20 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CliResult {
-    int exit_code;
-    std::string output;  // stdout and stderr together
-};
-
-CliResult run_tessera(const std::string& args) {
-    std::string cmd = std::string(TESSERA_EXE) + " " + args + " 2>&1";
-    FILE* p = ::popen(cmd.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    while (size_t n = std::fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-    int status = ::pclose(p);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using tessera::test::CliResult;
+using tessera::test::run_shell;
+using tessera::test::run_tessera;
 
 class RenderCli : public tessera::test::ScratchDirTest {
 protected:
