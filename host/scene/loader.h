@@ -14,7 +14,8 @@ namespace tessera {
 /// Where files the project does not ship are looked up. A relative path in a scene
 /// file is tried, in order: next to the scene file, in each `roots` entry.
 /// `roots` is built by make_data_path(): --data-dir (if given), then $TESSERA_DATA
-/// (if set), then the default `../shared/scenes` beside the source checkout
+/// (if set), then the default data directory, the `shared/scenes` folder beside the
+/// source checkout
 /// (TESSERA_DEFAULT_DATA_DIR, set at configure time).
 struct DataPath {
     std::vector<std::filesystem::path> roots;

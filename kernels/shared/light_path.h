@@ -3,7 +3,7 @@
  * cache gather from. The host traces them (host/gi/light_paths.cpp: rays batched
  * through the backend, one Halton point per path fixing every random decision); the
  * transport is here, next to the camera paths', so there is one material switch
- * (ts_specular_bounce) for all paths. ALGORITHMS.md §3.2 is our reading.
+ * (ts_specular_bounce) for all paths. docs/igi.md §3 is our reading.
  *
  * Estimator (pbrt-v2 IGI convention): a path starts at a light picked in proportion to
  * power, at a uniform point y0 (area pdf p_A including the selection) in a
