@@ -29,7 +29,7 @@ typedef struct TsWatertight {
     float sx, sy, sz;
 } TsWatertight;
 
-inline TsWatertight ts_watertight_setup(float3 d) {
+static inline TsWatertight ts_watertight_setup(float3 d) {
     float3 a = fabs(d);
     int kz = (a.x > a.y) ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
     int kx = kz == 2 ? 0 : kz + 1;
@@ -45,7 +45,7 @@ inline TsWatertight ts_watertight_setup(float3 d) {
 }
 
 /* Returns 1 and sets (*t, *u, *v) if the ray hits the triangle with t in (tmin, tmax). */
-inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float tmin, float tmax,
+static inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float tmin, float tmax,
                                  __global const float* tri, float* t, float* u, float* v) {
     float3 A = vload3(0, tri + TS_BVH_TRI_VERTEX(0)) - org, B = vload3(0, tri + TS_BVH_TRI_VERTEX(1)) - org,
            C = vload3(0, tri + TS_BVH_TRI_VERTEX(2)) - org;
@@ -72,7 +72,7 @@ inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float tmin, 
 }
 
 /* Distances to the four child boxes of `node`; a child is hit where near <= far. */
-inline int4 ts_node_hits(__global const float* node, float3 org, float3 inv, int3 neg,
+static inline int4 ts_node_hits(__global const float* node, float3 org, float3 inv, int3 neg,
                          float tmin, float tmax, float4* tnear_out) {
     float4 lo_x = vload4(0, node + (neg.x ? TS_NODE_MAX(0) : TS_NODE_MIN(0)));
     float4 hi_x = vload4(0, node + (neg.x ? TS_NODE_MIN(0) : TS_NODE_MAX(0)));
@@ -91,7 +91,7 @@ inline int4 ts_node_hits(__global const float* node, float3 org, float3 inv, int
 
 /* Traversal shared by closest and any hit. `any` is a compile-time constant at each
  * call site, so the compiler specialises the loop. */
-inline TsHit ts_bvh_traverse(__global const float* nodes, __global const float* tris, TsRay ray,
+static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const float* tris, TsRay ray,
                              int any) {
     TsHit hit;
     hit.prim = TS_NO_HIT;
@@ -152,11 +152,11 @@ inline TsHit ts_bvh_traverse(__global const float* nodes, __global const float* 
     return hit;
 }
 
-inline TsHit ts_bvh_closest(__global const float* nodes, __global const float* tris, TsRay ray) {
+static inline TsHit ts_bvh_closest(__global const float* nodes, __global const float* tris, TsRay ray) {
     return ts_bvh_traverse(nodes, tris, ray, 0);
 }
 
-inline int ts_bvh_occluded(__global const float* nodes, __global const float* tris, TsRay ray) {
+static inline int ts_bvh_occluded(__global const float* nodes, __global const float* tris, TsRay ray) {
     return ts_bvh_traverse(nodes, tris, ray, 1).prim != TS_NO_HIT;
 }
 

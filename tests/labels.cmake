@@ -6,7 +6,7 @@
 # the statistical pattern, or `ctest -L unit` stops being fast.
 
 # Run the tessera executable.
-set(tessera_cli_tests "^[A-Za-z]+Cli\\.")
+set(tessera_cli_tests "^([A-Za-z]+/)?[A-Za-z]+Cli\\.")
 # Run the bench/ scripts.
 set(tessera_bench_tests "^(AccuracyReport|AccuracySweep|AisBound)\\.")
 # Render many samples and compare statistics: hard cases, analytic and furnace tests,

@@ -84,6 +84,7 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
     const std::string source = load_kernel_source(name);
     ProgramBuild out;
     out.options = "-cl-std=CL1.2";
+    if (const char* extra = std::getenv("TESSERA_CL_OPTIONS"); extra && *extra) out.options += std::string(" ") + extra;
     for (const auto& d : defines) out.options += " " + d;
     const std::string key_text = source + "\n" + out.options + "\n" + dev.platform_name + "\n" +
                                  dev.name + "\n" + dev.version + "\n" + dev.driver;

@@ -18,7 +18,9 @@
 /* No contraction into FMA, so device and C++ (-ffp-contract=off) round alike. */
 #pragma OPENCL FP_CONTRACT OFF
 #define TS_GLOBAL __global
-#define TS_INLINE inline
+/* static: C99 gives a plain `inline` function no external definition, so a driver that
+ * does not inline it (clang-based ones at -cl-opt-disable) fails to link. */
+#define TS_INLINE static inline
 #define make_float3(x, y, z) ((float3)((x), (y), (z)))
 #define make_float2(x, y) ((float2)((x), (y)))
 #define TS_INF INFINITY
