@@ -29,18 +29,11 @@ using tessera::test::CliResult;
 using tessera::test::run_shell;
 using tessera::test::run_tessera;
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 // Every file under `dir` with its bytes (directories as "<dir>").
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
     std::map<std::string, std::string> files;
     for (const auto& e : fs::recursive_directory_iterator(dir))
-        files[fs::relative(e.path(), dir).string()] = e.is_directory() ? "<dir>" : slurp(e.path());
+        files[fs::relative(e.path(), dir).string()] = e.is_directory() ? "<dir>" : tessera::test::file_bytes(e.path());
     return files;
 }
 
@@ -165,7 +158,7 @@ TEST_F(ContractCli, AValidRunWritesEveryOutputAndNothingElse) {
         EXPECT_NE(bytes, "OLD") << name << " was not replaced";
     }
     EXPECT_EQ(names, (std::vector<std::string>{"img.exr", "img.png", "stats.json"}));
-    EXPECT_NE(slurp(dir_ / "stats.json").find("\"median_pass_seconds\""), std::string::npos);
+    EXPECT_NE(tessera::test::file_bytes(dir_ / "stats.json").find("\"median_pass_seconds\""), std::string::npos);
 }
 
 }  // namespace

@@ -24,13 +24,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 class OutputFailureCli : public tessera::test::ScratchDirTest {
 protected:
     // Runs `setup` (shell, with $M the mount point) on a fresh 64 KiB tmpfs in a private
@@ -53,14 +46,14 @@ protected:
     }
 
     void expect_failed_and_kept(const std::string& what) {
-        const std::string out = slurp(dir_ / "out.txt");
-        EXPECT_NE(std::stoi(slurp(dir_ / "status.txt")), 0) << out;
+        const std::string out = tessera::test::file_bytes(dir_ / "out.txt");
+        EXPECT_NE(std::stoi(tessera::test::file_bytes(dir_ / "status.txt")), 0) << out;
         EXPECT_NE(out.find("tessera: error:"), std::string::npos) << out;
         EXPECT_NE(out.find("img."), std::string::npos) << "the message should name the file: " << out;
-        EXPECT_EQ(slurp(dir_ / "exr.txt"), "KEEP") << what << ": the existing EXR was damaged";
-        EXPECT_EQ(slurp(dir_ / "png.txt"), "KEEP") << what << ": the existing PNG was damaged";
+        EXPECT_EQ(tessera::test::file_bytes(dir_ / "exr.txt"), "KEEP") << what << ": the existing EXR was damaged";
+        EXPECT_EQ(tessera::test::file_bytes(dir_ / "png.txt"), "KEEP") << what << ": the existing PNG was damaged";
         // Nothing but the two old files (and the filler) remains: no temporary file.
-        std::istringstream ls(slurp(dir_ / "ls.txt"));
+        std::istringstream ls(tessera::test::file_bytes(dir_ / "ls.txt"));
         for (std::string name; std::getline(ls, name);)
             EXPECT_TRUE(name == "img.exr" || name == "img.png" || name == "filler") << "left behind: " << name;
     }
@@ -71,7 +64,7 @@ TEST_F(OutputFailureCli, FullFileSystemKeepsTheExistingImage) {
     if (!render_on_tmpfs("dd if=/dev/zero of=$M/filler bs=1k count=200 2>/dev/null || true"))
         GTEST_SKIP() << "cannot mount a tmpfs in a private mount namespace here";
     expect_failed_and_kept("full");
-    EXPECT_NE(slurp(dir_ / "out.txt").find("No space left on device"), std::string::npos) << slurp(dir_ / "out.txt");
+    EXPECT_NE(tessera::test::file_bytes(dir_ / "out.txt").find("No space left on device"), std::string::npos) << tessera::test::file_bytes(dir_ / "out.txt");
 }
 
 TEST_F(OutputFailureCli, ReadOnlyFileSystemKeepsTheExistingImage) {
@@ -79,7 +72,7 @@ TEST_F(OutputFailureCli, ReadOnlyFileSystemKeepsTheExistingImage) {
     if (!render_on_tmpfs("mount -o remount,ro $M"))
         GTEST_SKIP() << "cannot mount a tmpfs in a private mount namespace here";
     expect_failed_and_kept("read-only");
-    EXPECT_NE(slurp(dir_ / "out.txt").find("Read-only file system"), std::string::npos) << slurp(dir_ / "out.txt");
+    EXPECT_NE(tessera::test::file_bytes(dir_ / "out.txt").find("Read-only file system"), std::string::npos) << tessera::test::file_bytes(dir_ / "out.txt");
 }
 
 }  // namespace

@@ -16,13 +16,6 @@ namespace fs = std::filesystem;
 namespace tessera {
 namespace {
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
 size_t entries(const fs::path& dir) { return size_t(std::distance(fs::directory_iterator(dir), {})); }
 
 class CommitGroupTest : public test::ScratchDirTest {};
@@ -33,12 +26,12 @@ TEST_F(CommitGroupTest, CommitReplacesAndCreatesEveryTarget) {
         CommitGroup g;
         std::ofstream(g.add(dir_ / "a")) << "new a";
         std::ofstream(g.add(dir_ / "b")) << "new b";
-        EXPECT_EQ(slurp(dir_ / "a"), "old a");  // nothing visible before commit
+        EXPECT_EQ(tessera::test::file_bytes(dir_ / "a"), "old a");  // nothing visible before commit
         EXPECT_FALSE(fs::exists(dir_ / "b"));
         g.commit();
     }
-    EXPECT_EQ(slurp(dir_ / "a"), "new a");
-    EXPECT_EQ(slurp(dir_ / "b"), "new b");
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "a"), "new a");
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "b"), "new b");
     EXPECT_EQ(entries(dir_), 2u);  // no temporary, no backup left
 }
 
@@ -49,7 +42,7 @@ TEST_F(CommitGroupTest, NoCommitLeavesEverythingAsItWas) {
         std::ofstream(g.add(dir_ / "a")) << "new a";
         std::ofstream(g.add(dir_ / "b")) << "new b";
     }  // an exception before commit ends here too
-    EXPECT_EQ(slurp(dir_ / "a"), "old a");
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "a"), "old a");
     EXPECT_EQ(entries(dir_), 1u);
 }
 
@@ -69,7 +62,7 @@ TEST_F(CommitGroupTest, AFailedRenameRollsBackTheOthers) {
         EXPECT_NE(std::string(e.what()).find((dir_ / "c").string()), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("rename failed"), std::string::npos) << e.what();
     }
-    EXPECT_EQ(slurp(dir_ / "a"), "old a");
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "a"), "old a");
     EXPECT_FALSE(fs::exists(dir_ / "b"));
     EXPECT_TRUE(fs::is_directory(dir_ / "c" / "inside"));
 }

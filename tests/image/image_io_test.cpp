@@ -1,6 +1,8 @@
 // Tests for host/image: EXR round trip, PNG tone mapping, atomic writes and errors.
 #include <stb_image.h>
 #include <gtest/gtest.h>
+
+#include "support/scratch_dir.h"
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -49,11 +51,6 @@ std::uint32_t bits(float f) {
     std::uint32_t u;
     std::memcpy(&u, &f, sizeof u);
     return u;
-}
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 void spit(const fs::path& p, const std::string& s) {
@@ -276,15 +273,15 @@ TEST_F(ImageIoTest, WriteIntoReadOnlyDirectoryKeepsExistingFile) {
     EXPECT_NE(msg.find(std::strerror(EACCES)), std::string::npos) << msg;
     EXPECT_THROW(tessera::write_exr(exr, img), RuntimeError);
     EXPECT_THROW(tessera::write_png(png, img), RuntimeError);
-    EXPECT_EQ(slurp(exr), "old exr bytes");
-    EXPECT_EQ(slurp(png), "old png bytes");
+    EXPECT_EQ(tessera::test::file_bytes(exr), "old exr bytes");
+    EXPECT_EQ(tessera::test::file_bytes(png), "old png bytes");
 }
 
 TEST_F(ImageIoTest, InvalidImageLeavesExistingFileUntouched) {
     const fs::path exr = dir / "keep.exr", png = dir / "keep.png";
     tessera::write_exr(exr, uniform(2, 2, 0.5f, 0.5f, 0.5f));
     tessera::write_png(png, uniform(2, 2, 0.5f, 0.5f, 0.5f));
-    const std::string old_exr = slurp(exr), old_png = slurp(png);
+    const std::string old_exr = tessera::test::file_bytes(exr), old_png = tessera::test::file_bytes(png);
 
     Image zero = uniform(2, 2, 1, 1, 1);
     zero.width = 0;
@@ -300,8 +297,8 @@ TEST_F(ImageIoTest, InvalidImageLeavesExistingFileUntouched) {
         const std::string msg = error_of([&] { tessera::write_exr(exr, *bad); });
         EXPECT_NE(msg.find(exr.string()), std::string::npos) << msg;
     }
-    EXPECT_EQ(slurp(exr), old_exr);
-    EXPECT_EQ(slurp(png), old_png);
+    EXPECT_EQ(tessera::test::file_bytes(exr), old_exr);
+    EXPECT_EQ(tessera::test::file_bytes(png), old_png);
     EXPECT_EQ(tessera::read_exr(exr).find("R")->data, std::vector<float>(4, 0.5f));
     std::vector<std::string> rest = others(dir, "keep.exr");
     EXPECT_EQ(rest, std::vector<std::string>{"keep.png"});
@@ -316,10 +313,10 @@ TEST_F(ImageIoTest, FailedWriteCallbackRemovesTemporaryAndKeepsTarget) {
                                                   throw RuntimeError("boom");
                                               }),
                  RuntimeError);
-    EXPECT_EQ(slurp(p), "original");
+    EXPECT_EQ(tessera::test::file_bytes(p), "original");
     EXPECT_TRUE(others(dir, "t.bin").empty());
     tessera::write_file_atomic(p, "new", 3);
-    EXPECT_EQ(slurp(p), "new");
+    EXPECT_EQ(tessera::test::file_bytes(p), "new");
     EXPECT_TRUE(others(dir, "t.bin").empty());
 }
 
@@ -340,7 +337,7 @@ TEST_F(ImageIoTest, ReadGarbageFileThrowsInputErrorNamingIt) {
     // A truncated real EXR.
     const fs::path truncated = dir / "truncated.exr";
     tessera::write_exr(truncated, uniform(64, 64, 0.3f, 0.2f, 0.1f));
-    std::string bytes = slurp(truncated);
+    std::string bytes = tessera::test::file_bytes(truncated);
     spit(truncated, bytes.substr(0, bytes.size() / 2));
     EXPECT_THROW(tessera::read_exr(truncated), InputError);
     msg = error_of([&] { tessera::read_exr(truncated); });

@@ -23,11 +23,6 @@ namespace {
 using tessera::test::CliResult;
 using tessera::test::run_tessera;
 
-std::string bytes_of(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 struct Case {
     const char* method;
     const char* scene;
@@ -44,7 +39,7 @@ TEST_P(OptDisableCli, SameImageWithOptimisationOff) {
     ASSERT_EQ(a.exit_code, 0) << a.output;
     const CliResult b = run_tessera(args + " --out " + noopt.string(), "TESSERA_CL_OPTIONS=-cl-opt-disable");
     ASSERT_EQ(b.exit_code, 0) << b.output;
-    EXPECT_EQ(bytes_of(opt), bytes_of(noopt)) << c.method << " on " << c.scene;
+    EXPECT_EQ(tessera::test::file_bytes(opt), tessera::test::file_bytes(noopt)) << c.method << " on " << c.scene;
 }
 
 // The option really reaches the compiler (else the test above could not fail): an

@@ -37,11 +37,6 @@ constexpr Standin kStandins[] = {
 
 fs::path scene_file(const Standin& s) { return fs::path(TESSERA_SCENES_DIR) / (std::string(s.name) + ".json"); }
 
-std::string read_file(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
-}
-
 std::string run_capture(const std::string& cmd) {
     FILE* p = ::popen((cmd + " 2>&1").c_str(), "r");
     std::string out;
@@ -57,7 +52,7 @@ TEST_P(StandinScene, LoadsWithItsLightsAndCameraInsideTheRoom) {
     const Standin& st = GetParam();
     const Scene s = load_scene(scene_file(st), make_data_path(std::nullopt));
     EXPECT_EQ(s.name, st.name);
-    const auto doc = nlohmann::json::parse(read_file(scene_file(st)));
+    const auto doc = nlohmann::json::parse(tessera::test::file_bytes(scene_file(st)));
     ASSERT_TRUE(doc.contains("stands_in_for"));
     EXPECT_GT(doc["stands_in_for"].get<std::string>().size(), 20u);
     EXPECT_EQ(s.has_medium, st.medium);
@@ -145,7 +140,7 @@ TEST_F(StandinGenerator, ReproducesTheCommittedAndBuiltFiles) {
         const fs::path rel = fs::relative(e.path(), dir_);
         ++files;
         ASSERT_TRUE(fs::exists(scenes / rel)) << rel;
-        EXPECT_TRUE(read_file(e.path()) == read_file(scenes / rel)) << rel << " differs from the generator's output";
+        EXPECT_TRUE(tessera::test::file_bytes(e.path()) == tessera::test::file_bytes(scenes / rel)) << rel << " differs from the generator's output";
     }
     EXPECT_EQ(files, 9u + 12u + 2u);  // scene JSON, standins/ OBJ + MTL, generated/ OBJ + MTL
     for (const auto& e : fs::directory_iterator(scenes / "standins"))

@@ -4,11 +4,21 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
 namespace tessera::test {
+
+/// The bytes of file `p` ("" if it cannot be read): for comparing outputs and sentinels.
+inline std::string file_bytes(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
 
 class ScratchDirTest : public ::testing::Test {
 protected:
