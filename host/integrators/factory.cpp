@@ -2,8 +2,7 @@
 
 #include "gi/ais_frame.h"
 #include "gi/ic_frame.h"
-#include "integrators/direct_integrator.h"
-#include "integrators/pt_integrator.h"
+#include "integrators/kernel_integrator.h"
 #include "device/effect_plan.h"
 
 namespace tessera {
@@ -14,8 +13,8 @@ std::unique_ptr<Integrator> make_integrator(Backend& backend, const Scene& scene
     is.set_shadow_samples = settings.shadow_samples;
     is.ais_mode = settings.method == Method::AisMax ? AisMode::AMax : AisMode::A;
     switch (settings.method) {
-        case Method::Direct: return std::make_unique<DirectIntegrator>(backend);
-        case Method::PathTrace: return std::make_unique<PtIntegrator>(backend);
+        case Method::Direct: return std::make_unique<KernelIntegrator>(backend, KernelId::Direct);
+        case Method::PathTrace: return std::make_unique<KernelIntegrator>(backend, KernelId::PathTrace);
         case Method::Igi: return std::make_unique<IgiFrame>(backend, buffers, plan_effects(scene), is);
         case Method::Ais:
         case Method::AisMax: return std::make_unique<AisFrame>(backend, buffers, plan_effects(scene), is);

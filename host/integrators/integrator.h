@@ -1,7 +1,8 @@
-// The integrator seam: one integrator per method family (direct, pt, igi, ais, ic/tic),
-// each in its own file behind this interface; make_integrator (integrators/factory.h)
-// picks one from the method. Integrators render through the generic Backend (rays,
-// kernel launches, named inputs) and know nothing of the frame loop above them.
+// The integrator seam: one integrator per method family behind this interface, each in
+// its own file (direct and pt share the one-kernel KernelIntegrator; igi, ais, ic/tic);
+// make_integrator (integrators/factory.h) picks one from the method. Integrators render
+// through the generic Backend (rays, kernel launches, named inputs) and know nothing of
+// the frame loop above them.
 #pragma once
 #include <cstdint>
 #include <string>
