@@ -1,14 +1,23 @@
-// Ray throughput and `direct` frame time, OpenCL (default device: PoCL) against Embree,
-// in one process on the same rays. Writes JSON and a markdown table.
+// Ray throughput by ray kind and `direct` frame time: OpenCL (default device: PoCL),
+// Embree single rays and Embree 16-ray packets, in one process on the same rays. Writes
+// JSON and a markdown table (bench/results/ray_bench.*).
 //
-// Ray sets on the scene's camera view (default Sibenik at 512×512):
+// Ray kinds on the scene's camera view (default Sibenik at 512×512), pixels listed in 4×4
+// tiles so that 16 consecutive rays come from one tile (the grouping the renderer's
+// packets use, docs/ray-batches.md):
 //   primary  camera rays through pixel centres (closest hit)
-//   shadow   from each primary hit to a power-sampled point on an area light (any hit)
-//   random   from each primary hit in a uniform random direction over the sphere
-//            (closest hit; the incoherent case)
-// OpenCL times include the ray upload and result read-back (one batch per query, as the
-// renderer would issue them); Embree single rays run rtcIntersect1/rtcOccluded1 over
-// TBB; Embree packets run rtcIntersect16 on 4×4 pixel tiles with the COHERENT flag.
+//   light    from the tile's 16 primary hits to one point on an area light per tile (any
+//            hit): IGI's light-sample shadow rays, one sample shared by a set's pixels
+//   vpl      from the tile's 16 hits to one VPL per tile, a random surface point seen
+//            from the camera (any hit): IGI's VPL shadow rays
+//   ic       from one record point (a tile's first hit) to 16 different VPLs (closest
+//            hit: the instant cache keeps the occluder), one record per 16 rays
+//   random   from each primary hit in a uniform random direction (closest hit; the
+//            incoherent case)
+// All three tracers get the rays in the batch form the renderer issues: OpenCL one
+// upload, kernel and read-back per query; Embree single rtcIntersect1/rtcOccluded1 per
+// ray over TBB; Embree packets rtcIntersect16/rtcOccluded16 over 16 consecutive rays
+// (Backend::trace_* of the Embree backend with packets on, COHERENT context).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -20,7 +29,6 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <embree3/rtcore.h>
 #include <nlohmann/json.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
@@ -28,7 +36,6 @@
 
 #include "backend/backend.h"
 #include "bvh/embree_device.h"
-#include "bvh/embree_scene.h"
 #include "kernels/shared/geometry.h"
 #include "kernels/shared/sampling.h"
 #include "device/frame.h"
@@ -55,77 +62,74 @@ double median_seconds(int repeats, F&& f) {
     return t[t.size() / 2];
 }
 
-struct RaySets {
-    std::vector<float> primary, shadow, random;
+struct RaySet {
+    const char* name;
+    bool closest;  // closest hit (else any hit)
+    std::vector<float> rays;
 };
 
-RaySets make_rays(const Scene& scene, const SceneBuffers& b, Backend& embree, int w, int h) {
+void push_ray(std::vector<float>& rays, ts::float3 o, ts::float3 d, float tmax) {
+    rays.insert(rays.end(), {o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, tmax});
+}
+
+// Pixel i of a w × h image listed tile by tile (4×4 tiles, row-major within a tile).
+void tiled_pixel(int i, int w, int* x, int* y) {
+    const int tile = i / 16, tx = tile % (w / 4), ty = tile / (w / 4);
+    *x = tx * 4 + (i % 16) % 4;
+    *y = ty * 4 + (i % 16) / 4;
+}
+
+std::vector<RaySet> make_rays(const Scene& scene, const SceneBuffers& b, Backend& embree, int w, int h) {
     TsFrame f = make_frame(scene.camera, w, h, 1, 1, b.light_count);
-    RaySets r;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            ts::TsRay ray = ts::ts_camera_ray(&f, x, y, 0.5f, 0.5f);
-            r.primary.insert(r.primary.end(), {ray.org.x, ray.org.y, ray.org.z, 0.0f, ray.dir.x, ray.dir.y,
-                                               ray.dir.z, INFINITY});
-        }
+    RaySet primary{"primary", true, {}}, light{"light", false, {}}, vpl{"vpl", false, {}}, ic{"ic", true, {}},
+        random{"random", true, {}};
+    for (int i = 0; i < w * h; ++i) {
+        int x, y;
+        tiled_pixel(i, w, &x, &y);
+        const ts::TsRay ray = ts::ts_camera_ray(&f, x, y, 0.5f, 0.5f);
+        push_ray(primary.rays, ray.org, ray.dir, INFINITY);
+    }
     std::vector<float> hits;
-    embree.trace_closest(r.primary, hits);
-    std::mt19937 rng(3);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    std::normal_distribution<float> g;
+    embree.trace_closest(primary.rays, hits);
     const ts::TsSceneView sv = make_scene_view(b);
-    for (size_t i = 0; i < r.primary.size() / TS_RAY_FLOATS; ++i) {
+    struct Point {
+        ts::float3 origin, position, normal;
+    };
+    std::vector<Point> points;  // the primary hits, tile order
+    for (size_t i = 0; i < primary.rays.size() / TS_RAY_FLOATS; ++i) {
         const float* hi = &hits[TS_HIT_FLOATS * i];
         uint32_t prim;
         std::memcpy(&prim, &hi[TS_HIT_PRIM], 4);
         if (prim == TS_NO_HIT) continue;
-        const float* pr = &r.primary[TS_RAY_FLOATS * i];
-        ts::TsRay ray{ts::ts_f3_load(pr + TS_RAY_ORG), ts::ts_f3_load(pr + TS_RAY_DIR), 0.0f, INFINITY};
-        ts::TsHit hit{hi[TS_HIT_T], hi[TS_HIT_U], hi[TS_HIT_V], prim};
-        ts::TsSurface s = ts::ts_surface_at(&sv, ray, hit);
-        ts::float3 o = ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
-        ts::TsLightSample ls = ts::ts_sample_light(b.lights.data(), b.light_cdf.data(), b.light_count, u(rng),
-                                                   u(rng), u(rng));
-        ts::float3 d = ls.position - o;
-        r.shadow.insert(r.shadow.end(), {o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, 0.99999f});
-        ts::float3 dr = ts::normalize(ts::make_float3(g(rng), g(rng), g(rng)));
-        if (ts::dot(dr, s.geo_normal) < 0.0f) dr = -dr;  // leave the surface on its lit side
-        r.random.insert(r.random.end(), {o.x, o.y, o.z, 0.0f, dr.x, dr.y, dr.z, INFINITY});
+        const float* pr = &primary.rays[TS_RAY_FLOATS * i];
+        const ts::TsRay r{ts::ts_f3_load(pr + TS_RAY_ORG), ts::ts_f3_load(pr + TS_RAY_DIR), 0.0f, INFINITY};
+        const ts::TsHit hit{hi[TS_HIT_T], hi[TS_HIT_U], hi[TS_HIT_V], prim};
+        const ts::TsSurface s = ts::ts_surface_at(&sv, r, hit);
+        points.push_back({ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale), s.position, s.geo_normal});
     }
-    return r;
-}
-
-// rtcIntersect16 over 4×4 tiles of the primary rays (row-major w × h).
-void trace_packets(RTCScene scene, const std::vector<float>& rays, int w, int h) {
-    const int tiles_x = w / 4, tiles_y = h / 4;
-    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 16), [&](const tbb::blocked_range<int>& r) {
-        set_ftz_daz();
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        alignas(64) RTCRayHit16 rh;
-        alignas(64) int valid[16];
-        for (int t = r.begin(); t < r.end(); ++t) {
-            const int tx = t % tiles_x, ty = t / tiles_x;
-            for (int k = 0; k < 16; ++k) {
-                const float* ray = &rays[TS_RAY_FLOATS * (size_t(ty * 4 + k / 4) * w + tx * 4 + k % 4)];
-                rh.ray.org_x[k] = ray[TS_RAY_ORG + 0];
-                rh.ray.org_y[k] = ray[TS_RAY_ORG + 1];
-                rh.ray.org_z[k] = ray[TS_RAY_ORG + 2];
-                rh.ray.tnear[k] = ray[TS_RAY_TMIN];
-                rh.ray.dir_x[k] = ray[TS_RAY_DIR + 0];
-                rh.ray.dir_y[k] = ray[TS_RAY_DIR + 1];
-                rh.ray.dir_z[k] = ray[TS_RAY_DIR + 2];
-                rh.ray.tfar[k] = ray[TS_RAY_TMAX];
-                rh.ray.time[k] = 0.0f;
-                rh.ray.mask[k] = 0xffffffffu;
-                rh.ray.flags[k] = 0;
-                rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-                valid[k] = -1;
-            }
-            rtcIntersect16(valid, scene, &ctx, &rh);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::normal_distribution<float> g;
+    auto any_point = [&] { return points[std::min(points.size() - 1, size_t(u(rng) * points.size()))]; };
+    ts::float3 to_light{}, to_vpl{};
+    for (size_t i = 0; i < points.size(); ++i) {
+        if (i % 16 == 0) {  // one light sample and one VPL per 16 rays
+            const ts::TsLightSample ls =
+                ts::ts_sample_light(b.lights.data(), b.light_cdf.data(), b.light_count, u(rng), u(rng), u(rng));
+            to_light = ls.position;
+            const Point v = any_point();
+            to_vpl = v.position + v.normal * (1e-4f * ts::length(v.position) + 1e-4f);
         }
-    });
+        const ts::float3 o = points[i].origin;
+        push_ray(light.rays, o, to_light - o, 0.99999f);
+        push_ray(vpl.rays, o, to_vpl - o, 0.99999f);
+        const Point rec = points[i - i % 16], v = any_point();
+        push_ray(ic.rays, rec.origin, v.position + v.normal * 1e-3f - rec.origin, 0.99999f);
+        ts::float3 dr = ts::normalize(ts::make_float3(g(rng), g(rng), g(rng)));
+        if (ts::dot(dr, points[i].normal) < 0.0f) dr = -dr;  // leave the surface on its lit side
+        push_ray(random.rays, o, dr, INFINITY);
+    }
+    return {primary, light, vpl, ic, random};
 }
 
 std::string machine_name() {
@@ -153,51 +157,51 @@ int main(int argc, char** argv) {
     Scene scene = load_scene(scene_path, make_data_path(std::nullopt));
     SceneBuffers b = make_scene_buffers(scene);
     EffectPlan plan = plan_effects(scene);
-    auto em = make_backend({BackendKind::Embree, ""}, b, plan);
+    BackendOptions single_opts{BackendKind::Embree, ""};
+    single_opts.embree_packets = false;
+    auto em = make_backend(single_opts, b, plan);
+    auto pk = make_backend({BackendKind::Embree, ""}, b, plan);
     auto cl = make_backend({BackendKind::OpenCL, device}, b, plan);
-    RTCScene packet_scene = build_embree_scene(b);
-    RaySets rays = make_rays(scene, b, *em, size, size);
+    const std::vector<RaySet> sets = make_rays(scene, b, *em, size, size);
 
     nlohmann::json j;
     j["machine"] = {{"cpu", machine_name()}, {"threads", tbb::info::default_concurrency()},
-                    {"opencl", cl->description()}, {"embree", em->description()}};
+                    {"opencl", cl->description()}, {"embree", pk->description()}};
     j["scene"] = scene.name;
     j["triangles"] = scene.triangle_count();
     j["size"] = size;
     j["repeats"] = repeats;
     std::vector<float> hits;
     std::vector<uint32_t> occ;
-    cl->trace_closest(rays.primary, hits);  // warm-up: builds (or loads) the trace program
-    cl->trace_occluded(rays.shadow, occ);
+    cl->trace_closest(sets[0].rays, hits);  // warm-up: builds (or loads) the trace program
+    cl->trace_occluded(sets[1].rays, occ);
     auto mrays = [](size_t n, double s) { return n / s * 1e-6; };
     struct Row {
         std::string name;
         size_t n;
-        double cl, em, packets;
+        double cl, em, pk;
     };
     std::vector<Row> rows;
-    auto run_set = [&](const char* name, const std::vector<float>& r, bool closest) {
-        Row row{name, r.size() / TS_RAY_FLOATS, 0, 0, 0};
-        if (closest) {
-            row.cl = mrays(row.n, median_seconds(repeats, [&] { cl->trace_closest(r, hits); }));
-            row.em = mrays(row.n, median_seconds(repeats, [&] { em->trace_closest(r, hits); }));
-        } else {
-            row.cl = mrays(row.n, median_seconds(repeats, [&] { cl->trace_occluded(r, occ); }));
-            row.em = mrays(row.n, median_seconds(repeats, [&] { em->trace_occluded(r, occ); }));
-        }
+    for (const RaySet& set : sets) {
+        auto rate = [&](Backend& be) {
+            return mrays(set.rays.size() / TS_RAY_FLOATS, median_seconds(repeats, [&] {
+                             if (set.closest) be.trace_closest(set.rays, hits);
+                             else be.trace_occluded(set.rays, occ);
+                         }));
+        };
+        Row row{set.name, set.rays.size() / TS_RAY_FLOATS, rate(*cl), rate(*em), rate(*pk)};
         rows.push_back(row);
-        std::fprintf(stderr, "%-8s %8zu rays  OpenCL %6.2f  Embree %6.2f Mrays/s  ratio %.2f\n", name, row.n, row.cl,
-                     row.em, row.cl / row.em);
-    };
-    run_set("primary", rays.primary, true);
-    rows.back().packets = mrays(rows.back().n, median_seconds(repeats, [&] {
-                                    trace_packets(packet_scene, rays.primary, size, size);
-                                }));
-    run_set("shadow", rays.shadow, false);
-    run_set("random", rays.random, true);
-    for (const auto& r : rows)
-        j["rays"][r.name] = {{"count", r.n}, {"opencl_mrays_s", r.cl}, {"embree_single_mrays_s", r.em},
-                             {"embree_packet16_mrays_s", r.packets}, {"opencl_over_embree", r.cl / r.em}};
+        std::fprintf(stderr, "%-8s %8zu rays  OpenCL %6.2f  Embree single %6.2f  packets %6.2f Mrays/s\n", set.name,
+                     row.n, row.cl, row.em, row.pk);
+        j["rays"][row.name] = {{"count", row.n},
+                               {"closest_hit", set.closest},
+                               {"opencl_mrays_s", row.cl},
+                               {"embree_single_mrays_s", row.em},
+                               {"embree_packet16_mrays_s", row.pk},
+                               {"packets_over_single", row.pk / row.em},
+                               {"opencl_over_embree_single", row.cl / row.em},
+                               {"opencl_over_embree_packets", row.cl / row.pk}};
+    }
 
     RenderSettings rs;
     rs.width = rs.height = size;
@@ -205,13 +209,12 @@ int main(int argc, char** argv) {
     rs.spp = static_cast<uint32_t>(repeats);
     RenderStats scl, sem;
     render_frame(*cl, scene, b, rs, &scl);
-    render_frame(*em, scene, b, rs, &sem);
+    render_frame(*pk, scene, b, rs, &sem);
     j["direct_frame"] = {{"shadow_samples", 16}, {"opencl_ms", 1e3 * scl.median_pass_seconds},
                          {"embree_ms", 1e3 * sem.median_pass_seconds},
                          {"opencl_over_embree_speed", sem.median_pass_seconds / scl.median_pass_seconds}};
     std::fprintf(stderr, "direct %dx%d, 16 shadow samples: OpenCL %.1f ms, Embree %.1f ms per frame\n", size, size,
                  1e3 * scl.median_pass_seconds, 1e3 * sem.median_pass_seconds);
-    rtcReleaseScene(packet_scene);
 
     fs::create_directories(out_dir);
     std::ofstream(fs::path(out_dir) / "ray_bench.json") << j.dump(2) << "\n";
@@ -219,14 +222,15 @@ int main(int argc, char** argv) {
     md << "# Ray throughput and `direct` frame time: " << scene.name << ", " << size << "x" << size << "\n\n"
        << "Machine: " << j["machine"]["cpu"].get<std::string>() << ", " << tbb::info::default_concurrency()
        << " threads. OpenCL: " << cl->description() << ". Medians of " << repeats << " runs.\n\n"
-       << "| rays | count | OpenCL (Mrays/s) | Embree rtcIntersect1/Occluded1 (Mrays/s) | OpenCL / Embree | "
-          "Embree rtcIntersect16 (Mrays/s) |\n|---|---|---|---|---|---|\n";
+       << "| rays | count | OpenCL | Embree single | Embree packets | packets / single | OpenCL / single | "
+          "OpenCL / packets |\n|---|---|---|---|---|---|---|---|\n";
     char buf[256];
     for (const auto& r : rows) {
-        std::snprintf(buf, sizeof buf, "| %s | %zu | %.2f | %.2f | %.2f | %s |\n", r.name.c_str(), r.n, r.cl, r.em,
-                      r.cl / r.em, r.packets > 0 ? std::to_string(r.packets).substr(0, 5).c_str() : "-");
+        std::snprintf(buf, sizeof buf, "| %s | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", r.name.c_str(), r.n,
+                      r.cl, r.em, r.pk, r.pk / r.em, r.cl / r.em, r.cl / r.pk);
         md << buf;
     }
+    md << "\nRates in Mrays/s. Ray kinds and how each tracer is driven: the header of bench/ray_bench.cpp.\n";
     std::snprintf(buf, sizeof buf,
                   "\n`direct`, 16 shadow samples, 1 spp: OpenCL %.1f ms, Embree %.1f ms per frame "
                   "(Embree time / OpenCL time = %.2f).\n",

@@ -1,5 +1,6 @@
 #include "backend/backend.h"
 
+#include <cstdlib>
 #include <stdexcept>
 
 #include "util/error.h"
@@ -44,7 +45,13 @@ void Backend::set_input(KernelInput in, const std::vector<uint32_t>& data) {
 
 std::unique_ptr<Backend> make_backend(const BackendOptions& options, const SceneBuffers& scene,
                                       const EffectPlan& plan) {
-    if (options.kind == BackendKind::Embree) return make_embree_backend(scene);
+    if (options.kind == BackendKind::Embree) {
+        // TESSERA_EMBREE_PACKETS=0 turns packets off for a whole run (benchmarks compare
+        // the two tracers with one binary; the images are the same either way).
+        const char* env = std::getenv("TESSERA_EMBREE_PACKETS");
+        const bool packets = options.embree_packets && !(env && std::string(env) == "0");
+        return make_embree_backend(scene, packets);
+    }
     return make_opencl_backend(scene, plan, options.device);
 }
 

@@ -22,6 +22,9 @@ BackendKind parse_backend_kind(const std::string& s);
 struct BackendOptions {
     BackendKind kind = BackendKind::OpenCL;
     std::string device;  ///< OpenCL device spec (see select_cl_device); ignored by embree
+    /// Embree: trace the igi surface pass's and AIS items' shadow rays as 16-ray packets
+    /// (docs/ray-batches.md); false traces one ray at a time. Same images either way.
+    bool embree_packets = true;
 };
 
 /// Traces rays and launches the kernels of the kernel table (device/kernel_table.h);
@@ -79,7 +82,7 @@ private:
 std::unique_ptr<Backend> make_backend(const BackendOptions& options, const SceneBuffers& scene,
                                       const EffectPlan& plan);
 
-std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene);
+std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene, bool packets = true);
 std::unique_ptr<Backend> make_opencl_backend(const SceneBuffers& scene, const EffectPlan& plan,
                                              const std::string& device);
 

@@ -1,6 +1,8 @@
-// The Embree CPU backend: rays traced with rtcIntersect1 / rtcOccluded1, the kernel
-// table's shared C++ functions dispatched over TBB. Shading is kernels/shared compiled
-// as C++.
+// The Embree CPU backend: the kernel table's shared C++ functions dispatched over TBB,
+// rays traced with rtcIntersect1 / rtcOccluded1, except the igi surface pass and AIS
+// items, whose shadow rays go as 16-ray packets (embree_packets.h). Shading is
+// kernels/shared compiled as C++.
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <type_traits>
@@ -20,62 +22,8 @@
 #include "kernels/shared/geometry.h"
 #include "util/error.h"
 
-// The tracer the shared shading code calls on this backend.
-namespace tessera::ts {
-
-struct TsTracer {
-    RTCScene scene;
-};
-
-inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRayHit rh;
-    rh.ray.org_x = ray.org.x;
-    rh.ray.org_y = ray.org.y;
-    rh.ray.org_z = ray.org.z;
-    rh.ray.tnear = ray.tmin;
-    rh.ray.dir_x = ray.dir.x;
-    rh.ray.dir_y = ray.dir.y;
-    rh.ray.dir_z = ray.dir.z;
-    rh.ray.time = 0.0f;
-    rh.ray.tfar = ray.tmax;
-    rh.ray.mask = 0xffffffffu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(tr->scene, &ctx, &rh);
-    TsHit h;
-    h.t = rh.ray.tfar;
-    h.u = rh.hit.u;
-    h.v = rh.hit.v;
-    h.prim = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? TS_NO_HIT : rh.hit.primID;
-    if (h.prim == TS_NO_HIT) h.u = h.v = 0.0f;
-    return h;
-}
-
-inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRay r;
-    r.org_x = ray.org.x;
-    r.org_y = ray.org.y;
-    r.org_z = ray.org.z;
-    r.tnear = ray.tmin;
-    r.dir_x = ray.dir.x;
-    r.dir_y = ray.dir.y;
-    r.dir_z = ray.dir.z;
-    r.time = 0.0f;
-    r.tfar = ray.tmax;
-    r.mask = 0xffffffffu;
-    r.id = 0;
-    r.flags = 0;
-    rtcOccluded1(tr->scene, &ctx, &r);
-    return r.tfar < 0.0f ? 1 : 0;  // Embree sets tfar to -inf on occlusion
-}
-
-}  // namespace tessera::ts
+#include "backend/embree_tracer.h"
+#include "backend/embree_packets.h"
 
 // TS_HAS_TEXTURES and TS_HAS_MEDIUM are defined for all C++ code (CMakeLists.txt): a
 // material without a texture never reaches the lookup, and a scene without a medium
@@ -99,7 +47,8 @@ ts::TsRay ray_from(const float* r) {
 
 class EmbreeBackend final : public Backend {
 public:
-    explicit EmbreeBackend(const SceneBuffers& scene) : buffers_(scene), scene_(build_embree_scene(scene)) {
+    EmbreeBackend(const SceneBuffers& scene, bool packets)
+        : buffers_(scene), scene_(build_embree_scene(scene)), packets_(packets) {
         tracer_.scene = scene_;
         store_input(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
         store_input(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
@@ -107,7 +56,8 @@ public:
     ~EmbreeBackend() override { rtcReleaseScene(scene_); }
 
     std::string description() const override {
-        return "embree (Embree 3 single rays, TBB, " +
+        return std::string("embree (Embree 3 ") +
+               (packets_ ? "16-ray packets for igi/ais shadow rays" : "single rays") + ", TBB, " +
                std::to_string(tbb::info::default_concurrency()) + " threads)";
     }
 
@@ -123,6 +73,8 @@ protected:
                     std::vector<float>& out) override {
         ts::TsSceneView sv = scene_view(frame);
         sv.items = items.data();
+        if (packets_ && k == KernelId::IgiSurface) return igi_surface_packets(sv, tracer_, frame, out);
+        if (packets_ && k == KernelId::AisItem) return ais_item_packets(sv, tracer_, frame, count, out);
         switch (k) {
 #define TS_EMBREE_DISPATCH(id, name, program, floats, words, fn) \
     case KernelId::id: return dispatch<floats, words>(sv, frame, count, out, ts::fn);
@@ -172,18 +124,27 @@ private:
 
 public:
 
+    // Batches of rays, 16 consecutive rays per packet when packets are on: callers list
+    // coherent rays together (the instant cache lists a record's VPL rays in a row).
     void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) override {
         const size_t n = rays.size() / TS_RAY_FLOATS;
         hits.resize(TS_HIT_FLOATS * n);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
-            set_ftz_daz();
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                ts::TsHit h = ts::ts_trace_closest(&tracer_, ray_from(&rays[TS_RAY_FLOATS * i]));
-                float* o = &hits[TS_HIT_FLOATS * i];
-                o[TS_HIT_T] = h.t;
-                o[TS_HIT_U] = h.u;
-                o[TS_HIT_V] = h.v;
-                std::memcpy(&o[TS_HIT_PRIM], &h.prim, 4);
+        for_each_packet(n, [&](size_t first, size_t lanes) {
+            std::array<ts::TsRay, 16> r{};
+            std::array<ts::TsHit, 16> h{};
+            std::array<int, 16> valid{};
+            for (size_t i = 0; i < lanes; ++i) r[i] = ray_from(&rays[TS_RAY_FLOATS * (first + i)]), valid[i] = -1;
+            if (packets_) {
+                ts::ts_trace_closest16(&tracer_, r.data(), valid.data(), false, h.data());
+            } else {
+                for (size_t i = 0; i < lanes; ++i) h[i] = ts::ts_trace_closest(&tracer_, r[i]);
+            }
+            for (size_t i = 0; i < lanes; ++i) {
+                float* o = &hits[TS_HIT_FLOATS * (first + i)];
+                o[TS_HIT_T] = h[i].t;
+                o[TS_HIT_U] = h[i].u;
+                o[TS_HIT_V] = h[i].v;
+                std::memcpy(&o[TS_HIT_PRIM], &h[i].prim, 4);
             }
         });
     }
@@ -191,17 +152,35 @@ public:
     void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) override {
         const size_t n = rays.size() / TS_RAY_FLOATS;
         occluded.resize(n);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
-            set_ftz_daz();
-            for (size_t i = r.begin(); i < r.end(); ++i)
-                occluded[i] = static_cast<uint32_t>(ts::ts_trace_occluded(&tracer_, ray_from(&rays[TS_RAY_FLOATS * i])));
+        for_each_packet(n, [&](size_t first, size_t lanes) {
+            std::array<ts::TsRay, 16> r{};
+            std::array<int, 16> valid{};
+            for (size_t i = 0; i < lanes; ++i) r[i] = ray_from(&rays[TS_RAY_FLOATS * (first + i)]), valid[i] = -1;
+            if (packets_) {
+                const uint32_t blocked = ts::ts_trace_occluded16(&tracer_, r.data(), valid.data(), false);
+                for (size_t i = 0; i < lanes; ++i) occluded[first + i] = blocked >> i & 1u;
+            } else {
+                for (size_t i = 0; i < lanes; ++i)
+                    occluded[first + i] = static_cast<uint32_t>(ts::ts_trace_occluded(&tracer_, r[i]));
+            }
         });
     }
 
 private:
+    // Calls fn(first, lanes) for consecutive groups of at most 16 of n rays, over TBB.
+    template <class Fn>
+    static void for_each_packet(size_t n, Fn fn) {
+        const size_t packets = (n + 15) / 16;
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 16), [&](const tbb::blocked_range<size_t>& r) {
+            set_ftz_daz();
+            for (size_t q = r.begin(); q < r.end(); ++q) fn(16 * q, std::min<size_t>(16, n - 16 * q));
+        });
+    }
+
     const SceneBuffers& buffers_;
     RTCScene scene_ = nullptr;
     ts::TsTracer tracer_{};
+    bool packets_;
     // Named inputs (KernelInput order), each in the array of its element type.
     std::array<std::vector<float>, kKernelInputCount> float_inputs_;
     std::array<std::vector<uint32_t>, kKernelInputCount> uint_inputs_;
@@ -209,8 +188,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene) {
-    return std::make_unique<EmbreeBackend>(scene);
+std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene, bool packets) {
+    return std::make_unique<EmbreeBackend>(scene, packets);
 }
 
 }  // namespace tessera

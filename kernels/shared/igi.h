@@ -47,38 +47,83 @@ TS_INLINE float3 ts_igi_light_point(const TsFrame* f, uint j) {
                        ts_rotate01(ts_radical_inverse2(j), f->igi_rotation[2]));
 }
 
-/* E_ss: direct irradiance / π at s from set k's m light samples; *visible receives the
- * fraction of them that reach the light (0 for samples the surface faces away from). */
-TS_INLINE float3 ts_igi_direct(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                               const TsMedium* med, const TsSurface* s, uint k, float* visible) {
-    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
-    uint m = f->shadow_samples, seen = 0u;
-    for (uint j = 0u; j < m; ++j) {
-        float3 q = ts_igi_light_point(f, k * m + j);
-        TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
-        TsRay shadow;
-        float3 c = ts_light_contribution(s, ls, &shadow);
-        if (c.x + c.y + c.z > 0.0f && !ts_trace_occluded(tracer, shadow)) {
-            sum += c * ts_shadow_transmittance(med, shadow);
-            ++seen;
-        }
-    }
-    *visible = (float)seen / (float)m;
-    return sum * (TS_INV_PI / (float)m);
+/* The shadow connections ("links") of sample set k at a surface, in a fixed order: the
+ * set's m light samples (j < m, when `mask` has TS_COMPONENT_SS and the scene has lights),
+ * then its VPLs (when `mask` has TS_COMPONENT_ID). Each link is an unoccluded
+ * contribution and the shadow ray deciding its visibility; the gather adds the visible
+ * ones in link order. The loop over links is the caller's, so a backend may trace the
+ * links of many pixels together (the Embree backend's 16-ray packets, one link of 16
+ * pixels of one set per packet, docs/ray-batches.md) while the transport stays here. */
+typedef struct TsIgiLink {
+    TsRay shadow;
+    float3 c;   /* light sample: Le cosθx cosθy / (d² p), unoccluded */
+    float g;    /* VPL: the clamped geometry term G' */
+    uint vpl;   /* VPL index, or TS_NO_HIT for a light sample */
+} TsIgiLink;
+
+/* The running sums of one pixel's links: E_ss and E_id before normalisation, and the
+ * number of light samples found visible. */
+typedef struct TsIgiGather {
+    float3 ss, id;
+    uint seen;
+} TsIgiGather;
+
+/* Number of light-sample links of a set for `mask` (m, or 0). */
+TS_INLINE uint ts_igi_light_links(const TsSceneView* sv, const TsFrame* f, uint mask) {
+    return (mask & TS_COMPONENT_SS) && sv->light_count > 0u ? f->shadow_samples : 0u;
 }
 
-/* E_id: indirect irradiance / π at s from set k's VPLs (the gather sum of shared/vpl.h). */
-TS_INLINE float3 ts_igi_indirect(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                 const TsMedium* med, const TsSurface* s, uint k) {
-    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
-    uint end = sv->vpl_set_start[k + 1u];
-    for (uint v = sv->vpl_set_start[k]; v < end; ++v) {
-        TS_GLOBAL const float* vpl = sv->vpls + v * TS_VPL_FLOATS;
-        TsRay shadow;
-        float g = ts_vpl_geometry(s, vpl, f->igi_g_clamp, &shadow);
-        if (g > 0.0f && !ts_trace_occluded(tracer, shadow)) ts_vpl_gather_add(&sum, vpl, med, shadow, g);
+/* Number of links of set k for `mask`: light samples, then VPLs. */
+TS_INLINE uint ts_igi_link_count(const TsSceneView* sv, const TsFrame* f, uint k, uint mask) {
+    uint vpls = (mask & TS_COMPONENT_ID) ? sv->vpl_set_start[k + 1u] - sv->vpl_set_start[k] : 0u;
+    return ts_igi_light_links(sv, f, mask) + vpls;
+}
+
+/* Link j of set k at surface s (j < ts_igi_link_count). Returns 1 when its shadow ray
+ * must be traced (a nonzero contribution), 0 when the link adds nothing. */
+TS_INLINE int ts_igi_link(const TsSceneView* sv, const TsFrame* f, const TsSurface* s, uint k, uint mask, uint j,
+                          TsIgiLink* l) {
+    uint m = ts_igi_light_links(sv, f, mask);
+    l->c = make_float3(0.0f, 0.0f, 0.0f);
+    l->g = 0.0f;
+    if (j < m) {
+        float3 q = ts_igi_light_point(f, k * f->shadow_samples + j);
+        TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
+        l->vpl = TS_NO_HIT;
+        l->c = ts_light_contribution(s, ls, &l->shadow);
+        return l->c.x + l->c.y + l->c.z > 0.0f;
     }
-    return ts_vpl_gather_result(sum);
+    l->vpl = sv->vpl_set_start[k] + (j - m);
+    l->g = ts_vpl_geometry(s, sv->vpls + l->vpl * TS_VPL_FLOATS, f->igi_g_clamp, &l->shadow);
+    return l->g > 0.0f;
+}
+
+TS_INLINE TsIgiGather ts_igi_gather_begin(void) {
+    TsIgiGather g;
+    g.ss = g.id = make_float3(0.0f, 0.0f, 0.0f);
+    g.seen = 0u;
+    return g;
+}
+
+/* Adds link l, whose shadow ray was found unoccluded, attenuated by the medium. */
+TS_INLINE void ts_igi_gather_add(TsIgiGather* g, const TsSceneView* sv, const TsMedium* med, const TsIgiLink* l) {
+    if (l->vpl == TS_NO_HIT) {
+        g->ss += l->c * ts_shadow_transmittance(med, l->shadow);
+        ++g->seen;
+    } else {
+        ts_vpl_gather_add(&g->id, sv->vpls + l->vpl * TS_VPL_FLOATS, med, l->shadow, l->g);
+    }
+}
+
+/* E_ss = direct irradiance / π from the set's m light samples, E_id = indirect
+ * irradiance / π from its VPLs (the gather sum of shared/vpl.h), and the fraction of the
+ * light samples that reach the light (0 for samples the surface faces away from). */
+TS_INLINE void ts_igi_gather_end(const TsIgiGather* g, const TsFrame* f, float3* e_ss, float3* e_id,
+                                 float* visible) {
+    float m = (float)f->shadow_samples;
+    *e_ss = g->ss * (TS_INV_PI / m);
+    *e_id = ts_vpl_gather_result(g->id);
+    *visible = (float)g->seen / m;
 }
 
 /* Follows mirror and dielectric bounces from the camera (at most 5) to the first
@@ -132,27 +177,51 @@ TS_INLINE TsIgiView ts_igi_view(const TsSceneView* sv, const TsTracer* tracer, c
     return v;
 }
 
-/* E_ss and E_id of sample set k at the view's surface, for the components in `mask`. */
+/* E_ss and E_id of sample set k at the view's surface, for the components in `mask`,
+ * tracing each link's shadow ray on its own. */
 TS_INLINE void ts_igi_surface_set(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                   const TsIgiView* v, float3 albedo, uint k, uint mask, float3* e_ss,
                                   float3* e_id, float* visible) {
     TsMedium med = ts_medium_load(sv->medium);
-    *e_ss = make_float3(0.0f, 0.0f, 0.0f);
-    *e_id = *e_ss;
-    *visible = 0.0f;
-    if (!(ts_max3(albedo) > 0.0f)) return;
-    if ((mask & TS_COMPONENT_SS) && sv->light_count > 0u)
-        *e_ss = ts_igi_direct(sv, tracer, f, &med, &v->s, k, visible);
-    if (mask & TS_COMPONENT_ID) *e_id = ts_igi_indirect(sv, tracer, f, &med, &v->s, k);
+    TsIgiGather g = ts_igi_gather_begin();
+    if (ts_max3(albedo) > 0.0f) {
+        uint n = ts_igi_link_count(sv, f, k, mask);
+        for (uint j = 0u; j < n; ++j) {
+            TsIgiLink l;
+            if (ts_igi_link(sv, f, &v->s, k, mask, j, &l) && !ts_trace_occluded(tracer, l.shadow))
+                ts_igi_gather_add(&g, sv, &med, &l);
+        }
+    }
+    ts_igi_gather_end(&g, f, e_ss, e_id, visible);
+}
+
+/* The surface-pass output of a pixel whose camera path escapes (TS_IGI_SURF_FLOATS). */
+TS_INLINE void ts_igi_surface_clear(float* out) {
+    for (int i = 0; i < TS_IGI_SURF_FLOATS; ++i) out[i] = 0.0f;
+    out[TS_IGI_SURF_DISTANCE] = TS_INF;
+    ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, make_float3(1.0f, 1.0f, 1.0f));
+}
+
+/* The surface-pass output of a pixel that sees surface v->s: its G-buffer and the
+ * irradiance terms of its sample set. */
+TS_INLINE void ts_igi_surface_store(const TsIgiView* v, float3 albedo, float3 le, float3 e_ss, float3 e_id,
+                                    float visible, float* out) {
+    ts_f3_store(out + TS_IGI_SURF_E_SS, e_ss);
+    ts_f3_store(out + TS_IGI_SURF_E_ID, e_id);
+    ts_f3_store(out + TS_IGI_SURF_ALBEDO, albedo);
+    ts_f3_store(out + TS_IGI_SURF_EMISSION, le);
+    ts_f3_store(out + TS_IGI_SURF_NORMAL, v->s.shading_normal);
+    out[TS_IGI_SURF_DISTANCE] = v->distance;
+    ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, v->throughput);
+    out[TS_IGI_SURF_VISIBLE] = visible;
+    ts_f3_store(out + TS_IGI_SURF_POSITION, v->s.position);
 }
 
 /* Surface part of one igi frame for pixel (px, py), its own sample set; writes
  * TS_IGI_SURF_FLOATS values. */
 TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                     uint px, uint py, float* out) {
-    for (int i = 0; i < TS_IGI_SURF_FLOATS; ++i) out[i] = 0.0f;
-    out[TS_IGI_SURF_DISTANCE] = TS_INF;
-    ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, make_float3(1.0f, 1.0f, 1.0f));
+    ts_igi_surface_clear(out);
     TsIgiView v = ts_igi_view(sv, tracer, f, px, py);
     if (v.hit.prim == TS_NO_HIT) return;
     float3 albedo = ts_material_albedo(sv, &v.s), le = ts_material_emission(sv, &v.s);
@@ -160,15 +229,7 @@ TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* trace
     float visible;
     ts_igi_surface_set(sv, tracer, f, &v, albedo, ts_igi_set(px, py, f->igi_tile), f->igi_components, &e_ss,
                        &e_id, &visible);
-    ts_f3_store(out + TS_IGI_SURF_E_SS, e_ss);
-    ts_f3_store(out + TS_IGI_SURF_E_ID, e_id);
-    ts_f3_store(out + TS_IGI_SURF_ALBEDO, albedo);
-    ts_f3_store(out + TS_IGI_SURF_EMISSION, le);
-    ts_f3_store(out + TS_IGI_SURF_NORMAL, v.s.shading_normal);
-    out[TS_IGI_SURF_DISTANCE] = v.distance;
-    ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, v.throughput);
-    out[TS_IGI_SURF_VISIBLE] = visible;
-    ts_f3_store(out + TS_IGI_SURF_POSITION, v.s.position);
+    ts_igi_surface_store(&v, albedo, le, e_ss, e_id, visible, out);
 }
 
 /* Light arriving at medium point x from direction `wi` found by tracing a ray, and the
@@ -264,23 +325,28 @@ TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer,
     ts_igi_media_set(sv, tracer, f, px, py, ts_igi_set(px, py, f->igi_tile), out);
 }
 
-/* One AIS extra evaluation: sample set k for pixel (px, py), for the components in mask
- * (TS_COMPONENT_*). Writes TS_AIS_ITEM_FLOATS values; the same camera ray, surface and
- * set samples as the base pass would use for set k, so a pixel evaluated for every set
- * gets exactly the full-rate (non-interleaved) estimate. */
-TS_INLINE void ts_ais_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px, uint py,
-                           uint k, uint mask, float* out) {
-    for (int i = 0; i < TS_AIS_ITEM_FLOATS; ++i) out[i] = 0.0f;
-    if (mask & (TS_COMPONENT_SS | TS_COMPONENT_ID)) {
-        TsIgiView v = ts_igi_view(sv, tracer, f, px, py);
-        if (v.hit.prim != TS_NO_HIT) {
-            float3 e_ss, e_id;
-            float visible;
-            ts_igi_surface_set(sv, tracer, f, &v, ts_material_albedo(sv, &v.s), k, mask, &e_ss, &e_id, &visible);
-            ts_f3_store(out + TS_AIS_ITEM_E_SS, e_ss);
-            ts_f3_store(out + TS_AIS_ITEM_E_ID, e_id);
-        }
-    }
+/* Decodes item i of sv->items (TS_AIS_ITEM_WORDS,
+ * layout.h): pixel (px, py), sample set k, components `mask` (TS_COMPONENT_*). */
+TS_INLINE void ts_ais_item_decode(const TsSceneView* sv, const TsFrame* f, uint i, uint* px, uint* py, uint* k,
+                                  uint* mask) {
+    uint p = sv->items[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL], code = sv->items[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE];
+    *px = p % f->width;
+    *py = p / f->width;
+    *k = code & 0xffu;
+    *mask = code >> 8;
+}
+
+/* Whether an AIS item needs the surface terms (and so the view's camera path). */
+TS_INLINE int ts_ais_item_has_surface(uint mask) { return (mask & (TS_COMPONENT_SS | TS_COMPONENT_ID)) != 0u; }
+
+TS_INLINE void ts_ais_item_store_surface(float3 e_ss, float3 e_id, float* out) {
+    ts_f3_store(out + TS_AIS_ITEM_E_SS, e_ss);
+    ts_f3_store(out + TS_AIS_ITEM_E_ID, e_id);
+}
+
+/* The media part of an AIS item: set k's single-scattering estimate at pixel (px, py). */
+TS_INLINE void ts_ais_item_media(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px, uint py,
+                                 uint k, uint mask, float* out) {
 #ifdef TS_HAS_MEDIUM
     if (mask & TS_COMPONENT_PM) {
         float m[TS_IGI_MEDIA_FLOATS];
@@ -288,15 +354,36 @@ TS_INLINE void ts_ais_item(const TsSceneView* sv, const TsTracer* tracer, const 
         ts_igi_media_set(sv, tracer, f, px, py, k, m);
         for (int c = 0; c < 3; ++c) out[TS_AIS_ITEM_PM + c] = m[TS_IGI_MEDIA_RADIANCE + c];
     }
+#else
+    (void)sv, (void)tracer, (void)f, (void)px, (void)py, (void)k, (void)mask, (void)out;
 #endif
 }
 
-/* The ais extra kernel's work item i: item i of sv->items (TS_AIS_ITEM_WORDS, layout.h)
- * through ts_ais_item. */
+/* One AIS extra evaluation: sample set k for pixel (px, py), for the components in mask
+ * (TS_COMPONENT_*). Writes TS_AIS_ITEM_FLOATS values; the same camera ray, surface and
+ * set samples as the base pass would use for set k, so a pixel evaluated for every set
+ * gets exactly the full-rate (non-interleaved) estimate. */
+TS_INLINE void ts_ais_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px, uint py,
+                           uint k, uint mask, float* out) {
+    for (int i = 0; i < TS_AIS_ITEM_FLOATS; ++i) out[i] = 0.0f;
+    if (ts_ais_item_has_surface(mask)) {
+        TsIgiView v = ts_igi_view(sv, tracer, f, px, py);
+        if (v.hit.prim != TS_NO_HIT) {
+            float3 e_ss, e_id;
+            float visible;
+            ts_igi_surface_set(sv, tracer, f, &v, ts_material_albedo(sv, &v.s), k, mask, &e_ss, &e_id, &visible);
+            ts_ais_item_store_surface(e_ss, e_id, out);
+        }
+    }
+    ts_ais_item_media(sv, tracer, f, px, py, k, mask, out);
+}
+
+/* The ais extra kernel's work item i: item i of sv->items through ts_ais_item. */
 TS_INLINE void ts_ais_extra_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
                                  float* out) {
-    uint p = sv->items[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL], code = sv->items[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE];
-    ts_ais_item(sv, tracer, f, p % f->width, p / f->width, code & 0xffu, code >> 8, out);
+    uint px, py, k, mask;
+    ts_ais_item_decode(sv, f, i, &px, &py, &k, &mask);
+    ts_ais_item(sv, tracer, f, px, py, k, mask, out);
 }
 
 TS_NAMESPACE_END

@@ -1,0 +1,169 @@
+// Packet dispatch for the Embree backend (embree_packets.h). Each lane runs the shared
+// per-pixel code of kernels/shared/igi.h up to its links; the links are then traced one
+// link index at a time across the 16 lanes (rtcOccluded16) and gathered per lane in link
+// order, so every lane sums exactly what ts_igi_surface_set sums one ray at a time.
+#include <algorithm>
+#include <array>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "backend/embree_packets.h"
+#include "bvh/embree_device.h"
+
+// After the tracer (embree_packets.h includes it): the shared code calls it.
+#include "kernels/shared/igi.h"
+
+namespace tessera {
+namespace {
+
+constexpr int kLanes = 16;  // rtcOccluded16: AVX-512 width, two AVX2 halves on this CPU
+constexpr uint32_t kBlock = 4;  // a packet is kBlock × kBlock pixels of one sample set
+
+// Up to 16 lanes, each a surface seen through a pixel and the links it gathers.
+struct Packet {
+    int lanes = 0;
+    std::array<ts::TsIgiView, kLanes> view;
+    std::array<uint32_t, kLanes> set{}, mask{}, links{};  // links = 0: nothing to gather
+    std::array<ts::TsIgiGather, kLanes> gather;
+};
+
+// Traces link j of every lane that has one as one packet, for j = 0 .. the most links of
+// any lane, and adds each lane's visible links to its gather in link order.
+void gather_links(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p) {
+    const ts::TsMedium med = ts::ts_medium_load(sv.medium);
+    uint32_t most = 0;
+    for (int i = 0; i < p.lanes; ++i) {
+        p.gather[i] = ts::ts_igi_gather_begin();
+        most = std::max(most, p.links[i]);
+    }
+    std::array<ts::TsIgiLink, kLanes> link;
+    std::array<ts::TsRay, kLanes> rays{};  // zeroed: a skipped lane is never traced
+    for (uint32_t j = 0; j < most; ++j) {
+        std::array<int, kLanes> valid{};
+        bool any = false;
+        for (int i = 0; i < p.lanes; ++i) {
+            if (j >= p.links[i] || !ts::ts_igi_link(&sv, &frame, &p.view[i].s, p.set[i], p.mask[i], j, &link[i]))
+                continue;
+            valid[i] = -1;
+            rays[i] = link[i].shadow;
+            any = true;
+        }
+        if (!any) continue;
+        const uint32_t blocked = ts::ts_trace_occluded16(&tracer, rays.data(), valid.data(), true);
+        for (int i = 0; i < p.lanes; ++i)
+            if (valid[i] && !(blocked >> i & 1u)) ts::ts_igi_gather_add(&p.gather[i], &sv, &med, &link[i]);
+    }
+}
+
+// Lane i of p sees pixel (px, py); returns whether its camera path found a surface, and
+// sets its links for set k and components `mask` (none when the albedo is black).
+bool view_lane(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p, int i,
+               uint32_t px, uint32_t py, uint32_t k, uint32_t mask) {
+    p.view[i] = ts::ts_igi_view(&sv, &tracer, &frame, px, py);
+    p.set[i] = k;
+    p.mask[i] = mask;
+    p.links[i] = 0;
+    if (p.view[i].hit.prim == TS_NO_HIT) return false;
+    if (ts::ts_max3(ts::ts_material_albedo(&sv, &p.view[i].s)) > 0.0f)
+        p.links[i] = ts::ts_igi_link_count(&sv, &frame, k, mask);
+    return true;
+}
+
+// One sample set's pixels in the order of its sub-image (x = kx + n·sx, y = ky + n·sy).
+struct SetBlock {
+    uint32_t set, bx, by;
+};
+
+std::vector<SetBlock> set_blocks(const TsFrame& frame) {
+    const uint32_t n = std::max(1u, frame.igi_tile);
+    std::vector<SetBlock> blocks;
+    for (uint32_t k = 0; k < n * n; ++k) {
+        const uint32_t kx = k % n, ky = k / n;
+        const uint32_t sw = (frame.width - kx + n - 1) / n, sh = (frame.height - ky + n - 1) / n;
+        for (uint32_t by = 0; by < (sh + kBlock - 1) / kBlock; ++by)
+            for (uint32_t bx = 0; bx < (sw + kBlock - 1) / kBlock; ++bx) blocks.push_back({k, bx, by});
+    }
+    return blocks;
+}
+
+void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, SetBlock b,
+                   std::vector<float>& out) {
+    const uint32_t n = std::max(1u, frame.igi_tile), kx = b.set % n, ky = b.set / n;
+    const uint32_t sw = (frame.width - kx + n - 1) / n, sh = (frame.height - ky + n - 1) / n;
+    Packet p;
+    std::array<float*, kLanes> o{};
+    std::array<bool, kLanes> hit{};
+    for (uint32_t dy = 0; dy < kBlock; ++dy) {
+        for (uint32_t dx = 0; dx < kBlock; ++dx) {
+            const uint32_t sx = b.bx * kBlock + dx, sy = b.by * kBlock + dy;
+            if (sx >= sw || sy >= sh) continue;
+            const uint32_t px = kx + n * sx, py = ky + n * sy;
+            const int i = p.lanes++;
+            o[i] = &out[(size_t(py) * frame.width + px) * TS_IGI_SURF_FLOATS];
+            ts::ts_igi_surface_clear(o[i]);
+            hit[i] = view_lane(sv, tracer, frame, p, i, px, py, ts::ts_igi_set(px, py, frame.igi_tile),
+                               frame.igi_components);
+        }
+    }
+    gather_links(sv, tracer, frame, p);
+    for (int i = 0; i < p.lanes; ++i) {
+        if (!hit[i]) continue;
+        ts::float3 e_ss, e_id;
+        float visible;
+        ts::ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
+        const ts::TsSurface& s = p.view[i].s;
+        ts::ts_igi_surface_store(&p.view[i], ts::ts_material_albedo(&sv, &s), ts::ts_material_emission(&sv, &s),
+                                 e_ss, e_id, visible, o[i]);
+    }
+}
+
+void ais_packet(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, size_t first,
+                size_t count, std::vector<float>& out) {
+    Packet p;
+    std::array<bool, kLanes> hit{};
+    std::array<uint32_t, kLanes> px{}, py{};
+    for (size_t item = first; item < std::min(count, first + kLanes); ++item) {
+        const int i = p.lanes++;
+        float* o = &out[item * TS_AIS_ITEM_FLOATS];
+        std::fill(o, o + TS_AIS_ITEM_FLOATS, 0.0f);
+        uint32_t k, mask;
+        ts::ts_ais_item_decode(&sv, &frame, static_cast<uint32_t>(item), &px[i], &py[i], &k, &mask);
+        p.set[i] = k;
+        p.mask[i] = mask;
+        if (ts::ts_ais_item_has_surface(mask)) hit[i] = view_lane(sv, tracer, frame, p, i, px[i], py[i], k, mask);
+    }
+    gather_links(sv, tracer, frame, p);
+    for (int i = 0; i < p.lanes; ++i) {
+        float* o = &out[(first + i) * TS_AIS_ITEM_FLOATS];
+        if (hit[i]) {
+            ts::float3 e_ss, e_id;
+            float visible;
+            ts::ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
+            ts::ts_ais_item_store_surface(e_ss, e_id, o);
+        }
+        ts::ts_ais_item_media(&sv, &tracer, &frame, px[i], py[i], p.set[i], p.mask[i], o);
+    }
+}
+
+}  // namespace
+
+void igi_surface_packets(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame,
+                         std::vector<float>& out) {
+    const std::vector<SetBlock> blocks = set_blocks(frame);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 4), [&](const tbb::blocked_range<size_t>& r) {
+        set_ftz_daz();
+        for (size_t b = r.begin(); b < r.end(); ++b) surface_block(sv, tracer, frame, blocks[b], out);
+    });
+}
+
+void ais_item_packets(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, size_t count,
+                      std::vector<float>& out) {
+    const size_t packets = (count + kLanes - 1) / kLanes;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 4), [&](const tbb::blocked_range<size_t>& r) {
+        set_ftz_daz();
+        for (size_t q = r.begin(); q < r.end(); ++q) ais_packet(sv, tracer, frame, q * kLanes, count, out);
+    });
+}
+
+}  // namespace tessera

@@ -1,0 +1,135 @@
+// The Embree backend's tracer for the shared shading code (kernels/shared/direct.h names
+// the interface): single rays through rtcIntersect1 / rtcOccluded1, and the 16-ray
+// occlusion packets the packet dispatch uses (embree_packets.h). Include before any
+// kernels/shared header that traces rays.
+#pragma once
+#include <cstdint>
+
+#include <embree3/rtcore.h>
+
+#include "kernels/shared/geometry.h"
+
+namespace tessera::ts {
+
+struct TsTracer {
+    RTCScene scene;
+};
+
+inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = ray.org.x;
+    rh.ray.org_y = ray.org.y;
+    rh.ray.org_z = ray.org.z;
+    rh.ray.tnear = ray.tmin;
+    rh.ray.dir_x = ray.dir.x;
+    rh.ray.dir_y = ray.dir.y;
+    rh.ray.dir_z = ray.dir.z;
+    rh.ray.time = 0.0f;
+    rh.ray.tfar = ray.tmax;
+    rh.ray.mask = 0xffffffffu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(tr->scene, &ctx, &rh);
+    TsHit h;
+    h.t = rh.ray.tfar;
+    h.u = rh.hit.u;
+    h.v = rh.hit.v;
+    h.prim = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? TS_NO_HIT : rh.hit.primID;
+    if (h.prim == TS_NO_HIT) h.u = h.v = 0.0f;
+    return h;
+}
+
+inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = ray.org.x;
+    r.org_y = ray.org.y;
+    r.org_z = ray.org.z;
+    r.tnear = ray.tmin;
+    r.dir_x = ray.dir.x;
+    r.dir_y = ray.dir.y;
+    r.dir_z = ray.dir.z;
+    r.time = 0.0f;
+    r.tfar = ray.tmax;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(tr->scene, &ctx, &r);
+    return r.tfar < 0.0f ? 1 : 0;  // Embree sets tfar to -inf on occlusion
+}
+
+/// The context of a 16-ray packet query: Embree's coherent mode when the caller grouped
+/// rays that start close together and head the same way (it then traverses the packet
+/// as a whole longer before splitting it).
+inline RTCIntersectContext ts_packet_context(bool coherent) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    return ctx;
+}
+
+/// Copies ray `ray` into lane i of an Embree packet of 16.
+inline void ts_packet_set(RTCRay16& r, int i, const TsRay& ray) {
+    r.org_x[i] = ray.org.x;
+    r.org_y[i] = ray.org.y;
+    r.org_z[i] = ray.org.z;
+    r.tnear[i] = ray.tmin;
+    r.dir_x[i] = ray.dir.x;
+    r.dir_y[i] = ray.dir.y;
+    r.dir_z[i] = ray.dir.z;
+    r.time[i] = 0.0f;
+    r.tfar[i] = ray.tmax;
+    r.mask[i] = 0xffffffffu;
+    r.id[i] = static_cast<unsigned>(i);
+    r.flags[i] = 0;
+}
+
+/// Occlusion of up to 16 rays as one packet (rtcOccluded16). `valid[i]` is -1 for a lane
+/// to trace, 0 to skip (its ray is not read); returns a bit mask of the traced lanes
+/// found blocked. Embree sets a blocked ray's tfar to -inf, as rtcOccluded1 does.
+inline uint32_t ts_trace_occluded16(const TsTracer* tr, const TsRay* rays, const int* valid, bool coherent) {
+    RTCIntersectContext ctx = ts_packet_context(coherent);
+    alignas(64) RTCRay16 r;
+    alignas(64) int v[16];
+    for (int i = 0; i < 16; ++i) {
+        v[i] = valid[i];
+        ts_packet_set(r, i, valid[i] ? rays[i] : rays[0]);
+    }
+    rtcOccluded16(v, tr->scene, &ctx, &r);
+    uint32_t blocked = 0;
+    for (int i = 0; i < 16; ++i)
+        if (valid[i] && r.tfar[i] < 0.0f) blocked |= 1u << i;
+    return blocked;
+}
+
+/// Closest hits of up to 16 rays as one packet (rtcIntersect16); lanes with valid[i] == 0
+/// are skipped and hits[i] is left as it was.
+inline void ts_trace_closest16(const TsTracer* tr, const TsRay* rays, const int* valid, bool coherent, TsHit* hits) {
+    RTCIntersectContext ctx = ts_packet_context(coherent);
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int v[16];
+    for (int i = 0; i < 16; ++i) {
+        v[i] = valid[i];
+        ts_packet_set(rh.ray, i, valid[i] ? rays[i] : rays[0]);
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.primID[i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(v, tr->scene, &ctx, &rh);
+    for (int i = 0; i < 16; ++i) {
+        if (!valid[i]) continue;
+        TsHit& h = hits[i];
+        const bool miss = rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID;
+        h.t = rh.ray.tfar[i];
+        h.prim = miss ? TS_NO_HIT : rh.hit.primID[i];
+        h.u = miss ? 0.0f : rh.hit.u[i];
+        h.v = miss ? 0.0f : rh.hit.v[i];
+    }
+}
+
+}  // namespace tessera::ts
+
