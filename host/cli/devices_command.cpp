@@ -1,5 +1,6 @@
 // `tessera devices`: lists OpenCL platforms and devices.
 #include <cstdio>
+#include <vector>
 
 #include "cli/commands.h"
 #include "opencl/device.h"
@@ -15,11 +16,17 @@ void add_devices_command(CLI::App& app) {
                         "--backend embree needs none\n");
             return;
         }
-        for (const auto& d : devs)
-            std::printf("[%d] %s: %s\n    %s, %s, driver %s, %u compute units, %.1f GiB, max alloc %.1f GiB\n",
-                        d.index, d.platform_name.c_str(), d.name.c_str(), d.type.c_str(), d.version.c_str(),
-                        d.driver.c_str(), d.compute_units, d.global_mem / 1073741824.0,
+        // Listed in the default order (rank_cl_devices), the default marked; [i] is the
+        // index --device takes.
+        const std::vector<size_t> order = rank_cl_devices(devs);
+        for (size_t r = 0; r < order.size(); ++r) {
+            const ClDeviceInfo& d = devs[order[r]];
+            const char* kind = d.type == "GPU" ? (d.unified_memory ? "GPU (integrated)" : "GPU (discrete)") : d.type.c_str();
+            std::printf("[%d] %s: %s%s\n    %s, %s, driver %s, %u compute units, %.1f GiB, max alloc %.1f GiB\n",
+                        d.index, d.platform_name.c_str(), d.name.c_str(), r == 0 ? "  (default)" : "", kind,
+                        d.version.c_str(), d.driver.c_str(), d.compute_units, d.global_mem / 1073741824.0,
                         d.max_alloc / 1073741824.0);
+        }
     });
 }
 

@@ -69,6 +69,7 @@ std::vector<ClDeviceInfo> list_cl_devices() {
             i.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
             i.global_mem = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
             i.max_alloc = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+            i.unified_memory = d.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
             // TESSERA_CL_MAX_ALLOC (bytes) lowers the limit, to try a small device's
             // limit on a large one (tests/cli/opencl_failure_test.cpp uses it).
             if (const char* cap = std::getenv("TESSERA_CL_MAX_ALLOC")) {
@@ -82,17 +83,30 @@ std::vector<ClDeviceInfo> list_cl_devices() {
     return out;
 }
 
+std::vector<size_t> rank_cl_devices(const std::vector<ClDeviceInfo>& devs) {
+    auto device_class = [](const ClDeviceInfo& d) {
+        if (d.type == "GPU") return d.unified_memory ? 1 : 0;
+        if (d.type == "accelerator") return 2;
+        if (d.type == "CPU") return 3;
+        return 4;
+    };
+    std::vector<size_t> order(devs.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        const int ca = device_class(devs[a]), cb = device_class(devs[b]);
+        if (ca != cb) return ca < cb;
+        return devs[a].compute_units > devs[b].compute_units;
+    });
+    return order;
+}
+
 ClDeviceInfo select_cl_device(const std::string& spec) {
     auto devs = list_cl_devices();
     if (devs.empty())
         throw RuntimeError(
             "no OpenCL device found (is an ICD such as pocl-opencl-icd installed?); "
             "use --backend embree to render on the CPU without OpenCL");
-    if (spec.empty()) {
-        for (const auto& d : devs)
-            if (d.type == "GPU") return d;
-        return devs.front();
-    }
+    if (spec.empty()) return devs[rank_cl_devices(devs).front()];
     if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); })) {
         size_t i = std::stoul(spec);
         if (i < devs.size()) return devs[i];

@@ -19,13 +19,21 @@ struct ClDeviceInfo {
     unsigned compute_units = 0;
     unsigned long long global_mem = 0;     ///< bytes
     unsigned long long max_alloc = 0;      ///< CL_DEVICE_MAX_MEM_ALLOC_SIZE, bytes
+    bool unified_memory = false;  ///< CL_DEVICE_HOST_UNIFIED_MEMORY: an integrated GPU (or a CPU)
 };
+
+/// The default device order: discrete GPUs, then integrated GPUs (host-unified memory),
+/// then accelerators, CPUs and others; within a class more compute units first, then list
+/// order. Returns indices into `devs`, best first. A discrete GPU has its own memory and
+/// usually several times an integrated one's throughput, and ICD order is arbitrary (an
+/// integrated GPU's platform is often listed first).
+std::vector<size_t> rank_cl_devices(const std::vector<ClDeviceInfo>& devs);
 
 /// Every device of every platform, in platform order. Empty if there is no platform
 /// (no ICD installed); never throws for that.
 std::vector<ClDeviceInfo> list_cl_devices();
 
-/// Picks a device: `spec` empty → the first GPU if any, else the first device;
+/// Picks a device: `spec` empty → the best by rank_cl_devices;
 /// all digits → that index; otherwise the first device whose "platform: name"
 /// contains `spec` (case-insensitive). Throws RuntimeError listing the devices (and
 /// suggesting --backend embree) when there is none or nothing matches.
