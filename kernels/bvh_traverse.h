@@ -132,7 +132,10 @@ static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const 
                 cr[j + 1] = r;
                 ct[j + 1] = t;
             }
-            for (int i = 0; i < n && sp < TS_BVH_STACK_SIZE; ++i) stack[sp++] = cr[i];
+            /* No bound check: the builder refuses trees deeper than TS_BVH_MAX_DEPTH, and
+             * TS_BVH_STACK_SIZE >= 3 · TS_BVH_MAX_DEPTH + 1 is checked at compile time
+             * (shared/layout.h), so a push cannot overflow and no node is ever dropped. */
+            for (int i = 0; i < n; ++i) stack[sp++] = cr[i];
         } else {
             uint v = ~(uint)ref;
             uint first = v >> 3, count = v & 7u;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <string>
 
 #include <embree3/rtcore.h>
 
@@ -43,12 +44,15 @@ void set_bounds(void* node, const RTCBounds** bounds, unsigned int count, void*)
     for (unsigned i = 0; i < count; ++i) n->bounds[i] = *bounds[i];
 }
 
+// Embree never passes more than maxLeafSize primitives (its bvh_builder_sah.h splits
+// larger sets by object median, or fails at maxDepth); should it, the true count is kept
+// so check_bvh_limits refuses the tree, and only the first TS_BVH_LEAF_MAX are stored.
 void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count,
                   void*) {
     auto* l = static_cast<LeafNode*>(rtcThreadLocalAlloc(alloc, sizeof(LeafNode), 16));
     l->leaf = true;
     l->count = static_cast<unsigned>(count);
-    for (size_t i = 0; i < count; ++i) l->prim[i] = prims[i].primID;
+    for (size_t i = 0; i < std::min<size_t>(count, TS_BVH_LEAF_MAX); ++i) l->prim[i] = prims[i].primID;
     return l;
 }
 
@@ -103,8 +107,10 @@ private:
     }
 
     int emit_leaf(const LeafNode* l) {
+        out_.max_leaf_size = std::max(out_.max_leaf_size, static_cast<int>(l->count));
+        const unsigned count = std::min<unsigned>(l->count, TS_BVH_LEAF_MAX);  // see create_leaf
         uint32_t first = static_cast<uint32_t>(out_.tris.size() / TS_BVH_TRI_FLOATS);
-        for (unsigned i = 0; i < l->count; ++i) {
+        for (unsigned i = 0; i < count; ++i) {
             uint32_t prim = l->prim[i];
             float t[TS_BVH_TRI_FLOATS] = {};
             for (int k = 0; k < 3; ++k) {
@@ -116,7 +122,7 @@ private:
             std::memcpy(&t[TS_BVH_TRI_PRIM], &prim, 4);
             out_.tris.insert(out_.tris.end(), t, t + TS_BVH_TRI_FLOATS);
         }
-        return static_cast<int>(~((first << 3) | l->count));
+        return static_cast<int>(~((first << 3) | count));
     }
 
     const std::vector<glm::vec3>& pos_;
@@ -127,7 +133,21 @@ private:
 
 size_t FlatBvh::node_count() const { return nodes.size() / TS_NODE_FLOATS; }
 
+void check_bvh_limits(const FlatBvh& bvh) {
+    if (bvh.depth > TS_BVH_MAX_DEPTH)
+        throw RuntimeError("BVH depth " + std::to_string(bvh.depth) + " exceeds the limit TS_BVH_MAX_DEPTH = " +
+                           std::to_string(TS_BVH_MAX_DEPTH) + " (the OpenCL traversal stack of TS_BVH_STACK_SIZE = " +
+                           std::to_string(TS_BVH_STACK_SIZE) + " entries needs 3 * depth + 1)");
+    if (bvh.max_leaf_size > TS_BVH_LEAF_MAX)
+        throw RuntimeError("BVH leaf of " + std::to_string(bvh.max_leaf_size) +
+                           " triangles exceeds the limit TS_BVH_LEAF_MAX = " + std::to_string(TS_BVH_LEAF_MAX) +
+                           " (leaf references pack the count in 3 bits)");
+}
+
 FlatBvh build_bvh(const std::vector<glm::vec3>& positions, const BvhBuildSettings& settings) {
+    if (settings.max_depth < 1 || settings.max_depth > TS_BVH_MAX_DEPTH)
+        throw InputError("BVH build setting max_depth = " + std::to_string(settings.max_depth) +
+                         ": expected 1.." + std::to_string(TS_BVH_MAX_DEPTH) + " (TS_BVH_MAX_DEPTH)");
     const size_t count = positions.size() / 3;
     FlatBvh out;
     Flattener flat(positions, out);
@@ -154,7 +174,7 @@ FlatBvh build_bvh(const std::vector<glm::vec3>& positions, const BvhBuildSetting
     args.byteSize = sizeof(args);
     args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
     args.maxBranchingFactor = 4;
-    args.maxDepth = TS_BVH_MAX_DEPTH;
+    args.maxDepth = static_cast<unsigned>(settings.max_depth);
     args.minLeafSize = 1;
     args.maxLeafSize = TS_BVH_LEAF_MAX;
     args.traversalCost = settings.traversal_cost;
@@ -170,8 +190,10 @@ FlatBvh build_bvh(const std::vector<glm::vec3>& positions, const BvhBuildSetting
     auto* root = static_cast<const BuildNode*>(rtcBuildBVH(&args));
     if (!root) {
         rtcReleaseBVH(bvh);
-        check_embree("rtcBuildBVH");
-        throw RuntimeError("Embree: rtcBuildBVH returned no root");
+        const std::string what = "rtcBuildBVH over " + std::to_string(count) + " triangles with maxDepth " +
+                                 std::to_string(settings.max_depth);
+        check_embree(what.c_str());
+        throw RuntimeError("Embree: " + what + " returned no root");
     }
     out.nodes.reserve(count / 2 * TS_NODE_FLOATS);
     out.tris.reserve(count * TS_BVH_TRI_FLOATS);
@@ -180,6 +202,7 @@ FlatBvh build_bvh(const std::vector<glm::vec3>& positions, const BvhBuildSetting
     else
         flat.flatten(root, 0);
     rtcReleaseBVH(bvh);  // frees every build node; the flat arrays are all we keep
+    check_bvh_limits(out);
     return out;
 }
 

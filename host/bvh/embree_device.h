@@ -10,7 +10,8 @@ namespace tessera {
 /// Embree are thrown as RuntimeError by check_embree().
 RTCDevice embree_device();
 
-/// Throws RuntimeError naming `what` if the device has a pending error.
+/// Throws RuntimeError naming `what`, Embree's error code and its message (recorded by
+/// the device's error function on this thread) if the device has a pending error.
 void check_embree(const char* what);
 
 /// Sets flush-to-zero and denormals-are-zero on the calling thread, as Embree asks of

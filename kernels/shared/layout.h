@@ -8,7 +8,8 @@
  * check's list (or the other way round) does not build.
  *
  * BVH (built by host/bvh/bvh_builder.cpp with Embree's rtcBuildBVH, MEDIUM quality =
- * binned SAH, maxBranchingFactor 4, maxLeafSize 4, maxDepth TS_BVH_MAX_DEPTH):
+ * binned SAH, maxBranchingFactor 4, maxLeafSize TS_BVH_LEAF_MAX, maxDepth
+ * TS_BVH_MAX_DEPTH; the limits and the stack bound are explained at their defines):
  *   nodes: TS_NODE_FLOATS floats per node, node 0 is the root. A 4-wide node keeps its
  *   children's boxes as structure of arrays so one float4 load serves four children:
  *     TS_NODE_MIN(a)  4 floats: the four children's box minima on axis a (0 = x, 1 = y, 2 = z)
@@ -77,8 +78,14 @@
 #define TS_BVH_TRI_FLOATS 12
 #define TS_BVH_TRI_VERTEX(k) (4 * (k))
 #define TS_BVH_TRI_PRIM 3
+/* BVH limits. Depth = inner nodes on the longest root-to-leaf path. The builder refuses
+ * a tree deeper than TS_BVH_MAX_DEPTH or with a leaf over TS_BVH_LEAF_MAX triangles
+ * (check_bvh_limits in host/bvh/bvh_builder.h), so the traversal stack can never
+ * overflow: visiting an inner node pops 1 and pushes at most 4, so at depth d the stack
+ * holds at most 3 siblings per level above plus 4 children, 3 d + 1 entries (checked at
+ * compile time below). The leaf count is packed in 3 bits of a child reference. */
 #define TS_BVH_MAX_DEPTH 48
-#define TS_BVH_STACK_SIZE 160 /* >= 3 · TS_BVH_MAX_DEPTH + 1: a 4-wide node pushes at most 3 more than it pops */
+#define TS_BVH_STACK_SIZE 160
 #define TS_BVH_LEAF_MAX 4
 #define TS_TRI_POS_FLOATS 9
 #define TS_TRI_NRM_FLOATS 9
@@ -326,6 +333,12 @@ constexpr bool tiles(std::initializer_list<Field> fields, int total) {
 }
 }  // namespace tessera::layout_check
 
+/* The traversal stack (kernels/bvh_traverse.h) holds every node a tree of the builder's
+ * maximum depth can leave pending; the builder enforces the depth and leaf size. */
+static_assert(TS_BVH_STACK_SIZE >= 3 * TS_BVH_MAX_DEPTH + 1,
+              "layout.h: TS_BVH_STACK_SIZE must be >= 3 * TS_BVH_MAX_DEPTH + 1 (4-wide nodes)");
+static_assert(TS_BVH_LEAF_MAX >= 1 && TS_BVH_LEAF_MAX <= 7,
+              "layout.h: a leaf's triangle count is packed in 3 bits of its child reference");
 static_assert(tessera::layout_check::tiles({{TS_NODE_MIN(0), 4}, {TS_NODE_MAX(0), 4}, {TS_NODE_MIN(1), 4},
                                             {TS_NODE_MAX(1), 4}, {TS_NODE_MIN(2), 4}, {TS_NODE_MAX(2), 4},
                                             {TS_NODE_REFS, 4}, {TS_NODE_UNUSED, 4}},
