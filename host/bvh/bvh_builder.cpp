@@ -149,6 +149,10 @@ FlatBvh build_bvh(const std::vector<glm::vec3>& positions, const BvhBuildSetting
         throw InputError("BVH build setting max_depth = " + std::to_string(settings.max_depth) +
                          ": expected 1.." + std::to_string(TS_BVH_MAX_DEPTH) + " (TS_BVH_MAX_DEPTH)");
     const size_t count = positions.size() / 3;
+    // A leaf reference packs the first triangle's index above 3 count bits in 31 bits.
+    if (count >= (size_t(1) << 28))
+        throw InputError("scene has " + std::to_string(count) + " triangles: the BVH layout holds at most " +
+                         std::to_string((size_t(1) << 28) - 1) + " (28-bit triangle indices, kernels/shared/layout.h)");
     FlatBvh out;
     Flattener flat(positions, out);
     if (count == 0) {
