@@ -17,7 +17,8 @@
 // All three tracers get the rays in the batch form the renderer issues: OpenCL one
 // upload, kernel and read-back per query; Embree single rtcIntersect1/rtcOccluded1 per
 // ray over TBB; Embree packets rtcIntersect16/rtcOccluded16 over 16 consecutive rays
-// (Backend::trace_* of the Embree backend with packets on, COHERENT context).
+// (Backend::trace_* of the Embree backend with packets on; Embree's coherent mode for
+// primary, light and vpl, as the renderer's packets use it, incoherent for ic and random).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -66,6 +67,7 @@ struct RaySet {
     const char* name;
     bool closest;  // closest hit (else any hit)
     std::vector<float> rays;
+    Backend::RayOrder order = Backend::RayOrder::Incoherent;
 };
 
 void push_ray(std::vector<float>& rays, ts::float3 o, ts::float3 d, float tmax) {
@@ -129,6 +131,7 @@ std::vector<RaySet> make_rays(const Scene& scene, const SceneBuffers& b, Backend
         if (ts::dot(dr, points[i].normal) < 0.0f) dr = -dr;  // leave the surface on its lit side
         push_ray(random.rays, o, dr, INFINITY);
     }
+    for (RaySet* s : {&primary, &light, &vpl}) s->order = Backend::RayOrder::Coherent16;
     return {primary, light, vpl, ic, random};
 }
 
@@ -185,8 +188,8 @@ int main(int argc, char** argv) {
     for (const RaySet& set : sets) {
         auto rate = [&](Backend& be) {
             return mrays(set.rays.size() / TS_RAY_FLOATS, median_seconds(repeats, [&] {
-                             if (set.closest) be.trace_closest(set.rays, hits);
-                             else be.trace_occluded(set.rays, occ);
+                             if (set.closest) be.trace_closest(set.rays, hits, set.order);
+                             else be.trace_occluded(set.rays, occ, set.order);
                          }));
         };
         Row row{set.name, set.rays.size() / TS_RAY_FLOATS, rate(*cl), rate(*em), rate(*pk)};

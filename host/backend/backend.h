@@ -55,15 +55,32 @@ public:
     void set_input(KernelInput in, const std::vector<float>& data);
     void set_input(KernelInput in, const std::vector<uint32_t>& data);
 
+    /// How a batch of rays is ordered, a hint that never changes results. Coherent16: each
+    /// 16 consecutive rays start close together and head the same way (a 4×4 pixel tile's
+    /// camera rays, shadow rays from one tile to one point); Embree then traverses them as
+    /// a coherent packet (2–3× faster on such rays, about 2× slower on others,
+    /// bench/results/README.md). Incoherent: anything else.
+    enum class RayOrder { Incoherent, Coherent16 };
+
     /// Closest-hit queries. `rays` holds TS_RAY_FLOATS floats per ray (org.xyz, tmin, dir.xyz,
     /// tmax; layout.h); `hits` is resized to TS_HIT_FLOATS words per ray: t, u, v as floats and the triangle
     /// index as uint bits (TS_NO_HIT on a miss, with t = tmax).
-    virtual void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) = 0;
+    void trace_closest(const std::vector<float>& rays, std::vector<float>& hits,
+                       RayOrder order = RayOrder::Incoherent) {
+        trace_closest_rays(rays, hits, order);
+    }
 
     /// Any-hit queries: `occluded[i]` = 1 if anything lies on ray i in (tmin, tmax).
-    virtual void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) = 0;
+    void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded,
+                        RayOrder order = RayOrder::Incoherent) {
+        trace_occluded_rays(rays, occluded, order);
+    }
 
 protected:
+    virtual void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder order) = 0;
+    virtual void trace_occluded_rays(const std::vector<float>& rays, std::vector<uint32_t>& occluded,
+                                     RayOrder order) = 0;
+
     /// Runs `k` over `count` work items (pixels, or items of `items`) into `out`, already
     /// sized to count × out_floats.
     virtual void run_kernel(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,

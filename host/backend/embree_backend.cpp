@@ -124,9 +124,9 @@ private:
 
 public:
 
-    // Batches of rays, 16 consecutive rays per packet when packets are on: callers list
-    // coherent rays together (the instant cache lists a record's VPL rays in a row).
-    void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) override {
+    // Batches of rays, 16 consecutive rays per packet when packets are on, in Embree's
+    // coherent mode when the caller says they are ordered so.
+    void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder order) override {
         const size_t n = rays.size() / TS_RAY_FLOATS;
         hits.resize(TS_HIT_FLOATS * n);
         for_each_packet(n, [&](size_t first, size_t lanes) {
@@ -135,7 +135,7 @@ public:
             std::array<int, 16> valid{};
             for (size_t i = 0; i < lanes; ++i) r[i] = ray_from(&rays[TS_RAY_FLOATS * (first + i)]), valid[i] = -1;
             if (packets_) {
-                ts::ts_trace_closest16(&tracer_, r.data(), valid.data(), false, h.data());
+                ts::ts_trace_closest16(&tracer_, r.data(), valid.data(), order == RayOrder::Coherent16, h.data());
             } else {
                 for (size_t i = 0; i < lanes; ++i) h[i] = ts::ts_trace_closest(&tracer_, r[i]);
             }
@@ -149,7 +149,8 @@ public:
         });
     }
 
-    void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) override {
+    void trace_occluded_rays(const std::vector<float>& rays, std::vector<uint32_t>& occluded,
+                             RayOrder order) override {
         const size_t n = rays.size() / TS_RAY_FLOATS;
         occluded.resize(n);
         for_each_packet(n, [&](size_t first, size_t lanes) {
@@ -157,7 +158,7 @@ public:
             std::array<int, 16> valid{};
             for (size_t i = 0; i < lanes; ++i) r[i] = ray_from(&rays[TS_RAY_FLOATS * (first + i)]), valid[i] = -1;
             if (packets_) {
-                const uint32_t blocked = ts::ts_trace_occluded16(&tracer_, r.data(), valid.data(), false);
+                const uint32_t blocked = ts::ts_trace_occluded16(&tracer_, r.data(), valid.data(), order == RayOrder::Coherent16);
                 for (size_t i = 0; i < lanes; ++i) occluded[first + i] = blocked >> i & 1u;
             } else {
                 for (size_t i = 0; i < lanes; ++i)

@@ -87,12 +87,12 @@ protected:
     }
 
 public:
-    void trace_closest(const std::vector<float>& rays, std::vector<float>& hits) override {
+    void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder) override {
         hits.resize(rays.size() / TS_RAY_FLOATS * TS_HIT_FLOATS);
         trace("trace_closest", rays, hits.data(), hits.size() * sizeof(float));
     }
 
-    void trace_occluded(const std::vector<float>& rays, std::vector<uint32_t>& occluded) override {
+    void trace_occluded_rays(const std::vector<float>& rays, std::vector<uint32_t>& occluded, RayOrder) override {
         occluded.resize(rays.size() / TS_RAY_FLOATS);
         trace("trace_occluded", rays, occluded.data(), occluded.size() * sizeof(uint32_t));
     }
