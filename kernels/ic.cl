@@ -8,3 +8,9 @@
 TS_PIXEL_KERNEL(ic_gbuffer_pass, ts_ic_gbuffer_pixel, TS_IC_GBUF_FLOATS)
 
 TS_PIXEL_KERNEL(ic_interpolate, ts_ic_interpolate_kernel_pixel, TS_IC_INTERP_FLOATS)
+
+/* The record–VPL work of the cache (placement, the temporal update): item i is one pair's
+ * shadow ray, or one record's gather sum over its visibility row. */
+TS_ITEM_KERNEL(ic_pair_pass, ts_ic_pair_item, TS_IC_PAIR_FLOATS)
+
+TS_ITEM_KERNEL(ic_gather_pass, ts_ic_gather_item, TS_IC_GATHER_FLOATS)
