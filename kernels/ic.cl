@@ -1,6 +1,7 @@
 /* Instant caching on OpenCL devices (shared/ic.h): the G-buffer kernel (the surface each
- * pixel's records and lookups use) and the interpolation kernel (octree lookup over the
- * records the host placed and gathered, set as named inputs). */
+ * pixel's records and lookups use), the interpolation kernel (octree lookup over the
+ * records, set as named inputs), and the record-VPL pair and gather kernels. Built with
+ * doubles where the device has cl_khr_fp64 (shared/compat.h TS_HAS_DOUBLE). */
 #include "shared/layout.h"
 #include "tracer.h"
 #include "shared/ic.h"
