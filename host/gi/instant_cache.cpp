@@ -80,19 +80,24 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
     for (size_t begin = 0; begin < pairs.size(); begin += kPairBatch) {
         const size_t n = std::min(kPairBatch, pairs.size() - begin);
         items.resize(TS_IC_PAIR_WORDS * n);
-        for (size_t i = 0; i < n; ++i) {
-            items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_RECORD] = pairs[begin + i].record;
-            items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_VPL] = pairs[begin + i].vpl;
-        }
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_RECORD] = pairs[begin + i].record;
+                items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_VPL] = pairs[begin + i].vpl;
+            }
+        });
         ic_trace_pairs(backend, g_clamp, items, hits);
-        for (size_t i = 0; i < n; ++i) {
-            const Pair& p = pairs[begin + i];
-            const uint32_t hit = hits[i];
-            traced += hit != TS_IC_PAIR_FACING;
-            rows[p.record][p.vpl] = hit == TS_IC_PAIR_FACING || hit == TS_IC_PAIR_VISIBLE
-                                        ? static_cast<int32_t>(hit)
-                                        : static_cast<int32_t>(object_of(hit));
-        }
+        traced += n - static_cast<size_t>(std::count(hits.begin(), hits.end(), TS_IC_PAIR_FACING));
+        // Pairs are distinct, so every item writes its own row entry.
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const Pair& p = pairs[begin + i];
+                const uint32_t hit = hits[i];
+                rows[p.record][p.vpl] = hit == TS_IC_PAIR_FACING || hit == TS_IC_PAIR_VISIBLE
+                                            ? static_cast<int32_t>(hit)
+                                            : static_cast<int32_t>(object_of(hit));
+            }
+        });
     }
     return traced;
 }
@@ -112,11 +117,13 @@ std::vector<float> InstantCache::gather(Backend& backend, const std::vector<floa
         const size_t n = std::min(per_launch, which.size() - begin);
         items.resize(TS_IC_GATHER_WORDS * n);
         visibility.resize(n * nv);
-        for (size_t k = 0; k < n; ++k) {
-            items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_RECORD] = which[begin + k];
-            items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_ROW] = static_cast<uint32_t>(k);
-            if (nv > 0) std::memcpy(&visibility[k * nv], rows[which[begin + k]].data(), nv * sizeof(int32_t));
-        }
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t k = r.begin(); k < r.end(); ++k) {
+                items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_RECORD] = which[begin + k];
+                items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_ROW] = static_cast<uint32_t>(k);
+                if (nv > 0) std::memcpy(&visibility[k * nv], rows[which[begin + k]].data(), nv * sizeof(int32_t));
+            }
+        });
         ic_gather(backend, g_clamp, items, visibility, out);
         for (size_t k = 0; k < n; ++k) {
             const float* o = &out[TS_IC_GATHER_FLOATS * k];
