@@ -62,8 +62,8 @@ enum class KernelInput {
     /// floats: TS_IC_GBUF_FLOATS per cache record, the G-buffer entry it was made at
     /// (KernelId::IcPair and IcGather; their VPLs are the Vpls input, one set)
     IcRecordSurfaces,
-    /// uints: rows of record–VPL visibility, one uint per VPL of the Vpls input
-    /// (TS_IC_PAIR_VISIBLE, TS_IC_PAIR_FACING or an occluder; KernelId::IcGather)
+    /// uints: record–VPL visibility rows, bit masks of TS_IC_VISIBLE_WORDS(VPLs of the
+    /// Vpls input) uints each (layout.h; KernelId::IcGather)
     IcVisibility,
 };
 constexpr int kKernelInputCount = 8;

@@ -1,5 +1,6 @@
 #include "gi/ic_gather.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace tessera {
@@ -21,6 +22,16 @@ void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records
     backend.set_input(KernelInput::IcRecordSurfaces, surfaces);
     backend.set_input(KernelInput::Vpls, vpls.empty() ? std::vector<float>(TS_VPL_FLOATS, 0.0f) : vpls);
     backend.set_input(KernelInput::VplSetStart, std::vector<uint32_t>{0u, static_cast<uint32_t>(vpls.size() / TS_VPL_FLOATS)});
+}
+
+void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask) {
+    const size_t words = TS_IC_VISIBLE_WORDS(count);
+    for (size_t w = 0; w < words; ++w) {
+        uint32_t bits = 0;
+        for (size_t j = 32 * w; j < std::min(count, 32 * w + 32); ++j)
+            bits |= uint32_t(row[j] == int32_t(TS_IC_PAIR_VISIBLE)) << (j % 32);
+        mask[w] = bits;
+    }
 }
 
 void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>& items, std::vector<uint32_t>& hits) {

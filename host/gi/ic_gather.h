@@ -26,9 +26,14 @@ void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records
 void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>& items,
                     std::vector<uint32_t>& hits);
 
+/// Packs the visibility `row` of `count` VPLs (the host's int32 per pair, kIcVisible where
+/// unoccluded; instant_cache.h) into the gather kernel's bit mask: TS_IC_VISIBLE_WORDS(count)
+/// uints at `mask` (layout.h).
+void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask);
+
 /// One launch of the gather kernel over `items` (TS_IC_GATHER_WORDS uints each: record,
-/// row of `visibility`; layout.h). `visibility` holds rows of one uint per VPL of the set
-/// input (TS_IC_PAIR_VISIBLE, TS_IC_PAIR_FACING or an occluding object). `out` gets
+/// row of `visibility`; layout.h). `visibility` holds bit-mask rows
+/// (TS_IC_VISIBLE_WORDS(VPLs of the set input) uints each, ic_pack_visible). `out` gets
 /// TS_IC_GATHER_FLOATS per item: E = irradiance / π, then the harmonic mean distance
 /// (scene units, +inf when no VPL is visible).
 void ic_gather(Backend& backend, float g_clamp, const std::vector<uint32_t>& items,

@@ -21,7 +21,7 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 
 // Pairs per pair-kernel launch: bounds the item and output buffers (8 + 4 bytes a pair).
 constexpr size_t kPairBatch = size_t(1) << 20;
-// Visibility entries per gather-kernel launch (64 MiB): at least one record's row.
+// Visibility words per gather-kernel launch (64 MiB): at least one record's row.
 constexpr size_t kGatherBatch = size_t(1) << 24;
 
 bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_NO_HIT; }
@@ -110,18 +110,19 @@ std::vector<float> InstantCache::gather(Backend& backend, const std::vector<floa
     std::vector<float> harmonic(which.size());
     if (which.empty()) return harmonic;
     ic_set_record_inputs(backend, records, vpls);
-    const size_t nv = vpl_count(vpls), per_launch = std::max<size_t>(1, kGatherBatch / std::max<size_t>(nv, 1));
+    const size_t nv = vpl_count(vpls), words = TS_IC_VISIBLE_WORDS(nv);
+    const size_t per_launch = std::max<size_t>(1, kGatherBatch / std::max<size_t>(words, 1));
     std::vector<uint32_t> items, visibility;
     std::vector<float> out;
     for (size_t begin = 0; begin < which.size(); begin += per_launch) {
         const size_t n = std::min(per_launch, which.size() - begin);
         items.resize(TS_IC_GATHER_WORDS * n);
-        visibility.resize(n * nv);
+        visibility.resize(n * words);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t k = r.begin(); k < r.end(); ++k) {
                 items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_RECORD] = which[begin + k];
                 items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_ROW] = static_cast<uint32_t>(k);
-                if (nv > 0) std::memcpy(&visibility[k * nv], rows[which[begin + k]].data(), nv * sizeof(int32_t));
+                ic_pack_visible(rows[which[begin + k]].data(), nv, visibility.data() + k * words);
             }
         });
         ic_gather(backend, g_clamp, items, visibility, out);

@@ -58,7 +58,8 @@ TS_INLINE void ts_ic_pair_item(const TsSceneView* sv, const TsTracer* tracer, co
 }
 
 /* Gather item i: record item[TS_IC_GATHER_RECORD]'s sums over the Vpls input (one set,
- * vpl_set_start[1] VPLs) with row item[TS_IC_GATHER_ROW] of the IcVisibility input and
+ * vpl_set_start[1] VPLs) with bit-mask row item[TS_IC_GATHER_ROW] of the IcVisibility
+ * input and
  * b = f->igi_g_clamp. */
 TS_INLINE void ts_ic_gather_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
                                  float* out) {
@@ -67,7 +68,8 @@ TS_INLINE void ts_ic_gather_item(const TsSceneView* sv, const TsTracer* tracer, 
     TsSurface s = ts_ic_record_surface(sv->ic_record_surfaces + (size_t)TS_IC_GBUF_FLOATS * item[TS_IC_GATHER_RECORD]);
     uint count = sv->vpl_set_start[1];
     TsMedium med = ts_medium_load(sv->medium);
-    ts_ic_gather(&s, sv->ic_visibility + (size_t)count * item[TS_IC_GATHER_ROW], count, sv->vpls, &med,
+    ts_ic_gather(&s, sv->ic_visibility + (size_t)TS_IC_VISIBLE_WORDS(count) * item[TS_IC_GATHER_ROW], count, sv->vpls,
+                 &med,
                  f->igi_g_clamp, out);
 }
 

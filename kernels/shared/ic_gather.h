@@ -26,12 +26,13 @@ TS_INLINE TsSurface ts_ic_record_surface(TS_GLOBAL const float* g) {
     return s;
 }
 
-/* E = (1/π) Σ_j C_j T_j min(G_j, b) over the `count` VPLs (in order) whose entry of `row`
- * is TS_IC_PAIR_VISIBLE, and the harmonic mean distance to them (+inf for none): the
+/* E = (1/π) Σ_j C_j T_j min(G_j, b) over the `count` VPLs (in order) whose bit in the
+ * mask `visible` (TS_IC_VISIBLE_WORDS(count) uints, layout.h) is set, and the harmonic
+ * mean distance to them (+inf for none): the
  * radius estimate of docs/instant-caching.md §4 that needs no extra rays. Sums in double
  * where the device has it (bit-identical to the host's former double sums), else in
  * compensated float (shared/vpl.h). Writes TS_IC_GATHER_FLOATS to out. */
-TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* row, uint count, TS_GLOBAL const float* vpls,
+TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* visible, uint count, TS_GLOBAL const float* vpls,
                             const TsMedium* med, float b, float* out) {
 #ifdef TS_HAS_DOUBLE
     TsDouble3 sum = {0.0, 0.0, 0.0};
@@ -42,7 +43,7 @@ TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* row, uint 
 #endif
     uint seen = 0u;
     for (uint j = 0; j < count; ++j) {
-        if (row[j] != TS_IC_PAIR_VISIBLE) continue;
+        if (!((visible[j >> 5] >> (j & 31u)) & 1u)) continue;
         TS_GLOBAL const float* v = vpls + (size_t)TS_VPL_FLOATS * j;
         TsRay shadow;
         float g = ts_vpl_geometry(s, v, b, &shadow);

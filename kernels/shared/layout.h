@@ -301,10 +301,12 @@ typedef struct TsFrame {
 #define TS_IC_PAIR_HIT 0
 #define TS_IC_PAIR_VISIBLE 0xffffffffu
 #define TS_IC_PAIR_FACING 0xfffffffeu
-/* The record gather kernel (shared/ic_gather.h), one item per record to (re-)sum,
+/* The record gather kernel (shared/ic.h), one item per record to (re-)sum,
  * TS_IC_GATHER_WORDS uints: TS_IC_GATHER_RECORD the record (index into
- * IcRecordSurfaces), TS_IC_GATHER_ROW its row in the IcVisibility input (one uint per VPL:
- * TS_IC_PAIR_VISIBLE, TS_IC_PAIR_FACING or an occluding object's index). Its output,
+ * IcRecordSurfaces), TS_IC_GATHER_ROW its row in the IcVisibility input. A row is a bit
+ * mask of TS_IC_VISIBLE_WORDS(n) uints for n VPLs: VPL j is visible (unoccluded, with a
+ * positive geometry term) when bit j % 32 of word j / 32 is set; the bits past n are 0.
+ * (One bit a pair, not the host's int32 occluder: 32 times less to copy each frame.) Its output,
  * TS_IC_GATHER_FLOATS floats: TS_IC_GATHER_E 3 floats E = irradiance / π from the visible
  * VPLs, TS_IC_GATHER_HARMONIC the harmonic mean distance to them (scene units; +inf for
  * none). */
@@ -314,6 +316,7 @@ typedef struct TsFrame {
 #define TS_IC_GATHER_FLOATS 4
 #define TS_IC_GATHER_E 0
 #define TS_IC_GATHER_HARMONIC 3
+#define TS_IC_VISIBLE_WORDS(n) (((n) + 31u) / 32u)
 /* Depth bound of the octree (root = depth 0). */
 #define TS_IC_MAX_DEPTH 24
 
@@ -434,6 +437,8 @@ static_assert(TS_IC_PAIR_VISIBLE == TS_NO_HIT && TS_IC_PAIR_FACING != TS_NO_HIT,
               "layout.h: TS_IC_PAIR_VISIBLE must be TS_NO_HIT, TS_IC_PAIR_FACING another code");
 static_assert(tessera::layout_check::tiles({{TS_IC_GATHER_RECORD, 1}, {TS_IC_GATHER_ROW, 1}}, TS_IC_GATHER_WORDS),
               "layout.h: ic gather item fields do not tile TS_IC_GATHER_WORDS");
+static_assert(TS_IC_VISIBLE_WORDS(0u) == 0u && TS_IC_VISIBLE_WORDS(32u) == 1u && TS_IC_VISIBLE_WORDS(33u) == 2u,
+              "layout.h: TS_IC_VISIBLE_WORDS(n) is n bits rounded up to whole uints");
 static_assert(tessera::layout_check::tiles({{TS_IC_GATHER_E, 3}, {TS_IC_GATHER_HARMONIC, 1}}, TS_IC_GATHER_FLOATS),
               "layout.h: ic gather output fields do not tile TS_IC_GATHER_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_PASS_RADIANCE, 3}, {TS_PASS_ALBEDO, 3}, {TS_PASS_NORMAL, 3},

@@ -61,11 +61,13 @@ TEST(IcGatherKernels, OpenClAndEmbreeAgreeOnPairsAndSumsOfAnAnimatedFrame) {
     std::vector<uint32_t> pairs;
     for (uint32_t i = 0; i < records.size(); ++i)
         for (uint32_t j = 0; j < nv; ++j) pairs.insert(pairs.end(), {i, j});
-    // The rows the gathers sum over: the Embree pair results (the gather reads only
-    // TS_IC_PAIR_VISIBLE; other codes mean not visible, as an occluder index does).
-    std::vector<uint32_t> rows;
+    // The rows the gathers sum over: the Embree pair results, packed as the cache packs
+    // its rows (visible = TS_IC_PAIR_VISIBLE; facing and occluded pairs are not).
+    std::vector<uint32_t> hits, rows(records.size() * TS_IC_VISIBLE_WORDS(nv));
     ic_set_record_inputs(*embree, records, vpls);
-    ic_trace_pairs(*embree, b, pairs, rows);
+    ic_trace_pairs(*embree, b, pairs, hits);
+    for (size_t i = 0; i < records.size(); ++i)
+        ic_pack_visible(reinterpret_cast<const int32_t*>(&hits[i * nv]), nv, &rows[i * TS_IC_VISIBLE_WORDS(nv)]);
     const KernelResults e = run_kernels(*embree, records, vpls, b, pairs, rows);
     const KernelResults c = run_kernels(*opencl, records, vpls, b, pairs, rows);
 
@@ -96,6 +98,17 @@ TEST(IcGatherKernels, OpenClAndEmbreeAgreeOnPairsAndSumsOfAnAnimatedFrame) {
         EXPECT_EQ(c.sums[k], e.sums[k]) << "record " << k / TS_IC_GATHER_FLOATS << " output " << k % TS_IC_GATHER_FLOATS;
     }
     EXPECT_GT(lit, records.size() / 2);
+}
+
+TEST(IcGatherKernels, PackVisibleSetsOneBitPerUnoccludedPair) {
+    // 40 VPLs: visible at 0, 31, 32 and 39; facing, occluded by objects 0 and 5 elsewhere.
+    std::vector<int32_t> row(40, kIcFacing);
+    row[3] = 0, row[17] = 5;
+    for (int j : {0, 31, 32, 39}) row[j] = kIcVisible;
+    uint32_t mask[2] = {0xdeadbeefu, 0xdeadbeefu};
+    ic_pack_visible(row.data(), row.size(), mask);
+    EXPECT_EQ(mask[0], 0x80000001u);
+    EXPECT_EQ(mask[1], 0x81u);  // bits 32 and 39; the bits past the 40th stay 0
 }
 
 }  // namespace

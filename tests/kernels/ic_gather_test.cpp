@@ -13,7 +13,8 @@ namespace {
 
 TEST(IcGather, SumsVisibleVplsAndTakesTheirHarmonicMeanDistance) {
     // A record at the origin facing +z; VPLs straight above at heights 1, 3 and 2 facing
-    // down, weights C = 1, 2, 4; the third is occluded (object 0). G = 1/d² (both cosines 1).
+    // down, weights C = 1, 2, 4; the third is occluded (its bit clear). G = 1/d² (both
+    // cosines 1).
     const float g[TS_IC_GBUF_FLOATS] = {0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1.0f, 0.0f, 1.0f};
     const ts::TsSurface s = ts::ts_ic_record_surface(g);
     std::vector<float> vpls;
@@ -21,7 +22,7 @@ TEST(IcGather, SumsVisibleVplsAndTakesTheirHarmonicMeanDistance) {
         const float c = h == 1.0f ? 1.0f : h == 3.0f ? 2.0f : 4.0f;
         vpls.insert(vpls.end(), {0, 0, h, 0, 0, -1, c, c, c, 0, 0, 1.0f});
     }
-    const std::vector<uint32_t> row = {TS_IC_PAIR_VISIBLE, TS_IC_PAIR_VISIBLE, 0u};
+    const std::vector<uint32_t> row = {0b011u};  // bit j: VPL j visible
     const std::vector<float> no_medium(TS_MEDIUM_FLOATS, 0.0f);
     const ts::TsMedium med = ts::ts_medium_load(no_medium.data());
     float out[TS_IC_GATHER_FLOATS];
@@ -32,8 +33,8 @@ TEST(IcGather, SumsVisibleVplsAndTakesTheirHarmonicMeanDistance) {
     // The clamp b bounds G: with b = 0.5 the first VPL contributes 0.5, not 1.
     ts::ts_ic_gather(&s, row.data(), 3, vpls.data(), &med, 0.5f, out);
     EXPECT_NEAR(out[TS_IC_GATHER_E], (0.5f + 2.0f / 9.0f) / M_PI, 1e-6);
-    // Facing entries count as not visible; no visible VPL: E = 0, distance +inf.
-    const std::vector<uint32_t> none = {TS_IC_PAIR_FACING, 1u, TS_IC_PAIR_FACING};
+    // No visible VPL: E = 0, distance +inf.
+    const std::vector<uint32_t> none = {0u};
     ts::ts_ic_gather(&s, none.data(), 3, vpls.data(), &med, INFINITY, out);
     EXPECT_EQ(out[TS_IC_GATHER_E], 0.0f);
     EXPECT_EQ(out[TS_IC_GATHER_HARMONIC], INFINITY);
