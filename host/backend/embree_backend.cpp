@@ -93,6 +93,8 @@ private:
         sv.ic_nodes = input<float>(KernelInput::IcNodes);
         sv.ic_refs = input<uint32_t>(KernelInput::IcRefs);
         sv.ic_records = input<float>(KernelInput::IcRecords);
+        sv.ic_record_surfaces = input<float>(KernelInput::IcRecordSurfaces);
+        sv.ic_visibility = input<uint32_t>(KernelInput::IcVisibility);
         return sv;
     }
 

@@ -42,9 +42,10 @@ public:
             medium_ = upload("medium", scene.medium);
             store(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
             store(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
-            for (KernelInput in : {KernelInput::IcGbuffer, KernelInput::IcNodes, KernelInput::IcRecords})
+            for (KernelInput in : {KernelInput::IcGbuffer, KernelInput::IcNodes, KernelInput::IcRecords,
+                                   KernelInput::IcRecordSurfaces})
                 store(in, std::vector<float>());
-            store(KernelInput::IcRefs, std::vector<uint32_t>());
+            for (KernelInput in : {KernelInput::IcRefs, KernelInput::IcVisibility}) store(in, std::vector<uint32_t>());
             no_items_ = upload("item list", std::vector<uint32_t>(1, 0u));
         } catch (const cl::Error& e) {
             throw RuntimeError("OpenCL setup on " + dev_.name + " failed: " + describe_cl_error(e) +

@@ -13,6 +13,7 @@ const KernelInputInfo& input_info(KernelInput in) {
     static const KernelInputInfo table[kKernelInputCount] = {
         {"VPL", false}, {"VPL set table", true}, {"ic G-buffer", false},
         {"ic octree", false}, {"ic record lists", true}, {"ic records", false},
+        {"ic record surfaces", false}, {"ic visibility", true},
     };
     return table[static_cast<int>(in)];
 }

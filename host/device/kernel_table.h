@@ -22,7 +22,9 @@
     X(IgiMedia, "igi_media_pass", "igi.cl", TS_IGI_MEDIA_FLOATS, 0, ts_igi_media_pixel)                  \
     X(AisItem, "ais_extra_pass", "igi.cl", TS_AIS_ITEM_FLOATS, TS_AIS_ITEM_WORDS, ts_ais_extra_item)     \
     X(IcGbuffer, "ic_gbuffer_pass", "ic.cl", TS_IC_GBUF_FLOATS, 0, ts_ic_gbuffer_pixel)                  \
-    X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel)
+    X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel)     \
+    X(IcPair, "ic_pair_pass", "ic.cl", TS_IC_PAIR_FLOATS, TS_IC_PAIR_WORDS, ts_ic_pair_item)             \
+    X(IcGather, "ic_gather_pass", "ic.cl", TS_IC_GATHER_FLOATS, TS_IC_GATHER_WORDS, ts_ic_gather_item)
 
 namespace tessera {
 
@@ -57,8 +59,14 @@ enum class KernelInput {
     IcNodes,      ///< floats: TS_IC_NODE_FLOATS per octree node, root first
     IcRefs,       ///< uints: the octree nodes' record lists, concatenated
     IcRecords,    ///< floats: TS_IC_RECORD_FLOATS per record
+    /// floats: TS_IC_GBUF_FLOATS per cache record, the G-buffer entry it was made at
+    /// (KernelId::IcPair and IcGather; their VPLs are the Vpls input, one set)
+    IcRecordSurfaces,
+    /// uints: record–VPL visibility rows, bit masks of TS_IC_VISIBLE_WORDS(VPLs of the
+    /// Vpls input) uints each (layout.h; KernelId::IcGather)
+    IcVisibility,
 };
-constexpr int kKernelInputCount = 6;
+constexpr int kKernelInputCount = 8;
 
 struct KernelInputInfo {
     const char* name;  ///< for error messages ("VPL set table")

@@ -13,7 +13,8 @@ inline ts::TsSceneView make_scene_view(const SceneBuffers& b) {
                            b.tex_texels.data(), b.lights.data(),   b.light_cdf.data(),
                            b.medium.data(),     nullptr,            nullptr,
                            nullptr,             nullptr,            nullptr,
-                           nullptr,             nullptr,            b.light_count};
+                           nullptr,             nullptr,            nullptr,
+                           nullptr,             b.light_count};
 }
 
 }  // namespace tessera

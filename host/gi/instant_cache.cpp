@@ -9,10 +9,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "kernels/shared/geometry.h"
+#include "gi/ic_gather.h"
 #include "kernels/shared/ic_lookup.h"
-#include "kernels/shared/medium.h"
-#include "kernels/shared/vpl.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -21,37 +19,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Rays per Backend::trace_closest call: bounds the ray and hit buffers (32 + 16 bytes a ray).
-constexpr size_t kRayBatch = size_t(1) << 20;
+// Pairs per pair-kernel launch: bounds the item and output buffers (8 + 4 bytes a pair).
+constexpr size_t kPairBatch = size_t(1) << 20;
+// Visibility words per gather-kernel launch (64 MiB): at least one record's row.
+constexpr size_t kGatherBatch = size_t(1) << 24;
 
 bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_NO_HIT; }
 
 size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / TS_VPL_FLOATS; }
 
 }  // namespace
-
-void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vector<float>& vpls,
-                   const SceneBuffers& scene, float g_clamp, float* harmonic_mean) {
-    const ts::TsSurface s = ic_record_surface(r);
-    const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
-    ts::TsDouble3 sum{0, 0, 0};  // the gather sum of shared/vpl.h, in double
-    double inv_dist = 0;
-    size_t seen = 0;
-    for (size_t j = 0; j < row.size(); ++j) {
-        if (row[j] != kIcVisible) continue;
-        const float* v = &vpls[j * TS_VPL_FLOATS];
-        ts::TsRay shadow;
-        const float g = ts::ts_vpl_geometry(&s, v, g_clamp, &shadow);
-        if (!(g > 0.0f)) continue;
-        ts::ts_vpl_gather_add(&sum, v, &med, shadow, g);
-        const ts::float3 d = ts::ts_f3_load(v + TS_VPL_POSITION) - s.position;
-        inv_dist += 1.0 / std::sqrt(double(ts::dot(d, d)));
-        ++seen;
-    }
-    const ts::float3 e = ts::ts_vpl_gather_result(sum);
-    r.e = {e.x, e.y, e.z};
-    *harmonic_mean = seen > 0 && inv_dist > 0 ? static_cast<float>(seen / inv_dist) : INFINITY;
-}
 
 InstantCache::InstantCache(const IcSettings& settings, const std::vector<SceneObject>& objects)
     : settings_(settings), cache_(settings.error_bound) {
@@ -89,60 +66,81 @@ void InstantCache::concat_vpls() {
     stats_.vpls = vpl_count(vpls_);
 }
 
-// Traces the shadow ray of every pair whose geometry term is positive and writes each
-// pair's visibility into rows[record][vpl] (kIcFacing for the others). Returns rays traced.
+// Traces the shadow ray of every pair whose geometry term is positive (the pair kernel)
+// and writes each pair's visibility into rows[record][vpl] (kIcFacing for the others).
+// Returns rays traced.
 uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
                                    float g_clamp, std::vector<Row>& rows) const {
+    static_assert(kIcVisible == int32_t(TS_IC_PAIR_VISIBLE) && kIcFacing == int32_t(TS_IC_PAIR_FACING),
+                  "row entries are the pair kernel's codes");
+    if (pairs.empty()) return 0;
+    ic_set_record_inputs(backend, cache_.records(), vpls);
     uint64_t traced = 0;
-    std::vector<float> rays, hits;
-    std::vector<uint8_t> facing;
-    for (size_t begin = 0; begin < pairs.size(); begin += kRayBatch) {
-        const size_t n = std::min(kRayBatch, pairs.size() - begin);
-        rays.assign(TS_RAY_FLOATS * n, 0.0f);
-        facing.assign(n, 0);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<uint32_t> items, hits;
+    for (size_t begin = 0; begin < pairs.size(); begin += kPairBatch) {
+        const size_t n = std::min(kPairBatch, pairs.size() - begin);
+        items.resize(TS_IC_PAIR_WORDS * n);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
-                const Pair& p = pairs[begin + i];
-                const ts::TsSurface s = ic_record_surface(cache_.records()[p.record]);
-                ts::TsRay sh;
-                if (!(ts::ts_vpl_geometry(&s, &vpls[size_t(p.vpl) * TS_VPL_FLOATS], g_clamp, &sh) > 0.0f)) {
-                    facing[i] = 1;
-                    continue;
-                }
-                float* o = &rays[TS_RAY_FLOATS * i];
-                ts::ts_f3_store(o + TS_RAY_ORG, sh.org);
-                o[TS_RAY_TMIN] = sh.tmin;
-                ts::ts_f3_store(o + TS_RAY_DIR, sh.dir);
-                o[TS_RAY_TMAX] = sh.tmax;
+                items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_RECORD] = pairs[begin + i].record;
+                items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_VPL] = pairs[begin + i].vpl;
             }
         });
-        // Only the rays of pairs that face each other are traced.
-        std::vector<uint32_t> live;
-        for (size_t i = 0; i < n; ++i)
-            if (!facing[i]) live.push_back(static_cast<uint32_t>(i));
-        for (size_t k = 0; k < live.size(); ++k)
-            if (live[k] != k)
-                std::memcpy(&rays[TS_RAY_FLOATS * k], &rays[TS_RAY_FLOATS * size_t(live[k])], TS_RAY_FLOATS * sizeof(float));
-        rays.resize(TS_RAY_FLOATS * live.size());
-        backend.trace_closest(rays, hits);
-        traced += live.size();
-        for (size_t i = 0; i < n; ++i) rows[pairs[begin + i].record][pairs[begin + i].vpl] = kIcFacing;
-        for (size_t k = 0; k < live.size(); ++k) {
-            uint32_t prim;
-            std::memcpy(&prim, &hits[TS_HIT_FLOATS * k + TS_HIT_PRIM], 4);
-            const Pair& p = pairs[begin + live[k]];
-            rows[p.record][p.vpl] = prim == TS_NO_HIT ? kIcVisible : static_cast<int32_t>(object_of(prim));
-        }
+        ic_trace_pairs(backend, g_clamp, items, hits);
+        traced += n - static_cast<size_t>(std::count(hits.begin(), hits.end(), TS_IC_PAIR_FACING));
+        // Pairs are distinct, so every item writes its own row entry.
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const Pair& p = pairs[begin + i];
+                const uint32_t hit = hits[i];
+                rows[p.record][p.vpl] = hit == TS_IC_PAIR_FACING || hit == TS_IC_PAIR_VISIBLE
+                                            ? static_cast<int32_t>(hit)
+                                            : static_cast<int32_t>(object_of(hit));
+            }
+        });
     }
     return traced;
+}
+
+// E of records[k] for every k of `which` from rows[k] over `vpls` (the gather kernel);
+// returns their harmonic mean distances to the visible VPLs, in the order of `which`.
+std::vector<float> InstantCache::gather(Backend& backend, const std::vector<float>& vpls,
+                                        const std::vector<Row>& rows, std::vector<IcRecord>& records,
+                                        const std::vector<uint32_t>& which, float g_clamp) const {
+    std::vector<float> harmonic(which.size());
+    if (which.empty()) return harmonic;
+    ic_set_record_inputs(backend, records, vpls);
+    const size_t nv = vpl_count(vpls), words = TS_IC_VISIBLE_WORDS(nv);
+    const size_t per_launch = std::max<size_t>(1, kGatherBatch / std::max<size_t>(words, 1));
+    std::vector<uint32_t> items, visibility;
+    std::vector<float> out;
+    for (size_t begin = 0; begin < which.size(); begin += per_launch) {
+        const size_t n = std::min(per_launch, which.size() - begin);
+        items.resize(TS_IC_GATHER_WORDS * n);
+        visibility.resize(n * words);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t k = r.begin(); k < r.end(); ++k) {
+                items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_RECORD] = which[begin + k];
+                items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_ROW] = static_cast<uint32_t>(k);
+                ic_pack_visible(rows[which[begin + k]].data(), nv, visibility.data() + k * words);
+            }
+        });
+        ic_gather(backend, g_clamp, items, visibility, out);
+        for (size_t k = 0; k < n; ++k) {
+            const float* o = &out[TS_IC_GATHER_FLOATS * k];
+            records[which[begin + k]].e = {o[TS_IC_GATHER_E], o[TS_IC_GATHER_E + 1], o[TS_IC_GATHER_E + 2]};
+            harmonic[begin + k] = o[TS_IC_GATHER_HARMONIC];
+        }
+    }
+    return harmonic;
 }
 
 // Coarse-to-fine placement (docs/instant-caching.md §7): on pixel grids of stride 8, 4, 2, 1,
 // every grid pixel no record covers gets one; each level's records are gathered and
 // inserted before the next level's coverage test, so a level never duplicates a coarser
 // one's work and the result does not depend on thread timing.
-void InstantCache::place(Backend& backend, const SceneBuffers& scene, const std::vector<float>& gbuffer,
-                         const TsFrame& frame, float g_clamp) {
+void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame,
+                         float g_clamp) {
     const float footprint = 2.0f * std::sqrt(frame.cam_up[0] * frame.cam_up[0] + frame.cam_up[1] * frame.cam_up[1] +
                                              frame.cam_up[2] * frame.cam_up[2]) / static_cast<float>(frame.height);
     const size_t nv = vpl_count(vpls_);
@@ -179,11 +177,13 @@ void InstantCache::place(Backend& backend, const SceneBuffers& scene, const std:
             for (uint32_t j = 0; j < nv; ++j) pairs.push_back({id, j});
         }
         stats_.shadow_rays += trace_pairs(backend, vpls_, pairs, g_clamp, rows_);
+        std::vector<uint32_t> which(cache_.records().size() - first);
+        for (size_t i = 0; i < which.size(); ++i) which[i] = static_cast<uint32_t>(first + i);
+        const std::vector<float> harmonic = gather(backend, vpls_, rows_, cache_.records(), which, g_clamp);
         std::vector<IcRecord> fresh(cache_.records().begin() + first, cache_.records().end());
         cache_.records().resize(first);
         for (size_t i = 0; i < fresh.size(); ++i) {
-            float hm;
-            ic_sum_record(fresh[i], rows_[first + i], vpls_, scene, g_clamp, &hm);
+            const float hm = harmonic[i];
             fresh[i].pixel_size = fresh[i].surface[TS_IC_GBUF_DISTANCE] * footprint;
             fresh[i].last_in_view = frame_count_;
             fresh[i].radius = ic_record_radius(hm, fresh[i].pixel_size, settings_.min_radius_px, settings_.max_radius_px);
@@ -211,7 +211,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     backend.launch(KernelId::IcGbuffer, frame, gbuffer);
     const SceneBounds bounds = scene_bounds(scene);
     cache_.rebuild(bounds.lo, bounds.hi);
-    place(backend, scene, gbuffer, frame, g_clamp);
+    place(backend, gbuffer, frame, g_clamp);
     stats_.place_seconds = since(t0);
 
     t0 = Clock::now();
@@ -281,11 +281,12 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
         for (uint32_t j = 0; j < nv; ++j) pairs.push_back({i, j});
     trace_pairs(backend, vpls, pairs, g_clamp, rows);
     std::vector<IcRecord> out(records);
-    for (size_t i = 0; i < out.size(); ++i) {
-        float hm;
-        ic_sum_record(out[i], rows[i], vpls, scene, g_clamp, &hm);
-        out[i].radius = ic_record_radius(hm, out[i].pixel_size, settings_.min_radius_px, settings_.max_radius_px);
-    }
+    std::vector<uint32_t> all(out.size());
+    for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+    const std::vector<float> harmonic = gather(backend, vpls, rows, out, all, g_clamp);
+    for (size_t i = 0; i < out.size(); ++i)
+        out[i].radius =
+            ic_record_radius(harmonic[i], out[i].pixel_size, settings_.min_radius_px, settings_.max_radius_px);
     return out;
 }
 

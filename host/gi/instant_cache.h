@@ -1,9 +1,10 @@
 // Instant caching (Debattista, Dubla et al., CGF 2009) and its temporal form: the
 // indirect diffuse component of an igi frame read from an irradiance cache whose records
 // gather from all VPLs (docs/instant-caching.md). Host code shared by every backend: record
-// placement, the visibility bookkeeping and the temporal update run here; the G-buffer,
-// the shadow rays (Backend::trace_closest) and the interpolation (KernelId::IcInterpolate)
-// run on the backend.
+// placement, the visibility bookkeeping and the temporal update's decisions run here; the
+// G-buffer, the record–VPL shadow rays and gather sums (KernelId::IcPair and IcGather,
+// launched through gi/ic_gather.h) and the interpolation (KernelId::IcInterpolate) run
+// on the backend.
 //
 // Choices the paper does not fix for us (docs/instant-caching.md marks them ours), and why:
 // - Radius: the harmonic mean distance to the VPLs a record sees, clamped to 1.5–20 pixel
@@ -59,18 +60,12 @@ struct IcFrameStats {
     uint64_t indirect_rays() const { return light_path_rays + shadow_rays; }
 };
 
-/// Visibility of one record–VPL pair, as kept per record (one int32 per VPL):
+/// Visibility of one record–VPL pair, as kept per record (one int32 per VPL; the bits of
+/// the pair kernel's TS_IC_PAIR_FACING and TS_IC_PAIR_VISIBLE, layout.h):
 /// kIcFacing = the geometry term is 0 (no ray needed), kIcVisible = unoccluded, ≥ 0 the
 /// object (Scene::objects index) the shadow ray hit first.
 constexpr int32_t kIcFacing = -2;
 constexpr int32_t kIcVisible = -1;
-
-/// Sums record r's E = Σ_j C_j T_j min(G_j, b) / π over the VPLs its row marks visible
-/// (the igi estimator of shared/igi.h with all VPLs as one set; double sums in VPL order)
-/// and writes the harmonic mean distance to those VPLs to *harmonic_mean (+inf for none):
-/// the radius estimate of docs/instant-caching.md §4 that needs no extra rays.
-void ic_sum_record(IcRecord& r, const std::vector<int32_t>& row, const std::vector<float>& vpls,
-                   const SceneBuffers& scene, float g_clamp, float* harmonic_mean);
 
 class InstantCache {
 public:
@@ -105,10 +100,11 @@ private:
 
     void start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block);
     void concat_vpls();
-    void place(Backend& backend, const SceneBuffers& scene, const std::vector<float>& gbuffer,
-               const TsFrame& frame, float g_clamp);
+    void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp);
     uint64_t trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
                          float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
+    std::vector<float> gather(Backend& backend, const std::vector<float>& vpls, const std::vector<Row>& rows,
+                              std::vector<IcRecord>& records, const std::vector<uint32_t>& which, float g_clamp) const;
     void update(Backend& backend, const SceneBuffers& scene, float g_clamp);
     void snapshot(const SceneBuffers& scene, float g_clamp);
     void mark_in_view(const TsFrame& frame);

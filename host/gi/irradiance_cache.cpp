@@ -5,20 +5,12 @@
 #include <cstring>
 #include <limits>
 
+#include "kernels/shared/ic_gather.h"
 #include "kernels/shared/ic_lookup.h"
 
 namespace tessera {
 
-ts::TsSurface ic_record_surface(const IcRecord& r) {
-    ts::TsSurface s{};
-    const float* g = r.surface.data();
-    s.position = ts::ts_f3_load(g + TS_IC_GBUF_POSITION);
-    s.shading_normal = ts::ts_f3_load(g + TS_IC_GBUF_NORMAL);
-    s.geo_normal = ts::ts_f3_load(g + TS_IC_GBUF_GEO_NORMAL);
-    s.origin = ts::ts_f3_load(g + TS_IC_GBUF_ORIGIN);
-    s.pos_scale = g[TS_IC_GBUF_POS_SCALE];
-    return s;
-}
+ts::TsSurface ic_record_surface(const IcRecord& r) { return ts::ts_ic_record_surface(r.surface.data()); }
 
 float ic_record_radius(float harmonic_mean, float pixel_size, float min_px, float max_px) {
     const float r = std::clamp(harmonic_mean, min_px * pixel_size, max_px * pixel_size);

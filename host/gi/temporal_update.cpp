@@ -248,15 +248,16 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     stats_.shadow_rays += trace_pairs(backend, vpls_, pairs, g_clamp, rows_);
 
     const bool all = weights_changed || g_clamp != prev_g_clamp_;
-    for (size_t i = 0; i < records.size(); ++i) {
-        if (!all && per_record[i].empty()) continue;
-        float hm;
-        ic_sum_record(records[i], rows_[i], vpls_, scene, g_clamp, &hm);
+    std::vector<uint32_t> resum;
+    for (size_t i = 0; i < records.size(); ++i)
+        if (all || !per_record[i].empty()) resum.push_back(static_cast<uint32_t>(i));
+    const std::vector<float> harmonic = gather(backend, vpls_, rows_, records, resum, g_clamp);
+    for (size_t k = 0; k < resum.size(); ++k) {
+        IcRecord& r = records[resum[k]];
         // The visible VPLs may have changed, and with them the harmonic mean distance.
-        records[i].radius = ic_record_radius(hm, records[i].pixel_size, settings_.min_radius_px,
-                                             settings_.max_radius_px);
-        ++stats_.resummed;
+        r.radius = ic_record_radius(harmonic[k], r.pixel_size, settings_.min_radius_px, settings_.max_radius_px);
     }
+    stats_.resummed += resum.size();
 }
 
 }  // namespace tessera

@@ -129,6 +129,8 @@ typedef struct TsSceneView {
     TS_GLOBAL const float* ic_nodes;
     TS_GLOBAL const uint* ic_refs;
     TS_GLOBAL const float* ic_records;
+    TS_GLOBAL const float* ic_record_surfaces;
+    TS_GLOBAL const uint* ic_visibility;
     TS_GLOBAL const uint* items; /* the launch's item list (item kernels) */
     uint light_count;
 } TsSceneView;

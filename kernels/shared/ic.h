@@ -1,9 +1,14 @@
-/* Instant caching, the kernels' side: the G-buffer kernel's per-pixel part. The
- * record weight and the octree lookup are in shared/ic_lookup.h (also compiled into host
- * code that has no tracer); the method is described there. */
+/* Instant caching, the kernels' side: the G-buffer kernel's per-pixel part, the record-VPL
+ * pair kernel (one shadow ray per pair) and the gather kernel (one record's E). The record
+ * weight and the octree lookup are in shared/ic_lookup.h, the gather sum in
+ * shared/ic_gather.h (both also compiled into host code that has no tracer). The host
+ * decides which pairs and records need work (placement, the temporal update's tests) and
+ * builds the item lists (host/gi/ic_gather.cpp); the records' surfaces, the VPLs (one set)
+ * and the visibility rows are named inputs. */
 #ifndef TS_IC_H
 #define TS_IC_H
 #include "shared/compat.h"
+#include "shared/ic_gather.h"
 #include "shared/ic_lookup.h"
 #include "shared/igi.h"
 #include "shared/layout.h"
@@ -36,6 +41,36 @@ TS_INLINE void ts_ic_interpolate_kernel_pixel(const TsSceneView* sv, const TsTra
     (void)tracer;
     ts_ic_interpolate_pixel(sv->ic_gbuffer, sv->ic_nodes, sv->ic_refs, sv->ic_records, f->ic_error_bound,
                             py * f->width + px, out);
+}
+
+/* Pair item i: the first triangle on the shadow ray from record to VPL (TS_IC_PAIR_FLOATS);
+ * TS_IC_PAIR_FACING when the clamped geometry term (f->igi_g_clamp) is 0 and no ray is
+ * needed. */
+TS_INLINE void ts_ic_pair_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                               float* out) {
+    TS_GLOBAL const uint* item = sv->items + (size_t)TS_IC_PAIR_WORDS * i;
+    TsSurface s = ts_ic_record_surface(sv->ic_record_surfaces + (size_t)TS_IC_GBUF_FLOATS * item[TS_IC_PAIR_RECORD]);
+    TsRay shadow;
+    uint hit = TS_IC_PAIR_FACING;
+    if (ts_vpl_geometry(&s, sv->vpls + (size_t)TS_VPL_FLOATS * item[TS_IC_PAIR_VPL], f->igi_g_clamp, &shadow) > 0.0f)
+        hit = ts_trace_closest(tracer, shadow).prim;
+    out[TS_IC_PAIR_HIT] = as_float(hit);
+}
+
+/* Gather item i: record item[TS_IC_GATHER_RECORD]'s sums over the Vpls input (one set,
+ * vpl_set_start[1] VPLs) with bit-mask row item[TS_IC_GATHER_ROW] of the IcVisibility
+ * input and
+ * b = f->igi_g_clamp. */
+TS_INLINE void ts_ic_gather_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                 float* out) {
+    (void)tracer;
+    TS_GLOBAL const uint* item = sv->items + (size_t)TS_IC_GATHER_WORDS * i;
+    TsSurface s = ts_ic_record_surface(sv->ic_record_surfaces + (size_t)TS_IC_GBUF_FLOATS * item[TS_IC_GATHER_RECORD]);
+    uint count = sv->vpl_set_start[1];
+    TsMedium med = ts_medium_load(sv->medium);
+    ts_ic_gather(&s, sv->ic_visibility + (size_t)TS_IC_VISIBLE_WORDS(count) * item[TS_IC_GATHER_ROW], count, sv->vpls,
+                 &med,
+                 f->igi_g_clamp, out);
 }
 
 TS_NAMESPACE_END

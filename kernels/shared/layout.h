@@ -295,6 +295,35 @@ typedef struct TsFrame {
 #define TS_IC_INTERP_FLOATS 4
 #define TS_IC_INTERP_E 0
 #define TS_IC_INTERP_WEIGHT 3
+/* The record-VPL pair kernel (shared/ic_gather.h), one item per pair to trace,
+ * TS_IC_PAIR_WORDS uints: TS_IC_PAIR_RECORD the record (index into the IcRecordSurfaces
+ * input), TS_IC_PAIR_VPL the VPL (index into the Vpls input). Its output,
+ * TS_IC_PAIR_FLOATS floats: TS_IC_PAIR_HIT (uint bits) the triangle the shadow ray hit
+ * first, TS_IC_PAIR_VISIBLE (= TS_NO_HIT) when unoccluded, TS_IC_PAIR_FACING when the
+ * geometry term is 0 (no ray traced). */
+#define TS_IC_PAIR_WORDS 2
+#define TS_IC_PAIR_RECORD 0
+#define TS_IC_PAIR_VPL 1
+#define TS_IC_PAIR_FLOATS 1
+#define TS_IC_PAIR_HIT 0
+#define TS_IC_PAIR_VISIBLE 0xffffffffu
+#define TS_IC_PAIR_FACING 0xfffffffeu
+/* The record gather kernel (shared/ic.h), one item per record to (re-)sum,
+ * TS_IC_GATHER_WORDS uints: TS_IC_GATHER_RECORD the record (index into
+ * IcRecordSurfaces), TS_IC_GATHER_ROW its row in the IcVisibility input. A row is a bit
+ * mask of TS_IC_VISIBLE_WORDS(n) uints for n VPLs: VPL j is visible (unoccluded, with a
+ * positive geometry term) when bit j % 32 of word j / 32 is set; the bits past n are 0.
+ * (One bit a pair, not the host's int32 occluder: 32 times less to copy each frame.) Its output,
+ * TS_IC_GATHER_FLOATS floats: TS_IC_GATHER_E 3 floats E = irradiance / π from the visible
+ * VPLs, TS_IC_GATHER_HARMONIC the harmonic mean distance to them (scene units; +inf for
+ * none). */
+#define TS_IC_GATHER_WORDS 2
+#define TS_IC_GATHER_RECORD 0
+#define TS_IC_GATHER_ROW 1
+#define TS_IC_GATHER_FLOATS 4
+#define TS_IC_GATHER_E 0
+#define TS_IC_GATHER_HARMONIC 3
+#define TS_IC_VISIBLE_WORDS(n) (((n) + 31u) / 32u)
 /* Depth bound of the octree (root = depth 0). */
 #define TS_IC_MAX_DEPTH 24
 
@@ -412,6 +441,19 @@ static_assert(tessera::layout_check::tiles({{TS_IC_NODE_CENTRE, 3}, {TS_IC_NODE_
               "layout.h: ic octree node fields do not tile TS_IC_NODE_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_IC_INTERP_E, 3}, {TS_IC_INTERP_WEIGHT, 1}}, TS_IC_INTERP_FLOATS),
               "layout.h: ic interpolation fields do not tile TS_IC_INTERP_FLOATS");
+static_assert(tessera::layout_check::tiles({{TS_IC_PAIR_RECORD, 1}, {TS_IC_PAIR_VPL, 1}}, TS_IC_PAIR_WORDS),
+              "layout.h: ic pair item fields do not tile TS_IC_PAIR_WORDS");
+static_assert(tessera::layout_check::tiles({{TS_IC_PAIR_HIT, 1}}, TS_IC_PAIR_FLOATS),
+              "layout.h: ic pair output fields do not tile TS_IC_PAIR_FLOATS");
+/* An unoccluded pair is a shadow ray that hit nothing; the facing code is no triangle. */
+static_assert(TS_IC_PAIR_VISIBLE == TS_NO_HIT && TS_IC_PAIR_FACING != TS_NO_HIT,
+              "layout.h: TS_IC_PAIR_VISIBLE must be TS_NO_HIT, TS_IC_PAIR_FACING another code");
+static_assert(tessera::layout_check::tiles({{TS_IC_GATHER_RECORD, 1}, {TS_IC_GATHER_ROW, 1}}, TS_IC_GATHER_WORDS),
+              "layout.h: ic gather item fields do not tile TS_IC_GATHER_WORDS");
+static_assert(TS_IC_VISIBLE_WORDS(0u) == 0u && TS_IC_VISIBLE_WORDS(32u) == 1u && TS_IC_VISIBLE_WORDS(33u) == 2u,
+              "layout.h: TS_IC_VISIBLE_WORDS(n) is n bits rounded up to whole uints");
+static_assert(tessera::layout_check::tiles({{TS_IC_GATHER_E, 3}, {TS_IC_GATHER_HARMONIC, 1}}, TS_IC_GATHER_FLOATS),
+              "layout.h: ic gather output fields do not tile TS_IC_GATHER_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_PASS_RADIANCE, 3}, {TS_PASS_ALBEDO, 3}, {TS_PASS_NORMAL, 3},
                                             {TS_PASS_DEPTH, 1}},
                                            TS_PASS_FLOATS),

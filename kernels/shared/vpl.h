@@ -1,6 +1,6 @@
 /* The VPL connection and gather sum of instant radiosity (Keller 1997), shared by the
- * igi kernels (shared/igi.h) and the instant cache's host-side gathering
- * (host/gi/instant_cache.cpp), so both weigh a VPL identically. VPL layout: layout.h
+ * igi kernels (shared/igi.h) and the instant cache's gather kernels (shared/ic_gather.h),
+ * so both weigh a VPL identically. VPL layout: layout.h
  * TS_VPL_FLOATS. */
 #ifndef TS_VPL_H
 #define TS_VPL_H
@@ -32,14 +32,17 @@ TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, 
  * found unoccluded: C the VPL's flux weight, Tr the medium's transmittance along the
  * shadow ray, G' the clamped geometry term (ts_vpl_geometry). ts_vpl_gather_add adds one
  * VPL's term, ts_vpl_gather_result applies the 1/π; the caller owns the loop, since
- * visibility comes from a tracer in the kernels and from stored rows in the instant cache.
+ * visibility comes from a tracer in the igi kernels and from stored rows in the instant
+ * cache's gather (shared/ic_gather.h).
  *
- * The accumulator's type is the caller's: the kernels sum in float (float3); the instant
- * cache's records sum in double (TsDouble3, C++ only), as a record's E is formed once
- * from all the VPLs of a frame (thousands of terms, not one set's) and then reused by
- * many pixels. Both forms build each term in the accumulator's precision as (C · Tr) · G'
- * and add it; OpenCL C has no templates and doubles are optional there, hence the
- * C++-only overloads rather than one generic body. */
+ * The accumulator is the caller's: igi sums one set's VPLs in float (float3). A cache
+ * record's E is formed once from all the VPLs of a frame (thousands of terms, not one
+ * set's) and then reused by many pixels, so it sums in double where the device has
+ * doubles (TsDouble3: always in C++, with cl_khr_fp64 in OpenCL) and otherwise in float
+ * with Neumaier's compensation (TsSum3), whose error does not grow with the number of
+ * terms (Neumaier 1974; Higham, Accuracy and Stability of Numerical Algorithms, §4.3).
+ * Each form builds a term in its accumulator's precision as (C · Tr) · G' and adds it.
+ * OpenCL C has no overloading, hence one name per accumulator. */
 TS_INLINE void ts_vpl_gather_add(float3* sum, TS_GLOBAL const float* vpl, const TsMedium* med, TsRay shadow,
                                  float g) {
     *sum += ts_f3_load(vpl + TS_VPL_FLUX) * ts_shadow_transmittance(med, shadow) * g;
@@ -47,21 +50,46 @@ TS_INLINE void ts_vpl_gather_add(float3* sum, TS_GLOBAL const float* vpl, const 
 
 TS_INLINE float3 ts_vpl_gather_result(float3 sum) { return sum * TS_INV_PI; }
 
-#ifdef __cplusplus
-struct TsDouble3 {
-    double x, y, z;
-};
-
-inline void ts_vpl_gather_add(TsDouble3* sum, const float* vpl, const TsMedium* med, TsRay shadow, float g) {
-    const float3 c = ts_f3_load(vpl + TS_VPL_FLUX), tr = ts_shadow_transmittance(med, shadow);
-    sum->x += double(c.x) * tr.x * g;
-    sum->y += double(c.y) * tr.y * g;
-    sum->z += double(c.z) * tr.z * g;
+/* Neumaier's compensated sum: *s the running sum, *c the rounding error it lost; the
+ * result is *s + *c. */
+TS_INLINE void ts_sum_compensated_add(float* s, float* c, float x) {
+    float t = *s + x;
+    *c += fabs(*s) >= fabs(x) ? (*s - t) + x : (x - t) + *s;
+    *s = t;
 }
 
-inline float3 ts_vpl_gather_result(TsDouble3 sum) {
+typedef struct TsSum3 {
+    float s[3], c[3];
+} TsSum3;
+
+TS_INLINE void ts_vpl_gather_add_compensated(TsSum3* sum, TS_GLOBAL const float* vpl, const TsMedium* med,
+                                             TsRay shadow, float g) {
+    float3 t = ts_f3_load(vpl + TS_VPL_FLUX) * ts_shadow_transmittance(med, shadow) * g;
+    ts_sum_compensated_add(&sum->s[0], &sum->c[0], t.x);
+    ts_sum_compensated_add(&sum->s[1], &sum->c[1], t.y);
+    ts_sum_compensated_add(&sum->s[2], &sum->c[2], t.z);
+}
+
+TS_INLINE float3 ts_vpl_gather_result_compensated(TsSum3 sum) {
+    return make_float3(sum.s[0] + sum.c[0], sum.s[1] + sum.c[1], sum.s[2] + sum.c[2]) * TS_INV_PI;
+}
+
+#ifdef TS_HAS_DOUBLE
+typedef struct TsDouble3 {
+    double x, y, z;
+} TsDouble3;
+
+TS_INLINE void ts_vpl_gather_add_double(TsDouble3* sum, TS_GLOBAL const float* vpl, const TsMedium* med,
+                                        TsRay shadow, float g) {
+    const float3 c = ts_f3_load(vpl + TS_VPL_FLUX), tr = ts_shadow_transmittance(med, shadow);
+    sum->x += (double)c.x * tr.x * g;
+    sum->y += (double)c.y * tr.y * g;
+    sum->z += (double)c.z * tr.z * g;
+}
+
+TS_INLINE float3 ts_vpl_gather_result_double(TsDouble3 sum) {
     const double pi = 3.14159265358979323846;
-    return make_float3(static_cast<float>(sum.x / pi), static_cast<float>(sum.y / pi), static_cast<float>(sum.z / pi));
+    return make_float3((float)(sum.x / pi), (float)(sum.y / pi), (float)(sum.z / pi));
 }
 #endif
 

@@ -62,28 +62,6 @@ TEST(RecordRadius, ClampsToPixelFootprints) {
     EXPECT_GT(ic_record_radius(0.05f, 0.0f, 1.5f, 20.0f), 0.0f);
 }
 
-TEST(RecordGather, SumsVisibleVplsAndTakesTheirHarmonicMeanDistance) {
-    // A record at the origin facing +z; VPLs straight above at heights 1, 3 and 2 facing
-    // down, weights C = 1, 2, 4; the third is occluded. G = 1/d² (both cosines 1).
-    IcRecord r = record_at({0, 0, 0}, {0, 0, 1}, 1.0f);
-    std::vector<float> vpls;
-    for (float h : {1.0f, 3.0f, 2.0f}) {
-        const float c = h == 1.0f ? 1.0f : h == 3.0f ? 2.0f : 4.0f;
-        vpls.insert(vpls.end(), {0, 0, h, 0, 0, -1, c, c, c, 0, 0, 1.0f});
-    }
-    const std::vector<int32_t> row = {kIcVisible, kIcVisible, 0};
-    SceneBuffers scene;
-    scene.medium.assign(TS_MEDIUM_FLOATS, 0.0f);
-    float hm;
-    ic_sum_record(r, row, vpls, scene, INFINITY, &hm);
-    // The shadow ray ends just short of the VPL (t < 0.99999), the sum uses the true G.
-    EXPECT_NEAR(r.e[0], (1.0f + 2.0f / 9.0f) / M_PI, 1e-6);
-    EXPECT_NEAR(hm, 2.0f / (1.0f + 1.0f / 3.0f), 1e-5);
-    // The clamp b bounds G: with b = 0.5 the first VPL contributes 0.5, not 1.
-    ic_sum_record(r, row, vpls, scene, 0.5f, &hm);
-    EXPECT_NEAR(r.e[0], (0.5f + 2.0f / 9.0f) / M_PI, 1e-6);
-}
-
 TEST(IcOctree, LookupEqualsBruteForceOverAllRecords) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);

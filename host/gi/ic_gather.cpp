@@ -1,0 +1,51 @@
+#include "gi/ic_gather.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace tessera {
+namespace {
+
+// The kernels read only igi_g_clamp of the frame.
+TsFrame gather_frame(float g_clamp) {
+    TsFrame f{};
+    f.igi_g_clamp = g_clamp;
+    return f;
+}
+
+}  // namespace
+
+void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records, const std::vector<float>& vpls) {
+    std::vector<float> surfaces(records.size() * TS_IC_GBUF_FLOATS);
+    for (size_t i = 0; i < records.size(); ++i)
+        std::memcpy(&surfaces[i * TS_IC_GBUF_FLOATS], records[i].surface.data(), sizeof(float) * TS_IC_GBUF_FLOATS);
+    backend.set_input(KernelInput::IcRecordSurfaces, surfaces);
+    backend.set_input(KernelInput::Vpls, vpls.empty() ? std::vector<float>(TS_VPL_FLOATS, 0.0f) : vpls);
+    backend.set_input(KernelInput::VplSetStart, std::vector<uint32_t>{0u, static_cast<uint32_t>(vpls.size() / TS_VPL_FLOATS)});
+}
+
+void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask) {
+    const size_t words = TS_IC_VISIBLE_WORDS(count);
+    for (size_t w = 0; w < words; ++w) {
+        uint32_t bits = 0;
+        for (size_t j = 32 * w; j < std::min(count, 32 * w + 32); ++j)
+            bits |= uint32_t(row[j] == int32_t(TS_IC_PAIR_VISIBLE)) << (j % 32);
+        mask[w] = bits;
+    }
+}
+
+void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>& items, std::vector<uint32_t>& hits) {
+    std::vector<float> out;
+    backend.launch_items(KernelId::IcPair, gather_frame(g_clamp), items, out);
+    static_assert(TS_IC_PAIR_FLOATS == 1 && TS_IC_PAIR_HIT == 0, "one hit code per pair");
+    hits.resize(out.size());
+    if (!out.empty()) std::memcpy(hits.data(), out.data(), out.size() * sizeof(float));
+}
+
+void ic_gather(Backend& backend, float g_clamp, const std::vector<uint32_t>& items,
+               const std::vector<uint32_t>& visibility, std::vector<float>& out) {
+    backend.set_input(KernelInput::IcVisibility, visibility);
+    backend.launch_items(KernelId::IcGather, gather_frame(g_clamp), items, out);
+}
+
+}  // namespace tessera
