@@ -20,8 +20,15 @@
 #include "shared/geometry.h"
 #include "shared/layout.h"
 
-/* 1 + 2γ(3) with γ(n) = n ε / (1 − n ε), ε = 2^-24. */
+/* 1 + 2γ(3) with γ(n) = n ε / (1 − n ε), ε = 2^-24: the slab distance (b − o) · (1/d)
+ * takes three correctly rounded operations. A device without correctly rounded division
+ * (-DTS_INEXACT_DIV_SQRT, host/opencl/program_cache.cpp) may be 2.5 ulp off in 1/d, five
+ * half-ulps instead of one, so there the bound is 1 + 2γ(7) ≤ 1 + 8 · 2^-23. */
+#ifdef TS_INEXACT_DIV_SQRT
+#define TS_BOX_TFAR_SCALE 1.0000009536743164f
+#else
 #define TS_BOX_TFAR_SCALE 1.0000003576278687f
+#endif
 
 /* Per-ray constants of the watertight test: the axis permutation and the shear. */
 typedef struct TsWatertight {

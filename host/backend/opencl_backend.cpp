@@ -141,7 +141,9 @@ private:
         auto p = programs_.find(program);
         if (p == programs_.end())
             p = programs_.emplace(program, build_program(ctx_, dev_, program, plan_.cl_defines()).program).first;
-        return kernels_.emplace(name, cl::Kernel(p->second, name.c_str())).first->second;
+        cl::Kernel k(p->second, name.c_str());
+        check_kernel_limits(k, dev_, name);
+        return kernels_.emplace(name, k).first->second;
     }
 
     cl::Buffer& output_buffer(size_t bytes) {

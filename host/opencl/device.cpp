@@ -70,6 +70,8 @@ std::vector<ClDeviceInfo> list_cl_devices() {
             i.global_mem = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
             i.max_alloc = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
             i.unified_memory = d.getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
+            i.correctly_rounded_div_sqrt =
+                (d.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
             // TESSERA_CL_MAX_ALLOC (bytes) lowers the limit, to try a small device's
             // limit on a large one (tests/cli/opencl_failure_test.cpp uses it).
             if (const char* cap = std::getenv("TESSERA_CL_MAX_ALLOC")) {

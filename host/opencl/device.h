@@ -19,6 +19,10 @@ struct ClDeviceInfo {
     unsigned compute_units = 0;
     unsigned long long global_mem = 0;     ///< bytes
     unsigned long long max_alloc = 0;      ///< CL_DEVICE_MAX_MEM_ALLOC_SIZE, bytes
+    /// CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT in CL_DEVICE_SINGLE_FP_CONFIG: the device can
+    /// build with -cl-fp32-correctly-rounded-divide-sqrt (else division may be off by 2.5
+    /// ulp and sqrt by 3, OpenCL 1.2 §7.4).
+    bool correctly_rounded_div_sqrt = false;
     bool unified_memory = false;  ///< CL_DEVICE_HOST_UNIFIED_MEMORY: an integrated GPU (or a CPU)
 };
 

@@ -8,6 +8,7 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "kernels/shared/layout.h"
 #include "opencl/kernel_source.h"
 #include "util/error.h"
 
@@ -72,6 +73,20 @@ bool try_build(cl::Program& program, const cl::Device& device, const std::string
 
 }  // namespace
 
+std::string kernel_limit_problem(const std::string& kernel, const std::string& device, size_t limit,
+                                 size_t required) {
+    if (limit >= required) return "";
+    return "OpenCL kernel " + kernel + " on " + device + ": the device allows at most " + std::to_string(limit) +
+           " work-items per work-group for it (CL_KERNEL_WORK_GROUP_SIZE), Tessera launches " +
+           std::to_string(required) + " (TS_WORKGROUP_SIZE); use another --device or --backend embree";
+}
+
+void check_kernel_limits(const cl::Kernel& k, const ClDeviceInfo& dev, const std::string& name) {
+    const size_t limit = k.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(dev.device);
+    const std::string problem = kernel_limit_problem(name, dev.name, limit, TS_WORKGROUP_SIZE);
+    if (!problem.empty()) throw RuntimeError(problem);
+}
+
 fs::path program_cache_dir() {
     if (const char* d = std::getenv("TESSERA_CACHE_DIR"); d && *d) return d;
     if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return fs::path(d) / "tessera";
@@ -84,6 +99,9 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
     const std::string source = load_kernel_source(name);
     ProgramBuild out;
     out.options = "-cl-std=CL1.2";
+    // The traversal's conservative box test assumes correctly rounded division
+    // (kernels/bvh_traverse.h); where the device cannot, it widens its bound instead.
+    out.options += dev.correctly_rounded_div_sqrt ? " -cl-fp32-correctly-rounded-divide-sqrt" : " -DTS_INEXACT_DIV_SQRT";
     if (const char* extra = std::getenv("TESSERA_CL_OPTIONS"); extra && *extra) out.options += std::string(" ") + extra;
     for (const auto& d : defines) out.options += " " + d;
     const std::string key_text = source + "\n" + out.options + "\n" + dev.platform_name + "\n" +

@@ -22,11 +22,23 @@ struct ProgramBuild {
 
 /// Builds kernel source `name` (see load_kernel_source) for `dev` with `defines` plus
 /// the fixed options "-cl-std=CL1.2" (no fast-math or finite-math flags: NaN/Inf must
-/// survive). The cache key is a 64-bit FNV-1a hash of the expanded source, the options
+/// survive) and "-cl-fp32-correctly-rounded-divide-sqrt" where the device supports it
+/// (else -DTS_INEXACT_DIV_SQRT, which widens the traversal's box bound). The cache key is a 64-bit FNV-1a hash of the expanded source, the options
 /// and the platform, device and driver names and versions. A stale or corrupt cache
 /// entry is ignored and rebuilt. Throws RuntimeError with the full build log on a
 /// compile error.
 ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, const std::string& name,
                            const std::vector<std::string>& defines);
+
+/// The problem with running kernel `kernel` on device `device` at work-group size
+/// `required` (TS_WORKGROUP_SIZE, fixed: the kernels declare reqd_work_group_size) when
+/// the device allows at most `limit` work-items for it (CL_KERNEL_WORK_GROUP_SIZE, which
+/// drivers lower for kernels with much private memory): a message naming the kernel, the
+/// device and both numbers, or empty when it fits.
+std::string kernel_limit_problem(const std::string& kernel, const std::string& device, size_t limit, size_t required);
+
+/// Queries `k`'s limits on `dev` and throws RuntimeError with kernel_limit_problem's
+/// message when the kernel cannot run at TS_WORKGROUP_SIZE.
+void check_kernel_limits(const cl::Kernel& k, const ClDeviceInfo& dev, const std::string& name);
 
 }  // namespace tessera

@@ -91,5 +91,39 @@ TEST(ProgramCache, BuildFailureReportsTheLog) {
     }
 }
 
+TEST(ProgramCache, CorrectlyRoundedDivisionWhereTheDeviceHasIt) {
+    // The traversal's box bound assumes it (kernels/bvh_traverse.h); a device without it
+    // gets the widened bound instead. Both variants build, and their traversals agree.
+    ScopedDirEnv cache("TESSERA_CACHE_DIR", "cache-rounding");
+    ClDeviceInfo dev = select_cl_device("");
+    cl::Context ctx(dev.device);
+    const ProgramBuild b = build_program(ctx, dev, "trace.cl", {});
+    const bool flag = b.options.find("-cl-fp32-correctly-rounded-divide-sqrt") != std::string::npos;
+    const bool widened = b.options.find("-DTS_INEXACT_DIV_SQRT") != std::string::npos;
+    EXPECT_EQ(flag, dev.correctly_rounded_div_sqrt) << b.options;
+    EXPECT_NE(flag, widened) << b.options;
+    dev.correctly_rounded_div_sqrt = !dev.correctly_rounded_div_sqrt;
+    const ProgramBuild other = build_program(ctx, dev, "trace.cl", {});
+    EXPECT_NE(other.options, b.options);
+    EXPECT_NO_THROW(cl::Kernel(other.program, "trace_occluded"));
+}
+
+TEST(KernelLimits, AWorkGroupOverTheDeviceLimitNamesKernelDeviceAndSizes) {
+    EXPECT_EQ(kernel_limit_problem("igi_surface_pass", "GPU X", 256, 64), "");
+    EXPECT_EQ(kernel_limit_problem("igi_surface_pass", "GPU X", 64, 64), "");
+    const std::string msg = kernel_limit_problem("igi_surface_pass", "GPU X", 32, 64);
+    for (const char* part : {"igi_surface_pass", "GPU X", "32", "64", "TS_WORKGROUP_SIZE"})
+        EXPECT_NE(msg.find(part), std::string::npos) << part << " missing: " << msg;
+}
+
+TEST(KernelLimits, EveryKernelFitsOnTheTestDevice) {
+    ScopedDirEnv cache("TESSERA_CACHE_DIR", "cache-limits");
+    ClDeviceInfo dev = select_cl_device("");
+    cl::Context ctx(dev.device);
+    const ProgramBuild b = build_program(ctx, dev, "trace.cl", {});
+    for (const char* name : {"trace_closest", "trace_occluded"})
+        EXPECT_NO_THROW(check_kernel_limits(cl::Kernel(b.program, name), dev, name));
+}
+
 }  // namespace
 }  // namespace tessera
