@@ -24,6 +24,7 @@ constexpr uint32_t kBlock = 4;  // a packet is kBlock × kBlock pixels of one sa
 struct Packet {
     int lanes = 0;
     std::array<ts::TsIgiView, kLanes> view;
+    std::array<ts::float3, kLanes> albedo;  // looked up once: a textured albedo costs a pow per texel
     std::array<uint32_t, kLanes> set{}, mask{}, links{};  // links = 0: nothing to gather
     std::array<ts::TsIgiGather, kLanes> gather;
 };
@@ -65,7 +66,8 @@ bool view_lane(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFr
     p.mask[i] = mask;
     p.links[i] = 0;
     if (p.view[i].hit.prim == TS_NO_HIT) return false;
-    if (ts::ts_max3(ts::ts_material_albedo(&sv, &p.view[i].s)) > 0.0f)
+    p.albedo[i] = ts::ts_material_albedo(&sv, &p.view[i].s);
+    if (ts::ts_max3(p.albedo[i]) > 0.0f)
         p.links[i] = ts::ts_igi_link_count(&sv, &frame, k, mask);
     return true;
 }
@@ -113,8 +115,8 @@ void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const 
         float visible;
         ts::ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
         const ts::TsSurface& s = p.view[i].s;
-        ts::ts_igi_surface_store(&p.view[i], ts::ts_material_albedo(&sv, &s), ts::ts_material_emission(&sv, &s),
-                                 e_ss, e_id, visible, o[i]);
+        ts::ts_igi_surface_store(&p.view[i], p.albedo[i], ts::ts_material_emission(&sv, &s), e_ss, e_id, visible,
+                                 o[i]);
     }
 }
 
