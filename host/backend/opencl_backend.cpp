@@ -42,7 +42,7 @@ size_t packet_work_items(KernelId id, const TsFrame& frame, size_t count) {
 class OpenCLBackend final : public Backend {
 public:
     OpenCLBackend(const SceneBuffers& scene, const EffectPlan& plan, const std::string& device, bool packets)
-        : dev_(select_cl_device(device)), plan_(plan), packets_(packets && dev_.type == "CPU") {
+        : dev_(select_cl_device(device)), plan_(plan), packets_(packets && cl_device_prefers_packets(dev_)) {
         try {
             ctx_ = cl::Context(dev_.device);
             queue_ = cl::CommandQueue(ctx_, dev_.device);
