@@ -8,7 +8,7 @@
  * time, in the same order, and ts_bvh_occluded16's per-lane result is ts_bvh_occluded's:
  * the images equal the per-pixel kernels' bit for bit (tests/backend/opencl_packets_test.cpp).
  *
- * Private memory per work-item: 16 lanes × (view ~190 B + gather 32 B + link 64 B) +
+ * Private memory per work-item: 16 lanes × (view ~190 B + albedo 16 B + gather 32 B + link 64 B) +
  * the packet rays (512 B) + the traversal stack (TS_BVH_STACK_SIZE × 8 B) ≈ 6 KB.
  */
 #ifndef TS_IGI_PACKETS_H
@@ -20,6 +20,7 @@
 /* 16 lanes, each a surface seen through a pixel and the links it gathers. */
 typedef struct TsIgiPacket {
     TsIgiView view[TS_PACKET_LANES];
+    float3 albedo[TS_PACKET_LANES]; /* at the view's surface: looked up once (textures cost pow) */
     uint set[TS_PACKET_LANES], mask[TS_PACKET_LANES];
     uint links[TS_PACKET_LANES]; /* 0: nothing to gather (idle lane, no surface, black albedo) */
     TsIgiGather gather[TS_PACKET_LANES];
@@ -35,7 +36,8 @@ static inline int ts_igi_packet_view(const TsSceneView* sv, const TsTracer* trac
     p->mask[i] = mask;
     p->links[i] = 0u;
     if (p->view[i].hit.prim == TS_NO_HIT) return 0;
-    if (ts_max3(ts_material_albedo(sv, &p->view[i].s)) > 0.0f) p->links[i] = ts_igi_link_count(sv, f, k, mask);
+    p->albedo[i] = ts_material_albedo(sv, &p->view[i].s);
+    if (ts_max3(p->albedo[i]) > 0.0f) p->links[i] = ts_igi_link_count(sv, f, k, mask);
     return 1;
 }
 
@@ -96,8 +98,7 @@ void igi_surface_packets(TS_KERNEL_ARGS) {
             float visible;
             ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
             const TsSurface* s = &p.view[i].s;
-            ts_igi_surface_store(&p.view[i], ts_material_albedo(&sv, s), ts_material_emission(&sv, s), e_ss, e_id,
-                                 visible, v);
+            ts_igi_surface_store(&p.view[i], p.albedo[i], ts_material_emission(&sv, s), e_ss, e_id, visible, v);
         }
         size_t o = ((size_t)py[i] * frame.width + px[i]) * TS_IGI_SURF_FLOATS;
         for (int c = 0; c < TS_IGI_SURF_FLOATS; ++c) out[o + c] = v[c];
