@@ -50,6 +50,19 @@ static inline uint ts_lane_bits16(int16 m) {
     return (uint)(d.x | d.y);
 }
 
+/* ts_lane_bits16 of four masks, as (bits of m0, m1, m2, m3): two masks share each
+ * 32-bit lane (m0 in the low half, m1 in the high half), halving the reduction steps. */
+static inline uint4 ts_lane_bits16x4(int16 m0, int16 m1, int16 m2, int16 m3) {
+    const uint16 b = as_uint16(TS_LANE_BITS16);
+    uint16 t = (as_uint16(m0) & b) | ((as_uint16(m1) & b) << 16);
+    uint16 u = (as_uint16(m2) & b) | ((as_uint16(m3) & b) << 16);
+    uint8 t8 = t.lo | t.hi, u8 = u.lo | u.hi;
+    uint8 a = (uint8)(t8.lo | t8.hi, u8.lo | u8.hi);
+    uint4 c = (uint4)(a.s01 | a.s23, a.s45 | a.s67);
+    uint2 d = (uint2)(c.s0 | c.s1, c.s2 | c.s3);
+    return (uint4)(d.x & 0xffffu, d.x >> 16, d.y & 0xffffu, d.y >> 16);
+}
+
 /* -1 in lane i where bit i of `bits` is set, else 0. */
 static inline int16 ts_lane_mask16(uint bits) { return ((int16)((int)bits) & TS_LANE_BITS16) != (int16)(0); }
 
@@ -58,13 +71,18 @@ static inline float16 ts_pick16(float16 x, float16 y, float16 z, int16 k) {
     return select(select(z, y, k == (int16)(1)), x, k == (int16)(0));
 }
 
-/* Smallest lane of v where m is true (+inf if none). */
-static inline float ts_min_where16(float16 v, int16 m) {
-    float16 a = select((float16)(INFINITY), v, m);
-    float8 b = fmin(a.lo, a.hi);
-    float4 c = fmin(b.lo, b.hi);
-    float2 d = fmin(c.lo, c.hi);
-    return fmin(d.x, d.y);
+/* For each of four (v, m): the smallest lane of v where m is true (+inf if none), as
+ * (for v0, v1, v2, v3); the four reductions share their steps. */
+static inline float4 ts_min_where16x4(float16 v0, int16 m0, float16 v1, int16 m1, float16 v2, int16 m2,
+                                      float16 v3, int16 m3) {
+    const float16 inf = (float16)(INFINITY);
+    float16 a0 = select(inf, v0, m0), a1 = select(inf, v1, m1), a2 = select(inf, v2, m2), a3 = select(inf, v3, m3);
+    float16 b = (float16)(fmin(a0.lo, a0.hi), fmin(a1.lo, a1.hi));
+    float16 c = (float16)(fmin(a2.lo, a2.hi), fmin(a3.lo, a3.hi));
+    float16 d = (float16)(fmin(b.s0123, b.s4567), fmin(b.s89ab, b.scdef), fmin(c.s0123, c.s4567),
+                          fmin(c.s89ab, c.scdef));
+    float8 e = (float8)(fmin(d.s01, d.s23), fmin(d.s45, d.s67), fmin(d.s89, d.sab), fmin(d.scd, d.sef));
+    return (float4)(fmin(e.s0, e.s1), fmin(e.s2, e.s3), fmin(e.s4, e.s5), fmin(e.s6, e.s7));
 }
 
 /* Writes ray r into lane i of the arrays a (TS_RAY_FLOATS arrays of 16 floats, in the
@@ -178,21 +196,25 @@ static inline uint ts_bvh_occluded16(__global const float* nodes, __global const
         if (ref >= 0) {
             __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
             int16 act = ts_lane_mask16(m);
+            float16 t0, t1, t2, t3;
+            int16 h0 = ts_packet_box(node, 0, r, &p, &t0) & act, h1 = ts_packet_box(node, 1, r, &p, &t1) & act;
+            int16 h2 = ts_packet_box(node, 2, r, &p, &t2) & act, h3 = ts_packet_box(node, 3, r, &p, &t3) & act;
+            uint4 bits = ts_lane_bits16x4(h0, h1, h2, h3);
+            float4 keys = ts_min_where16x4(t0, h0, t1, h1, t2, h2, t3, h3);
+            /* Push the hit children far to near (key: the nearest entry among the lanes
+             * that hit the child), so the nearest is popped first. */
             int cr[4];
             uint cm[4];
             float ct[4];
             int n = 0;
             for (int c = 0; c < 4; ++c) {
-                float16 tn;
-                int16 hit = ts_packet_box(node, c, r, &p, &tn) & act;
-                uint bits = ts_lane_bits16(hit);
-                if (bits == 0u) continue;
-                /* Order key: the nearest entry among the lanes that hit the child. */
-                float key = ts_min_where16(tn, hit);
-                int j = n++ - 1; /* insertion sort, descending key: the nearest is popped first */
+                uint b = c == 0 ? bits.x : c == 1 ? bits.y : c == 2 ? bits.z : bits.w;
+                if (b == 0u) continue;
+                float key = c == 0 ? keys.x : c == 1 ? keys.y : c == 2 ? keys.z : keys.w;
+                int j = n++ - 1; /* insertion sort, descending key */
                 while (j >= 0 && ct[j] < key) { cr[j + 1] = cr[j]; cm[j + 1] = cm[j]; ct[j + 1] = ct[j]; --j; }
                 cr[j + 1] = as_int(node[TS_NODE_REFS + c]);
-                cm[j + 1] = bits;
+                cm[j + 1] = b;
                 ct[j + 1] = key;
             }
             for (int i = 0; i < n; ++i) {
