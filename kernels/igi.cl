@@ -2,10 +2,13 @@
  * (shared/igi.h): the surface kernel (G-buffer, direct light of the pixel's sample set,
  * indirect light from the set's VPLs), the AIS extra kernel (further sets for scheduled
  * pixels), and the media kernel (single-scattering ray march), dispatched only when the
- * scene has a medium and built with -DTS_HAS_MEDIUM only then. */
+ * scene has a medium and built with -DTS_HAS_MEDIUM only then. On CPU devices the host
+ * launches the 16-ray packet variants of the surface and AIS kernels instead
+ * (igi_packets.h: same images, faster traversal). */
 #include "shared/layout.h"
 #include "tracer.h"
 #include "shared/igi.h"
+#include "igi_packets.h"
 
 TS_PIXEL_KERNEL(igi_surface_pass, ts_igi_surface_pixel, TS_IGI_SURF_FLOATS)
 

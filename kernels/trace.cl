@@ -2,9 +2,11 @@
  * traversal tests (against Embree) and the ray-throughput benchmark.
  * rays: TS_RAY_FLOATS floats per ray (layout.h: org.xyz, tmin, dir.xyz, tmax).
  * trace_closest writes TS_HIT_FLOATS words per ray: t, u, v (floats), prim (uint bits).
- * trace_occluded writes 1 uint per ray: 1 if anything lies in (tmin, tmax). */
+ * trace_occluded writes 1 uint per ray: 1 if anything lies in (tmin, tmax);
+ * trace_occluded_packets the same, tracing 16 consecutive rays per work-item as one
+ * packet (bvh_packet.h; the OpenCL backend's any-hit batches on CPU devices). */
 #include "shared/layout.h"
-#include "bvh_traverse.h"
+#include "bvh_packet.h"
 
 static inline TsRay ts_load_ray(__global const float* rays, uint i) {
     __global const float* r = rays + TS_RAY_FLOATS * i;
@@ -35,4 +37,26 @@ void trace_occluded(__global const float* nodes, __global const float* tris,
     uint i = get_global_id(0);
     if (i >= count) return;
     occluded[i] = (uint)ts_bvh_occluded(nodes, tris, ts_load_ray(rays, i));
+}
+
+__kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
+void trace_occluded_packets(__global const float* nodes, __global const float* tris,
+                            __global const float* rays, uint count, __global uint* occluded) {
+    uint first = get_global_id(0) * TS_PACKET_LANES;
+    if (first >= count) return;
+    uint lanes = min((uint)TS_PACKET_LANES, count - first), active = 0u;
+    float a[8][TS_PACKET_LANES];
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        TsRay r;
+        r.org = r.dir = (float3)(0.0f);
+        r.tmin = r.tmax = 0.0f; /* an idle lane: zeroed, never traced */
+        if ((uint)i < lanes) {
+            r = ts_load_ray(rays, first + (uint)i);
+            active |= 1u << i;
+        }
+        ts_ray16_put(a, i, r);
+    }
+    TsRay16 r = ts_ray16_load(a);
+    uint hit = ts_bvh_occluded16(nodes, tris, &r, active);
+    for (uint i = 0u; i < lanes; ++i) occluded[first + i] = hit >> i & 1u;
 }

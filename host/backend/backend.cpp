@@ -52,7 +52,10 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
         const bool packets = options.embree_packets && !(env && std::string(env) == "0");
         return make_embree_backend(scene, packets);
     }
-    return make_opencl_backend(scene, plan, options.device);
+    // TESSERA_CL_PACKETS=0 likewise turns the OpenCL CPU packet kernels off.
+    const char* env = std::getenv("TESSERA_CL_PACKETS");
+    const bool packets = options.cl_packets && !(env && std::string(env) == "0");
+    return make_opencl_backend(scene, plan, options.device, packets);
 }
 
 }  // namespace tessera

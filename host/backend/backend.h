@@ -25,6 +25,11 @@ struct BackendOptions {
     /// Embree: trace the igi surface pass's and AIS items' shadow rays as 16-ray packets
     /// (docs/ray-batches.md); false traces one ray at a time. Same images either way.
     bool embree_packets = true;
+    /// OpenCL on CPU devices: trace the igi surface pass's and AIS items' shadow rays, and
+    /// trace_occluded batches, as 16-ray packets (kernels/bvh_packet.h,
+    /// docs/ray-batches.md §4); false, or a GPU, traces one ray per work-item. Same
+    /// images either way.
+    bool cl_packets = true;
 };
 
 /// Traces rays and launches the kernels of the kernel table (device/kernel_table.h);
@@ -101,6 +106,6 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
 
 std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene, bool packets = true);
 std::unique_ptr<Backend> make_opencl_backend(const SceneBuffers& scene, const EffectPlan& plan,
-                                             const std::string& device);
+                                             const std::string& device, bool packets = true);
 
 }  // namespace tessera

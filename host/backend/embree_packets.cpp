@@ -17,8 +17,7 @@
 namespace tessera {
 namespace {
 
-constexpr int kLanes = 16;  // rtcOccluded16: AVX-512 width, two AVX2 halves on this CPU
-constexpr uint32_t kBlock = 4;  // a packet is kBlock × kBlock pixels of one sample set
+constexpr int kLanes = TS_PACKET_LANES;  // rtcOccluded16: AVX-512 width, two AVX2 halves on this CPU
 
 // Up to 16 lanes, each a surface seen through a pixel and the links it gathers.
 struct Packet {
@@ -72,41 +71,23 @@ bool view_lane(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFr
     return true;
 }
 
-// One sample set's pixels in the order of its sub-image (x = kx + n·sx, y = ky + n·sy).
-struct SetBlock {
-    uint32_t set, bx, by;
-};
-
-std::vector<SetBlock> set_blocks(const TsFrame& frame) {
-    const uint32_t n = std::max(1u, frame.igi_tile);
-    std::vector<SetBlock> blocks;
-    for (uint32_t k = 0; k < n * n; ++k) {
-        const uint32_t kx = k % n, ky = k / n;
-        const uint32_t sw = (frame.width - kx + n - 1) / n, sh = (frame.height - ky + n - 1) / n;
-        for (uint32_t by = 0; by < (sh + kBlock - 1) / kBlock; ++by)
-            for (uint32_t bx = 0; bx < (sw + kBlock - 1) / kBlock; ++bx) blocks.push_back({k, bx, by});
-    }
-    return blocks;
-}
-
-void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, SetBlock b,
+// Block b of the frame (ts_packet_block, kernels/shared/geometry.h: the enumeration the
+// OpenCL packet kernel uses too): 4×4 pixels of one sample set's sub-image.
+void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, uint32_t b,
                    std::vector<float>& out) {
-    const uint32_t n = std::max(1u, frame.igi_tile), kx = b.set % n, ky = b.set / n;
-    const uint32_t sw = (frame.width - kx + n - 1) / n, sh = (frame.height - ky + n - 1) / n;
+    uint32_t k, bx, by;
+    if (!ts::ts_packet_block(&frame, b, &k, &bx, &by)) return;
     Packet p;
     std::array<float*, kLanes> o{};
     std::array<bool, kLanes> hit{};
-    for (uint32_t dy = 0; dy < kBlock; ++dy) {
-        for (uint32_t dx = 0; dx < kBlock; ++dx) {
-            const uint32_t sx = b.bx * kBlock + dx, sy = b.by * kBlock + dy;
-            if (sx >= sw || sy >= sh) continue;
-            const uint32_t px = kx + n * sx, py = ky + n * sy;
-            const int i = p.lanes++;
-            o[i] = &out[(size_t(py) * frame.width + px) * TS_IGI_SURF_FLOATS];
-            ts::ts_igi_surface_clear(o[i]);
-            hit[i] = view_lane(sv, tracer, frame, p, i, px, py, ts::ts_igi_set(px, py, frame.igi_tile),
-                               frame.igi_components);
-        }
+    for (uint32_t lane = 0; lane < kLanes; ++lane) {
+        uint32_t px, py;
+        if (!ts::ts_packet_block_pixel(&frame, k, bx, by, lane, &px, &py)) continue;
+        const int i = p.lanes++;
+        o[i] = &out[(size_t(py) * frame.width + px) * TS_IGI_SURF_FLOATS];
+        ts::ts_igi_surface_clear(o[i]);
+        hit[i] = view_lane(sv, tracer, frame, p, i, px, py, ts::ts_igi_set(px, py, frame.igi_tile),
+                           frame.igi_components);
     }
     gather_links(sv, tracer, frame, p);
     for (int i = 0; i < p.lanes; ++i) {
@@ -152,10 +133,10 @@ void ais_packet(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsF
 
 void igi_surface_packets(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame,
                          std::vector<float>& out) {
-    const std::vector<SetBlock> blocks = set_blocks(frame);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 4), [&](const tbb::blocked_range<size_t>& r) {
+    const uint32_t blocks = ts::ts_packet_block_count(&frame);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, blocks, 4), [&](const tbb::blocked_range<uint32_t>& r) {
         set_ftz_daz();
-        for (size_t b = r.begin(); b < r.end(); ++b) surface_block(sv, tracer, frame, blocks[b], out);
+        for (uint32_t b = r.begin(); b < r.end(); ++b) surface_block(sv, tracer, frame, b, out);
     });
 }
 

@@ -2,6 +2,10 @@
 // shading run in kernels/*.cl on any OpenCL 1.2 device. Programs are built on first
 // use, so only the kernels a run needs are compiled, with the scene's defines. Every
 // kernel of the kernel table takes TS_KERNEL_ARGS (kernels/tracer.h), bound by run().
+// On CPU devices the igi surface and AIS item kernels and trace_occluded run as 16-ray
+// packets (kernels/igi_packets.h, kernels/bvh_packet.h; docs/ray-batches.md §4): PoCL
+// cannot vectorise the per-ray traversal across work-items, the packet kernels vectorise
+// across 16 rays explicitly. GPUs keep one ray per work-item.
 #include <array>
 #include <cstring>
 #include <map>
@@ -10,6 +14,7 @@
 
 #include "backend/backend.h"
 #include "bvh/bvh_builder.h"
+#include "kernels/shared/geometry.h"
 #include "opencl/cl.h"
 #include "opencl/device.h"
 #include "opencl/program_cache.h"
@@ -20,10 +25,24 @@ namespace {
 
 size_t round_up(size_t n, size_t m) { return (n + m - 1) / m * m; }
 
+constexpr size_t kLanes = TS_PACKET_LANES;
+
+// The packet variant of kernel `id` (kernels/igi_packets.h), or null where it has none,
+// and its work-item count for a launch over `count` pixels or items.
+const char* packet_kernel(KernelId id) {
+    if (id == KernelId::IgiSurface) return "igi_surface_packets";
+    if (id == KernelId::AisItem) return "ais_extra_packets";
+    return nullptr;
+}
+
+size_t packet_work_items(KernelId id, const TsFrame& frame, size_t count) {
+    return id == KernelId::IgiSurface ? ts::ts_packet_block_count(&frame) : (count + kLanes - 1) / kLanes;
+}
+
 class OpenCLBackend final : public Backend {
 public:
-    OpenCLBackend(const SceneBuffers& scene, const EffectPlan& plan, const std::string& device)
-        : dev_(select_cl_device(device)), plan_(plan) {
+    OpenCLBackend(const SceneBuffers& scene, const EffectPlan& plan, const std::string& device, bool packets)
+        : dev_(select_cl_device(device)), plan_(plan), packets_(packets && cl_device_prefers_packets(dev_)) {
         try {
             ctx_ = cl::Context(dev_.device);
             queue_ = cl::CommandQueue(ctx_, dev_.device);
@@ -54,7 +73,8 @@ public:
     }
 
     std::string description() const override {
-        return "opencl (" + dev_.platform_name + ": " + dev_.name + ")";
+        return "opencl (" + dev_.platform_name + ": " + dev_.name + "; " +
+               (packets_ ? "16-ray packets" : "per-ray BVH4") + ")";
     }
 
 protected:
@@ -71,7 +91,9 @@ protected:
         run([&] {
             cl::Buffer item_buf = items.empty() ? no_items_ : upload("item list", items);
             cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
-            cl::Kernel& k = kernel(info.program, info.name);
+            const char* packet = packets_ ? packet_kernel(id) : nullptr;
+            const size_t work_items = packet ? packet_work_items(id, frame, count) : count;
+            cl::Kernel& k = kernel(info.program, packet ? packet : info.name);
             int a = 0;
             k.setArg(a++, sizeof(TsFrame), &frame);
             for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
@@ -81,7 +103,7 @@ protected:
             k.setArg(a++, item_buf);
             k.setArg(a++, buf);
             k.setArg(a++, static_cast<cl_uint>(count));
-            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(count, TS_WORKGROUP_SIZE)),
+            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(work_items, TS_WORKGROUP_SIZE)),
                                         cl::NDRange(TS_WORKGROUP_SIZE));
             queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
         });
@@ -90,12 +112,13 @@ protected:
 public:
     void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder) override {
         hits.resize(rays.size() / TS_RAY_FLOATS * TS_HIT_FLOATS);
-        trace("trace_closest", rays, hits.data(), hits.size() * sizeof(float));
+        trace("trace_closest", rays, hits.data(), hits.size() * sizeof(float), 1);
     }
 
     void trace_occluded_rays(const std::vector<float>& rays, std::vector<uint32_t>& occluded, RayOrder) override {
         occluded.resize(rays.size() / TS_RAY_FLOATS);
-        trace("trace_occluded", rays, occluded.data(), occluded.size() * sizeof(uint32_t));
+        trace(packets_ ? "trace_occluded_packets" : "trace_occluded", rays, occluded.data(),
+              occluded.size() * sizeof(uint32_t), packets_ ? kLanes : 1);
     }
 
 private:
@@ -155,7 +178,9 @@ private:
         return out_;
     }
 
-    void trace(const char* name, const std::vector<float>& rays, void* result, size_t result_bytes) {
+    // Traces `rays` with kernel `name` of trace.cl, `per_item` rays per work-item.
+    void trace(const char* name, const std::vector<float>& rays, void* result, size_t result_bytes,
+               size_t per_item) {
         const size_t n = rays.size() / TS_RAY_FLOATS;
         if (n == 0) return;
         run([&] {
@@ -169,7 +194,8 @@ private:
             k.setArg(2, in);
             k.setArg(3, static_cast<cl_uint>(n));
             k.setArg(4, out);
-            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(n, TS_WORKGROUP_SIZE)),
+            queue_.enqueueNDRangeKernel(k, cl::NullRange,
+                                        cl::NDRange(round_up((n + per_item - 1) / per_item, TS_WORKGROUP_SIZE)),
                                         cl::NDRange(TS_WORKGROUP_SIZE));
             queue_.enqueueReadBuffer(out, CL_TRUE, 0, result_bytes, result);
         });
@@ -177,6 +203,7 @@ private:
 
     ClDeviceInfo dev_;
     EffectPlan plan_;
+    bool packets_;  // CPU device and packets wanted: the packet kernels replace their per-ray ones
     cl::Context ctx_;
     cl::CommandQueue queue_;
     cl::Buffer nodes_, tris_, tri_pos_, tri_nrm_, tri_uv_, tri_mat_, materials_, tex_info_, tex_texels_,
@@ -191,8 +218,8 @@ private:
 }  // namespace
 
 std::unique_ptr<Backend> make_opencl_backend(const SceneBuffers& scene, const EffectPlan& plan,
-                                             const std::string& device) {
-    return std::make_unique<OpenCLBackend>(scene, plan, device);
+                                             const std::string& device, bool packets) {
+    return std::make_unique<OpenCLBackend>(scene, plan, device, packets);
 }
 
 }  // namespace tessera

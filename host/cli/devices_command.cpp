@@ -22,10 +22,11 @@ void add_devices_command(CLI::App& app) {
         for (size_t r = 0; r < order.size(); ++r) {
             const ClDeviceInfo& d = devs[order[r]];
             const char* kind = d.type == "GPU" ? (d.unified_memory ? "GPU (integrated)" : "GPU (discrete)") : d.type.c_str();
-            std::printf("[%d] %s: %s%s\n    %s, %s, driver %s, %u compute units, %.1f GiB, max alloc %.1f GiB\n",
+            std::printf("[%d] %s: %s%s\n    %s, %s, driver %s, %u compute units, %.1f GiB, max alloc %.1f GiB, "
+                        "%s traversal\n",
                         d.index, d.platform_name.c_str(), d.name.c_str(), r == 0 ? "  (default)" : "", kind,
                         d.version.c_str(), d.driver.c_str(), d.compute_units, d.global_mem / 1073741824.0,
-                        d.max_alloc / 1073741824.0);
+                        d.max_alloc / 1073741824.0, cl_device_prefers_packets(d) ? "16-ray packet" : "per-ray");
         }
     });
 }

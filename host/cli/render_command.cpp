@@ -61,13 +61,16 @@ void print_progress(uint32_t done, uint32_t total, double elapsed, uint32_t rest
 
 // Timing of this run for the accuracy sweeps (bench/accuracy). A pass is one frame of a
 // progressive method: reaching `spp` passes costs about spp x median_pass_seconds.
-void write_stats_json(const fs::path& path, const RenderArgs& a, const RenderSettings& s, const RenderStats& stats) {
+// `tracer` is the backend's description (device and traversal).
+void write_stats_json(const fs::path& path, const RenderArgs& a, const RenderSettings& s, const RenderStats& stats,
+                      const std::string& tracer) {
     const nlohmann::json j = {
         {"median_pass_seconds", stats.median_pass_seconds},
         {"passes", stats.passes},  // rendered by this run (excludes passes restored by --resume)
         {"seconds", stats.seconds},  // wall time of those passes, set-up excluded
         {"method", a.method},
         {"backend", a.backend},
+        {"tracer", tracer},
         {"spp", s.spp},
         {"shadow_samples", s.shadow_samples},
     };
@@ -208,7 +211,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     CommitGroup outputs;  // all of them or none
     write_exr(outputs.add(out), img);
     write_png(outputs.add(png), img, a.exposure);
-    if (!a.stats_json.empty()) write_stats_json(outputs.add(a.stats_json), a, settings, stats);
+    if (!a.stats_json.empty()) write_stats_json(outputs.add(a.stats_json), a, settings, stats, backend->description());
     {
         const InterruptDeferral defer;
         outputs.commit();

@@ -33,6 +33,12 @@ struct ClDeviceInfo {
 /// integrated GPU's platform is often listed first).
 std::vector<size_t> rank_cl_devices(const std::vector<ClDeviceInfo>& devs);
 
+/// Whether the OpenCL backend traces IGI's shadow rays on `d` as 16-ray packets with
+/// explicit vector types (kernels/bvh_packet.h; docs/ray-batches.md §4) rather than one
+/// ray per work-item: on CPU devices, whose OpenCL compilers (PoCL) cannot vectorise the
+/// per-ray traversal loop across work-items. TESSERA_CL_PACKETS=0 overrides it per run.
+inline bool cl_device_prefers_packets(const ClDeviceInfo& d) { return d.type == "CPU"; }
+
 /// Every device of every platform, in platform order. Empty if there is no platform
 /// (no ICD installed); never throws for that.
 std::vector<ClDeviceInfo> list_cl_devices();

@@ -109,6 +109,66 @@ TS_INLINE void ts_pixel_of_work_item(const TsFrame* f, uint i, uint* px, uint* p
     *px = *py = 0u; /* unreachable for i < width · height */
 }
 
+/* Packet blocks (docs/ray-batches.md §2, §4): the backends that trace 16 pixels' links
+ * together cut each sample set's sub-image (the pixels x = kx + n·sx, y = ky + n·sy of
+ * set k = kx + n·ky, n = max(1, igi_tile)) into TS_PACKET_BLOCK × TS_PACKET_BLOCK blocks
+ * of (sx, sy), row-major per set, set 0's blocks first. 16 lanes = 4 × 4 pixels n apart
+ * on screen (a 12×12-pixel patch at n = 3); blocks at a sub-image's right or bottom edge
+ * have idle lanes. */
+#define TS_PACKET_BLOCK 4u
+#define TS_PACKET_LANES 16
+
+/* Size sw × sh of set k's sub-image. */
+TS_INLINE void ts_set_extent(const TsFrame* f, uint k, uint* sw, uint* sh) {
+    uint n = f->igi_tile > 1u ? f->igi_tile : 1u, kx = k % n, ky = k / n;
+    *sw = (f->width - kx + n - 1u) / n;
+    *sh = (f->height - ky + n - 1u) / n;
+}
+
+/* Number of packet blocks of set k's sub-image; *bw = blocks per row. */
+TS_INLINE uint ts_set_blocks(const TsFrame* f, uint k, uint* bw) {
+    uint sw, sh;
+    ts_set_extent(f, k, &sw, &sh);
+    *bw = (sw + TS_PACKET_BLOCK - 1u) / TS_PACKET_BLOCK;
+    return *bw * ((sh + TS_PACKET_BLOCK - 1u) / TS_PACKET_BLOCK);
+}
+
+/* Number of packet blocks of the frame, all sets. */
+TS_INLINE uint ts_packet_block_count(const TsFrame* f) {
+    uint n = f->igi_tile > 1u ? f->igi_tile : 1u, total = 0u, bw;
+    for (uint k = 0u; k < n * n; ++k) total += ts_set_blocks(f, k, &bw);
+    return total;
+}
+
+/* Block b (< ts_packet_block_count) of the frame: set *k, block column *bx and row *by
+ * of its sub-image. Returns 0 for b beyond the last block. */
+TS_INLINE int ts_packet_block(const TsFrame* f, uint b, uint* k, uint* bx, uint* by) {
+    uint n = f->igi_tile > 1u ? f->igi_tile : 1u, total = 0u;
+    for (uint s = 0u; s < n * n; ++s) {
+        uint bw, c = ts_set_blocks(f, s, &bw);
+        if (b < total + c) {
+            *k = s;
+            *bx = (b - total) % bw;
+            *by = (b - total) / bw;
+            return 1;
+        }
+        total += c;
+    }
+    return 0;
+}
+
+/* Pixel (px, py) of lane `lane` (< 16, row-major in the block) of set k's block (bx, by).
+ * Returns 0 for a lane past the sub-image's right or bottom edge (an idle lane). */
+TS_INLINE int ts_packet_block_pixel(const TsFrame* f, uint k, uint bx, uint by, uint lane, uint* px, uint* py) {
+    uint n = f->igi_tile > 1u ? f->igi_tile : 1u, sw, sh;
+    ts_set_extent(f, k, &sw, &sh);
+    uint sx = bx * TS_PACKET_BLOCK + lane % TS_PACKET_BLOCK, sy = by * TS_PACKET_BLOCK + lane / TS_PACKET_BLOCK;
+    if (sx >= sw || sy >= sh) return 0;
+    *px = k % n + n * sx;
+    *py = k / n + n * sy;
+    return 1;
+}
+
 /* Read-only views of the scene's shading buffers (layouts in shared/layout.h). */
 typedef struct TsSceneView {
     TS_GLOBAL const float* tri_pos;

@@ -1,0 +1,145 @@
+/* The 16-ray packet variants of the igi surface and AIS extra kernels for CPU OpenCL
+ * devices (docs/ray-batches.md §4): the OpenCL counterpart of
+ * host/backend/embree_packets.cpp. A work-item holds 16 lanes (pixels or AIS items);
+ * each lane runs the shared per-pixel code of shared/igi.h up to its links, then for
+ * link j = 0, 1, ... the shadow rays of link j of every lane that has one are traced
+ * together (ts_bvh_occluded16, bvh_packet.h) and each lane gathers its visible links in
+ * link order. Every lane so sums exactly the terms ts_igi_surface_set sums one ray at a
+ * time, in the same order, and ts_bvh_occluded16's per-lane result is ts_bvh_occluded's:
+ * the images equal the per-pixel kernels' bit for bit (tests/backend/opencl_packets_test.cpp).
+ *
+ * Private memory per work-item: 16 lanes × (view ~190 B + albedo 16 B + gather 32 B + link 64 B) +
+ * the packet rays (512 B) + the traversal stack (TS_BVH_STACK_SIZE × 8 B) ≈ 6 KB.
+ */
+#ifndef TS_IGI_PACKETS_H
+#define TS_IGI_PACKETS_H
+#include "bvh_packet.h"
+#include "tracer.h"
+#include "shared/igi.h"
+
+/* 16 lanes, each a surface seen through a pixel and the links it gathers. */
+typedef struct TsIgiPacket {
+    TsIgiView view[TS_PACKET_LANES];
+    float3 albedo[TS_PACKET_LANES]; /* at the view's surface: looked up once (textures cost pow) */
+    uint set[TS_PACKET_LANES], mask[TS_PACKET_LANES];
+    uint links[TS_PACKET_LANES]; /* 0: nothing to gather (idle lane, no surface, black albedo) */
+    TsIgiGather gather[TS_PACKET_LANES];
+} TsIgiPacket;
+
+/* Lane i sees pixel (px, py); returns whether its camera path found a surface, and sets
+ * its links for set k and components `mask` (none when the albedo is black, as in
+ * ts_igi_surface_set). */
+static inline int ts_igi_packet_view(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, TsIgiPacket* p,
+                                     int i, uint px, uint py, uint k, uint mask) {
+    p->view[i] = ts_igi_view(sv, tracer, f, px, py);
+    p->set[i] = k;
+    p->mask[i] = mask;
+    p->links[i] = 0u;
+    if (p->view[i].hit.prim == TS_NO_HIT) return 0;
+    p->albedo[i] = ts_material_albedo(sv, &p->view[i].s);
+    if (ts_max3(p->albedo[i]) > 0.0f) p->links[i] = ts_igi_link_count(sv, f, k, mask);
+    return 1;
+}
+
+/* Traces link j of every lane that has one as one packet, for j = 0 .. the most links
+ * of any lane, and adds each lane's visible links to its gather in link order. */
+static inline void ts_igi_packet_gather(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                        TsIgiPacket* p) {
+    TsMedium med = ts_medium_load(sv->medium);
+    uint most = 0u;
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        p->gather[i] = ts_igi_gather_begin();
+        most = max(most, p->links[i]);
+    }
+    TsIgiLink link[TS_PACKET_LANES];
+    float rays[8][TS_PACKET_LANES]; /* zeroed: a lane without a link is never traced */
+    for (int a = 0; a < 8; ++a)
+        for (int i = 0; i < TS_PACKET_LANES; ++i) rays[a][i] = 0.0f;
+    for (uint j = 0u; j < most; ++j) {
+        uint valid = 0u;
+        for (int i = 0; i < TS_PACKET_LANES; ++i) {
+            if (j >= p->links[i] || !ts_igi_link(sv, f, &p->view[i].s, p->set[i], p->mask[i], j, &link[i])) continue;
+            valid |= 1u << i;
+            ts_ray16_put(rays, i, link[i].shadow);
+        }
+        if (valid == 0u) continue;
+        TsRay16 r = ts_ray16_load(rays);
+        uint seen = valid & ~ts_bvh_occluded16(tracer->nodes, tracer->tris, &r, valid);
+        for (int i = 0; i < TS_PACKET_LANES; ++i)
+            if (seen >> i & 1u) ts_igi_gather_add(&p->gather[i], sv, &med, &link[i]);
+    }
+}
+
+/* The igi surface pass, one work-item per packet block (ts_packet_block, shared/
+ * geometry.h): ts_igi_surface_pixel for the block's 16 pixels, each written at its
+ * pixel's place (TS_IGI_SURF_FLOATS floats). */
+__kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
+void igi_surface_packets(TS_KERNEL_ARGS) {
+    uint k, bx, by;
+    if (!ts_packet_block(&frame, get_global_id(0), &k, &bx, &by)) return;
+    TS_KERNEL_VIEWS
+    TsIgiPacket p;
+    uint px[TS_PACKET_LANES], py[TS_PACKET_LANES], used = 0u, seen = 0u;
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        p.links[i] = 0u;
+        if (!ts_packet_block_pixel(&frame, k, bx, by, (uint)i, &px[i], &py[i])) continue;
+        used |= 1u << i;
+        if (ts_igi_packet_view(&sv, &tracer, &frame, &p, i, px[i], py[i], ts_igi_set(px[i], py[i], frame.igi_tile),
+                               frame.igi_components))
+            seen |= 1u << i;
+    }
+    ts_igi_packet_gather(&sv, &tracer, &frame, &p);
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        if (!(used >> i & 1u)) continue;
+        float v[TS_IGI_SURF_FLOATS];
+        ts_igi_surface_clear(v);
+        if (seen >> i & 1u) {
+            float3 e_ss, e_id;
+            float visible;
+            ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
+            const TsSurface* s = &p.view[i].s;
+            ts_igi_surface_store(&p.view[i], p.albedo[i], ts_material_emission(&sv, s), e_ss, e_id, visible, v);
+        }
+        size_t o = ((size_t)py[i] * frame.width + px[i]) * TS_IGI_SURF_FLOATS;
+        for (int c = 0; c < TS_IGI_SURF_FLOATS; ++c) out[o + c] = v[c];
+    }
+}
+
+/* The AIS extra items, 16 consecutive items of the list per work-item (the host lists
+ * them grouped by set): ts_ais_extra_item for each, written in list order
+ * (TS_AIS_ITEM_FLOATS floats). work_items = the number of items. */
+__kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
+void ais_extra_packets(TS_KERNEL_ARGS) {
+    uint first = get_global_id(0) * TS_PACKET_LANES;
+    if (first >= work_items) return;
+    TS_KERNEL_VIEWS
+    TsIgiPacket p;
+    uint px[TS_PACKET_LANES], py[TS_PACKET_LANES], seen = 0u;
+    int lanes = (int)min((uint)TS_PACKET_LANES, work_items - first);
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        p.links[i] = 0u;
+        if (i >= lanes) continue;
+        uint k, mask;
+        ts_ais_item_decode(&sv, &frame, first + (uint)i, &px[i], &py[i], &k, &mask);
+        p.set[i] = k;
+        p.mask[i] = mask;
+        if (ts_ais_item_has_surface(mask) && ts_igi_packet_view(&sv, &tracer, &frame, &p, i, px[i], py[i], k, mask))
+            seen |= 1u << i;
+    }
+    ts_igi_packet_gather(&sv, &tracer, &frame, &p);
+    for (int i = 0; i < lanes; ++i) {
+        float v[TS_AIS_ITEM_FLOATS];
+        for (int c = 0; c < TS_AIS_ITEM_FLOATS; ++c) v[c] = 0.0f;
+        if (seen >> i & 1u) {
+            float3 e_ss, e_id;
+            float visible;
+            ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
+            ts_ais_item_store_surface(e_ss, e_id, v);
+        }
+        ts_ais_item_media(&sv, &tracer, &frame, px[i], py[i], p.set[i], p.mask[i], v);
+        size_t o = (size_t)(first + (uint)i) * TS_AIS_ITEM_FLOATS;
+        for (int c = 0; c < TS_AIS_ITEM_FLOATS; ++c) out[o + c] = v[c];
+    }
+}
+
+#endif /* TS_IGI_PACKETS_H */
