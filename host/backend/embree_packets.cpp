@@ -29,8 +29,11 @@ struct Packet {
 };
 
 // Traces link j of every lane that has one as one packet, for j = 0 .. the most links of
-// any lane, and adds each lane's visible links to its gather in link order.
-void gather_links(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p) {
+// any lane, and adds each lane's visible links to its gather in link order. `coherent`:
+// the lanes' surfaces lie close together (a pixel block), so Embree's coherent mode pays;
+// for lanes scattered over the image it costs (docs/ray-batches.md §3).
+void gather_links(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p,
+                  bool coherent) {
     const ts::TsMedium med = ts::ts_medium_load(sv.medium);
     uint32_t most = 0;
     for (int i = 0; i < p.lanes; ++i) {
@@ -50,7 +53,7 @@ void gather_links(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const T
             any = true;
         }
         if (!any) continue;
-        const uint32_t blocked = ts::ts_trace_occluded16(&tracer, rays.data(), valid.data(), true);
+        const uint32_t blocked = ts::ts_trace_occluded16(&tracer, rays.data(), valid.data(), coherent);
         for (int i = 0; i < p.lanes; ++i)
             if (valid[i] && !(blocked >> i & 1u)) ts::ts_igi_gather_add(&p.gather[i], &sv, &med, &link[i]);
     }
@@ -89,7 +92,7 @@ void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const 
         hit[i] = view_lane(sv, tracer, frame, p, i, px, py, ts::ts_igi_set(px, py, frame.igi_tile),
                            frame.igi_components);
     }
-    gather_links(sv, tracer, frame, p);
+    gather_links(sv, tracer, frame, p, true);
     for (int i = 0; i < p.lanes; ++i) {
         if (!hit[i]) continue;
         ts::float3 e_ss, e_id;
@@ -116,7 +119,7 @@ void ais_packet(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsF
         p.mask[i] = mask;
         if (ts::ts_ais_item_has_surface(mask)) hit[i] = view_lane(sv, tracer, frame, p, i, px[i], py[i], k, mask);
     }
-    gather_links(sv, tracer, frame, p);
+    gather_links(sv, tracer, frame, p, false);  // AIS items: pixels scattered over edges
     for (int i = 0; i < p.lanes; ++i) {
         float* o = &out[(first + i) * TS_AIS_ITEM_FLOATS];
         if (hit[i]) {
