@@ -18,6 +18,8 @@
 /* No contraction into FMA, so device and C++ (-ffp-contract=off) round alike. */
 #pragma OPENCL FP_CONTRACT OFF
 #define TS_GLOBAL __global
+/* A read-only table at program scope (OpenCL 1.2 allows only __constant there). */
+#define TS_CONSTANT_TABLE __constant
 /* static: C99 gives a plain `inline` function no external definition, so a driver that
  * does not inline it (clang-based ones at -cl-opt-disable) fails to link. */
 #define TS_INLINE static inline
@@ -45,6 +47,7 @@ static inline void ts_f3_store(float* p, float3 v) { p[0] = v.x; p[1] = v.y; p[2
 #include <limits>
 
 #define TS_GLOBAL
+#define TS_CONSTANT_TABLE inline constexpr
 #define TS_INLINE inline
 #define TS_HAS_DOUBLE 1
 #define TS_NAMESPACE_BEGIN namespace tessera::ts {

@@ -4,14 +4,12 @@
 #include "shared/compat.h"
 #include "shared/geometry.h"
 #include "shared/layout.h"
+#include "shared/srgb_table.h"
 
 TS_NAMESPACE_BEGIN
 
-/* sRGB transfer curve inverse (IEC 61966-2-1), one 8-bit channel to linear. */
-TS_INLINE float ts_srgb_to_linear(uint c8) {
-    float c = (float)c8 * (1.0f / 255.0f);
-    return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f);
-}
+/* sRGB transfer curve inverse (IEC 61966-2-1), one 8-bit channel (0..255) to linear. */
+TS_INLINE float ts_srgb_to_linear(uint c8) { return ts_srgb_table[c8 & 0xffu]; }
 
 TS_INLINE float3 ts_texel(TS_GLOBAL const uint* texels, uint offset, uint w, int x, int y) {
     uint t = texels[offset + (uint)y * w + (uint)x];
