@@ -13,6 +13,7 @@
 #include "device/scene_buffers.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
+#include "support/render_helpers.h"
 
 namespace tessera {
 namespace {
@@ -120,30 +121,14 @@ TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBit) {
     const Scene scene =
         load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-fog.json", make_data_path(std::nullopt));
     SceneBuffers buffers = make_scene_buffers(scene);
-    RenderSettings rs;
-    rs.method = GetParam();
-    rs.width = 37;
-    rs.height = 29;
-    rs.spp = 2;
-    rs.igi.tile = 3;
-    rs.igi.paths_per_set = 8;
+    const RenderSettings rs = test::packet_test_settings(GetParam());
     auto single = opencl(buffers, scene, false), packets = opencl(buffers, scene, true);
     if (!runs_packets(*packets)) GTEST_SKIP() << "not a CPU device: " << packets->description();
-    const Image a = render_frame(*single, scene, buffers, rs), b = render_frame(*packets, scene, buffers, rs);
-    ASSERT_EQ(a.channels.size(), b.channels.size());
-    double sum = 0.0;
-    for (size_t c = 0; c < a.channels.size(); ++c) {
-        EXPECT_EQ(a.channels[c].name, b.channels[c].name);
-        EXPECT_TRUE(a.channels[c].data == b.channels[c].data) << "channel " << a.channels[c].name;
-        for (float v : a.channels[c].data) sum += std::isfinite(v) ? v : 0.0f;
-    }
-    EXPECT_GT(sum, 0.0) << "a black image would make the comparison vacuous";
+    test::expect_images_identical(render_frame(*single, scene, buffers, rs), render_frame(*packets, scene, buffers, rs));
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, OpenCLPacketImages, ::testing::Values(Method::Igi, Method::Ais, Method::AisMax),
-                         [](const auto& info) { return std::string(method_name(info.param)) == "ais-max"
-                                                           ? std::string("AisMax")
-                                                           : std::string(method_name(info.param)); });
+                         [](const auto& info) { return test::method_param_name(info.param); });
 
 }  // namespace
 }  // namespace tessera

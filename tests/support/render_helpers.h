@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -36,6 +37,39 @@ inline double rel_mse(const Image& a, const Image& b) {
         }
     }
     return sum / n;
+}
+
+/// Expects a and b to hold the same channels with bit-identical data, and not to be
+/// black (a black pair would make the comparison vacuous): the packet tracers'
+/// images against the single-ray tracers' (tests/backend/*_packets_test.cpp).
+inline void expect_images_identical(const Image& a, const Image& b) {
+    ASSERT_EQ(a.channels.size(), b.channels.size());
+    double sum = 0.0;
+    for (size_t c = 0; c < a.channels.size(); ++c) {
+        EXPECT_EQ(a.channels[c].name, b.channels[c].name);
+        EXPECT_TRUE(a.channels[c].data == b.channels[c].data) << "channel " << a.channels[c].name;
+        for (float v : a.channels[c].data) sum += std::isfinite(v) ? v : 0.0f;
+    }
+    EXPECT_GT(sum, 0.0) << "a black image would make the comparison vacuous";
+}
+
+/// The packet image tests' settings for `m` (igi, ais or ais-max): 37×29, not a multiple
+/// of the tile (3) nor of the 4×4 packet block, so packets with idle lanes and sets of
+/// unequal size are covered; 2 spp, 8 VPL paths per set.
+inline RenderSettings packet_test_settings(Method m) {
+    RenderSettings rs;
+    rs.method = m;
+    rs.width = 37;
+    rs.height = 29;
+    rs.spp = 2;
+    rs.igi.tile = 3;
+    rs.igi.paths_per_set = 8;
+    return rs;
+}
+
+/// A gtest parameter name for a method: "igi", "ais", "AisMax".
+inline std::string method_param_name(Method m) {
+    return std::string(method_name(m)) == "ais-max" ? std::string("AisMax") : std::string(method_name(m));
 }
 
 inline bool all_finite(const Image& img) {
