@@ -31,6 +31,9 @@ TsFrame make_frame(const Camera& camera, int width, int height, uint32_t shadow_
     f.shadow_samples = shadow_samples;
     f.seed = seed;
     f.light_count = light_count;
+    // The angle one pixel subtends at the image centre: the image plane at distance 1
+    // is 2·tan(vfov/2) tall and `height` pixels high.
+    f.pixel_cone = 2.0f * tan_half / static_cast<float>(height);
     return f;
 }
 

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "device/texture_mips.h"
 #include "kernels/shared/layout.h"
 #include "kernels/shared/sampling.h"
 
@@ -60,8 +61,10 @@ void add_textures(const Scene& scene, SceneBuffers& b) {
         info[TS_TEX_OFFSET] = static_cast<uint32_t>(b.tex_texels.size());
         info[TS_TEX_WIDTH] = static_cast<uint32_t>(t.width);
         info[TS_TEX_HEIGHT] = static_cast<uint32_t>(t.height);
+        info[TS_TEX_LEVELS] = mip_level_count(info[TS_TEX_WIDTH], info[TS_TEX_HEIGHT]);
         b.tex_info.insert(b.tex_info.end(), info, info + TS_TEX_INFO_UINTS);
-        b.tex_texels.insert(b.tex_texels.end(), t.rgba8.begin(), t.rgba8.end());
+        const std::vector<uint32_t> chain = build_mip_chain(t.rgba8, info[TS_TEX_WIDTH], info[TS_TEX_HEIGHT]);
+        b.tex_texels.insert(b.tex_texels.end(), chain.begin(), chain.end());
     }
 }
 

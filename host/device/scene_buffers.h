@@ -19,7 +19,7 @@ struct SceneBuffers {
     std::vector<uint32_t> tri_mat;   ///< 1 per triangle
     std::vector<float> materials;    ///< TS_MATERIAL_FLOATS per material
     std::vector<uint32_t> tex_info;  ///< 4 per texture
-    std::vector<uint32_t> tex_texels;
+    std::vector<uint32_t> tex_texels; ///< every texture's mip chain (device/texture_mips.h)
     std::vector<float> lights;       ///< TS_LIGHT_FLOATS per emissive triangle
     std::vector<float> light_cdf;    ///< 1 per light
     std::vector<float> medium;       ///< TS_MEDIUM_FLOATS (all zero when there is none)

@@ -27,6 +27,10 @@ struct IntegratorSettings {
     /// It must belong to the scene being rendered (its object table).
     std::shared_ptr<InstantCache> ic_state;
     uint32_t shadow_samples = 8;    ///< area-light samples per camera hit and pass
+    /// Textures at camera hits are read from the mip level of the pixel's ray cone
+    /// (TsFrame::pixel_cone); false: always the finest level. pt ignores it (it
+    /// supersamples: the reference).
+    bool texture_filter = true;
 };
 
 /// What an integrator reports about its last pass (Integrator::report).

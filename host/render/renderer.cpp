@@ -24,6 +24,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     frame.max_depth = settings.max_depth;
     frame.max_scatter = settings.max_scatter;
     frame.light_power = buffers.light_power;
+    if (!settings.texture_filter) frame.pixel_cone = 0.0f;
     Accumulator acc(w, h);
     CheckpointSession session(checkpoint, scene, settings, w, h);
     const uint32_t first = session.restore(acc);

@@ -205,6 +205,8 @@ typedef struct TsSurface {
     int front_face;       /* 1 if the ray hit the side cross(e1, e2) points to */
     float pos_scale;      /* largest absolute vertex coordinate (ts_offset_ray_origin) */
     float3 origin;        /* where rays leave from: position, moved inside the triangle */
+    float uv_footprint;   /* width of the pixel's ray-cone footprint in texture coordinates
+                             (ts_surface_cone); 0: the finest mip level */
 } TsSurface;
 
 TS_INLINE TsSurface ts_surface_at(const TsSceneView* sv, TsRay ray, TsHit hit) {
@@ -239,7 +241,28 @@ TS_INLINE TsSurface ts_surface_at(const TsSceneView* sv, TsRay ray, TsHit hit) {
     s.uv = make_float2(T[0] * w + T[2] * hit.u + T[4] * hit.v,
                        T[1] * w + T[3] * hit.u + T[5] * hit.v);
     s.material = sv->tri_mat[hit.prim];
+    s.uv_footprint = 0.0f;
     return s;
+}
+
+/* Sets s->uv_footprint for a ray cone of width `width` (scene units) at the hit on
+ * triangle prim, arriving along direction dir: the texture-LOD estimate of
+ * Akenine-Möller et al. 2019 ("Texture level of detail strategies for real-time ray
+ * tracing", Ray Tracing Gems ch. 20, eq. 34), a footprint of width/|cos θ| along the
+ * slant and `width` across it, made isotropic by its geometric mean width/sqrt|cos θ|
+ * (the same area, so the same number of texels averaged: the cone's width/|cos θ| blurs
+ * a floor seen at grazing angles, where width alone aliases), times the triangle's
+ * texture-to-world scale sqrt(A_uv / A_world). */
+TS_INLINE void ts_surface_cone(const TsSceneView* sv, TsSurface* s, uint prim, float3 dir, float width) {
+    TS_GLOBAL const float* P = sv->tri_pos + TS_TRI_POS_FLOATS * prim;
+    TS_GLOBAL const float* T = sv->tri_uv + TS_TRI_UV_FLOATS * prim;
+    float3 p0 = ts_f3_load(P);
+    float world2 = length(cross(ts_f3_load(P + 3) - p0, ts_f3_load(P + 6) - p0));
+    float uv2 = fabs((T[2] - T[0]) * (T[5] - T[1]) - (T[4] - T[0]) * (T[3] - T[1]));
+    float cos_t = fabs(dot(s->geo_normal, normalize(dir)));
+    float scale = world2 > 0.0f ? sqrt(uv2 / world2) : 0.0f;
+    float f = width * scale / sqrt(fmax(cos_t, 1e-4f));
+    s->uv_footprint = isfinite(f) ? f : 0.0f;
 }
 
 TS_NAMESPACE_END

@@ -173,7 +173,11 @@ TS_INLINE TsIgiView ts_igi_view(const TsSceneView* sv, const TsTracer* tracer, c
     TsIgiView v;
     v.ray = ts_igi_camera_ray(f, px, py, &rng);
     v.hit = ts_igi_find_diffuse(sv, tracer, &v.ray, &v.throughput, &v.distance, &rng);
-    if (v.hit.prim != TS_NO_HIT) v.s = ts_surface_at(sv, v.ray, v.hit);
+    if (v.hit.prim != TS_NO_HIT) {
+        v.s = ts_surface_at(sv, v.ray, v.hit);
+        /* The cone spreads over the whole path (flat mirrors keep its angle). */
+        if (f->pixel_cone > 0.0f) ts_surface_cone(sv, &v.s, v.hit.prim, v.ray.dir, v.distance * f->pixel_cone);
+    }
     return v;
 }
 

@@ -49,9 +49,11 @@
  *   TS_MEDIUM_BOUNDED 1 if bounded by the box else 0,
  *   TS_MEDIUM_BOX_MIN 3 floats, TS_MEDIUM_BOX_MAX 3 floats,
  *   TS_MEDIUM_PRESENT 1 if the scene has a medium at all, TS_MEDIUM_UNUSED 1 float.
- * textures: tex_info TS_TEX_INFO_UINTS uints per texture: TS_TEX_OFFSET texel offset,
- *   TS_TEX_WIDTH, TS_TEX_HEIGHT, TS_TEX_UNUSED;
- *   tex_texels: uint RGBA8 (R in the low byte), sRGB-encoded, row 0 at the top.
+ * textures: tex_info TS_TEX_INFO_UINTS uints per texture: TS_TEX_OFFSET texel offset of
+ *   level 0, TS_TEX_WIDTH, TS_TEX_HEIGHT (level 0), TS_TEX_LEVELS mip levels (>= 1);
+ *   tex_texels: uint RGBA8 (R in the low byte), sRGB-encoded, row 0 at the top. A
+ *   texture's levels follow each other from its offset: level l is max(1, w >> l) by
+ *   max(1, h >> l) texels (host/device/texture_mips.h builds them).
  * lights: TS_LIGHT_FLOATS floats per emissive triangle:
  *   TS_LIGHT_P0 3 floats: p0, TS_LIGHT_E1 3 floats: e1 = p1 - p0,
  *   TS_LIGHT_E2 3 floats: e2 = p2 - p0, TS_LIGHT_RADIANCE 3 floats: Le (W/(sr·m²)),
@@ -115,7 +117,7 @@
 #define TS_TEX_OFFSET 0
 #define TS_TEX_WIDTH 1
 #define TS_TEX_HEIGHT 2
-#define TS_TEX_UNUSED 3
+#define TS_TEX_LEVELS 3
 #define TS_LIGHT_FLOATS 16
 #define TS_LIGHT_P0 0
 #define TS_LIGHT_E1 3
@@ -169,6 +171,9 @@ typedef struct TsFrame {
                                     distance to the origin) no geometry can light them */
     unsigned int igi_components; /* igi/ais: TS_COMPONENT_* bits of what to compute */
     float ic_error_bound;        /* ic: Ward's a of the interpolation kernel (shared/ic_lookup.h) */
+    float pixel_cone;            /* texture filtering: spread angle of a pixel's ray cone
+                                    (radians, 2·tan(vfov/2)/height); 0 = finest mip level
+                                    only (pt, the reference, supersamples instead) */
 } TsFrame;
 
 /* VPLs (host/gi/light_paths.cpp): TS_VPL_FLOATS floats each, sorted by sample set:
@@ -389,7 +394,7 @@ static_assert(tessera::layout_check::tiles({{TS_MEDIUM_SIGMA_A, 3}, {TS_MEDIUM_S
                                            TS_MEDIUM_FLOATS),
               "layout.h: medium fields do not tile TS_MEDIUM_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_TEX_OFFSET, 1}, {TS_TEX_WIDTH, 1}, {TS_TEX_HEIGHT, 1},
-                                            {TS_TEX_UNUSED, 1}},
+                                            {TS_TEX_LEVELS, 1}},
                                            TS_TEX_INFO_UINTS),
               "layout.h: texture info fields do not tile TS_TEX_INFO_UINTS");
 static_assert(tessera::layout_check::tiles({{TS_LIGHT_P0, 3}, {TS_LIGHT_E1, 3}, {TS_LIGHT_E2, 3},
@@ -458,14 +463,14 @@ static_assert(tessera::layout_check::tiles({{TS_PASS_RADIANCE, 3}, {TS_PASS_ALBE
                                             {TS_PASS_DEPTH, 1}},
                                            TS_PASS_FLOATS),
               "layout.h: pass output fields do not tile TS_PASS_FLOATS");
-/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 30 4-byte
+/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 31 4-byte
  * scalars with no padding, so its layout is the same in both languages. */
 static_assert(std::is_standard_layout_v<TsFrame> && std::is_trivially_copyable_v<TsFrame>,
               "layout.h: TsFrame must stay a plain struct");
-static_assert(sizeof(TsFrame) == 30 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
+static_assert(sizeof(TsFrame) == 31 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
                   offsetof(TsFrame, light_power) == 20 * 4 && offsetof(TsFrame, igi_components) == 28 * 4 &&
-                  offsetof(TsFrame, ic_error_bound) == 29 * 4,
-              "layout.h: TsFrame is not 30 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
+                  offsetof(TsFrame, ic_error_bound) == 29 * 4 && offsetof(TsFrame, pixel_cone) == 30 * 4,
+              "layout.h: TsFrame is not 31 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
 #endif /* __cplusplus */
 
 #endif /* TS_LAYOUT_H */
