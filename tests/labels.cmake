@@ -14,7 +14,7 @@ set(tessera_bench_tests "^(AccuracyReport|AccuracySweep|AisBound)\\.")
 set(tessera_statistical_tests
     "^Methods/"
     "^Backends/(PtFurnace|PtMedium|PlaneUnderLight|InstantCacheOn)\\."
-    "^(BackendAgreement|PtAgreement|Traversal|IgiAgreement|IgiConvergence|IgiMedia|Ais|LightSelection)\\."
+    "^(BackendAgreement|PtAgreement|Traversal|IgiAgreement|IgiConvergence|IgiMedia|Ais|LightSelection|PassConvergence)\\."
     "^G/HenyeyGreenstein\\.SamplesMatchThePhaseFunction/"
     "^Sampling\\.(CosineHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
     "^Medium\\.(FreeFlightDistancesAreExponential|RgbWeightsAreUnbiased)$")

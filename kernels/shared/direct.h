@@ -69,7 +69,7 @@ TS_INLINE void ts_direct_pixel(const TsSceneView* sv, const TsTracer* tracer, co
     out[TS_PASS_DEPTH] = TS_INF;
     if (hit.prim == TS_NO_HIT) return;
     TsSurface s = ts_surface_at(sv, ray, hit);
-    if (f->pixel_cone > 0.0f) ts_surface_cone(sv, &s, hit.prim, ray.dir, hit.t * f->pixel_cone);
+    if (f->pixel_cone > 0.0f) ts_surface_cone(sv, &s, hit.prim, ray.dir, hit.t * ts_pass_cone(f));
     float3 albedo = ts_material_albedo(sv, &s);
     float3 L = ts_material_emission(sv, &s);
     if (albedo.x + albedo.y + albedo.z > 0.0f && sv->light_count > 0u)

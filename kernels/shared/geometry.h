@@ -253,6 +253,13 @@ TS_INLINE TsSurface ts_surface_at(const TsSceneView* sv, TsRay ray, TsHit hit) {
  * (the same area, so the same number of texels averaged: the cone's width/|cos θ| blurs
  * a floor seen at grazing angles, where width alone aliases), times the triangle's
  * texture-to-world scale sqrt(A_uv / A_world). */
+/* The cone spread of pass f->pass's camera sample: the pixel's angle f->pixel_cone over
+ * sqrt(pass + 1). N jittered passes each stand for 1/N of the pixel's area, a footprint
+ * of width 1/sqrt(N) of the pixel's; so the first pass reads the texture filtered to the
+ * whole pixel and the accumulation of many passes tends to the finest level, the pixel
+ * mean that the path-traced reference converges to (docs/texture-filtering.md §4). */
+TS_INLINE float ts_pass_cone(const TsFrame* f) { return f->pixel_cone / sqrt((float)f->pass + 1.0f); }
+
 TS_INLINE void ts_surface_cone(const TsSceneView* sv, TsSurface* s, uint prim, float3 dir, float width) {
     TS_GLOBAL const float* P = sv->tri_pos + TS_TRI_POS_FLOATS * prim;
     TS_GLOBAL const float* T = sv->tri_uv + TS_TRI_UV_FLOATS * prim;

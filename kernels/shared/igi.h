@@ -176,7 +176,7 @@ TS_INLINE TsIgiView ts_igi_view(const TsSceneView* sv, const TsTracer* tracer, c
     if (v.hit.prim != TS_NO_HIT) {
         v.s = ts_surface_at(sv, v.ray, v.hit);
         /* The cone spreads over the whole path (flat mirrors keep its angle). */
-        if (f->pixel_cone > 0.0f) ts_surface_cone(sv, &v.s, v.hit.prim, v.ray.dir, v.distance * f->pixel_cone);
+        if (f->pixel_cone > 0.0f) ts_surface_cone(sv, &v.s, v.hit.prim, v.ray.dir, v.distance * ts_pass_cone(f));
     }
     return v;
 }

@@ -111,26 +111,13 @@ TEST(IgiAgreement, BackendsRenderTheSameFrame) {
     EXPECT_LE(differ, total / 200) << differ << " of " << total << " pixel channels differ";
 }
 
-// Mean of channel c over pixels at least one pixel away from any pixel brighter than 3
-// in `ref` (the emitter): there a few jittered camera samples decide how much of a
-// radiance-17 light a pixel covers, noise that says nothing about the lighting.
+// Mean of channel c over the pixels away from the emitter (test::away_from_emitter).
 double mean_away_from_emitter(const Image& img, const Image& ref, const char* c) {
-    const int w = img.width, h = img.height;
-    auto bright = [&](int x, int y) {
-        return ref.find("R")->data[y * w + x] + ref.find("G")->data[y * w + x] + ref.find("B")->data[y * w + x] > 3.0f;
-    };
+    const std::vector<bool> keep = test::away_from_emitter(ref);
     double sum = 0.0;
     int n = 0;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            bool near = false;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx)
-                    near |= x + dx >= 0 && x + dx < w && y + dy >= 0 && y + dy < h && bright(x + dx, y + dy);
-            if (near) continue;
-            sum += img.find(c)->data[y * w + x];
-            ++n;
-        }
+    for (size_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) sum += img.find(c)->data[i], ++n;
     return sum / n;
 }
 

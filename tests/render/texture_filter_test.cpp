@@ -12,33 +12,6 @@
 namespace tessera {
 namespace {
 
-// A 100 × 100 floor with a 256 × 256 one-texel black/white checker, seen straight down
-// from 80 units with a 60° field of view at 32 × 32 pixels (the view, 92 units wide,
-// lies inside the floor): one pixel spans 2·80·tan 30° / 32 = 2.9 units = 7.4 texels, so
-// the cone picks mip level 2.9 or coarser, where the checker is flat grey (every level
-// from 1 on is linear 0.5, 8-bit code 188).
-Scene checker_floor() {
-    Scene s;
-    s.name = "checker-floor";
-    Texture t;
-    t.path = "checker";
-    t.width = t.height = 256;
-    for (int y = 0; y < 256; ++y)
-        for (int x = 0; x < 256; ++x) t.rgba8.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
-    s.textures.push_back(t);
-    const uint32_t floor = test::add_material(s, glm::vec3(1.0f));
-    s.materials[floor].texture = 0;
-    test::add_quad(s, {-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, floor);  // faces +y
-    const uint32_t light = test::add_material(s, glm::vec3(0.0f), glm::vec3(1.0f));
-    test::add_quad(s, {-200, 300, -200}, {400, 0, 0}, {0, 0, 400}, light);  // faces -y
-    s.camera.position = {0, 80, 0};
-    s.camera.look_at = {0, 0, 0};
-    s.camera.up = {0, 0, -1};
-    s.camera.vfov_deg = 60.0f;
-    s.camera.width = s.camera.height = 32;
-    return s;
-}
-
 struct AlbedoStats {
     double mean = 0, max_dev = 0, sd = 0;
 };
@@ -68,7 +41,7 @@ RenderSettings albedo_settings(Method m) {
 class TextureFilter : public ::testing::TestWithParam<BackendKind> {};
 
 TEST_P(TextureFilter, MinifiedCheckerReadsAsItsMean) {
-    const Scene scene = checker_floor();
+    const Scene scene = test::checker_floor();
     const double grey = ts::ts_srgb_table[188];  // the checker's level-3 value (texture_mips_test)
     for (Method m : {Method::Direct, Method::Igi}) {
         const AlbedoStats on = albedo_stats(test::render_with(GetParam(), scene, albedo_settings(m)), grey);
@@ -87,7 +60,7 @@ TEST_P(TextureFilter, MinifiedCheckerReadsAsItsMean) {
 }
 
 TEST_P(TextureFilter, PathTracerIgnoresIt) {
-    const Scene scene = checker_floor();
+    const Scene scene = test::checker_floor();
     RenderSettings rs = albedo_settings(Method::PathTrace);
     const Image on = test::render_with(GetParam(), scene, rs);
     rs.texture_filter = false;

@@ -39,6 +39,41 @@ inline double rel_mse(const Image& a, const Image& b) {
     return sum / n;
 }
 
+/// Pixels at least one pixel away from any pixel brighter than `bright` (R+G+B) in `ref`,
+/// the emitter: there a few jittered camera samples decide how much of the light a pixel
+/// covers, noise that says nothing about the lighting. true = keep, row-major.
+inline std::vector<bool> away_from_emitter(const Image& ref, float bright = 3.0f) {
+    const int w = ref.width, h = ref.height;
+    const auto &r = ref.find("R")->data, &g = ref.find("G")->data, &b = ref.find("B")->data;
+    std::vector<bool> keep(size_t(w) * h, true);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            if (!(r[i] + g[i] + b[i] > bright)) continue;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    if (x + dx >= 0 && x + dx < w && y + dy >= 0 && y + dy < h) keep[size_t(y + dy) * w + x + dx] = false;
+        }
+    return keep;
+}
+
+/// rel_mse over the pixels `keep` marks.
+inline double rel_mse_where(const Image& a, const Image& b, const std::vector<bool>& keep) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (const char* c : {"R", "G", "B"}) {
+        const auto& x = a.find(c)->data;
+        const auto& y = b.find(c)->data;
+        for (size_t i = 0; i < x.size(); ++i) {
+            if (!keep[i]) continue;
+            const double d = double(x[i]) - y[i];
+            sum += d * d / (double(y[i]) * y[i] + 0.01);
+            ++n;
+        }
+    }
+    return sum / n;
+}
+
 /// Expects a and b to hold the same channels with bit-identical data, and not to be
 /// black (a black pair would make the comparison vacuous): the packet tracers'
 /// images against the single-ray tracers' (tests/backend/*_packets_test.cpp).

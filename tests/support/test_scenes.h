@@ -61,4 +61,31 @@ inline Scene closed_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 albedo, glm::vec3 
     return s;
 }
 
+// A 100 × 100 floor with a 256 × 256 one-texel black/white checker, seen straight down
+// from 80 units with a 60° field of view at 32 × 32 pixels (the view, 92 units wide,
+// lies inside the floor): one pixel spans 2·80·tan 30° / 32 = 2.9 units = 7.4 texels, so
+// the cone picks mip level 2.9 or coarser, where the checker is flat grey (every level
+// from 1 on is linear 0.5, 8-bit code 188).
+inline Scene checker_floor() {
+    Scene s;
+    s.name = "checker-floor";
+    Texture t;
+    t.path = "checker";
+    t.width = t.height = 256;
+    for (int y = 0; y < 256; ++y)
+        for (int x = 0; x < 256; ++x) t.rgba8.push_back((x + y) % 2 ? 0xffffffffu : 0xff000000u);
+    s.textures.push_back(t);
+    const uint32_t floor = add_material(s, glm::vec3(1.0f));
+    s.materials[floor].texture = 0;
+    add_quad(s, {-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, floor);  // faces +y
+    const uint32_t light = add_material(s, glm::vec3(0.0f), glm::vec3(1.0f));
+    add_quad(s, {-200, 300, -200}, {400, 0, 0}, {0, 0, 400}, light);  // faces -y
+    s.camera.position = {0, 80, 0};
+    s.camera.look_at = {0, 0, 0};
+    s.camera.up = {0, 0, -1};
+    s.camera.vfov_deg = 60.0f;
+    s.camera.width = s.camera.height = 32;
+    return s;
+}
+
 }  // namespace tessera::test
