@@ -39,7 +39,7 @@ METHODS = {
         converges_to_reference=False,
         note="instant global illumination; the clamped VPL geometry term darkens corners, so its error "
              "against the pt reference floors (with --clamp 0 it converges, tests/gi/igi_test.cpp); "
-             "in media its model is single scattering on camera rays (pt --max-scatter 1)"),
+             "in media it gathers VPLs left by light paths that scatter in the medium (multiple scattering; --single-scattering: pt --max-scatter 1)"),
     "ais": Method(
         "ais", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},

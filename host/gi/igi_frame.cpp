@@ -45,6 +45,7 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     frame.igi_steps = settings_.march_steps;
     frame.igi_g_clamp = g_clamp_;
     frame.igi_components = effective_components();
+    frame.igi_media_vpls = settings_.multiple_scattering ? 1u : 0u;
     frame.igi_march_far = march_far_ + std::sqrt(frame.cam_pos[0] * frame.cam_pos[0] +
                                                  frame.cam_pos[1] * frame.cam_pos[1] +
                                                  frame.cam_pos[2] * frame.cam_pos[2]);
@@ -64,6 +65,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         vs.sets = sets;
         vs.paths_per_set = settings_.paths_per_set;
         vs.frame = frame.pass;
+        vs.medium_scattering = settings_.multiple_scattering;
         vpls = generate_vpls(backend_, scene_, vs);
     } else {  // nothing reflects: no light paths, no VPLs (the kernels see empty sets)
         vpls.set_start.assign(sets + 1, 0u);

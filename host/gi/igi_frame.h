@@ -33,6 +33,11 @@ struct IgiSettings {
     /// default c = 0.05). clamp_c = 0 disables clamping (b = +inf).
     float clamp_c = 0.05f;
     bool filter = true;            ///< the discontinuity buffer (off: raw interleaved image)
+    /// Media: light paths scatter in the medium and leave medium VPLs, which surfaces and
+    /// the ray march gather (multiple scattering, converging to `pt`; docs/igi.md §6);
+    /// false: single scattering from the lights only (converging to `pt --max-scatter 1`).
+    /// Uses the ID component's VPLs.
+    bool multiple_scattering = true;
     DiscontinuitySettings discontinuity;
     /// Components to compute (TS_COMPONENT_SS | _ID | _PM); the ones the scene does not
     /// call for are dropped anyway (no medium: no PM).

@@ -55,6 +55,7 @@ void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint
     for (uint32_t j = 0; j < settings_.paths; ++j) paths_[j].index = uint64_t(block) * settings_.paths + j;
     LightPathSettings ls;
     ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
+    ls.medium_scattering = settings_.multiple_scattering;
     stats_.light_path_rays += trace_light_paths(backend, scene, ls, paths_);
     stats_.paths_retraced = paths_.size();
     concat_vpls();
@@ -270,6 +271,7 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
     for (size_t j = 0; j < paths.size(); ++j) paths[j].index = paths_[j].index;
     LightPathSettings ls;
     ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
+    ls.medium_scattering = settings_.multiple_scattering;
     trace_light_paths(backend, scene, ls, paths);
     std::vector<float> vpls;
     for (const LightPath& p : paths) vpls.insert(vpls.end(), p.vpls.begin(), p.vpls.end());

@@ -46,6 +46,7 @@ struct IcSettings {
     /// (docs/instant-caching.md §8): without it a moving camera
     /// grows the cache, and the per-frame update with it, without bound.
     uint32_t evict_after_frames = 30;
+    bool multiple_scattering = true;   ///< light paths scatter in the medium (IgiSettings)
 };
 
 /// Counts and times of the last frame (of indirect()).

@@ -5,6 +5,7 @@
 
 #include "gi/halton.h"
 #include "kernels/shared/light_path.h"
+#include "kernels/shared/rng.h"
 #include "device/scene_view.h"
 
 namespace tessera {
@@ -26,16 +27,42 @@ bool start_path(const ts::TsSceneView& sv, const ScrambledHalton& h, InFlight& p
     return ts::ts_light_path_start(&sv, u(0), u(1), u(2), u(3), u(4), &p.alpha, &p.ray) != 0;
 }
 
-void store_vpl(LightPath& path, const ts::TsSurface& s, float3 flux) {
+// A VPL at `position`; `normal` is a surface VPL's normal or a medium VPL's propagation
+// direction, `pos_scale` the surface's (-1 marks a medium VPL; layout.h).
+void store_vpl(LightPath& path, float3 position, float3 normal, float3 flux, float pos_scale) {
     const auto index = static_cast<uint32_t>(path.index);
     float v[TS_VPL_FLOATS];
-    ts::ts_f3_store(v + TS_VPL_POSITION, s.position);
-    ts::ts_f3_store(v + TS_VPL_NORMAL, s.shading_normal);
+    ts::ts_f3_store(v + TS_VPL_POSITION, position);
+    ts::ts_f3_store(v + TS_VPL_NORMAL, normal);
     ts::ts_f3_store(v + TS_VPL_FLUX, flux);
     v[TS_VPL_SET] = static_cast<float>(path.set);
     std::memcpy(&v[TS_VPL_PATH], &index, 4);
-    v[TS_VPL_POS_SCALE] = s.pos_scale;
+    v[TS_VPL_POS_SCALE] = pos_scale;
     path.vpls.insert(path.vpls.end(), v, v + TS_VPL_FLOATS);
+}
+
+// Multiple scattering: the free-flight decision on the segment that ends at `hit`
+// (ts_light_path_medium). Its five numbers come from the counter-based generator keyed
+// by path and bounce, not the Halton point, whose dimensions stay those of the surface
+// vertices (images without a medium, or with single scattering, keep their VPLs).
+// Returns what ts_light_path_medium returns; on an event records the segment up to it.
+uint32_t medium_vertex(const ts::TsMedium& med, const LightPathSettings& settings, uint32_t bounce,
+                       const ts::TsHit& hit, InFlight& p) {
+    ts::TsRng rng = ts::ts_rng_seed(settings.halton_seed ^ 0x6d656469u, static_cast<uint32_t>(p.path->index), bounce);
+    float u[5];
+    for (float& x : u) x = ts::ts_rng_next(&rng);
+    const ts::TsRay before = p.ray;
+    float t_event;
+    float3 pos, flux;
+    const float hit_t = hit.prim == TS_NO_HIT ? ts::TS_INF : hit.t;
+    const uint32_t what =
+        ts::ts_light_path_medium(&med, hit_t, u, settings.inv_paths, &p.alpha, &p.ray, &t_event, &pos, &flux);
+    if (what & TS_LIGHT_PATH_MEDIUM) {
+        p.path->segments.push_back(PathSegment{{before.org.x, before.org.y, before.org.z},
+                                               {before.dir.x, before.dir.y, before.dir.z}, t_event, TS_NO_HIT});
+        store_vpl(*p.path, pos, ts::normalize(before.dir), flux, -1.0f);
+    }
+    return what;
 }
 
 PathSegment segment_of(const ts::TsRay& r, const ts::TsHit& hit) {
@@ -76,6 +103,19 @@ uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const Li
             const float* h = &hits[TS_HIT_FLOATS * i];
             ts::TsHit hit{h[TS_HIT_T], h[TS_HIT_U], h[TS_HIT_V], 0u};
             std::memcpy(&hit.prim, &h[TS_HIT_PRIM], 4);
+            int attenuated = 0;
+            if (settings.medium_scattering && med.present) {
+                const uint32_t m = medium_vertex(med, settings, bounce, hit, p);
+                if (m & TS_LIGHT_PATH_MEDIUM) {
+                    if (m & TS_LIGHT_PATH_CONTINUES) alive.push_back(p);
+                    continue;
+                }
+                if (!(m & TS_LIGHT_PATH_CONTINUES)) {  // lost in an unbounded medium
+                    p.path->segments.push_back(segment_of(p.ray, hit));
+                    continue;
+                }
+                attenuated = 1;
+            }
             p.path->segments.push_back(segment_of(p.ray, hit));
             if (hit.prim == TS_NO_HIT) continue;
             // This bounce's Halton dimensions: 2 for the direction, 1 for roulette/Fresnel.
@@ -84,8 +124,9 @@ uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const Li
             ts::TsSurface s;
             float3 flux;
             const uint32_t what = ts::ts_light_path_vertex(&sv, &med, hit, ts::make_float3(u(0), u(1), u(2)),
-                                                           settings.inv_paths, &p.alpha, &p.ray, &s, &flux);
-            if (what & TS_LIGHT_PATH_VPL) store_vpl(*p.path, s, flux);
+                                                           settings.inv_paths, attenuated, &p.alpha, &p.ray, &s,
+                                                           &flux);
+            if (what & TS_LIGHT_PATH_VPL) store_vpl(*p.path, s.position, s.shading_normal, flux, s.pos_scale);
             if (what & TS_LIGHT_PATH_CONTINUES) alive.push_back(p);
         }
         live.swap(alive);

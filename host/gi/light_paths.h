@@ -40,6 +40,9 @@ struct LightPathSettings {
     uint32_t max_bounces = 64;
     uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
     float inv_paths = 1.0f;            ///< 1 / (paths per set): each VPL's weight carries it
+    /// Paths scatter in the scene's medium and leave medium VPLs there (multiple
+    /// scattering, ts_light_path_medium); false: segments only attenuate (single scattering).
+    bool medium_scattering = false;
 };
 
 /// Traces `paths` (index and set filled in; vpls, segments and light are overwritten),
@@ -52,8 +55,9 @@ struct LightPathSettings {
 /// diffuse hit y with albedo ρ it leaves a VPL of weight C = α·ρ/π · inv_paths, then
 /// continues with probability q = min(1, luminance(ρ)) in a cosine direction, α ← α·ρ/q.
 /// Mirrors reflect (α ← α·Ks); dielectrics reflect or refract by Fresnel; neither stores
-/// a VPL. With a medium every segment attenuates α by its transmittance (no scattering,
-/// the single-scattering model of shared/igi.h). Halton dimensions: 0 light, 1-2 point,
+/// a VPL. With a medium every segment attenuates α by its transmittance (the
+/// single-scattering model of shared/igi.h), or with settings.medium_scattering samples a
+/// free-flight distance and may scatter in the medium, leaving a medium VPL (layout.h). Halton dimensions: 0 light, 1-2 point,
 /// 3-4 direction, then per bounce 2 for the direction and 1 for roulette/Fresnel.
 uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
                            std::vector<LightPath>& paths);

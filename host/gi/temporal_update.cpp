@@ -161,6 +161,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     for (size_t i = 0; i < redo.size(); ++i) fresh[i].index = paths_[redo[i]].index, fresh[i].set = paths_[redo[i]].set;
     LightPathSettings ls;
     ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
+    ls.medium_scattering = settings_.multiple_scattering;
     if (!fresh.empty()) stats_.light_path_rays += trace_light_paths(backend, scene, ls, fresh);
     stats_.paths_retraced = redo.size();
 
@@ -232,7 +233,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
                 bool trace = v == kNeedsTrace || (v >= 0 && ch.is_moved[v]);
                 if (!trace && v == kIcVisible && !ch.moved.empty()) {
                     ts::TsRay sh;
-                    if (!(ts::ts_vpl_geometry(&s, &vpls_[size_t(j) * TS_VPL_FLOATS], g_clamp, &sh) > 0.0f)) {
+                    if (!(ts::ts_vpl_geometry(&s, &vpls_[size_t(j) * TS_VPL_FLOATS], g_clamp, scene.medium[TS_MEDIUM_G], &sh) > 0.0f)) {
                         per_record[i].push_back({static_cast<uint32_t>(i), j});  // cannot happen; be exact
                         continue;
                     }

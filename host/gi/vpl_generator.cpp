@@ -19,6 +19,7 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
     LightPathSettings ls;
     ls.max_bounces = settings.max_bounces;
     ls.halton_seed = settings.halton_seed;
+    ls.medium_scattering = settings.medium_scattering;
     ls.inv_paths = 1.0f / static_cast<float>(settings.paths_per_set);
     out.rays = trace_light_paths(backend, scene, ls, paths);
     // Paths are in set order, so concatenating them sorts the VPLs by set.

@@ -23,6 +23,7 @@ struct VplSettings {
     uint32_t max_bounces = 64;
     uint32_t frame = 0;            ///< selects the block of path indices
     uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
+    bool medium_scattering = false;    ///< LightPathSettings::medium_scattering
 };
 
 struct VplList {

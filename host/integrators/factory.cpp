@@ -25,6 +25,7 @@ std::unique_ptr<Integrator> make_integrator(Backend& backend, const Scene& scene
             if (!cache) {
                 IcSettings ics = settings.ic;
                 ics.temporal = settings.method == Method::Tic;
+                ics.multiple_scattering = settings.igi.multiple_scattering;
                 cache = std::make_shared<InstantCache>(ics, scene.objects);
             }
             return std::make_unique<IcFrame>(backend, buffers, plan_effects(scene), is, std::move(cache));
@@ -37,6 +38,7 @@ void prepare_sequence(IntegratorSettings& settings, const Scene& rest) {
     if (settings.method == Method::Tic) {  // one cache for this sequence, of this scene
         IcSettings ics = settings.ic;
         ics.temporal = true;
+        ics.multiple_scattering = settings.igi.multiple_scattering;
         settings.ic_state = std::make_shared<InstantCache>(ics, rest.objects);
     }
 }

@@ -49,6 +49,8 @@ const Parameter kParameters[] = {
      .unit = "steps", .doc = "igi: medium ray-march steps per pixel (0: none, an error on a scene with a medium)"},
     {.option = "--no-filter", .value_name = "", .field = TS_SETTING(igi.filter), .negated = true,
      .doc = "igi: skip the discontinuity filter"},
+    {.option = "--single-scattering", .value_name = "", .field = TS_SETTING(igi.multiple_scattering), .negated = true,
+     .doc = "igi family: media: single scattering from the lights only (default: also VPLs at scattering events in the medium)"},
     {.option = "--no-mipmaps", .value_name = "", .field = TS_SETTING(texture_filter), .negated = true,
      .doc = "textures at camera hits from the finest mip level, not the pixel's ray-cone level (pt always)"},
     {.option = "--ais-ss-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.ss_trigger), .min = 0, .max = 1,

@@ -52,7 +52,8 @@ TS_INLINE void ts_ic_pair_item(const TsSceneView* sv, const TsTracer* tracer, co
     TsSurface s = ts_ic_record_surface(sv->ic_record_surfaces + (size_t)TS_IC_GBUF_FLOATS * item[TS_IC_PAIR_RECORD]);
     TsRay shadow;
     uint hit = TS_IC_PAIR_FACING;
-    if (ts_vpl_geometry(&s, sv->vpls + (size_t)TS_VPL_FLOATS * item[TS_IC_PAIR_VPL], f->igi_g_clamp, &shadow) > 0.0f)
+    if (ts_vpl_geometry(&s, sv->vpls + (size_t)TS_VPL_FLOATS * item[TS_IC_PAIR_VPL], f->igi_g_clamp,
+                        sv->medium[TS_MEDIUM_G], &shadow) > 0.0f)
         hit = ts_trace_closest(tracer, shadow).prim;
     out[TS_IC_PAIR_HIT] = as_float(hit);
 }

@@ -46,7 +46,7 @@ TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* visible, u
         if (!((visible[j >> 5] >> (j & 31u)) & 1u)) continue;
         TS_GLOBAL const float* v = vpls + (size_t)TS_VPL_FLOATS * j;
         TsRay shadow;
-        float g = ts_vpl_geometry(s, v, b, &shadow);
+        float g = ts_vpl_geometry(s, v, b, med->g, &shadow);
         if (!(g > 0.0f)) continue;
         float3 d = ts_f3_load(v + TS_VPL_POSITION) - s->position;
 #ifdef TS_HAS_DOUBLE

@@ -94,7 +94,7 @@ TS_INLINE int ts_igi_link(const TsSceneView* sv, const TsFrame* f, const TsSurfa
         return l->c.x + l->c.y + l->c.z > 0.0f;
     }
     l->vpl = sv->vpl_set_start[k] + (j - m);
-    l->g = ts_vpl_geometry(s, sv->vpls + l->vpl * TS_VPL_FLOATS, f->igi_g_clamp, &l->shadow);
+    l->g = ts_vpl_geometry(s, sv->vpls + l->vpl * TS_VPL_FLOATS, f->igi_g_clamp, sv->medium[TS_MEDIUM_G], &l->shadow);
     return l->g > 0.0f;
 }
 
@@ -259,6 +259,40 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
     return le * ts_medium_transmittance(med, x, wi, 0.0f, h.t);
 }
 
+/* The ray march of a pixel gathers 1/TS_IGI_MEDIA_VPL_THINNING of its set's VPLs (each
+ * step a different share, weighted up to stay unbiased): multiple scattering is smooth,
+ * and on the foggy Cornell box (256², 6 passes, PoCL) gathering half of them cost 3.5 s
+ * of CPU against 4.4-5.0 s for all, a quarter 3.4-3.6 s, with the same error against the
+ * path tracer at 48² (relMSE 0.0029 in each case; single scattering alone: 2.3 s). */
+#define TS_IGI_MEDIA_VPL_THINNING 2u
+
+/* In-scattered radiance per unit sigma_s at medium point x toward the camera (whose ray
+ * runs along unit `dir`), from the VPLs of set k whose index in the set is r modulo
+ * `stride`, times `stride`: the ray march's step r gathers that share of the set, so a
+ * pixel traces one shadow ray per VPL over all its steps, as a surface does (ours,
+ * docs/igi.md §6). A VPL of intensity C·e toward x (ts_vpl_emission_factor) adds
+ * C · Tr · min(e · phase(dir, ω_i) / d², b): the geometry clamp b bounds every VPL's
+ * contribution by C·b, as at surfaces (shared/vpl.h). */
+TS_INLINE float3 ts_igi_media_vpls(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                   const TsMedium* med, float3 x, float3 dir, uint k, uint r, uint stride) {
+    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
+    uint first = sv->vpl_set_start[k], end = sv->vpl_set_start[k + 1u];
+    for (uint j = first + r; j < end; j += stride) {
+        TS_GLOBAL const float* vpl = sv->vpls + j * TS_VPL_FLOATS;
+        float3 d = ts_f3_load(vpl + TS_VPL_POSITION) - x;
+        float dist2 = dot(d, d);
+        if (!(dist2 > 0.0f)) continue;
+        float3 wi = d / sqrt(dist2);
+        float e = ts_vpl_emission_factor(vpl, -wi, med->g);
+        if (!(e > 0.0f)) continue;
+        TsRay shadow = ts_vpl_shadow_ray(x, vpl);
+        if (ts_trace_occluded(tracer, shadow)) continue;
+        float w = fmin(e * ts_hg_phase(dot(dir, wi), med->g) / dist2, f->igi_g_clamp);
+        sum += ts_f3_load(vpl + TS_VPL_FLUX) * ts_shadow_transmittance(med, shadow) * w;
+    }
+    return sum * (float)stride;
+}
+
 /* Media estimate of sample set k for pixel (px, py): single scattering from the lights
  * along the camera segment (up to the first surface), by a ray march of igi_steps steps
  * whose start is offset by (k + ξ)/N of a step for set k. Each step estimates the
@@ -266,8 +300,10 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
  * tracer does at medium vertices): one of set k's light samples, taken in turn, and one
  * Henyey–Greenstein direction traced to whatever emitter it meets. Light sampling alone
  * leaves spikes for a peaked phase function (g near ±1: a light sample aligned with the
- * view gets phase values near 1e5). Also the segment's transmittance, the lit fraction
- * of the steps and the segment's length in the medium. Writes TS_IGI_MEDIA_FLOATS values. */
+ * view gets phase values near 1e5). With f->igi_media_vpls each step also gathers its
+ * share of set k's VPLs (ts_igi_media_vpls): light scattered more than once. Also the
+ * segment's transmittance, the lit fraction of the steps and the segment's length in the
+ * medium. Writes TS_IGI_MEDIA_FLOATS values. */
 TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px,
                                 uint py, uint k, float* out) {
     TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
@@ -312,6 +348,11 @@ TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, c
             float pl2;
             float3 le = ts_igi_emitter_along(sv, tracer, f, &med, x, wp, &pl2);
             if (pl2 > 0.0f) in += le * ts_power_heuristic(ts_hg_phase(dot(ray.dir, wp), med.g), pl2);
+            /* Multiple scattering: light that reached the medium or a surface first. */
+            if (f->igi_media_vpls) {
+                uint stride = TS_IGI_MEDIA_VPL_THINNING * f->igi_steps;
+                in += ts_igi_media_vpls(sv, tracer, f, &med, x, ray.dir, k, (i + k) % stride, stride);
+            }
             L += med.sigma_s * ts_exp3(med.sigma_t * (-(t - t0))) * in * step;
         }
         T = ts_exp3(med.sigma_t * (-(t1 - t0)));

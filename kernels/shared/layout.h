@@ -171,6 +171,8 @@ typedef struct TsFrame {
                                     distance to the origin) no geometry can light them */
     unsigned int igi_components; /* igi/ais: TS_COMPONENT_* bits of what to compute */
     float ic_error_bound;        /* ic: Ward's a of the interpolation kernel (shared/ic_lookup.h) */
+    unsigned int igi_media_vpls; /* igi: 1 = the ray march gathers VPLs too (multiple
+                                    scattering; light paths then scatter in the medium) */
     float pixel_cone;            /* texture filtering: spread angle of a pixel's ray cone
                                     (radians, 2·tan(vfov/2)/height); 0 = finest mip level
                                     only (pt, the reference, supersamples instead) */
@@ -178,13 +180,16 @@ typedef struct TsFrame {
 
 /* VPLs (host/gi/light_paths.cpp): TS_VPL_FLOATS floats each, sorted by sample set:
  *   TS_VPL_POSITION  3 floats: position
- *   TS_VPL_NORMAL    3 floats: unit normal of the side it lights
+ *   TS_VPL_NORMAL    3 floats: unit normal of the side it lights; for a medium VPL
+ *                    (a light path's scattering vertex in the medium) the unit
+ *                    propagation direction of the light that reached it
  *   TS_VPL_FLUX      3 floats: flux weight C/M (the path throughput times albedo/π,
- *                    divided by the paths per set)
+ *                    divided by the paths per set; a medium VPL: the throughput times
+ *                    the free-flight sampling weight, divided by the paths per set)
  *   TS_VPL_SET       set index
  *   TS_VPL_PATH      path index (uint bits)
  *   TS_VPL_POS_SCALE the largest vertex coordinate of the triangle it lies on (for
- *                    ts_offset_ray_origin)
+ *                    ts_offset_ray_origin); -1 marks a medium VPL (shared/vpl.h)
  * vpl_set_start[k] .. vpl_set_start[k+1] are set k's VPLs. */
 #define TS_VPL_FLOATS 12
 #define TS_VPL_POSITION 0
@@ -463,14 +468,14 @@ static_assert(tessera::layout_check::tiles({{TS_PASS_RADIANCE, 3}, {TS_PASS_ALBE
                                             {TS_PASS_DEPTH, 1}},
                                            TS_PASS_FLOATS),
               "layout.h: pass output fields do not tile TS_PASS_FLOATS");
-/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 31 4-byte
+/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 32 4-byte
  * scalars with no padding, so its layout is the same in both languages. */
 static_assert(std::is_standard_layout_v<TsFrame> && std::is_trivially_copyable_v<TsFrame>,
               "layout.h: TsFrame must stay a plain struct");
-static_assert(sizeof(TsFrame) == 31 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
+static_assert(sizeof(TsFrame) == 32 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
                   offsetof(TsFrame, light_power) == 20 * 4 && offsetof(TsFrame, igi_components) == 28 * 4 &&
-                  offsetof(TsFrame, ic_error_bound) == 29 * 4 && offsetof(TsFrame, pixel_cone) == 30 * 4,
-              "layout.h: TsFrame is not 31 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
+                  offsetof(TsFrame, ic_error_bound) == 29 * 4 && offsetof(TsFrame, pixel_cone) == 31 * 4,
+              "layout.h: TsFrame is not 32 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
 #endif /* __cplusplus */
 
 #endif /* TS_LAYOUT_H */

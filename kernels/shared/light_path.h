@@ -8,8 +8,9 @@
  * Estimator (pbrt-v2 IGI convention): a path starts at a light picked in proportion to
  * power, at a uniform point y0 (area pdf p_A including the selection) in a
  * cosine-distributed direction, with weight α = Le·π / p_A (the cosine of the emission
- * cancels the cosine pdf). Each segment attenuates α by the medium's transmittance (no
- * scattering: the single-scattering model of shared/igi.h). At a diffuse hit y with
+ * cancels the cosine pdf). Each segment attenuates α by the medium's transmittance (the
+ * single-scattering model of shared/igi.h), or, for multiple scattering, samples a
+ * free-flight distance and may scatter there (ts_light_path_medium). At a diffuse hit y with
  * albedo ρ the path leaves a VPL of flux weight C = α·ρ/π · inv_paths, then continues
  * with probability q = min(1, luminance(ρ)) in a cosine direction, α ← α·ρ/q. Mirrors and
  * dielectrics scatter it (ts_specular_bounce) and leave no VPL. */
@@ -46,15 +47,56 @@ TS_INLINE int ts_light_path_start(const TsSceneView* sv, float u_select, float u
 #define TS_LIGHT_PATH_VPL 1u       /* the vertex left a VPL: *s and *vpl_flux are set */
 #define TS_LIGHT_PATH_CONTINUES 2u /* the path goes on along *ray with weight *alpha */
 
+#define TS_LIGHT_PATH_MEDIUM 4u    /* ts_light_path_medium: the path scattered in the medium */
+
+/* Multiple scattering (docs/igi.md §6; Raab et al. 2008, "Unbiased global illumination
+ * with participating media"): free-flight sampling along the segment *ray up to the
+ * surface at parameter hit_t (+inf when the ray escapes), as the path tracer does
+ * (ts_medium_sample_distance; `u` holds five numbers in [0, 1): channel, distance, two
+ * for the Henyey–Greenstein direction, roulette). A scattering event at x multiplies
+ * *alpha by the event's weight w and leaves a medium VPL at *vpl_pos of flux
+ * *vpl_flux = α·w · inv_paths, the light's propagation direction being ray->dir; the
+ * path then goes on with probability q = min(1, luminance(w)) in a phase-sampled
+ * direction, α ← α/q. Returns TS_LIGHT_PATH_MEDIUM | TS_LIGHT_PATH_VPL (| _CONTINUES),
+ * with *t_event the event's ray parameter; or, the segment passed, TS_LIGHT_PATH_CONTINUES
+ * with *alpha times the pass weight (the surface vertex then must not apply the
+ * transmittance again); or 0 when the path is lost in an unbounded medium. */
+TS_INLINE uint ts_light_path_medium(const TsMedium* med, float hit_t, const float* u, float inv_paths, float3* alpha,
+                                    TsRay* ray, float* t_event, float3* vpl_pos, float3* vpl_flux) {
+    float t0 = 0.0f, t1 = hit_t;
+    *t_event = hit_t;
+    if (!ts_medium_clip(med, ray->org, ray->dir, &t0, &t1)) return TS_LIGHT_PATH_CONTINUES;
+    float len = length(ray->dir), w_len = (t1 - t0) * len;
+    float3 w;
+    int scattered;
+    float t = ts_medium_sample_distance(med, w_len, u[0], u[1], &w, &scattered);
+    *alpha = *alpha * w;
+    if (!scattered) return isfinite(t1) ? TS_LIGHT_PATH_CONTINUES : 0u;
+    *t_event = t0 + t / len;
+    float3 dir = ray->dir / len;
+    *vpl_pos = ray->org + ray->dir * *t_event;
+    *vpl_flux = *alpha * inv_paths;
+    float q = fmin(1.0f, ts_luminance(w));
+    if (!(u[4] < q)) return TS_LIGHT_PATH_MEDIUM | TS_LIGHT_PATH_VPL;
+    *alpha = *alpha / q;
+    ray->org = *vpl_pos;
+    ray->dir = ts_sample_hg(dir, med->g, u[2], u[3]);
+    ray->tmin = 0.0f;
+    ray->tmax = TS_INF;
+    return TS_LIGHT_PATH_MEDIUM | TS_LIGHT_PATH_VPL | TS_LIGHT_PATH_CONTINUES;
+}
+
 /* The vertex where *ray (weight *alpha) hits `hit` (not TS_NO_HIT): attenuates *alpha by
- * the segment's transmittance, sets *s to the surface there, and scatters. `u` holds the
+ * the segment's transmittance unless `attenuated` (ts_light_path_medium already weighed
+ * the segment), sets *s to the surface there, and scatters. `u` holds the
  * vertex's three numbers in [0, 1): x, y the cosine direction, z the roulette (diffuse)
  * or the Fresnel choice (dielectric). `inv_paths` is 1 / (paths per set). A diffuse
  * surface of albedo ρ > 0 leaves a VPL of flux *vpl_flux = α·ρ/π · inv_paths; a surface
  * of albedo 0 ends the path. Returns TS_LIGHT_PATH_* bits. */
 TS_INLINE uint ts_light_path_vertex(const TsSceneView* sv, const TsMedium* med, TsHit hit, float3 u,
-                                    float inv_paths, float3* alpha, TsRay* ray, TsSurface* s, float3* vpl_flux) {
-    *alpha = *alpha * ts_medium_transmittance(med, ray->org, ray->dir, 0.0f, hit.t);
+                                    float inv_paths, int attenuated, float3* alpha, TsRay* ray, TsSurface* s,
+                                    float3* vpl_flux) {
+    if (!attenuated) *alpha = *alpha * ts_medium_transmittance(med, ray->org, ray->dir, 0.0f, hit.t);
     *s = ts_surface_at(sv, *ray, hit);
     TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s->material;
     uint kind = as_uint(M[TS_MAT_KIND]);

@@ -12,19 +12,44 @@
 
 TS_NAMESPACE_BEGIN
 
+/* Whether a VPL is a scattering vertex of a light path in the medium rather than a
+ * surface hit: layout.h marks it with a negative TS_VPL_POS_SCALE. */
+TS_INLINE int ts_vpl_in_medium(TS_GLOBAL const float* vpl) { return vpl[TS_VPL_POS_SCALE] < 0.0f; }
+
+/* The VPL's radiant intensity toward unit direction wo (leaving it) is C · this factor:
+ * a surface VPL's cosine to its normal (0 behind it; Lambertian), a medium VPL's
+ * Henyey–Greenstein phase value between the propagation direction of the light that
+ * reached it and wo (g the medium's). */
+TS_INLINE float ts_vpl_emission_factor(TS_GLOBAL const float* vpl, float3 wo, float g) {
+    float3 nv = ts_f3_load(vpl + TS_VPL_NORMAL);
+    if (ts_vpl_in_medium(vpl)) return ts_hg_phase(dot(nv, wo), g);
+    return dot(nv, wo);
+}
+
+/* The shadow ray from org to the VPL: off its surface for a surface VPL, to the point
+ * itself for a medium VPL. */
+TS_INLINE TsRay ts_vpl_shadow_ray(float3 org, TS_GLOBAL const float* vpl) {
+    float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
+    if (ts_vpl_in_medium(vpl)) return ts_shadow_ray(org, y, make_float3(0.0f, 0.0f, 0.0f), 0.0f);
+    return ts_shadow_ray(org, y, ts_f3_load(vpl + TS_VPL_NORMAL), vpl[TS_VPL_POS_SCALE]);
+}
+
 /* One VPL's clamped geometry term at surface s, and the shadow ray that decides its
- * visibility; 0 when either side faces away. G = cosθx cosθv / d² is clamped to b: the
- * contribution C·G' of any VPL is at most C·b. */
-TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, TsRay* shadow) {
+ * visibility; 0 when either side faces away. G = cosθx · e / d², e the VPL's emission
+ * factor toward s (ts_vpl_emission_factor: cosθv for a surface VPL, the phase value for a
+ * medium VPL, g the medium's HG parameter), is clamped to b: the contribution C·G' of any
+ * VPL is at most C·b, also for a peaked phase function (g near 1: phase values near 1e5;
+ * docs/igi.md §6). */
+TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, float g, TsRay* shadow) {
     float3 x = s->position, n = s->shading_normal, ng = s->geo_normal;
-    float3 y = ts_f3_load(vpl + TS_VPL_POSITION), nv = ts_f3_load(vpl + TS_VPL_NORMAL);
+    float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
     float3 d = y - x;
     float dist2 = dot(d, d);
     if (!(dist2 > 0.0f)) return 0.0f;
     float3 w = d / sqrt(dist2);
-    float cos_x = dot(n, w), cos_v = -dot(nv, w);
+    float cos_x = dot(n, w), cos_v = ts_vpl_emission_factor(vpl, -w, g);
     if (cos_x <= 0.0f || cos_v <= 0.0f || dot(ng, w) <= 0.0f) return 0.0f;
-    *shadow = ts_shadow_ray(ts_offset_ray_origin(s->origin, ng, s->pos_scale), y, nv, vpl[TS_VPL_POS_SCALE]);
+    *shadow = ts_vpl_shadow_ray(ts_offset_ray_origin(s->origin, ng, s->pos_scale), vpl);
     return fmin(cos_x * cos_v / dist2, b);
 }
 

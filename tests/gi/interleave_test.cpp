@@ -72,18 +72,33 @@ TEST(VplGeometry, ClampBoundsEveryContribution) {
     const float b = 100.0f;
     ts::TsRay shadow;
     put(0, 0, 1e-4f, 0, 0, -1);  // facing the receiver from 0.1 mm: G = 1e8, clamped
-    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), b);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), b);
     put(0, 0, 2.0f, 0, 0, -1);  // G = 1/4, below the clamp: unchanged
-    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), 0.25f);
+    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), 0.25f);
     put(1e-3f, 0, 0, 0, 0, 1);  // on the receiving plane: cosines 0, no NaN
-    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), 0.0f);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), 0.0f);
     put(0, 0, 0, 0, 0, 1);  // at the very point: d = 0
-    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), 0.0f);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), 0.0f);
     put(0, 0, 1, 0, 0, 1);  // facing away from the receiver
-    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, &shadow), 0.0f);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), 0.0f);
     const float inf = std::numeric_limits<float>::infinity();
     put(0, 0, 1e-4f, 0, 0, -1);  // clamping disabled: the raw 1/d², finite
-    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, inf, &shadow), 1e8f);
+    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, inf, 0.0f, &shadow), 1e8f);
+
+    // A medium VPL 2 above the receiver, reached by light travelling toward it (-z):
+    // min(cos θx · phase / d², b), the phase at cos 1 between that direction and the one
+    // to the receiver. Isotropic: 1/(4π) · 1/4; g = 0.5: (1 - g²)/(4π(1 - g)³) · 1/4.
+    vpl[TS_VPL_POS_SCALE] = -1.0f;
+    put(0, 0, 2.0f, 0, 0, -1);
+    const float pi = 3.14159265f;
+    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), 1.0f / (16.0f * pi));
+    EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.5f, &shadow), 0.75f / (4.0f * pi * 0.125f) / 4.0f);
+    // The shadow ray ends at the point itself (no surface to offset from).
+    EXPECT_FLOAT_EQ(shadow.org.z + shadow.dir.z, 2.0f);
+    put(0, 0, 1e-4f, 0, 0, -1);  // close: clamped to b, like a surface VPL
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), b);
+    put(0, 0, 2.0f, 0, 0, -1);  // a peaked phase function (g = 0.999: 1.6e5 at cos 1): b
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.999f, &shadow), b);
 }
 
 }  // namespace
