@@ -115,10 +115,13 @@ static inline void ts_child_exchange(TsChild* a, TsChild* b) {
 }
 
 /* The children of a node in visit order, hit children first: a five-exchange sorting
- * network on four values held in registers (Knuth, TAOCP vol. 3 §5.3.4), instead of an
- * insertion sort over a dynamically indexed private array, which GPU compilers place in
- * slow scratch memory. Every key is distinct among hit children, so any correct network
- * gives the one order. Returns the number of hit children. */
+ * network on four values held in registers (Knuth, TAOCP vol. 3 §5.3.4), for the GPU
+ * variant (bvh_short_stack.h) instead of the insertion sort over dynamically indexed
+ * private arrays below, which GPU compilers place in slow scratch memory. Every key is
+ * distinct among hit children, so any correct network gives the insertion sort's order.
+ * The full-stack traversal keeps the insertion sort: on PoCL the network, which always
+ * does five exchanges where most nodes have one or two hit children, made per-ray
+ * traversal ~15% slower (docs/ray-batches.md §5). Returns the number of hit children. */
 static inline int ts_order_children(int4 m, float4 tn, int4 refs, TsChild* c0, TsChild* c1, TsChild* c2,
                                     TsChild* c3) {
     c0->t = m.x ? tn.x : INFINITY; c0->ref = refs.x; c0->rank = m.x ? 0 : -1;
@@ -185,16 +188,27 @@ static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const 
             __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
             float4 tn;
             int4 m = ts_node_hits(node, ray.org, inv, neg, ray.tmin, hit.t, &tn);
-            TsChild c0, c1, c2, c3;
-            int n = ts_order_children(m, tn, as_int4(vload4(0, node + TS_NODE_REFS)), &c0, &c1, &c2, &c3);
-            /* Push hit children far to near so the nearest is visited first. No bound
-             * check: the builder refuses trees deeper than TS_BVH_MAX_DEPTH, and
+            int4 refs = as_int4(vload4(0, node + TS_NODE_REFS));
+            /* Push hit children far to near so the nearest is visited first. */
+            int cr[4];
+            float ct[4];
+            int n = 0;
+            if (m.x) { cr[n] = refs.x; ct[n++] = tn.x; }
+            if (m.y) { cr[n] = refs.y; ct[n++] = tn.y; }
+            if (m.z) { cr[n] = refs.z; ct[n++] = tn.z; }
+            if (m.w) { cr[n] = refs.w; ct[n++] = tn.w; }
+            for (int i = 1; i < n; ++i) { /* insertion sort, descending distance */
+                int r = cr[i];
+                float t = ct[i];
+                int j = i - 1;
+                while (j >= 0 && ct[j] < t) { cr[j + 1] = cr[j]; ct[j + 1] = ct[j]; --j; }
+                cr[j + 1] = r;
+                ct[j + 1] = t;
+            }
+            /* No bound check: the builder refuses trees deeper than TS_BVH_MAX_DEPTH, and
              * TS_BVH_STACK_SIZE >= 3 · TS_BVH_MAX_DEPTH + 1 is checked at compile time
              * (shared/layout.h), so a push cannot overflow and no node is ever dropped. */
-            if (n > 3) stack[sp++] = c3.ref;
-            if (n > 2) stack[sp++] = c2.ref;
-            if (n > 1) stack[sp++] = c1.ref;
-            if (n > 0) stack[sp++] = c0.ref;
+            for (int i = 0; i < n; ++i) stack[sp++] = cr[i];
         } else if (ts_leaf_intersect(tris, ref, &w, ray, &hit, any)) {
             return hit;
         }
