@@ -80,8 +80,12 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
     o.cl_packets = options.cl_packets && !(env && std::string(env) == "0");
     if (const char* gpu = std::getenv("TESSERA_CL_GPU"); gpu && std::string(gpu) == "1") o.cl_gpu_variant = true;
     if (const char* ms = env_value("TESSERA_CL_LAUNCH_MS")) o.cl_launch_ms = parse_env_number("TESSERA_CL_LAUNCH_MS", ms, 1e6);
-    if (const char* g = env_value("TESSERA_CL_TILE_GROUPS"))
-        o.cl_tile_groups = static_cast<uint32_t>(parse_env_number("TESSERA_CL_TILE_GROUPS", g, 1e9));
+    if (const char* g = env_value("TESSERA_CL_TILE_GROUPS")) {
+        const double n = parse_env_number("TESSERA_CL_TILE_GROUPS", g, 1e9);
+        if (n != static_cast<double>(static_cast<uint32_t>(n)))
+            throw InputError(std::string("TESSERA_CL_TILE_GROUPS=") + g + ": expected a whole number of work-groups");
+        o.cl_tile_groups = static_cast<uint32_t>(n);
+    }
     return make_opencl_backend(scene, plan, o);
 }
 
