@@ -17,7 +17,9 @@
 // Every tracer gets the rays in the batch form the renderer issues: OpenCL one upload,
 // kernel and read-back per query, per ray (TESSERA_CL_PACKETS=0 form) and as by default
 // (16 consecutive rays per work-item for any-hit queries on CPU devices,
-// kernels/bvh_packet.h); Embree single rtcIntersect1/rtcOccluded1 per
+// kernels/bvh_packet.h), and the GPU variant (per ray with the short-stack traversal of
+// kernels/bvh_short_stack.h, forced on the CPU device: what it costs there; its GPU
+// rates need a GPU); Embree single rtcIntersect1/rtcOccluded1 per
 // ray over TBB; Embree packets rtcIntersect16/rtcOccluded16 over 16 consecutive rays
 // (Backend::trace_* of the Embree backend with packets on; Embree's coherent mode for
 // primary, light and vpl, as the renderer's packets use it, incoherent for ic and random).
@@ -170,6 +172,9 @@ int main(int argc, char** argv) {
     BackendOptions cl_ray_opts{BackendKind::OpenCL, device};
     cl_ray_opts.cl_packets = false;
     auto clr = make_backend(cl_ray_opts, b, plan);
+    BackendOptions cl_gpu_opts{BackendKind::OpenCL, device};
+    cl_gpu_opts.cl_gpu_variant = true;
+    auto clg = make_backend(cl_gpu_opts, b, plan);
     const std::vector<RaySet> sets = make_rays(scene, b, *em, size, size);
 
     nlohmann::json j;
@@ -184,11 +189,12 @@ int main(int argc, char** argv) {
     cl->trace_closest(sets[0].rays, hits);  // warm-up: builds (or loads) the trace program
     cl->trace_occluded(sets[1].rays, occ);
     clr->trace_occluded(sets[1].rays, occ);
+    clg->trace_occluded(sets[1].rays, occ);
     auto mrays = [](size_t n, double s) { return n / s * 1e-6; };
     struct Row {
         std::string name;
         size_t n;
-        double clr, cl, em, pk;  // OpenCL per ray, OpenCL as default, Embree single, packets
+        double clr, clg, cl, em, pk;  // OpenCL per ray, GPU variant, as default; Embree single, packets
     };
     std::vector<Row> rows;
     for (const RaySet& set : sets) {
@@ -198,13 +204,15 @@ int main(int argc, char** argv) {
                              else be.trace_occluded(set.rays, occ, set.order);
                          }));
         };
-        Row row{set.name, set.rays.size() / TS_RAY_FLOATS, rate(*clr), rate(*cl), rate(*em), rate(*pk)};
+        Row row{set.name, set.rays.size() / TS_RAY_FLOATS, rate(*clr), rate(*clg), rate(*cl), rate(*em), rate(*pk)};
         rows.push_back(row);
-        std::fprintf(stderr, "%-8s %8zu rays  OpenCL per ray %6.2f  default %6.2f  Embree single %6.2f  packets %6.2f Mrays/s\n",
-                     set.name, row.n, row.clr, row.cl, row.em, row.pk);
+        std::fprintf(stderr, "%-8s %8zu rays  OpenCL per ray %6.2f  GPU variant %6.2f  default %6.2f  Embree single %6.2f  "
+                     "packets %6.2f Mrays/s\n",
+                     set.name, row.n, row.clr, row.clg, row.cl, row.em, row.pk);
         j["rays"][row.name] = {{"count", row.n},
                                {"closest_hit", set.closest},
                                {"opencl_per_ray_mrays_s", row.clr},
+                               {"opencl_gpu_variant_mrays_s", row.clg},
                                {"opencl_mrays_s", row.cl},
                                {"embree_single_mrays_s", row.em},
                                {"embree_packet16_mrays_s", row.pk},
@@ -232,17 +240,18 @@ int main(int argc, char** argv) {
     md << "# Ray throughput and `direct` frame time: " << scene.name << ", " << size << "x" << size << "\n\n"
        << "Machine: " << j["machine"]["cpu"].get<std::string>() << ", " << tbb::info::default_concurrency()
        << " threads. OpenCL: " << cl->description() << ". Medians of " << repeats << " runs.\n\n"
-       << "| rays | count | OpenCL per ray | OpenCL default | Embree single | Embree packets | Embree packets / "
+       << "| rays | count | OpenCL per ray | OpenCL GPU variant | OpenCL default | Embree single | Embree packets | Embree packets / "
           "single | OpenCL default / Embree single | OpenCL default / Embree packets |\n"
-          "|---|---|---|---|---|---|---|---|---|\n";
+          "|---|---|---|---|---|---|---|---|---|---|\n";
     char buf[256];
     for (const auto& r : rows) {
-        std::snprintf(buf, sizeof buf, "| %s | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n", r.name.c_str(),
-                      r.n, r.clr, r.cl, r.em, r.pk, r.pk / r.em, r.cl / r.em, r.cl / r.pk);
+        std::snprintf(buf, sizeof buf, "| %s | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
+                      r.name.c_str(), r.n, r.clr, r.clg, r.cl, r.em, r.pk, r.pk / r.em, r.cl / r.em, r.cl / r.pk);
         md << buf;
     }
     md << "\nRates in Mrays/s. OpenCL default: 16-ray packets for any-hit kinds on CPU devices (trace_occluded_packets), "
-          "per ray for closest-hit kinds. Ray kinds and how each tracer is driven: the header of "
+          "per ray for closest-hit kinds. OpenCL GPU variant: per ray with the short-stack traversal "
+          "(TESSERA_CL_GPU=1), the default on GPU devices. Ray kinds and how each tracer is driven: the header of "
           "bench/ray_bench.cpp.\n";
     std::snprintf(buf, sizeof buf,
                   "\n`direct`, 16 shadow samples, 1 spp: OpenCL %.1f ms, Embree %.1f ms per frame "

@@ -96,6 +96,76 @@ static inline int4 ts_node_hits(__global const float* node, float3 org, float3 i
     return tn <= tf;
 }
 
+/* A hit child of a node: entry distance, reference, and a tie-break rank (its slot
+ * 0..3; -1 for a missed child, which is also given t = +inf). */
+typedef struct TsChild {
+    float t;
+    int ref;
+    int rank;
+} TsChild;
+
+/* Compare-exchange: after it *a comes first in visit order (nearer entry first; at
+ * equal entry distance the higher slot first, which is the order the earlier
+ * insertion sort and push loop gave, so traversal order and ties are unchanged). */
+static inline void ts_child_exchange(TsChild* a, TsChild* b) {
+    int swap = b->t < a->t || (b->t == a->t && b->rank > a->rank);
+    TsChild x = *a;
+    *a = swap ? *b : *a;
+    *b = swap ? x : *b;
+}
+
+/* The children of a node in visit order, hit children first: a five-exchange sorting
+ * network on four values held in registers (Knuth, TAOCP vol. 3 §5.3.4), for the GPU
+ * variant (bvh_short_stack.h) instead of the insertion sort over dynamically indexed
+ * private arrays below, which GPU compilers place in slow scratch memory. Every key is
+ * distinct among hit children, so any correct network gives the insertion sort's order.
+ * The full-stack traversal keeps the insertion sort: on PoCL the network, which always
+ * does five exchanges where most nodes have one or two hit children, made per-ray
+ * traversal ~15% slower (docs/ray-batches.md §5). Returns the number of hit children. */
+static inline int ts_order_children(int4 m, float4 tn, int4 refs, TsChild* c0, TsChild* c1, TsChild* c2,
+                                    TsChild* c3) {
+    c0->t = m.x ? tn.x : INFINITY; c0->ref = refs.x; c0->rank = m.x ? 0 : -1;
+    c1->t = m.y ? tn.y : INFINITY; c1->ref = refs.y; c1->rank = m.y ? 1 : -1;
+    c2->t = m.z ? tn.z : INFINITY; c2->ref = refs.z; c2->rank = m.z ? 2 : -1;
+    c3->t = m.w ? tn.w : INFINITY; c3->ref = refs.w; c3->rank = m.w ? 3 : -1;
+    ts_child_exchange(c0, c1);
+    ts_child_exchange(c2, c3);
+    ts_child_exchange(c0, c2);
+    ts_child_exchange(c1, c3);
+    ts_child_exchange(c1, c2);
+    return (m.x ? 1 : 0) + (m.y ? 1 : 0) + (m.z ? 1 : 0) + (m.w ? 1 : 0);
+}
+
+/* Tests the triangles of leaf `ref` in order, shortening *hit to each nearer one.
+ * Returns 1 when `any` and a triangle was hit (the any-hit query is then answered). */
+static inline int ts_leaf_intersect(__global const float* tris, int ref, const TsWatertight* w, TsRay ray,
+                                    TsHit* hit, int any) {
+    uint v = ~(uint)ref;
+    uint first = v >> 3, count = v & 7u;
+    for (uint i = 0u; i < count; ++i) {
+        __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
+        float t, u, vv;
+        if (ts_intersect_triangle(w, ray.org, ray.tmin, hit->t, tri, &t, &u, &vv)) {
+            hit->t = t;
+            hit->u = u;
+            hit->v = vv;
+            hit->prim = as_uint(tri[TS_BVH_TRI_PRIM]);
+            if (any) return 1;
+        }
+    }
+    return 0;
+}
+
+/* Per-ray set-up of the slab test: 1/d with a zero component replaced by ±1e-30 (a
+ * zero would give 0 · inf = NaN) and the direction's sign per axis. */
+static inline void ts_slab_setup(float3 d, float3* inv, int3* neg) {
+    float3 ds = make_float3(fabs(d.x) < 1e-30f ? copysign(1e-30f, d.x) : d.x,
+                            fabs(d.y) < 1e-30f ? copysign(1e-30f, d.y) : d.y,
+                            fabs(d.z) < 1e-30f ? copysign(1e-30f, d.z) : d.z);
+    *inv = 1.0f / ds;
+    *neg = (int3)(ds.x < 0.0f, ds.y < 0.0f, ds.z < 0.0f);
+}
+
 /* Traversal shared by closest and any hit. `any` is a compile-time constant at each
  * call site, so the compiler specialises the loop. */
 static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const float* tris, TsRay ray,
@@ -104,14 +174,10 @@ static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const 
     hit.prim = TS_NO_HIT;
     hit.t = ray.tmax;
     hit.u = hit.v = 0.0f;
-    /* A zero direction component would give 0 · inf = NaN in the slab test. */
-    float3 d = ray.dir;
-    float3 ds = make_float3(fabs(d.x) < 1e-30f ? copysign(1e-30f, d.x) : d.x,
-                            fabs(d.y) < 1e-30f ? copysign(1e-30f, d.y) : d.y,
-                            fabs(d.z) < 1e-30f ? copysign(1e-30f, d.z) : d.z);
-    float3 inv = 1.0f / ds;
-    int3 neg = (int3)(ds.x < 0.0f, ds.y < 0.0f, ds.z < 0.0f);
-    TsWatertight w = ts_watertight_setup(d);
+    float3 inv;
+    int3 neg;
+    ts_slab_setup(ray.dir, &inv, &neg);
+    TsWatertight w = ts_watertight_setup(ray.dir);
 
     int stack[TS_BVH_STACK_SIZE];
     int sp = 0;
@@ -143,31 +209,30 @@ static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const 
              * TS_BVH_STACK_SIZE >= 3 · TS_BVH_MAX_DEPTH + 1 is checked at compile time
              * (shared/layout.h), so a push cannot overflow and no node is ever dropped. */
             for (int i = 0; i < n; ++i) stack[sp++] = cr[i];
-        } else {
-            uint v = ~(uint)ref;
-            uint first = v >> 3, count = v & 7u;
-            for (uint i = 0u; i < count; ++i) {
-                __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
-                float t, u, vv;
-                if (ts_intersect_triangle(&w, ray.org, ray.tmin, hit.t, tri, &t, &u, &vv)) {
-                    hit.t = t;
-                    hit.u = u;
-                    hit.v = vv;
-                    hit.prim = as_uint(tri[TS_BVH_TRI_PRIM]);
-                    if (any) return hit;
-                }
-            }
+        } else if (ts_leaf_intersect(tris, ref, &w, ray, &hit, any)) {
+            return hit;
         }
     }
     return hit;
 }
 
+#include "bvh_short_stack.h"
+
+/* The traversal the kernels use: the full stack above, or with -DTS_GPU_TRAVERSAL (the
+ * OpenCL backend's choice on GPU devices, host/backend/opencl_backend.cpp) the short
+ * stack with restart of bvh_short_stack.h; both return the same hits. */
+#ifdef TS_GPU_TRAVERSAL
+#define TS_BVH_TRAVERSE ts_bvh_traverse_short
+#else
+#define TS_BVH_TRAVERSE ts_bvh_traverse
+#endif
+
 static inline TsHit ts_bvh_closest(__global const float* nodes, __global const float* tris, TsRay ray) {
-    return ts_bvh_traverse(nodes, tris, ray, 0);
+    return TS_BVH_TRAVERSE(nodes, tris, ray, 0);
 }
 
 static inline int ts_bvh_occluded(__global const float* nodes, __global const float* tris, TsRay ray) {
-    return ts_bvh_traverse(nodes, tris, ray, 1).prim != TS_NO_HIT;
+    return TS_BVH_TRAVERSE(nodes, tris, ray, 1).prim != TS_NO_HIT;
 }
 
 #endif /* TS_BVH_TRAVERSE_H */

@@ -7,6 +7,26 @@
 
 namespace tessera {
 
+namespace {
+
+const char* env_value(const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v ? v : nullptr;
+}
+
+// A non-negative number up to `max` from environment variable `name`; throws InputError
+// naming the variable and its value otherwise.
+double parse_env_number(const char* name, const char* value, double max) {
+    char* end = nullptr;
+    const double v = std::strtod(value, &end);
+    if (end == value || *end != '\0' || !(v >= 0.0 && v <= max))
+        throw InputError(std::string(name) + "=" + value + ": expected a number from 0 to " +
+                         std::to_string(static_cast<long long>(max)));
+    return v;
+}
+
+}  // namespace
+
 BackendKind parse_backend_kind(const std::string& s) {
     if (s == "opencl") return BackendKind::OpenCL;
     if (s == "embree") return BackendKind::Embree;
@@ -52,10 +72,21 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
         const bool packets = options.embree_packets && !(env && std::string(env) == "0");
         return make_embree_backend(scene, packets);
     }
-    // TESSERA_CL_PACKETS=0 likewise turns the OpenCL CPU packet kernels off.
+    // TESSERA_CL_PACKETS=0 likewise turns the OpenCL CPU packet kernels off;
+    // TESSERA_CL_GPU=1 runs the GPU variant on any device; TESSERA_CL_LAUNCH_MS and
+    // TESSERA_CL_TILE_GROUPS set the launch tiling (BackendOptions).
+    BackendOptions o = options;
     const char* env = std::getenv("TESSERA_CL_PACKETS");
-    const bool packets = options.cl_packets && !(env && std::string(env) == "0");
-    return make_opencl_backend(scene, plan, options.device, packets);
+    o.cl_packets = options.cl_packets && !(env && std::string(env) == "0");
+    if (const char* gpu = std::getenv("TESSERA_CL_GPU"); gpu && std::string(gpu) == "1") o.cl_gpu_variant = true;
+    if (const char* ms = env_value("TESSERA_CL_LAUNCH_MS")) o.cl_launch_ms = parse_env_number("TESSERA_CL_LAUNCH_MS", ms, 1e6);
+    if (const char* g = env_value("TESSERA_CL_TILE_GROUPS")) {
+        const double n = parse_env_number("TESSERA_CL_TILE_GROUPS", g, 1e9);
+        if (n != static_cast<double>(static_cast<uint32_t>(n)))
+            throw InputError(std::string("TESSERA_CL_TILE_GROUPS=") + g + ": expected a whole number of work-groups");
+        o.cl_tile_groups = static_cast<uint32_t>(n);
+    }
+    return make_opencl_backend(scene, plan, o);
 }
 
 }  // namespace tessera

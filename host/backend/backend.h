@@ -30,6 +30,19 @@ struct BackendOptions {
     /// docs/ray-batches.md §4); false, or a GPU, traces one ray per work-item. Same
     /// images either way.
     bool cl_packets = true;
+    /// OpenCL: run the GPU variant on any device (per-ray kernels built with
+    /// -DTS_GPU_TRAVERSAL: the short-stack traversal of kernels/bvh_short_stack.h), as on
+    /// GPU devices, where it is the default; to test it on a CPU device. Same hits and
+    /// images as the per-ray kernels. TESSERA_CL_GPU=1 sets it per run.
+    bool cl_gpu_variant = false;
+    /// OpenCL: launch budget in milliseconds (host/opencl/launch.h): launches are split
+    /// into tiles of about this time. Negative: the device's default (kDefaultGpuLaunchMs
+    /// on GPUs and accelerators, whole launches on CPUs); 0: whole launches.
+    /// TESSERA_CL_LAUNCH_MS sets it per run.
+    double cl_launch_ms = -1.0;
+    /// OpenCL, for tests: tiles of exactly this many work-groups (0: sized by the budget).
+    /// TESSERA_CL_TILE_GROUPS sets it per run. Same images with any tiling.
+    uint32_t cl_tile_groups = 0;
 };
 
 /// Traces rays and launches the kernels of the kernel table (device/kernel_table.h);
@@ -105,7 +118,9 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
                                       const EffectPlan& plan);
 
 std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene, bool packets = true);
+/// The OpenCL backend with `options` as given (make_backend applies the TESSERA_CL_*
+/// environment overrides first).
 std::unique_ptr<Backend> make_opencl_backend(const SceneBuffers& scene, const EffectPlan& plan,
-                                             const std::string& device, bool packets = true);
+                                             const BackendOptions& options);
 
 }  // namespace tessera

@@ -5,8 +5,13 @@
 // On CPU devices the igi surface and AIS item kernels and trace_occluded run as 16-ray
 // packets (kernels/igi_packets.h, kernels/bvh_packet.h; docs/ray-batches.md §4): PoCL
 // cannot vectorise the per-ray traversal across work-items, the packet kernels vectorise
-// across 16 rays explicitly. GPUs keep one ray per work-item.
+// across 16 rays explicitly. GPUs keep one ray per work-item, with the short-stack
+// traversal (-DTS_GPU_TRAVERSAL, kernels/bvh_short_stack.h). Launches run in tiles of
+// about a time budget (opencl/launch.h); device buffers persist across frames, growing
+// when an input outgrows them.
+#include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -17,6 +22,7 @@
 #include "kernels/shared/geometry.h"
 #include "opencl/cl.h"
 #include "opencl/device.h"
+#include "opencl/launch.h"
 #include "opencl/program_cache.h"
 #include "util/error.h"
 
@@ -41,8 +47,14 @@ size_t packet_work_items(KernelId id, const TsFrame& frame, size_t count) {
 
 class OpenCLBackend final : public Backend {
 public:
-    OpenCLBackend(const SceneBuffers& scene, const EffectPlan& plan, const std::string& device, bool packets)
-        : dev_(select_cl_device(device)), plan_(plan), packets_(packets && cl_device_prefers_packets(dev_)) {
+    OpenCLBackend(const SceneBuffers& scene, const EffectPlan& plan, const BackendOptions& o)
+        : dev_(select_cl_device(o.device)),
+          plan_(plan),
+          packets_(o.cl_packets && !o.cl_gpu_variant && cl_device_prefers_packets(dev_)),
+          gpu_variant_(o.cl_gpu_variant || cl_device_prefers_short_stack(dev_)),
+          launch_ms_(o.cl_launch_ms >= 0.0 ? o.cl_launch_ms : dev_.type == "CPU" ? 0.0 : kDefaultGpuLaunchMs),
+          tile_groups_(o.cl_tile_groups) {
+        if (const char* f = std::getenv("TESSERA_CL_FAIL_LAUNCH"); f && *f) fail_launch_ = std::atoi(f);
         try {
             ctx_ = cl::Context(dev_.device);
             queue_ = cl::CommandQueue(ctx_, dev_.device);
@@ -74,7 +86,7 @@ public:
 
     std::string description() const override {
         return "opencl (" + dev_.platform_name + ": " + dev_.name + "; " +
-               (packets_ ? "16-ray packets" : "per-ray BVH4") + ")";
+               (packets_ ? "16-ray packets" : gpu_variant_ ? "per-ray BVH4, short stack" : "per-ray BVH4") + ")";
     }
 
 protected:
@@ -89,11 +101,13 @@ protected:
              std::vector<float>& out) override {
         const KernelInfo& info = kernel_info(id);
         run([&] {
-            cl::Buffer item_buf = items.empty() ? no_items_ : upload("item list", items);
+            if (!items.empty()) write(items_, items_bytes_, "item list", items);
+            cl::Buffer& item_buf = items.empty() ? no_items_ : items_;
             cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
             const char* packet = packets_ ? packet_kernel(id) : nullptr;
             const size_t work_items = packet ? packet_work_items(id, frame, count) : count;
-            cl::Kernel& k = kernel(info.program, packet ? packet : info.name);
+            const std::string name = packet ? packet : info.name;
+            cl::Kernel& k = kernel(info.program, name);
             int a = 0;
             k.setArg(a++, sizeof(TsFrame), &frame);
             for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
@@ -103,9 +117,9 @@ protected:
             k.setArg(a++, item_buf);
             k.setArg(a++, buf);
             k.setArg(a++, static_cast<cl_uint>(count));
-            queue_.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(round_up(work_items, TS_WORKGROUP_SIZE)),
-                                        cl::NDRange(TS_WORKGROUP_SIZE));
-            queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+            dispatch(name, k, work_items, [&] {
+                queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+            });
         });
     }
 
@@ -126,7 +140,24 @@ private:
     // kernel reads an input only where the launch set it.
     template <class T>
     void store(KernelInput in, const std::vector<T>& data) {
-        inputs_[static_cast<int>(in)] = upload(input_info(in).name, data.empty() ? std::vector<T>(1, T(0)) : data);
+        const int i = static_cast<int>(in);
+        write(inputs_[i], input_bytes_[i], input_info(in).name, data.empty() ? std::vector<T>(1, T(0)) : data);
+    }
+
+    // Writes `v` into the persistent buffer `buf` of `capacity` bytes, first replacing it
+    // by one 1.5× larger (at least v's size, at most one allocation) when v does not
+    // fit: per-frame inputs of varying size (VPLs, item lists, rays) then allocate a few
+    // times per run instead of once per frame.
+    template <class T>
+    void write(cl::Buffer& buf, size_t& capacity, const char* what, const std::vector<T>& v) {
+        const size_t bytes = v.size() * sizeof(T);
+        if (bytes > capacity) {
+            check_alloc(what, bytes);
+            const size_t grown = std::min<size_t>(std::max(bytes, capacity + capacity / 2), dev_.max_alloc);
+            buf = cl::Buffer(ctx_, CL_MEM_READ_ONLY, grown);
+            capacity = grown;
+        }
+        queue_.enqueueWriteBuffer(buf, CL_TRUE, 0, bytes, v.data());
     }
 
     static std::vector<glm::vec3> positions_of(const SceneBuffers& s) {
@@ -149,6 +180,60 @@ private:
                                std::to_string(dev_.max_alloc) + "); use --backend embree");
     }
 
+    // Launches `k` over `work_items` in tiles of about the launch budget, then runs
+    // `read_back`; a resource failure of either becomes one message naming the device,
+    // the kernel and the likely causes (opencl/launch.h).
+    template <class R>
+    void dispatch(const std::string& name, cl::Kernel& k, size_t work_items, R&& read_back) {
+        auto sizer = sizers_.find(name);
+        if (sizer == sizers_.end()) {
+            // First tile: a few work-groups per compute unit, to time the kernel.
+            const size_t first = 4 * std::max(1u, dev_.compute_units);
+            sizer = sizers_.emplace(name, TileSizer(launch_ms_ * 1e-3, tile_groups_, first)).first;
+        }
+        size_t tile_items = 0;
+        try {
+            enqueue_tiled(queue_, k, work_items, TS_WORKGROUP_SIZE, sizer->second, tile_items, fail_launch_);
+            read_back();
+        } catch (const cl::Error& e) {
+            if (!is_resource_error(e.err())) throw;
+            LaunchFailure f;
+            f.device = dev_.name;
+            f.kernel = name;
+            f.error = e.err();
+            f.call = e.what();
+            f.tile_items = tile_items;
+            f.launch_items = round_up(work_items, TS_WORKGROUP_SIZE);
+            f.budget_ms = tile_groups_ > 0 ? 0.0 : launch_ms_;
+            f.work_group = TS_WORKGROUP_SIZE;
+            f.global_mem = dev_.global_mem;
+            f.buffer_bytes = buffer_bytes();
+            try {
+                f.private_bytes = static_cast<size_t>(k.getWorkGroupInfo<CL_KERNEL_PRIVATE_MEM_SIZE>(dev_.device));
+            } catch (const cl::Error&) {
+                f.private_bytes = 0;
+            }
+            throw RuntimeError(launch_failure_message(f));
+        }
+    }
+
+    // Bytes of every device buffer held now.
+    unsigned long long buffer_bytes() const {
+        unsigned long long sum = 0;
+        auto add = [&](const cl::Buffer& b) {
+            if (b() == nullptr) return;
+            try {
+                sum += b.getInfo<CL_MEM_SIZE>();
+            } catch (const cl::Error&) {
+            }
+        };
+        for (const cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
+                                    &tex_texels_, &lights_, &light_cdf_, &medium_, &out_, &no_items_, &items_, &rays_})
+            add(*b);
+        for (const cl::Buffer& b : inputs_) add(b);
+        return sum;
+    }
+
     template <class F>
     void run(F&& f) {
         try {
@@ -162,8 +247,11 @@ private:
         auto it = kernels_.find(name);
         if (it != kernels_.end()) return it->second;
         auto p = programs_.find(program);
-        if (p == programs_.end())
-            p = programs_.emplace(program, build_program(ctx_, dev_, program, plan_.cl_defines()).program).first;
+        if (p == programs_.end()) {
+            std::vector<std::string> defines = plan_.cl_defines();
+            if (gpu_variant_) defines.push_back("-DTS_GPU_TRAVERSAL");
+            p = programs_.emplace(program, build_program(ctx_, dev_, program, defines).program).first;
+        }
         cl::Kernel k(p->second, name.c_str());
         check_kernel_limits(k, dev_, name);
         return kernels_.emplace(name, k).first->second;
@@ -184,33 +272,36 @@ private:
         const size_t n = rays.size() / TS_RAY_FLOATS;
         if (n == 0) return;
         run([&] {
-            check_alloc("ray", rays.size() * sizeof(float));
-            cl::Buffer in(ctx_, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, rays.size() * sizeof(float),
-                          const_cast<float*>(rays.data()));
+            write(rays_, rays_bytes_, "ray", rays);
             cl::Buffer& out = output_buffer(result_bytes);
             cl::Kernel& k = kernel("trace.cl", name);
             k.setArg(0, nodes_);
             k.setArg(1, tris_);
-            k.setArg(2, in);
+            k.setArg(2, rays_);
             k.setArg(3, static_cast<cl_uint>(n));
             k.setArg(4, out);
-            queue_.enqueueNDRangeKernel(k, cl::NullRange,
-                                        cl::NDRange(round_up((n + per_item - 1) / per_item, TS_WORKGROUP_SIZE)),
-                                        cl::NDRange(TS_WORKGROUP_SIZE));
-            queue_.enqueueReadBuffer(out, CL_TRUE, 0, result_bytes, result);
+            dispatch(name, k, (n + per_item - 1) / per_item,
+                     [&] { queue_.enqueueReadBuffer(out, CL_TRUE, 0, result_bytes, result); });
         });
     }
 
     ClDeviceInfo dev_;
     EffectPlan plan_;
     bool packets_;  // CPU device and packets wanted: the packet kernels replace their per-ray ones
+    bool gpu_variant_;     // per-ray kernels built with -DTS_GPU_TRAVERSAL (GPU devices, or forced)
+    double launch_ms_;     // launch budget, ms (0: whole launches)
+    uint32_t tile_groups_; // fixed tile size in work-groups (tests; 0: by budget)
+    int fail_launch_ = 0;  // TESSERA_CL_FAIL_LAUNCH test hook: error code to inject
     cl::Context ctx_;
     cl::CommandQueue queue_;
     cl::Buffer nodes_, tris_, tri_pos_, tri_nrm_, tri_uv_, tri_mat_, materials_, tex_info_, tex_texels_,
         lights_, light_cdf_, medium_, out_;
     std::array<cl::Buffer, kKernelInputCount> inputs_;  // KernelInput order (TS_KERNEL_ARGS)
+    std::array<size_t, kKernelInputCount> input_bytes_{};  // their capacities
     cl::Buffer no_items_;                               // bound for pixel kernels
-    size_t out_bytes_ = 0;
+    cl::Buffer items_, rays_;                           // item lists, ray batches (persistent)
+    size_t out_bytes_ = 0, items_bytes_ = 0, rays_bytes_ = 0;
+    std::map<std::string, TileSizer> sizers_;           // per kernel name
     std::map<std::string, cl::Program> programs_;
     std::map<std::string, cl::Kernel> kernels_;
 };
@@ -218,8 +309,8 @@ private:
 }  // namespace
 
 std::unique_ptr<Backend> make_opencl_backend(const SceneBuffers& scene, const EffectPlan& plan,
-                                             const std::string& device, bool packets) {
-    return std::make_unique<OpenCLBackend>(scene, plan, device, packets);
+                                             const BackendOptions& options) {
+    return std::make_unique<OpenCLBackend>(scene, plan, options);
 }
 
 }  // namespace tessera

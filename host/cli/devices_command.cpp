@@ -26,7 +26,9 @@ void add_devices_command(CLI::App& app) {
                         "%s traversal\n",
                         d.index, d.platform_name.c_str(), d.name.c_str(), r == 0 ? "  (default)" : "", kind,
                         d.version.c_str(), d.driver.c_str(), d.compute_units, d.global_mem / 1073741824.0,
-                        d.max_alloc / 1073741824.0, cl_device_prefers_packets(d) ? "16-ray packet" : "per-ray");
+                        d.max_alloc / 1073741824.0, cl_device_prefers_packets(d)       ? "16-ray packet"
+                        : cl_device_prefers_short_stack(d) ? "per-ray short-stack"
+                                                           : "per-ray");
         }
     });
 }

@@ -39,6 +39,12 @@ std::vector<size_t> rank_cl_devices(const std::vector<ClDeviceInfo>& devs);
 /// per-ray traversal loop across work-items. TESSERA_CL_PACKETS=0 overrides it per run.
 inline bool cl_device_prefers_packets(const ClDeviceInfo& d) { return d.type == "CPU"; }
 
+/// Whether the OpenCL backend builds its per-ray kernels for `d` with the short-stack
+/// traversal (-DTS_GPU_TRAVERSAL, kernels/bvh_short_stack.h) instead of the full
+/// 160-entry private stack, which a GPU keeps in slow scratch memory: on GPU devices.
+/// BackendOptions::cl_gpu_variant (TESSERA_CL_GPU=1) forces it on any device.
+inline bool cl_device_prefers_short_stack(const ClDeviceInfo& d) { return d.type == "GPU"; }
+
 /// Every device of every platform, in platform order. Empty if there is no platform
 /// (no ICD installed); never throws for that.
 std::vector<ClDeviceInfo> list_cl_devices();

@@ -1,5 +1,5 @@
 // OpenCL failures as a user meets them: no platform, a buffer larger than the device
-// allows. Each is one clear error line; --backend opencl suggests --backend embree.
+// allows, a launch that fails for resources (injected: PoCL does not fail that way). Each is one clear error line; --backend opencl suggests --backend embree.
 // (A kernel build failure is tested in tests/opencl/program_cache_test.cpp.)
 #include <sys/wait.h>
 
@@ -71,6 +71,42 @@ TEST_F(OpenCLFailureCli, OutputBufferLargerThanTheDeviceAllows) {
     EXPECT_NE(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("the output buffer needs"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(out));
+}
+
+// A display watchdog or exhausted resources surface as CL_OUT_OF_RESOURCES from the
+// launch or the wait after it; TESSERA_CL_FAIL_LAUNCH injects that error code after the
+// first tile (host/opencl/launch.h). The message names the kernel, the device, the
+// error and the likely causes with their numbers.
+TEST_F(OpenCLFailureCli, LaunchOutOfResourcesNamesKernelDeviceAndCauses) {
+    const fs::path out = dir_ / "img.exr";
+    const CliResult dev = run_tessera("devices");
+    const CliResult r = run_tessera("render " + kScene + " --method direct --backend opencl --spp 1 --width 8 --height 8 --out " +
+                                        out.string(),
+                                    "TESSERA_CL_FAIL_LAUNCH=-5");
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    for (const char* part : {"tessera: error: OpenCL kernel direct_pass on ", "CL_OUT_OF_RESOURCES (-5) from clFinish",
+                             "watchdog", "TESSERA_CL_LAUNCH_MS", "CL_KERNEL_PRIVATE_MEM_SIZE", "device memory",
+                             "--backend embree"})
+        EXPECT_NE(r.output.find(part), std::string::npos) << "missing \"" << part << "\" in: " << r.output;
+    // The device named is the one rendering: its name appears in `tessera devices`.
+    const size_t kernel = r.output.find("OpenCL kernel direct_pass");
+    ASSERT_NE(kernel, std::string::npos);
+    const size_t on = r.output.find(" on ", kernel), failed = r.output.find(" failed:", kernel);
+    ASSERT_NE(on, std::string::npos);
+    ASSERT_NE(failed, std::string::npos);
+    const std::string device = r.output.substr(on + 4, failed - on - 4);
+    EXPECT_FALSE(device.empty());
+    EXPECT_NE(dev.output.find(device), std::string::npos) << device << " not in: " << dev.output;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(OpenCLFailureCli, BadLaunchBudgetIsNamed) {
+    const fs::path out = dir_ / "img.exr";
+    const CliResult r = run_tessera("render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " + out.string(),
+                                    "TESSERA_CL_LAUNCH_MS=fast");
+    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("tessera: error: TESSERA_CL_LAUNCH_MS=fast: expected a number"), std::string::npos)
+        << r.output;
 }
 
 }  // namespace

@@ -42,6 +42,21 @@ TEST_P(OptDisableCli, SameImageWithOptimisationOff) {
     EXPECT_EQ(tessera::test::file_bytes(opt), tessera::test::file_bytes(noopt)) << c.method << " on " << c.scene;
 }
 
+// The GPU variant (TESSERA_CL_GPU=1: per-ray kernels with the short-stack traversal,
+// kernels/bvh_short_stack.h) builds and renders the same bytes with optimisation off too.
+TEST_F(OptDisableCli, GpuVariantSameImageWithOptimisationOff) {
+    const std::string args = std::string("render ") + TESSERA_SCENES_DIR +
+                             "/cornell-box-fog.json --method ais --backend opencl --spp 1 --width 24 --height 24 "
+                             "--vpl-paths 8 --aov";
+    const fs::path opt = dir_ / "opt.exr", noopt = dir_ / "noopt.exr";
+    const CliResult a = run_tessera(args + " --out " + opt.string(), "TESSERA_CL_GPU=1");
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    ASSERT_NE(a.output.find("short stack"), std::string::npos) << a.output;
+    const CliResult b = run_tessera(args + " --out " + noopt.string(), "TESSERA_CL_GPU=1 TESSERA_CL_OPTIONS=-cl-opt-disable");
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    EXPECT_EQ(tessera::test::file_bytes(opt), tessera::test::file_bytes(noopt));
+}
+
 // The option really reaches the compiler (else the test above could not fail): an
 // unknown one fails the build with a message naming it.
 class ClOptionsCli : public tessera::test::ScratchDirTest {};

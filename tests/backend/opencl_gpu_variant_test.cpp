@@ -1,0 +1,181 @@
+// The OpenCL backend's GPU variant (host/backend/opencl_backend.cpp; BackendOptions::
+// cl_gpu_variant forces it on the CPU device here): per-ray kernels built with
+// -DTS_GPU_TRAVERSAL, whose short-stack traversal with a restart trail
+// (kernels/bvh_short_stack.h) must return the same hits as the full-stack traversal
+// (kernels/bvh_traverse.h) — same triangle, same t, u, v bits — so images equal the
+// per-ray kernels' bit for bit. The ring is also built with a single entry
+// (TS_BVH_SHORT_STACK=1, through TESSERA_CL_OPTIONS): every pop then empties it and
+// every further sibling is reached by a restart from the root, so the trail is
+// exercised on nearly every ray.
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "backend/backend.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
+#include "render/renderer.h"
+#include "scene/loader.h"
+#include "support/render_helpers.h"
+
+namespace tessera {
+namespace {
+
+std::unique_ptr<Backend> opencl(const SceneBuffers& buffers, const Scene& scene, bool gpu_variant) {
+    BackendOptions o{BackendKind::OpenCL, ""};
+    o.cl_packets = false;
+    o.cl_gpu_variant = gpu_variant;
+    return make_backend(o, buffers, plan_effects(scene));
+}
+
+// Sets TESSERA_CL_OPTIONS for one scope (the program cache keys on it, so the kernels
+// are really built with it) and restores the previous value.
+class ScopedClOptions {
+public:
+    explicit ScopedClOptions(const char* value) {
+        if (const char* old = std::getenv("TESSERA_CL_OPTIONS")) old_ = old, had_ = true;
+        setenv("TESSERA_CL_OPTIONS", value, 1);
+    }
+    ~ScopedClOptions() {
+        if (had_) setenv("TESSERA_CL_OPTIONS", old_.c_str(), 1);
+        else unsetenv("TESSERA_CL_OPTIONS");
+    }
+
+private:
+    std::string old_;
+    bool had_ = false;
+};
+
+// Rays from uniform points in the scene bounds in uniform directions, and from points
+// on triangles towards points on other triangles (shadow-ray-like, ending short of the
+// target so about half are blocked): 50k of each.
+std::vector<float> test_rays(const Scene& s, uint32_t seed) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& p : s.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::normal_distribution<float> g;
+    const size_t tris = s.positions.size() / 3;
+    auto on = [&] {
+        const size_t t = std::min(tris - 1, size_t(u(rng) * tris));
+        float a = u(rng), b = u(rng);
+        if (a + b > 1.0f) a = 1.0f - a, b = 1.0f - b;
+        return s.positions[3 * t] + a * (s.positions[3 * t + 1] - s.positions[3 * t]) +
+               b * (s.positions[3 * t + 2] - s.positions[3 * t]);
+    };
+    std::vector<float> rays;
+    for (int i = 0; i < 50000; ++i) {
+        const glm::vec3 o = lo + (hi - lo) * glm::vec3(u(rng), u(rng), u(rng));
+        const glm::vec3 d = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
+        rays.insert(rays.end(), {o.x, o.y, o.z, 0.0f, d.x, d.y, d.z, INFINITY});
+    }
+    for (int i = 0; i < 50000; ++i) {
+        const glm::vec3 o = on(), d = on() - o;
+        rays.insert(rays.end(), {o.x, o.y, o.z, 1e-4f, d.x, d.y, d.z, 0.999f});
+    }
+    return rays;
+}
+
+// Expects the GPU variant's closest and any hits to equal the full-stack traversal's on
+// every ray, bit for bit, and the rays to be neither all missing nor all blocked.
+void expect_same_hits(const Scene& scene) {
+    SceneBuffers buffers = make_scene_buffers(scene);
+    auto full = opencl(buffers, scene, false), gpu = opencl(buffers, scene, true);
+    ASSERT_NE(gpu->description().find("short stack"), std::string::npos) << gpu->description();
+    ASSERT_EQ(full->description().find("short stack"), std::string::npos) << full->description();
+    const std::vector<float> rays = test_rays(scene, 7);
+    const size_t n = rays.size() / TS_RAY_FLOATS;
+    std::vector<float> hf, hg;
+    full->trace_closest(rays, hf);
+    gpu->trace_closest(rays, hg);
+    ASSERT_EQ(hf.size(), hg.size());
+    size_t differ = 0, hits = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const bool same = std::memcmp(&hf[TS_HIT_FLOATS * i], &hg[TS_HIT_FLOATS * i], TS_HIT_FLOATS * 4) == 0;
+        if (!same && differ++ < 5) ADD_FAILURE() << "ray " << i << ": closest hits differ";
+        uint32_t prim;
+        std::memcpy(&prim, &hf[TS_HIT_FLOATS * i + TS_HIT_PRIM], 4);
+        hits += prim != TS_NO_HIT;
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(hits, n / 2) << "most rays should hit: the comparison would be vacuous otherwise";
+    std::vector<uint32_t> of, og;
+    full->trace_occluded(rays, of);
+    gpu->trace_occluded(rays, og);
+    size_t blocked = 0;
+    differ = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (of[i] != og[i] && differ++ < 5) ADD_FAILURE() << "ray " << i << ": occlusion differs";
+        blocked += of[i];
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(blocked, n / 4);
+    EXPECT_LT(blocked, 3 * n / 4 + n / 8);
+}
+
+bool have_sibenik(const DataPath& data) {
+    for (const auto& r : data.roots)
+        if (std::filesystem::exists(r / "sibenik" / "sibenik.obj")) return true;
+    return false;
+}
+
+Scene cornell() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
+
+TEST(OpenCLGpuVariant, SameHitsAsFullStackOnTheCornellBox) { expect_same_hits(cornell()); }
+
+TEST(OpenCLGpuVariant, SameHitsAsFullStackOnSibenik) {
+    DataPath data = make_data_path(std::nullopt);
+    if (!have_sibenik(data)) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
+    expect_same_hits(load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data));
+}
+
+TEST(OpenCLGpuVariant, SameHitsWithAOneEntryRingOnSibenik) {
+    DataPath data = make_data_path(std::nullopt);
+    if (!have_sibenik(data)) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
+    ScopedClOptions opts("-DTS_BVH_SHORT_STACK=1");
+    expect_same_hits(load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data));
+}
+
+TEST(OpenCLGpuVariant, SameHitsWithAOneEntryRingOnTheCornellBox) {
+    ScopedClOptions opts("-DTS_BVH_SHORT_STACK=1");
+    expect_same_hits(cornell());
+}
+
+// The ring size is checked: a size that is not a power of two does not build (so the
+// one-entry tests above really changed the kernel).
+TEST(OpenCLGpuVariant, RingSizeMustBeAPowerOfTwo) {
+    const Scene scene = cornell();
+    SceneBuffers buffers = make_scene_buffers(scene);
+    ScopedClOptions opts("-DTS_BVH_SHORT_STACK=3");
+    auto gpu = opencl(buffers, scene, true);
+    std::vector<float> hits;
+    try {
+        gpu->trace_closest(std::vector<float>{0, 0, 0, 0, 0, 0, 1, 1}, hits);
+        ADD_FAILURE() << "built with TS_BVH_SHORT_STACK=3";
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("power of two"), std::string::npos) << e.what();
+    }
+}
+
+// Images: igi, ais and ais-max with fog (surface, media and AIS item kernels) equal the
+// per-ray CPU variant's bit for bit: the same shading source over the same hits.
+class OpenCLGpuVariantImages : public ::testing::TestWithParam<Method> {};
+
+TEST_P(OpenCLGpuVariantImages, EqualPerRayImagesBitForBit) {
+    const Scene scene =
+        load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-fog.json", make_data_path(std::nullopt));
+    SceneBuffers buffers = make_scene_buffers(scene);
+    const RenderSettings rs = test::packet_test_settings(GetParam());
+    auto full = opencl(buffers, scene, false), gpu = opencl(buffers, scene, true);
+    test::expect_images_identical(render_frame(*full, scene, buffers, rs), render_frame(*gpu, scene, buffers, rs));
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, OpenCLGpuVariantImages,
+                         ::testing::Values(Method::Igi, Method::Ais, Method::AisMax, Method::PathTrace, Method::Ic),
+                         [](const auto& info) { return test::method_param_name(info.param); });
+
+}  // namespace
+}  // namespace tessera
