@@ -33,13 +33,14 @@ protected:
     }
 };
 
+}  // namespace
+
 bool launched_by_mpi() {
+    if (!built_with_mpi()) return false;
     for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
         if (std::getenv(var)) return true;
     return false;
 }
-
-}  // namespace
 
 int exit_code_of(const std::exception_ptr& e) {
     try {
@@ -56,6 +57,7 @@ int exit_code_of(const std::exception_ptr& e) {
 }
 
 void Cluster::step(const std::function<void()>& step) {
+    stepped_ = true;
     if (size() == 1) return step();
     std::exception_ptr failure;
     try {

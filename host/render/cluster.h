@@ -53,6 +53,10 @@ public:
     /// silent. Alone (size() == 1) an exception of `step` propagates unchanged.
     void step(const std::function<void()>& step);
 
+    /// Whether step() has been called in this process (its ranks have begun the render's
+    /// collective steps, so a failure now must not start another: host/main.cpp).
+    bool stepped() const { return stepped_; }
+
     /// Collective: rank 0's `value` on every rank.
     virtual uint32_t broadcast(uint32_t value) = 0;
 
@@ -68,12 +72,19 @@ protected:
     /// The collective part of step(): `failure` is this rank's (null: success). Returns
     /// normally only if no rank failed.
     virtual void agree(const std::exception_ptr& failure) = 0;
+
+private:
+    bool stepped_ = false;
 };
 
 /// This process's cluster: the MPI world when this binary was built with MPI and started
 /// by an MPI launcher (OMPI_COMM_WORLD_SIZE, PMI_SIZE or PMIX_RANK in the environment;
 /// MPI_Init runs on the first call), else this process alone. MPI_Finalize runs at exit.
 Cluster& world_cluster();
+
+/// Whether this process was started by an MPI launcher and this binary was built with MPI
+/// (then world_cluster() is the MPI world).
+bool launched_by_mpi();
 
 /// Whether this binary was built with MPI (TESSERA_MPI found it).
 bool built_with_mpi();

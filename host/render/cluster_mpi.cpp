@@ -97,9 +97,11 @@ protected:
                     report = "rank " + std::to_string(r) + " of " + std::to_string(size_) + ": " + text;
                 }
             }
-            if (failed > 1)
+            if (failed == size_ && size_ > 1)  // e.g. a bad option: the same cause everywhere
+                report = message + " (on all " + std::to_string(size_) + " ranks)";
+            else if (failed > 1)
                 report += " (" + std::to_string(failed) + " of " + std::to_string(size_) +
-                          " ranks failed; the message is the lowest one's)";
+                          " ranks failed; this is the lowest one's cause)";
         }
         MPI_Bcast(&verdict, 1, MPI_INT, 0, MPI_COMM_WORLD);
         if (verdict != 0) throw RankFailure(report, verdict);
