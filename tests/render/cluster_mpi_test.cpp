@@ -16,6 +16,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -195,6 +196,44 @@ TEST_F(DistributedCli, MethodWithDependentPassesIsRefusedOnce) {
     EXPECT_NE(r.output.find("tessera: error: --method igi: a distributed render (2 MPI ranks)"), std::string::npos)
         << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "img.exr"));
+}
+
+TEST_F(DistributedCli, AccuracySweepOverTwoRanksGivesTheSerialErrors) {
+    // bench/accuracy --mpi 2: the reference's passes and the three settings spread over two
+    // ranks; the reference and every relMSE equal the serial sweep's (timings do not).
+    const std::string src = TESSERA_SOURCE_DIR;
+    auto sweep = [&](const std::string& name, const std::string& extra) {
+        const fs::path out = dir_ / name;
+        const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 python3 " + src +
+                                "/bench/accuracy --tessera " + TESSERA_EXE + " --scenes " + scene("cornell-box.json") +
+                                " --width 24 --height 24 --frames 2 --reference-spp 64 --methods pt direct" +
+                                " --grid pt:spp=1,4 --grid direct:spp=2 --grid direct:shadow-samples=1,4" +
+                                " --backends embree --no-flip --out-dir " + out.string() + " --work-dir " +
+                                (out / "work").string() + extra;
+        const auto r = run_shell(cmd);
+        EXPECT_EQ(r.exit_code, 0) << cmd << "\n" << r.output;
+        return std::make_pair(file_bytes(out / "work/cornell-box/reference_pt_64spp_24x24.exr"),
+                              file_bytes(out / "cornell-box.csv"));
+    };
+    const auto [ref_mpi, csv_mpi] = sweep("mpi", " --mpi 2");
+    const auto [ref_serial, csv_serial] = sweep("serial", "");
+    ASSERT_GT(ref_serial.size(), 1000u);
+    EXPECT_TRUE(ref_mpi == ref_serial);
+    // Every CSV column but the timings (median_pass_s, time_s: fields 6 and 7), line by line.
+    auto without_timings = [](const std::string& csv) {
+        std::vector<std::string> lines;
+        std::istringstream in(csv);
+        for (std::string line; std::getline(in, line);) {
+            std::istringstream fields(line);
+            std::string kept, field;
+            for (int i = 0; std::getline(fields, field, ','); ++i)
+                if (i != 6 && i != 7) kept += field + ",";
+            lines.push_back(kept);
+        }
+        return lines;
+    };
+    EXPECT_EQ(without_timings(csv_mpi).size(), 5u) << "header, 2 pt and 2 direct rows";
+    EXPECT_EQ(without_timings(csv_mpi), without_timings(csv_serial));
 }
 
 }  // namespace
