@@ -166,13 +166,17 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
 }
 
 // A distributed render (mpirun -n N, N > 1; docs/distributed.md) renders one still
-// frame with a method whose passes depend only on the seed, the pixel and the pass index.
+// frame, and only what depends on nothing but the seed, the pixel and the pass index.
 void check_distributed_options(const RenderArgs& a, const RenderSettings& s, const Cluster& cluster) {
     if (cluster.size() == 1) return;
     const std::string job = "a distributed render (" + std::to_string(cluster.size()) + " MPI ranks)";
-    if (s.method != Method::Direct && s.method != Method::PathTrace)
-        throw InputError("--method " + a.method + ": " + job +
-                         " supports --method direct and pt only (their passes are independent)");
+    if (s.method == Method::Tic)
+        throw InputError("--method tic: " + job + " cannot split its passes: its instant cache carries over from "
+                         "one pass to the next (--method ic rebuilds it per pass)");
+    const bool own_aovs = s.method != Method::Direct && s.method != Method::PathTrace;
+    if (s.aovs && own_aovs)
+        throw InputError("--aov with --method " + a.method + ": " + job + " cannot write them: the method's own AOV "
+                         "channels are sums kept by one process (render AOVs without mpirun, or use direct or pt)");
     if (!a.frames.empty()) throw InputError("--frames " + a.frames + ": " + job + " renders one still frame");
 }
 

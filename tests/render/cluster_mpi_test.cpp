@@ -5,8 +5,10 @@
 //   very bytes of a one-process render with the same --spp and --seed (and of a 1-rank job);
 // - a 2-rank job interrupted by SIGINT leaves a checkpoint that a 3-rank --resume finishes
 //   to the bytes of the uninterrupted one-process render;
+// - igi, ais and ic (without --aov) likewise, with 3 ranks;
 // - a rank that cannot open a scene data file ends the job with one message naming that
-//   rank and the file, a non-zero status and no output file.
+//   rank and the file, a non-zero status and no output file; tic and igi-family AOVs are
+//   refused with one message.
 // OpenMPI refuses root unless told otherwise (CI runs as root), hence the environment.
 #include <fcntl.h>
 #include <signal.h>
@@ -138,6 +140,18 @@ TEST_F(DistributedCli, TwoRanksGiveTheBitsOfOneProcess) {
                  render(0, scene("cornell-box.json"), base + " --method pt --seed 3", "seed3"));
 }
 
+TEST_F(DistributedCli, IgiFamilyWithoutAovsGivesTheBitsOfOneProcess) {
+    // Their passes depend only on the seed, the pixel and the pass index too (VPLs, AIS
+    // refinement and ic's cache are rebuilt per pass).
+    const std::string base = "--backend embree --width 32 --height 24 --spp 4";
+    for (const std::string method : {"igi", "ais", "ic"}) {
+        SCOPED_TRACE(method);
+        const std::string args = base + " --method " + method;
+        EXPECT_TRUE(render(3, scene("cornell-box-fog.json"), args, "three") ==
+                    render(0, scene("cornell-box-fog.json"), args, "alone"));
+    }
+}
+
 TEST_F(DistributedCli, OneRankUnderMpirunGivesTheBitsOfOneProcess) {
     const std::string args = "--backend embree --width 40 --height 32 --spp 5 --method pt";
     EXPECT_TRUE(render(1, scene("cornell-box-fog.json"), args, "one") ==
@@ -188,14 +202,19 @@ TEST_F(DistributedCli, RankMissingADataFileStopsTheJobWithOneMessage) {
     EXPECT_FALSE(fs::exists(dir_ / "img.ckpt"));
 }
 
-TEST_F(DistributedCli, MethodWithDependentPassesIsRefusedOnce) {
-    const auto r = run_shell(kMpirun + " -n 2 " + TESSERA_EXE + " render " + scene("cornell-box.json") +
-                             " --backend embree --method igi --spp 2 --out " + (dir_ / "img.exr").string());
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_EQ(count(r.output, "tessera: "), 1) << r.output;
-    EXPECT_NE(r.output.find("tessera: error: --method igi: a distributed render (2 MPI ranks)"), std::string::npos)
-        << r.output;
-    EXPECT_FALSE(fs::exists(dir_ / "img.exr"));
+TEST_F(DistributedCli, WhatDependsOnEarlierPassesIsRefusedOnce) {
+    // tic's cache and the igi family's AOV sums carry over from pass to pass.
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"--method tic", "tessera: error: --method tic: a distributed render (2 MPI ranks) cannot split its passes"},
+        {"--method igi --aov", "tessera: error: --aov with --method igi: a distributed render (2 MPI ranks)"}};
+    for (const auto& [args, message] : cases) {
+        const auto r = run_shell(kMpirun + " -n 2 " + TESSERA_EXE + " render " + scene("cornell-box.json") +
+                                 " --backend embree --spp 2 " + args + " --out " + (dir_ / "img.exr").string());
+        EXPECT_EQ(r.exit_code, 2) << r.output;
+        EXPECT_EQ(count(r.output, "tessera: "), 1) << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir_ / "img.exr"));
+    }
 }
 
 TEST_F(DistributedCli, AccuracySweepOverTwoRanksGivesTheSerialErrors) {
