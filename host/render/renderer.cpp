@@ -6,8 +6,10 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "render/accumulator.h"
+#include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
 #include "render/cluster.h"
 #include "render/pass_exchange.h"
@@ -16,6 +18,22 @@
 #include "util/error.h"
 
 namespace tessera {
+namespace {
+
+// What a distributed render's ranks must agree on for their passes to fit together: the
+// checkpoint identity (scene file and data, method, seed, shadow samples, depths, size,
+// backend) but the scene's path, which may differ between machines, plus --spp.
+uint64_t render_fingerprint(const Scene& scene, const RenderSettings& settings, int w, int h, BackendKind backend) {
+    const RunIdentity id = make_run_identity(scene, settings, w, h, backend);
+    const std::string key = std::to_string(id.scene_file_hash) + " " + std::to_string(id.scene_data_hash) + " " +
+                            id.method + " " + std::to_string(id.seed) + " " + std::to_string(id.shadow_samples) + " " +
+                            std::to_string(id.max_depth) + " " + std::to_string(id.max_scatter) + " " +
+                            std::to_string(id.width) + " " + std::to_string(id.height) + " " + id.backend + " " +
+                            std::to_string(settings.spp);
+    return fnv1a64(key.data(), key.size());
+}
+
+}  // namespace
 
 Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress,
@@ -38,8 +56,20 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
         integrator = make_integrator(backend, scene, buffers, settings);
     };
     if (distributed) {
-        cluster->step(set_up);  // a checkpoint or integrator failing on any rank stops all
+        uint64_t mine = 0;
+        cluster->step([&] {  // a checkpoint or integrator failing on any rank stops all
+            set_up();
+            mine = render_fingerprint(scene, settings, w, h, checkpoint ? checkpoint->backend : BackendKind::OpenCL);
+        });
         first = cluster->broadcast(first);
+        const uint64_t lead_fingerprint =
+            uint64_t(cluster->broadcast(uint32_t(mine >> 32))) << 32 | cluster->broadcast(uint32_t(mine));
+        cluster->step([&] {
+            if (mine != lead_fingerprint)
+                throw InputError("its scene file, scene data or settings differ from rank 0's (every rank must "
+                                 "render the same scene data with the same --method, --spp, --seed, "
+                                 "--shadow-samples, --max-depth, --max-scatter, --width, --height and --backend)");
+        });
         if (!lead) {
             run_worker(*cluster, *integrator, frame, first, settings.spp);
             return Image{};

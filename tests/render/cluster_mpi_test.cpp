@@ -202,6 +202,20 @@ TEST_F(DistributedCli, RankMissingADataFileStopsTheJobWithOneMessage) {
     EXPECT_FALSE(fs::exists(dir_ / "img.ckpt"));
 }
 
+TEST_F(DistributedCli, RankWithOtherSettingsIsRefusedNamingIt) {
+    // As on a machine with another version of the scene or a mistyped launch line: the
+    // passes would not fit together, so the job stops before the first pass.
+    const std::string args = " --backend embree --width 16 --height 16 --spp 4 --out " + (dir_ / "img.exr").string();
+    const std::string render = std::string(TESSERA_EXE) + " render " + scene("cornell-box.json") + args;
+    const auto r = run_shell(kMpirun + " -n 1 " + render + " : -n 1 " + render + " --seed 2");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(count(r.output, "tessera: error"), 1) << r.output;  // after rank 0's banner
+    EXPECT_NE(r.output.find("tessera: error: rank 1 of 2: its scene file, scene data or settings differ from rank 0's"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "img.exr"));
+}
+
 TEST_F(DistributedCli, WhatDependsOnEarlierPassesIsRefusedOnce) {
     // tic's cache and the igi family's AOV sums carry over from pass to pass.
     const std::vector<std::pair<std::string, std::string>> cases{
