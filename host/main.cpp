@@ -1,14 +1,41 @@
 // tessera: command-line entry point. Every failure ends as one line on stderr,
 // "tessera: error: ...", and a non-zero exit: 2 for bad input, 1 for runtime failures.
-// A render stopped by SIGINT/SIGTERM (after saving a checkpoint) exits with 130.
+// A render stopped by SIGINT/SIGTERM (after saving a checkpoint) exits with 130. In a
+// distributed render (mpirun) only rank 0 prints, naming the rank that failed.
 #include <cstdio>
 #include <exception>
+#include <string>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "render/cluster.h"
 #include "util/error.h"
+
+namespace {
+
+// Prints `message` the way main() reports failures and returns `code`. In an MPI job whose
+// render has not reached its first collective step (a bad option fails while parsing),
+// the other ranks wait in that step: this rank joins it, and only rank 0 prints, once for
+// all ranks (render/cluster.h).
+int fail(const std::string& message, int code) {
+    auto print = [](const std::string& text, int status) {
+        std::fprintf(stderr, "%stessera: %s%s\n", status == 130 && ::isatty(STDERR_FILENO) ? "\n" : "",
+                     status == 130 ? "" : "error: ", text.c_str());
+        return status;
+    };
+    if (tessera::launched_by_mpi() && !tessera::world_cluster().stepped()) {
+        try {
+            tessera::world_cluster().step([&] { throw tessera::RankFailure(message, code); });
+        } catch (const tessera::RankFailure& f) {
+            return f.silent() ? f.exit_code : print(f.what(), f.exit_code);
+        }
+    }
+    return print(message, code);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"Tessera: interactive global illumination on OpenCL devices and Embree"};
@@ -23,17 +50,19 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "tessera: error: %s (see --help)\n", e.what());
-        return e.get_exit_code() ? e.get_exit_code() : 2;
+        return fail(std::string(e.what()) + " (see --help)", e.get_exit_code() ? e.get_exit_code() : 2);
+    } catch (const tessera::RankFailure& e) {
+        // A distributed render (render/cluster.h): rank 0 gives the one message, naming the
+        // rank that failed; the other ranks exit with the same status and say nothing.
+        if (!e.silent())
+            std::fprintf(stderr, "tessera: %s%s\n", e.exit_code == 130 ? "" : "error: ", e.what());
+        return e.exit_code;
     } catch (const tessera::Interrupted& e) {
-        std::fprintf(stderr, "%stessera: %s\n", ::isatty(STDERR_FILENO) ? "\n" : "", e.what());
-        return 130;
+        return fail(e.what(), 130);
     } catch (const tessera::InputError& e) {
-        std::fprintf(stderr, "tessera: error: %s\n", e.what());
-        return 2;
+        return fail(e.what(), 2);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "tessera: error: %s\n", e.what());
-        return 1;
+        return fail(e.what(), 1);
     }
     return 0;
 }

@@ -15,6 +15,7 @@
 #include "image/image_io.h"
 #include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
+#include "render/cluster.h"
 #include "device/effect_plan.h"
 #include "integrators/method.h"
 #include "render/interrupt.h"
@@ -164,49 +165,86 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
     std::fputs(written.c_str(), stdout);
 }
 
+// A distributed render (mpirun -n N, N > 1; docs/distributed.md) renders one still
+// frame, and only what depends on nothing but the seed, the pixel and the pass index.
+void check_distributed_options(const RenderArgs& a, const RenderSettings& s, const Cluster& cluster) {
+    if (cluster.size() == 1) return;
+    const std::string job = "a distributed render (" + std::to_string(cluster.size()) + " MPI ranks)";
+    if (s.method == Method::Tic)
+        throw InputError("--method tic: " + job + " cannot split its passes: its instant cache carries over from "
+                         "one pass to the next (--method ic rebuilds it per pass)");
+    const bool own_aovs = s.method != Method::Direct && s.method != Method::PathTrace;
+    if (s.aovs && own_aovs)
+        throw InputError("--aov with --method " + a.method + ": " + job + " cannot write them: the method's own AOV "
+                         "channels are sums kept by one process (render AOVs without mpirun, or use direct or pt)");
+    if (!a.frames.empty()) throw InputError("--frames " + a.frames + ": " + job + " renders one still frame");
+}
+
 void run_render(const RenderArgs& a, const CLI::App& cmd) {
     const InterruptScope interrupts;  // from the start: a signal during set-up is reported, not fatal
-    reject_empty_values(cmd);
-    const fs::path scene_path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
-    BackendOptions bo{parse_backend_kind(a.backend), a.device};
+    Cluster& cluster = world_cluster();
+    const bool lead = cluster.rank() == 0;  // the rank that writes files and reports
+    fs::path scene_path, out;
+    BackendOptions bo;
     RenderSettings settings = a.settings;
-    settings.method = parse_method(a.method);
-    settings.igi.components = parse_components(a.components);
-    validate_settings(settings);  // before the scene loads: a bad option fails at once
-    check_render_options(a, cmd, bo);
-    if (settings.method == Method::Tic && a.resume)
-        throw InputError("--method tic cannot be combined with --resume (a checkpoint does not hold the cache, so a "
-                         "resumed render would differ from the uninterrupted one)");
-    const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
-    Scene scene = load_scene(scene_path, data);
-    const fs::path out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
-    if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
+    Scene scene;
     std::optional<FrameRange> frames;
-    if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
-    check_scene_options(settings, scene, scene_path);
-    // Every output before the first ray: a run that cannot write its results does no work.
-    const std::vector<OutputFile> files = outputs_of(a, out, frames);
-    check_outputs(files, scene_path);
-    stop_if_interrupted("while loading the scene");
-    prepare_output_directories(files);  // checkpoints are written there during the render too
+    std::optional<CheckpointOptions> ckpt;
+    EffectPlan plan;
+    SceneBuffers buffers;
+    std::unique_ptr<Backend> backend;
+    // Set-up: every rank does it; a failure on any rank stops them all with one message
+    // from rank 0 naming that rank (Cluster::step; alone, the exception as it is).
+    cluster.step([&] {
+        reject_empty_values(cmd);
+        scene_path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
+        bo = BackendOptions{parse_backend_kind(a.backend), a.device};
+        settings.method = parse_method(a.method);
+        settings.igi.components = parse_components(a.components);
+        validate_settings(settings);  // before the scene loads: a bad option fails at once
+        check_render_options(a, cmd, bo);
+        check_distributed_options(a, settings, cluster);
+        if (settings.method == Method::Tic && a.resume)
+            throw InputError("--method tic cannot be combined with --resume (a checkpoint does not hold the cache, so a "
+                             "resumed render would differ from the uninterrupted one)");
+        const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
+        scene = load_scene(scene_path, data);
+        out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
+        if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
+        if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
+        check_scene_options(settings, scene, scene_path);
+        if (lead) {  // only rank 0 writes
+            // Every output before the first ray: a run that cannot write its results does no work.
+            const std::vector<OutputFile> files = outputs_of(a, out, frames);
+            check_outputs(files, scene_path);
+            stop_if_interrupted("while loading the scene");
+            prepare_output_directories(files);  // checkpoints are written there during the render too
+        }
+    });
     if (frames) return run_sequence(a, scene, *frames, out, bo, settings);
-    // A still of an animated scene is its frame 0 (the rest pose with frame 0's keys).
-    if (scene.animation.animated()) scene = scene_at_frame(scene, 0);
-    const CheckpointOptions ckpt{checkpoint_path_for(out), bo.kind, a.resume};
-    if (!a.resume && fs::exists(ckpt.path))
-        std::fprintf(stderr, "tessera: note: %s exists; starting over (it will be replaced; --resume continues it)\n",
-                     ckpt.path.c_str());
-
-    const EffectPlan plan = plan_effects(scene);
-    const SceneBuffers buffers = make_scene_buffers(scene);
-    std::unique_ptr<Backend> backend = make_backend(bo, buffers, plan);
-    std::fprintf(stderr, "tessera: %s, %zu triangles, %u lights, on %s\n", scene.name.c_str(),
-                 scene.triangle_count(), buffers.light_count, backend->description().c_str());
-    for (const auto& line : plan.describe()) std::fprintf(stderr, "  %s\n", line.c_str());
-    stop_if_interrupted("before the first pass");
+    cluster.step([&] {
+        // A still of an animated scene is its frame 0 (the rest pose with frame 0's keys).
+        if (scene.animation.animated()) scene = scene_at_frame(scene, 0);
+        ckpt = CheckpointOptions{checkpoint_path_for(out), bo.kind, a.resume};
+        if (lead && !a.resume && fs::exists(ckpt->path))
+            std::fprintf(stderr, "tessera: note: %s exists; starting over (it will be replaced; --resume continues it)\n",
+                         ckpt->path.c_str());
+        plan = plan_effects(scene);
+        buffers = make_scene_buffers(scene);
+        backend = make_backend(bo, buffers, plan);
+        if (lead) {
+            std::fprintf(stderr, "tessera: %s, %zu triangles, %u lights, on %s", scene.name.c_str(),
+                         scene.triangle_count(), buffers.light_count, backend->description().c_str());
+            if (cluster.size() > 1) std::fprintf(stderr, ", %d MPI ranks", cluster.size());
+            std::fprintf(stderr, "\n");
+            for (const auto& line : plan.describe()) std::fprintf(stderr, "  %s\n", line.c_str());
+        }
+        stop_if_interrupted("before the first pass");
+    });
 
     RenderStats stats;
-    Image img = render_frame(*backend, scene, buffers, settings, &stats, print_progress, &ckpt);
+    Image img = render_frame(*backend, scene, buffers, settings, &stats, print_progress, &*ckpt, &cluster);
+    if (!lead) return;
     const fs::path png = png_beside(out);
     CommitGroup outputs;  // all of them or none
     write_exr(outputs.add(out), img);
@@ -217,7 +255,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         outputs.commit();
     }
     std::error_code ec;
-    fs::remove(ckpt.path, ec);  // the render is complete: its checkpoint is of no further use
+    fs::remove(ckpt->path, ec);  // the render is complete: its checkpoint is of no further use
     if (!stats.detail.empty()) std::fprintf(stderr, "tessera: %s\n", stats.detail.c_str());
     std::fprintf(stderr, "tessera: %u spp in %.2f s (median %.1f ms per pass)", stats.passes, stats.seconds,
                  1e3 * stats.median_pass_seconds);

@@ -36,21 +36,26 @@ void CheckpointSession::after_pass(const Accumulator& acc) {
     if (!options_ || acc.passes() >= spp_) return;
     const auto now = std::chrono::steady_clock::now();
     const bool interrupted = interrupt_signal() != 0;
-    if (interrupted) {
-        const InterruptDeferral defer;  // a second signal must not cut the checkpoint short
-        try {
-            save_checkpoint(options_->path, id_, spp_, acc);
-        } catch (const std::exception& e) {
-            throw Interrupted("interrupted after " + std::to_string(acc.passes()) + " of " + std::to_string(spp_) +
-                              " spp; no checkpoint written: " + e.what());
-        }
-        throw Interrupted(acc.passes(), spp_, options_->path.string());
-    }
+    if (interrupted) interrupt(acc);
     if (interval_s_ > 0 && std::chrono::duration<double>(now - last_save_).count() >= interval_s_) {
         const InterruptDeferral defer;
         save_checkpoint(options_->path, id_, spp_, acc);
         last_save_ = std::chrono::steady_clock::now();
     }
+}
+
+void CheckpointSession::interrupt(const Accumulator& acc) {
+    if (!options_)
+        throw Interrupted("interrupted after " + std::to_string(acc.passes()) +
+                          " passes; no checkpoint written (this render keeps none)");
+    const InterruptDeferral defer;  // a second signal must not cut the checkpoint short
+    try {
+        save_checkpoint(options_->path, id_, spp_, acc);
+    } catch (const std::exception& e) {
+        throw Interrupted("interrupted after " + std::to_string(acc.passes()) + " of " + std::to_string(spp_) +
+                          " spp; no checkpoint written: " + e.what());
+    }
+    throw Interrupted(acc.passes(), spp_, options_->path.string());
 }
 
 }  // namespace tessera

@@ -47,6 +47,12 @@ public:
     /// the spp target is reached.
     void after_pass(const Accumulator& acc);
 
+    /// Saves a checkpoint of `acc` and throws Interrupted, as after_pass() does on a
+    /// signal: for a signal that another rank of a distributed render received
+    /// (render/pass_exchange.h). Without options it throws Interrupted saying that no
+    /// checkpoint is kept.
+    [[noreturn]] void interrupt(const Accumulator& acc);
+
 private:
     const CheckpointOptions* options_;
     RunIdentity id_;

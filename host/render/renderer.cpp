@@ -5,18 +5,39 @@
 #include <vector>
 
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "render/accumulator.h"
+#include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
+#include "render/cluster.h"
+#include "render/pass_exchange.h"
 #include "device/frame.h"
 #include "render/parameters.h"
 #include "util/error.h"
 
 namespace tessera {
+namespace {
+
+// What a distributed render's ranks must agree on for their passes to fit together: the
+// checkpoint identity (scene file and data, method, seed, shadow samples, depths, size,
+// backend) but the scene's path, which may differ between machines, plus --spp.
+uint64_t render_fingerprint(const Scene& scene, const RenderSettings& settings, int w, int h, BackendKind backend) {
+    const RunIdentity id = make_run_identity(scene, settings, w, h, backend);
+    const std::string key = std::to_string(id.scene_file_hash) + " " + std::to_string(id.scene_data_hash) + " " +
+                            id.method + " " + std::to_string(id.seed) + " " + std::to_string(id.shadow_samples) + " " +
+                            std::to_string(id.max_depth) + " " + std::to_string(id.max_scatter) + " " +
+                            std::to_string(id.width) + " " + std::to_string(id.height) + " " + id.backend + " " +
+                            std::to_string(settings.spp);
+    return fnv1a64(key.data(), key.size());
+}
+
+}  // namespace
 
 Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress,
-                   const CheckpointOptions* checkpoint) {
+                   const CheckpointOptions* checkpoint, Cluster* cluster) {
     validate_settings(settings);
     const int w = settings.width > 0 ? settings.width : scene.camera.width;
     const int h = settings.height > 0 ? settings.height : scene.camera.height;
@@ -25,24 +46,64 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     frame.max_scatter = settings.max_scatter;
     frame.light_power = buffers.light_power;
     if (!settings.texture_filter) frame.pixel_cone = 0.0f;
-    Accumulator acc(w, h);
-    CheckpointSession session(checkpoint, scene, settings, w, h);
-    const uint32_t first = session.restore(acc);
-    const std::unique_ptr<Integrator> integrator = make_integrator(backend, scene, buffers, settings);
+    const bool distributed = cluster && cluster->size() > 1;
+    const bool lead = !distributed || cluster->rank() == 0;  // accumulates, checkpoints, reports
+    Accumulator acc(lead ? w : 0, lead ? h : 0);
+    CheckpointSession session(lead ? checkpoint : nullptr, scene, settings, w, h);
+    uint32_t first = 0;
+    std::unique_ptr<Integrator> integrator;
+    auto set_up = [&] {
+        first = session.restore(acc);
+        integrator = make_integrator(backend, scene, buffers, settings);
+    };
+    if (distributed) {
+        uint64_t mine = 0;
+        cluster->step([&] {  // a checkpoint or integrator failing on any rank stops all
+            set_up();
+            mine = render_fingerprint(scene, settings, w, h, checkpoint ? checkpoint->backend : BackendKind::OpenCL);
+        });
+        first = cluster->broadcast(first);
+        const uint64_t lead_fingerprint =
+            uint64_t(cluster->broadcast(uint32_t(mine >> 32))) << 32 | cluster->broadcast(uint32_t(mine));
+        cluster->step([&] {
+            if (mine != lead_fingerprint)
+                throw InputError("its scene file, scene data or settings differ from rank 0's (every rank must "
+                                 "render the same scene data with the same --method, --spp, --seed, "
+                                 "--shadow-samples, --max-depth, --max-scatter, --width, --height and --backend)");
+        });
+        if (!lead) {
+            run_worker(*cluster, *integrator, frame, first, settings.spp);
+            return Image{};
+        }
+    } else {
+        set_up();
+    }
+    std::optional<PassCollector> collector;
+    if (distributed) collector.emplace(*cluster, size_t(w) * h * TS_PASS_FLOATS);
     std::vector<float> pass;
-    std::vector<double> pass_seconds;
+    std::vector<double> pass_seconds;  // of the passes rendered here
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
-    for (uint32_t i = first; i < settings.spp; ++i) {
-        const auto t0 = clock::now();
-        frame.pass = i;
-        integrator->render_pass(frame, pass);
-        acc.add(pass);
-        pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
-        if (progress)
-            progress(i + 1, settings.spp, std::chrono::duration<double>(clock::now() - start).count(), first);
-        session.after_pass(acc);
+    try {
+        for (uint32_t i = first; i < settings.spp; ++i) {
+            const auto t0 = clock::now();
+            frame.pass = i;
+            const int owner = distributed ? pass_owner(i, first, cluster->size()) : 0;
+            if (owner == 0)
+                integrator->render_pass(frame, pass);
+            else if (!collector->receive(owner, i, pass))
+                session.interrupt(acc);  // the owner got SIGINT/SIGTERM: save, as for our own
+            acc.add(pass);
+            if (owner == 0) pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
+            if (progress)
+                progress(i + 1, settings.spp, std::chrono::duration<double>(clock::now() - start).count(), first);
+            session.after_pass(acc);
+        }
+    } catch (...) {
+        if (collector) collector->stop(exit_code_of(std::current_exception()));
+        throw;
     }
+    if (collector) collector->stop(0);
     if (stats) {
         stats->passes = settings.spp - first;
         stats->seconds = std::chrono::duration<double>(clock::now() - start).count();

@@ -42,14 +42,23 @@ struct RenderStats : IntegratorStats {
 using ProgressFn = std::function<void(uint32_t, uint32_t, double, uint32_t)>;
 
 struct CheckpointOptions;  // render/checkpoint_session.h
+class Cluster;             // render/cluster.h
 
 /// Validates `settings` (validate_settings in render/parameters.h: throws InputError
 /// naming the option and value, e.g. "--spp 0: must be in 1..1000000"), then renders. `buffers` are the
 /// SceneBuffers the backend was made from. With `checkpoint`, the render resumes from
 /// and saves checkpoints (see CheckpointSession) and throws Interrupted on SIGINT or
 /// SIGTERM; stats then count only the passes rendered in this call.
+///
+/// With a `cluster` of more than one rank (docs/distributed.md) every rank calls it with
+/// the same settings: the ranks render disjoint passes (render/cluster.h, pass_owner) and
+/// rank 0 adds them all in pass order, so its image is bit-identical to a one-process
+/// render. Only rank 0 uses `checkpoint`, `progress` and `stats` (median_pass_seconds:
+/// of the passes it rendered itself); the other ranks return an empty Image. A failure on
+/// any rank throws RankFailure on every rank (render/cluster.h).
 Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats = nullptr,
-                   const ProgressFn& progress = {}, const CheckpointOptions* checkpoint = nullptr);
+                   const ProgressFn& progress = {}, const CheckpointOptions* checkpoint = nullptr,
+                   Cluster* cluster = nullptr);
 
 }  // namespace tessera
