@@ -14,16 +14,22 @@
 
 namespace tessera {
 
+TsFrame make_render_frame(const Camera& camera, int width, int height, const SceneBuffers& buffers,
+                          const RenderSettings& settings) {
+    TsFrame frame = make_frame(camera, width, height, settings.shadow_samples, settings.seed, buffers.light_count);
+    frame.max_depth = settings.max_depth;
+    frame.max_scatter = settings.max_scatter;
+    frame.light_power = buffers.light_power;
+    return frame;
+}
+
 Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress,
                    const CheckpointOptions* checkpoint) {
     validate_settings(settings);
     const int w = settings.width > 0 ? settings.width : scene.camera.width;
     const int h = settings.height > 0 ? settings.height : scene.camera.height;
-    TsFrame frame = make_frame(scene.camera, w, h, settings.shadow_samples, settings.seed, buffers.light_count);
-    frame.max_depth = settings.max_depth;
-    frame.max_scatter = settings.max_scatter;
-    frame.light_power = buffers.light_power;
+    TsFrame frame = make_render_frame(scene.camera, w, h, buffers, settings);
     Accumulator acc(w, h);
     CheckpointSession session(checkpoint, scene, settings, w, h);
     const uint32_t first = session.restore(acc);
