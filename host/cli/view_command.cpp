@@ -107,21 +107,37 @@ private:
                        "; use `tessera view --headless` or `tessera render`");
 }
 
-void run_window(ViewSession& session, ViewLoop& loop, const ViewArgs& a) {
+// The window module's entry points, loaded before the scene so that a missing display
+// or library costs one line and no work.
+struct WindowModule {
+    int (*probe)(char*, size_t) = nullptr;
+    int (*run)(WindowHost*, char*, size_t) = nullptr;
+};
+
+WindowModule load_window_module() {
     if (!TESSERA_VIEW_WINDOW)
         no_window("this build has no viewer window (GLFW, OpenGL or Dear ImGui were not found when it was configured)");
     const fs::path module = fs::read_symlink("/proc/self/exe").parent_path() / "libtessera_view_window.so";
+    // The module stays loaded to the end: GLFW and Mesa may have registered exit handlers.
     void* handle = dlopen(module.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) no_window(std::string("cannot load ") + module.string() + " (" + dlerror() + ")");
     auto abi = reinterpret_cast<int (*)()>(dlsym(handle, "tessera_view_window_abi"));
-    auto run = reinterpret_cast<int (*)(WindowHost*, char*, size_t)>(dlsym(handle, "tessera_view_window_run"));
-    if (!abi || !run || abi() != kWindowAbiVersion) no_window(module.string() + " is not this build's window module");
+    WindowModule m;
+    m.probe = reinterpret_cast<int (*)(char*, size_t)>(dlsym(handle, "tessera_view_window_probe"));
+    m.run = reinterpret_cast<int (*)(WindowHost*, char*, size_t)>(dlsym(handle, "tessera_view_window_run"));
+    if (!abi || !m.probe || !m.run || abi() != kWindowAbiVersion)
+        no_window(module.string() + " is not this build's window module");
+    char error[512] = {0};
+    if (m.probe(error, sizeof error) != 0) no_window(error);
+    return m;
+}
+
+void run_window(const WindowModule& module, ViewSession& session, ViewLoop& loop, const ViewArgs& a) {
     CliWindowHost host(session, loop, a);
     char error[512] = {0};
-    const int rc = run(&host, error, sizeof error);
+    const int rc = module.run(&host, error, sizeof error);
     host.rethrow();
     if (rc != 0) no_window(error);
-    // The module stays loaded: GLFW and Mesa may have registered exit handlers.
 }
 
 std::vector<BudgetPoint> load_pareto(const ViewArgs& a, const Scene& scene) {
@@ -153,6 +169,8 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (a.record && a.headless) throw InputError("--record records a windowed session; it cannot be used with --headless");
     if (a.headless && a.camera_path.empty() && a.input_script.empty())
         throw InputError("--headless needs --camera-path or --input-script (there is no one to steer it)");
+    WindowModule window;
+    if (!a.headless) window = load_window_module();
     const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
     const Scene scene = load_scene(scene_path, data);
     if (!a.frames.empty()) {
@@ -198,7 +216,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
         while (!loop.done()) loop.step(0.0);
     } else {
         for (const std::string& line : ViewSession::key_help()) std::fprintf(stderr, "  %s\n", line.c_str());
-        run_window(session, loop, a);
+        run_window(window, session, loop, a);
     }
     loop.finish(scene.name);
 }

@@ -46,6 +46,9 @@ public:
 extern "C" {
 /// Returns kWindowAbiVersion of the module's build.
 int tessera_view_window_abi();
+/// Checks that a window can be opened (GLFW initialises, that is a display is there)
+/// before the program loads the scene. Returns 0, or non-zero with the reason in `error`.
+int tessera_view_window_probe(char* error, size_t error_size);
 /// Opens the window and runs host's frame loop until host->done() or the window is
 /// closed. Returns 0, or non-zero with a one-line reason in `error` (no display, no
 /// OpenGL context).

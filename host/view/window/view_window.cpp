@@ -90,6 +90,17 @@ int fail(char* error, size_t size, const std::string& message) {
 
 extern "C" int tessera_view_window_abi() { return tessera::view::kWindowAbiVersion; }
 
+extern "C" int tessera_view_window_probe(char* error, size_t error_size) {
+    glfwSetErrorCallback(nullptr);  // the reason goes into the one-line error instead
+    if (!glfwInit()) {
+        const char* why = nullptr;
+        glfwGetError(&why);
+        return fail(error, error_size, std::string("no display (GLFW: ") + (why ? why : "cannot initialise") + ")");
+    }
+    glfwTerminate();
+    return 0;
+}
+
 extern "C" int tessera_view_window_run(WindowHost* host, char* error, size_t error_size) {
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit())
