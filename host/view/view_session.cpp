@@ -218,6 +218,7 @@ FrameReport ViewSession::advance(double dt) {
     axes.z = held('W') - held('S');
     if (axes != glm::vec3(0.0f)) camera_ = move_camera(camera_, axes, speed_ * static_cast<float>(dt));
     if (paused_ && acc_) {  // keep the image; changes apply when rendering resumes
+        last_rendered_ = false;
         report.passes = acc_->passes();
         report.stages = last_;
         return report;
@@ -234,6 +235,7 @@ FrameReport ViewSession::advance(double dt) {
         restart();
     }
     report.moving = moved;
+    last_rendered_ = false;
     if (acc_->passes() < settings_.spp) {
         const auto t0 = std::chrono::steady_clock::now();
         frame_.pass = acc_->passes();
@@ -250,7 +252,7 @@ FrameReport ViewSession::advance(double dt) {
         last_.cache = stats.igi.cache_seconds;
         last_.rays = stats.igi.vpl_rays + stats.igi.pixel_rays + stats.ic.indirect_rays();
         last_.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        report.rendered = true;
+        report.rendered = last_rendered_ = true;
         if (moved && acc_budgeted_) budget_->observe(last_.total);
     }
     report.passes = acc_->passes();
@@ -347,8 +349,12 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
     std::vector<std::string> lines;
     char buf[256];
     const double ms = 1e3 * last_.total;
-    std::snprintf(buf, sizeof buf, "%.1f fps, pass %.1f ms, %.2f Mrays/s", fps, ms,
-                  last_.rays && last_.total > 0 ? last_.rays / last_.total * 1e-6 : 0.0);
+    const double mrays = last_.rays && last_.total > 0 ? last_.rays / last_.total * 1e-6 : 0.0;
+    if (last_rendered_)
+        std::snprintf(buf, sizeof buf, "%.1f fps, pass %.1f ms, %.2f Mrays/s", fps, ms, mrays);
+    else  // nothing rendered: the window's rate says nothing about the renderer
+        std::snprintf(buf, sizeof buf, "idle (%s), last pass %.1f ms, %.2f Mrays/s",
+                      paused_ ? "paused" : "all passes accumulated", ms, mrays);
     lines.push_back(buf);
     if (igi_family(settings_.method)) {
         std::snprintf(buf, sizeof buf, "VPLs %.1f | SS+ID %.1f | PM %.1f | filter %.1f | AIS %.1f | cache %.1f ms",
@@ -356,8 +362,10 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
                       1e3 * last_.cache);
         lines.push_back(buf);
     }
-    std::snprintf(buf, sizeof buf, "method %s, %s", method_name(settings_.method), backend_->description().c_str());
+    std::snprintf(buf, sizeof buf, "method %s on %s", method_name(settings_.method),
+                  options_.backend.kind == BackendKind::OpenCL ? "opencl" : "embree");
     lines.push_back(buf);
+    lines.push_back("device: " + backend_->description());
     std::snprintf(buf, sizeof buf, "passes %u/%u%s%s, %dx%d, frame %d", passes(), settings_.spp,
                   paused_ ? " (paused)" : "", playing_ ? " (playing)" : "", width_, height_, anim_frame_);
     lines.push_back(buf);

@@ -153,6 +153,7 @@ private:
     TsFrame frame_{};
     std::vector<float> pass_;
     StageTimes last_;
+    bool last_rendered_ = false;  // the last advance() rendered a pass
     std::unique_ptr<FrameBudget> budget_;
 };
 

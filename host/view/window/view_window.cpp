@@ -76,8 +76,12 @@ void draw_hud(WindowHost& host, double fps) {
     const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
-    if (ImGui::Begin("Tessera", nullptr, flags))
+    if (ImGui::Begin("Tessera", nullptr, flags)) {
+        // Wrap at the window's right margin (TextWrapped would collapse an auto-sized window).
+        ImGui::PushTextWrapPos(ImGui::GetIO().DisplaySize.x - 32);
         for (const std::string& line : host.hud(fps)) ImGui::TextUnformatted(line.c_str());
+        ImGui::PopTextWrapPos();
+    }
     ImGui::End();
 }
 
@@ -138,7 +142,9 @@ extern "C" int tessera_view_window_run(WindowHost* host, char* error, size_t err
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, host->width(), host->height(), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
 
-    double last = glfwGetTime(), fps = 0.0;
+    // The HUD's rate: 1 / an exponential average of the frame interval (weight 0.3 for the
+    // newest), from the second frame on (the first interval includes the window's set-up).
+    double last = glfwGetTime(), mean_dt = 0.0;
     int frame = 0;
     while (!glfwWindowShouldClose(window) && !host->done()) {
         if (host->idle())
@@ -147,7 +153,9 @@ extern "C" int tessera_view_window_run(WindowHost* host, char* error, size_t err
             glfwPollEvents();
         const double now = glfwGetTime(), dt = now - last;
         last = now;
-        if (dt > 0) fps = fps > 0 ? 0.9 * fps + 0.1 / dt : 1.0 / dt;
+        if (frame == 1) mean_dt = dt;
+        else if (frame > 1) mean_dt = 0.7 * mean_dt + 0.3 * dt;
+        const double fps = mean_dt > 0 ? 1.0 / mean_dt : 0.0;
         host->frame(dt);
         if (host->done()) break;
         const std::vector<uint8_t>& pixels = host->pixels();
