@@ -60,8 +60,17 @@ std::string fly_through() {
     return "{\"cameras\": [" + cams + "]}";
 }
 
+// The window tests run in the normal suite. Under AddressSanitizer (the CI's second,
+// sanitized suite) they skip: they would check Mesa's llvmpipe, LLVM and Xlib as much as
+// our module, and that combination has not been validated under ASan.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+
 bool window_tests_possible() {
-    return fs::exists(fs::path(TESSERA_EXE).parent_path() / "libtessera_view_window.so") &&
+    return !kSanitized && fs::exists(fs::path(TESSERA_EXE).parent_path() / "libtessera_view_window.so") &&
            tessera::test::shell_status("command -v xvfb-run >/dev/null") == 0;
 }
 
@@ -157,7 +166,8 @@ class ViewWindowCli : public ViewCli {
 protected:
     void SetUp() override {
         ViewCli::SetUp();
-        if (!window_tests_possible()) GTEST_SKIP() << "no window module in this build, or no xvfb-run";
+        if (!window_tests_possible())
+            GTEST_SKIP() << "no window module in this build, no xvfb-run, or a sanitized build";
     }
 };
 

@@ -10,7 +10,9 @@
 #include <gtest/gtest.h>
 
 #include "metrics/image_metrics.h"
+#include "scene/animation.h"
 #include "scene/loader.h"
+#include "util/error.h"
 #include "support/render_helpers.h"
 #include "view/camera_control.h"
 
@@ -155,6 +157,37 @@ TEST(ViewSession, BudgetedMovingFramesThenFullSettingsAtRest) {
     session.advance(0);  // at rest: starts over with the full settings
     session.advance(0);
     expect_equal_images(session.accumulation(), still(scene, session.camera(), o.settings, 2));
+}
+
+TEST(ViewSession, PlayingAnAnimationRestartsEachFrameAndPauseHoldsTheImage) {
+    const Scene rest = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-animated.json",
+                                  make_data_path(std::nullopt));
+    ViewOptions o = options(Method::Igi, 4, 16);
+    o.first_frame = 3;
+    o.last_frame = 4;
+    ViewSession session(rest, o);
+    EXPECT_EQ(session.animation_frame(), 3);
+    session.advance(0);
+    session.handle({InputEvent::Kind::Press, 'T'});
+    const FrameReport r = session.advance(0);
+    EXPECT_EQ(session.animation_frame(), 4);
+    EXPECT_TRUE(r.moving);
+    EXPECT_EQ(r.passes, 1u);
+    session.advance(0);
+    EXPECT_EQ(session.animation_frame(), 3);  // wraps within --frames
+    session.handle({InputEvent::Kind::Press, 'T'});  // stop: frame 3 accumulates
+    session.advance(0);
+    EXPECT_EQ(session.passes(), 2u);
+    // The accumulation at rest on frame 3 is render's still of that frame.
+    RenderSettings settings = o.settings;
+    settings.spp = 2;
+    expect_equal_images(session.accumulation(), test::render_with(BackendKind::Embree, scene_at_frame(rest, 3), settings));
+    session.handle({InputEvent::Kind::Press, ' '});  // pause: no passes, the image kept
+    const FrameReport paused = session.advance(0);
+    EXPECT_FALSE(paused.rendered);
+    EXPECT_EQ(session.passes(), 2u);
+    EXPECT_TRUE(session.idle());
+    EXPECT_THROW(session.set_animation_frame(5), InputError);
 }
 
 TEST(ViewSession, DisplayIsThePngToneMap) {
