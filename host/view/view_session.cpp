@@ -182,6 +182,7 @@ void ViewSession::handle(const InputEvent& e) {
         case K::Press: break;
     }
     held_.insert(e.key);
+    pressed_.insert(e.key);
     switch (e.key) {
         case 'R': camera_ = home_camera_; break;
         case 'C': std::printf("%s\n", camera_json(camera_).c_str()), std::fflush(stdout); break;
@@ -212,10 +213,13 @@ std::vector<std::string> ViewSession::key_help() {
 FrameReport ViewSession::advance(double dt) {
     FrameReport report;
     glm::vec3 axes(0.0f);
-    auto held = [&](int k) { return held_.count(k) ? 1.0f : 0.0f; };
+    // A key pressed and released between two frames (a tap, or a slow frame) still counts
+    // as held for this frame.
+    auto held = [&](int k) { return held_.count(k) || pressed_.count(k) ? 1.0f : 0.0f; };
     axes.x = held('D') - held('A');
     axes.y = held('E') - held('Q');
     axes.z = held('W') - held('S');
+    pressed_.clear();
     if (axes != glm::vec3(0.0f)) camera_ = move_camera(camera_, axes, speed_ * static_cast<float>(dt));
     if (paused_ && acc_) {  // keep the image; changes apply when rendering resumes
         last_rendered_ = false;

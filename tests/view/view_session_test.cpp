@@ -107,6 +107,19 @@ TEST(ViewSession, MovingRestartsAndAtRestConvergesToTheStillRender) {
     expect_equal_images(session.accumulation(), still(scene, session.camera(), o.settings, 16));
 }
 
+TEST(ViewSession, AKeyTappedBetweenFramesMovesForOneFrame) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 2);
+    o.speed = 3.0f;
+    ViewSession session(scene, o);
+    session.handle({InputEvent::Kind::Press, 'W'});
+    session.handle({InputEvent::Kind::Release, 'W'});
+    session.advance(0.1);  // 3 units/s for 0.1 s along the view direction (+z)
+    EXPECT_NEAR(session.camera().position.z, scene.camera.position.z + 0.3f, 1e-5f);
+    session.advance(0.1);  // released: no further motion
+    EXPECT_NEAR(session.camera().position.z, scene.camera.position.z + 0.3f, 1e-5f);
+}
+
 TEST(ViewSession, ResetKeyRestoresTheSceneCamera) {
     const Scene scene = cornell();
     ViewSession session(scene, options(Method::Igi, 2));
