@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
     tessera::cli::add_info_command(app);
     tessera::cli::add_compare_command(app);
     tessera::cli::add_options_command(app);
+    tessera::cli::add_view_command(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

@@ -10,5 +10,6 @@ void add_devices_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_options_command(CLI::App& app);  // cli/parameter_options.cpp
+void add_view_command(CLI::App& app);     // cli/view_command.cpp
 
 }  // namespace tessera::cli

@@ -35,17 +35,23 @@ uint64_t render_fingerprint(const Scene& scene, const RenderSettings& settings, 
 
 }  // namespace
 
+TsFrame make_render_frame(const Camera& camera, int width, int height, const SceneBuffers& buffers,
+                          const RenderSettings& settings) {
+    TsFrame frame = make_frame(camera, width, height, settings.shadow_samples, settings.seed, buffers.light_count);
+    frame.max_depth = settings.max_depth;
+    frame.max_scatter = settings.max_scatter;
+    frame.light_power = buffers.light_power;
+    if (!settings.texture_filter) frame.pixel_cone = 0.0f;
+    return frame;
+}
+
 Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                    const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress,
                    const CheckpointOptions* checkpoint, Cluster* cluster) {
     validate_settings(settings);
     const int w = settings.width > 0 ? settings.width : scene.camera.width;
     const int h = settings.height > 0 ? settings.height : scene.camera.height;
-    TsFrame frame = make_frame(scene.camera, w, h, settings.shadow_samples, settings.seed, buffers.light_count);
-    frame.max_depth = settings.max_depth;
-    frame.max_scatter = settings.max_scatter;
-    frame.light_power = buffers.light_power;
-    if (!settings.texture_filter) frame.pixel_cone = 0.0f;
+    TsFrame frame = make_render_frame(scene.camera, w, h, buffers, settings);
     const bool distributed = cluster && cluster->size() > 1;
     const bool lead = !distributed || cluster->rank() == 0;  // accumulates, checkpoints, reports
     Accumulator acc(lead ? w : 0, lead ? h : 0);

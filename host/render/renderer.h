@@ -44,6 +44,13 @@ using ProgressFn = std::function<void(uint32_t, uint32_t, double, uint32_t)>;
 struct CheckpointOptions;  // render/checkpoint_session.h
 class Cluster;             // render/cluster.h
 
+/// The per-pass frame parameters render_frame uses for `camera` at width × height:
+/// make_frame (device/frame.h) with the settings' shadow samples, seed, depth and scatter
+/// limits and the scene's light power; the caller sets `pass`. The viewer (host/view)
+/// builds its frames here too, so that its passes equal render's bit for bit.
+TsFrame make_render_frame(const Camera& camera, int width, int height, const SceneBuffers& buffers,
+                          const RenderSettings& settings);
+
 /// Validates `settings` (validate_settings in render/parameters.h: throws InputError
 /// naming the option and value, e.g. "--spp 0: must be in 1..1000000"), then renders. `buffers` are the
 /// SceneBuffers the backend was made from. With `checkpoint`, the render resumes from

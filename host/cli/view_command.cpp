@@ -1,0 +1,265 @@
+// `tessera view [SCENE] [options]`: the interactive viewer (issue 16). The window lives in
+// a module loaded with dlopen (view/window_api.h); `--headless` runs the same frame loop
+// (view/view_loop.h) with no window and no OpenGL at all.
+#include <dlfcn.h>
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <stb_image_write.h>
+
+#include "backend/backend.h"
+#include "cli/commands.h"
+#include "cli/option_checks.h"
+#include "cli/parameter_options.h"
+#include "image/atomic_file.h"
+#include "integrators/method.h"
+#include "render/parameters.h"
+#include "render/sequence.h"
+#include "scene/loader.h"
+#include "util/error.h"
+#include "view/camera_path.h"
+#include "view/frame_budget.h"
+#include "view/input.h"
+#include "view/view_loop.h"
+#include "view/view_session.h"
+#include "view/window_api.h"
+
+#ifndef TESSERA_VIEW_WINDOW
+#define TESSERA_VIEW_WINDOW 0
+#endif
+
+namespace tessera::cli {
+namespace fs = std::filesystem;
+using namespace tessera::view;
+namespace {
+
+struct ViewArgs {
+    std::string scene, backend = "opencl", device, method = "igi", components = "ss,id,pm", data_dir;
+    std::string frames, camera_path, input_script, frame_images, times, screenshot, screenshot_window, reference;
+    std::string pareto;
+    int screenshot_window_frame = 10;
+    float exposure = 0.0f, speed = 0.0f;
+    double target_fps = 0.0;
+    bool headless = false, record = false, fixed_dt = false;
+    RenderSettings settings;
+};
+
+void append_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+}
+
+// Runs the loop in the window module; exceptions of the frame loop are carried across it.
+class CliWindowHost final : public WindowHost {
+public:
+    CliWindowHost(ViewSession& session, ViewLoop& loop, const ViewArgs& a) : session_(session), loop_(loop), args_(a) {}
+    int width() const override { return session_.width(); }
+    int height() const override { return session_.height(); }
+    std::string title() const override { return "Tessera: " + args_.scene; }
+    void input(const InputEvent& e) override { guard([&] { session_.handle(e); }); }
+    void frame(double dt) override { guard([&] { loop_.step(dt); }); }
+    bool done() const override { return error_ || loop_.done(); }
+    bool idle() const override { return session_.idle() && !loop_.scripted(); }
+    const std::vector<uint8_t>& pixels() override {
+        session_.display(pixels_);
+        return pixels_;
+    }
+    bool hud_visible() const override { return session_.hud_visible(); }
+    std::vector<std::string> hud(double fps) override { return session_.hud_lines(fps); }
+    int capture_frame() const override { return args_.screenshot_window.empty() ? -1 : args_.screenshot_window_frame; }
+    void window_captured(const std::vector<uint8_t>& rgba, int w, int h) override {
+        guard([&] {
+            std::vector<unsigned char> png;
+            if (!stbi_write_png_to_func(append_bytes, &png, w, h, 4, rgba.data(), w * 4))
+                throw RuntimeError("cannot write '" + args_.screenshot_window + "': PNG encoding failed");
+            write_file_atomic(args_.screenshot_window, png.data(), png.size());
+            std::printf("%s\n", args_.screenshot_window.c_str());
+        });
+    }
+    void rethrow() const {
+        if (error_) std::rethrow_exception(error_);
+    }
+
+private:
+    template <class F>
+    void guard(F&& f) {
+        if (error_) return;
+        try {
+            f();
+        } catch (...) {
+            error_ = std::current_exception();
+        }
+    }
+    ViewSession& session_;
+    ViewLoop& loop_;
+    const ViewArgs& args_;
+    std::vector<uint8_t> pixels_;
+    std::exception_ptr error_;
+};
+
+[[noreturn]] void no_window(const std::string& why) {
+    throw RuntimeError("tessera view cannot open a window: " + why +
+                       "; use `tessera view --headless` or `tessera render`");
+}
+
+// The window module's entry points, loaded before the scene so that a missing display
+// or library costs one line and no work.
+struct WindowModule {
+    int (*probe)(char*, size_t) = nullptr;
+    int (*run)(WindowHost*, char*, size_t) = nullptr;
+};
+
+WindowModule load_window_module() {
+    if (!TESSERA_VIEW_WINDOW)
+        no_window("this build has no viewer window (GLFW, OpenGL or Dear ImGui were not found when it was configured)");
+    const fs::path module = fs::read_symlink("/proc/self/exe").parent_path() / "libtessera_view_window.so";
+    // The module stays loaded to the end: GLFW and Mesa may have registered exit handlers.
+    void* handle = dlopen(module.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) no_window(std::string("cannot load ") + module.string() + " (" + dlerror() + ")");
+    auto abi = reinterpret_cast<int (*)()>(dlsym(handle, "tessera_view_window_abi"));
+    WindowModule m;
+    m.probe = reinterpret_cast<int (*)(char*, size_t)>(dlsym(handle, "tessera_view_window_probe"));
+    m.run = reinterpret_cast<int (*)(WindowHost*, char*, size_t)>(dlsym(handle, "tessera_view_window_run"));
+    if (!abi || !m.probe || !m.run || abi() != kWindowAbiVersion)
+        no_window(module.string() + " is not this build's window module");
+    char error[512] = {0};
+    if (m.probe(error, sizeof error) != 0) no_window(error);
+    return m;
+}
+
+void run_window(const WindowModule& module, ViewSession& session, ViewLoop& loop, const ViewArgs& a) {
+    CliWindowHost host(session, loop, a);
+    char error[512] = {0};
+    const int rc = module.run(&host, error, sizeof error);
+    host.rethrow();
+    if (rc != 0) no_window(error);
+}
+
+std::vector<BudgetPoint> load_pareto(const ViewArgs& a, const Scene& scene) {
+    fs::path csv = a.pareto;
+    if (csv.empty()) {
+        const fs::path dir = fs::path(TESSERA_SOURCE_DIR) / "bench/results/accuracy";
+        csv = fs::exists(dir / (scene.name + ".csv")) ? dir / (scene.name + ".csv") : dir / "cornell-box.csv";
+    }
+    if (!fs::exists(csv)) throw InputError("--target-fps needs an accuracy sweep: " + csv.string() + " does not exist (--pareto FILE.csv)");
+    std::vector<BudgetPoint> points = read_pareto_front(csv, a.backend);
+    if (points.empty()) throw InputError("--pareto " + csv.string() + ": no one-pass igi/ais rows for --backend " + a.backend);
+    return points;
+}
+
+void run_view(const ViewArgs& a, const CLI::App& cmd) {
+    reject_empty_values(cmd);
+    const fs::path scene_path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
+    ViewOptions o;
+    o.backend = {parse_backend_kind(a.backend), a.device};
+    o.settings = a.settings;
+    o.settings.method = parse_method(a.method);
+    o.settings.igi.components = parse_components(a.components);
+    validate_settings(o.settings);
+    check_data_dir(a.data_dir);
+    if (cmd.count("--device") && o.backend.kind != BackendKind::OpenCL)
+        throw InputError("--device " + a.device + ": only --backend opencl uses a device");
+    if (a.target_fps < 0) throw InputError("--target-fps " + std::to_string(a.target_fps) + ": must be > 0");
+    if (a.record && a.camera_path.empty()) throw InputError("--record needs --camera-path FILE.json to record into");
+    if (a.record && a.headless) throw InputError("--record records a windowed session; it cannot be used with --headless");
+    if (a.headless && a.camera_path.empty() && a.input_script.empty())
+        throw InputError("--headless needs --camera-path or --input-script (there is no one to steer it)");
+    WindowModule window;
+    if (!a.headless) window = load_window_module();
+    const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
+    const Scene scene = load_scene(scene_path, data);
+    if (!a.frames.empty()) {
+        const FrameRange r = parse_frame_range(a.frames, scene);
+        o.first_frame = r.first, o.last_frame = r.last;
+    }
+    o.exposure = a.exposure;
+    o.reference = a.reference;
+    o.screenshot = a.screenshot.empty() ? fs::path("out") / (scene.name + "-view.exr") : fs::path(a.screenshot);
+    if (o.screenshot.extension() != ".exr") throw InputError("--screenshot " + o.screenshot.string() + ": must end in .exr");
+    o.target_fps = a.target_fps;
+    o.speed = a.speed;
+    if (a.target_fps > 0) o.pareto = load_pareto(a, scene);
+
+    LoopOptions lo;
+    lo.headless = a.headless;
+    if (!a.input_script.empty()) lo.script = read_input_script(a.input_script);
+    if (!a.camera_path.empty() && !a.record) lo.path = read_camera_path(a.camera_path);
+    for (const PathFrame& f : lo.path)
+        if (f.frame < o.first_frame || f.frame > o.last_frame)
+            throw InputError("--camera-path " + a.camera_path + ": animation frame " + std::to_string(f.frame) +
+                             " is outside --frames " + std::to_string(o.first_frame) + ":" + std::to_string(o.last_frame));
+    if (a.record) lo.record = a.camera_path;
+    lo.frame_images = a.frame_images;
+    lo.times = a.times;
+    lo.fixed_dt = a.fixed_dt || !lo.script.empty() || !lo.path.empty();
+
+    // Every output before the first ray (screenshots: the first one's files).
+    std::vector<OutputFile> files = {{frame_output_path(o.screenshot, 0), "--screenshot"}};
+    if (!a.times.empty()) files.push_back({a.times, "--times"});
+    if (a.record) files.push_back({a.camera_path, "--camera-path (recording)"});
+    if (!a.screenshot_window.empty()) files.push_back({a.screenshot_window, "--screenshot-window"});
+    if (!a.frame_images.empty()) files.push_back({fs::path(a.frame_images) / "frame.0000.exr", "--frame-images"});
+    check_outputs(files, scene_path);
+    prepare_output_directories(files);
+
+    ViewSession session(scene, o);
+    std::fprintf(stderr, "tessera view: %s, %zu triangles, %dx%d, %s on %s\n", scene.name.c_str(),
+                 scene.triangle_count(), session.width(), session.height(), method_name(session.method()),
+                 session.backend_description().c_str());
+    ViewLoop loop(session, lo);
+    if (a.headless) {
+        while (!loop.done()) loop.step(0.0);
+    } else {
+        for (const std::string& line : ViewSession::key_help()) std::fprintf(stderr, "  %s\n", line.c_str());
+        run_window(window, session, loop, a);
+    }
+    loop.finish(scene.name);
+}
+
+}  // namespace
+
+void add_view_command(CLI::App& app) {
+    auto args = std::make_shared<ViewArgs>();
+    args->settings.spp = 1024;  // the viewer accumulates until it holds this many passes
+    CLI::App* cmd = app.add_subcommand("view", "Interactive viewer: fly through a scene with progressive refinement");
+    cmd->add_option("scene", args->scene, "Scene file (.json)");
+    cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
+    cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
+    cmd->add_option("--method", args->method, "Starting method: direct, pt, igi, ais, ais-max, ic or tic (M/N switch)")
+        ->capture_default_str();
+    cmd->add_option("--components", args->components, "igi/ais: starting components (1/2/3 toggle)")
+        ->capture_default_str();
+    add_parameter_options(*cmd, args->settings);  // --spp is the passes accumulated at rest
+    cmd->add_option("--exposure", args->exposure, "Display and PNG exposure in stops ([ and ] change it)")
+        ->capture_default_str()
+        ->check(finite_number("--exposure"));
+    cmd->add_option("--frames", args->frames, "Animated scene: the frames A:B that T plays");
+    cmd->add_flag("--headless", args->headless, "No window: run --camera-path / --input-script and report frame times");
+    cmd->add_option("--camera-path", args->camera_path, "Fly-through JSON to replay (or to record with --record)");
+    cmd->add_flag("--record", args->record, "Record the session's camera, one entry per frame, into --camera-path");
+    cmd->add_option("--input-script", args->input_script, "JSON of key/mouse events by frame, for tests and demos");
+    cmd->add_flag("--fixed-dt", args->fixed_dt, "Move by 1/30 s per frame instead of wall time (on with a script or path)");
+    cmd->add_option("--frame-images", args->frame_images, "Directory: write every frame's accumulation as frame.####.exr");
+    cmd->add_option("--times", args->times, "Write per-frame times (ms, stages, rays, passes) as JSON");
+    cmd->add_option("--screenshot", args->screenshot,
+                    "Screenshot key P writes FILE.####.exr (+ .png); default out/<scene>-view.exr");
+    cmd->add_option("--screenshot-window", args->screenshot_window, "Write the window with its HUD as PNG");
+    cmd->add_option("--screenshot-window-frame", args->screenshot_window_frame, "Frame after which --screenshot-window is taken")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--reference", args->reference, "Reference EXR of the same size: error AOV and relMSE in the HUD");
+    cmd->add_option("--target-fps", args->target_fps,
+                    "Moving-camera frame budget: pick tile, VPL paths and light samples from the accuracy sweep's Pareto front");
+    cmd->add_option("--pareto", args->pareto, "Accuracy sweep CSV for --target-fps (default bench/results/accuracy/<scene>.csv)");
+    cmd->add_option("--speed", args->speed, "Movement speed, scene units per second (default: a quarter of the scene diagonal)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");
+    cmd->callback([args, cmd] { run_view(*args, *cmd); });
+}
+
+}  // namespace tessera::cli

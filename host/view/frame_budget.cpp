@@ -1,0 +1,113 @@
+#include "view/frame_budget.h"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "util/error.h"
+
+namespace tessera::view {
+namespace {
+
+// Splits one CSV line; fields may be quoted (the setting column: "tile=1,vpl-paths=8,...").
+std::vector<std::string> split_csv(const std::string& line) {
+    std::vector<std::string> fields(1);
+    bool quoted = false;
+    for (const char c : line) {
+        if (c == '"') quoted = !quoted;
+        else if (c == ',' && !quoted) fields.emplace_back();
+        else fields.back() += c;
+    }
+    return fields;
+}
+
+// "tile=1,vpl-paths=8,shadow-samples=1" into the point; false when a key is missing.
+bool parse_setting(const std::string& setting, BudgetPoint& p) {
+    std::map<std::string, uint32_t> kv;
+    std::stringstream ss(setting);
+    for (std::string item; std::getline(ss, item, ',');) {
+        const size_t eq = item.find('=');
+        if (eq == std::string::npos) return false;
+        kv[item.substr(0, eq)] = static_cast<uint32_t>(std::stoul(item.substr(eq + 1)));
+    }
+    if (!kv.count("tile") || !kv.count("vpl-paths") || !kv.count("shadow-samples")) return false;
+    p.tile = kv["tile"];
+    p.vpl_paths = kv["vpl-paths"];
+    p.shadow_samples = kv["shadow-samples"];
+    return true;
+}
+
+}  // namespace
+
+std::vector<BudgetPoint> pareto_front(std::vector<BudgetPoint> points) {
+    std::sort(points.begin(), points.end(), [](const BudgetPoint& a, const BudgetPoint& b) {
+        return a.seconds != b.seconds ? a.seconds < b.seconds : a.relmse < b.relmse;
+    });
+    std::vector<BudgetPoint> front;
+    for (const BudgetPoint& p : points)
+        if (front.empty() || p.relmse < front.back().relmse) front.push_back(p);
+    return front;
+}
+
+std::vector<BudgetPoint> read_pareto_front(const std::filesystem::path& csv, const std::string& backend) {
+    std::ifstream in(csv);
+    std::string line;
+    if (!in || !std::getline(in, line)) throw InputError("accuracy sweep " + csv.string() + ": cannot read the file");
+    const std::vector<std::string> header = split_csv(line);
+    auto column = [&](const std::string& name) {
+        const auto it = std::find(header.begin(), header.end(), name);
+        if (it == header.end()) throw InputError("accuracy sweep " + csv.string() + ": no column '" + name + "'");
+        return static_cast<size_t>(it - header.begin());
+    };
+    const size_t c_backend = column("backend"), c_method = column("method"), c_setting = column("setting"),
+                 c_spp = column("spp"), c_time = column("median_pass_s"), c_err = column("relmse");
+    std::map<std::string, std::vector<BudgetPoint>> by_method;
+    while (std::getline(in, line)) {
+        const std::vector<std::string> f = split_csv(line);
+        if (f.size() < header.size() || f[c_backend] != backend || f[c_spp] != "1") continue;
+        if (f[c_method] != "igi" && f[c_method] != "ais" && f[c_method] != "ais-max") continue;
+        BudgetPoint p;
+        p.method = f[c_method];
+        try {
+            if (!parse_setting(f[c_setting], p)) continue;
+            p.seconds = std::stod(f[c_time]);
+            p.relmse = std::stod(f[c_err]);
+        } catch (const std::exception&) {
+            throw InputError("accuracy sweep " + csv.string() + ": malformed row: " + line);
+        }
+        by_method[p.method].push_back(p);
+    }
+    std::vector<BudgetPoint> all;
+    for (auto& [method, points] : by_method)
+        for (const BudgetPoint& p : pareto_front(points)) all.push_back(p);
+    return all;
+}
+
+FrameBudget::FrameBudget(double target_seconds, std::vector<BudgetPoint> front)
+    : target_(target_seconds), front_(std::move(front)) {
+    if (front_.empty()) throw std::invalid_argument("FrameBudget: empty front");
+    if (!(target_ > 0)) throw std::invalid_argument("FrameBudget: target must be > 0");
+    // Before any measurement: the best point the sweep's own times fit into the target.
+    for (size_t i = 0; i < front_.size(); ++i)
+        if (front_[i].seconds <= target_) choice_ = i;
+}
+
+void FrameBudget::observe(double measured_seconds) {
+    const double ratio = measured_seconds / std::max(front_[choice_].seconds, 1e-9);
+    scale_ = measured_ ? 0.7 * scale_ + 0.3 * ratio : ratio;
+    measured_ = true;
+    // The front is sorted by time with falling error: the best fit is the last that fits.
+    size_t best = 0;
+    for (size_t i = 0; i < front_.size(); ++i)
+        if (front_[i].seconds * scale_ <= target_) best = i;
+    if (best < choice_) {
+        if (measured_seconds > target_ || front_[choice_].seconds * scale_ > target_) choice_ = best;
+    } else if (best > choice_) {
+        while (best > choice_ && front_[best].seconds * scale_ > 0.9 * target_) --best;
+        choice_ = best;
+    }
+}
+
+}  // namespace tessera::view

@@ -1,0 +1,85 @@
+#include "view/view_loop.h"
+
+#include <chrono>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "image/atomic_file.h"
+#include "render/sequence.h"
+
+namespace tessera::view {
+
+namespace {
+constexpr double kFixedDt = 1.0 / 30.0;  // seconds per frame of scripted and replayed runs
+}
+
+ViewLoop::ViewLoop(ViewSession& session, LoopOptions options) : session_(session), options_(std::move(options)) {}
+
+bool ViewLoop::done() const {
+    if (session_.quit_requested()) return true;
+    if (!options_.path.empty()) return frame_ >= static_cast<int>(options_.path.size());
+    if (options_.headless) return options_.script.empty() || frame_ > options_.script.back().frame;
+    return false;
+}
+
+void ViewLoop::step(double wall_dt) {
+    while (next_event_ < options_.script.size() && options_.script[next_event_].frame <= frame_)
+        session_.handle(options_.script[next_event_++].event);
+    if (session_.quit_requested()) return;
+    if (frame_ < static_cast<int>(options_.path.size())) {
+        session_.set_camera(options_.path[frame_].camera);
+        session_.set_animation_frame(options_.path[frame_].frame);
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    FrameTime t;
+    t.frame = frame_;
+    t.report = session_.advance(options_.fixed_dt ? kFixedDt : wall_dt);
+    t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    times_.push_back(t);
+    if (!options_.record.empty()) recorded_.push_back({session_.camera(), session_.animation_frame()});
+    if (!options_.frame_images.empty())
+        write_exr(frame_output_path(options_.frame_images / "frame.exr", frame_), session_.accumulation());
+    ++frame_;
+}
+
+void ViewLoop::finish(const std::string& scene_name) const {
+    if (!options_.record.empty() && !recorded_.empty()) write_camera_path(options_.record, recorded_);
+    double moving_sum = 0, all_sum = 0;
+    int moving = 0;
+    nlohmann::json frames = nlohmann::json::array();
+    for (const FrameTime& t : times_) {
+        all_sum += t.seconds;
+        if (t.report.moving) moving_sum += t.seconds, ++moving;
+        const StageTimes& s = t.report.stages;
+        frames.push_back({{"frame", t.frame},
+                          {"ms", 1e3 * t.seconds},
+                          {"moving", t.report.moving},
+                          {"rendered", t.report.rendered},
+                          {"passes", t.report.passes},
+                          {"rays", s.rays},
+                          {"stages_ms",
+                           {{"vpl", 1e3 * s.vpl}, {"surface", 1e3 * s.surface}, {"media", 1e3 * s.media},
+                            {"filter", 1e3 * s.filter}, {"ais", 1e3 * s.ais}, {"cache", 1e3 * s.cache},
+                            {"pass", 1e3 * s.total}}}});
+    }
+    const double moving_ms = moving ? 1e3 * moving_sum / moving : 0.0;
+    if (!options_.times.empty()) {
+        const nlohmann::json j = {{"scene", scene_name},
+                                  {"method", method_name(session_.method())},
+                                  {"backend", session_.backend_description()},
+                                  {"width", session_.width()},
+                                  {"height", session_.height()},
+                                  {"frames", frames},
+                                  {"moving_frames", moving},
+                                  {"mean_moving_ms", moving_ms},
+                                  {"moving_fps", moving_ms > 0 ? 1e3 / moving_ms : 0.0},
+                                  {"mean_ms", times_.empty() ? 0.0 : 1e3 * all_sum / times_.size()}};
+        const std::string text = j.dump(1) + "\n";
+        write_file_atomic(options_.times, text.data(), text.size());
+    }
+    std::fprintf(stderr, "tessera view: %zu frames, %d moving: %.1f ms per moving frame (%.1f fps), %u passes at the end\n",
+                 times_.size(), moving, moving_ms, moving_ms > 0 ? 1e3 / moving_ms : 0.0, session_.passes());
+}
+
+}  // namespace tessera::view

@@ -1,0 +1,195 @@
+// The viewer's window (libtessera_view_window.so, loaded by `tessera view`): GLFW with an
+// OpenGL context (Mesa's software renderer suffices), the image as a texture drawn behind
+// a Dear ImGui heads-up display. Everything else — camera, passes, HUD text — is the
+// host's (view/window_api.h): this file only moves pixels and events.
+#include <GLFW/glfw3.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "view/window_api.h"
+
+using tessera::view::InputEvent;
+using tessera::view::WindowHost;
+
+namespace {
+
+struct WindowState {
+    WindowHost* host = nullptr;
+    bool dragging = false;
+    double last_x = 0, last_y = 0;
+    std::string glfw_error;
+};
+
+WindowState* state_of(GLFWwindow* w) { return static_cast<WindowState*>(glfwGetWindowUserPointer(w)); }
+
+void on_glfw_error(int, const char* description) {
+    std::fprintf(stderr, "tessera view: GLFW: %s\n", description);
+}
+
+// GLFW's codes of printable keys are their upper-case ASCII codes, and GLFW_KEY_ESCAPE is
+// 256 like kKeyEscape; other keys (arrows, function keys) are not bound.
+void on_key(GLFWwindow* w, int key, int, int action, int) {
+    if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
+    if (action == GLFW_REPEAT || !(key == GLFW_KEY_ESCAPE || (key >= 32 && key < 128))) return;
+    const InputEvent::Kind kind = action == GLFW_PRESS ? InputEvent::Kind::Press : InputEvent::Kind::Release;
+    state_of(w)->host->input({kind, key});
+}
+
+void on_mouse_button(GLFWwindow* w, int button, int action, int) {
+    if (button != GLFW_MOUSE_BUTTON_LEFT) return;
+    WindowState* s = state_of(w);
+    s->dragging = action == GLFW_PRESS && !(ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse);
+    glfwGetCursorPos(w, &s->last_x, &s->last_y);
+}
+
+void on_cursor(GLFWwindow* w, double x, double y) {
+    WindowState* s = state_of(w);
+    if (s->dragging)
+        s->host->input({InputEvent::Kind::Drag, 0, static_cast<float>(x - s->last_x), static_cast<float>(y - s->last_y)});
+    s->last_x = x, s->last_y = y;
+}
+
+void on_scroll(GLFWwindow* w, double, double dy) {
+    state_of(w)->host->input({InputEvent::Kind::Scroll, 0, 0.0f, static_cast<float>(dy)});
+}
+
+std::vector<uint8_t> read_window(int w, int h) {
+    std::vector<uint8_t> rows(size_t(w) * h * 4), flipped(rows.size());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
+    for (int y = 0; y < h; ++y)  // OpenGL's row 0 is the bottom
+        std::memcpy(&flipped[size_t(y) * w * 4], &rows[size_t(h - 1 - y) * w * 4], size_t(w) * 4);
+    return flipped;
+}
+
+void draw_hud(WindowHost& host, double fps) {
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(0.6f);
+    const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
+                                   ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+    if (ImGui::Begin("Tessera", nullptr, flags)) {
+        // Wrap at the window's right margin (TextWrapped would collapse an auto-sized window).
+        ImGui::PushTextWrapPos(ImGui::GetIO().DisplaySize.x - 32);
+        for (const std::string& line : host.hud(fps)) ImGui::TextUnformatted(line.c_str());
+        ImGui::PopTextWrapPos();
+    }
+    ImGui::End();
+}
+
+int fail(char* error, size_t size, const std::string& message) {
+    std::snprintf(error, size, "%s", message.c_str());
+    return 1;
+}
+
+}  // namespace
+
+extern "C" int tessera_view_window_abi() { return tessera::view::kWindowAbiVersion; }
+
+extern "C" int tessera_view_window_probe(char* error, size_t error_size) {
+    glfwSetErrorCallback(nullptr);  // the reason goes into the one-line error instead
+    if (!glfwInit()) {
+        const char* why = nullptr;
+        glfwGetError(&why);
+        return fail(error, error_size, std::string("no display (GLFW: ") + (why ? why : "cannot initialise") + ")");
+    }
+    glfwTerminate();
+    return 0;
+}
+
+extern "C" int tessera_view_window_run(WindowHost* host, char* error, size_t error_size) {
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit())
+        return fail(error, error_size, "no display: GLFW could not initialise (is DISPLAY set?)");
+    // OpenGL 3.0 is what ImGui's GL3 renderer needs with GLSL 1.30; Mesa's llvmpipe has it.
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
+    GLFWwindow* window = glfwCreateWindow(host->width(), host->height(), host->title().c_str(), nullptr, nullptr);
+    if (!window) {
+        glfwTerminate();
+        return fail(error, error_size, "no OpenGL 3.0 context: GLFW could not create the window");
+    }
+    WindowState state;
+    state.host = host;
+    glfwSetWindowUserPointer(window, &state);
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(0);  // no vsync: the HUD's rate is the renderer's
+    glfwSetKeyCallback(window, on_key);
+    glfwSetMouseButtonCallback(window, on_mouse_button);
+    glfwSetCursorPosCallback(window, on_cursor);
+    glfwSetScrollCallback(window, on_scroll);
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);  // chains to the callbacks above
+    ImGui_ImplOpenGL3_Init("#version 130");
+
+    GLuint texture = 0;
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, host->width(), host->height(), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+
+    // The HUD's rate: 1 / an exponential average of the frame interval (weight 0.3 for the
+    // newest), from the second frame on (the first interval includes the window's set-up).
+    double last = glfwGetTime(), mean_dt = 0.0;
+    int frame = 0;
+    while (!glfwWindowShouldClose(window) && !host->done()) {
+        if (host->idle())
+            glfwWaitEventsTimeout(1.0 / 30.0);  // converged or paused: no busy loop
+        else
+            glfwPollEvents();
+        const double now = glfwGetTime(), dt = now - last;
+        last = now;
+        if (frame == 1) mean_dt = dt;
+        else if (frame > 1) mean_dt = 0.7 * mean_dt + 0.3 * dt;
+        const double fps = mean_dt > 0 ? 1.0 / mean_dt : 0.0;
+        host->frame(dt);
+        if (host->done()) break;
+        const std::vector<uint8_t>& pixels = host->pixels();
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, host->width(), host->height(), GL_RGBA, GL_UNSIGNED_BYTE,
+                        pixels.data());
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        const ImVec2 size = ImGui::GetIO().DisplaySize;
+        ImGui::GetBackgroundDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture)),
+                                                 ImVec2(0, 0), size);
+        if (host->hud_visible()) draw_hud(*host, fps);
+        ImGui::Render();
+        int fw = 0, fh = 0;
+        glfwGetFramebufferSize(window, &fw, &fh);
+        glViewport(0, 0, fw, fh);
+        glClearColor(0, 0, 0, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (frame == host->capture_frame()) {
+            glFinish();
+            host->window_captured(read_window(fw, fh), fw, fh);
+        }
+        glfwSwapBuffers(window);
+        ++frame;
+    }
+    glDeleteTextures(1, &texture);
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return 0;
+}

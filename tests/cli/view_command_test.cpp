@@ -1,0 +1,223 @@
+// `tessera view` as a user runs it. Headless (no window, no OpenGL): a fly-through writes
+// per-frame times and images, and the screenshot key's EXR equals `tessera render` with
+// the same camera, method, seed and passes. Windowed, under Xvfb with Mesa's software
+// OpenGL (skipped when this build has no window module or xvfb-run is missing): the same
+// screenshot and fly-through checks through the window, keys sent by an input script and
+// by xdotool, and a window without a display fails with one line suggesting render.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "image/image_io.h"
+#include "render/sequence.h"
+#include "support/scratch_dir.h"
+#include "support/shell.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using tessera::Image;
+using tessera::test::CliResult;
+using tessera::test::run_shell;
+using tessera::test::run_tessera;
+
+const std::string kScenes = TESSERA_SCENES_DIR;
+
+// Equal within float rounding (the viewer runs render's code, so bit for bit in practice),
+// and not black.
+void expect_same_image(const fs::path& a_path, const fs::path& b_path) {
+    const Image a = tessera::read_exr(a_path), b = tessera::read_exr(b_path);
+    double peak = 0;
+    for (const char* c : {"R", "G", "B"}) {
+        const auto* x = a.find(c);
+        const auto* y = b.find(c);
+        ASSERT_TRUE(x && y) << c;
+        ASSERT_EQ(x->data.size(), y->data.size());
+        for (size_t i = 0; i < x->data.size(); ++i) {
+            ASSERT_NEAR(x->data[i], y->data[i], 1e-6f * std::max(1.0f, std::fabs(y->data[i])))
+                << a_path << " vs " << b_path << " " << c << " pixel " << i;
+            peak = std::max(peak, double(y->data[i]));
+        }
+    }
+    EXPECT_GT(peak, 0.0);
+}
+
+// Two cameras moving right, then the last one three more times (at rest).
+std::string fly_through() {
+    std::string cams;
+    for (int i = 0; i < 5; ++i) {
+        const double x = 0.278 + 0.01 * std::min(i, 1);
+        cams += std::string(i ? "," : "") + "{\"position\": [" + std::to_string(x) + ", 0.273, -0.8], \"look_at\": [" +
+                std::to_string(x) + ", 0.273, 0.0], \"up\": [0, 1, 0], \"vfov\": 39.3077}";
+    }
+    return "{\"cameras\": [" + cams + "]}";
+}
+
+// The window tests run in the normal suite. Under AddressSanitizer (the CI's second,
+// sanitized suite) they skip: they would check Mesa's llvmpipe, LLVM and Xlib as much as
+// our module, and that combination has not been validated under ASan.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+
+bool window_tests_possible() {
+    return !kSanitized && fs::exists(fs::path(TESSERA_EXE).parent_path() / "libtessera_view_window.so") &&
+           tessera::test::shell_status("command -v xvfb-run >/dev/null") == 0;
+}
+
+// The tessera command line under a fresh Xvfb screen with Mesa's software OpenGL.
+std::string under_xvfb(const std::string& args) {
+    return "LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(TESSERA_EXE) + " " + args;
+}
+
+class ViewCli : public tessera::test::ScratchDirTest {
+protected:
+    fs::path write(const std::string& name, const std::string& text) {
+        std::ofstream(dir_ / name) << text;
+        return dir_ / name;
+    }
+    // A screenshot after `spp` passes at rest (key P at frame spp + 2) and quit.
+    std::string screenshot_script(int spp) {
+        return write("shot.json", "{\"events\": [{\"frame\": " + std::to_string(spp + 2) + ", \"tap\": \"p\"}, " +
+                                      "{\"frame\": " + std::to_string(spp + 3) + ", \"quit\": true}]}")
+            .string();
+    }
+    void expect_screenshot_equals_render(const std::string& view_command, const std::string& backend,
+                                         const std::string& method) {
+        const std::string common = " --width 32 --height 32 --spp 3 --seed 5 --backend " + backend + " --method " + method;
+        const CliResult v = run_shell(view_command + common + " --input-script " + screenshot_script(3) +
+                                      " --screenshot " + (dir_ / "view.exr").string());
+        ASSERT_EQ(v.exit_code, 0) << v.output;
+        EXPECT_NE(v.output.find("screenshot of 3 passes"), std::string::npos) << v.output;
+        const CliResult r = run_tessera("render" + common + " --out " + (dir_ / "render.exr").string());
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        expect_same_image(dir_ / "view.0000.exr", dir_ / "render.exr");
+        EXPECT_TRUE(fs::exists(dir_ / "view.0000.png"));
+    }
+};
+
+TEST_F(ViewCli, HeadlessScreenshotEqualsRender) {
+    for (const char* backend : {"embree", "opencl"})
+        for (const char* method : {"igi", "ais"}) {
+            SCOPED_TRACE(std::string(backend) + " " + method);
+            expect_screenshot_equals_render(std::string(TESSERA_EXE) + " view --headless", backend, method);
+        }
+}
+
+TEST_F(ViewCli, HeadlessFlyThroughWritesTimesAndImages) {
+    const fs::path path = write("path.json", fly_through());
+    const CliResult r = run_tessera("view --headless --backend embree --width 32 --height 32 --camera-path " +
+                                    path.string() + " --times " + (dir_ / "times.json").string() + " --frame-images " +
+                                    (dir_ / "frames").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream in(dir_ / "times.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_EQ(j["frames"].size(), 5u);
+    EXPECT_EQ(j["moving_frames"].get<int>(), 2);
+    for (int i = 0; i < 5; ++i) {
+        EXPECT_GT(j["frames"][i]["ms"].get<double>(), 0.0);
+        EXPECT_EQ(j["frames"][i]["passes"].get<int>(), i < 2 ? 1 : i);
+        EXPECT_TRUE(fs::exists(tessera::frame_output_path(dir_ / "frames/frame.exr", i)));
+    }
+    EXPECT_NE(r.output.find("5 frames, 2 moving"), std::string::npos) << r.output;
+}
+
+TEST_F(ViewCli, BadOptionsGiveOneClearMessage) {
+    struct Case {
+        std::string args, needle;
+    };
+    const std::vector<Case> cases = {
+        {"--headless", "--camera-path or --input-script"},
+        {"--headless --record --camera-path x.json", "--record"},
+        {"--headless --input-script " + write("bad.json", "{\"events\": [{\"frame\": 0}]}").string(), "events[0]"},
+        {"--headless --camera-path " + (dir_ / "none.json").string(), "none.json"},
+        {"--headless --input-script x --method magic", "--method"},
+        {"--headless --input-script x --tile 9", "--tile 9"},
+        {"--headless --input-script " + write("ok.json", "{\"events\": []}").string() + " --screenshot a.png",
+         "must end in .exr"},
+    };
+    for (const Case& c : cases) {
+        const CliResult r = run_tessera("view --backend embree " + c.args);
+        EXPECT_NE(r.exit_code, 0) << c.args;
+        EXPECT_NE(r.output.find("tessera: error:"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(c.needle), std::string::npos) << c.args << " should name " << c.needle << ":\n" << r.output;
+    }
+}
+
+TEST_F(ViewCli, NoDisplayIsOneLineSuggestingRender) {
+    const CliResult r = run_tessera("view --backend embree", "env -u DISPLAY -u WAYLAND_DISPLAY");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find("tessera render"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--headless"), std::string::npos) << r.output;
+    if (window_tests_possible()) EXPECT_NE(r.output.find("no display"), std::string::npos) << r.output;
+}
+
+class ViewWindowCli : public ViewCli {
+protected:
+    void SetUp() override {
+        ViewCli::SetUp();
+        if (!window_tests_possible())
+            GTEST_SKIP() << "no window module in this build, no xvfb-run, or a sanitized build";
+    }
+};
+
+TEST_F(ViewWindowCli, ScreenshotKeyEqualsRender) {
+    for (const char* backend : {"embree", "opencl"}) {
+        SCOPED_TRACE(backend);
+        expect_screenshot_equals_render(under_xvfb("view"), backend, "igi");
+    }
+}
+
+TEST_F(ViewWindowCli, FlyThroughGivesTheHeadlessImages) {
+    const fs::path path = write("path.json", fly_through());
+    const std::string common = "view --backend embree --width 32 --height 32 --camera-path " + path.string();
+    const CliResult w = run_shell(under_xvfb(common + " --frame-images " + (dir_ / "window").string()));
+    ASSERT_EQ(w.exit_code, 0) << w.output;
+    const CliResult h = run_tessera(common + " --headless --frame-images " + (dir_ / "headless").string());
+    ASSERT_EQ(h.exit_code, 0) << h.output;
+    for (int i = 0; i < 5; ++i)
+        expect_same_image(tessera::frame_output_path(dir_ / "window/frame.exr", i),
+                          tessera::frame_output_path(dir_ / "headless/frame.exr", i));
+}
+
+// Real key events through the X server: W moves, C prints the camera, P takes a
+// screenshot, Escape quits. The screenshot must equal a render of the printed camera with
+// the pass count the viewer reports (however many passes the machine managed).
+TEST_F(ViewWindowCli, XdotoolKeysMoveAndScreenshot) {
+    if (tessera::test::shell_status("command -v xdotool >/dev/null") != 0) GTEST_SKIP() << "no xdotool";
+    const std::string view = std::string(TESSERA_EXE) + " view --backend embree --width 32 --height 32 --spp 6 --seed 3" +
+                             " --screenshot " + (dir_ / "key.exr").string();
+    const std::string keys =
+        "id=$(xdotool search --sync --name 'Tessera') && xdotool windowfocus --sync $id && "
+        "xdotool keydown w && sleep 0.3 && xdotool keyup w && sleep 1 && xdotool key c && xdotool key p && "
+        "sleep 0.5 && xdotool key Escape";
+    const std::string script = write("keys.sh", "#!/bin/sh\n" + view + " &\npid=$!\n(" + keys + ")\nwait $pid\n").string();
+    const CliResult r = run_shell("LIBGL_ALWAYS_SOFTWARE=1 timeout 120 xvfb-run -a -s '-screen 0 1024x768x24' sh " + script);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::smatch camera, passes;
+    ASSERT_TRUE(std::regex_search(r.output, camera, std::regex("\"camera\": \\{[^}]*\\}"))) << r.output;
+    ASSERT_TRUE(std::regex_search(r.output, passes, std::regex("screenshot of ([0-9]+) passes"))) << r.output;
+    const nlohmann::json cam = nlohmann::json::parse("{" + camera.str() + "}")["camera"];
+    EXPECT_GT(cam["position"][2].get<double>(), -0.8 + 1e-3) << "W must move the camera forward (+z)";
+    // The scene file with the printed camera; its mesh is found on the data path.
+    const fs::path scene = write("moved.json", "{" + camera.str() +
+                                                   ", \"objects\": [{\"mesh\": \"cornell-box.obj\", \"transform\": "
+                                                   "{\"scale\": 0.001}}]}");
+    const CliResult render = run_tessera("render " + scene.string() + " --data-dir " + kScenes +
+                                         " --backend embree --method igi --width 32 --height 32 --seed 3 --spp " +
+                                         passes[1].str() + " --out " + (dir_ / "render.exr").string());
+    ASSERT_EQ(render.exit_code, 0) << render.output;
+    expect_same_image(dir_ / "key.0000.exr", dir_ / "render.exr");
+}
+
+}  // namespace

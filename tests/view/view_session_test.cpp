@@ -1,0 +1,247 @@
+// The viewer's session without a window: an accumulation at rest equals render_frame
+// with the same camera, method, settings and seed; movement restarts it; at rest after
+// movement the image converges toward the still render; switches and the frame budget
+// restart it with the right settings.
+#include "view/view_session.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "metrics/image_metrics.h"
+#include "scene/animation.h"
+#include "scene/loader.h"
+#include "util/error.h"
+#include "support/render_helpers.h"
+#include "view/camera_control.h"
+
+namespace tessera::view {
+namespace {
+
+Scene cornell() {
+    return load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box.json", make_data_path(std::nullopt));
+}
+
+ViewOptions options(Method method, uint32_t spp, int size = 32) {
+    ViewOptions o;
+    o.backend = {BackendKind::Embree, ""};
+    o.settings.method = method;
+    o.settings.spp = spp;
+    o.settings.width = o.settings.height = size;
+    o.settings.seed = 7;
+    return o;
+}
+
+// render_frame at `camera` with the session's settings and `spp` passes.
+Image still(Scene scene, const Camera& camera, RenderSettings settings, uint32_t spp) {
+    scene.camera.position = camera.position;
+    scene.camera.look_at = camera.look_at;
+    scene.camera.up = camera.up;
+    scene.camera.vfov_deg = camera.vfov_deg;
+    settings.spp = spp;
+    return test::render_with(BackendKind::Embree, scene, settings);
+}
+
+// Equal within float rounding: both sides run the same code, so in practice bit for bit.
+void expect_equal_images(const Image& view, const Image& render) {
+    double peak = 0;
+    for (const char* c : {"R", "G", "B", "variance.R"}) {
+        const ImageChannel* a = view.find(c);
+        const ImageChannel* b = render.find(c);
+        ASSERT_TRUE(a && b) << c;
+        ASSERT_EQ(a->data.size(), b->data.size());
+        for (size_t i = 0; i < a->data.size(); ++i) {
+            EXPECT_NEAR(a->data[i], b->data[i], 1e-6f * std::max(1.0f, std::fabs(b->data[i]))) << c << " " << i;
+            peak = std::max(peak, double(b->data[i]));
+        }
+    }
+    EXPECT_GT(peak, 0.0) << "a black image would make the comparison vacuous";
+}
+
+class ViewSessionMethods : public ::testing::TestWithParam<Method> {};
+
+TEST_P(ViewSessionMethods, AccumulationAtRestEqualsRender) {
+    const Scene scene = cornell();
+    ViewOptions o = options(GetParam(), 3);
+    ViewSession session(scene, o);
+    for (int i = 0; i < 5; ++i) session.advance(1.0 / 30);  // the last two render nothing: 3 spp reached
+    EXPECT_EQ(session.passes(), 3u);
+    expect_equal_images(session.accumulation(), still(scene, scene.camera, o.settings, 3));
+}
+
+INSTANTIATE_TEST_SUITE_P(View, ViewSessionMethods,
+                         ::testing::Values(Method::PathTrace, Method::Igi, Method::Ais, Method::AisMax, Method::Ic,
+                                           Method::Tic),
+                         [](const auto& info) {
+                             std::string n = method_name(info.param);
+                             n.erase(std::remove(n.begin(), n.end(), '-'), n.end());
+                             return n;
+                         });
+
+TEST(ViewSession, MovingRestartsAndAtRestConvergesToTheStillRender) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 16);
+    ViewSession session(scene, o);
+    session.advance(1.0 / 30);
+    const Image first = session.accumulation();
+    session.handle({InputEvent::Kind::Press, 'W'});
+    session.handle({InputEvent::Kind::Drag, 0, 15.0f, 0.0f});
+    for (int i = 0; i < 3; ++i) {
+        const FrameReport r = session.advance(1.0 / 30);
+        EXPECT_TRUE(r.moving);
+        EXPECT_EQ(r.passes, 1u);  // one fresh interleaved frame per moving frame
+    }
+    session.handle({InputEvent::Kind::Release, 'W'});
+    EXPECT_GT(test::rel_mse(session.accumulation(), first), 1e-3) << "moving the camera must change the image";
+    EXPECT_TRUE(camera_differs(session.camera(), scene.camera));
+
+    const Image converged = still(scene, session.camera(), o.settings, 64);
+    std::vector<double> errors = {test::rel_mse(session.accumulation(), converged)};
+    for (uint32_t passes = 2; passes <= 16; passes *= 2) {
+        while (session.passes() < passes) EXPECT_FALSE(session.advance(1.0 / 30).moving);
+        errors.push_back(test::rel_mse(session.accumulation(), converged));
+    }
+    for (size_t i = 1; i < errors.size(); ++i)
+        EXPECT_LT(errors[i], errors[i - 1]) << "the error against the still render must fall with passes";
+    expect_equal_images(session.accumulation(), still(scene, session.camera(), o.settings, 16));
+}
+
+TEST(ViewSession, AKeyTappedBetweenFramesMovesForOneFrame) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 2);
+    o.speed = 3.0f;
+    ViewSession session(scene, o);
+    session.handle({InputEvent::Kind::Press, 'W'});
+    session.handle({InputEvent::Kind::Release, 'W'});
+    session.advance(0.1);  // 3 units/s for 0.1 s along the view direction (+z)
+    EXPECT_NEAR(session.camera().position.z, scene.camera.position.z + 0.3f, 1e-5f);
+    session.advance(0.1);  // released: no further motion
+    EXPECT_NEAR(session.camera().position.z, scene.camera.position.z + 0.3f, 1e-5f);
+}
+
+TEST(ViewSession, ResetKeyRestoresTheSceneCamera) {
+    const Scene scene = cornell();
+    ViewSession session(scene, options(Method::Igi, 2));
+    session.handle({InputEvent::Kind::Press, 'D'});
+    session.advance(0.5);
+    session.handle({InputEvent::Kind::Release, 'D'});
+    EXPECT_TRUE(camera_differs(session.camera(), scene.camera));
+    session.handle({InputEvent::Kind::Press, 'R'});
+    EXPECT_FALSE(camera_differs(session.camera(), scene.camera));
+}
+
+TEST(ViewSession, MethodAndComponentSwitchesRestartWithTheNewSettings) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 2);
+    ViewSession session(scene, o);
+    session.advance(0);
+    session.advance(0);
+    EXPECT_EQ(session.passes(), 2u);
+    session.handle({InputEvent::Kind::Press, 'M'});  // igi → ais
+    EXPECT_EQ(session.method(), Method::Ais);
+    EXPECT_TRUE(session.advance(0).moving);
+    session.advance(0);
+    o.settings.method = Method::Ais;
+    expect_equal_images(session.accumulation(), still(scene, scene.camera, o.settings, 2));
+    session.handle({InputEvent::Kind::Press, '2'});  // ID off
+    session.advance(0);
+    session.advance(0);
+    o.settings.igi.components = TS_COMPONENT_SS | TS_COMPONENT_PM;
+    expect_equal_images(session.accumulation(), still(scene, scene.camera, o.settings, 2));
+}
+
+TEST(ViewSession, BudgetedMovingFramesThenFullSettingsAtRest) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 2);
+    o.target_fps = 1000.0;  // 1 ms: the fastest setting
+    o.pareto = {BudgetPoint{"igi", 8, 4, 1, 0.001, 0.5}, BudgetPoint{"igi", 2, 64, 16, 0.5, 0.1}};
+    ViewSession session(scene, o);
+    session.handle({InputEvent::Kind::Press, 'W'});
+    session.advance(1.0 / 30);
+    session.handle({InputEvent::Kind::Release, 'W'});
+    RenderSettings budget = o.settings;
+    budget.igi.tile = 8, budget.igi.paths_per_set = 4, budget.shadow_samples = 1;
+    expect_equal_images(session.accumulation(), still(scene, session.camera(), budget, 1));
+    bool hud_names_budget = false;
+    for (const std::string& line : session.hud_lines(0))
+        hud_names_budget |= line.find("tile 8, 4 VPL paths, 1 light samples") != std::string::npos;
+    EXPECT_TRUE(hud_names_budget);
+    session.advance(0);  // at rest: starts over with the full settings
+    session.advance(0);
+    expect_equal_images(session.accumulation(), still(scene, session.camera(), o.settings, 2));
+}
+
+TEST(ViewSession, PlayingAnAnimationRestartsEachFrameAndPauseHoldsTheImage) {
+    const Scene rest = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-animated.json",
+                                  make_data_path(std::nullopt));
+    ViewOptions o = options(Method::Igi, 4, 16);
+    o.first_frame = 3;
+    o.last_frame = 4;
+    ViewSession session(rest, o);
+    EXPECT_EQ(session.animation_frame(), 3);
+    session.advance(0);
+    session.handle({InputEvent::Kind::Press, 'T'});
+    const FrameReport r = session.advance(0);
+    EXPECT_EQ(session.animation_frame(), 4);
+    EXPECT_TRUE(r.moving);
+    EXPECT_EQ(r.passes, 1u);
+    session.advance(0);
+    EXPECT_EQ(session.animation_frame(), 3);  // wraps within --frames
+    session.handle({InputEvent::Kind::Press, 'T'});  // stop: frame 3 accumulates
+    session.advance(0);
+    EXPECT_EQ(session.passes(), 2u);
+    // The accumulation at rest on frame 3 is render's still of that frame.
+    RenderSettings settings = o.settings;
+    settings.spp = 2;
+    expect_equal_images(session.accumulation(), test::render_with(BackendKind::Embree, scene_at_frame(rest, 3), settings));
+    session.handle({InputEvent::Kind::Press, ' '});  // pause: no passes, the image kept
+    const FrameReport paused = session.advance(0);
+    EXPECT_FALSE(paused.rendered);
+    EXPECT_EQ(session.passes(), 2u);
+    EXPECT_TRUE(session.idle());
+    EXPECT_THROW(session.set_animation_frame(5), InputError);
+}
+
+TEST(ViewSession, DisplayIsThePngToneMap) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 2);
+    o.exposure = 1.0f;
+    ViewSession session(scene, o);
+    session.advance(0);
+    std::vector<uint8_t> rgba;
+    session.display(rgba);
+    const Image img = session.accumulation();
+    ASSERT_EQ(rgba.size(), size_t(32 * 32 * 4));
+    int worst = 0;
+    for (size_t p = 0; p < 32 * 32; ++p)
+        for (int c = 0; c < 3; ++c) {
+            const double v = img.find(std::string(1, "RGB"[c]))->data[p];
+            const int expected = int(std::lround(255.0 * metrics::tone_map_srgb(v, 1.0)));
+            worst = std::max(worst, std::abs(int(rgba[4 * p + c]) - expected));
+        }
+    EXPECT_LE(worst, 1);  // the table quantises to 1/16384 of the unit range
+}
+
+TEST(ViewSession, AovKeyCyclesThroughWhatTheMethodProduces) {
+    const Scene scene = cornell();  // no medium: no PM guidance
+    ViewSession session(scene, options(Method::Ais, 2));
+    session.advance(0);
+    std::vector<std::string> seen;
+    for (int i = 0; i < 8; ++i) {
+        session.handle({InputEvent::Kind::Press, 'V'});
+        session.handle({InputEvent::Kind::Release, 'V'});
+        for (const std::string& line : session.hud_lines(0)) {
+            const size_t at = line.find("AOV ");
+            if (at != std::string::npos) seen.push_back(line.substr(at + 4, line.find(' ', at + 4) - at - 4));
+        }
+        std::vector<uint8_t> rgba;
+        session.display(rgba);  // every AOV displays without throwing
+    }
+    const std::vector<std::string> expected = {"albedo", "normal", "depth", "guidance.SS", "guidance.ID",
+                                               "sets.SS", "sets.ID", "radiance"};
+    EXPECT_EQ(seen, expected);
+}
+
+}  // namespace
+}  // namespace tessera::view
