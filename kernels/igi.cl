@@ -1,13 +1,14 @@
 /* Instant Global Illumination and Adaptive Interleaved Sampling on OpenCL devices
  * (shared/igi.h): the surface kernel (G-buffer, direct light of the pixel's sample set,
  * indirect light from the set's VPLs), the AIS extra kernel (further sets for scheduled
- * pixels), and the media kernel (single-scattering ray march), dispatched only when the
+ * pixels), the resolve kernel (filter and composite without a read-back), and the media kernel (single-scattering ray march), dispatched only when the
  * scene has a medium and built with -DTS_HAS_MEDIUM only then. On CPU devices the host
  * launches the 16-ray packet variants of the surface and AIS kernels instead
  * (igi_packets.h: same images, faster traversal). */
 #include "shared/layout.h"
 #include "tracer.h"
 #include "shared/igi.h"
+#include "shared/igi_resolve.h"
 #include "igi_packets.h"
 
 TS_PIXEL_KERNEL(igi_surface_pass, ts_igi_surface_pixel, TS_IGI_SURF_FLOATS)
@@ -15,6 +16,10 @@ TS_PIXEL_KERNEL(igi_surface_pass, ts_igi_surface_pixel, TS_IGI_SURF_FLOATS)
 /* AIS extra evaluations: item i (pixel, set | components << 8; items come grouped by
  * set) evaluates that set for those components at that pixel. */
 TS_ITEM_KERNEL(ais_extra_pass, ts_ais_extra_item, TS_AIS_ITEM_FLOATS)
+
+/* The frame's filter and composite where the kernels ran (GPU variant; shared/igi_resolve.h):
+ * reads the surface and media kernels' outputs in place, writes the pass image. */
+TS_PIXEL_KERNEL(igi_resolve_pass, ts_igi_resolve_pixel, TS_PASS_FLOATS)
 
 #ifdef TS_HAS_MEDIUM
 TS_PIXEL_KERNEL(igi_media_pass, ts_igi_media_pixel, TS_IGI_MEDIA_FLOATS)

@@ -30,6 +30,7 @@ static inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
         __global const float *ic_gbuffer, __global const float *ic_nodes,                \
         __global const uint *ic_refs, __global const float *ic_records,                  \
         __global const float *ic_record_surfaces, __global const uint *ic_visibility,    \
+        __global const float *igi_surface, __global const float *igi_media,              \
         __global const uint *items, __global float *out, uint work_items
 
 #define TS_KERNEL_VIEWS                                                                   \
@@ -37,7 +38,8 @@ static inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
     TsSceneView sv = {tri_pos, tri_nrm, tri_uv, tri_mat, materials, tex_info, tex_texels, \
                       lights, light_cdf, medium, vpls, vpl_set_start, ic_gbuffer,        \
                       ic_nodes, ic_refs, ic_records, ic_record_surfaces,                 \
-                      ic_visibility, items, frame.light_count};
+                      ic_visibility, igi_surface, igi_media, items,              \
+                      frame.light_count};
 
 /* A per-pixel kernel `name`: one work-item per pixel runs `pixel_fn` (a ts_*_pixel
  * function of the shared code) and stores its `floats` outputs at the pixel's place.

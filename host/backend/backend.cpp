@@ -42,6 +42,20 @@ void Backend::launch(KernelId k, const TsFrame& frame, std::vector<float>& out) 
     run_kernel(k, frame, pixels, {}, out);
 }
 
+void Backend::launch_into(KernelId k, const TsFrame& frame, KernelInput in) {
+    const KernelInfo& info = kernel_info(k);
+    if (info.item_words != 0) throw std::logic_error(std::string(info.name) + " is an item kernel (launch_items)");
+    if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
+    ++dispatches_[static_cast<int>(k)];
+    run_kernel_into(k, frame, size_t(frame.width) * frame.height, in);
+}
+
+void Backend::run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) {
+    std::vector<float> out(count * static_cast<size_t>(kernel_info(k).out_floats));
+    run_kernel(k, frame, count, {}, out);
+    store_input(in, out);
+}
+
 void Backend::launch_items(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items,
                            std::vector<float>& out) {
     const KernelInfo& info = kernel_info(k);

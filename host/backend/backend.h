@@ -65,6 +65,18 @@ public:
     /// happens for an empty list.
     void launch_items(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items, std::vector<float>& out);
 
+    /// Launches pixel kernel `k` as launch() does, but keeps its output where the kernels
+    /// run, as float input `in` of the launches that follow (on OpenCL a device buffer,
+    /// never read back). Throws std::logic_error for an item kernel or a uint input.
+    void launch_into(KernelId k, const TsFrame& frame, KernelInput in);
+
+    /// Whether an igi frame is best resolved (filtered and composited) where the kernels
+    /// run, by KernelId::IgiResolve over inputs kept by launch_into, instead of on the
+    /// host: true for OpenCL's GPU variant, where reading the kernels' outputs back costs
+    /// a bus transfer of 31 floats per pixel each frame; false where kernels run in host
+    /// memory (Embree, OpenCL on CPUs), whose host filter is as fast.
+    virtual bool resolves_on_device() const { return false; }
+
     /// How many times kernel `k` was launched on this backend.
     uint64_t dispatch_count(KernelId k) const { return dispatches_[static_cast<int>(k)]; }
 
@@ -103,6 +115,9 @@ protected:
     /// sized to count × out_floats.
     virtual void run_kernel(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
                      std::vector<float>& out) = 0;
+    /// Runs pixel kernel `k` over `count` pixels into float input `in`. The default runs
+    /// run_kernel into a host vector and stores that.
+    virtual void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in);
     virtual void store_input(KernelInput in, const std::vector<float>& data) = 0;
     virtual void store_input(KernelInput in, const std::vector<uint32_t>& data) = 0;
 

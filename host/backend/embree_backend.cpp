@@ -31,6 +31,7 @@
 #include "kernels/shared/direct.h"
 #include "kernels/shared/ic.h"
 #include "kernels/shared/igi.h"
+#include "kernels/shared/igi_resolve.h"
 #include "kernels/shared/pt.h"
 
 namespace tessera {
@@ -69,6 +70,12 @@ protected:
         uint_inputs_[static_cast<int>(in)] = data;
     }
 
+    void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) override {
+        std::vector<float> out(count * static_cast<size_t>(kernel_info(k).out_floats));
+        run_kernel(k, frame, count, {}, out);
+        float_inputs_[static_cast<int>(in)] = std::move(out);
+    }
+
     void run_kernel(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
                     std::vector<float>& out) override {
         ts::TsSceneView sv = scene_view(frame);
@@ -95,6 +102,8 @@ private:
         sv.ic_records = input<float>(KernelInput::IcRecords);
         sv.ic_record_surfaces = input<float>(KernelInput::IcRecordSurfaces);
         sv.ic_visibility = input<uint32_t>(KernelInput::IcVisibility);
+        sv.igi_surface = input<float>(KernelInput::IgiSurface);
+        sv.igi_media = input<float>(KernelInput::IgiMedia);
         return sv;
     }
 

@@ -74,7 +74,7 @@ public:
             store(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
             store(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
             for (KernelInput in : {KernelInput::IcGbuffer, KernelInput::IcNodes, KernelInput::IcRecords,
-                                   KernelInput::IcRecordSurfaces})
+                                   KernelInput::IcRecordSurfaces, KernelInput::IgiSurface, KernelInput::IgiMedia})
                 store(in, std::vector<float>());
             for (KernelInput in : {KernelInput::IcRefs, KernelInput::IcVisibility}) store(in, std::vector<uint32_t>());
             no_items_ = upload("item list", std::vector<uint32_t>(1, 0u));
@@ -99,29 +99,29 @@ protected:
 
     void run_kernel(KernelId id, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
              std::vector<float>& out) override {
-        const KernelInfo& info = kernel_info(id);
         run([&] {
             if (!items.empty()) write(items_, items_bytes_, "item list", items);
-            cl::Buffer& item_buf = items.empty() ? no_items_ : items_;
             cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
-            const char* packet = packets_ ? packet_kernel(id) : nullptr;
-            const size_t work_items = packet ? packet_work_items(id, frame, count) : count;
-            const std::string name = packet ? packet : info.name;
-            cl::Kernel& k = kernel(info.program, name);
-            int a = 0;
-            k.setArg(a++, sizeof(TsFrame), &frame);
-            for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
-                                  &tex_texels_, &lights_, &light_cdf_, &medium_})
-                k.setArg(a++, *b);
-            for (cl::Buffer& b : inputs_) k.setArg(a++, b);
-            k.setArg(a++, item_buf);
-            k.setArg(a++, buf);
-            k.setArg(a++, static_cast<cl_uint>(count));
-            dispatch(name, k, work_items, [&] {
+            launch_kernel(id, frame, count, items.empty() ? no_items_ : items_, buf, -1, [&] {
                 queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
             });
         });
     }
+
+    // The output stays in input `in`'s device buffer (no read-back); the input's own
+    // argument slot gets a placeholder, so no buffer is both read and written by one launch.
+    void run_kernel_into(KernelId id, const TsFrame& frame, size_t count, KernelInput in) override {
+        const int i = static_cast<int>(in);
+        run([&] {
+            reserve(inputs_[i], input_bytes_[i], input_info(in).name,
+                    count * static_cast<size_t>(kernel_info(id).out_floats) * sizeof(float));
+            // finish: the stage's time and any failure belong to this kernel.
+            launch_kernel(id, frame, count, no_items_, inputs_[i], i, [&] { queue_.finish(); });
+        });
+    }
+
+public:
+    bool resolves_on_device() const override { return gpu_variant_; }
 
 public:
     void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder) override {
@@ -136,6 +136,29 @@ public:
     }
 
 private:
+    // Binds TS_KERNEL_ARGS for kernel `id` (its packet variant on packet devices), with
+    // `out` as output and a placeholder for input `skip` (-1: none), then dispatches it
+    // and runs `read_back`.
+    template <class R>
+    void launch_kernel(KernelId id, const TsFrame& frame, size_t count, cl::Buffer& items, cl::Buffer& out,
+                       int skip, R&& read_back) {
+        const KernelInfo& info = kernel_info(id);
+        const char* packet = packets_ ? packet_kernel(id) : nullptr;
+        const size_t work_items = packet ? packet_work_items(id, frame, count) : count;
+        const std::string name = packet ? packet : info.name;
+        cl::Kernel& k = kernel(info.program, name);
+        int a = 0;
+        k.setArg(a++, sizeof(TsFrame), &frame);
+        for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
+                              &tex_texels_, &lights_, &light_cdf_, &medium_})
+            k.setArg(a++, *b);
+        for (int i = 0; i < kKernelInputCount; ++i) k.setArg(a++, i == skip ? no_items_ : inputs_[i]);
+        k.setArg(a++, items);
+        k.setArg(a++, out);
+        k.setArg(a++, static_cast<cl_uint>(count));
+        dispatch(name, k, work_items, read_back);
+    }
+
     // An empty input is stored as one zero element: OpenCL has no empty buffers, and a
     // kernel reads an input only where the launch set it.
     template <class T>
@@ -151,13 +174,18 @@ private:
     template <class T>
     void write(cl::Buffer& buf, size_t& capacity, const char* what, const std::vector<T>& v) {
         const size_t bytes = v.size() * sizeof(T);
-        if (bytes > capacity) {
-            check_alloc(what, bytes);
-            const size_t grown = std::min<size_t>(std::max(bytes, capacity + capacity / 2), dev_.max_alloc);
-            buf = cl::Buffer(ctx_, CL_MEM_READ_ONLY, grown);
-            capacity = grown;
-        }
+        reserve(buf, capacity, what, bytes);
         queue_.enqueueWriteBuffer(buf, CL_TRUE, 0, bytes, v.data());
+    }
+
+    // Grows `buf` as write() does so that it holds `bytes`. Read-write: an input may also
+    // be a kernel's output (run_kernel_into).
+    void reserve(cl::Buffer& buf, size_t& capacity, const char* what, size_t bytes) {
+        if (bytes <= capacity) return;
+        check_alloc(what, bytes);
+        const size_t grown = std::min<size_t>(std::max(bytes, capacity + capacity / 2), dev_.max_alloc);
+        buf = cl::Buffer(ctx_, CL_MEM_READ_WRITE, grown);
+        capacity = grown;
     }
 
     static std::vector<glm::vec3> positions_of(const SceneBuffers& s) {

@@ -14,6 +14,7 @@ const KernelInputInfo& input_info(KernelInput in) {
         {"VPL", false}, {"VPL set table", true}, {"ic G-buffer", false},
         {"ic octree", false}, {"ic record lists", true}, {"ic records", false},
         {"ic record surfaces", false}, {"ic visibility", true},
+        {"igi surface", false}, {"igi media", false},
     };
     return table[static_cast<int>(in)];
 }

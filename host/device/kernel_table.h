@@ -20,6 +20,7 @@
     X(PathTrace, "pt_pass", "pt.cl", TS_PASS_FLOATS, 0, ts_pt_pixel)                                     \
     X(IgiSurface, "igi_surface_pass", "igi.cl", TS_IGI_SURF_FLOATS, 0, ts_igi_surface_pixel)             \
     X(IgiMedia, "igi_media_pass", "igi.cl", TS_IGI_MEDIA_FLOATS, 0, ts_igi_media_pixel)                  \
+    X(IgiResolve, "igi_resolve_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_igi_resolve_pixel)                 \
     X(AisItem, "ais_extra_pass", "igi.cl", TS_AIS_ITEM_FLOATS, TS_AIS_ITEM_WORDS, ts_ais_extra_item)     \
     X(IcGbuffer, "ic_gbuffer_pass", "ic.cl", TS_IC_GBUF_FLOATS, 0, ts_ic_gbuffer_pixel)                  \
     X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel)     \
@@ -65,8 +66,14 @@ enum class KernelInput {
     /// uints: record–VPL visibility rows, bit masks of TS_IC_VISIBLE_WORDS(VPLs of the
     /// Vpls input) uints each (layout.h; KernelId::IcGather)
     IcVisibility,
+    /// floats: TS_IGI_SURF_FLOATS per pixel, KernelId::IgiSurface's output kept where the
+    /// kernels run (Backend::launch_into; KernelId::IgiResolve reads it)
+    IgiSurface,
+    /// floats: TS_IGI_MEDIA_FLOATS per pixel, KernelId::IgiMedia's output kept likewise;
+    /// read only when the frame's components include TS_COMPONENT_PM
+    IgiMedia,
 };
-constexpr int kKernelInputCount = 8;
+constexpr int kKernelInputCount = 10;
 
 struct KernelInputInfo {
     const char* name;  ///< for error messages ("VPL set table")

@@ -14,7 +14,8 @@ inline ts::TsSceneView make_scene_view(const SceneBuffers& b) {
                            b.medium.data(),     nullptr,            nullptr,
                            nullptr,             nullptr,            nullptr,
                            nullptr,             nullptr,            nullptr,
-                           nullptr,             b.light_count};
+                           nullptr,             nullptr,            nullptr,
+                           b.light_count};
 }
 
 }  // namespace tessera

@@ -27,6 +27,8 @@ public:
     const AisSchedule& schedule() const { return schedule_; }
 
 protected:
+    /// The schedule (AIS) and the cache (ic) are host code: components always come back.
+    bool reconstructs_on_host() const override { return true; }
     void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) override;
     void reconstruct_component(int c) override;
     void add_to_sums() override;

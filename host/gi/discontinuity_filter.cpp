@@ -5,26 +5,19 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "kernels/shared/discontinuity.h"
+
 namespace tessera {
 bool discontinuity_accepts(const GeometryBuffer& g, const DiscontinuitySettings& s, size_t p, size_t q) {
-    const float zp = g.depth[p], zq = g.depth[q];
-    const bool mp = !std::isfinite(zp), mq = !std::isfinite(zq);
-    if (mp || mq) return mp && mq;
-    const float* np = &g.normal[3 * p];
-    const float* nq = &g.normal[3 * q];
-    const float cos = np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2];
-    if (cos < s.normal_cos) return false;
-    if (g.position.empty()) return std::abs(zp - zq) <= s.depth_rel * zp;
-    const float* xp = &g.position[3 * p];
-    const float* xq = &g.position[3 * q];
-    const float plane = np[0] * (xq[0] - xp[0]) + np[1] * (xq[1] - xp[1]) + np[2] * (xq[2] - xp[2]);
-    return std::abs(plane) <= s.depth_rel * zp;
+    const bool plane = !g.position.empty();
+    auto at = [](const std::vector<float>& v, size_t i) { return ts::ts_f3_load(&v[3 * i]); };
+    const ts::float3 none = ts::make_float3(0.0f, 0.0f, 0.0f);
+    return ts::ts_discontinuity_accepts(g.depth[p], at(g.normal, p), plane ? at(g.position, p) : none, g.depth[q],
+                                        at(g.normal, q), plane ? at(g.position, q) : none, plane, s.normal_cos,
+                                        s.depth_rel) != 0;
 }
 
-void discontinuity_window(int n, int* lo, int* hi) {
-    *lo = n % 2 ? -(n - 1) / 2 : -n / 2;
-    *hi = *lo + n - 1;
-}
+void discontinuity_window(int n, int* lo, int* hi) { ts::ts_discontinuity_window(n, lo, hi); }
 
 void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& s, int channels,
                           const std::vector<float>& in, std::vector<float>& out, std::vector<uint8_t>* accepted) {

@@ -1,7 +1,9 @@
 // The discontinuity buffer (Keller's thesis 1998; used by IGI, Wald et al. 2002): an n×n
 // box filter over interleaved estimates that averages a pixel only with neighbours on
 // the same surface, so the structured noise of interleaved sampling goes away while
-// edges stay sharp. Host code shared by every backend.
+// edges stay sharp. Host code shared by every backend; the window and the acceptance
+// test are kernels/shared/discontinuity.h's, which the device resolve
+// (kernels/shared/igi_resolve.h) uses too.
 #pragma once
 #include <cstddef>
 #include <cstdint>

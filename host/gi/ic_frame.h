@@ -26,6 +26,8 @@ public:
     void report(IntegratorStats& stats) const override;
 
 protected:
+    /// The schedule (AIS) and the cache (ic) are host code: components always come back.
+    bool reconstructs_on_host() const override { return true; }
     bool interleaved_indirect() const override { return false; }
     void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) override;
     void reconstruct_component(int c) override;

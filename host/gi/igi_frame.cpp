@@ -46,6 +46,9 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     frame.igi_g_clamp = g_clamp_;
     frame.igi_components = effective_components();
     frame.igi_media_vpls = settings_.multiple_scattering ? 1u : 0u;
+    frame.igi_filter = settings_.filter ? 1u : 0u;
+    frame.igi_filter_cos = settings_.discontinuity.normal_cos;
+    frame.igi_filter_depth = settings_.discontinuity.depth_rel;
     frame.igi_march_far = march_far_ + std::sqrt(frame.cam_pos[0] * frame.cam_pos[0] +
                                                  frame.cam_pos[1] * frame.cam_pos[1] +
                                                  frame.cam_pos[2] * frame.cam_pos[2]);
@@ -77,20 +80,22 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     stats_.vpl_rays = vpls.rays;
     stats_.vpl_seconds = since(t0);
 
-    t0 = Clock::now();
-    std::vector<float> surf, media;
     TsFrame surface_frame = frame;
     if (!interleaved_indirect()) surface_frame.igi_components &= ~TS_COMPONENT_ID;
-    backend_.launch(KernelId::IgiSurface, surface_frame, surf);
-    stats_.surface_seconds = since(t0);
     const uint64_t pixels = uint64_t(frame.width) * frame.height;
     stats_.pixel_rays = pixels * (1 + settings_.set_shadow_samples + stats_.vpls / sets);
+    if (frame.igi_components & TS_COMPONENT_PM) stats_.pixel_rays += pixels * (1 + settings_.march_steps);
+    if (!reconstructs_on_host()) return resolve_on_device(frame, surface_frame, out);
+
+    t0 = Clock::now();
+    std::vector<float> surf, media;
+    backend_.launch(KernelId::IgiSurface, surface_frame, surf);
+    stats_.surface_seconds = since(t0);
     stats_.media_seconds = 0.0;
     if (frame.igi_components & TS_COMPONENT_PM) {
         t0 = Clock::now();
         backend_.launch(KernelId::IgiMedia, frame, media);
         stats_.media_seconds = since(t0);
-        stats_.pixel_rays += pixels * (1 + settings_.march_steps);
     }
     t0 = Clock::now();
     extract(static_cast<int>(frame.width), surf, media);
@@ -100,6 +105,21 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     for (int c = 0; c < kAisComponents; ++c) reconstruct_component(c);
     composite(surf, out);
     add_to_sums();
+    stats_.filter_seconds = since(t0);
+}
+
+void IgiFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) {
+    auto t0 = Clock::now();
+    backend_.launch_into(KernelId::IgiSurface, surface_frame, KernelInput::IgiSurface);
+    stats_.surface_seconds = since(t0);
+    stats_.media_seconds = 0.0;
+    if (frame.igi_components & TS_COMPONENT_PM) {
+        t0 = Clock::now();
+        backend_.launch_into(KernelId::IgiMedia, frame, KernelInput::IgiMedia);
+        stats_.media_seconds = since(t0);
+    }
+    t0 = Clock::now();
+    backend_.launch(KernelId::IgiResolve, frame, out);
     stats_.filter_seconds = since(t0);
 }
 

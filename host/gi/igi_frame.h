@@ -42,6 +42,11 @@ struct IgiSettings {
     /// Components to compute (TS_COMPONENT_SS | _ID | _PM); the ones the scene does not
     /// call for are dropped anyway (no medium: no PM).
     uint32_t components = 7u;
+    /// Bring the components to the host every frame, for the per-component AOVs
+    /// (add_aov_channels) and the viewer's AOV display. false lets igi resolve its frame
+    /// where the kernels ran (Backend::resolves_on_device: OpenCL's GPU variant), reading
+    /// back only the pass image; AIS and ic always reconstruct on the host.
+    bool component_aovs = false;
     /// Adaptive Interleaved Sampling (AisFrame, ais_schedule.h): the mode and thresholds.
     AisMode ais_mode = AisMode::A;
     AisThresholds ais;
@@ -78,7 +83,9 @@ public:
     /// Renders frame.pass: VPLs from path block `frame.pass`, the surface kernel, the media
     /// kernel when the scene has a medium, the filter, and the composite
     ///   L = T · throughput · (Le + albedo · (Ẽ_ss + Ẽ_id)) + L̃_pm
-    /// into TS_PASS_FLOATS per pixel (layout.h). Fills frame's igi fields itself.
+    /// into TS_PASS_FLOATS per pixel (layout.h). Fills frame's igi fields itself. Filter
+    /// and composite run on the host, or, where reconstructs_on_host() is false, as
+    /// KernelId::IgiResolve where the kernels ran (same formula and sums, same image).
     void render_pass(const TsFrame& frame, std::vector<float>& out) override;
 
     /// Per-component AOVs summed over the frames rendered so far, divided by `frames`:
@@ -95,6 +102,12 @@ public:
     void report(IntegratorStats& stats) const override;
 
 protected:
+    /// Whether the components come to the host for reconstruction (raw_, final_, the AOV
+    /// sums): always for AIS and ic, whose schedule and cache are host code; for igi
+    /// unless the backend resolves on the device and no component AOVs are wanted.
+    virtual bool reconstructs_on_host() const {
+        return settings_.component_aovs || !backend_.resolves_on_device();
+    }
     /// True when the indirect component comes from the interleaved VPL sets (igi, ais);
     /// false: no VPL sets are made, the surface kernel skips ID and refine() supplies it.
     virtual bool interleaved_indirect() const { return true; }
@@ -127,6 +140,8 @@ protected:
     GeometryBuffer geometry_;
 
 private:
+    /// The kernels' outputs stay where they ran; IgiResolve filters and composites there.
+    void resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out);
     void extract(int width, const std::vector<float>& surf, const std::vector<float>& media);
     void composite(const std::vector<float>& surf, std::vector<float>& out);
 };

@@ -35,6 +35,12 @@ uint64_t render_fingerprint(const Scene& scene, const RenderSettings& settings, 
 
 }  // namespace
 
+IntegratorSettings integrator_settings(const RenderSettings& settings) {
+    IntegratorSettings s = settings;
+    s.igi.component_aovs = s.igi.component_aovs || settings.aovs;
+    return s;
+}
+
 TsFrame make_render_frame(const Camera& camera, int width, int height, const SceneBuffers& buffers,
                           const RenderSettings& settings) {
     TsFrame frame = make_frame(camera, width, height, settings.shadow_samples, settings.seed, buffers.light_count);
@@ -60,7 +66,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     std::unique_ptr<Integrator> integrator;
     auto set_up = [&] {
         first = session.restore(acc);
-        integrator = make_integrator(backend, scene, buffers, settings);
+        integrator = make_integrator(backend, scene, buffers, integrator_settings(settings));
     };
     if (distributed) {
         uint64_t mine = 0;

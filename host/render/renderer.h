@@ -44,6 +44,11 @@ using ProgressFn = std::function<void(uint32_t, uint32_t, double, uint32_t)>;
 struct CheckpointOptions;  // render/checkpoint_session.h
 class Cluster;             // render/cluster.h
 
+/// The integrator settings of a render or view with `settings`: as given, with the igi
+/// family's components kept on the host when the method's AOV channels are wanted
+/// (IgiSettings::component_aovs).
+IntegratorSettings integrator_settings(const RenderSettings& settings);
+
 /// The per-pass frame parameters render_frame uses for `camera` at width × height:
 /// make_frame (device/frame.h) with the settings' shadow samples, seed, depth and scatter
 /// limits and the scene's light power; the caller sets `pass`. The viewer (host/view)

@@ -104,7 +104,7 @@ RenderSettings ViewSession::pass_settings() const {
 void ViewSession::restart() {
     integrator_.reset();
     const RenderSettings s = pass_settings();
-    integrator_ = make_integrator(*backend_, scene_, *buffers_, s);
+    integrator_ = make_integrator(*backend_, scene_, *buffers_, integrator_settings(s));
     frame_ = make_render_frame(camera_, width_, height_, *buffers_, s);
     acc_ = std::make_unique<Accumulator>(width_, height_);
     acc_camera_ = camera_;

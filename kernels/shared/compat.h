@@ -33,8 +33,9 @@ static inline float3 ts_f3_load(TS_GLOBAL const float* p) { return vload3(0, p);
 /* Writes v to p[0..2] of a work-item's own (private) output record. */
 static inline void ts_f3_store(float* p, float3 v) { p[0] = v.x; p[1] = v.y; p[2] = v.z; }
 /* TS_HAS_DOUBLE: `double` may be used (always in C++; in OpenCL 1.2 only where the device
- * has cl_khr_fp64). Code using it keeps a float form for the other devices. */
-#ifdef cl_khr_fp64
+ * has cl_khr_fp64). Code using it keeps a float form for the other devices, which
+ * -DTS_NO_DOUBLE selects on any device (tests run the float forms on PoCL that way). */
+#if defined(cl_khr_fp64) && !defined(TS_NO_DOUBLE)
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define TS_HAS_DOUBLE 1
 #endif

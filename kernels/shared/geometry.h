@@ -191,6 +191,8 @@ typedef struct TsSceneView {
     TS_GLOBAL const float* ic_records;
     TS_GLOBAL const float* ic_record_surfaces;
     TS_GLOBAL const uint* ic_visibility;
+    TS_GLOBAL const float* igi_surface; /* the igi surface kernel's output, kept on the device */
+    TS_GLOBAL const float* igi_media;   /* the igi media kernel's output, kept on the device */
     TS_GLOBAL const uint* items; /* the launch's item list (item kernels) */
     uint light_count;
 } TsSceneView;

@@ -20,6 +20,7 @@
 #include "render/renderer.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
+#include "support/scoped_env.h"
 
 namespace tessera {
 namespace {
@@ -31,22 +32,10 @@ std::unique_ptr<Backend> opencl(const SceneBuffers& buffers, const Scene& scene,
     return make_backend(o, buffers, plan_effects(scene));
 }
 
-// Sets TESSERA_CL_OPTIONS for one scope (the program cache keys on it, so the kernels
-// are really built with it) and restores the previous value.
-class ScopedClOptions {
-public:
-    explicit ScopedClOptions(const char* value) {
-        if (const char* old = std::getenv("TESSERA_CL_OPTIONS")) old_ = old, had_ = true;
-        setenv("TESSERA_CL_OPTIONS", value, 1);
-    }
-    ~ScopedClOptions() {
-        if (had_) setenv("TESSERA_CL_OPTIONS", old_.c_str(), 1);
-        else unsetenv("TESSERA_CL_OPTIONS");
-    }
-
-private:
-    std::string old_;
-    bool had_ = false;
+// TESSERA_CL_OPTIONS for one scope (the program cache keys on it, so the kernels are
+// really built with it).
+struct ScopedClOptions : test::ScopedEnv {
+    explicit ScopedClOptions(const char* value) : test::ScopedEnv("TESSERA_CL_OPTIONS", value) {}
 };
 
 // Rays from uniform points in the scene bounds in uniform directions, and from points
