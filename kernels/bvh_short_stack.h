@@ -74,13 +74,9 @@ static inline void ts_trail_advance(TsTrail* tr, uint l, uint last) {
 static inline TsHit ts_bvh_traverse_short(__global const float* nodes, __global const float* tris, TsRay ray,
                                           int any) {
     TsHit hit;
-    hit.prim = TS_NO_HIT;
-    hit.t = ray.tmax;
-    hit.u = hit.v = 0.0f;
     float3 inv;
     int3 neg;
-    ts_slab_setup(ray.dir, &inv, &neg);
-    TsWatertight w = ts_watertight_setup(ray.dir);
+    TsWatertight w = ts_traversal_begin(ray, &hit, &inv, &neg);
 
     int ring_ref[TS_BVH_SHORT_STACK];
     uchar ring_level[TS_BVH_SHORT_STACK]; /* level | last << 7 */

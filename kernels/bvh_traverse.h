@@ -166,18 +166,24 @@ static inline void ts_slab_setup(float3 d, float3* inv, int3* neg) {
     *neg = (int3)(ds.x < 0.0f, ds.y < 0.0f, ds.z < 0.0f);
 }
 
+/* The state every traversal starts from: no hit yet (t = tmax), the slab test's
+ * reciprocal direction and signs, and the watertight test's shear. */
+static inline TsWatertight ts_traversal_begin(TsRay ray, TsHit* hit, float3* inv, int3* neg) {
+    hit->prim = TS_NO_HIT;
+    hit->t = ray.tmax;
+    hit->u = hit->v = 0.0f;
+    ts_slab_setup(ray.dir, inv, neg);
+    return ts_watertight_setup(ray.dir);
+}
+
 /* Traversal shared by closest and any hit. `any` is a compile-time constant at each
  * call site, so the compiler specialises the loop. */
 static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const float* tris, TsRay ray,
                              int any) {
     TsHit hit;
-    hit.prim = TS_NO_HIT;
-    hit.t = ray.tmax;
-    hit.u = hit.v = 0.0f;
     float3 inv;
     int3 neg;
-    ts_slab_setup(ray.dir, &inv, &neg);
-    TsWatertight w = ts_watertight_setup(ray.dir);
+    TsWatertight w = ts_traversal_begin(ray, &hit, &inv, &neg);
 
     int stack[TS_BVH_STACK_SIZE];
     int sp = 0;

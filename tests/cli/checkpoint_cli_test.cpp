@@ -15,54 +15,28 @@
 #include <gtest/gtest.h>
 
 #include "support/scratch_dir.h"
+#include "support/shell.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-    int exit_code;  // -1 if killed by a signal
-    std::string output;
-};
+using CliRun = tessera::test::CliResult;
 
 /// Runs tessera with `args`, stdout and stderr into one pipe, in a process group of its
 /// own. If `interrupt_on` is not empty, sends SIGINT once that text has appeared in the
 /// output; with `group_too`, at once a second one to the process group, as `timeout -s
 /// INT` and a terminal's Ctrl-C do.
 CliRun run_tessera(const std::vector<std::string>& args, const std::string& interrupt_on = "", bool group_too = false) {
-    std::vector<char*> argv{const_cast<char*>(TESSERA_EXE)};  // built before fork: no malloc in the child
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    int fds[2];
-    if (::pipe(fds) != 0) return {-2, "pipe failed"};
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        ::setpgid(0, 0);
-        ::dup2(fds[1], STDOUT_FILENO);
-        ::dup2(fds[1], STDERR_FILENO);
-        ::close(fds[0]);
-        ::close(fds[1]);
-        ::execv(TESSERA_EXE, argv.data());
-        ::_exit(127);
-    }
-    ::close(fds[1]);
-    std::string out;
+    std::vector<std::string> words{TESSERA_EXE};
+    words.insert(words.end(), args.begin(), args.end());
     bool sent = false;
-    std::array<char, 4096> buf;
-    while (true) {
-        const ssize_t n = ::read(fds[0], buf.data(), buf.size());
-        if (n <= 0) break;
-        out.append(buf.data(), size_t(n));
-        if (!interrupt_on.empty() && !sent && out.find(interrupt_on) != std::string::npos) {
-            ::kill(pid, SIGINT);
-            if (group_too) ::kill(-pid, SIGINT);
-            sent = true;
-        }
-    }
-    ::close(fds[0]);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+    return tessera::test::run_watched(words, true, [&](pid_t pid, const std::string& out) {
+        if (interrupt_on.empty() || sent || out.find(interrupt_on) == std::string::npos) return;
+        ::kill(pid, SIGINT);
+        if (group_too) ::kill(-pid, SIGINT);
+        sent = true;
+    });
 }
 
 class CheckpointCli : public tessera::test::ScratchDirTest {

@@ -66,50 +66,21 @@ pid_t child_of_rank(pid_t parent, int rank) {
     return -1;
 }
 
-struct MpiRun {
-    int exit_code;  // -1 if killed by a signal
-    std::string output;
-};
-
 // Runs `mpirun --oversubscribe -n ranks tessera args` (stdout and stderr in one pipe); once
 // `interrupt_on` appears in the output, sends SIGINT to rank 0 (as a signal to one rank of a
 // real job; rank 0 then saves the checkpoint and stops the other ranks).
-MpiRun run_mpi_interrupted(int ranks, const std::vector<std::string>& args, const std::string& interrupt_on) {
+tessera::test::CliResult run_mpi_interrupted(int ranks, const std::vector<std::string>& args,
+                                             const std::string& interrupt_on) {
     std::vector<std::string> words{"/usr/bin/env", "OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
                                    TESSERA_MPIRUN, "--oversubscribe", "-n", std::to_string(ranks), TESSERA_EXE};
     words.insert(words.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& w : words) argv.push_back(w.data());
-    argv.push_back(nullptr);
-    int fds[2];
-    if (::pipe(fds) != 0) return {-2, "pipe failed"};
-    const pid_t pid = ::fork();
-    if (pid == 0) {
-        ::dup2(fds[1], STDOUT_FILENO);
-        ::dup2(fds[1], STDERR_FILENO);
-        ::close(fds[0]);
-        ::close(fds[1]);
-        ::execv(argv[0], argv.data());
-        ::_exit(127);
-    }
-    ::close(fds[1]);
-    std::string out;
     bool sent = false;
-    std::array<char, 4096> buf;
-    while (true) {
-        const ssize_t n = ::read(fds[0], buf.data(), buf.size());
-        if (n <= 0) break;
-        out.append(buf.data(), size_t(n));
-        if (!sent && out.find(interrupt_on) != std::string::npos) {
-            const pid_t rank0 = child_of_rank(pid, 0);  // env execs mpirun in this same process
-            if (rank0 > 0) ::kill(rank0, SIGINT);
-            sent = true;
-        }
-    }
-    ::close(fds[0]);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+    return tessera::test::run_watched(words, false, [&](pid_t pid, const std::string& out) {
+        if (sent || out.find(interrupt_on) == std::string::npos) return;
+        const pid_t rank0 = child_of_rank(pid, 0);  // env execs mpirun in this same process
+        if (rank0 > 0) ::kill(rank0, SIGINT);
+        sent = true;
+    });
 }
 
 class DistributedCli : public tessera::test::ScratchDirTest {
@@ -163,7 +134,7 @@ TEST_F(DistributedCli, InterruptedTwoRankJobResumedWithThreeRanksGivesTheSameBit
     const std::vector<std::string> args{"render", scene("cornell-box.json"), "--backend", "embree", "--method",
                                         "direct", "--spp", "40", "--width", "96", "--height", "96",
                                         "--shadow-samples", "48", "--out", (dir_ / "img.exr").string()};
-    const MpiRun first = run_mpi_interrupted(2, args, "/40 spp");
+    const tessera::test::CliResult first = run_mpi_interrupted(2, args, "/40 spp");
     EXPECT_NE(first.exit_code, 0) << first.output;
     EXPECT_EQ(count(first.output, "checkpoint saved to"), 1) << first.output;
     ASSERT_TRUE(fs::exists(dir_ / "img.ckpt")) << first.output;
