@@ -24,13 +24,14 @@ void ais_reconstruct(const GeometryBuffer& g, const DiscontinuitySettings& s, co
                 if (std::popcount(mask) < 2) continue;  // the filter's value stands
                 double sum[3] = {own_sum[3 * p], own_sum[3 * p + 1], own_sum[3 * p + 2]};
                 int count = std::popcount(mask);
+                const uint64_t accepted = discontinuity_window_mask(g, s, x, y);
+                int i = 0;
                 for (int dy = lo; dy <= hi; ++dy)
-                    for (int dx = lo; dx <= hi; ++dx) {
+                    for (int dx = lo; dx <= hi; ++dx, ++i) {
+                        if (!(accepted >> i & 1)) continue;  // outside the image, or rejected
                         const int qx = x + dx, qy = y + dy;
-                        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
                         if (mask >> interleave_set(qx, qy, n) & 1) continue;  // p has its own
                         const size_t q = size_t(qy) * w + qx;
-                        if (!discontinuity_accepts(g, s, p, q)) continue;
                         for (int j = 0; j < 3; ++j) sum[j] += base[3 * q + j];
                         ++count;
                     }

@@ -19,17 +19,14 @@ struct WindowBits {
 WindowBits window_bits(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y) {
     int lo, hi;
     discontinuity_window(s.tile, &lo, &hi);
-    const size_t p = size_t(y) * g.width + x;
     WindowBits b;
     int i = 0;
     for (int dy = lo; dy <= hi; ++dy)
         for (int dx = lo; dx <= hi; ++dx, ++i) {
             const int qx = x + dx, qy = y + dy;
-            if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
-            const size_t q = size_t(qy) * g.width + qx;
-            b.in_image |= 1ull << i;
-            if (q == p || discontinuity_accepts(g, s, p, q)) b.accepted |= 1ull << i;
+            if (qx >= 0 && qy >= 0 && qx < g.width && qy < g.height) b.in_image |= 1ull << i;
         }
+    b.accepted = discontinuity_window_mask(g, s, x, y);
     return b;
 }
 
@@ -62,7 +59,19 @@ bool unfilterable(const WindowBits& b, int min_acc) {
     return std::popcount(b.accepted) < min_acc && b.accepted != b.in_image;
 }
 
-bool on_geometric_edge(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y) {
+bool on_geometric_edge(const GeometryBuffer& g, const DiscontinuitySettings& s, const WindowBits& wb, int x,
+                       int y) {
+    int lo, hi;
+    discontinuity_window(s.tile, &lo, &hi);
+    if (lo <= -1 && hi >= 1) {  // the 3×3 neighbourhood lies in the window: read its bits
+        const int n = s.tile;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const uint64_t bit = 1ull << ((dy - lo) * n + (dx - lo));
+                if ((wb.in_image & bit) && !(wb.accepted & bit)) return true;
+            }
+        return false;
+    }
     const size_t p = size_t(y) * g.width + x;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
@@ -103,7 +112,7 @@ Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const
     const float var = mean > 0.0
         ? static_cast<float>(std::min(1.0, std::sqrt(std::max(0.0, sum2 / count - mean * mean)) / mean / t.id_cov))
         : 0.0f;
-    const bool edge = unfilterable(wb, min_acc) || on_geometric_edge(b.geometry, s, x, y);
+    const bool edge = unfilterable(wb, min_acc) || on_geometric_edge(b.geometry, s, wb, x, y);
     return {edge ? 1.0f : var, var};
 }
 

@@ -34,7 +34,20 @@ struct GeometryBuffer {
     std::vector<float> normal;
     std::vector<float> depth;
     std::vector<float> position;
+    /// Optional (discontinuity_precompute): per pixel, the positions of its window that it
+    /// accepts, bit i = (dy − lo)·n + (dx − lo) (itself included, positions outside the
+    /// image clear), for the settings in `accepted_for`. The filter of each component and
+    /// AIS's guidance and reconstruction read it instead of repeating the test per pair.
+    std::vector<uint64_t> accepted;
+    DiscontinuitySettings accepted_for{0, 0.0f, 0.0f};
 };
+
+/// Fills g.accepted for `s` (s.tile ≤ 8: 64 window positions), one test per pair.
+void discontinuity_precompute(GeometryBuffer& g, const DiscontinuitySettings& s);
+
+/// Pixel (x, y)'s accepted window positions as in GeometryBuffer::accepted: the
+/// precomputed mask when g holds one for `s`, else computed now.
+uint64_t discontinuity_window_mask(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y);
 
 /// Whether pixel p accepts neighbour q (the test above; pixels whose rays escaped accept
 /// only each other).

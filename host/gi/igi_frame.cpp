@@ -99,12 +99,18 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     }
     t0 = Clock::now();
     extract(static_cast<int>(frame.width), surf, media);
+    // The window tests once per frame, for every component and AIS's guidance.
+    if (settings_.filter) discontinuity_precompute(geometry_, settings_.discontinuity);
     const auto tr = Clock::now();
     refine(frame, surf, media);
     t0 += Clock::now() - tr;
-    for (int c = 0; c < kAisComponents; ++c) reconstruct_component(c);
+    const uint32_t bits = effective_components();
+    for (int c = 0; c < kAisComponents; ++c) {
+        if (bits & (1u << c)) reconstruct_component(c);
+        else final_[c] = raw_[c];  // not computed: zeros, which the filter would keep
+    }
     composite(surf, out);
-    add_to_sums();
+    if (settings_.component_aovs) add_to_sums();
     stats_.filter_seconds = since(t0);
 }
 

@@ -104,7 +104,11 @@ RenderSettings ViewSession::pass_settings() const {
 void ViewSession::restart() {
     integrator_.reset();
     const RenderSettings s = pass_settings();
-    integrator_ = make_integrator(*backend_, scene_, *buffers_, integrator_settings(s));
+    IntegratorSettings is = integrator_settings(s);
+    // The AIS guidance and sets AOVs can be shown at any time: keep their sums (AIS
+    // reconstructs on the host anyway, so this costs no read-back).
+    if (s.method == Method::Ais || s.method == Method::AisMax) is.igi.component_aovs = true;
+    integrator_ = make_integrator(*backend_, scene_, *buffers_, is);
     frame_ = make_render_frame(camera_, width_, height_, *buffers_, s);
     acc_ = std::make_unique<Accumulator>(width_, height_);
     acc_camera_ = camera_;

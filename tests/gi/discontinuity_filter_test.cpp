@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -109,6 +111,73 @@ TEST(DiscontinuityFilter, ParallelPlanesAtDifferentDepthsStayApart) {
     discontinuity_filter(g, DiscontinuitySettings{3, 0.9f, 0.05f}, 1, in, out);
     for (int y = 0; y < 6; ++y)
         for (int x = 0; x < 10; ++x) ASSERT_EQ(out[y * 10 + x], x < 5 ? 1.0f : 100.0f) << x << "," << y;
+}
+
+// Random geometry: depths from a few levels (some +inf: escaped rays), normals from a
+// few directions, positions jittered around a plane, so that about half the pairs pass.
+GeometryBuffer random_geometry(int w, int h, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_int_distribution<int> pick(0, 3);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const float depths[4] = {2.0f, 2.05f, 3.0f, INFINITY};
+    const float nzs[4] = {1.0f, 0.95f, 0.8f, 0.0f};
+    GeometryBuffer g;
+    g.width = w;
+    g.height = h;
+    for (int i = 0; i < w * h; ++i) {
+        const float nz = nzs[pick(rng)], nx = std::sqrt(1.0f - nz * nz);
+        g.normal.insert(g.normal.end(), {nx, 0.0f, nz});
+        g.depth.push_back(depths[pick(rng)]);
+        g.position.insert(g.position.end(), {float(i % w) * 0.01f, float(i / w) * 0.01f, 0.05f * u(rng)});
+    }
+    return g;
+}
+
+// The masks precomputed once per frame hold exactly the pairwise tests, and the filter
+// reading them gives the same bits and counts as the filter testing each pair.
+TEST(DiscontinuityFilter, PrecomputedMasksMatchThePairwiseTest) {
+    for (int n : {1, 2, 3, 4, 5, 8}) {
+        SCOPED_TRACE(n);
+        const DiscontinuitySettings s{n, 0.9f, 0.05f};
+        GeometryBuffer g = random_geometry(23, 17, 11u + n);
+        std::vector<float> in(23 * 17 * 3);
+        std::mt19937 rng(5);
+        for (float& v : in) v = std::uniform_real_distribution<float>(0.0f, 10.0f)(rng);
+        std::vector<float> tested, masked;
+        std::vector<uint8_t> count_tested, count_masked;
+        discontinuity_filter(g, s, 3, in, tested, &count_tested);
+        discontinuity_precompute(g, s);
+        discontinuity_filter(g, s, 3, in, masked, &count_masked);
+        ASSERT_EQ(std::memcmp(tested.data(), masked.data(), tested.size() * 4), 0);
+        EXPECT_EQ(count_tested, count_masked);
+        int lo, hi;
+        discontinuity_window(n, &lo, &hi);
+        size_t accepted = 0, pairs = 0;
+        for (int y = 0; y < 17; ++y)
+            for (int x = 0; x < 23; ++x) {
+                const uint64_t m = g.accepted[size_t(y) * 23 + x];
+                for (int i = 0; i < n * n; ++i) {
+                    const int qx = x + lo + i % n, qy = y + lo + i / n;
+                    const bool inside = qx >= 0 && qy >= 0 && qx < 23 && qy < 17;
+                    const size_t p = size_t(y) * 23 + x, q = size_t(qy) * 23 + qx;
+                    const bool want = inside && (p == q || discontinuity_accepts(g, s, p, q));
+                    ASSERT_EQ(bool(m >> i & 1), want) << x << "," << y << " position " << i;
+                    pairs += inside && p != q;
+                    accepted += want && p != q;
+                }
+            }
+        if (n > 1) {
+            EXPECT_GT(accepted, pairs / 20) << "the geometry should pass some tests";
+            EXPECT_LT(accepted, pairs * 9 / 10) << "... and fail others";
+        }
+        // Masks made for other settings are not used.
+        const DiscontinuitySettings looser{n, 0.0f, 1.0f};
+        EXPECT_EQ(discontinuity_window_mask(g, looser, 11, 8), [&] {
+            GeometryBuffer fresh = g;
+            fresh.accepted.clear();
+            return discontinuity_window_mask(fresh, looser, 11, 8);
+        }());
+    }
 }
 
 }  // namespace
