@@ -415,10 +415,11 @@ def machine_note(user: str | None) -> str:
 
 
 def markdown(s: dict, title: str, setup: list[str], ref: str = "mitsuba", ref_name: str = "Mitsuba",
-             ref_sym: str = "M") -> str:
+             ref_sym: str = "M", ref_poss: str | None = None) -> str:
     """The report: `title`, the date/machine line, the `setup` lines (Markdown list
     items), the per-channel table of `compare`'s result (s["comparison"]), the verdict,
     how to read z, and s["notes"]."""
+    ref_poss = ref_poss or f"{ref_name}'s"
     L = [f"# {title}", "", f"- Date: {s['date']}; machine: {s['machine']}"] + setup
     L += ["", f"| channel | Tessera mean | {ref_name} mean | ratio | relMSE | mean z | mean abs z | frac abs z > "
           f"{s['z_limit']:g} | noise-free pixels (mismatched) |", "|---|---|---|---|---|---|---|---|---|"]
@@ -431,7 +432,7 @@ def markdown(s: dict, title: str, setup: list[str], ref: str = "mitsuba", ref_na
     L += ["", f"Luminance ratio {c['luminance_ratio']:.4f}; relMSE {c['relmse']:.3g}; "
           f"tolerance ±{s['tolerance']:g} on each channel's ratio: **{'PASS' if s['pass'] else 'FAIL'}**.",
           "", f"z = (Tessera − {ref_name}) / sqrt(var_T + var_{ref_sym}), with var_T Tessera's `variance.*` channels "
-          f"and var_{ref_sym} the variance of {ref_name}'s mean across its batches, over the pixels where "
+          f"and var_{ref_sym} the variance of {ref_poss} mean across its batches, over the pixels where "
           f"var_T + var_{ref_sym} > 0; the others (no noise on either side) must agree to 1e-5 and are counted "
           "in the last column. For two unbiased renderers "
           "about 0.27% of pixels per channel exceed |z| > 3 (somewhat more at geometric edges, "
