@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import datetime
 import json
+import math
 import os
 import shutil
 import subprocess
@@ -152,6 +153,39 @@ def run_tessera(args, scene_file: Path, exp: CyclesExport, out: Path):
     return r, cmd, time.time() - t0
 
 
+def add_ratio_stderr(cmp_: dict, t_img, t_var, c_img, c_var):
+    """Standard error of each channel's mean ratio, from the variances of both pixel
+    means, pixels taken as independent (delta method: the relative errors of the two
+    image means add in quadrature)."""
+    for c, n in enumerate("RGB"):
+        d = cmp_["channels"][n]
+        rt = math.sqrt(t_var[:, :, c].sum()) / t_img[:, :, c].sum()
+        rc = math.sqrt(c_var[:, :, c].sum()) / c_img[:, :, c].sum()
+        d["ratio_stderr"] = d["ratio"] * math.sqrt(rt * rt + rc * rc)
+
+
+def box_filter(a: np.ndarray, r: int) -> np.ndarray:
+    """Mean over the (2r+1)² window around each pixel of an (h, w, c) image, edges clamped."""
+    p = np.pad(a, ((r, r), (r, r), (0, 0)), mode="edge")
+    out = np.zeros_like(a)
+    for dy in range(2 * r + 1):
+        for dx in range(2 * r + 1):
+            out += p[dy:dy + a.shape[0], dx:dx + a.shape[1]]
+    return out / (2 * r + 1) ** 2
+
+
+def add_smoothed_z(cmp_: dict, t_img, t_var, c_img, c_var, r: int = 2):
+    """Mean z with both variances box-filtered over (2r+1)² pixels. A pixel's mean and
+    its own variance estimate are correlated when its samples are right-skewed (a bright
+    outlier raises both), which makes the plain mean z negative without any bias (more
+    so at low spp and in media); the neighbours' variance is free of that correlation."""
+    den = box_filter(t_var, r) + box_filter(c_var, r)
+    for c, n in enumerate("RGB"):
+        noisy = (t_var[:, :, c] + c_var[:, :, c]) > 0
+        z = (t_img[:, :, c] - c_img[:, :, c])[noisy] / np.sqrt(den[:, :, c][noisy])
+        cmp_["channels"][n]["z_mean_smoothed_var"] = float(z.mean()) if z.size else float("nan")
+
+
 def markdown(s: dict) -> str:
     t, c = s["tessera"], s["cycles"]
     setup = [f"- Resolution {s['width']}×{s['height']}; Tessera `pt` ({t['backend']}) {t['spp']} spp, "
@@ -162,6 +196,15 @@ def markdown(s: dict) -> str:
              f"- Exported: {s['export']['triangles']} triangles ({s['export']['emitting_triangles']} emitting), "
              f"{s['export']['shapes']} shapes, {s['export']['textures']} textures; medium: {s['export']['medium']}",
              f"- Load average (1, 5, 15 min): {s['load']['start']} at the start, {s['load']['end']} at the end"]
+    ch = s["comparison"]["channels"]
+    if all("ratio_stderr" in d for d in ch.values()):
+        setup.append("- Standard error of each channel's ratio (both variances, pixels independent): "
+                     + ", ".join(f"{n} ±{d['ratio_stderr']:.4f}" for n, d in ch.items()))
+    if all("z_mean_smoothed_var" in d for d in ch.values()):
+        setup.append("- Mean z with both variances box-filtered over 5×5 pixels (free of the correlation "
+                     "of a pixel's mean with its own variance estimate, which pulls the plain mean z "
+                     "below 0 for right-skewed pixels): "
+                     + ", ".join(f"{n} {d['z_mean_smoothed_var']:+.3f}" for n, d in ch.items()))
     return cc.markdown(s, f"Blender Cycles check: {s['scene']} (pt)", setup, ref="cycles",
                        ref_name="Cycles", ref_sym="C", ref_poss="Cycles'")
 
@@ -249,6 +292,9 @@ def main(argv=None):
     load_end = [round(x, 2) for x in os.getloadavg()]
 
     cmp_ = compare(t_img, t_var, c_img, c_var, args.z_limit, ref="cycles")
+    if t_var is not None:
+        add_ratio_stderr(cmp_, t_img, t_var, c_img, c_var)
+        add_smoothed_z(cmp_, t_img, t_var, c_img, c_var)
     ok = all(abs(d["ratio"] - 1) <= args.tolerance for d in cmp_["channels"].values())
     summary = {
         "scene": name, "scene_file": os.path.relpath(scene_file, REPO), "integrator": "path",
