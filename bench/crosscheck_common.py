@@ -392,6 +392,24 @@ def channels_rgb(ch: dict, prefix: str = "") -> np.ndarray | None:
     return np.stack([ch[k] for k in keys], axis=2)
 
 
+def add_common_arguments(ap, ref_name: str) -> None:
+    """The options both checkers take (Tessera's side, the comparison, where results go).
+    ref_name names the other renderer in the help texts ("Mitsuba", "Cycles")."""
+    ap.add_argument("--backend", default="embree", choices=["embree", "opencl"])
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--tessera", type=Path, default=REPO / "build" / "tessera")
+    ap.add_argument("--data-dir")
+    ap.add_argument("--tolerance", type=float, default=0.03, help="allowed |ratio - 1| per channel")
+    ap.add_argument("--z-limit", type=float, default=3.0)
+    ap.add_argument("--work-dir", type=Path, help="where images and exported meshes go (default: a temp dir, kept)")
+    ap.add_argument("--flip-emitters", action="store_true",
+                    help=f"negative control: reverse the winding of emitting triangles in the {ref_name} "
+                         "export (the check must then FAIL)")
+    ap.add_argument("--results-dir", type=Path, default=REPO / "bench" / "results")
+    ap.add_argument("--machine", help="machine description for the results (default: detected)")
+    ap.add_argument("--note", action="append", default=[], help="free-text note for the results (repeatable)")
+
+
 def machine_note(user: str | None) -> str:
     if user:
         return user

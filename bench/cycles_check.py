@@ -227,19 +227,7 @@ def main(argv=None):
                          "its faces do not coincide with walls (default 0.0005: 0.5 mm in the metre scenes)")
     ap.add_argument("--threads", type=int, default=os.cpu_count() or 1, help="Cycles render threads")
     ap.add_argument("--blender", default=shutil.which("blender") or "blender")
-    ap.add_argument("--backend", default="embree", choices=["embree", "opencl"])
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--tessera", type=Path, default=REPO / "build" / "tessera")
-    ap.add_argument("--data-dir")
-    ap.add_argument("--tolerance", type=float, default=0.03, help="allowed |ratio - 1| per channel")
-    ap.add_argument("--z-limit", type=float, default=3.0)
-    ap.add_argument("--work-dir", type=Path, help="where images and exported meshes go (default: a temp dir, kept)")
-    ap.add_argument("--flip-emitters", action="store_true",
-                    help="negative control: reverse the winding of emitting triangles in the export "
-                         "(the check must then FAIL)")
-    ap.add_argument("--results-dir", type=Path, default=REPO / "bench" / "results")
-    ap.add_argument("--machine", help="machine description for the results (default: detected)")
-    ap.add_argument("--note", action="append", default=[], help="free-text note for the results (repeatable)")
+    cc.add_common_arguments(ap, "Cycles")
     args = ap.parse_args(argv)
 
     scene_file = Path(args.scene).resolve()

@@ -284,20 +284,8 @@ def main(argv=None):
                     help="independent Mitsuba renders whose spread gives Mitsuba's variance")
     ap.add_argument("--mitsuba-emitter-samples", type=int, default=4)
     ap.add_argument("--mitsuba-bsdf-samples", type=int, default=1)
-    ap.add_argument("--backend", default="embree", choices=["embree", "opencl"])
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--tessera", type=Path, default=REPO / "build" / "tessera")
-    ap.add_argument("--data-dir")
-    ap.add_argument("--tolerance", type=float, default=0.03, help="allowed |ratio - 1| per channel")
-    ap.add_argument("--z-limit", type=float, default=3.0)
-    ap.add_argument("--work-dir", type=Path, help="where images and exported meshes go (default: a temp dir, kept)")
     ap.add_argument("--write-xml", type=Path, help="also write the Mitsuba scene as XML (assets beside it)")
-    ap.add_argument("--flip-emitters", action="store_true",
-                    help="negative control: reverse the winding of emitting triangles in the Mitsuba "
-                         "export (the check must then FAIL)")
-    ap.add_argument("--results-dir", type=Path, default=REPO / "bench" / "results")
-    ap.add_argument("--machine", help="machine description for the results (default: detected)")
-    ap.add_argument("--note", action="append", default=[], help="free-text note for the results (repeatable)")
+    cc.add_common_arguments(ap, "Mitsuba")
     args = ap.parse_args(argv)
 
     scene_file = Path(args.scene).resolve()
