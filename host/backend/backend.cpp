@@ -50,12 +50,6 @@ void Backend::launch_into(KernelId k, const TsFrame& frame, KernelInput in) {
     run_kernel_into(k, frame, size_t(frame.width) * frame.height, in);
 }
 
-void Backend::run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) {
-    std::vector<float> out(count * static_cast<size_t>(kernel_info(k).out_floats));
-    run_kernel(k, frame, count, {}, out);
-    store_input(in, out);
-}
-
 void Backend::launch_items(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items,
                            std::vector<float>& out) {
     const KernelInfo& info = kernel_info(k);

@@ -115,9 +115,8 @@ protected:
     /// sized to count × out_floats.
     virtual void run_kernel(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
                      std::vector<float>& out) = 0;
-    /// Runs pixel kernel `k` over `count` pixels into float input `in`. The default runs
-    /// run_kernel into a host vector and stores that.
-    virtual void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in);
+    /// Runs pixel kernel `k` over `count` pixels into float input `in`.
+    virtual void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) = 0;
     virtual void store_input(KernelInput in, const std::vector<float>& data) = 0;
     virtual void store_input(KernelInput in, const std::vector<uint32_t>& data) = 0;
 

@@ -123,7 +123,6 @@ protected:
 public:
     bool resolves_on_device() const override { return gpu_variant_; }
 
-public:
     void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder) override {
         hits.resize(rays.size() / TS_RAY_FLOATS * TS_HIT_FLOATS);
         trace("trace_closest", rays, hits.data(), hits.size() * sizeof(float), 1);
