@@ -89,22 +89,29 @@ inline void ts_packet_set(RTCRay16& r, int i, const TsRay& ray) {
     r.flags[i] = 0;
 }
 
+/// Occlusion of a packet already laid out for Embree (its caller wrote the rays straight
+/// into the structure of arrays): `valid` as for ts_trace_occluded16, 64-byte aligned, as
+/// rtcOccluded16 requires. Returns the bit mask of the traced lanes found blocked.
+inline uint32_t ts_occluded16(const TsTracer* tr, RTCRay16& r, const int* valid, bool coherent) {
+    RTCIntersectContext ctx = ts_packet_context(coherent);
+    rtcOccluded16(valid, tr->scene, &ctx, &r);
+    uint32_t blocked = 0;
+    for (int i = 0; i < 16; ++i)
+        if (valid[i] && r.tfar[i] < 0.0f) blocked |= 1u << i;
+    return blocked;
+}
+
 /// Occlusion of up to 16 rays as one packet (rtcOccluded16). `valid[i]` is -1 for a lane
 /// to trace, 0 to skip (its ray is not read); returns a bit mask of the traced lanes
 /// found blocked. Embree sets a blocked ray's tfar to -inf, as rtcOccluded1 does.
 inline uint32_t ts_trace_occluded16(const TsTracer* tr, const TsRay* rays, const int* valid, bool coherent) {
-    RTCIntersectContext ctx = ts_packet_context(coherent);
     alignas(64) RTCRay16 r;
     alignas(64) int v[16];
     for (int i = 0; i < 16; ++i) {
         v[i] = valid[i];
         ts_packet_set(r, i, valid[i] ? rays[i] : rays[0]);
     }
-    rtcOccluded16(v, tr->scene, &ctx, &r);
-    uint32_t blocked = 0;
-    for (int i = 0; i < 16; ++i)
-        if (valid[i] && r.tfar[i] < 0.0f) blocked |= 1u << i;
-    return blocked;
+    return ts_occluded16(tr, r, v, coherent);
 }
 
 /// Closest hits of up to 16 rays as one packet (rtcIntersect16); lanes with valid[i] == 0

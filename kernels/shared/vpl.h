@@ -39,18 +39,22 @@ TS_INLINE TsRay ts_vpl_shadow_ray(float3 org, TS_GLOBAL const float* vpl) {
  * factor toward s (ts_vpl_emission_factor: cosθv for a surface VPL, the phase value for a
  * medium VPL, g the medium's HG parameter), is clamped to b: the contribution C·G' of any
  * VPL is at most C·b, also for a peaked phase function (g near 1: phase values near 1e5;
- * docs/igi.md §6). */
+ * docs/igi.md §6). The shadow ray is set in either case; use it only when G' > 0. */
 TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, float g, TsRay* shadow) {
     float3 x = s->position, n = s->shading_normal, ng = s->geo_normal;
     float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
     float3 d = y - x;
     float dist2 = dot(d, d);
-    if (!(dist2 > 0.0f)) return 0.0f;
-    float3 w = d / sqrt(dist2);
+    /* Branch-free: with x at the VPL (dist2 = 0) w is NaN, and every test below fails.
+     * The facing tests come out either way per pixel, so branches would mispredict, and
+     * without them the Embree packet dispatch runs this for 16 pixels in SIMD
+     * (host/backend/embree_packets.cpp). One division and three products, not three
+     * divisions: division is the slowest step of this function in SIMD too. */
+    float3 w = d * (1.0f / sqrt(dist2));
     float cos_x = dot(n, w), cos_v = ts_vpl_emission_factor(vpl, -w, g);
-    if (cos_x <= 0.0f || cos_v <= 0.0f || dot(ng, w) <= 0.0f) return 0.0f;
+    int faces = (dist2 > 0.0f) & (cos_x > 0.0f) & (cos_v > 0.0f) & (dot(ng, w) > 0.0f);
     *shadow = ts_vpl_shadow_ray(ts_offset_ray_origin(s->origin, ng, s->pos_scale), vpl);
-    return fmin(cos_x * cos_v / dist2, b);
+    return faces ? fmin(cos_x * cos_v / dist2, b) : 0.0f;
 }
 
 /* The gather sum E = (1/π) Σ_v C_v · Tr_v · G'_v over the VPLs v whose shadow ray was
@@ -66,11 +70,16 @@ TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, 
  * doubles (TsDouble3: always in C++, with cl_khr_fp64 in OpenCL) and otherwise in float
  * with Neumaier's compensation (TsSum3), whose error does not grow with the number of
  * terms (Neumaier 1974; Higham, Accuracy and Stability of Numerical Algorithms, §4.3).
- * Each form builds a term in its accumulator's precision as (C · Tr) · G' and adds it.
+ * Each form builds a term in its accumulator's precision as (C · Tr) · G' and adds it
+ * (ts_vpl_gather_term: the float term, for callers that know Tr, e.g. 1 without a medium).
  * OpenCL C has no overloading, hence one name per accumulator. */
+TS_INLINE float3 ts_vpl_gather_term(TS_GLOBAL const float* vpl, float3 tr, float g) {
+    return ts_f3_load(vpl + TS_VPL_FLUX) * tr * g;
+}
+
 TS_INLINE void ts_vpl_gather_add(float3* sum, TS_GLOBAL const float* vpl, const TsMedium* med, TsRay shadow,
                                  float g) {
-    *sum += ts_f3_load(vpl + TS_VPL_FLUX) * ts_shadow_transmittance(med, shadow) * g;
+    *sum += ts_vpl_gather_term(vpl, ts_shadow_transmittance(med, shadow), g);
 }
 
 TS_INLINE float3 ts_vpl_gather_result(float3 sum) { return sum * TS_INV_PI; }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <random>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -113,20 +114,29 @@ TEST(EmbreePackets, RaysEqualSingleRaysOnSibenik) {
 
 // Images: igi, ais and ais-max (surface pass and AIS items go through packets), at a
 // size that is not a multiple of the tile nor of the 4×4 packet block, so packets with
-// idle lanes and sets of unequal size are covered. Fog adds the media part of AIS items.
-class PacketImages : public ::testing::TestWithParam<Method> {};
+// idle lanes and sets of unequal size are covered. Fog adds the media part of AIS items,
+// medium VPLs and the per-lane transmittance of the gather; the fog-free box the
+// vectorised gather without a medium (embree_packets.cpp, vpl_gather).
+class PacketImages : public ::testing::TestWithParam<std::tuple<Method, const char*>> {};
 
 TEST_P(PacketImages, EqualSingleRayImagesBitForBit) {
+    const auto [method, scene_file] = GetParam();
     const Scene scene =
-        load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-fog.json", make_data_path(std::nullopt));
+        load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / scene_file, make_data_path(std::nullopt));
     SceneBuffers buffers = make_scene_buffers(scene);
-    const RenderSettings rs = test::packet_test_settings(GetParam());
+    const RenderSettings rs = test::packet_test_settings(method);
     auto single = embree(buffers, scene, false), packets = embree(buffers, scene, true);
     test::expect_images_identical(render_frame(*single, scene, buffers, rs), render_frame(*packets, scene, buffers, rs));
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, PacketImages, ::testing::Values(Method::Igi, Method::Ais, Method::AisMax),
-                         [](const auto& info) { return test::method_param_name(info.param); });
+INSTANTIATE_TEST_SUITE_P(Methods, PacketImages,
+                         ::testing::Combine(::testing::Values(Method::Igi, Method::Ais, Method::AisMax),
+                                            ::testing::Values("cornell-box-fog.json", "cornell-box.json")),
+                         [](const auto& info) {
+                             const std::string scene = std::get<1>(info.param);
+                             return test::method_param_name(std::get<0>(info.param)) +
+                                    (scene == "cornell-box.json" ? "_Clear" : "_Fog");
+                         });
 
 }  // namespace
 }  // namespace tessera
