@@ -26,18 +26,21 @@
 TS_NAMESPACE_BEGIN
 
 /* Unoccluded contribution Le cosθx cosθy / (d² p) of one light sample at surface s, and
- * the shadow ray that decides its visibility. Returns 0 when the light faces away. */
+ * the shadow ray that decides its visibility. Returns 0 when the light faces away; the
+ * shadow ray is set in either case (use it only for a nonzero contribution). Branch-free
+ * for the reason ts_vpl_geometry (shared/vpl.h) is: the Embree packets run it over 16
+ * pixels in SIMD. */
 TS_INLINE float3 ts_light_contribution(const TsSurface* s, TsLightSample ls, TsRay* shadow) {
     float3 d = ls.position - s->position;
     float dist2 = dot(d, d);
     float3 wi = d / sqrt(dist2);
     float cos_x = dot(s->shading_normal, wi);
     float cos_y = -dot(ls.normal, wi);
-    float3 zero = make_float3(0.0f, 0.0f, 0.0f);
-    if (cos_x <= 0.0f || cos_y <= 0.0f || dot(s->geo_normal, wi) <= 0.0f) return zero;
+    int faces = (cos_x > 0.0f) & (cos_y > 0.0f) & (dot(s->geo_normal, wi) > 0.0f);
     *shadow = ts_shadow_ray(ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale), ls.position, ls.normal,
                             ls.pos_scale);
-    return ls.radiance * (cos_x * cos_y / (dist2 * ls.pdf_area));
+    float w = faces ? cos_x * cos_y / (dist2 * ls.pdf_area) : 0.0f;
+    return ls.radiance * w;
 }
 
 /* Direct irradiance / π (the quantity albedo multiplies) at s from m light samples. */

@@ -79,6 +79,15 @@ TS_INLINE uint ts_igi_link_count(const TsSceneView* sv, const TsFrame* f, uint k
     return ts_igi_light_links(sv, f, mask) + vpls;
 }
 
+/* Light sample j (j < m) of set k: the same point on the lights for every pixel of the set. */
+TS_INLINE TsLightSample ts_igi_light_sample(const TsSceneView* sv, const TsFrame* f, uint k, uint j) {
+    float3 q = ts_igi_light_point(f, k * f->shadow_samples + j);
+    return ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
+}
+
+/* Whether a light-sample link of unoccluded contribution c needs its shadow ray traced. */
+TS_INLINE int ts_igi_light_link_traced(float3 c) { return c.x + c.y + c.z > 0.0f; }
+
 /* Link j of set k at surface s (j < ts_igi_link_count). Returns 1 when its shadow ray
  * must be traced (a nonzero contribution), 0 when the link adds nothing. */
 TS_INLINE int ts_igi_link(const TsSceneView* sv, const TsFrame* f, const TsSurface* s, uint k, uint mask, uint j,
@@ -87,11 +96,9 @@ TS_INLINE int ts_igi_link(const TsSceneView* sv, const TsFrame* f, const TsSurfa
     l->c = make_float3(0.0f, 0.0f, 0.0f);
     l->g = 0.0f;
     if (j < m) {
-        float3 q = ts_igi_light_point(f, k * f->shadow_samples + j);
-        TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
         l->vpl = TS_NO_HIT;
-        l->c = ts_light_contribution(s, ls, &l->shadow);
-        return l->c.x + l->c.y + l->c.z > 0.0f;
+        l->c = ts_light_contribution(s, ts_igi_light_sample(sv, f, k, j), &l->shadow);
+        return ts_igi_light_link_traced(l->c);
     }
     l->vpl = sv->vpl_set_start[k] + (j - m);
     l->g = ts_vpl_geometry(s, sv->vpls + l->vpl * TS_VPL_FLOATS, f->igi_g_clamp, sv->medium[TS_MEDIUM_G], &l->shadow);
@@ -105,10 +112,14 @@ TS_INLINE TsIgiGather ts_igi_gather_begin(void) {
     return g;
 }
 
+/* A visible light-sample link's term of E_ss: its contribution c times the transmittance
+ * tr along its shadow ray. */
+TS_INLINE float3 ts_igi_light_term(float3 c, float3 tr) { return c * tr; }
+
 /* Adds link l, whose shadow ray was found unoccluded, attenuated by the medium. */
 TS_INLINE void ts_igi_gather_add(TsIgiGather* g, const TsSceneView* sv, const TsMedium* med, const TsIgiLink* l) {
     if (l->vpl == TS_NO_HIT) {
-        g->ss += l->c * ts_shadow_transmittance(med, l->shadow);
+        g->ss += ts_igi_light_term(l->c, ts_shadow_transmittance(med, l->shadow));
         ++g->seen;
     } else {
         ts_vpl_gather_add(&g->id, sv->vpls + l->vpl * TS_VPL_FLOATS, med, l->shadow, l->g);
