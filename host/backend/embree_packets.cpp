@@ -1,7 +1,8 @@
 // Packet dispatch for the Embree backend (embree_packets.h). Each lane runs the shared
-// per-pixel code of kernels/shared/igi.h up to its links; the links are then traced one
-// link index at a time across the 16 lanes (rtcOccluded16) and gathered per lane in link
-// order, so every lane sums exactly what ts_igi_surface_set sums one ray at a time.
+// per-pixel code of kernels/shared/igi.h up to its links; then, set by set, each link (a
+// light sample or a VPL) is computed for the 16 lanes in SIMD (embree_lanes.h), traced as
+// one rtcOccluded16 packet and gathered per lane in link order, so every lane sums
+// exactly what ts_igi_surface_set sums one ray at a time.
 #include <algorithm>
 #include <array>
 
@@ -27,48 +28,30 @@ struct Packet {
     std::array<ts::TsIgiGather, kLanes> gather;
 };
 
-// Traces link j of every lane that has one as one packet, for j = 0 .. the most links of
-// any lane, and adds each lane's visible links to its gather in link order. `coherent`:
-// the lanes' surfaces lie close together (a pixel block), so Embree's coherent mode pays;
-// for lanes scattered over the image it costs (docs/ray-batches.md §3).
-void gather_links_per_lane(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p,
-                           bool coherent) {
+// Gathers the links of the lanes of sample set k (those with links), traced as 16-ray
+// packets: the set's light samples, then its VPLs, each link's math run over the 16
+// lanes at once (embree_lanes.h) with its rays written straight into Embree's packet
+// layout. A lane takes part in the light links if its mask has TS_COMPONENT_SS, in the
+// VPL links if it has TS_COMPONENT_ID: the links ts_igi_link gives it, in the same
+// order, so its sums are those of ts_igi_surface_set bit for bit. `coherent`: the lanes'
+// surfaces lie close together (a pixel block), so Embree's coherent mode pays; for lanes
+// scattered over the image it costs (docs/ray-batches.md §3).
+void gather_set(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p, uint32_t k,
+                bool coherent) {
     const ts::TsMedium med = ts::ts_medium_load(sv.medium);
-    uint32_t most = 0;
-    for (int i = 0; i < p.lanes; ++i) most = std::max(most, p.links[i]);
-    std::array<ts::TsIgiLink, kLanes> link;
-    std::array<ts::TsRay, kLanes> rays{};  // zeroed: a skipped lane is never traced
-    for (uint32_t j = 0; j < most; ++j) {
-        std::array<int, kLanes> valid{};
-        bool any = false;
-        for (int i = 0; i < p.lanes; ++i) {
-            if (j >= p.links[i] || !ts::ts_igi_link(&sv, &frame, &p.view[i].s, p.set[i], p.mask[i], j, &link[i]))
-                continue;
-            valid[i] = -1;
-            rays[i] = link[i].shadow;
-            any = true;
-        }
-        if (!any) continue;
-        const uint32_t blocked = ts::ts_trace_occluded16(&tracer, rays.data(), valid.data(), coherent);
-        for (int i = 0; i < p.lanes; ++i)
-            if (valid[i] && !(blocked >> i & 1u)) ts::ts_igi_gather_add(&p.gather[i], &sv, &med, &link[i]);
-    }
-}
-
-// gather_links for a packet whose lanes with links all share one sample set and component
-// mask (a surface block): the same links in the same order, so the same sums, but each
-// link's math runs over the 16 lanes at once (embree_lanes.h) and its rays go straight
-// into Embree's packet layout. `first` is a lane with links.
-void gather_links_shared_set(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p,
-                             int first, bool coherent) {
-    const ts::TsMedium med = ts::ts_medium_load(sv.medium);
-    const uint32_t k = p.set[first], mask = p.mask[first], links = p.links[first];
-    const uint32_t m = ts::ts_igi_light_links(&sv, &frame, mask);
     alignas(64) LaneState ls;
-    alignas(64) int active[kLanes];
+    alignas(64) int in_ss[kLanes], in_id[kLanes];
+    int stand_in = -1;
+    bool any_ss = false, any_id = false;
+    for (int i = 0; i < p.lanes; ++i)
+        if (p.set[i] == k && p.links[i] > 0) stand_in = i;
     for (int i = 0; i < kLanes; ++i) {
-        active[i] = i < p.lanes && p.links[i] > 0 ? -1 : 0;
-        lane_set(ls, i, p.view[active[i] ? i : first].s);
+        const bool lane = i < p.lanes && p.set[i] == k && p.links[i] > 0;
+        in_ss[i] = lane && ts::ts_igi_light_links(&sv, &frame, p.mask[i]) > 0 ? -1 : 0;
+        in_id[i] = lane && (p.mask[i] & TS_COMPONENT_ID) ? -1 : 0;
+        any_ss |= in_ss[i] != 0;
+        any_id |= in_id[i] != 0;
+        lane_set(ls, i, p.view[lane ? i : stand_in].s);
     }
     alignas(64) RTCRay16 r;
     for (int i = 0; i < kLanes; ++i) {
@@ -77,56 +60,52 @@ void gather_links_shared_set(const ts::TsSceneView& sv, const ts::TsTracer& trac
         r.id[i] = static_cast<unsigned>(i);
         r.flags[i] = 0;
     }
-    // Traces the lanes with traced[i] = -1; returns -1 for those found unoccluded.
+    // Traces the lanes with traced[i] = -1 among `in`; visible[i] = -1 for those unoccluded.
     alignas(64) int traced[kLanes], visible[kLanes];
-    auto trace = [&]() {
+    auto trace = [&](const int* in) {
         bool any = false;
-        for (int i = 0; i < kLanes; ++i) any |= (traced[i] &= active[i]) != 0;
+        for (int i = 0; i < kLanes; ++i) any |= (traced[i] &= in[i]) != 0;
         const uint32_t blocked = any ? ts::ts_occluded16(&tracer, r, traced, coherent) : 0u;
         for (int i = 0; i < kLanes; ++i) visible[i] = blocked >> i & 1u ? 0 : traced[i];
     };
     alignas(64) float c[3][kLanes];
-    for (uint32_t j = 0; j < m; ++j) {
+    for (uint32_t j = 0; any_ss && j < frame.shadow_samples; ++j) {
         light_links(ls, ts::ts_igi_light_sample(&sv, &frame, k, j), c, traced, r);
-        trace();
+        trace(in_ss);
         light_gather(ls, c, visible, med, r);
     }
     alignas(64) float g[kLanes];
     float vpl[TS_VPL_FLOATS];
-    for (uint32_t j = m; j < links; ++j) {
-        const float* v = sv.vpls + size_t(sv.vpl_set_start[k] + (j - m)) * TS_VPL_FLOATS;
-        std::copy(v, v + TS_VPL_FLOATS, vpl);
+    for (uint32_t v = sv.vpl_set_start[k]; any_id && v < sv.vpl_set_start[k + 1]; ++v) {
+        std::copy(sv.vpls + size_t(v) * TS_VPL_FLOATS, sv.vpls + size_t(v + 1) * TS_VPL_FLOATS, vpl);
         vpl_links(ls, vpl, frame.igi_g_clamp, sv.medium[TS_MEDIUM_G], g, r);
         for (int i = 0; i < kLanes; ++i) traced[i] = g[i] > 0.0f ? -1 : 0;
-        trace();
+        trace(in_id);
         vpl_gather(ls, vpl, g, visible, med, r);
     }
     for (int i = 0; i < p.lanes; ++i) {
+        if (p.set[i] != k || p.links[i] == 0) continue;
         p.gather[i].ss = ts::make_float3(ls.ss[0][i], ls.ss[1][i], ls.ss[2][i]);
         p.gather[i].id = ts::make_float3(ls.id[0][i], ls.id[1][i], ls.id[2][i]);
         p.gather[i].seen = ls.seen[i];
     }
 }
 
-// Each lane's links traced as packets and gathered in link order: a packet whose lanes
-// (those with links) share one sample set and mask takes the SIMD path, others (AIS items
-// of several sets) the per-lane one. Either way each lane sums exactly what
-// ts_igi_surface_set sums one ray at a time.
+// Each lane's links, gathered set by set: a surface block is one set; AIS items, listed
+// by set, span one or two sets per packet.
 void gather_links(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p,
                   bool coherent) {
-    int first = -1;
-    bool shared = true;
+    uint32_t done = 0;  // bit i: lane i gathered or without links
     for (int i = 0; i < p.lanes; ++i) {
         p.gather[i] = ts::ts_igi_gather_begin();
-        if (p.links[i] == 0) continue;
-        if (first < 0) first = i;
-        shared &= p.set[i] == p.set[first] && p.mask[i] == p.mask[first] && p.links[i] == p.links[first];
+        if (p.links[i] == 0) done |= 1u << i;
     }
-    if (first < 0) return;
-    if (shared)
-        gather_links_shared_set(sv, tracer, frame, p, first, coherent);
-    else
-        gather_links_per_lane(sv, tracer, frame, p, coherent);
+    for (int i = 0; i < p.lanes; ++i) {
+        if (done >> i & 1u) continue;
+        gather_set(sv, tracer, frame, p, p.set[i], coherent);
+        for (int l = i; l < p.lanes; ++l)
+            if (p.set[l] == p.set[i]) done |= 1u << l;
+    }
 }
 
 // Lane i of p sees pixel (px, py); returns whether its camera path found a surface, and
