@@ -1,0 +1,197 @@
+// The SIMD link math of the Embree packets (host/backend/embree_lanes.cpp): for every lane,
+// bit for bit what the shared one-pixel functions give (ts_light_contribution,
+// ts_vpl_geometry, the gather terms), over lanes that face the link, face away, sit on
+// the VPL itself (d = 0) or are hidden, with and without a medium, with the clamp on and
+// off. No tracing: the functions only fill and read an RTCRay16.
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "backend/embree_lanes.h"
+
+// After the tracer (embree_lanes.h includes it).
+#include "kernels/shared/igi.h"
+
+namespace tessera {
+namespace {
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+ts::float3 unit(std::mt19937& rng) {
+    std::normal_distribution<float> n(0.0f, 1.0f);
+    return ts::normalize(ts::make_float3(n(rng), n(rng), n(rng)));
+}
+
+// 16 surfaces in a unit box with random normals (so about half face a given point);
+// lane 5 sits exactly at `at` (a VPL's position: d = 0).
+std::vector<ts::TsSurface> surfaces(std::mt19937& rng, ts::float3 at) {
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::vector<ts::TsSurface> s(kLanes);
+    for (int i = 0; i < kLanes; ++i) {
+        s[i] = ts::TsSurface{};
+        s[i].position = i == 5 ? at : ts::make_float3(u(rng), u(rng), u(rng));
+        s[i].geo_normal = unit(rng);
+        s[i].shading_normal = ts::normalize(s[i].geo_normal + unit(rng) * 0.2f);
+        s[i].pos_scale = 1.0f;
+        s[i].origin = s[i].position;
+    }
+    return s;
+}
+
+LaneState lanes_of(const std::vector<ts::TsSurface>& s) {
+    LaneState ls;
+    for (int i = 0; i < kLanes; ++i) lane_set(ls, i, s[i]);
+    return ls;
+}
+
+void expect_ray(const RTCRay16& r, int i, const ts::TsRay& want) {
+    EXPECT_TRUE(same_bits(r.org_x[i], want.org.x) && same_bits(r.org_y[i], want.org.y) &&
+                same_bits(r.org_z[i], want.org.z))
+        << "lane " << i;
+    EXPECT_TRUE(same_bits(r.dir_x[i], want.dir.x) && same_bits(r.dir_y[i], want.dir.y) &&
+                same_bits(r.dir_z[i], want.dir.z))
+        << "lane " << i;
+    EXPECT_EQ(r.tnear[i], want.tmin);
+    EXPECT_EQ(r.tfar[i], want.tmax);
+}
+
+// A VPL at (0.1, 0.2, 0.3) with normal +y, flux (2, 1, 0.5); in_medium: pos_scale < 0
+// marks a medium VPL (layout.h), its normal then being the light's propagation direction.
+void make_vpl(float (&v)[TS_VPL_FLOATS], bool in_medium) {
+    std::fill(std::begin(v), std::end(v), 0.0f);
+    const float p[3] = {0.1f, 0.2f, 0.3f}, n[3] = {0.0f, 1.0f, 0.0f}, c[3] = {2.0f, 1.0f, 0.5f};
+    std::copy(p, p + 3, v + TS_VPL_POSITION);
+    std::copy(n, n + 3, v + TS_VPL_NORMAL);
+    std::copy(c, c + 3, v + TS_VPL_FLUX);
+    v[TS_VPL_POS_SCALE] = in_medium ? -1.0f : 1.0f;
+}
+
+TEST(EmbreeLanes, VplLinksEqualTheSharedGeometryTermPerLane) {
+    std::mt19937 rng(3);
+    for (bool in_medium : {false, true})
+        for (float b : {0.5f, std::numeric_limits<float>::infinity()}) {
+            float vpl[TS_VPL_FLOATS];
+            make_vpl(vpl, in_medium);
+            const auto s = surfaces(rng, ts::make_float3(vpl[0], vpl[1], vpl[2]));
+            const LaneState ls = lanes_of(s);
+            alignas(64) RTCRay16 r;
+            alignas(64) float g[kLanes];
+            vpl_links(ls, vpl, b, 0.7f, g, r);
+            int facing = 0;
+            for (int i = 0; i < kLanes; ++i) {
+                ts::TsRay want;
+                const float gw = ts::ts_vpl_geometry(&s[i], vpl, b, 0.7f, &want);
+                EXPECT_TRUE(same_bits(g[i], gw)) << "lane " << i << ": " << g[i] << " vs " << gw;
+                expect_ray(r, i, want);
+                facing += gw > 0.0f;
+            }
+            EXPECT_EQ(g[5], 0.0f) << "a surface at the VPL itself gets nothing";
+            EXPECT_GT(facing, 0);
+            EXPECT_LT(facing, kLanes - 1);
+        }
+}
+
+TEST(EmbreeLanes, LightLinksEqualTheSharedContributionPerLane) {
+    std::mt19937 rng(5);
+    ts::TsLightSample q;
+    q.position = ts::make_float3(0.0f, 0.9f, 0.0f);
+    q.normal = ts::make_float3(0.0f, -1.0f, 0.0f);
+    q.radiance = ts::make_float3(10.0f, 8.0f, 6.0f);
+    q.pdf_area = 4.0f;
+    q.pos_scale = 1.0f;
+    const auto s = surfaces(rng, ts::make_float3(0.0f, 0.0f, 0.0f));
+    const LaneState ls = lanes_of(s);
+    alignas(64) RTCRay16 r;
+    alignas(64) float c[3][kLanes];
+    alignas(64) int traced[kLanes];
+    light_links(ls, q, c, traced, r);
+    int lit = 0;
+    for (int i = 0; i < kLanes; ++i) {
+        ts::TsRay want;
+        const ts::float3 cw = ts::ts_light_contribution(&s[i], q, &want);
+        EXPECT_TRUE(same_bits(c[0][i], cw.x) && same_bits(c[1][i], cw.y) && same_bits(c[2][i], cw.z)) << "lane " << i;
+        EXPECT_EQ(traced[i], ts::ts_igi_light_link_traced(cw) ? -1 : 0) << "lane " << i;
+        expect_ray(r, i, want);
+        lit += traced[i] != 0;
+    }
+    EXPECT_GT(lit, 0);
+    EXPECT_LT(lit, kLanes);
+}
+
+// Sums after two VPLs and two light samples with a fixed visibility pattern equal the
+// one-pixel gather (ts_igi_gather_add) of the visible links, bit for bit; hidden lanes'
+// sums do not move, and the light samples seen are counted.
+void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
+    std::mt19937 rng(7);
+    float vpl[TS_VPL_FLOATS];
+    make_vpl(vpl, false);
+    const auto s = surfaces(rng, ts::make_float3(vpl[0], vpl[1], vpl[2]));
+    LaneState ls = lanes_of(s);
+    ts::TsSceneView sv{};
+    sv.vpls = vpl;
+    std::vector<ts::TsIgiGather> want(kLanes, ts::ts_igi_gather_begin());
+    ts::TsLightSample q{};
+    q.position = ts::make_float3(0.0f, 0.9f, 0.0f);
+    q.normal = ts::make_float3(0.0f, -1.0f, 0.0f);
+    q.radiance = ts::make_float3(10.0f, 8.0f, 6.0f);
+    q.pdf_area = 4.0f;
+    q.pos_scale = 1.0f;
+    for (int round = 0; round < 2; ++round) {
+        alignas(64) RTCRay16 r;
+        alignas(64) int visible[kLanes];
+        alignas(64) float g[kLanes];
+        vpl_links(ls, vpl, 0.5f, 0.0f, g, r);
+        for (int i = 0; i < kLanes; ++i) visible[i] = g[i] > 0.0f && (i + round) % 3 != 0 ? -1 : 0;
+        vpl_gather(ls, vpl, g, visible, med, r);
+        for (int i = 0; i < kLanes; ++i) {
+            if (!visible[i]) continue;
+            ts::TsIgiLink l;
+            l.vpl = 0;
+            l.g = ts::ts_vpl_geometry(&s[i], vpl, 0.5f, 0.0f, &l.shadow);
+            ts::ts_igi_gather_add(&want[i], &sv, &med, &l);
+        }
+        alignas(64) float c[3][kLanes];
+        alignas(64) int traced[kLanes];
+        light_links(ls, q, c, traced, r);
+        for (int i = 0; i < kLanes; ++i) visible[i] = traced[i] && (i + round) % 4 != 1 ? -1 : 0;
+        light_gather(ls, c, visible, med, r);
+        for (int i = 0; i < kLanes; ++i) {
+            if (!visible[i]) continue;
+            ts::TsIgiLink l;
+            l.vpl = TS_NO_HIT;
+            l.c = ts::ts_light_contribution(&s[i], q, &l.shadow);
+            ts::ts_igi_gather_add(&want[i], &sv, &med, &l);
+        }
+    }
+    int any = 0;
+    for (int i = 0; i < kLanes; ++i) {
+        EXPECT_TRUE(same_bits(ls.id[0][i], want[i].id.x) && same_bits(ls.id[1][i], want[i].id.y) &&
+                    same_bits(ls.id[2][i], want[i].id.z))
+            << "lane " << i << " E_id " << ls.id[0][i] << " vs " << want[i].id.x;
+        EXPECT_TRUE(same_bits(ls.ss[0][i], want[i].ss.x) && same_bits(ls.ss[1][i], want[i].ss.y) &&
+                    same_bits(ls.ss[2][i], want[i].ss.z))
+            << "lane " << i << " E_ss " << ls.ss[0][i] << " vs " << want[i].ss.x;
+        EXPECT_EQ(ls.seen[i], want[i].seen) << "lane " << i;
+        any += want[i].id.x > 0.0f && want[i].ss.x > 0.0f;
+    }
+    EXPECT_GT(any, 0) << "the pattern must leave some lanes with both sums";
+}
+
+TEST(EmbreeLanes, GatherWithoutMediumEqualsOnePixelGather) {
+    ts::TsMedium none{};
+    expect_gather_equals_one_pixel_gather(none);
+}
+
+TEST(EmbreeLanes, GatherInFogEqualsOnePixelGather) {
+    ts::TsMedium fog{};
+    fog.present = 1;
+    fog.sigma_s = ts::make_float3(0.5f, 0.6f, 0.7f);
+    fog.sigma_t = ts::make_float3(0.8f, 0.9f, 1.0f);
+    expect_gather_equals_one_pixel_gather(fog);
+}
+
+}  // namespace
+}  // namespace tessera
