@@ -1,5 +1,6 @@
-// `tessera compare REF.exr TEST.exr [--map FILE.png] [--flip-map FILE.png] [--json]`:
-// error metrics of a test image against a reference (metrics/image_metrics.h, metrics/flip.h).
+// `tessera compare REF.exr TEST.exr [--map FILE.png] [--flip-map FILE.png] [--cvvdp [--cvvdp-map FILE.png]]
+// [--json]`: error metrics of a test image against a reference (metrics/image_metrics.h,
+// metrics/flip.h, metrics/cvvdp.h).
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -13,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "image/image_io.h"
+#include "metrics/cvvdp.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "util/error.h"
@@ -22,18 +24,22 @@ namespace fs = std::filesystem;
 namespace {
 
 struct CompareArgs {
-    std::string ref, test, map, flip_map;
+    std::string ref, test, map, flip_map, cvvdp_map, cvvdp_python;
     float exposure = 0.0f;
     bool json = false;
     bool no_flip = false;
+    bool cvvdp = false;
 };
 
-// Before reading the images: the error maps can be written, the metric options are sane.
+// Before reading the images: the error maps can be written, the metric options are sane,
+// and a requested ColorVideoVDP can run (check_cvvdp throws naming --cvvdp).
 void check_compare_options(const CompareArgs& a, const CLI::App& cmd) {
     reject_empty_values(cmd);
+    if (a.cvvdp) metrics::check_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), "--cvvdp");
     std::vector<OutputFile> maps;
     if (!a.map.empty()) maps.push_back({a.map, "--map"});
     if (!a.flip_map.empty()) maps.push_back({a.flip_map, "--flip-map"});
+    if (!a.cvvdp_map.empty()) maps.push_back({a.cvvdp_map, "--cvvdp-map"});
     check_outputs(maps, {});
     for (const auto& [image, role] : {std::pair{a.ref, "reference"}, std::pair{a.test, "test"}})
         for (const OutputFile& m : maps)
@@ -59,6 +65,10 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
     else
         flip = metrics::compute_flip(a.ref, a.test,
                                      a.flip_map.empty() ? std::nullopt : std::optional<fs::path>(a.flip_map));
+    std::optional<metrics::CvvdpResult> cvvdp;
+    if (a.cvvdp)
+        cvvdp = metrics::compute_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), a.ref, a.test,
+                                       a.cvvdp_map.empty() ? std::nullopt : std::optional<fs::path>(a.cvvdp_map));
 
     if (a.json) {
         nlohmann::json j = {
@@ -77,6 +87,16 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
                                                      {"p_gt_0_3", flip.pct_gt_0_3},
                                                      {"implementation", flip.implementation}}
                                     : nlohmann::json{{"unavailable", flip.reason}}},
+            {"cvvdp", cvvdp ? nlohmann::json{{"jod", cvvdp->jod},
+                                             {"p_ge_1jod", cvvdp->pct_ge_1jod},
+                                             {"p_ge_2_44jod", cvvdp->pct_ge_2_44jod},
+                                             {"d_mean", cvvdp->d_mean},
+                                             {"pixels_per_degree", cvvdp->ppd},
+                                             {"peak_cd_m2", cvvdp->peak_cd_m2},
+                                             {"reference_mean_luminance_cd_m2", cvvdp->mean_luminance},
+                                             {"display", cvvdp->display},
+                                             {"implementation", cvvdp->implementation}}
+                            : nlohmann::json{{"unavailable", "not requested (--cvvdp)"}}},
         };
         std::printf("%s\n", j.dump(2).c_str());
         return;
@@ -93,6 +113,11 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
                     flip.pct_gt_0_1, flip.pct_gt_0_3, flip.implementation.c_str());
     else
         std::printf("FLIP       unavailable: %s\n", flip.reason.c_str());
+    if (cvvdp)
+        std::printf("cvvdp      %.4f JOD, %.3f%% of pixels >= 1 JOD, %.3f%% >= 2.44 JOD (ColorVideoVDP, %s; %s display, "
+                    "peak %g cd/m^2, %g pixels/degree, reference mean %g cd/m^2)\n",
+                    cvvdp->jod, cvvdp->pct_ge_1jod, cvvdp->pct_ge_2_44jod, cvvdp->implementation.c_str(),
+                    cvvdp->display.c_str(), cvvdp->peak_cd_m2, cvvdp->ppd, cvvdp->mean_luminance);
 }
 
 }  // namespace
@@ -111,6 +136,15 @@ void add_compare_command(CLI::App& app) {
         ->check(finite_number("--exposure"));
     cmd->add_flag("--json", args->json, "Print the metrics as JSON");
     cmd->add_flag("--no-flip", args->no_flip, "Skip FLIP (no Python subprocess)");
+    CLI::Option* cvvdp = cmd->add_flag(
+        "--cvvdp", args->cvvdp,
+        "Also run ColorVideoVDP (bench/cvvdp_metric.py; needs pycvvdp): JOD and % of pixels >= 1 / 2.44 JOD, "
+        "32.45 pixels/degree, reference mean 100 cd/m^2 on a 1500 cd/m^2 HDR display");
+    cmd->add_option("--cvvdp-map", args->cvvdp_map, "Write cvvdp's distortion map (threshold colours) as PNG")
+        ->needs(cvvdp);
+    cmd->add_option("--cvvdp-python", args->cvvdp_python,
+                    "Python interpreter that imports pycvvdp (default $TESSERA_CVVDP_PYTHON, else python3)")
+        ->needs(cvvdp);
     cmd->callback([args, cmd] { run_compare(*args, *cmd); });
 }
 

@@ -38,7 +38,8 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
                             "/scenes/cornell-box.json --width 32 --height 32 --frames 3 --reference-spp 4096" +
                             " --methods pt direct --grid pt:spp=1,4,16,64 --grid direct:spp=1,16" +
                             " --grid direct:shadow-samples=1 --out-dir " + out.string() + " --work-dir " +
-                            (dir_ / "work").string() + " > " + log.string() + " 2>&1";
+                            (dir_ / "work").string() + " --cvvdp --cvvdp-python /nonexistent/python3 > " +
+                            log.string() + " 2>&1";
     ASSERT_EQ(shell_status(cmd), 0) << std::ifstream(log).rdbuf();
 
     std::ifstream jf(out / "cornell-box.json");
@@ -47,6 +48,10 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     EXPECT_EQ(doc["width"], 32);
     EXPECT_EQ(doc["reference"]["spp"], 4096);
     EXPECT_EQ(doc["reference"]["kind"], "rendered by bench/accuracy");
+    // --cvvdp with an interpreter that cannot run: the sweep goes on, the reason is recorded.
+    EXPECT_NE(doc["cvvdp"]["unavailable"].get<std::string>().find("/nonexistent/python3"), std::string::npos)
+        << doc["cvvdp"].dump();
+    EXPECT_TRUE(doc["rows"][0]["cvvdp_jod"].is_null());
     const auto& rows = doc["rows"];
     ASSERT_EQ(rows.size(), 2u * (4 + 2)) << "2 backends x (4 pt + 2 direct settings)";
 
@@ -57,7 +62,7 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     const auto header = split(line, ',');
     std::map<std::string, size_t> col;
     for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
-    ASSERT_TRUE(col.count("relmse") && col.count("time_s") && col.count("flip_mean"));
+    ASSERT_TRUE(col.count("relmse") && col.count("time_s") && col.count("flip_mean") && col.count("cvvdp_jod"));
     size_t n = 0;
     while (std::getline(cf, line)) {
         const auto f = split(line, ',');
@@ -103,6 +108,8 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     EXPECT_NE(md.str().find("| cornell-box |"), std::string::npos);
     if (mpl) EXPECT_TRUE(fs::exists(out / "cornell-box.png"));
     EXPECT_NE(md.str().find("## Table 2b"), std::string::npos);
+    EXPECT_NE(md.str().find("## Table 3b: ColorVideoVDP"), std::string::npos);
+    EXPECT_NE(md.str().find("Not measured: cannot run /nonexistent/python3"), std::string::npos) << md.str();
 
     // --merge re-sweeps one method and keeps the others' rows (same reference) ...
     const std::string base = "python3 " + src + "/bench/accuracy --tessera " + TESSERA_EXE + " --scenes " + src +

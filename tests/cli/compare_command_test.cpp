@@ -1,10 +1,13 @@
 // `tessera compare` as a user runs it: metric values on known image pairs, FLIP against
-// NVIDIA's reference implementation called directly, and clear errors for bad input.
+// NVIDIA's reference implementation called directly, ColorVideoVDP (--cvvdp), and clear
+// errors for bad input.
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -30,6 +33,15 @@ CliResult run_compare(const std::string& args, const std::string& env = "") {
 }
 
 bool flip_importable() { return run_shell("python3 -c 'import flip_evaluator, numpy'").exit_code == 0; }
+
+// The interpreter `tessera compare --cvvdp` uses by default, and whether it imports pycvvdp.
+std::string cvvdp_python() {
+    const char* v = std::getenv("TESSERA_CVVDP_PYTHON");
+    return v && *v ? v : "python3";
+}
+bool cvvdp_importable() {
+    return run_shell(cvvdp_python() + " " + TESSERA_SOURCE_DIR + "/bench/cvvdp_metric.py --check").exit_code == 0;
+}
 
 // A deterministic test pattern: a smooth HDR gradient with a bright patch (values up to
 // ~8, as in a rendering with a light source), perturbed by `noise` of relative amplitude.
@@ -199,4 +211,105 @@ TEST_F(CompareCli, FlipMatchesReferenceImplementation) {
         EXPECT_NEAR(j["flip"]["p_gt_0_1"].get<double>(), p1, 1e-9);
         EXPECT_NEAR(j["flip"]["p_gt_0_3"].get<double>(), p3, 1e-9);
     }
+}
+
+// --cvvdp with no usable ColorVideoVDP: one error naming the option, before any work (the
+// --map output is not written), whether the interpreter comes from the option or the
+// environment. Without --cvvdp, compare neither needs nor runs it.
+TEST_F(CompareCli, CvvdpUnavailableIsOneErrorBeforeAnyWork) {
+    const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
+    const fs::path map = dir_ / "map.png";
+    CliResult r = run_compare(a + " " + b + " --cvvdp --cvvdp-python /nonexistent/python3 --map " + map.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("tessera: error: --cvvdp: ColorVideoVDP is not available with /nonexistent/python3"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("relMSE"), std::string::npos) << "no metric printed:\n" << r.output;
+    EXPECT_FALSE(fs::exists(map));
+    r = run_compare(a + " " + b + " --cvvdp --json", "TESSERA_CVVDP_PYTHON=/nonexistent/py3");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--cvvdp: ColorVideoVDP is not available with /nonexistent/py3"), std::string::npos)
+        << r.output;
+    r = run_compare(a + " " + b + " --cvvdp", "TESSERA_CVVDP_SCRIPT=/nonexistent/cvvdp_metric.py");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--cvvdp: script /nonexistent/cvvdp_metric.py not found"), std::string::npos)
+        << r.output;
+    nlohmann::json j = compare_json(a, b + " --no-flip", "TESSERA_CVVDP_PYTHON=/nonexistent/py3");
+    EXPECT_EQ(j["cvvdp"]["unavailable"], "not requested (--cvvdp)");
+}
+
+TEST_F(CompareCli, CvvdpOptionsNeedCvvdp) {
+    const std::string a = write("a.exr", constant(4, 4, 0.25f));
+    expect_error(a + " " + a + " --cvvdp-map " + (dir_ / "m.png").string(), "--cvvdp-map");
+    expect_error(a + " " + a + " --cvvdp-python python3", "--cvvdp-python");
+}
+
+// The plumbing from the script's JSON to compare's text and JSON, with a stand-in
+// interpreter (a shell script) answering --check and printing fixed values.
+TEST_F(CompareCli, CvvdpValuesReachTextAndJson) {
+    const fs::path py = dir_ / "fakepy";
+    std::ofstream(py) << "#!/bin/sh\n"
+                         "[ \"$2\" = --check ] && { echo 'cvvdp 0.5.7, torch 2.9.0'; exit 0; }\n"
+                         "echo '{\"jod\": 8.5, \"p_ge_1jod\": 20.25, \"p_ge_2_44jod\": 1.5, \"d_mean\": 0.08, "
+                         "\"implementation\": \"cvvdp 0.5.7, torch 2.9.0\", \"viewing\": {\"display_photometry\": "
+                         "\"standard_hdr_linear\", \"peak_cd_m2\": 1500, \"pixels_per_degree\": 32.45, "
+                         "\"reference_mean_luminance_cd_m2\": 100}}'\n";
+    ::chmod(py.c_str(), 0755);
+    const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
+    nlohmann::json j = compare_json(a, b + " --no-flip --cvvdp --cvvdp-python " + py.string());
+    EXPECT_EQ(j["cvvdp"]["jod"].get<double>(), 8.5);
+    EXPECT_EQ(j["cvvdp"]["p_ge_1jod"].get<double>(), 20.25);
+    EXPECT_EQ(j["cvvdp"]["p_ge_2_44jod"].get<double>(), 1.5);
+    EXPECT_EQ(j["cvvdp"]["pixels_per_degree"].get<double>(), 32.45);
+    EXPECT_EQ(j["cvvdp"]["display"], "standard_hdr_linear");
+    CliResult text = run_compare(a + " " + b + " --no-flip --cvvdp", "TESSERA_CVVDP_PYTHON=" + py.string());
+    EXPECT_EQ(text.exit_code, 0) << text.output;
+    EXPECT_NE(text.output.find("cvvdp      8.5000 JOD, 20.250% of pixels >= 1 JOD, 1.500% >= 2.44 JOD "
+                               "(ColorVideoVDP, cvvdp 0.5.7, torch 2.9.0; standard_hdr_linear display, peak 1500 "
+                               "cd/m^2, 32.45 pixels/degree, reference mean 100 cd/m^2)"),
+              std::string::npos)
+        << text.output;
+}
+
+// The real metric (skipped where pycvvdp does not import; set TESSERA_CVVDP_PYTHON to a
+// venv's python): identical images are 10 JOD with an all-zero distortion map.
+TEST_F(CompareCli, CvvdpIdenticalImagesAreTenJod) {
+    if (!cvvdp_importable()) GTEST_SKIP() << cvvdp_python() << " cannot import pycvvdp";
+    const std::string a = write("a.exr", pattern(64, 48, 0.0f, 1));
+    const fs::path map = dir_ / "cvvdp.png";
+    nlohmann::json j = compare_json(a, a + " --no-flip --cvvdp --cvvdp-map " + map.string());
+    EXPECT_EQ(j["cvvdp"]["jod"].get<double>(), 10.0) << j.dump();
+    EXPECT_EQ(j["cvvdp"]["p_ge_1jod"].get<double>(), 0.0);
+    EXPECT_EQ(j["cvvdp"]["p_ge_2_44jod"].get<double>(), 0.0);
+    EXPECT_EQ(j["cvvdp"]["d_mean"].get<double>(), 0.0);
+    EXPECT_EQ(j["cvvdp"]["pixels_per_degree"].get<double>(), 32.45);
+    EXPECT_EQ(j["cvvdp"]["reference_mean_luminance_cd_m2"].get<double>(), 100.0);
+    EXPECT_TRUE(fs::exists(map));
+}
+
+// More noise, lower JOD and more pixels over each threshold; and since both images are
+// scaled so that the reference's mean luminance is 100 cd/m^2, multiplying both by 8 (exact
+// in float) leaves the verdict unchanged up to float rounding of the mean.
+TEST_F(CompareCli, CvvdpFallsWithNoiseAndIgnoresOverallScale) {
+    if (!cvvdp_importable()) GTEST_SKIP() << cvvdp_python() << " cannot import pycvvdp";
+    const int w = 64, h = 48;
+    Image ref = pattern(w, h, 0.0f, 1), weak = pattern(w, h, 0.05f, 2), strong = pattern(w, h, 0.6f, 3);
+    const std::string r = write("ref.exr", ref);
+    const nlohmann::json jw = compare_json(r, write("weak.exr", weak) + " --no-flip --cvvdp")["cvvdp"];
+    const nlohmann::json js = compare_json(r, write("strong.exr", strong) + " --no-flip --cvvdp")["cvvdp"];
+    EXPECT_LT(jw["jod"].get<double>(), 10.0);
+    EXPECT_LT(js["jod"].get<double>(), jw["jod"].get<double>());
+    EXPECT_GT(js["p_ge_1jod"].get<double>(), jw["p_ge_1jod"].get<double>());
+    EXPECT_GT(js["p_ge_1jod"].get<double>(), 0.0);
+    for (const auto* j : {&jw, &js}) {
+        EXPECT_LE((*j)["p_ge_2_44jod"].get<double>(), (*j)["p_ge_1jod"].get<double>());
+        EXPECT_LE((*j)["p_ge_1jod"].get<double>(), 100.0);
+    }
+    for (Image* img : {&ref, &strong})
+        for (int c = 0; c < 3; ++c)
+            for (float& v : img->channels[c].data) v *= 8.0f;
+    const nlohmann::json j8 =
+        compare_json(write("ref8.exr", ref), write("strong8.exr", strong) + " --no-flip --cvvdp")["cvvdp"];
+    EXPECT_NEAR(j8["jod"].get<double>(), js["jod"].get<double>(), 1e-4);
+    EXPECT_NEAR(j8["p_ge_1jod"].get<double>(), js["p_ge_1jod"].get<double>(), 100.0 / (w * h) + 1e-9);
 }

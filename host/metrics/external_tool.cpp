@@ -1,0 +1,78 @@
+#include "metrics/external_tool.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+extern char** environ;
+
+namespace tessera::metrics {
+namespace fs = std::filesystem;
+namespace {
+
+std::string read_text(const fs::path& p) {
+    std::ifstream f(p);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+}  // namespace
+
+std::string env_or(const char* name, const std::string& fallback) {
+    const char* v = std::getenv(name);
+    return v && *v ? std::string(v) : fallback;
+}
+
+std::string last_line(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == '\r')) s.pop_back();
+    const auto nl = s.rfind('\n');
+    return nl == std::string::npos ? s : s.substr(nl + 1);
+}
+
+ToolRun run_tool(const std::vector<std::string>& args) {
+    ToolRun r;
+    std::vector<std::string> words = args;
+    std::vector<char*> argv;
+    for (auto& a : words) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    // Output to files rather than pipes: no deadlock on a tool that writes much to both.
+    // The counter keeps two runs of one process (FLIP, then cvvdp) apart.
+    static std::atomic<int> serial{0};
+    const fs::path tmp = fs::temp_directory_path() /
+                         ("tessera-tool-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
+    const std::string out_path = tmp.string() + ".out", err_path = tmp.string() + ".err";
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    pid_t pid = 0;
+    const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (rc != 0) {
+        r.spawn_error = std::strerror(rc);
+        return r;
+    }
+    r.started = true;
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    r.out = read_text(out_path);
+    r.err = read_text(err_path);
+    std::error_code ec;
+    fs::remove(out_path, ec);
+    fs::remove(err_path, ec);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+}  // namespace tessera::metrics
