@@ -27,7 +27,9 @@ TEST(ExternalTool, MissingProgramIsReportedNotThrown) {
     const ToolRun r = run_tool({"/nonexistent/python3", "x.py"});
     // glibc's posix_spawnp reports the failed exec (ENOENT); another libc may exit with 127.
     EXPECT_TRUE(!r.started || r.exit_code == 127) << r.exit_code;
-    if (!r.started) EXPECT_NE(r.spawn_error.find("No such file"), std::string::npos) << r.spawn_error;
+    if (!r.started) {
+        EXPECT_NE(r.spawn_error.find("No such file"), std::string::npos) << r.spawn_error;
+    }
 }
 
 TEST(ExternalTool, LastLineSkipsTrailingNewlines) {
