@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "metrics/cvvdp.h"
+#include "support/scoped_env.h"
 #include "support/scratch_dir.h"
 #include "util/error.h"
 
@@ -54,15 +55,16 @@ const char* const kJson =
 }  // namespace
 
 TEST_F(Cvvdp, InterpreterFromOptionThenEnvironmentThenPython3) {
-    ::unsetenv("TESSERA_CVVDP_PYTHON");
-    EXPECT_EQ(cvvdp_tool("").python, "python3");
-    ::setenv("TESSERA_CVVDP_PYTHON", "/opt/venv/bin/python", 1);
+    const tessera::test::ScopedEnv no_script("TESSERA_CVVDP_SCRIPT", nullptr);
+    {
+        const tessera::test::ScopedEnv none("TESSERA_CVVDP_PYTHON", nullptr);
+        EXPECT_EQ(cvvdp_tool("").python, "python3");
+        EXPECT_EQ(cvvdp_tool("").script, fs::path(TESSERA_SOURCE_DIR) / "bench/cvvdp_metric.py");
+        EXPECT_TRUE(fs::exists(cvvdp_tool("").script));
+    }
+    const tessera::test::ScopedEnv venv("TESSERA_CVVDP_PYTHON", "/opt/venv/bin/python");
     EXPECT_EQ(cvvdp_tool("").python, "/opt/venv/bin/python");
     EXPECT_EQ(cvvdp_tool("/other/python").python, "/other/python");
-    ::unsetenv("TESSERA_CVVDP_PYTHON");
-    ::unsetenv("TESSERA_CVVDP_SCRIPT");
-    EXPECT_EQ(cvvdp_tool("").script, fs::path(TESSERA_SOURCE_DIR) / "bench/cvvdp_metric.py");
-    EXPECT_TRUE(fs::exists(cvvdp_tool("").script));
 }
 
 TEST_F(Cvvdp, MissingInterpreterIsAnInputErrorNamingTheOption) {

@@ -1,5 +1,5 @@
-// Sets an environment variable for one scope and restores its previous value (or its
-// absence) after. Used for TESSERA_CL_OPTIONS, on which the program cache keys, so that
+// Sets (or, with value nullptr, unsets) an environment variable for one scope and
+// restores its previous value (or its absence) after. Used for TESSERA_CL_OPTIONS, on which the program cache keys, so that
 // kernels are really rebuilt with the options a test gives.
 #pragma once
 #include <cstdlib>
@@ -11,7 +11,8 @@ class ScopedEnv {
 public:
     ScopedEnv(const char* name, const char* value) : name_(name) {
         if (const char* old = std::getenv(name)) old_ = old, had_ = true;
-        setenv(name, value, 1);
+        if (value) setenv(name, value, 1);
+        else unsetenv(name);
     }
     ~ScopedEnv() {
         if (had_) setenv(name_.c_str(), old_.c_str(), 1);
