@@ -9,7 +9,9 @@ combination of the other keys once, over several passes.
 
 `operating` is the setting quoted in the report's fps and FLIP tables (Tables 5.1 and 5.3
 of the seed thesis); `converges_to_reference` is False for a method whose limit is not the
-pt reference (its error floors). Adding a method (igi, ais, ais-max, ic, tic) is one entry.
+pt reference (its error floors). Adding a method (igi, ais, ais-max, ic, tic) is one entry;
+`method` is the `--method` it renders with where the entry's name is a variant (ais-old:
+ais with the defaults before the clamp decay, so one sweep shows old against new).
 """
 from dataclasses import dataclass, field
 
@@ -22,6 +24,11 @@ class Method:
     converges_to_reference: bool = True
     note: str = ""
     extra_args: tuple = field(default_factory=tuple)
+    method: str = ""  # `tessera render --method`; empty: the entry's name
+
+    @property
+    def render_method(self):
+        return self.method or self.name
 
 
 METHODS = {
@@ -36,32 +43,34 @@ METHODS = {
         "igi", {"spp": [1, 2, 4, 8, 16], "tile": [1, 2, 3, 4, 5, 8], "vpl-paths": [8, 32, 128],
                 "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
-        converges_to_reference=False,
-        note="instant global illumination; the clamped VPL geometry term darkens corners, so its error "
-             "against the pt reference floors (with --clamp 0 it converges, tests/gi/igi_test.cpp); "
+        note="instant global illumination; the VPL geometry term is clamped (c = 0.1) and the clamp "
+             "loosens over passes (--clamp-decay 0.25, docs/igi.md section 4), so accumulated passes converge "
+             "to the pt reference, slowly (a fixed clamp floored: ais-old); "
              "in media it gathers VPLs left by light paths that scatter in the medium (multiple scattering; --single-scattering: pt --max-scatter 1)"),
     "ais": Method(
         "ais", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
-        converges_to_reference=False,
         note="adaptive interleaved sampling, mode A (graded extra sets where guidance flags); same clamp as igi"),
+    "ais-old": Method(
+        "ais-old", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
+        {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
+        converges_to_reference=False, method="ais", extra_args=("--clamp", "0.05", "--clamp-decay", "0"),
+        note="ais with the old defaults (clamp c = 0.05, fixed over passes): its error floors at the clamp's bias"),
     "ais-max": Method(
         "ais-max", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
-        converges_to_reference=False,
         note="adaptive interleaved sampling, mode A-MAX (all sets for every flagged pixel)"),
     "ic": Method(
         "ic", {"spp": [1, 2, 4], "ic-paths": [64, 256, 1024], "ic-error": [0.1, 0.3, 0.5], "shadow-samples": [1, 4]},
         {"spp": 1, "ic-paths": 256, "ic-error": 0.3, "shadow-samples": 4},
-        converges_to_reference=False,
         note="instant caching: igi's direct light and media, indirect light from an irradiance cache rebuilt "
-             "each pass from --ic-paths light paths (one set); same clamp as igi, so its error floors too"),
+             "each pass from --ic-paths light paths (one set); same clamp and decay as igi"),
     "tic": Method(
         "tic", {"spp": [1, 2, 4], "ic-paths": [64, 256, 1024], "ic-error": [0.3], "shadow-samples": [1, 4]},
         {"spp": 1, "ic-paths": 256, "ic-error": 0.3, "shadow-samples": 4},
         converges_to_reference=False,
         note="temporal instant caching on a still frame: the cache persists over the passes (one VPL set, "
-             "records added where new camera jitter needs them), so passes after the first cost little; "
+             "records added where new camera jitter needs them, a fixed clamp), so passes after the first cost little; "
              "its frame-to-frame cost over animations is in ic_bench"),
 }
 

@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
     j["size"] = size;
     j["frames"] = frames;
     j["settings"] = "IgiSettings defaults: tile 3x3, 32 VPL paths per set, 4 light samples per pixel, "
-                    "8 march steps, clamp c = 0.05";
+                    "8 march steps, clamp c = 0.1 (pass 0 of its decay)";
     std::string md = "# IGI frame time, " + std::to_string(size) + "x" + std::to_string(size) + ", median of " +
                      std::to_string(frames) + " frames\n\nMachine: 2-core KVM guest. " +
                      j["settings"].get<std::string>() +

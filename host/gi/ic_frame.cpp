@@ -16,7 +16,7 @@ void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const
     (void)surf, (void)media;
     if (!(frame.igi_components & TS_COMPONENT_ID)) return;
     const auto tc = Clock::now();
-    if (plan_.indirect) cache_->indirect(backend_, scene_, frame, g_clamp_, raw_[kAisID]);
+    if (plan_.indirect) cache_->indirect(backend_, scene_, frame, frame.igi_g_clamp, raw_[kAisID]);
     stats_.cache_seconds = since(tc);
 }
 

@@ -29,6 +29,8 @@ protected:
     /// The schedule (AIS) and the cache (ic) are host code: components always come back.
     bool reconstructs_on_host() const override { return true; }
     bool interleaved_indirect() const override { return false; }
+    /// ic draws a new VPL set each pass; tic keeps one (and its records would go stale).
+    bool clamp_decays() const override { return !cache_->temporal(); }
     void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) override;
     void reconstruct_component(int c) override;
 

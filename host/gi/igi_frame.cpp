@@ -39,11 +39,17 @@ IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan
     march_far_ = 2.0f * std::sqrt(diag2);
 }
 
+float IgiFrame::g_clamp_for(uint32_t pass) const {
+    if (!clamp_decays() || !(settings_.clamp_decay > 0.0f)) return g_clamp_;
+    // b ∝ 1/c², so c_p = c · (p + 1)^-a gives b_p = b · (p + 1)^(2a).
+    return g_clamp_ * std::pow(static_cast<float>(pass) + 1.0f, 2.0f * settings_.clamp_decay);
+}
+
 TsFrame IgiFrame::prepare(TsFrame frame) const {
     frame.igi_tile = settings_.tile;
     frame.shadow_samples = settings_.set_shadow_samples;
     frame.igi_steps = settings_.march_steps;
-    frame.igi_g_clamp = g_clamp_;
+    frame.igi_g_clamp = g_clamp_for(frame.pass);
     frame.igi_components = effective_components();
     frame.igi_media_vpls = settings_.multiple_scattering ? 1u : 0u;
     frame.igi_filter = settings_.filter ? 1u : 0u;

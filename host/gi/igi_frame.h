@@ -30,8 +30,13 @@ struct IgiSettings {
     uint32_t march_steps = 8;      ///< medium ray-march steps per pixel (the N sets stratify them)
     /// Geometry-term clamp b = 1 / (clamp_c · D)², D the scene's bounding-box diagonal:
     /// scene-relative, so the same c gives the same image at any scale (docs/igi.md §4,
-    /// default c = 0.05). clamp_c = 0 disables clamping (b = +inf).
-    float clamp_c = 0.05f;
+    /// default c = 0.1). clamp_c = 0 disables clamping (b = +inf).
+    float clamp_c = 0.1f;
+    /// Exponent a of the clamp's decay over passes: pass p uses c_p = clamp_c · (p + 1)^-a,
+    /// so that an accumulation of passes converges to the unclamped (path-traced) image
+    /// while every single frame keeps the clamp's low noise (docs/igi.md §4). 0: the same
+    /// clamp in every pass. Integrators whose passes reuse one VPL set (tic) keep c fixed.
+    float clamp_decay = 0.25f;
     bool filter = true;            ///< the discontinuity buffer (off: raw interleaved image)
     /// Media: light paths scatter in the medium and leave medium VPLs, which surfaces and
     /// the ray march gather (multiple scattering, converging to `pt`; docs/igi.md §6);
@@ -69,8 +74,11 @@ public:
     /// `scene` and `backend` must outlive this object.
     IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan& plan, const IgiSettings& settings);
 
-    /// Geometry-term clamp b in scene units^-2 (+inf without clamping).
+    /// Geometry-term clamp b of pass 0 in scene units^-2 (+inf without clamping).
     float g_clamp() const { return g_clamp_; }
+    /// Geometry-term clamp b of `pass`: b · (pass + 1)^(2a), a = clamp_decay where
+    /// clamp_decays(), else b (scene units^-2, +inf without clamping).
+    float g_clamp_for(uint32_t pass) const;
 
     /// `frame` with the igi fields filled in as render() uses them (tile, set samples,
     /// march steps, clamp, components, the frame's Cranley–Patterson shift).
@@ -111,6 +119,9 @@ protected:
     /// True when the indirect component comes from the interleaved VPL sets (igi, ais);
     /// false: no VPL sets are made, the surface kernel skips ID and refine() supplies it.
     virtual bool interleaved_indirect() const { return true; }
+    /// True when every pass draws new VPLs, so that a clamp loosening over passes
+    /// converges; false for an integrator that reuses one VPL set (tic).
+    virtual bool clamp_decays() const { return true; }
     /// Runs after the base pass, before reconstruction: may replace or refine the raw
     /// components (raw_). Its time is not counted as the filter's.
     virtual void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {

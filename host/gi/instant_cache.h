@@ -90,6 +90,8 @@ public:
     const std::vector<float>& vpls() const { return vpls_; }
     const IrradianceCache& cache() const { return cache_; }
     const IcFrameStats& stats() const { return stats_; }
+    /// tic: one VPL set for every frame and pass.
+    bool temporal() const { return settings_.temporal; }
     std::string describe() const;
 
 private:

@@ -45,6 +45,8 @@ const Parameter kParameters[] = {
      .unit = "paths", .doc = "igi: light paths per sample set"},
     {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = kNoMax,
      .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables"},
+    {.option = "--clamp-decay", .value_name = "A", .field = TS_SETTING(igi.clamp_decay), .min = 0, .max = 1,
+     .doc = "igi: pass p clamps with c·(p+1)^-A, so accumulated passes converge to the unclamped image; 0: fixed"},
     {.option = "--march-steps", .value_name = "N", .field = TS_SETTING(igi.march_steps), .min = 0, .max = kNoMax,
      .unit = "steps", .doc = "igi: medium ray-march steps per pixel (0: none, an error on a scene with a medium)"},
     {.option = "--no-filter", .value_name = "", .field = TS_SETTING(igi.filter), .negated = true,

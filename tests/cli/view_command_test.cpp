@@ -159,7 +159,9 @@ TEST_F(ViewCli, NoDisplayIsOneLineSuggestingRender) {
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     EXPECT_NE(r.output.find("tessera render"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("--headless"), std::string::npos) << r.output;
-    if (window_tests_possible()) EXPECT_NE(r.output.find("no display"), std::string::npos) << r.output;
+    if (window_tests_possible()) {
+        EXPECT_NE(r.output.find("no display"), std::string::npos) << r.output;
+    }
 }
 
 class ViewWindowCli : public ViewCli {

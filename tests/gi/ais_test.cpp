@@ -103,7 +103,10 @@ TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
     // 1.005 per seed, mean 0.967; A-MAX/A 0.952-0.996, mean 0.981; A-MAX < IGI on every
     // seed. An A that adds nothing gives A/IGI = 1 exactly and fails; an A-MAX with fewer
     // sets than A fails the second. The clamp's darkening in corners is common to all
-    // three and sets the floor.
+    // three and sets the floor. The clamp is pinned at c = 0.05 (the default these ratios
+    // were measured with): the test is about the schedule, and at the default c = 0.1 the
+    // sets differ less, so A's margin over IGI shrinks (mean 0.996, measured) while both
+    // errors fall (docs/igi.md section 4).
     Scene s = cornell();
     RenderSettings ref;
     ref.method = Method::PathTrace;
@@ -122,6 +125,7 @@ TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
             rs.spp = 1;
             rs.seed = seed;
             rs.shadow_samples = 4;
+            rs.igi.clamp_c = 0.05f;
             err[i++] = test::rel_mse(test::render_with(BackendKind::Embree, s, rs), reference);
         }
         std::printf("  seed %u: relMSE igi %.5f, ais %.5f, ais-max %.5f\n", seed, err[0], err[1], err[2]);

@@ -152,7 +152,9 @@ TEST(IgiConvergence, ApproachesPathTracedSingleScatteringAsVplsGrow) {
             // Unbiased without the clamp: at 256 paths × 16 frames the surface means agree
             // with the path tracer within 1% (measured; 1024 × 64: 0.4%); 3% catches a lost
             // bounce order (the old 5-bounce cap cost 2-3%) or a missing factor.
-            if (paths == 256u) EXPECT_NEAR(ratio, 1.0, 0.03) << c;
+            if (paths == 256u) {
+                EXPECT_NEAR(ratio, 1.0, 0.03) << c;
+            }
         }
         std::printf("\n");
         EXPECT_LT(err, prev);

@@ -93,7 +93,9 @@ TEST(IcOctree, LookupEqualsBruteForceOverAllRecords) {
             glm::vec3 e;
             const float w = cache.lookup(x, n, &e);
             ASSERT_NEAR(w, wsum, 1e-4 * wsum + 1e-6) << "query " << q;
-            if (wsum > 0) ASSERT_NEAR(e.x, esum / wsum, 1e-4);
+            if (wsum > 0) {
+                ASSERT_NEAR(e.x, esum / wsum, 1e-4);
+            }
         }
         cache.rebuild({0, 0, 0}, {1, 1, 1});  // the same answers after a rebuild
     }

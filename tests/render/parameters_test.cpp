@@ -97,7 +97,8 @@ TEST(Parameters, KnownDefaultsAndRanges) {
     };
     check("--spp", "16", "1..1000000");
     check("--tile", "3", "1..8");
-    check("--clamp", "0.05", ">= 0");
+    check("--clamp", "0.1", ">= 0");
+    check("--clamp-decay", "0.25", "[0, 1]");
     check("--ic-error", "0.3", "[0.001, 2]");
     check("--ais-id-cov", "2", "> 0");
     check("--checkpoint-interval", "120", ">= 0");
