@@ -111,9 +111,8 @@ bool have_sibenik(const DataPath& data) {
     return false;
 }
 
-Scene cornell() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
 
-TEST(OpenCLGpuVariant, SameHitsAsFullStackOnTheCornellBox) { expect_same_hits(cornell()); }
+TEST(OpenCLGpuVariant, SameHitsAsFullStackOnTheCornellBox) { expect_same_hits(test::cornell_box()); }
 
 TEST(OpenCLGpuVariant, SameHitsAsFullStackOnSibenik) {
     DataPath data = make_data_path(std::nullopt);
@@ -130,13 +129,13 @@ TEST(OpenCLGpuVariant, SameHitsWithAOneEntryRingOnSibenik) {
 
 TEST(OpenCLGpuVariant, SameHitsWithAOneEntryRingOnTheCornellBox) {
     ScopedClOptions opts("-DTS_BVH_SHORT_STACK=1");
-    expect_same_hits(cornell());
+    expect_same_hits(test::cornell_box());
 }
 
 // The ring size is checked: a size that is not a power of two does not build (so the
 // one-entry tests above really changed the kernel).
 TEST(OpenCLGpuVariant, RingSizeMustBeAPowerOfTwo) {
-    const Scene scene = cornell();
+    const Scene scene = test::cornell_box();
     SceneBuffers buffers = make_scene_buffers(scene);
     ScopedClOptions opts("-DTS_BVH_SHORT_STACK=3");
     auto gpu = opencl(buffers, scene, true);

@@ -11,15 +11,13 @@
 namespace tessera {
 namespace {
 
-Scene cornell() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
-
 const char* name(BackendKind k) { return k == BackendKind::Embree ? "embree" : "opencl"; }
 
 TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
     // Thresholds below 0 flag every pixel, and A-MAX then gives each all N sets: every
     // component must equal the non-interleaved estimate, the mean over all N sets of the
     // same frame (own set first, then the others in increasing order), bit for bit.
-    Scene s = cornell();
+    Scene s = test::cornell_box();
     SceneBuffers b = make_scene_buffers(s);
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         auto be = make_backend({kind, ""}, b, plan_effects(s));
@@ -68,7 +66,7 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
 TEST(Ais, SchedulesAgreeAcrossBackends) {
     // The schedule is host code over each backend's base pass; the base passes differ
     // only by traversal rounding, so the schedules agree on >= 99.9% of pixels.
-    Scene s = cornell();
+    Scene s = test::cornell_box();
     SceneBuffers b = make_scene_buffers(s);
     std::array<AisSchedule, 2> sched;
     int i = 0;
@@ -107,7 +105,7 @@ TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
     // were measured with): the test is about the schedule, and at the default c = 0.1 the
     // sets differ less, so A's margin over IGI shrinks (mean 0.996, measured) while both
     // errors fall (docs/igi.md section 4).
-    Scene s = cornell();
+    Scene s = test::cornell_box();
     RenderSettings ref;
     ref.method = Method::PathTrace;
     ref.max_scatter = 1;

@@ -16,10 +16,8 @@
 namespace tessera {
 namespace {
 
-Scene cornell() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
-
 TEST(ClampDecay, PassClampGrowsAsPassPowerWhereVplsAreFresh) {
-    const Scene s = cornell();
+    const Scene s = test::cornell_box();
     const SceneBuffers buffers = make_scene_buffers(s);
     const EffectPlan plan = plan_effects(s);
     auto backend = make_backend({BackendKind::Embree, ""}, buffers, plan);
@@ -62,7 +60,7 @@ TEST(ClampDecay, PassMeanRecoversTheClampedEnergy) {
     // darkens the Cornell box's indirect light in every pass; with the decay, the mean
     // of 64 passes is close to the unclamped image's. The unclamped image (c = 0) is the
     // same estimator without the bound, unbiased (IgiConvergence in igi_test.cpp).
-    const Scene s = cornell();
+    const Scene s = test::cornell_box();
     RenderSettings rs;
     rs.method = Method::Igi;
     rs.width = rs.height = 16;

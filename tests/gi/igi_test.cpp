@@ -17,8 +17,6 @@
 namespace tessera {
 namespace {
 
-Scene cornell() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
-
 uint32_t path_of(const VplList& v, size_t i) {
     uint32_t p;
     std::memcpy(&p, &v.vpls[i * TS_VPL_FLOATS + TS_VPL_PATH], 4);
@@ -26,7 +24,7 @@ uint32_t path_of(const VplList& v, size_t i) {
 }
 
 TEST(Vpls, SetsOwnDisjointPathBlocksAndRepeatExactly) {
-    Scene s = cornell();
+    Scene s = test::cornell_box();
     SceneBuffers b = make_scene_buffers(s);
     auto em = make_backend({BackendKind::Embree, ""}, b, plan_effects(s));
     VplSettings vs;
@@ -87,7 +85,7 @@ TEST(IgiAgreement, BackendsRenderTheSameFrame) {
     // Same seed: the same VPLs (previous test) and the same light samples, so the
     // backends differ only by traversal rounding; the yardstick is the frame-to-frame
     // noise (relMSE between two passes' VPL sets).
-    Scene s = cornell();
+    Scene s = test::cornell_box();
     RenderSettings rs;
     rs.method = Method::Igi;
     rs.width = rs.height = 48;
@@ -126,7 +124,7 @@ TEST(IgiConvergence, ApproachesPathTracedSingleScatteringAsVplsGrow) {
     // transport that `pt --max-scatter 1` computes (diffuse surfaces; direct light by
     // area samples, indirect by VPLs). Its error against a converged pt render must fall
     // as the VPL count grows: the sweep 4, 16, 64, 256 paths per frame over 16 frames.
-    Scene s = cornell();
+    Scene s = test::cornell_box();
     RenderSettings ref;
     ref.method = Method::PathTrace;
     ref.max_scatter = 1;

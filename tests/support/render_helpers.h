@@ -13,9 +13,13 @@
 #include "device/effect_plan.h"
 #include "render/renderer.h"
 #include "device/scene_buffers.h"
+#include "scene/loader.h"
 #include "scene/scene.h"
 
 namespace tessera::test {
+
+/// The default scene (scenes/cornell-box.json), loaded without a data directory.
+inline Scene cornell_box() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
 
 inline Image render_with(BackendKind kind, const Scene& scene, const RenderSettings& settings) {
     SceneBuffers buffers = make_scene_buffers(scene);
