@@ -23,6 +23,7 @@
 #include "util/error.h"
 
 #include "backend/embree_tracer.h"
+#include "backend/embree_media_packets.h"
 #include "backend/embree_packets.h"
 
 // TS_HAS_TEXTURES and TS_HAS_MEDIUM are defined for all C++ code (CMakeLists.txt): a
@@ -82,6 +83,7 @@ protected:
         sv.items = items.data();
         if (packets_ && k == KernelId::IgiSurface) return igi_surface_packets(sv, tracer_, frame, out);
         if (packets_ && k == KernelId::AisItem) return ais_item_packets(sv, tracer_, frame, count, out);
+        if (packets_ && k == KernelId::IgiMedia) return igi_media_packets(sv, tracer_, frame, out);
         switch (k) {
 #define TS_EMBREE_DISPATCH(id, name, program, floats, words, fn) \
     case KernelId::id: return dispatch<floats, words>(sv, frame, count, out, ts::fn);

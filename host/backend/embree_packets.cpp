@@ -10,6 +10,7 @@
 #include <tbb/parallel_for.h>
 
 #include "backend/embree_lanes.h"
+#include "backend/embree_media_packets.h"
 #include "backend/embree_packets.h"
 #include "bvh/embree_device.h"
 
@@ -153,6 +154,31 @@ void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const 
     }
 }
 
+// The media part of the packet's AIS items (ts_ais_item_media): the items with
+// TS_COMPONENT_PM march side by side, set by set (embree_media_packets.h). `out`: the
+// packet's first item's output.
+void ais_media(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, const Packet& p,
+               const std::array<uint32_t, kLanes>& px, const std::array<uint32_t, kLanes>& py, float* out) {
+    MarchLanes lanes;
+    std::array<std::array<float, TS_IGI_MEDIA_FLOATS>, kLanes> media{};  // LIT and LENGTH cleared
+    std::array<float*, kLanes> o{};
+    bool any = false;
+    lanes.lanes = p.lanes;
+    for (int i = 0; i < p.lanes; ++i) {
+        lanes.px[i] = px[i];
+        lanes.py[i] = py[i];
+        lanes.k[i] = p.set[i];
+        lanes.on[i] = (p.mask[i] & TS_COMPONENT_PM) != 0;
+        any |= lanes.on[i];
+        o[i] = media[i].data();
+    }
+    if (!any) return;
+    march_packet(sv, tracer, frame, lanes, false, o);  // items: pixels scattered over edges
+    for (int i = 0; i < p.lanes; ++i)
+        for (int c = 0; lanes.on[i] && c < 3; ++c)
+            out[i * TS_AIS_ITEM_FLOATS + TS_AIS_ITEM_PM + c] = media[i][TS_IGI_MEDIA_RADIANCE + c];
+}
+
 void ais_packet(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, size_t first,
                 size_t count, std::vector<float>& out) {
     Packet p;
@@ -170,15 +196,13 @@ void ais_packet(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsF
     }
     gather_links(sv, tracer, frame, p, false);  // AIS items: pixels scattered over edges
     for (int i = 0; i < p.lanes; ++i) {
-        float* o = &out[(first + i) * TS_AIS_ITEM_FLOATS];
-        if (hit[i]) {
-            ts::float3 e_ss, e_id;
-            float visible;
-            ts::ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
-            ts::ts_ais_item_store_surface(e_ss, e_id, o);
-        }
-        ts::ts_ais_item_media(&sv, &tracer, &frame, px[i], py[i], p.set[i], p.mask[i], o);
+        if (!hit[i]) continue;
+        ts::float3 e_ss, e_id;
+        float visible;
+        ts::ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
+        ts::ts_ais_item_store_surface(e_ss, e_id, &out[(first + i) * TS_AIS_ITEM_FLOATS]);
     }
+    ais_media(sv, tracer, frame, p, px, py, &out[first * TS_AIS_ITEM_FLOATS]);
 }
 
 }  // namespace

@@ -38,11 +38,13 @@ constexpr size_t kLanes = TS_PACKET_LANES;
 const char* packet_kernel(KernelId id) {
     if (id == KernelId::IgiSurface) return "igi_surface_packets";
     if (id == KernelId::AisItem) return "ais_extra_packets";
+    if (id == KernelId::IgiMedia) return "igi_media_packets";
     return nullptr;
 }
 
 size_t packet_work_items(KernelId id, const TsFrame& frame, size_t count) {
-    return id == KernelId::IgiSurface ? ts::ts_packet_block_count(&frame) : (count + kLanes - 1) / kLanes;
+    const bool blocks = id == KernelId::IgiSurface || id == KernelId::IgiMedia;
+    return blocks ? ts::ts_packet_block_count(&frame) : (count + kLanes - 1) / kLanes;
 }
 
 class OpenCLBackend final : public Backend {

@@ -277,31 +277,158 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
  * path tracer at 48² (relMSE 0.0029 in each case; single scattering alone: 2.3 s). */
 #define TS_IGI_MEDIA_VPL_THINNING 2u
 
-/* In-scattered radiance per unit sigma_s at medium point x toward the camera (whose ray
- * runs along unit `dir`), from the VPLs of set k whose index in the set is r modulo
- * `stride`, times `stride`: the ray march's step r gathers that share of the set, so a
- * pixel traces one shadow ray per VPL over all its steps, as a surface does (ours,
- * docs/igi.md §6). A VPL of intensity C·e toward x (ts_vpl_emission_factor) adds
- * C · Tr · min(e · phase(dir, ω_i) / d², b): the geometry clamp b bounds every VPL's
- * contribution by C·b, as at surfaces (shared/vpl.h). */
+/* One pixel's ray march for sample set k (ts_igi_media_set, which documents the
+ * estimator), in steps a packet dispatch can interleave across pixels: the Embree
+ * backend runs 16 marches of one set side by side and traces each link of a step (the
+ * light sample, each VPL of the step's share: the same for all 16) as one packet
+ * (host/backend/embree_media_packets.cpp). Every lane makes the calls ts_igi_media_set
+ * makes, in the same order, so its sums are the same bit for bit.
+ * ray: the camera ray; prng: the set's phase-sample stream; [t0, t1]: the camera
+ * segment in the medium (scene units along ray), marched in steps of `step` when
+ * `active`; L: the in-scattered radiance so far; lit: the steps whose light sample was
+ * visible. */
+typedef struct TsIgiMarch {
+    TsRay ray;
+    TsRng prng;
+    float t0, t1, step;
+    float3 L;
+    uint lit;
+    int active;
+} TsIgiMarch;
+
+/* Traces pixel (px, py)'s camera ray and clips its segment to the medium. An escaping
+ * ray ends at the medium's box, or for a medium filling space at igi_march_far, beyond
+ * which nothing can light it. */
+TS_INLINE TsIgiMarch ts_igi_march_begin(const TsTracer* tracer, const TsFrame* f, const TsMedium* med, uint px,
+                                        uint py, uint k) {
+    TsIgiMarch m;
+    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
+    m.ray = ts_igi_camera_ray(f, px, py, &rng);
+    /* The phase samples of set k come from their own stream, so each set's estimate is
+     * independent of which other sets a pixel evaluates. */
+    m.prng = ts_rng_seed(f->seed ^ 0x5bd1e995u, (py * f->width + px) * 64u + k, f->pass);
+    m.L = make_float3(0.0f, 0.0f, 0.0f);
+    m.lit = 0u;
+    TsHit hit = ts_trace_closest(tracer, m.ray);
+    m.t0 = 0.0f;
+    m.t1 = hit.prim != TS_NO_HIT ? hit.t : (med->bounded ? TS_INF : f->igi_march_far);
+    m.active = ts_medium_clip(med, m.ray.org, m.ray.dir, &m.t0, &m.t1) && f->igi_steps > 0u;
+    m.step = m.active ? (m.t1 - m.t0) / (float)f->igi_steps : 0.0f;
+    return m;
+}
+
+/* Distance along the camera ray of step i: offset by (k + ξ)/N of a step for set k. */
+TS_INLINE float ts_igi_march_t(const TsFrame* f, const TsIgiMarch* m, uint k, uint i) {
+    float N = (float)(f->igi_tile * f->igi_tile);
+    return m->t0 + ((float)i + ((float)k + f->igi_rotation[0]) / N) * m->step;
+}
+
+/* Step i's light-sample link at medium point x: one of set k's light samples, taken in
+ * turn. Returns 0 when the sample faces away (nothing to trace); else the shadow ray,
+ * the sample's radiance and its weight phase · w_MIS / pdf (per steradian), for
+ * ts_igi_march_light_add when the ray is unoccluded. */
+TS_INLINE int ts_igi_march_light_link(const TsSceneView* sv, const TsFrame* f, const TsMedium* med,
+                                      const TsIgiMarch* m, float3 x, uint k, uint i, TsRay* shadow,
+                                      float3* radiance, float* w) {
+    uint n = f->shadow_samples;
+    float3 q = ts_igi_light_point(f, k * n + i % n);
+    TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
+    float3 d = ls.position - x;
+    float dist2 = dot(d, d);
+    float3 wi = d / sqrt(dist2);
+    float cos_y = -dot(ls.normal, wi);
+    if (!(cos_y > 0.0f)) return 0;
+    *shadow = ts_shadow_ray(x, ls.position, ls.normal, ls.pos_scale);
+    float pl = ls.pdf_area * dist2 / cos_y;
+    float phase = ts_hg_phase(dot(m->ray.dir, wi), med->g);
+    *radiance = ls.radiance;
+    *w = phase * ts_power_heuristic(pl, phase) / pl;
+    return 1;
+}
+
+/* Adds a visible light-sample link (ts_igi_march_light_link) to the step's
+ * in-scattered light `in`, with the medium's transmittance along its shadow ray. */
+TS_INLINE void ts_igi_march_light_add(TsIgiMarch* m, const TsMedium* med, TsRay shadow, float3 radiance, float w,
+                                      float3* in) {
+    ++m->lit;
+    float3 tr = ts_medium_transmittance(med, shadow.org, shadow.dir, 0.0f, 1.0f);
+    *in += radiance * tr * w;
+}
+
+/* Adds the phase-sampled half of step i's MIS at medium point x to `in`: a
+ * Henyey–Greenstein direction (weight phase/pdf = 1) traced to whatever emitter it
+ * meets (ts_igi_emitter_along). Draws two numbers from the march's phase stream. */
+TS_INLINE void ts_igi_march_phase_add(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                      const TsMedium* med, TsIgiMarch* m, float3 x, float3* in) {
+    float3 wp = ts_sample_hg(m->ray.dir, med->g, ts_rng_next(&m->prng), ts_rng_next(&m->prng));
+    float pl2;
+    float3 le = ts_igi_emitter_along(sv, tracer, f, med, x, wp, &pl2);
+    if (pl2 > 0.0f) *in += le * ts_power_heuristic(ts_hg_phase(dot(m->ray.dir, wp), med->g), pl2);
+}
+
+/* The share of set k's VPLs that step i gathers: indices *first, *first + *stride, ...
+ * below sv->vpl_set_start[k + 1], each weighted by *stride (ts_igi_media_vpls). */
+TS_INLINE void ts_igi_march_vpl_share(const TsSceneView* sv, const TsFrame* f, uint k, uint i, uint* first,
+                                      uint* stride) {
+    *stride = TS_IGI_MEDIA_VPL_THINNING * f->igi_steps;
+    *first = sv->vpl_set_start[k] + (i + k) % *stride;
+}
+
+/* VPL `vpl`'s link at medium point x on a camera ray along unit `dir`: 0 when the VPL
+ * sends nothing toward x (nothing to trace); else the shadow ray and the clamped weight
+ * w = min(e · phase(dir, ω_i) / d², b) with e the VPL's emission factor toward x
+ * (ts_vpl_emission_factor) and b the geometry clamp, so every VPL adds at most C·b, as at
+ * surfaces (shared/vpl.h). A visible link adds C · Tr · w (ts_vpl_gather_add). */
+TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, float3 x, float3 dir,
+                                    TS_GLOBAL const float* vpl, TsRay* shadow, float* w) {
+    float3 d = ts_f3_load(vpl + TS_VPL_POSITION) - x;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0.0f)) return 0;
+    float3 wi = d / sqrt(dist2);
+    float e = ts_vpl_emission_factor(vpl, -wi, med->g);
+    if (!(e > 0.0f)) return 0;
+    *shadow = ts_vpl_shadow_ray(x, vpl);
+    *w = fmin(e * ts_hg_phase(dot(dir, wi), med->g) / dist2, f->igi_g_clamp);
+    return 1;
+}
+
+/* In-scattered radiance per unit sigma_s at medium point x toward the camera, from the
+ * share of set k's VPLs that step i gathers (ts_igi_march_vpl_share), times the share's
+ * stride: over all its steps a pixel traces one shadow ray per VPL, as a surface does
+ * (ours, docs/igi.md §6). */
 TS_INLINE float3 ts_igi_media_vpls(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                   const TsMedium* med, float3 x, float3 dir, uint k, uint r, uint stride) {
+                                   const TsMedium* med, float3 x, float3 dir, uint k, uint i) {
     float3 sum = make_float3(0.0f, 0.0f, 0.0f);
-    uint first = sv->vpl_set_start[k], end = sv->vpl_set_start[k + 1u];
-    for (uint j = first + r; j < end; j += stride) {
+    uint first, stride;
+    ts_igi_march_vpl_share(sv, f, k, i, &first, &stride);
+    for (uint j = first; j < sv->vpl_set_start[k + 1u]; j += stride) {
         TS_GLOBAL const float* vpl = sv->vpls + j * TS_VPL_FLOATS;
-        float3 d = ts_f3_load(vpl + TS_VPL_POSITION) - x;
-        float dist2 = dot(d, d);
-        if (!(dist2 > 0.0f)) continue;
-        float3 wi = d / sqrt(dist2);
-        float e = ts_vpl_emission_factor(vpl, -wi, med->g);
-        if (!(e > 0.0f)) continue;
-        TsRay shadow = ts_vpl_shadow_ray(x, vpl);
-        if (ts_trace_occluded(tracer, shadow)) continue;
-        float w = fmin(e * ts_hg_phase(dot(dir, wi), med->g) / dist2, f->igi_g_clamp);
-        sum += ts_f3_load(vpl + TS_VPL_FLUX) * ts_shadow_transmittance(med, shadow) * w;
+        TsRay shadow;
+        float w;
+        if (ts_igi_march_vpl_link(f, med, x, dir, vpl, &shadow, &w) && !ts_trace_occluded(tracer, shadow))
+            ts_vpl_gather_add(&sum, vpl, med, shadow, w);
     }
     return sum * (float)stride;
+}
+
+/* Ends step i at distance t: adds its in-scattered light `in`, attenuated back to the
+ * segment's start, to the march's radiance. */
+TS_INLINE void ts_igi_march_step_end(TsIgiMarch* m, const TsMedium* med, float t, float3 in) {
+    m->L += med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0))) * in * m->step;
+}
+
+/* Writes the march's TS_IGI_MEDIA_FLOATS values: its radiance, the segment's
+ * transmittance, and (when the segment met the medium) the lit fraction of the steps and
+ * the segment's length; the caller cleared LIT and LENGTH. */
+TS_INLINE void ts_igi_march_end(const TsFrame* f, const TsIgiMarch* m, const TsMedium* med, float* out) {
+    float3 T = make_float3(1.0f, 1.0f, 1.0f);
+    if (m->active) {
+        T = ts_exp3(med->sigma_t * (-(m->t1 - m->t0)));
+        out[TS_IGI_MEDIA_LIT] = (float)m->lit / (float)f->igi_steps;
+        out[TS_IGI_MEDIA_LENGTH] = m->t1 - m->t0;
+    }
+    ts_f3_store(out + TS_IGI_MEDIA_RADIANCE, m->L);
+    ts_f3_store(out + TS_IGI_MEDIA_TRANSMITTANCE, T);
 }
 
 /* Media estimate of sample set k for pixel (px, py): single scattering from the lights
@@ -314,64 +441,27 @@ TS_INLINE float3 ts_igi_media_vpls(const TsSceneView* sv, const TsTracer* tracer
  * view gets phase values near 1e5). With f->igi_media_vpls each step also gathers its
  * share of set k's VPLs (ts_igi_media_vpls): light scattered more than once. Also the
  * segment's transmittance, the lit fraction of the steps and the segment's length in the
- * medium. Writes TS_IGI_MEDIA_FLOATS values. */
+ * medium. Writes TS_IGI_MEDIA_FLOATS values (the caller cleared LIT and LENGTH). */
 TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px,
                                 uint py, uint k, float* out) {
-    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
-    TsRay ray = ts_igi_camera_ray(f, px, py, &rng);
-    /* The phase samples of set k come from their own stream, so each set's estimate is
-     * independent of which other sets a pixel evaluates. */
-    TsRng prng = ts_rng_seed(f->seed ^ 0x5bd1e995u, (py * f->width + px) * 64u + k, f->pass);
     TsMedium med = ts_medium_load(sv->medium);
-    float3 L = make_float3(0.0f, 0.0f, 0.0f), T = make_float3(1.0f, 1.0f, 1.0f);
-    uint lit = 0u;
-    TsHit hit = ts_trace_closest(tracer, ray);
-    /* An escaping ray ends at the medium's box, or for a medium filling space at
-     * igi_march_far, beyond which nothing can light it. */
-    float t0 = 0.0f, t1 = hit.prim != TS_NO_HIT ? hit.t : (med.bounded ? TS_INF : f->igi_march_far);
-    uint N = f->igi_tile * f->igi_tile, m = f->shadow_samples;
-    if (ts_medium_clip(&med, ray.org, ray.dir, &t0, &t1) && f->igi_steps > 0u) {
-        float step = (t1 - t0) / (float)f->igi_steps;
-        float xi = f->igi_rotation[0];
-        for (uint i = 0u; i < f->igi_steps; ++i) {
-            float t = t0 + ((float)i + ((float)k + xi) / (float)N) * step;
-            float3 x = ray.org + ray.dir * t;
-            float3 in = make_float3(0.0f, 0.0f, 0.0f);
-            /* Light sampling. */
-            float3 q = ts_igi_light_point(f, k * m + i % m);
-            TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
-            float3 d = ls.position - x;
-            float dist2 = dot(d, d);
-            float3 wi = d / sqrt(dist2);
-            float cos_y = -dot(ls.normal, wi);
-            if (cos_y > 0.0f) {
-                TsRay shadow = ts_shadow_ray(x, ls.position, ls.normal, ls.pos_scale);
-                if (!ts_trace_occluded(tracer, shadow)) {
-                    ++lit;
-                    float pl = ls.pdf_area * dist2 / cos_y;
-                    float phase = ts_hg_phase(dot(ray.dir, wi), med.g);
-                    float3 tr = ts_medium_transmittance(&med, shadow.org, shadow.dir, 0.0f, 1.0f);
-                    in += ls.radiance * tr * (phase * ts_power_heuristic(pl, phase) / pl);
-                }
-            }
-            /* Phase sampling: the weight phase/pdf is 1. */
-            float3 wp = ts_sample_hg(ray.dir, med.g, ts_rng_next(&prng), ts_rng_next(&prng));
-            float pl2;
-            float3 le = ts_igi_emitter_along(sv, tracer, f, &med, x, wp, &pl2);
-            if (pl2 > 0.0f) in += le * ts_power_heuristic(ts_hg_phase(dot(ray.dir, wp), med.g), pl2);
-            /* Multiple scattering: light that reached the medium or a surface first. */
-            if (f->igi_media_vpls) {
-                uint stride = TS_IGI_MEDIA_VPL_THINNING * f->igi_steps;
-                in += ts_igi_media_vpls(sv, tracer, f, &med, x, ray.dir, k, (i + k) % stride, stride);
-            }
-            L += med.sigma_s * ts_exp3(med.sigma_t * (-(t - t0))) * in * step;
-        }
-        T = ts_exp3(med.sigma_t * (-(t1 - t0)));
-        out[TS_IGI_MEDIA_LIT] = (float)lit / (float)f->igi_steps;
-        out[TS_IGI_MEDIA_LENGTH] = t1 - t0;
+    TsIgiMarch m = ts_igi_march_begin(tracer, f, &med, px, py, k);
+    for (uint i = 0u; m.active && i < f->igi_steps; ++i) {
+        float t = ts_igi_march_t(f, &m, k, i);
+        float3 x = m.ray.org + m.ray.dir * t;
+        float3 in = make_float3(0.0f, 0.0f, 0.0f);
+        TsRay shadow;
+        float3 radiance;
+        float w;
+        if (ts_igi_march_light_link(sv, f, &med, &m, x, k, i, &shadow, &radiance, &w) &&
+            !ts_trace_occluded(tracer, shadow))
+            ts_igi_march_light_add(&m, &med, shadow, radiance, w, &in);
+        ts_igi_march_phase_add(sv, tracer, f, &med, &m, x, &in);
+        /* Multiple scattering: light that reached the medium or a surface first. */
+        if (f->igi_media_vpls) in += ts_igi_media_vpls(sv, tracer, f, &med, x, m.ray.dir, k, i);
+        ts_igi_march_step_end(&m, &med, t, in);
     }
-    ts_f3_store(out + TS_IGI_MEDIA_RADIANCE, L);
-    ts_f3_store(out + TS_IGI_MEDIA_TRANSMITTANCE, T);
+    ts_igi_march_end(f, &m, &med, out);
 }
 
 /* Media part of one igi frame for pixel (px, py), its own sample set. */
