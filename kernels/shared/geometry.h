@@ -28,6 +28,29 @@ TS_INLINE float ts_f3_get(float3 a, int i) { return i == 0 ? a.x : (i == 1 ? a.y
 
 TS_INLINE float ts_max_abs3(float3 a) { return fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z))); }
 
+/* Clips the ray interval (*t0, *t1) of org + t dir to the box [box_min, box_max] (a slab
+ * test; a zero direction component keeps the interval when org lies within that slab);
+ * returns whether the clipped interval is non-empty. */
+TS_INLINE int ts_ray_box_clip(float3 org, float3 dir, float3 box_min, float3 box_max, float* t0, float* t1) {
+    float lo = *t0, hi = *t1;
+    float o[3] = {org.x, org.y, org.z}, d[3] = {dir.x, dir.y, dir.z};
+    float bmin[3] = {box_min.x, box_min.y, box_min.z};
+    float bmax[3] = {box_max.x, box_max.y, box_max.z};
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0f) {
+            if (o[a] < bmin[a] || o[a] > bmax[a]) return 0;
+            continue;
+        }
+        float inv = 1.0f / d[a];
+        float ta = (bmin[a] - o[a]) * inv, tb = (bmax[a] - o[a]) * inv;
+        lo = fmax(lo, fmin(ta, tb));
+        hi = fmin(hi, fmax(ta, tb));
+    }
+    *t0 = lo;
+    *t1 = hi;
+    return *t0 < *t1;
+}
+
 /* Offsets a surface point along the unit geometric normal `n` (pointing to the side the
  * new ray leaves from), so that a ray started there cannot hit the surface it starts on,
  * at any scene scale and any distance from the origin. `scale` bounds the magnitude of

@@ -44,24 +44,7 @@ TS_INLINE float ts_mean3(float3 x) { return (x.x + x.y + x.z) * (1.0f / 3.0f); }
  * For a bounded medium this is a slab test against the box. */
 TS_INLINE int ts_medium_clip(const TsMedium* m, float3 org, float3 dir, float* t0, float* t1) {
     if (!m->present) return 0;
-    if (m->bounded) {
-        float lo = *t0, hi = *t1;
-        float o[3] = {org.x, org.y, org.z}, d[3] = {dir.x, dir.y, dir.z};
-        float bmin[3] = {m->box_min.x, m->box_min.y, m->box_min.z};
-        float bmax[3] = {m->box_max.x, m->box_max.y, m->box_max.z};
-        for (int a = 0; a < 3; ++a) {
-            if (d[a] == 0.0f) {
-                if (o[a] < bmin[a] || o[a] > bmax[a]) return 0;
-                continue;
-            }
-            float inv = 1.0f / d[a];
-            float ta = (bmin[a] - o[a]) * inv, tb = (bmax[a] - o[a]) * inv;
-            lo = fmax(lo, fmin(ta, tb));
-            hi = fmin(hi, fmax(ta, tb));
-        }
-        *t0 = lo;
-        *t1 = hi;
-    }
+    if (m->bounded) return ts_ray_box_clip(org, dir, m->box_min, m->box_max, t0, t1);
     return *t0 < *t1;
 }
 
