@@ -31,7 +31,9 @@ TEST(Interleave, WorkItemsVisitEveryPixelOnceGroupedBySet) {
                 ASSERT_LT(y, h);
                 ++seen[y * w + x];
                 const uint32_t k = ts::ts_igi_set(x, y, n);
-                if (n > 1) ASSERT_GE(k, prev_set) << "work-items must run set by set";
+                if (n > 1) {
+                    ASSERT_GE(k, prev_set) << "work-items must run set by set";
+                }
                 prev_set = k;
             }
             for (int c : seen) ASSERT_EQ(c, 1) << "n " << n << " size " << w << "x" << h;
