@@ -259,7 +259,7 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
         }
         s.flagged[c] = pixels ? double(flagged) / pixels : 0.0;
     }
-    // Items grouped by set, then by pixel, over the pixels that have extra sets at all.
+    // Items grouped by set, then by tile and pixel, over the pixels that have extra sets at all.
     std::vector<uint32_t> refined;
     for (size_t p = 0; p < pixels; ++p) {
         uint64_t extra = 0;
@@ -267,6 +267,14 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
             if (!s.masks[c].empty()) extra |= s.masks[c][p];
         if (std::popcount(extra) > 1) refined.push_back(static_cast<uint32_t>(p));
     }
+    // Within a set, items run tile by tile (kItemTile² pixels, rows of tiles, scanline inside
+    // a tile), so the 16 consecutive items a packet backend traces together lie close on
+    // screen. Each pixel still adds its sets in increasing order: images do not change.
+    const uint32_t tiles_x = (static_cast<uint32_t>(width) + kItemTile - 1) / kItemTile;
+    auto tile_of = [&](uint32_t p) {
+        return (p / width / kItemTile) * tiles_x + (p % width) / kItemTile;
+    };
+    std::stable_sort(refined.begin(), refined.end(), [&](uint32_t a, uint32_t b) { return tile_of(a) < tile_of(b); });
     for (int k = 0; k < sets; ++k)
         for (uint32_t p : refined) {
             if (k == interleave_set(static_cast<int>(p % width), static_cast<int>(p / width), tile)) continue;

@@ -109,13 +109,20 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
 /// Unflagged pixels keep their own set only. Tile edge n ≤ 8, so a set fits in 64 bits.
 /// A guidance without `grade` maps grades by g; one without `missing` misses no sets and
 /// one without `held` counts only the pixel's own set as held.
+/// Tile edge (pixels) of the items' order within a set. On Sibenik at 512² (AIS, 0.8 extra
+/// sets per pixel) the items' pass took 25% less time on OpenCL (PoCL packets) and about
+/// 8% less on Embree with 16-pixel tiles than in scanline order; 4 to 32 measured alike.
+constexpr uint32_t kItemTile = 16;
+
 struct AisSchedule {
     /// Per component and pixel: bit j set when the pixel evaluates set j (own set included).
     std::array<std::vector<uint64_t>, kAisComponents> masks;
     /// Per component and pixel: the number of sets evaluated (popcount of the mask).
     std::array<std::vector<uint8_t>, kAisComponents> sets;
     /// Work items: the pixel index and the set to evaluate, grouped by set (coherent
-    /// dispatch: consecutive items share VPLs and light samples), then by pixel.
+    /// dispatch: consecutive items share VPLs and light samples), then by kItemTile ×
+    /// kItemTile pixel tile (rows of tiles), then by pixel (so 16 consecutive items lie
+    /// close on screen: their packets' rays start close together).
     std::vector<uint32_t> item_pixels;
     std::vector<uint8_t> item_sets;
     /// Per item: bit c set when component c is evaluated for it.

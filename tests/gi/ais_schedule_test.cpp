@@ -2,6 +2,9 @@
 // flagged, A grades and A-MAX saturates, and the schedule is deterministic.
 #include "gi/ais_schedule.h"
 
+#include <set>
+#include <utility>
+
 #include <gtest/gtest.h>
 
 namespace tessera {
@@ -166,6 +169,38 @@ TEST(AisSchedule, AAtADepthEdgeCompletesMissingSetsUpToTheThreshold) {
     EXPECT_EQ(m.item_pixels.size(), size_t(2 * H * 8));
     EXPECT_EQ(full.item_pixels.size(), size_t(2 * (H - 2) * 3 + 4 * 2));
     EXPECT_EQ(a.item_pixels.size(), size_t(4));
+}
+
+TEST(AisSchedule, ItemsRunSetBySetThenTileByTile) {
+    // A-MAX on a 40×36 image flagging a diagonal line and row 20 (ID g = 1): every flagged
+    // pixel gets its 8 other sets. Items must come set by set, within a set by
+    // kItemTile-pixel tile (rows of tiles) and within a tile in scanline order, each
+    // (pixel, set) once.
+    const int w = 40, h = 36;
+    AisGuidance g;
+    g.g[kAisID].assign(w * h, 0.0f);
+    for (int y = 0; y < h; ++y) g.g[kAisID][y * w + (y + 3) % w] = 1.0f;
+    for (int x = 0; x < w; ++x) g.g[kAisID][20 * w + x] = 1.0f;
+    size_t flagged = 0;
+    for (float v : g.g[kAisID]) flagged += v > 0.0f;
+    const AisSchedule s = make_schedule(g, AisThresholds{}, AisMode::AMax, w, h, 3);
+    ASSERT_EQ(s.item_pixels.size(), flagged * 8);
+    const uint32_t tiles_x = (w + kItemTile - 1) / kItemTile;
+    auto tile = [&](uint32_t p) { return (p / w / kItemTile) * tiles_x + (p % w) / kItemTile; };
+    std::set<std::pair<uint32_t, uint8_t>> seen;
+    int tile_changes = 0;
+    for (size_t i = 0; i < s.item_pixels.size(); ++i) {
+        ASSERT_TRUE(seen.insert({s.item_pixels[i], s.item_sets[i]}).second) << "item " << i << " repeats";
+        if (i == 0) continue;
+        const uint32_t a = s.item_pixels[i - 1], b = s.item_pixels[i];
+        if (s.item_sets[i] != s.item_sets[i - 1]) {
+            ASSERT_GT(s.item_sets[i], s.item_sets[i - 1]) << "item " << i;
+            continue;
+        }
+        ASSERT_TRUE(tile(a) < tile(b) || (tile(a) == tile(b) && a < b)) << "item " << i << ": " << a << " then " << b;
+        tile_changes += tile(a) != tile(b);
+    }
+    EXPECT_GT(tile_changes, 9 * 3);  // row 20 crosses three tiles in every set: not scanline
 }
 
 TEST(AisSchedule, RepeatRunsAreBitIdentical) {
