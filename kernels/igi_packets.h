@@ -105,101 +105,18 @@ void igi_surface_packets(TS_KERNEL_ARGS) {
     }
 }
 
+/* The tracer's packet query for shared/igi_march16.h (which documents it): the rays of
+ * the lanes in `valid` as one ts_bvh_occluded16 packet. Every lane's ray is copied (the
+ * march keeps them finite); only the valid lanes are traced. */
+static inline uint ts_trace_occluded_lanes(const TsTracer* tracer, const TsRay* rays, uint valid) {
+    float a[8][TS_PACKET_LANES];
+    for (int l = 0; l < TS_PACKET_LANES; ++l) ts_ray16_put(a, l, rays[l]);
+    TsRay16 r = ts_ray16_load(a);
+    return ts_bvh_occluded16(tracer->nodes, tracer->tris, &r, valid);
+}
+#include "shared/igi_march16.h"
+
 #ifdef TS_HAS_MEDIUM
-/* The visible lanes among `valid` of the rays laid out in `rays`, traced as one packet. */
-static inline uint ts_packet_visible(const TsTracer* tracer, float rays[8][16], uint valid) {
-    if (valid == 0u) return 0u;
-    TsRay16 r = ts_ray16_load(rays);
-    return valid & ~ts_bvh_occluded16(tracer->nodes, tracer->tris, &r, valid);
-}
-
-/* The lanes of one packet march: marching (bit i of `in`), and per lane the step's
- * point, in-scattered light and the link being traced. */
-typedef struct TsMarchStep {
-    float t[TS_PACKET_LANES], w[TS_PACKET_LANES];
-    float3 x[TS_PACKET_LANES], light[TS_PACKET_LANES], radiance[TS_PACKET_LANES], vpl_sum[TS_PACKET_LANES];
-    TsRay shadow[TS_PACKET_LANES];
-} TsMarchStep;
-
-/* Step i of the marches `in`, all of set k: each lane makes ts_igi_media_set's calls in
- * its order, and the shadow rays of one link (the light sample, then each VPL of the
- * step's share) are traced as one packet. */
-static inline void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                       const TsMedium* med, uint k, uint i, uint in, TsIgiMarch* m,
-                                       TsMarchStep* s, float rays[8][16]) {
-    uint valid = 0u;
-    for (int l = 0; l < TS_PACKET_LANES; ++l) {
-        if (!(in >> l & 1u)) continue;
-        s->t[l] = ts_igi_march_t(f, &m[l], k, i);
-        s->x[l] = m[l].ray.org + m[l].ray.dir * s->t[l];
-        s->light[l] = make_float3(0.0f, 0.0f, 0.0f);
-        if (!ts_igi_march_light_link(sv, f, med, &m[l], s->x[l], k, i, &s->shadow[l], &s->radiance[l], &s->w[l]))
-            continue;
-        valid |= 1u << l;
-        ts_ray16_put(rays, l, s->shadow[l]);
-    }
-    uint seen = ts_packet_visible(tracer, rays, valid);
-    for (int l = 0; l < TS_PACKET_LANES; ++l)
-        if (seen >> l & 1u) ts_igi_march_light_add(&m[l], med, s->shadow[l], s->radiance[l], s->w[l], &s->light[l]);
-    for (int l = 0; l < TS_PACKET_LANES; ++l)
-        if (in >> l & 1u) ts_igi_march_phase_add(sv, tracer, f, med, &m[l], s->x[l], &s->light[l]);
-    if (f->igi_media_vpls) {
-        uint first, stride;
-        ts_igi_march_vpl_share(sv, f, k, i, &first, &stride);
-        for (int l = 0; l < TS_PACKET_LANES; ++l) s->vpl_sum[l] = make_float3(0.0f, 0.0f, 0.0f);
-        for (uint j = first; j < sv->vpl_set_start[k + 1u]; j += stride) {
-            __global const float* vpl = sv->vpls + j * TS_VPL_FLOATS;
-            valid = 0u;
-            for (int l = 0; l < TS_PACKET_LANES; ++l) {
-                if (!(in >> l & 1u) ||
-                    !ts_igi_march_vpl_link(f, med, s->x[l], m[l].ray.dir, vpl, &s->shadow[l], &s->w[l]))
-                    continue;
-                valid |= 1u << l;
-                ts_ray16_put(rays, l, s->shadow[l]);
-            }
-            seen = ts_packet_visible(tracer, rays, valid);
-            for (int l = 0; l < TS_PACKET_LANES; ++l)
-                if (seen >> l & 1u) ts_vpl_gather_add(&s->vpl_sum[l], vpl, med, s->shadow[l], s->w[l]);
-        }
-        for (int l = 0; l < TS_PACKET_LANES; ++l)
-            if (in >> l & 1u) s->light[l] += s->vpl_sum[l] * (float)stride;
-    }
-    for (int l = 0; l < TS_PACKET_LANES; ++l)
-        if (in >> l & 1u) ts_igi_march_step_end(&m[l], med, s->t[l], s->light[l]);
-}
-
-/* The igi ray march (ts_igi_media_set) of the lanes in `on`: lane l marches pixel
- * (px[l], py[l]) for set k[l], the lanes of one set side by side (ts_igi_march_step16),
- * the sets one after another; writes lane l's TS_IGI_MEDIA_FLOATS values to out[l], whose
- * LIT and LENGTH the caller cleared. The OpenCL counterpart of
- * host/backend/embree_media_packets.cpp: the values equal ts_igi_media_set's bit for bit. */
-static inline void ts_igi_march_packet(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint on,
-                                       const uint* px, const uint* py, const uint* k,
-                                       float out[TS_PACKET_LANES][TS_IGI_MEDIA_FLOATS]) {
-    TsMedium med = ts_medium_load(sv->medium);
-    TsIgiMarch m[TS_PACKET_LANES];
-    TsMarchStep s;
-    float rays[8][TS_PACKET_LANES]; /* zeroed: a lane without a link is never traced */
-    for (int a = 0; a < 8; ++a)
-        for (int l = 0; l < TS_PACKET_LANES; ++l) rays[a][l] = 0.0f;
-    uint todo = 0u;
-    for (int l = 0; l < TS_PACKET_LANES; ++l) {
-        if (!(on >> l & 1u)) continue;
-        m[l] = ts_igi_march_begin(tracer, f, &med, px[l], py[l], k[l]);
-        if (m[l].active) todo |= 1u << l;
-    }
-    for (int first = 0; first < TS_PACKET_LANES; ++first) {
-        if (!(todo >> first & 1u)) continue;
-        uint in = 0u;
-        for (int l = 0; l < TS_PACKET_LANES; ++l)
-            if ((todo >> l & 1u) && k[l] == k[first]) in |= 1u << l;
-        todo &= ~in;
-        for (uint i = 0u; i < f->igi_steps; ++i) ts_igi_march_step16(sv, tracer, f, &med, k[first], i, in, m, &s, rays);
-    }
-    for (int l = 0; l < TS_PACKET_LANES; ++l)
-        if (on >> l & 1u) ts_igi_march_end(f, &m[l], &med, out[l]);
-}
-
 /* The igi media pass, one work-item per packet block (as igi_surface_packets):
  * ts_igi_media_pixel for the block's 16 pixels, each written at its pixel's place. */
 __kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
@@ -214,7 +131,6 @@ void igi_media_packets(TS_KERNEL_ARGS) {
         if (!ts_packet_block_pixel(&frame, k, bx, by, (uint)i, &px[i], &py[i])) continue;
         used |= 1u << i;
         set[i] = ts_igi_set(px[i], py[i], frame.igi_tile);
-        v[i][TS_IGI_MEDIA_LIT] = v[i][TS_IGI_MEDIA_LENGTH] = 0.0f;
     }
     ts_igi_march_packet(&sv, &tracer, &frame, used, px, py, set, v);
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
@@ -251,10 +167,8 @@ void ais_extra_packets(TS_KERNEL_ARGS) {
     /* The items with PM march side by side, set by set. */
     uint pm = 0u;
     float media[TS_PACKET_LANES][TS_IGI_MEDIA_FLOATS];
-    for (int i = 0; i < lanes; ++i) {
+    for (int i = 0; i < lanes; ++i)
         if (p.mask[i] & TS_COMPONENT_PM) pm |= 1u << i;
-        media[i][TS_IGI_MEDIA_LIT] = media[i][TS_IGI_MEDIA_LENGTH] = 0.0f;
-    }
     if (pm != 0u) ts_igi_march_packet(&sv, &tracer, &frame, pm, px, py, p.set, media);
 #endif
     for (int i = 0; i < lanes; ++i) {

@@ -1,9 +1,10 @@
 // Packet dispatch of the igi ray march (the media part of igi frames and of AIS items) on
 // the Embree backend: up to 16 marches of one sample set run side by side, and each link
 // of a step (its light sample; each VPL of the step's share, the same for every pixel of
-// the set) is traced as one rtcOccluded16 packet. The transport is the shared march of
-// kernels/shared/igi.h (ts_igi_march_*); every lane's values equal ts_igi_media_set's bit
-// for bit (tests/backend/embree_packets_test.cpp, fog). docs/ray-batches.md §2.
+// the set) is traced as one rtcOccluded16 packet. The march is the shared
+// kernels/shared/igi_march16.h, which the OpenCL CPU kernels run too; every lane's values
+// equal ts_igi_media_set's bit for bit (tests/backend/media_packets_test.cpp).
+// docs/ray-batches.md §2.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -23,8 +24,8 @@ struct MarchLanes {
 };
 
 /// Runs the marches of `lanes` (ts_igi_media_set) and writes lane i's TS_IGI_MEDIA_FLOATS
-/// values to out[i] for the lanes that are on; the caller clears out[i]'s LIT and LENGTH.
-/// `coherent`: the lanes' pixels lie close together (Embree's coherent packet mode).
+/// values to out[i] for the lanes that are on. `coherent`: the lanes' pixels lie close
+/// together (Embree's coherent packet mode).
 void march_packet(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame,
                   const MarchLanes& lanes, bool coherent, const std::array<float*, TS_PACKET_LANES>& out);
 

@@ -160,7 +160,7 @@ void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const 
 void ais_media(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, const Packet& p,
                const std::array<uint32_t, kLanes>& px, const std::array<uint32_t, kLanes>& py, float* out) {
     MarchLanes lanes;
-    std::array<std::array<float, TS_IGI_MEDIA_FLOATS>, kLanes> media{};  // LIT and LENGTH cleared
+    std::array<std::array<float, TS_IGI_MEDIA_FLOATS>, kLanes> media{};
     std::array<float*, kLanes> o{};
     bool any = false;
     lanes.lanes = p.lanes;

@@ -13,6 +13,9 @@ namespace tessera::ts {
 
 struct TsTracer {
     RTCScene scene;
+    /// The packet mode of ts_trace_occluded_lanes: Embree's coherent mode, for lanes whose
+    /// rays start close together (ts_packet_context).
+    bool coherent = false;
 };
 
 inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
@@ -112,6 +115,15 @@ inline uint32_t ts_trace_occluded16(const TsTracer* tr, const TsRay* rays, const
         ts_packet_set(r, i, valid[i] ? rays[i] : rays[0]);
     }
     return ts_occluded16(tr, r, v, coherent);
+}
+
+/// The packet query of kernels/shared/igi_march16.h: the rays of the lanes whose bit is set
+/// in `valid` as one rtcOccluded16 packet, in the tracer's packet mode; returns the bit
+/// mask of those found blocked.
+inline uint32_t ts_trace_occluded_lanes(const TsTracer* tr, const TsRay* rays, uint32_t valid) {
+    int v[16];
+    for (int i = 0; i < 16; ++i) v[i] = valid >> i & 1u ? -1 : 0;
+    return ts_trace_occluded16(tr, rays, v, tr->coherent);
 }
 
 /// Closest hits of up to 16 rays as one packet (rtcIntersect16); lanes with valid[i] == 0
