@@ -10,12 +10,12 @@
 #include <tbb/parallel_for.h>
 
 #include "backend/embree_lanes.h"
-#include "backend/embree_media_packets.h"
 #include "backend/embree_packets.h"
 #include "bvh/embree_device.h"
 
 // After the tracer (embree_packets.h includes it): the shared code calls it.
 #include "kernels/shared/igi.h"
+#include "kernels/shared/igi_march16.h"
 
 namespace tessera {
 namespace {
@@ -155,27 +155,19 @@ void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const 
 }
 
 // The media part of the packet's AIS items (ts_ais_item_media): the items with
-// TS_COMPONENT_PM march side by side, set by set (embree_media_packets.h). `out`: the
-// packet's first item's output.
+// TS_COMPONENT_PM march side by side, set by set (kernels/shared/igi_march16.h; the
+// tracer's packet mode incoherent: items lie scattered over edges). `out`: the packet's
+// first item's output.
 void ais_media(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, const Packet& p,
                const std::array<uint32_t, kLanes>& px, const std::array<uint32_t, kLanes>& py, float* out) {
-    MarchLanes lanes;
-    std::array<std::array<float, TS_IGI_MEDIA_FLOATS>, kLanes> media{};
-    std::array<float*, kLanes> o{};
-    bool any = false;
-    lanes.lanes = p.lanes;
-    for (int i = 0; i < p.lanes; ++i) {
-        lanes.px[i] = px[i];
-        lanes.py[i] = py[i];
-        lanes.k[i] = p.set[i];
-        lanes.on[i] = (p.mask[i] & TS_COMPONENT_PM) != 0;
-        any |= lanes.on[i];
-        o[i] = media[i].data();
-    }
-    if (!any) return;
-    march_packet(sv, tracer, frame, lanes, false, o);  // items: pixels scattered over edges
+    uint32_t on = 0;
     for (int i = 0; i < p.lanes; ++i)
-        for (int c = 0; lanes.on[i] && c < 3; ++c)
+        if (p.mask[i] & TS_COMPONENT_PM) on |= 1u << i;
+    if (on == 0) return;
+    float media[kLanes][TS_IGI_MEDIA_FLOATS];
+    ts::ts_igi_march_packet(&sv, &tracer, &frame, on, px.data(), py.data(), p.set.data(), media);
+    for (int i = 0; i < p.lanes; ++i)
+        for (int c = 0; (on >> i & 1u) && c < 3; ++c)
             out[i * TS_AIS_ITEM_FLOATS + TS_AIS_ITEM_PM + c] = media[i][TS_IGI_MEDIA_RADIANCE + c];
 }
 
