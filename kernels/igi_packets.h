@@ -8,6 +8,10 @@
  * time, in the same order, and ts_bvh_occluded16's per-lane result is ts_bvh_occluded's:
  * the images equal the per-pixel kernels' bit for bit (tests/backend/opencl_packets_test.cpp).
  *
+ * The media pass (igi_media_packets) and the media part of the AIS items run the shared
+ * 16-lane ray march of shared/igi_march16.h, whose packet query ts_trace_occluded_lanes is
+ * defined here.
+ *
  * Private memory per work-item: 16 lanes × (view ~190 B + albedo 16 B + gather 32 B + link 64 B) +
  * the packet rays (512 B) + the traversal stack (TS_BVH_STACK_SIZE × 8 B) ≈ 6 KB.
  */
