@@ -312,11 +312,11 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
 #define TS_IGI_MEDIA_VPL_THINNING 2u
 
 /* One pixel's ray march for sample set k (ts_igi_media_set, which documents the
- * estimator), in steps a packet dispatch can interleave across pixels: the Embree
- * backend runs 16 marches of one set side by side and traces each link of a step (the
- * light sample, each VPL of the step's share: the same for all 16) as one packet
- * (host/backend/embree_media_packets.cpp). Every lane makes the calls ts_igi_media_set
- * makes, in the same order, so its sums are the same bit for bit.
+ * estimator), in steps a packet dispatch can interleave across pixels:
+ * shared/igi_march16.h runs 16 marches of one set side by side and traces each link of a
+ * step (the light sample, each VPL of the step's share: the same for all 16) as one
+ * packet, on Embree and on OpenCL CPU devices. Every lane makes the calls
+ * ts_igi_media_set makes, in the same order, so its sums are the same bit for bit.
  * ray: the camera ray; prng: the set's phase-sample stream; [t0, t1]: the camera
  * segment in the medium (scene units along ray), marched in steps of `step` when
  * `active`; L: the in-scattered radiance so far; lit: the steps whose light sample was
