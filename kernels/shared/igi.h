@@ -394,7 +394,11 @@ TS_INLINE void ts_igi_march_light_add(TsIgiMarch* m, const TsMedium* med, TsRay 
  * meets (ts_igi_emitter_along). Draws two numbers from the march's phase stream. */
 TS_INLINE void ts_igi_march_phase_add(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                       const TsMedium* med, TsIgiMarch* m, float3 x, float3* in) {
-    float3 wp = ts_sample_hg(m->ray.dir, med->g, ts_rng_next(&m->prng), ts_rng_next(&m->prng));
+    /* Two declarations, not two arguments: C leaves argument order open, and both backends
+       must draw the two numbers in the same order for one seed. */
+    float u1 = ts_rng_next(&m->prng);
+    float u2 = ts_rng_next(&m->prng);
+    float3 wp = ts_sample_hg(m->ray.dir, med->g, u1, u2);
     float pl2;
     float3 le = ts_igi_emitter_along(sv, tracer, f, med, x, wp, &pl2);
     if (pl2 > 0.0f) *in += le * ts_power_heuristic(ts_hg_phase(dot(m->ray.dir, wp), med->g), pl2);

@@ -125,7 +125,9 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                         L += beta * c.radiance * (phase * mis / c.pdf);
                     }
                     if (last) break;
-                    float3 d = ts_sample_hg(ray.dir, med.g, ts_rng_next(&rng), ts_rng_next(&rng));
+                    float u1 = ts_rng_next(&rng); /* sequenced: see ts_igi_march_phase_add */
+                    float u2 = ts_rng_next(&rng);
+                    float3 d = ts_sample_hg(ray.dir, med.g, u1, u2);
                     prev_pdf = ts_hg_phase(dot(ray.dir, d), med.g);
                     ray.org = x;
                     ray.dir = d;
@@ -176,7 +178,9 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                          (TS_INV_PI * cos_x * ts_power_heuristic(c.pdf, pb) / c.pdf);
                 }
             }
-            float3 wi = ts_from_local(ns, ts_sample_cosine_hemisphere(ts_rng_next(&rng), ts_rng_next(&rng)));
+            float u1 = ts_rng_next(&rng); /* sequenced, as above */
+            float u2 = ts_rng_next(&rng);
+            float3 wi = ts_from_local(ns, ts_sample_cosine_hemisphere(u1, u2));
             float cos_o = dot(ns, wi);
             if (!(cos_o > 0.0f) || dot(ng, wi) <= 0.0f) break;
             beta = beta * albedo;  /* (albedo/π) cosθ / (cosθ/π) */
