@@ -121,8 +121,10 @@ static inline TsPacketSetup ts_packet_setup(const TsRay16* r) {
     return p;
 }
 
-/* Lanes (-1) whose interval meets child c's box of `node`: ts_node_hits lane-wise. */
-static inline int16 ts_packet_box(__global const float* node, int c, const TsRay16* r, const TsPacketSetup* p) {
+/* Lanes (-1) whose interval meets child c's box of `node`: ts_node_hits lane-wise, with
+ * each lane's entry distance in *tnear. */
+static inline int16 ts_packet_box_near(__global const float* node, int c, const TsRay16* r, const TsPacketSetup* p,
+                                       float16* tnear) {
     float16 mnx = (float16)(node[TS_NODE_MIN(0) + c]), mxx = (float16)(node[TS_NODE_MAX(0) + c]);
     float16 mny = (float16)(node[TS_NODE_MIN(1) + c]), mxy = (float16)(node[TS_NODE_MAX(1) + c]);
     float16 mnz = (float16)(node[TS_NODE_MIN(2) + c]), mxz = (float16)(node[TS_NODE_MAX(2) + c]);
@@ -131,12 +133,21 @@ static inline int16 ts_packet_box(__global const float* node, int c, const TsRay
     float16 n_z = (select(mnz, mxz, p->nz) - r->oz) * p->iz, f_z = (select(mxz, mnz, p->nz) - r->oz) * p->iz;
     float16 tn = fmax(fmax(n_x, n_y), fmax(n_z, r->tmin));
     float16 tf = fmin(fmin(f_x, f_y), fmin(f_z, r->tmax)) * TS_BOX_TFAR_SCALE;
+    *tnear = tn;
     return tn <= tf;
 }
 
+/* ts_packet_box_near without the distances (the any-hit traversal's test). */
+static inline int16 ts_packet_box(__global const float* node, int c, const TsRay16* r, const TsPacketSetup* p) {
+    float16 tnear;
+    return ts_packet_box_near(node, c, r, p, &tnear);
+}
+
 /* Lanes (-1) that hit triangle `tri` with t in [tmin, tmax): ts_intersect_triangle
- * lane-wise (the caller masks the lanes that test it). */
-static inline int16 ts_packet_triangle(__global const float* tri, const TsRay16* r, const TsPacketSetup* p) {
+ * lane-wise (the caller masks the lanes that test it), with each lane's t, u (weight of
+ * p1) and v (weight of p2) as it computes them; meaningful only in hit lanes. */
+static inline int16 ts_packet_triangle_uv(__global const float* tri, const TsRay16* r, const TsPacketSetup* p,
+                                          float16* t, float16* u, float16* v) {
     float3 a = vload3(0, tri + TS_BVH_TRI_VERTEX(0)), b = vload3(0, tri + TS_BVH_TRI_VERTEX(1)),
            c = vload3(0, tri + TS_BVH_TRI_VERTEX(2));
     float16 Ax0 = a.x - r->ox, Ay0 = a.y - r->oy, Az0 = a.z - r->oz;
@@ -154,8 +165,18 @@ static inline int16 ts_packet_triangle(__global const float* tri, const TsRay16*
     int16 outside = ((U < z) | (V < z) | (W < z)) & ((U > z) | (V > z) | (W > z));
     float16 det = U + V + W;
     float16 T = U * (p->sz * Az) + V * (p->sz * Bz) + W * (p->sz * Cz);
-    float16 tt = T * (1.0f / det);
+    float16 rcp = 1.0f / det;
+    float16 tt = T * rcp;
+    *t = tt;
+    *u = V * rcp;
+    *v = W * rcp;
     return ~outside & (det != z) & (tt >= r->tmin) & (tt < r->tmax);
+}
+
+/* ts_packet_triangle_uv's hit lanes alone (the any-hit test; u and v go unused). */
+static inline int16 ts_packet_triangle(__global const float* tri, const TsRay16* r, const TsPacketSetup* p) {
+    float16 t, u, v;
+    return ts_packet_triangle_uv(tri, r, p, &t, &u, &v);
 }
 
 /* Occlusion of the lanes in `active` (bit i = lane i): returns the bits of those whose
@@ -203,6 +224,94 @@ static inline uint ts_bvh_occluded16(__global const float* nodes, __global const
         }
     }
     return occluded;
+}
+
+/* Closest hits of 16 rays, structure of arrays (TsHit per lane): t (tmax where nothing
+ * is hit), u, v and prim (TS_NO_HIT where nothing is hit). */
+typedef struct TsHit16 {
+    float16 t, u, v;
+    uint16 prim;
+} TsHit16;
+
+/* The least of the 16 lanes of x. */
+static inline float ts_min16(float16 x) {
+    float8 a = fmin(x.lo, x.hi);
+    float4 b = fmin(a.lo, a.hi);
+    float2 c = fmin(b.lo, b.hi);
+    return fmin(c.x, c.y);
+}
+
+/* Closest hit of each lane in `active` (bit i = lane i), equal to ts_bvh_closest for
+ * that lane's ray: both return the triangle with the least t in [tmin, tmax) among those
+ * the ray hits, with t, u and v computed by the same formulas (ts_packet_triangle_uv).
+ * Each lane's interval shrinks to its own nearest hit so far, and the boxes are tested
+ * against it, as in the single-ray traversal; the box test is conservative, so no lane
+ * skips a triangle nearer than its hit. Only the visiting order differs (children near
+ * to far by the nearest entry of any lane that hits them), which could change the
+ * answer only between two triangles hit at exactly the same t. (Skipping a popped
+ * entry whose lanes all have a hit nearer than its entry measured no faster: the child
+ * box tests cull such nodes one level later.) Lanes outside `active` get TS_NO_HIT.
+ * Stack bound as ts_bvh_occluded16. */
+static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global const float* tris, const TsRay16* ray,
+                                       uint active) {
+    TsRay16 r = *ray; /* r.tmax: each lane's nearest hit so far */
+    TsHit16 h;
+    h.t = r.tmax;
+    h.u = h.v = (float16)(0.0f);
+    h.prim = (uint16)(TS_NO_HIT);
+    if (active == 0u) return h;
+    TsPacketSetup p = ts_packet_setup(&r);
+    int stack[TS_BVH_STACK_SIZE];
+    uint lanes[TS_BVH_STACK_SIZE];
+    int sp = 0;
+    stack[sp] = 0;
+    lanes[sp++] = active;
+    while (sp > 0) {
+        --sp;
+        int ref = stack[sp];
+        uint m = lanes[sp];
+        int16 act = ts_lane_mask16(m);
+        if (ref >= 0) {
+            __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
+            float16 tn[4];
+            int16 hc[4];
+            for (int c = 0; c < 4; ++c) hc[c] = ts_packet_box_near(node, c, &r, &p, &tn[c]) & act;
+            uint4 bits = ts_lane_bits16x4(hc[0], hc[1], hc[2], hc[3]);
+            uint b[4] = {bits.x, bits.y, bits.z, bits.w};
+            /* Push far to near, so the child some lane enters first is visited first. */
+            float key[4];
+            int order[4], n = 0;
+            for (int c = 0; c < 4; ++c) {
+                if (b[c] == 0u) continue;
+                key[c] = ts_min16(select((float16)(INFINITY), tn[c], hc[c]));
+                int j = n++;
+                while (j > 0 && key[order[j - 1]] < key[c]) {
+                    order[j] = order[j - 1];
+                    --j;
+                }
+                order[j] = c;
+            }
+            for (int j = 0; j < n; ++j) {
+                stack[sp] = as_int(node[TS_NODE_REFS + order[j]]);
+                lanes[sp++] = b[order[j]];
+            }
+        } else {
+            uint v = ~(uint)ref;
+            uint first = v >> 3, count = v & 7u;
+            for (uint i = 0u; i < count; ++i) {
+                __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
+                float16 t, u, w;
+                int16 hit = ts_packet_triangle_uv(tri, &r, &p, &t, &u, &w) & act;
+                if (ts_lane_bits16(hit) == 0u) continue;
+                r.tmax = select(r.tmax, t, hit);
+                h.u = select(h.u, u, hit);
+                h.v = select(h.v, w, hit);
+                h.prim = select(h.prim, (uint16)(as_uint(tri[TS_BVH_TRI_PRIM])), as_uint16(hit));
+            }
+        }
+    }
+    h.t = r.tmax;
+    return h;
 }
 
 #endif /* TS_BVH_PACKET_H */

@@ -30,19 +30,45 @@ typedef struct TsIgiPacket {
     TsIgiGather gather[TS_PACKET_LANES];
 } TsIgiPacket;
 
-/* Lane i sees pixel (px, py); returns whether its camera path found a surface, and sets
- * its links for set k and components `mask` (none when the albedo is black, as in
- * ts_igi_surface_set). */
-static inline int ts_igi_packet_view(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, TsIgiPacket* p,
-                                     int i, uint px, uint py, uint k, uint mask) {
-    p->view[i] = ts_igi_view(sv, tracer, f, px, py);
-    p->set[i] = k;
-    p->mask[i] = mask;
-    p->links[i] = 0u;
-    if (p->view[i].hit.prim == TS_NO_HIT) return 0;
-    p->albedo[i] = ts_material_albedo(sv, &p->view[i].s);
-    if (ts_max3(p->albedo[i]) > 0.0f) p->links[i] = ts_igi_link_count(sv, f, k, mask);
-    return 1;
+/* The tracer's closest-hit packet query for shared/igi_view16.h (which documents it): the
+ * rays of the lanes in `valid` as one ts_bvh_closest16 packet. */
+static inline void ts_trace_closest_lanes(const TsTracer* tracer, const TsRay* rays, uint valid, TsHit* hits) {
+    float a[8][TS_PACKET_LANES];
+    for (int l = 0; l < TS_PACKET_LANES; ++l) ts_ray16_put(a, l, rays[l]);
+    TsRay16 r = ts_ray16_load(a);
+    TsHit16 h = ts_bvh_closest16(tracer->nodes, tracer->tris, &r, valid);
+    float t[TS_PACKET_LANES], u[TS_PACKET_LANES], v[TS_PACKET_LANES];
+    uint prim[TS_PACKET_LANES];
+    vstore16(h.t, 0, t);
+    vstore16(h.u, 0, u);
+    vstore16(h.v, 0, v);
+    vstore16(h.prim, 0, prim);
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        if (!(valid >> l & 1u)) continue;
+        hits[l].t = t[l];
+        hits[l].u = u[l];
+        hits[l].v = v[l];
+        hits[l].prim = prim[l];
+    }
+}
+#include "shared/igi_view16.h"
+
+/* The lanes in `want` see pixels (px[i], py[i]), their camera rays traced as one packet;
+ * returns the lanes whose camera path found a surface, and sets each lane's links for
+ * its set and components (p->set, p->mask; none when the albedo is black, as in
+ * ts_igi_surface_set, and none for lanes outside `want`). */
+static inline uint ts_igi_packet_views(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                       TsIgiPacket* p, uint want, const uint* px, const uint* py) {
+    ts_igi_view16(sv, tracer, f, want, px, py, p->view);
+    uint seen = 0u;
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        p->links[i] = 0u;
+        if (!(want >> i & 1u) || p->view[i].hit.prim == TS_NO_HIT) continue;
+        seen |= 1u << i;
+        p->albedo[i] = ts_material_albedo(sv, &p->view[i].s);
+        if (ts_max3(p->albedo[i]) > 0.0f) p->links[i] = ts_igi_link_count(sv, f, p->set[i], p->mask[i]);
+    }
+    return seen;
 }
 
 /* Traces link j of every lane that has one as one packet, for j = 0 .. the most links
@@ -83,15 +109,14 @@ void igi_surface_packets(TS_KERNEL_ARGS) {
     if (!ts_packet_block(&frame, get_global_id(0), &k, &bx, &by)) return;
     TS_KERNEL_VIEWS
     TsIgiPacket p;
-    uint px[TS_PACKET_LANES], py[TS_PACKET_LANES], used = 0u, seen = 0u;
+    uint px[TS_PACKET_LANES], py[TS_PACKET_LANES], used = 0u;
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
-        p.links[i] = 0u;
         if (!ts_packet_block_pixel(&frame, k, bx, by, (uint)i, &px[i], &py[i])) continue;
         used |= 1u << i;
-        if (ts_igi_packet_view(&sv, &tracer, &frame, &p, i, px[i], py[i], ts_igi_set(px[i], py[i], frame.igi_tile),
-                               frame.igi_components))
-            seen |= 1u << i;
+        p.set[i] = ts_igi_set(px[i], py[i], frame.igi_tile);
+        p.mask[i] = frame.igi_components;
     }
+    uint seen = ts_igi_packet_views(&sv, &tracer, &frame, &p, used, px, py);
     ts_igi_packet_gather(&sv, &tracer, &frame, &p);
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         if (!(used >> i & 1u)) continue;
@@ -154,18 +179,16 @@ void ais_extra_packets(TS_KERNEL_ARGS) {
     if (first >= work_items) return;
     TS_KERNEL_VIEWS
     TsIgiPacket p;
-    uint px[TS_PACKET_LANES], py[TS_PACKET_LANES], seen = 0u;
+    uint px[TS_PACKET_LANES], py[TS_PACKET_LANES], want = 0u;
     int lanes = (int)min((uint)TS_PACKET_LANES, work_items - first);
-    for (int i = 0; i < TS_PACKET_LANES; ++i) {
-        p.links[i] = 0u;
-        if (i >= lanes) continue;
+    for (int i = 0; i < lanes; ++i) {
         uint k, mask;
         ts_ais_item_decode(&sv, &frame, first + (uint)i, &px[i], &py[i], &k, &mask);
         p.set[i] = k;
         p.mask[i] = mask;
-        if (ts_ais_item_has_surface(mask) && ts_igi_packet_view(&sv, &tracer, &frame, &p, i, px[i], py[i], k, mask))
-            seen |= 1u << i;
+        if (ts_ais_item_has_surface(mask)) want |= 1u << i;
     }
+    uint seen = ts_igi_packet_views(&sv, &tracer, &frame, &p, want, px, py);
     ts_igi_packet_gather(&sv, &tracer, &frame, &p);
 #ifdef TS_HAS_MEDIUM
     /* The items with PM march side by side, set by set. */

@@ -3,8 +3,9 @@
  * rays: TS_RAY_FLOATS floats per ray (layout.h: org.xyz, tmin, dir.xyz, tmax).
  * trace_closest writes TS_HIT_FLOATS words per ray: t, u, v (floats), prim (uint bits).
  * trace_occluded writes 1 uint per ray: 1 if anything lies in (tmin, tmax);
- * trace_occluded_packets the same, tracing 16 consecutive rays per work-item as one
- * packet (bvh_packet.h; the OpenCL backend's any-hit batches on CPU devices). */
+ * trace_occluded_packets and trace_closest_packets the same as trace_occluded and
+ * trace_closest, tracing 16 consecutive rays per work-item as one packet (bvh_packet.h;
+ * the OpenCL backend's batches on CPU devices). */
 #include "shared/layout.h"
 #include "bvh_packet.h"
 
@@ -39,24 +40,54 @@ void trace_occluded(__global const float* nodes, __global const float* tris,
     occluded[i] = (uint)ts_bvh_occluded(nodes, tris, ts_load_ray(rays, i));
 }
 
-__kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
-void trace_occluded_packets(__global const float* nodes, __global const float* tris,
-                            __global const float* rays, uint count, __global uint* occluded) {
-    uint first = get_global_id(0) * TS_PACKET_LANES;
-    if (first >= count) return;
-    uint lanes = min((uint)TS_PACKET_LANES, count - first), active = 0u;
+/* The packet of rays first .. first + 15 (those below count; the bits of `active`). */
+static inline TsRay16 ts_load_ray16(__global const float* rays, uint first, uint count, uint* active) {
+    uint lanes = min((uint)TS_PACKET_LANES, count - first);
     float a[8][TS_PACKET_LANES];
+    *active = 0u;
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         TsRay r;
         r.org = r.dir = (float3)(0.0f);
         r.tmin = r.tmax = 0.0f; /* an idle lane: zeroed, never traced */
         if ((uint)i < lanes) {
             r = ts_load_ray(rays, first + (uint)i);
-            active |= 1u << i;
+            *active |= 1u << i;
         }
         ts_ray16_put(a, i, r);
     }
-    TsRay16 r = ts_ray16_load(a);
+    return ts_ray16_load(a);
+}
+
+__kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
+void trace_occluded_packets(__global const float* nodes, __global const float* tris,
+                            __global const float* rays, uint count, __global uint* occluded) {
+    uint first = get_global_id(0) * TS_PACKET_LANES;
+    if (first >= count) return;
+    uint active;
+    TsRay16 r = ts_load_ray16(rays, first, count, &active);
     uint hit = ts_bvh_occluded16(nodes, tris, &r, active);
-    for (uint i = 0u; i < lanes; ++i) occluded[first + i] = hit >> i & 1u;
+    for (uint i = 0u; first + i < count && i < TS_PACKET_LANES; ++i) occluded[first + i] = hit >> i & 1u;
+}
+
+__kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
+void trace_closest_packets(__global const float* nodes, __global const float* tris,
+                           __global const float* rays, uint count, __global float* hits) {
+    uint first = get_global_id(0) * TS_PACKET_LANES;
+    if (first >= count) return;
+    uint active;
+    TsRay16 r = ts_load_ray16(rays, first, count, &active);
+    TsHit16 h = ts_bvh_closest16(nodes, tris, &r, active);
+    float t[TS_PACKET_LANES], u[TS_PACKET_LANES], v[TS_PACKET_LANES];
+    uint prim[TS_PACKET_LANES];
+    vstore16(h.t, 0, t);
+    vstore16(h.u, 0, u);
+    vstore16(h.v, 0, v);
+    vstore16(h.prim, 0, prim);
+    for (uint i = 0u; first + i < count && i < TS_PACKET_LANES; ++i) {
+        __global float* o = hits + TS_HIT_FLOATS * (first + i);
+        o[TS_HIT_T] = t[i];
+        o[TS_HIT_U] = u[i];
+        o[TS_HIT_V] = v[i];
+        o[TS_HIT_PRIM] = as_float(prim[i]);
+    }
 }

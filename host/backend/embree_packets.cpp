@@ -16,6 +16,7 @@
 // After the tracer (embree_packets.h includes it): the shared code calls it.
 #include "kernels/shared/igi.h"
 #include "kernels/shared/igi_march16.h"
+#include "kernels/shared/igi_view16.h"
 
 namespace tessera {
 namespace {
@@ -109,19 +110,24 @@ void gather_links(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const T
     }
 }
 
-// Lane i of p sees pixel (px, py); returns whether its camera path found a surface, and
-// sets its links for set k and components `mask` (none when the albedo is black).
-bool view_lane(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p, int i,
-               uint32_t px, uint32_t py, uint32_t k, uint32_t mask) {
-    p.view[i] = ts::ts_igi_view(&sv, &tracer, &frame, px, py);
-    p.set[i] = k;
-    p.mask[i] = mask;
-    p.links[i] = 0;
-    if (p.view[i].hit.prim == TS_NO_HIT) return false;
-    p.albedo[i] = ts::ts_material_albedo(&sv, &p.view[i].s);
-    if (ts::ts_max3(p.albedo[i]) > 0.0f)
-        p.links[i] = ts::ts_igi_link_count(&sv, &frame, k, mask);
-    return true;
+// The lanes in `want` see pixels (px[i], py[i]), their camera rays traced as one packet
+// (kernels/shared/igi_view16.h); sets each such lane's links for its set and components
+// (p.set, p.mask; none when the albedo is black) and returns the lanes whose camera path
+// found a surface. `coherent`: the tracer's packet mode for the camera rays.
+uint32_t view_lanes(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p,
+                    uint32_t want, const uint32_t* px, const uint32_t* py, bool coherent) {
+    ts::TsTracer t = tracer;
+    t.coherent = coherent;
+    ts::ts_igi_view16(&sv, &t, &frame, want, px, py, p.view.data());
+    uint32_t seen = 0;
+    for (int i = 0; i < p.lanes; ++i) {
+        p.links[i] = 0;
+        if (!(want >> i & 1u) || p.view[i].hit.prim == TS_NO_HIT) continue;
+        seen |= 1u << i;
+        p.albedo[i] = ts::ts_material_albedo(&sv, &p.view[i].s);
+        if (ts::ts_max3(p.albedo[i]) > 0.0f) p.links[i] = ts::ts_igi_link_count(&sv, &frame, p.set[i], p.mask[i]);
+    }
+    return seen;
 }
 
 // Block b of the frame (ts_packet_block, kernels/shared/geometry.h: the enumeration the
@@ -132,19 +138,21 @@ void surface_block(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const 
     if (!ts::ts_packet_block(&frame, b, &k, &bx, &by)) return;
     Packet p;
     std::array<float*, kLanes> o{};
-    std::array<bool, kLanes> hit{};
+    std::array<uint32_t, kLanes> px{}, py{};
     for (uint32_t lane = 0; lane < kLanes; ++lane) {
-        uint32_t px, py;
-        if (!ts::ts_packet_block_pixel(&frame, k, bx, by, lane, &px, &py)) continue;
-        const int i = p.lanes++;
-        o[i] = &out[(size_t(py) * frame.width + px) * TS_IGI_SURF_FLOATS];
+        const int i = p.lanes;
+        if (!ts::ts_packet_block_pixel(&frame, k, bx, by, lane, &px[i], &py[i])) continue;
+        ++p.lanes;
+        o[i] = &out[(size_t(py[i]) * frame.width + px[i]) * TS_IGI_SURF_FLOATS];
         ts::ts_igi_surface_clear(o[i]);
-        hit[i] = view_lane(sv, tracer, frame, p, i, px, py, ts::ts_igi_set(px, py, frame.igi_tile),
-                           frame.igi_components);
+        p.set[i] = ts::ts_igi_set(px[i], py[i], frame.igi_tile);
+        p.mask[i] = frame.igi_components;
     }
+    const uint32_t all = (1u << p.lanes) - 1u;
+    const uint32_t hit = view_lanes(sv, tracer, frame, p, all, px.data(), py.data(), true);
     gather_links(sv, tracer, frame, p, true);
     for (int i = 0; i < p.lanes; ++i) {
-        if (!hit[i]) continue;
+        if (!(hit >> i & 1u)) continue;
         ts::float3 e_ss, e_id;
         float visible;
         ts::ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);
@@ -174,8 +182,8 @@ void ais_media(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFr
 void ais_packet(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, size_t first,
                 size_t count, std::vector<float>& out) {
     Packet p;
-    std::array<bool, kLanes> hit{};
     std::array<uint32_t, kLanes> px{}, py{};
+    uint32_t want = 0;
     for (size_t item = first; item < std::min(count, first + kLanes); ++item) {
         const int i = p.lanes++;
         float* o = &out[item * TS_AIS_ITEM_FLOATS];
@@ -184,11 +192,13 @@ void ais_packet(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsF
         ts::ts_ais_item_decode(&sv, &frame, static_cast<uint32_t>(item), &px[i], &py[i], &k, &mask);
         p.set[i] = k;
         p.mask[i] = mask;
-        if (ts::ts_ais_item_has_surface(mask)) hit[i] = view_lane(sv, tracer, frame, p, i, px[i], py[i], k, mask);
+        if (ts::ts_ais_item_has_surface(mask)) want |= 1u << i;
     }
-    gather_links(sv, tracer, frame, p, false);  // AIS items: pixels scattered over edges
+    // AIS items: pixels scattered over edges (incoherent packets).
+    const uint32_t hit = view_lanes(sv, tracer, frame, p, want, px.data(), py.data(), false);
+    gather_links(sv, tracer, frame, p, false);
     for (int i = 0; i < p.lanes; ++i) {
-        if (!hit[i]) continue;
+        if (!(hit >> i & 1u)) continue;
         ts::float3 e_ss, e_id;
         float visible;
         ts::ts_igi_gather_end(&p.gather[i], &frame, &e_ss, &e_id, &visible);

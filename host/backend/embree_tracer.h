@@ -150,5 +150,13 @@ inline void ts_trace_closest16(const TsTracer* tr, const TsRay* rays, const int*
     }
 }
 
+/// The closest-hit packet query of kernels/shared/igi_view16.h: the rays of the lanes whose
+/// bit is set in `valid` as one rtcIntersect16 packet, in the tracer's packet mode.
+inline void ts_trace_closest_lanes(const TsTracer* tr, const TsRay* rays, uint32_t valid, TsHit* hits) {
+    int v[16];
+    for (int i = 0; i < 16; ++i) v[i] = valid >> i & 1u ? -1 : 0;
+    ts_trace_closest16(tr, rays, v, tr->coherent, hits);
+}
+
 }  // namespace tessera::ts
 

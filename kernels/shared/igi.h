@@ -138,15 +138,15 @@ TS_INLINE void ts_igi_gather_end(const TsIgiGather* g, const TsFrame* f, float3*
 }
 
 /* Follows mirror and dielectric bounces from the camera (at most 5) to the first
- * diffuse surface; *throughput collects their reflectances. Dielectrics pick reflection
- * or refraction by Fresnel with `u`. Returns the hit (TS_NO_HIT if the path escapes). */
-TS_INLINE TsHit ts_igi_find_diffuse(const TsSceneView* sv, const TsTracer* tracer, TsRay* ray,
+ * diffuse surface, `hit` being the closest hit of *ray (already traced); *throughput
+ * collects their reflectances. Dielectrics pick reflection or refraction by Fresnel with
+ * `u`. Returns the hit (TS_NO_HIT if the path escapes). */
+TS_INLINE TsHit ts_igi_find_diffuse(const TsSceneView* sv, const TsTracer* tracer, TsRay* ray, TsHit hit,
                                     float3* throughput, float* distance, TsRng* rng) {
     *throughput = make_float3(1.0f, 1.0f, 1.0f);
     *distance = 0.0f;
-    TsHit hit;
     for (int bounce = 0; bounce < 6; ++bounce) {
-        hit = ts_trace_closest(tracer, *ray);
+        if (bounce > 0) hit = ts_trace_closest(tracer, *ray);
         if (hit.prim == TS_NO_HIT) return hit;
         *distance += hit.t;
         TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * sv->tri_mat[hit.prim];
@@ -178,18 +178,33 @@ typedef struct TsIgiView {
     float distance;
 } TsIgiView;
 
-TS_INLINE TsIgiView ts_igi_view(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px,
-                                uint py) {
-    TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
+/* The first half of ts_igi_view: pixel (px, py)'s random stream and camera ray, which
+ * the caller traces (alone, or in a packet with other pixels' rays). */
+TS_INLINE TsRay ts_igi_view_ray(const TsFrame* f, uint px, uint py, TsRng* rng) {
+    *rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
+    return ts_igi_camera_ray(f, px, py, rng);
+}
+
+/* The second half: the view from camera ray `ray` (of ts_igi_view_ray, with its stream
+ * `rng`), given the ray's closest hit. */
+TS_INLINE TsIgiView ts_igi_view_from(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, TsRay ray,
+                                     TsHit first, TsRng* rng) {
     TsIgiView v;
-    v.ray = ts_igi_camera_ray(f, px, py, &rng);
-    v.hit = ts_igi_find_diffuse(sv, tracer, &v.ray, &v.throughput, &v.distance, &rng);
+    v.ray = ray;
+    v.hit = ts_igi_find_diffuse(sv, tracer, &v.ray, first, &v.throughput, &v.distance, rng);
     if (v.hit.prim != TS_NO_HIT) {
         v.s = ts_surface_at(sv, v.ray, v.hit);
         /* The cone spreads over the whole path (flat mirrors keep its angle). */
         if (f->pixel_cone > 0.0f) ts_surface_cone(sv, &v.s, v.hit.prim, v.ray.dir, v.distance * ts_pass_cone(f));
     }
     return v;
+}
+
+TS_INLINE TsIgiView ts_igi_view(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px,
+                                uint py) {
+    TsRng rng;
+    TsRay ray = ts_igi_view_ray(f, px, py, &rng);
+    return ts_igi_view_from(sv, tracer, f, ray, ts_trace_closest(tracer, ray), &rng);
 }
 
 /* E_ss and E_id of sample set k at the view's surface, for the components in `mask`,
