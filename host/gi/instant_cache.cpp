@@ -157,10 +157,9 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 const float* g = &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS];
-                ts::float3 e;
-                covered[i] = ts::ts_ic_interpolate(b.nodes.data(), b.refs.data(), b.records.data(),
-                                                   ts::ts_f3_load(g + TS_IC_GBUF_POSITION),
-                                                   ts::ts_f3_load(g + TS_IC_GBUF_NORMAL), settings_.error_bound, &e) > 0.0f;
+                covered[i] = ts::ts_ic_covered(b.nodes.data(), b.refs.data(), b.records.data(),
+                                               ts::ts_f3_load(g + TS_IC_GBUF_POSITION),
+                                               ts::ts_f3_load(g + TS_IC_GBUF_NORMAL), settings_.error_bound);
             }
         });
         const size_t first = cache_.records().size();

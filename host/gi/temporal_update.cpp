@@ -68,6 +68,37 @@ struct Box {
         }
         return true;
     }
+    // meets() for n rays from org to the points (ex[j], ey[j], ez[j]): ray j has direction
+    // end_j - org (as ts_shadow_ray forms it) over [t0, t1]; hit[j] |= the answer. The same
+    // arithmetic without branches, so that GCC vectorises the loop over j (meets()'s early
+    // exits become one final test: t0 only grows and t1 only shrinks over the axes).
+    void meets_many(const float* org, const float* __restrict ex, const float* __restrict ey,
+                    const float* __restrict ez, size_t n, float t0, float t1, int32_t* __restrict hit) const {
+        const float ox = org[0], oy = org[1], oz = org[2];
+        const float lx = lo[0] - ox, ly = lo[1] - oy, lz = lo[2] - oz;  // the slab planes from org
+        const float hx = hi[0] - ox, hy = hi[1] - oy, hz = hi[2] - oz;
+        const bool out_x = (ox < lo[0]) | (ox > hi[0]), out_y = (oy < lo[1]) | (oy > hi[1]),
+                   out_z = (oz < lo[2]) | (oz > hi[2]);
+        for (size_t j = 0; j < n; ++j) {
+            float a0 = t0, a1 = t1;
+            int32_t ok = 1;
+            auto axis = [&](float d, float l, float h, bool out) {
+                const float inv = 1.0f / d;
+                const float nn = l * inv, ff = h * inv;
+                const int32_t nan = (nn != nn) | (ff != ff);
+                const float mn = nn > ff ? ff : nn, mx = nn > ff ? nn : ff;
+                // fmax / fmin by comparison (the libm calls do not vectorise); no NaN reaches
+                // them, and the sign of a zero cannot change the final a0 > a1.
+                a0 = nan ? a0 : (mn > a0 ? mn : a0);
+                a1 = nan ? a1 : (mx < a1 ? mx : a1);
+                ok &= ~(nan & int32_t(out)) & 1;
+            };
+            axis(ex[j] - ox, lx, hx, out_x);
+            axis(ey[j] - oy, ly, hy, out_y);
+            axis(ez[j] - oz, lz, hz, out_z);
+            hit[j] |= ok & int32_t(!(a0 > a1));
+        }
+    }
     bool meets_sphere(glm::vec3 c, float r) const {
         const glm::vec3 d = glm::max(glm::vec3(0.0f), glm::max(lo - c, c - hi));
         return glm::dot(d, d) <= r * r;
@@ -203,6 +234,10 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     check_pairs(records.size(), old_column.size());
     std::vector<IcRecord> kept;
     std::vector<Row> rows;
+    // Usually every VPL keeps its column (only fluxes change, or nothing): each row then
+    // moves over as it is, without a copy (18k records × 400 VPLs = 30 MB a frame).
+    bool same_columns = !rows_.empty() && old_column.size() == rows_.front().size();
+    for (size_t j = 0; same_columns && j < old_column.size(); ++j) same_columns = old_column[j] == int64_t(j);
     for (size_t i = 0; i < records.size(); ++i) {
         const IcRecord& r = records[i];
         uint32_t prim;
@@ -215,31 +250,50 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
             ++stats_.removed;
             continue;
         }
+        kept.push_back(r);
+        if (same_columns) {
+            rows.push_back(std::move(rows_[i]));
+            continue;
+        }
         Row row(old_column.size());
         for (size_t j = 0; j < row.size(); ++j) row[j] = old_column[j] >= 0 ? rows_[i][old_column[j]] : kNeedsTrace;
-        kept.push_back(r);
         rows.push_back(std::move(row));
     }
     records.swap(kept);
     rows_.swap(rows);
 
-    // Pairs to re-trace.
+    // Pairs to re-trace: those never traced, those whose occluder moved, and the visible
+    // ones whose shadow ray now meets a moved object's box. That ray is the one
+    // ts_vpl_geometry builds (the record's offset origin to the VPL's offset point); its
+    // far end depends on the VPL alone, so it is computed once per VPL here, and its
+    // origin once per record. (A visible pair faced both ways when it was traced, and
+    // neither its record nor its VPL has changed since, so its geometry term is still
+    // positive and need not be recomputed.)
+    const size_t nv = vpls_.size() / TS_VPL_FLOATS;
+    std::vector<float> end[3];  // VPL j's far end: the direction of its ray from the origin
+    float t_lo = 0.0f, t_hi = 0.0f;
+    for (auto& e : end) e.resize(nv);
+    for (size_t j = 0; j < nv; ++j) {
+        const ts::TsRay r = ts::ts_vpl_shadow_ray(ts::make_float3(0.0f, 0.0f, 0.0f), &vpls_[j * TS_VPL_FLOATS]);
+        end[0][j] = r.dir.x, end[1][j] = r.dir.y, end[2][j] = r.dir.z;
+        t_lo = r.tmin, t_hi = r.tmax;  // the same for every VPL
+    }
     std::vector<std::vector<Pair>> per_record(records.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, records.size(), 16), [&](const tbb::blocked_range<size_t>& rr) {
+        std::vector<int32_t> meets(nv);
         for (size_t i = rr.begin(); i < rr.end(); ++i) {
-            const ts::TsSurface s = ic_record_surface(records[i]);
+            std::fill(meets.begin(), meets.end(), 0);
+            if (!ch.moved.empty()) {
+                const ts::TsSurface s = ic_record_surface(records[i]);
+                const ts::float3 o = ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
+                const float org[3] = {o.x, o.y, o.z};
+                for (uint32_t m : ch.moved)
+                    ch.new_box[m].meets_many(org, end[0].data(), end[1].data(), end[2].data(), nv, t_lo, t_hi,
+                                             meets.data());
+            }
             for (uint32_t j = 0; j < rows_[i].size(); ++j) {
                 const int32_t v = rows_[i][j];
-                bool trace = v == kNeedsTrace || (v >= 0 && ch.is_moved[v]);
-                if (!trace && v == kIcVisible && !ch.moved.empty()) {
-                    ts::TsRay sh;
-                    if (!(ts::ts_vpl_geometry(&s, &vpls_[size_t(j) * TS_VPL_FLOATS], g_clamp, scene.medium[TS_MEDIUM_G], &sh) > 0.0f)) {
-                        per_record[i].push_back({static_cast<uint32_t>(i), j});  // cannot happen; be exact
-                        continue;
-                    }
-                    const float org[3] = {sh.org.x, sh.org.y, sh.org.z}, dir[3] = {sh.dir.x, sh.dir.y, sh.dir.z};
-                    for (uint32_t o : ch.moved) trace = trace || ch.new_box[o].meets(org, dir, sh.tmin, sh.tmax);
-                }
+                const bool trace = v == kNeedsTrace || (v >= 0 && ch.is_moved[v]) || (v == kIcVisible && j < nv && meets[j]);
                 if (trace) per_record[i].push_back({static_cast<uint32_t>(i), j});
             }
         }

@@ -35,6 +35,12 @@ TS_INLINE float ts_ic_weight(TS_GLOBAL const float* record, float3 x, float3 n, 
     float radius = record[TS_IC_RECORD_RADIUS];
     float3 d = x - xi;
     if (dot(d, n + ni) * 0.5f < -0.01f * radius) return 0.0f;
+    /* Most records a lookup meets lie farther than a·radius, where eps >= a: rejected
+     * here without the two square roots. The 1e-3 margin dwarfs the rounding of either
+     * form, so a record near the limit goes on to the exact test below and the result is
+     * the same as without this line. */
+    float far = a * radius;
+    if (dot(d, d) > far * far * 1.001f) return 0.0f;
     float eps = length(d) / radius + sqrt(fmax(0.0f, 1.0f - dot(n, ni)));
     if (!(eps < a)) return 0.0f;
     return 1.0f / fmax(eps, 1e-4f * a) - 1.0f / a;
@@ -67,6 +73,28 @@ TS_INLINE float ts_ic_interpolate(TS_GLOBAL const float* nodes, TS_GLOBAL const 
     }
     *e = wsum > 0.0f ? sum / wsum : sum;
     return wsum;
+}
+
+/* Whether some record is usable at (x, n) with error bound a: ts_ic_interpolate's Σ w > 0,
+ * decided without the sums. Weights are never negative (a NaN weight counts in neither),
+ * so Σ w > 0 exactly when one weight is positive, and the walk stops at the first. The
+ * placement's coverage test (host/gi/instant_cache.cpp) asks only this, for every pixel
+ * of its finest grid. */
+TS_INLINE int ts_ic_covered(TS_GLOBAL const float* nodes, TS_GLOBAL const uint* refs, TS_GLOBAL const float* records,
+                            float3 x, float3 n, float a) {
+    uint node = 0u;
+    for (int depth = 0; depth <= TS_IC_MAX_DEPTH; ++depth) {
+        TS_GLOBAL const float* N = nodes + (size_t)node * TS_IC_NODE_FLOATS;
+        uint first = as_uint(N[TS_IC_NODE_FIRST]), count = as_uint(N[TS_IC_NODE_COUNT]);
+        for (uint r = first; r < first + count; ++r)
+            if (ts_ic_weight(records + (size_t)refs[r] * TS_IC_RECORD_FLOATS, x, n, a) > 0.0f) return 1;
+        uint child = as_uint(N[TS_IC_NODE_CHILD]);
+        if (child == 0u) break;
+        TS_GLOBAL const float* c = N + TS_IC_NODE_CENTRE;
+        uint octant = (x.x >= c[0] ? 1u : 0u) + (x.y >= c[1] ? 2u : 0u) + (x.z >= c[2] ? 4u : 0u);
+        node = child + octant;
+    }
+    return 0;
 }
 
 /* Interpolation for pixel p of the G-buffer: writes TS_IC_INTERP_FLOATS values (layout.h):

@@ -53,6 +53,35 @@ TEST(WardWeight, MatchesTheFormulaAndTheValidityBounds) {
     EXPECT_FLOAT_EQ(weight(r, {0, 0, 0}, {0, 0, 1}, a), 1.0f / (1e-4f * a) - 1.0f / a);
 }
 
+// ts_ic_weight's early distance test (dot(d, d) against (a·R)², with a 1e-3 margin) must
+// not change any weight: on points within ±1e-6 of the validity limit |d| = a·R, where the
+// two forms of the test round differently, the weight equals the formula's without it
+// (with a margin of 0.9999 instead of 1.001 this fails).
+TEST(WardWeight, DistancePreTestChangesNoWeight) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const float a = 0.3f;
+    size_t usable = 0, unusable = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const float radius = std::exp2(8.0f * u(rng));
+        const glm::vec3 centre(100.0f * u(rng), 100.0f * u(rng), 100.0f * u(rng));
+        const IcRecord r = record_at(centre, {0, 0, 1}, radius);
+        const glm::vec3 dir = glm::normalize(glm::vec3(u(rng), u(rng), 0.0f));
+        const glm::vec3 x = centre + dir * (a * radius * (1.0f + 1e-6f * u(rng)));
+        const glm::vec3 n(0, 0, 1);
+        // The formula of ts_ic_weight without the early test.
+        const glm::vec3 d = x - centre;
+        const float eps = glm::length(d) / radius + std::sqrt(std::fmax(0.0f, 1.0f - glm::dot(n, n)));
+        const float expected = eps < a ? 1.0f / std::fmax(eps, 1e-4f * a) - 1.0f / a : 0.0f;
+        const float w = weight(r, x, n, a);
+        ASSERT_EQ(w, expected) << "point " << i;
+        (w > 0.0f ? usable : unusable)++;
+    }
+    // Both sides of the limit are exercised.
+    EXPECT_GT(usable, 1000u);
+    EXPECT_GT(unusable, 1000u);
+}
+
 TEST(RecordRadius, ClampsToPixelFootprints) {
     // One pixel = 0.004 units at the record.
     EXPECT_FLOAT_EQ(ic_record_radius(0.05f, 0.004f, 1.5f, 20.0f), 0.05f);
@@ -93,6 +122,12 @@ TEST(IcOctree, LookupEqualsBruteForceOverAllRecords) {
             glm::vec3 e;
             const float w = cache.lookup(x, n, &e);
             ASSERT_NEAR(w, wsum, 1e-4 * wsum + 1e-6) << "query " << q;
+            // The placement's coverage test: Σ w > 0, decided at the first usable record.
+            const IcCacheBuffers& b = cache.buffers();
+            ASSERT_EQ(ts::ts_ic_covered(b.nodes.data(), b.refs.data(), b.records.data(), {x.x, x.y, x.z},
+                                        {n.x, n.y, n.z}, a) != 0,
+                      w > 0.0f)
+                << "query " << q;
             if (wsum > 0) {
                 ASSERT_NEAR(e.x, esum / wsum, 1e-4);
             }
