@@ -31,16 +31,17 @@ TS_NAMESPACE_BEGIN
 /* The shifted Ward weight of `record` (TS_IC_RECORD_FLOATS) at (x, n) for error bound a;
  * 0 when the record is not usable there. */
 TS_INLINE float ts_ic_weight(TS_GLOBAL const float* record, float3 x, float3 n, float a) {
-    float3 xi = ts_f3_load(record + TS_IC_RECORD_POSITION), ni = ts_f3_load(record + TS_IC_RECORD_NORMAL);
+    float3 xi = ts_f3_load(record + TS_IC_RECORD_POSITION);
     float radius = record[TS_IC_RECORD_RADIUS];
     float3 d = x - xi;
-    if (dot(d, n + ni) * 0.5f < -0.01f * radius) return 0.0f;
     /* Most records a lookup meets lie farther than a·radius, where eps >= a: rejected
-     * here without the two square roots. The 1e-3 margin dwarfs the rounding of either
-     * form, so a record near the limit goes on to the exact test below and the result is
-     * the same as without this line. */
+     * first, without the normal and the two square roots. The 1e-3 margin dwarfs the
+     * rounding of either form, so a record near the limit goes on to the exact test below
+     * and the result is the same as without this line. */
     float far = a * radius;
     if (dot(d, d) > far * far * 1.001f) return 0.0f;
+    float3 ni = ts_f3_load(record + TS_IC_RECORD_NORMAL);
+    if (dot(d, n + ni) * 0.5f < -0.01f * radius) return 0.0f;
     float eps = length(d) / radius + sqrt(fmax(0.0f, 1.0f - dot(n, ni)));
     if (!(eps < a)) return 0.0f;
     return 1.0f / fmax(eps, 1e-4f * a) - 1.0f / a;
