@@ -233,6 +233,23 @@ typedef struct TsHit16 {
     uint16 prim;
 } TsHit16;
 
+/* hits[i] = lane i of h for each lane i in `valid` (bit i); the other entries untouched. */
+static inline void ts_hit16_unpack(const TsHit16* h, uint valid, TsHit* hits) {
+    float t[TS_PACKET_LANES], u[TS_PACKET_LANES], v[TS_PACKET_LANES];
+    uint prim[TS_PACKET_LANES];
+    vstore16(h->t, 0, t);
+    vstore16(h->u, 0, u);
+    vstore16(h->v, 0, v);
+    vstore16(h->prim, 0, prim);
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        if (!(valid >> i & 1u)) continue;
+        hits[i].t = t[i];
+        hits[i].u = u[i];
+        hits[i].v = v[i];
+        hits[i].prim = prim[i];
+    }
+}
+
 /* The least of the 16 lanes of x. */
 static inline float ts_min16(float16 x) {
     float8 a = fmin(x.lo, x.hi);

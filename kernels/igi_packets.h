@@ -37,19 +37,7 @@ static inline void ts_trace_closest_lanes(const TsTracer* tracer, const TsRay* r
     for (int l = 0; l < TS_PACKET_LANES; ++l) ts_ray16_put(a, l, rays[l]);
     TsRay16 r = ts_ray16_load(a);
     TsHit16 h = ts_bvh_closest16(tracer->nodes, tracer->tris, &r, valid);
-    float t[TS_PACKET_LANES], u[TS_PACKET_LANES], v[TS_PACKET_LANES];
-    uint prim[TS_PACKET_LANES];
-    vstore16(h.t, 0, t);
-    vstore16(h.u, 0, u);
-    vstore16(h.v, 0, v);
-    vstore16(h.prim, 0, prim);
-    for (int l = 0; l < TS_PACKET_LANES; ++l) {
-        if (!(valid >> l & 1u)) continue;
-        hits[l].t = t[l];
-        hits[l].u = u[l];
-        hits[l].v = v[l];
-        hits[l].prim = prim[l];
-    }
+    ts_hit16_unpack(&h, valid, hits);
 }
 #include "shared/igi_view16.h"
 

@@ -77,17 +77,13 @@ void trace_closest_packets(__global const float* nodes, __global const float* tr
     uint active;
     TsRay16 r = ts_load_ray16(rays, first, count, &active);
     TsHit16 h = ts_bvh_closest16(nodes, tris, &r, active);
-    float t[TS_PACKET_LANES], u[TS_PACKET_LANES], v[TS_PACKET_LANES];
-    uint prim[TS_PACKET_LANES];
-    vstore16(h.t, 0, t);
-    vstore16(h.u, 0, u);
-    vstore16(h.v, 0, v);
-    vstore16(h.prim, 0, prim);
+    TsHit lane[TS_PACKET_LANES];
+    ts_hit16_unpack(&h, active, lane);
     for (uint i = 0u; first + i < count && i < TS_PACKET_LANES; ++i) {
         __global float* o = hits + TS_HIT_FLOATS * (first + i);
-        o[TS_HIT_T] = t[i];
-        o[TS_HIT_U] = u[i];
-        o[TS_HIT_V] = v[i];
-        o[TS_HIT_PRIM] = as_float(prim[i]);
+        o[TS_HIT_T] = lane[i].t;
+        o[TS_HIT_U] = lane[i].u;
+        o[TS_HIT_V] = lane[i].v;
+        o[TS_HIT_PRIM] = as_float(lane[i].prim);
     }
 }
