@@ -200,6 +200,7 @@ TS_INLINE TsIgiView ts_igi_view_from(const TsSceneView* sv, const TsTracer* trac
     return v;
 }
 
+/* The view of pixel (px, py), its camera ray traced on its own. */
 TS_INLINE TsIgiView ts_igi_view(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px,
                                 uint py) {
     TsRng rng;

@@ -1,6 +1,7 @@
 // The OpenCL backend's 16-ray packet kernels on CPU devices (host/backend/opencl_backend.cpp,
 // kernels/bvh_packet.h, kernels/igi_packets.h): each lane of a packet must get the
-// occlusion its own per-ray traversal (ts_bvh_occluded) gives, so images with packets on
+// occlusion (ts_bvh_occluded) and the closest hit (ts_bvh_closest) its own per-ray
+// traversal gives, so images with packets on
 // equal those with packets off, bit for bit. Both run the same shared transport in the
 // same link order per pixel; only the traversal differs.
 #include <cmath>
