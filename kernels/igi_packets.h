@@ -48,15 +48,7 @@ static inline void ts_trace_closest_lanes(const TsTracer* tracer, const TsRay* r
 static inline uint ts_igi_packet_views(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                        TsIgiPacket* p, uint want, const uint* px, const uint* py) {
     ts_igi_view16(sv, tracer, f, want, px, py, p->view);
-    uint seen = 0u;
-    for (int i = 0; i < TS_PACKET_LANES; ++i) {
-        p->links[i] = 0u;
-        if (!(want >> i & 1u) || p->view[i].hit.prim == TS_NO_HIT) continue;
-        seen |= 1u << i;
-        p->albedo[i] = ts_material_albedo(sv, &p->view[i].s);
-        if (ts_max3(p->albedo[i]) > 0.0f) p->links[i] = ts_igi_link_count(sv, f, p->set[i], p->mask[i]);
-    }
-    return seen;
+    return ts_igi_view16_links(sv, f, want, p->view, p->set, p->mask, p->albedo, p->links);
 }
 
 /* Traces link j of every lane that has one as one packet, for j = 0 .. the most links

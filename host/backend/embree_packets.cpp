@@ -119,15 +119,8 @@ uint32_t view_lanes(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const
     ts::TsTracer t = tracer;
     t.coherent = coherent;
     ts::ts_igi_view16(&sv, &t, &frame, want, px, py, p.view.data());
-    uint32_t seen = 0;
-    for (int i = 0; i < p.lanes; ++i) {
-        p.links[i] = 0;
-        if (!(want >> i & 1u) || p.view[i].hit.prim == TS_NO_HIT) continue;
-        seen |= 1u << i;
-        p.albedo[i] = ts::ts_material_albedo(&sv, &p.view[i].s);
-        if (ts::ts_max3(p.albedo[i]) > 0.0f) p.links[i] = ts::ts_igi_link_count(&sv, &frame, p.set[i], p.mask[i]);
-    }
-    return seen;
+    return ts::ts_igi_view16_links(&sv, &frame, want, p.view.data(), p.set.data(), p.mask.data(), p.albedo.data(),
+                                   p.links.data());
 }
 
 // Block b of the frame (ts_packet_block, kernels/shared/geometry.h: the enumeration the

@@ -52,26 +52,33 @@ struct Box {
             lo[a] -= e, hi[a] += e;
         }
     }
-    // Whether org + t·dir for t in [t0, t1] meets the box (slab test; a zero direction
-    // component is handled by the infinities of 1/0).
+    // One axis of the slab test on the running interval [t0, t1]: l and h are the slab's
+    // planes relative to the ray's origin, d the direction component, `out` whether the
+    // origin lies outside the slab. Branch-free, so that loops over rays vectorise. A zero d
+    // with the origin on a plane gives NaN: the interval is left alone and the origin's
+    // side decides (a zero d otherwise gives the infinities of 1/0). fmax / fmin are
+    // written as comparisons (the libm calls do not vectorise): no NaN reaches them, and
+    // the sign of a zero cannot change the final t0 > t1.
+    static void slab(float d, float l, float h, bool out, float& t0, float& t1, int32_t& ok) {
+        const float inv = 1.0f / d;
+        const float n = l * inv, f = h * inv;
+        const int32_t nan = (n != n) | (f != f);
+        const float mn = n > f ? f : n, mx = n > f ? n : f;
+        t0 = nan ? t0 : (mn > t0 ? mn : t0);
+        t1 = nan ? t1 : (mx < t1 ? mx : t1);
+        ok &= ~(nan & int32_t(out)) & 1;
+    }
+    // Whether org + t·dir for t in [t0, t1] meets the box. A slab test's early exits become
+    // one final test: t0 only grows and t1 only shrinks over the axes.
     bool meets(const float* org, const float* dir, float t0, float t1) const {
-        for (int a = 0; a < 3; ++a) {
-            const float inv = 1.0f / dir[a];
-            float n = (lo[a] - org[a]) * inv, f = (hi[a] - org[a]) * inv;
-            if (std::isnan(n) || std::isnan(f)) {  // dir[a] == 0 with org on a slab plane
-                if (org[a] < lo[a] || org[a] > hi[a]) return false;
-                continue;
-            }
-            if (n > f) std::swap(n, f);
-            t0 = std::fmax(t0, n), t1 = std::fmin(t1, f);
-            if (t0 > t1) return false;
-        }
-        return true;
+        int32_t ok = 1;
+        for (int a = 0; a < 3; ++a)
+            slab(dir[a], lo[a] - org[a], hi[a] - org[a], (org[a] < lo[a]) | (org[a] > hi[a]), t0, t1, ok);
+        return ok && !(t0 > t1);
     }
     // meets() for n rays from org to the points (ex[j], ey[j], ez[j]): ray j has direction
-    // end_j - org (as ts_shadow_ray forms it) over [t0, t1]; hit[j] |= the answer. The same
-    // arithmetic without branches, so that GCC vectorises the loop over j (meets()'s early
-    // exits become one final test: t0 only grows and t1 only shrinks over the axes).
+    // end_j - org (as ts_shadow_ray forms it) over [t0, t1]; hit[j] |= the answer. The
+    // per-ray set-up is hoisted, and GCC vectorises the loop over j.
     void meets_many(const float* org, const float* __restrict ex, const float* __restrict ey,
                     const float* __restrict ez, size_t n, float t0, float t1, int32_t* __restrict hit) const {
         const float ox = org[0], oy = org[1], oz = org[2];
@@ -82,20 +89,9 @@ struct Box {
         for (size_t j = 0; j < n; ++j) {
             float a0 = t0, a1 = t1;
             int32_t ok = 1;
-            auto axis = [&](float d, float l, float h, bool out) {
-                const float inv = 1.0f / d;
-                const float nn = l * inv, ff = h * inv;
-                const int32_t nan = (nn != nn) | (ff != ff);
-                const float mn = nn > ff ? ff : nn, mx = nn > ff ? nn : ff;
-                // fmax / fmin by comparison (the libm calls do not vectorise); no NaN reaches
-                // them, and the sign of a zero cannot change the final a0 > a1.
-                a0 = nan ? a0 : (mn > a0 ? mn : a0);
-                a1 = nan ? a1 : (mx < a1 ? mx : a1);
-                ok &= ~(nan & int32_t(out)) & 1;
-            };
-            axis(ex[j] - ox, lx, hx, out_x);
-            axis(ey[j] - oy, ly, hy, out_y);
-            axis(ez[j] - oz, lz, hz, out_z);
+            slab(ex[j] - ox, lx, hx, out_x, a0, a1, ok);
+            slab(ey[j] - oy, ly, hy, out_y, a0, a1, ok);
+            slab(ez[j] - oz, lz, hz, out_z, a0, a1, ok);
             hit[j] |= ok & int32_t(!(a0 > a1));
         }
     }

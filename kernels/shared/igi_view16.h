@@ -37,6 +37,23 @@ TS_INLINE void ts_igi_view16(const TsSceneView* sv, const TsTracer* tracer, cons
         if (on >> i & 1u) views[i] = ts_igi_view_from(sv, tracer, f, ray[i], hit[i], &rng[i]);
 }
 
+/* After ts_igi_view16: for each lane i in `want` whose camera path found a surface, its
+ * albedo and the number of links it gathers for set[i] and components mask[i] (none when
+ * the albedo is black, as in ts_igi_surface_set); links[i] = 0 for every other lane.
+ * Returns the lanes that found a surface. */
+TS_INLINE uint ts_igi_view16_links(const TsSceneView* sv, const TsFrame* f, uint want, const TsIgiView* views,
+                                   const uint* set, const uint* mask, float3* albedo, uint* links) {
+    uint seen = 0u;
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        links[i] = 0u;
+        if (!(want >> i & 1u) || views[i].hit.prim == TS_NO_HIT) continue;
+        seen |= 1u << i;
+        albedo[i] = ts_material_albedo(sv, &views[i].s);
+        if (ts_max3(albedo[i]) > 0.0f) links[i] = ts_igi_link_count(sv, f, set[i], mask[i]);
+    }
+    return seen;
+}
+
 TS_NAMESPACE_END
 
 #endif /* TS_IGI_VIEW16_H */
