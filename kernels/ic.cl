@@ -1,12 +1,9 @@
-/* Instant caching on OpenCL devices (shared/ic.h): the G-buffer kernel (the surface each
- * pixel's records and lookups use), the interpolation kernel (octree lookup over the
+/* Instant caching on OpenCL devices (shared/ic.h): the interpolation kernel (octree lookup over the
  * records, set as named inputs), and the record-VPL pair and gather kernels. Built with
  * doubles where the device has cl_khr_fp64 (shared/compat.h TS_HAS_DOUBLE). */
 #include "shared/layout.h"
 #include "tracer.h"
 #include "shared/ic.h"
-
-TS_PIXEL_KERNEL(ic_gbuffer_pass, ts_ic_gbuffer_pixel, TS_IC_GBUF_FLOATS)
 
 TS_PIXEL_KERNEL(ic_interpolate, ts_ic_interpolate_kernel_pixel, TS_IC_INTERP_FLOATS)
 

@@ -22,7 +22,6 @@
     X(IgiMedia, "igi_media_pass", "igi.cl", TS_IGI_MEDIA_FLOATS, 0, ts_igi_media_pixel)                  \
     X(IgiResolve, "igi_resolve_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_igi_resolve_pixel)                 \
     X(AisItem, "ais_extra_pass", "igi.cl", TS_AIS_ITEM_FLOATS, TS_AIS_ITEM_WORDS, ts_ais_extra_item)     \
-    X(IcGbuffer, "ic_gbuffer_pass", "ic.cl", TS_IC_GBUF_FLOATS, 0, ts_ic_gbuffer_pixel)                  \
     X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel)     \
     X(IcPair, "ic_pair_pass", "ic.cl", TS_IC_PAIR_FLOATS, TS_IC_PAIR_WORDS, ts_ic_pair_item)             \
     X(IcGather, "ic_gather_pass", "ic.cl", TS_IC_GATHER_FLOATS, TS_IC_GATHER_WORDS, ts_ic_gather_item)
@@ -56,7 +55,7 @@ const KernelInfo& kernel_info(KernelId k);
 enum class KernelInput {
     Vpls,         ///< floats: TS_VPL_FLOATS per VPL, sorted by sample set (layout.h)
     VplSetStart,  ///< uints: sample set k's VPLs are [start[k], start[k+1])
-    IcGbuffer,    ///< floats: TS_IC_GBUF_FLOATS per pixel (KernelId::IcGbuffer's output)
+    IcGbuffer,    ///< floats: TS_IC_GBUF_FLOATS per pixel (ic_gbuffer_from_surface, gi/instant_cache.h)
     IcNodes,      ///< floats: TS_IC_NODE_FLOATS per octree node, root first
     IcRefs,       ///< uints: the octree nodes' record lists, concatenated
     IcRecords,    ///< floats: TS_IC_RECORD_FLOATS per record

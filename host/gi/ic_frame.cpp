@@ -13,10 +13,10 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 }  // namespace
 
 void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
-    (void)surf, (void)media;
+    (void)media;
     if (!(frame.igi_components & TS_COMPONENT_ID)) return;
     const auto tc = Clock::now();
-    if (plan_.indirect) cache_->indirect(backend_, scene_, frame, frame.igi_g_clamp, raw_[kAisID]);
+    if (plan_.indirect) cache_->indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, raw_[kAisID]);
     stats_.cache_seconds = since(tc);
 }
 

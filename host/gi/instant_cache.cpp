@@ -11,6 +11,7 @@
 
 #include "gi/ic_gather.h"
 #include "kernels/shared/ic_lookup.h"
+#include "kernels/shared/sampling.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -29,6 +30,30 @@ bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_
 size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / TS_VPL_FLOATS; }
 
 }  // namespace
+
+std::vector<float> ic_gbuffer_from_surface(const std::vector<float>& surf) {
+    const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
+    std::vector<float> g(pixels * TS_IC_GBUF_FLOATS);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t p = r.begin(); p < r.end(); ++p) {
+            const float* s = &surf[p * TS_IGI_SURF_FLOATS];
+            float* o = &g[p * TS_IC_GBUF_FLOATS];
+            std::fill(o, o + TS_IC_GBUF_FLOATS, 0.0f);
+            o[TS_IC_GBUF_PRIM] = ts::as_float(TS_NO_HIT);
+            const bool seen = ts::as_uint(s[TS_IGI_SURF_PRIM]) != TS_NO_HIT;
+            if (!seen || !(ts::ts_max3(ts::ts_f3_load(s + TS_IGI_SURF_ALBEDO)) > 0.0f)) continue;
+            auto copy = [&](int to, int from, int n) { std::copy(s + from, s + from + n, o + to); };
+            copy(TS_IC_GBUF_POSITION, TS_IGI_SURF_POSITION, 3);
+            copy(TS_IC_GBUF_NORMAL, TS_IGI_SURF_NORMAL, 3);
+            copy(TS_IC_GBUF_GEO_NORMAL, TS_IGI_SURF_GEO_NORMAL, 3);
+            copy(TS_IC_GBUF_ORIGIN, TS_IGI_SURF_ORIGIN, 3);
+            copy(TS_IC_GBUF_POS_SCALE, TS_IGI_SURF_POS_SCALE, 1);
+            copy(TS_IC_GBUF_PRIM, TS_IGI_SURF_PRIM, 1);
+            copy(TS_IC_GBUF_DISTANCE, TS_IGI_SURF_DISTANCE, 1);
+        }
+    });
+    return g;
+}
 
 InstantCache::InstantCache(const IcSettings& settings, const std::vector<SceneObject>& objects)
     : settings_(settings), cache_(settings.error_bound) {
@@ -193,8 +218,8 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
     }
 }
 
-void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, float g_clamp,
-                            std::vector<float>& e_id) {
+void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame,
+                            const std::vector<float>& surf, float g_clamp, std::vector<float>& e_id) {
     stats_ = IcFrameStats{};
     auto t0 = Clock::now();
     if (!settings_.temporal || !have_previous_) {
@@ -207,8 +232,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     stats_.update_seconds = since(t0);
 
     t0 = Clock::now();
-    std::vector<float> gbuffer;
-    backend.launch(KernelId::IcGbuffer, frame, gbuffer);
+    const std::vector<float> gbuffer = ic_gbuffer_from_surface(surf);
     const SceneBounds bounds = scene_bounds(scene);
     cache_.rebuild(bounds.lo, bounds.hi);
     place(backend, gbuffer, frame, g_clamp);

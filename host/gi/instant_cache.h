@@ -68,6 +68,13 @@ struct IcFrameStats {
 constexpr int32_t kIcFacing = -2;
 constexpr int32_t kIcVisible = -1;
 
+/// The ic G-buffer (TS_IC_GBUF_FLOATS per pixel, layout.h) of the igi surface pass's
+/// output `surf` (TS_IGI_SURF_FLOATS per pixel): each pixel's first diffuse surface, or
+/// TS_NO_HIT where the camera path found none or one of albedo 0 (no record serves it).
+/// The surface pass has traced the camera rays already; the cache reads its surfaces
+/// instead of tracing them again.
+std::vector<float> ic_gbuffer_from_surface(const std::vector<float>& surf);
+
 class InstantCache {
 public:
     /// `objects` are the scene's (stable over an animation); empty = one object.
@@ -77,9 +84,11 @@ public:
     /// Non-temporal: a fresh cache from path block frame.pass. Temporal: path block 0
     /// always; on the first call a fresh cache, later the changes since the previous call
     /// (moved objects, materials, lights) are applied first (docs/instant-caching.md §8).
-    /// `g_clamp` is the igi geometry-term bound b.
-    void indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, float g_clamp,
-                  std::vector<float>& e_id);
+    /// `surf` is the igi surface pass's output for `frame` (TS_IGI_SURF_FLOATS per pixel,
+    /// row-major): the surfaces records are made at and looked up for. `g_clamp` is the
+    /// igi geometry-term bound b.
+    void indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, const std::vector<float>& surf,
+                  float g_clamp, std::vector<float>& e_id);
 
     /// The current records (same surfaces) with E and R recomputed from scratch on
     /// `scene`: fresh light paths (same indices), every shadow ray traced. The temporal

@@ -231,6 +231,7 @@ TS_INLINE void ts_igi_surface_clear(float* out) {
     for (int i = 0; i < TS_IGI_SURF_FLOATS; ++i) out[i] = 0.0f;
     out[TS_IGI_SURF_DISTANCE] = TS_INF;
     ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, make_float3(1.0f, 1.0f, 1.0f));
+    out[TS_IGI_SURF_PRIM] = as_float(TS_NO_HIT);
 }
 
 /* The surface-pass output of a pixel that sees surface v->s: its G-buffer and the
@@ -246,6 +247,10 @@ TS_INLINE void ts_igi_surface_store(const TsIgiView* v, float3 albedo, float3 le
     ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, v->throughput);
     out[TS_IGI_SURF_VISIBLE] = visible;
     ts_f3_store(out + TS_IGI_SURF_POSITION, v->s.position);
+    ts_f3_store(out + TS_IGI_SURF_GEO_NORMAL, v->s.geo_normal);
+    ts_f3_store(out + TS_IGI_SURF_ORIGIN, v->s.origin);
+    out[TS_IGI_SURF_POS_SCALE] = v->s.pos_scale;
+    out[TS_IGI_SURF_PRIM] = as_float(v->hit.prim);
 }
 
 /* Surface part of one igi frame for pixel (px, py), its own sample set; writes

@@ -215,8 +215,15 @@ typedef struct TsFrame {
  *   TS_IGI_SURF_VISIBLE    fraction of the light samples that reached the light
  *                          unoccluded (AIS soft-shadow guidance)
  *   TS_IGI_SURF_POSITION   3 floats: the surface position (world space; for the filter's
- *                          plane-distance test) */
-#define TS_IGI_SURF_FLOATS 23
+ *                          plane-distance test)
+ *   TS_IGI_SURF_GEO_NORMAL 3 floats: geometric normal (toward the viewer)
+ *   TS_IGI_SURF_ORIGIN     3 floats: ray origin for rays that leave the surface
+ *   TS_IGI_SURF_POS_SCALE  the origin's offset scale (TsSurface.pos_scale)
+ *   TS_IGI_SURF_PRIM       triangle index (uint bits; TS_NO_HIT on a miss)
+ * The last four are what the instant cache's G-buffer needs besides the first ones
+ * (TS_IC_GBUF_*): ic and tic take it from this pass instead of tracing the camera rays
+ * a second time (host/gi/instant_cache.cpp, ic_gbuffer_from_surface). */
+#define TS_IGI_SURF_FLOATS 31
 #define TS_IGI_SURF_E_SS 0
 #define TS_IGI_SURF_E_ID 3
 #define TS_IGI_SURF_ALBEDO 6
@@ -226,6 +233,10 @@ typedef struct TsFrame {
 #define TS_IGI_SURF_THROUGHPUT 16
 #define TS_IGI_SURF_VISIBLE 19
 #define TS_IGI_SURF_POSITION 20
+#define TS_IGI_SURF_GEO_NORMAL 23
+#define TS_IGI_SURF_ORIGIN 26
+#define TS_IGI_SURF_POS_SCALE 29
+#define TS_IGI_SURF_PRIM 30
 /* Per-pixel output of the igi media kernel, TS_IGI_MEDIA_FLOATS floats:
  *   TS_IGI_MEDIA_RADIANCE      3 floats: single-scattered radiance along the camera segment
  *   TS_IGI_MEDIA_TRANSMITTANCE 3 floats: transmittance of that segment
@@ -258,9 +269,8 @@ typedef struct TsFrame {
 #define TS_COMPONENT_PM 4u
 
 /* Instant caching (shared/ic.h, host/gi/irradiance_cache.h).
- * Per-pixel output of the ic G-buffer kernel, TS_IC_GBUF_FLOATS floats: the first diffuse
- * surface seen through the pixel (the igi surface kernel's camera ray, so the same
- * surface):
+ * The ic G-buffer, TS_IC_GBUF_FLOATS floats per pixel: the first diffuse surface seen
+ * through the pixel, taken from the igi surface pass's output (so the same surface):
  *   TS_IC_GBUF_POSITION   3 floats: position
  *   TS_IC_GBUF_NORMAL     3 floats: shading normal
  *   TS_IC_GBUF_GEO_NORMAL 3 floats: geometric normal (toward the viewer)
@@ -424,7 +434,9 @@ static_assert(tessera::layout_check::tiles({{TS_VPL_POSITION, 3}, {TS_VPL_NORMAL
 static_assert(tessera::layout_check::tiles({{TS_IGI_SURF_E_SS, 3}, {TS_IGI_SURF_E_ID, 3}, {TS_IGI_SURF_ALBEDO, 3},
                                             {TS_IGI_SURF_EMISSION, 3}, {TS_IGI_SURF_NORMAL, 3},
                                             {TS_IGI_SURF_DISTANCE, 1}, {TS_IGI_SURF_THROUGHPUT, 3},
-                                            {TS_IGI_SURF_VISIBLE, 1}, {TS_IGI_SURF_POSITION, 3}},
+                                            {TS_IGI_SURF_VISIBLE, 1}, {TS_IGI_SURF_POSITION, 3},
+                                            {TS_IGI_SURF_GEO_NORMAL, 3}, {TS_IGI_SURF_ORIGIN, 3},
+                                            {TS_IGI_SURF_POS_SCALE, 1}, {TS_IGI_SURF_PRIM, 1}},
                                            TS_IGI_SURF_FLOATS),
               "layout.h: igi surface-pass fields do not tile TS_IGI_SURF_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_IGI_MEDIA_RADIANCE, 3}, {TS_IGI_MEDIA_TRANSMITTANCE, 3},
