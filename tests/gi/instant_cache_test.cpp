@@ -209,6 +209,35 @@ TEST_P(InstantCacheOn, EvictsRecordsLongOutOfView) {
     EXPECT_GT(s.ic_state->stats().created, 10u);
 }
 
+// The cache's G-buffer is the surface pass's view: a miss and a black surface serve no
+// record (TS_NO_HIT), any other pixel carries its surface's fields over unchanged.
+TEST(IcGbufferFromSurface, KeepsSeenSurfacesWithAlbedo) {
+    std::vector<float> surf(3 * TS_IGI_SURF_FLOATS, 1.0f);  // 0: a miss
+    surf[TS_IGI_SURF_DISTANCE] = INFINITY;
+    surf[TS_IGI_SURF_PRIM] = ts::as_float(TS_NO_HIT);
+    for (int p = 1; p < 3; ++p) {  // 1: a black surface, 2: a grey one
+        float* s = &surf[p * TS_IGI_SURF_FLOATS];
+        for (int i = 0; i < TS_IGI_SURF_FLOATS; ++i) s[i] = 0.5f + 0.25f * float(i) + float(p);
+        for (int c = 0; c < 3; ++c) s[TS_IGI_SURF_ALBEDO + c] = p == 1 ? 0.0f : 0.25f;
+        s[TS_IGI_SURF_PRIM] = ts::as_float(17u + p);
+    }
+    const std::vector<float> g = ic_gbuffer_from_surface(surf);
+    ASSERT_EQ(g.size(), 3u * TS_IC_GBUF_FLOATS);
+    EXPECT_EQ(ts::as_uint(g[TS_IC_GBUF_PRIM]), TS_NO_HIT);
+    EXPECT_EQ(ts::as_uint(g[TS_IC_GBUF_FLOATS + TS_IC_GBUF_PRIM]), TS_NO_HIT);
+    const float* o = &g[2 * TS_IC_GBUF_FLOATS];
+    const float* s = &surf[2 * TS_IGI_SURF_FLOATS];
+    EXPECT_EQ(ts::as_uint(o[TS_IC_GBUF_PRIM]), 19u);
+    EXPECT_EQ(o[TS_IC_GBUF_DISTANCE], s[TS_IGI_SURF_DISTANCE]);
+    EXPECT_EQ(o[TS_IC_GBUF_POS_SCALE], s[TS_IGI_SURF_POS_SCALE]);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(o[TS_IC_GBUF_POSITION + c], s[TS_IGI_SURF_POSITION + c]);
+        EXPECT_EQ(o[TS_IC_GBUF_NORMAL + c], s[TS_IGI_SURF_NORMAL + c]);
+        EXPECT_EQ(o[TS_IC_GBUF_GEO_NORMAL + c], s[TS_IGI_SURF_GEO_NORMAL + c]);
+        EXPECT_EQ(o[TS_IC_GBUF_ORIGIN + c], s[TS_IGI_SURF_ORIGIN + c]);
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, InstantCacheOn, ::testing::Values(BackendKind::Embree, BackendKind::OpenCL),
                          [](const auto& info) { return info.param == BackendKind::Embree ? "Embree" : "OpenCL"; });
 
