@@ -24,6 +24,7 @@
 //               when a VPL weight or the geometry-term bound changed.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include <tbb/blocked_range.h>
@@ -100,6 +101,51 @@ struct Box {
         return glm::dot(d, d) <= r * r;
     }
 };
+
+// A run of VPL columns that keep their order: new columns [to, to + n) are old columns
+// [from, from + n), or new ones (from = kNewColumns) whose pairs need tracing.
+struct ColumnRun {
+    uint32_t to, from, n;
+};
+constexpr uint32_t kNewColumns = UINT32_MAX;
+
+// old_column (per new column, its old column or -1) as runs: a re-traced path's VPLs
+// shift the columns after it by a few, so a row is a handful of copies, not a gather.
+std::vector<ColumnRun> column_runs(const std::vector<int64_t>& old_column) {
+    std::vector<ColumnRun> runs;
+    for (size_t j = 0; j < old_column.size(); ++j) {
+        const uint32_t from = old_column[j] >= 0 ? static_cast<uint32_t>(old_column[j]) : kNewColumns;
+        ColumnRun* last = runs.empty() ? nullptr : &runs.back();
+        const bool extends = last && (from == kNewColumns ? last->from == kNewColumns
+                                                          : last->from != kNewColumns && last->from + last->n == from);
+        if (extends)
+            ++last->n;
+        else
+            runs.push_back({static_cast<uint32_t>(j), from, 1u});
+    }
+    return runs;
+}
+
+// The new row from the old one: copies of the kept columns, kNeedsTrace in the new ones.
+void remap_row(const std::vector<ColumnRun>& runs, const int32_t* old_row, int32_t* row) {
+    for (const ColumnRun& run : runs) {
+        if (run.from == kNewColumns)
+            std::fill(row + run.to, row + run.to + run.n, kNeedsTrace);
+        else
+            std::copy(old_row + run.from, old_row + run.from + run.n, row + run.to);
+    }
+}
+
+// Pair j of a record's row must be re-traced: it never was (kNeedsTrace), its occluder is
+// one of the `moved` objects, or it was unoccluded and its segment meets a moved box
+// (trace[j] = 1 on entry). trace[j] becomes 1 for those, 0 for the rest. Compares only,
+// so GCC vectorises both loops (the moved objects are few; a table lookup would not).
+void mark_retrace(const int32_t* __restrict row, size_t n, const std::vector<uint32_t>& moved,
+                  int32_t* __restrict trace) {
+    for (size_t j = 0; j < n; ++j) trace[j] = (row[j] == kNeedsTrace) | ((row[j] == kIcVisible) & trace[j]);
+    for (const uint32_t m : moved)
+        for (size_t j = 0; j < n; ++j) trace[j] |= row[j] == static_cast<int32_t>(m);
+}
 
 bool differ(const std::vector<float>& a, const std::vector<float>& b, size_t at, size_t n) {
     return std::memcmp(&a[at], &b[at], n * sizeof(float)) != 0;
@@ -228,12 +274,11 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     // Records: drop the stale ones, re-map the rest to the new columns.
     std::vector<IcRecord>& records = cache_.records();
     check_pairs(records.size(), old_column.size());
-    std::vector<IcRecord> kept;
-    std::vector<Row> rows;
     // Usually every VPL keeps its column (only fluxes change, or nothing): each row then
     // moves over as it is, without a copy (18k records × 400 VPLs = 30 MB a frame).
     bool same_columns = !rows_.empty() && old_column.size() == rows_.front().size();
     for (size_t j = 0; same_columns && j < old_column.size(); ++j) same_columns = old_column[j] == int64_t(j);
+    std::vector<uint32_t> keep;
     for (size_t i = 0; i < records.size(); ++i) {
         const IcRecord& r = records[i];
         uint32_t prim;
@@ -242,19 +287,25 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
         for (uint32_t o : ch.moved)
             stale = stale || ch.old_box[o].meets_sphere(r.position(), r.radius) ||
                     ch.new_box[o].meets_sphere(r.position(), r.radius);
-        if (stale) {
+        if (stale)
             ++stats_.removed;
-            continue;
-        }
-        kept.push_back(r);
-        if (same_columns) {
-            rows.push_back(std::move(rows_[i]));
-            continue;
-        }
-        Row row(old_column.size());
-        for (size_t j = 0; j < row.size(); ++j) row[j] = old_column[j] >= 0 ? rows_[i][old_column[j]] : kNeedsTrace;
-        rows.push_back(std::move(row));
+        else
+            keep.push_back(static_cast<uint32_t>(i));
     }
+    std::vector<IcRecord> kept(keep.size());
+    std::vector<Row> rows(keep.size());
+    const std::vector<ColumnRun> runs = same_columns ? std::vector<ColumnRun>{} : column_runs(old_column);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, keep.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            kept[k] = records[keep[k]];
+            if (same_columns) {
+                rows[k] = std::move(rows_[keep[k]]);
+                continue;
+            }
+            rows[k].resize(old_column.size());
+            remap_row(runs, rows_[keep[k]].data(), rows[k].data());
+        }
+    });
     records.swap(kept);
     rows_.swap(rows);
 
@@ -276,22 +327,20 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     }
     std::vector<std::vector<Pair>> per_record(records.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, records.size(), 16), [&](const tbb::blocked_range<size_t>& rr) {
-        std::vector<int32_t> meets(nv);
+        std::vector<int32_t> retrace(nv);  // per VPL: meets a moved box, then: re-trace
         for (size_t i = rr.begin(); i < rr.end(); ++i) {
-            std::fill(meets.begin(), meets.end(), 0);
+            std::fill(retrace.begin(), retrace.end(), 0);
             if (!ch.moved.empty()) {
                 const ts::TsSurface s = ic_record_surface(records[i]);
                 const ts::float3 o = ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
                 const float org[3] = {o.x, o.y, o.z};
                 for (uint32_t m : ch.moved)
                     ch.new_box[m].meets_many(org, end[0].data(), end[1].data(), end[2].data(), nv, t_lo, t_hi,
-                                             meets.data());
+                                             retrace.data());
             }
-            for (uint32_t j = 0; j < rows_[i].size(); ++j) {
-                const int32_t v = rows_[i][j];
-                const bool trace = v == kNeedsTrace || (v >= 0 && ch.is_moved[v]) || (v == kIcVisible && j < nv && meets[j]);
-                if (trace) per_record[i].push_back({static_cast<uint32_t>(i), j});
-            }
+            mark_retrace(rows_[i].data(), nv, ch.moved, retrace.data());
+            for (uint32_t j = 0; j < nv; ++j)
+                if (retrace[j]) per_record[i].push_back({static_cast<uint32_t>(i), j});
         }
     });
     std::vector<Pair> pairs;
