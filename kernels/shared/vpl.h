@@ -39,8 +39,9 @@ TS_INLINE TsRay ts_vpl_shadow_ray(float3 org, TS_GLOBAL const float* vpl) {
  * factor toward s (ts_vpl_emission_factor: cosθv for a surface VPL, the phase value for a
  * medium VPL, g the medium's HG parameter), is clamped to b: the contribution C·G' of any
  * VPL is at most C·b, also for a peaked phase function (g near 1: phase values near 1e5;
- * docs/igi.md §6). The shadow ray is set in either case; use it only when G' > 0. */
-TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, float g, TsRay* shadow) {
+ * docs/igi.md §6). The shadow ray is set in either case; use it only when G' > 0.
+ * ts_vpl_geometry_term is G' alone, for callers that know the visibility already. */
+TS_INLINE float ts_vpl_geometry_term(const TsSurface* s, TS_GLOBAL const float* vpl, float b, float g) {
     float3 x = s->position, n = s->shading_normal, ng = s->geo_normal;
     float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
     float3 d = y - x;
@@ -53,8 +54,12 @@ TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, 
     float3 w = d * (1.0f / sqrt(dist2));
     float cos_x = dot(n, w), cos_v = ts_vpl_emission_factor(vpl, -w, g);
     int faces = (dist2 > 0.0f) & (cos_x > 0.0f) & (cos_v > 0.0f) & (dot(ng, w) > 0.0f);
-    *shadow = ts_vpl_shadow_ray(ts_offset_ray_origin(s->origin, ng, s->pos_scale), vpl);
     return faces ? fmin(cos_x * cos_v / dist2, b) : 0.0f;
+}
+
+TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, float g, TsRay* shadow) {
+    *shadow = ts_vpl_shadow_ray(ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale), vpl);
+    return ts_vpl_geometry_term(s, vpl, b, g);
 }
 
 /* The gather sum E = (1/π) Σ_v C_v · Tr_v · G'_v over the VPLs v whose shadow ray was
@@ -71,7 +76,9 @@ TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, 
  * with Neumaier's compensation (TsSum3), whose error does not grow with the number of
  * terms (Neumaier 1974; Higham, Accuracy and Stability of Numerical Algorithms, §4.3).
  * Each form builds a term in its accumulator's precision as (C · Tr) · G' and adds it
- * (ts_vpl_gather_term: the float term, for callers that know Tr, e.g. 1 without a medium).
+ * (ts_vpl_gather_term: the float term, for callers that know Tr, e.g. 1 without a medium;
+ * the double and compensated forms take Tr from the caller, who need not build a shadow
+ * ray where there is no medium).
  * OpenCL C has no overloading, hence one name per accumulator. */
 TS_INLINE float3 ts_vpl_gather_term(TS_GLOBAL const float* vpl, float3 tr, float g) {
     return ts_f3_load(vpl + TS_VPL_FLUX) * tr * g;
@@ -96,9 +103,8 @@ typedef struct TsSum3 {
     float s[3], c[3];
 } TsSum3;
 
-TS_INLINE void ts_vpl_gather_add_compensated(TsSum3* sum, TS_GLOBAL const float* vpl, const TsMedium* med,
-                                             TsRay shadow, float g) {
-    float3 t = ts_f3_load(vpl + TS_VPL_FLUX) * ts_shadow_transmittance(med, shadow) * g;
+TS_INLINE void ts_vpl_gather_add_compensated(TsSum3* sum, TS_GLOBAL const float* vpl, float3 tr, float g) {
+    float3 t = ts_f3_load(vpl + TS_VPL_FLUX) * tr * g;
     ts_sum_compensated_add(&sum->s[0], &sum->c[0], t.x);
     ts_sum_compensated_add(&sum->s[1], &sum->c[1], t.y);
     ts_sum_compensated_add(&sum->s[2], &sum->c[2], t.z);
@@ -113,9 +119,8 @@ typedef struct TsDouble3 {
     double x, y, z;
 } TsDouble3;
 
-TS_INLINE void ts_vpl_gather_add_double(TsDouble3* sum, TS_GLOBAL const float* vpl, const TsMedium* med,
-                                        TsRay shadow, float g) {
-    const float3 c = ts_f3_load(vpl + TS_VPL_FLUX), tr = ts_shadow_transmittance(med, shadow);
+TS_INLINE void ts_vpl_gather_add_double(TsDouble3* sum, TS_GLOBAL const float* vpl, float3 tr, float g) {
+    const float3 c = ts_f3_load(vpl + TS_VPL_FLUX);
     sum->x += (double)c.x * tr.x * g;
     sum->y += (double)c.y * tr.y * g;
     sum->z += (double)c.z * tr.z * g;

@@ -63,16 +63,14 @@ TEST(IcGather, CompensatedAndDoubleGatherAgree) {
     // magnitude: the float form (devices without doubles) must match the double form
     // (the C++ and fp64 devices) to a few float ulps.
     std::vector<float> vpl(TS_VPL_FLOATS, 0.0f);
-    const std::vector<float> no_medium(TS_MEDIUM_FLOATS, 0.0f);
-    const ts::TsMedium med = ts::ts_medium_load(no_medium.data());
-    ts::TsRay shadow{};
+    const ts::float3 tr = ts::make_float3(1.0f, 1.0f, 1.0f);  // no medium
     ts::TsSum3 f{};
     ts::TsDouble3 d{0, 0, 0};
     for (int i = 0; i < 5000; ++i) {
         const float w = std::pow(10.0f, -3.0f + 6.0f * float((i * 7919) % 5000) / 5000.0f);
         vpl[TS_VPL_FLUX] = w, vpl[TS_VPL_FLUX + 1] = 0.5f * w, vpl[TS_VPL_FLUX + 2] = 0.25f * w;
-        ts::ts_vpl_gather_add_compensated(&f, vpl.data(), &med, shadow, 0.3f);
-        ts::ts_vpl_gather_add_double(&d, vpl.data(), &med, shadow, 0.3f);
+        ts::ts_vpl_gather_add_compensated(&f, vpl.data(), tr, 0.3f);
+        ts::ts_vpl_gather_add_double(&d, vpl.data(), tr, 0.3f);
     }
     const ts::float3 a = ts::ts_vpl_gather_result_compensated(f), b = ts::ts_vpl_gather_result_double(d);
     EXPECT_NEAR(a.x, b.x, 4e-7 * b.x);
