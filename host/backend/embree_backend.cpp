@@ -24,6 +24,7 @@
 
 #include "backend/embree_tracer.h"
 #include "backend/embree_media_packets.h"
+#include "backend/embree_ic_gather.h"
 #include "backend/embree_packets.h"
 
 // TS_HAS_TEXTURES and TS_HAS_MEDIUM are defined for all C++ code (CMakeLists.txt): a
@@ -84,6 +85,8 @@ protected:
         if (packets_ && k == KernelId::IgiSurface) return igi_surface_packets(sv, tracer_, frame, out);
         if (packets_ && k == KernelId::AisItem) return ais_item_packets(sv, tracer_, frame, count, out);
         if (packets_ && k == KernelId::IgiMedia) return igi_media_packets(sv, tracer_, frame, out);
+        if (packets_ && k == KernelId::IcGather && !ts::ts_medium_load(sv.medium).present)
+            return ic_gather_lanes(sv, frame, count, out);
         switch (k) {
 #define TS_EMBREE_DISPATCH(id, name, program, floats, words, fn) \
     case KernelId::id: return dispatch<floats, words>(sv, frame, count, out, ts::fn);

@@ -20,10 +20,16 @@ TS_INLINE int ts_vpl_in_medium(TS_GLOBAL const float* vpl) { return vpl[TS_VPL_P
  * a surface VPL's cosine to its normal (0 behind it; Lambertian), a medium VPL's
  * Henyey–Greenstein phase value between the propagation direction of the light that
  * reached it and wo (g the medium's). */
-TS_INLINE float ts_vpl_emission_factor(TS_GLOBAL const float* vpl, float3 wo, float g) {
+TS_INLINE float ts_vpl_emission_factor_of(TS_GLOBAL const float* vpl, float3 wo, float g, int medium) {
     float3 nv = ts_f3_load(vpl + TS_VPL_NORMAL);
-    if (ts_vpl_in_medium(vpl)) return ts_hg_phase(dot(nv, wo), g);
+    if (medium) return ts_hg_phase(dot(nv, wo), g);
     return dot(nv, wo);
+}
+
+/* The same, the kind read from the VPL; the _of form takes it from a caller that knows it
+ * (a constant there leaves a loop over receivers without a branch, so it vectorises). */
+TS_INLINE float ts_vpl_emission_factor(TS_GLOBAL const float* vpl, float3 wo, float g) {
+    return ts_vpl_emission_factor_of(vpl, wo, g, ts_vpl_in_medium(vpl));
 }
 
 /* The shadow ray from org to the VPL: off its surface for a surface VPL, to the point
@@ -40,9 +46,11 @@ TS_INLINE TsRay ts_vpl_shadow_ray(float3 org, TS_GLOBAL const float* vpl) {
  * medium VPL, g the medium's HG parameter), is clamped to b: the contribution C·G' of any
  * VPL is at most C·b, also for a peaked phase function (g near 1: phase values near 1e5;
  * docs/igi.md §6). The shadow ray is set in either case; use it only when G' > 0.
- * ts_vpl_geometry_term is G' alone, for callers that know the visibility already. */
-TS_INLINE float ts_vpl_geometry_term(const TsSurface* s, TS_GLOBAL const float* vpl, float b, float g) {
-    float3 x = s->position, n = s->shading_normal, ng = s->geo_normal;
+ * ts_vpl_geometry_term is G' alone at x (shading normal n, geometric normal ng), for
+ * callers that know the visibility already; ts_vpl_geometry_term_of takes the VPL's kind
+ * (ts_vpl_in_medium) from the caller. */
+TS_INLINE float ts_vpl_geometry_term_of(float3 x, float3 n, float3 ng, TS_GLOBAL const float* vpl, float b, float g,
+                                        int medium) {
     float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
     float3 d = y - x;
     float dist2 = dot(d, d);
@@ -52,14 +60,18 @@ TS_INLINE float ts_vpl_geometry_term(const TsSurface* s, TS_GLOBAL const float* 
      * (host/backend/embree_packets.cpp). One division and three products, not three
      * divisions: division is the slowest step of this function in SIMD too. */
     float3 w = d * (1.0f / sqrt(dist2));
-    float cos_x = dot(n, w), cos_v = ts_vpl_emission_factor(vpl, -w, g);
+    float cos_x = dot(n, w), cos_v = ts_vpl_emission_factor_of(vpl, -w, g, medium);
     int faces = (dist2 > 0.0f) & (cos_x > 0.0f) & (cos_v > 0.0f) & (dot(ng, w) > 0.0f);
     return faces ? fmin(cos_x * cos_v / dist2, b) : 0.0f;
 }
 
+TS_INLINE float ts_vpl_geometry_term(float3 x, float3 n, float3 ng, TS_GLOBAL const float* vpl, float b, float g) {
+    return ts_vpl_geometry_term_of(x, n, ng, vpl, b, g, ts_vpl_in_medium(vpl));
+}
+
 TS_INLINE float ts_vpl_geometry(const TsSurface* s, TS_GLOBAL const float* vpl, float b, float g, TsRay* shadow) {
     *shadow = ts_vpl_shadow_ray(ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale), vpl);
-    return ts_vpl_geometry_term(s, vpl, b, g);
+    return ts_vpl_geometry_term(s->position, s->shading_normal, s->geo_normal, vpl, b, g);
 }
 
 /* The gather sum E = (1/π) Σ_v C_v · Tr_v · G'_v over the VPLs v whose shadow ray was
@@ -119,11 +131,14 @@ typedef struct TsDouble3 {
     double x, y, z;
 } TsDouble3;
 
+/* One channel of the double form's term, (C · Tr) · G' in double. */
+TS_INLINE double ts_vpl_gather_term_double(float c, float tr, float g) { return (double)c * tr * g; }
+
 TS_INLINE void ts_vpl_gather_add_double(TsDouble3* sum, TS_GLOBAL const float* vpl, float3 tr, float g) {
     const float3 c = ts_f3_load(vpl + TS_VPL_FLUX);
-    sum->x += (double)c.x * tr.x * g;
-    sum->y += (double)c.y * tr.y * g;
-    sum->z += (double)c.z * tr.z * g;
+    sum->x += ts_vpl_gather_term_double(c.x, tr.x, g);
+    sum->y += ts_vpl_gather_term_double(c.y, tr.y, g);
+    sum->z += ts_vpl_gather_term_double(c.z, tr.z, g);
 }
 
 TS_INLINE float3 ts_vpl_gather_result_double(TsDouble3 sum) {
