@@ -31,9 +31,9 @@ size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / TS_VPL_F
 
 }  // namespace
 
-std::vector<float> ic_gbuffer_from_surface(const std::vector<float>& surf) {
+void ic_gbuffer_from_surface(const std::vector<float>& surf, std::vector<float>& g) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
-    std::vector<float> g(pixels * TS_IC_GBUF_FLOATS);
+    g.resize(pixels * TS_IC_GBUF_FLOATS);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t p = r.begin(); p < r.end(); ++p) {
             const float* s = &surf[p * TS_IGI_SURF_FLOATS];
@@ -52,7 +52,6 @@ std::vector<float> ic_gbuffer_from_surface(const std::vector<float>& surf) {
             copy(TS_IC_GBUF_DISTANCE, TS_IGI_SURF_DISTANCE, 1);
         }
     });
-    return g;
 }
 
 InstantCache::InstantCache(const IcSettings& settings, const std::vector<SceneObject>& objects)
@@ -232,7 +231,8 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     stats_.update_seconds = since(t0);
 
     t0 = Clock::now();
-    const std::vector<float> gbuffer = ic_gbuffer_from_surface(surf);
+    std::vector<float>& gbuffer = gbuffer_;  // kept: a fresh 15 MB a frame costs its page faults
+    ic_gbuffer_from_surface(surf, gbuffer);
     const SceneBounds bounds = scene_bounds(scene);
     cache_.rebuild(bounds.lo, bounds.hi);
     place(backend, gbuffer, frame, g_clamp);

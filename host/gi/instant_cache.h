@@ -68,12 +68,12 @@ struct IcFrameStats {
 constexpr int32_t kIcFacing = -2;
 constexpr int32_t kIcVisible = -1;
 
-/// The ic G-buffer (TS_IC_GBUF_FLOATS per pixel, layout.h) of the igi surface pass's
-/// output `surf` (TS_IGI_SURF_FLOATS per pixel): each pixel's first diffuse surface, or
-/// TS_NO_HIT where the camera path found none or one of albedo 0 (no record serves it).
-/// The surface pass has traced the camera rays already; the cache reads its surfaces
-/// instead of tracing them again.
-std::vector<float> ic_gbuffer_from_surface(const std::vector<float>& surf);
+/// Sets `gbuffer` to the ic G-buffer (TS_IC_GBUF_FLOATS per pixel, layout.h) of the igi
+/// surface pass's output `surf` (TS_IGI_SURF_FLOATS per pixel): each pixel's first
+/// diffuse surface, or TS_NO_HIT where the camera path found none or one of albedo 0 (no
+/// record serves it). The surface pass has traced the camera rays already; the cache
+/// reads its surfaces instead of tracing them again.
+void ic_gbuffer_from_surface(const std::vector<float>& surf, std::vector<float>& gbuffer);
 
 class InstantCache {
 public:
@@ -134,6 +134,7 @@ private:
     std::vector<LightPath> paths_;
     std::vector<float> vpls_;
     std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL
+    std::vector<float> gbuffer_;              // the last frame's G-buffer (TS_IC_GBUF_FLOATS per pixel)
     IcFrameStats stats_;
     // The previous frame, for the temporal update.
     bool have_previous_ = false;

@@ -221,7 +221,8 @@ TEST(IcGbufferFromSurface, KeepsSeenSurfacesWithAlbedo) {
         for (int c = 0; c < 3; ++c) s[TS_IGI_SURF_ALBEDO + c] = p == 1 ? 0.0f : 0.25f;
         s[TS_IGI_SURF_PRIM] = ts::as_float(17u + p);
     }
-    const std::vector<float> g = ic_gbuffer_from_surface(surf);
+    std::vector<float> g(7, 1.0f);  // resized and overwritten
+    ic_gbuffer_from_surface(surf, g);
     ASSERT_EQ(g.size(), 3u * TS_IC_GBUF_FLOATS);
     EXPECT_EQ(ts::as_uint(g[TS_IC_GBUF_PRIM]), TS_NO_HIT);
     EXPECT_EQ(ts::as_uint(g[TS_IC_GBUF_FLOATS + TS_IC_GBUF_PRIM]), TS_NO_HIT);
