@@ -1,9 +1,13 @@
 #include "gi/igi_frame.h"
 
 #include <chrono>
+#include <initializer_list>
 #include <cstdio>
 #include <cmath>
 #include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "integrators/factory.h"
 #include "kernels/shared/composite.h"
@@ -17,12 +21,26 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// Copies floats offset..offset+2 of each pixel's `stride` floats into a 3-per-pixel array.
-void extract3(const std::vector<float>& src, int stride, int offset, std::vector<float>& dst) {
+// One field of a per-pixel record: `offset` within each pixel's floats, into `dst`
+// (3 floats a pixel, or 1 for a scalar).
+struct Field {
+    int offset;
+    std::vector<float>* dst;
+    int floats = 3;
+};
+
+// Copies `fields` out of `src` (`stride` floats a pixel) in one parallel pass: a pass per
+// field would read the whole 32 MB surface output (512²) once for each.
+void extract_fields(const std::vector<float>& src, int stride, std::initializer_list<Field> fields) {
     const size_t n = src.size() / stride;
-    dst.resize(3 * n);
-    for (size_t p = 0; p < n; ++p)
-        for (int c = 0; c < 3; ++c) dst[3 * p + c] = src[p * stride + offset + c];
+    for (const Field& f : fields) f.dst->resize(f.floats * n);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (const Field& f : fields) {
+            float* dst = f.dst->data();
+            for (size_t p = r.begin(); p < r.end(); ++p)
+                for (int c = 0; c < f.floats; ++c) dst[f.floats * p + c] = src[p * stride + f.offset + c];
+        }
+    });
 }
 
 }  // namespace
@@ -137,20 +155,21 @@ void IgiFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
 
 void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
-    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_E_SS, raw_[kAisSS]);
-    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_E_ID, raw_[kAisID]);
-    raw_[kAisPM].assign(3 * pixels, 0.0f);
-    transmittance_.assign(3 * pixels, 1.0f);
+    extract_fields(surf, TS_IGI_SURF_FLOATS,
+                   {{TS_IGI_SURF_E_SS, &raw_[kAisSS]},
+                    {TS_IGI_SURF_E_ID, &raw_[kAisID]},
+                    {TS_IGI_SURF_NORMAL, &geometry_.normal},
+                    {TS_IGI_SURF_POSITION, &geometry_.position},
+                    {TS_IGI_SURF_DISTANCE, &geometry_.depth, 1}});
     if (!media.empty()) {
-        extract3(media, TS_IGI_MEDIA_FLOATS, TS_IGI_MEDIA_RADIANCE, raw_[kAisPM]);
-        extract3(media, TS_IGI_MEDIA_FLOATS, TS_IGI_MEDIA_TRANSMITTANCE, transmittance_);
+        extract_fields(media, TS_IGI_MEDIA_FLOATS,
+                       {{TS_IGI_MEDIA_RADIANCE, &raw_[kAisPM]}, {TS_IGI_MEDIA_TRANSMITTANCE, &transmittance_}});
+    } else {
+        raw_[kAisPM].assign(3 * pixels, 0.0f);
+        transmittance_.assign(3 * pixels, 1.0f);
     }
     geometry_.width = width;
     geometry_.height = static_cast<int>(pixels / static_cast<size_t>(width));
-    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_NORMAL, geometry_.normal);
-    extract3(surf, TS_IGI_SURF_FLOATS, TS_IGI_SURF_POSITION, geometry_.position);
-    geometry_.depth.resize(pixels);
-    for (size_t p = 0; p < pixels; ++p) geometry_.depth[p] = surf[p * TS_IGI_SURF_FLOATS + TS_IGI_SURF_DISTANCE];
 }
 
 void IgiFrame::reconstruct_component(int c) {
@@ -163,21 +182,23 @@ void IgiFrame::reconstruct_component(int c) {
 void IgiFrame::composite(const std::vector<float>& surf, std::vector<float>& out) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
     out.resize(pixels * TS_PASS_FLOATS);
-    for (size_t p = 0; p < pixels; ++p) {
-        const float* s = &surf[p * TS_IGI_SURF_FLOATS];
-        float* o = &out[p * TS_PASS_FLOATS];
-        auto at = [p](const std::vector<float>& v) { return ts::ts_f3_load(&v[3 * p]); };
-        ts::ts_f3_store(o + TS_PASS_RADIANCE,
-                        ts::ts_igi_composite(at(transmittance_), ts::ts_f3_load(s + TS_IGI_SURF_THROUGHPUT),
-                                             ts::ts_f3_load(s + TS_IGI_SURF_EMISSION),
-                                             ts::ts_f3_load(s + TS_IGI_SURF_ALBEDO), at(final_[kAisSS]),
-                                             at(final_[kAisID]), at(final_[kAisPM])));
-        for (int c = 0; c < 3; ++c) {
-            o[TS_PASS_ALBEDO + c] = s[TS_IGI_SURF_ALBEDO + c];
-            o[TS_PASS_NORMAL + c] = s[TS_IGI_SURF_NORMAL + c];
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t p = r.begin(); p < r.end(); ++p) {
+            const float* s = &surf[p * TS_IGI_SURF_FLOATS];
+            float* o = &out[p * TS_PASS_FLOATS];
+            auto at = [p](const std::vector<float>& v) { return ts::ts_f3_load(&v[3 * p]); };
+            ts::ts_f3_store(o + TS_PASS_RADIANCE,
+                            ts::ts_igi_composite(at(transmittance_), ts::ts_f3_load(s + TS_IGI_SURF_THROUGHPUT),
+                                                 ts::ts_f3_load(s + TS_IGI_SURF_EMISSION),
+                                                 ts::ts_f3_load(s + TS_IGI_SURF_ALBEDO), at(final_[kAisSS]),
+                                                 at(final_[kAisID]), at(final_[kAisPM])));
+            for (int c = 0; c < 3; ++c) {
+                o[TS_PASS_ALBEDO + c] = s[TS_IGI_SURF_ALBEDO + c];
+                o[TS_PASS_NORMAL + c] = s[TS_IGI_SURF_NORMAL + c];
+            }
+            o[TS_PASS_DEPTH] = s[TS_IGI_SURF_DISTANCE];
         }
-        o[TS_PASS_DEPTH] = s[TS_IGI_SURF_DISTANCE];
-    }
+    });
 }
 
 void IgiFrame::add_to_sums() {
