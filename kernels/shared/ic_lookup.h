@@ -1,8 +1,7 @@
 /* Instant caching (Debattista, Dubla et al., "Instant Caching for Interactive Global
  * Illumination", CGF 2009): an irradiance cache (Ward, Rubinstein & Clear 1988) whose
  * records gather indirect light from the VPLs. This file holds what the kernels and the
- * host share: the G-buffer kernel's per-pixel part, the weight of a record, and the octree
- * lookup that interpolates. Placement, gathering and the temporal update are host code
+ * host share: the weight of a record and the octree lookup that interpolates. Placement, gathering and the temporal update are host code
  * (host/gi/irradiance_cache.h, instant_cache.h); docs/instant-caching.md is our reading.
  *
  * Weight (Ward 1988, shifted): with ε(x, n) = ‖x − x_i‖ / R_i + sqrt(1 − n·n_i), a record
