@@ -3,6 +3,8 @@
 // and visibility rows of one frame of the animated Cornell box: every output must be
 // equal bit for bit, for item lists whose length is not a multiple of 16, with records
 // repeated and out of order, and with rows that see no VPL.
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <random>
@@ -10,50 +12,26 @@
 #include <gtest/gtest.h>
 
 #include "backend/embree_ic_gather.h"
-#include "gi/ic_gather.h"
-#include "gi/instant_cache.h"
-#include "device/effect_plan.h"
-#include "render/renderer.h"
-#include "device/scene_buffers.h"
 #include "kernels/shared/ic_gather.h"
-#include "scene/loader.h"
+#include "support/ic_test_frame.h"
 
 namespace tessera {
 namespace {
 
 TEST(EmbreeIcGather, SixteenRecordsAtOnceEqualOneAtATime) {
-    const Scene rest = load_scene(default_scene_path().parent_path() / "cornell-box-animated.json",
-                                  make_data_path(std::nullopt));
-    const Scene scene = scene_at_frame(rest, 12);
-    const SceneBuffers buffers = make_scene_buffers(scene);
-    const EffectPlan plan = plan_effects(scene);
-    RenderSettings s;
-    s.method = Method::Tic;
-    s.spp = 1;
-    s.width = s.height = 40;
-    s.igi.tile = 1;
-    s.ic.paths = 64;
-    s.ic.temporal = true;
-    s.ic_state = std::make_shared<InstantCache>(s.ic, scene.objects);
-    auto embree = make_backend({BackendKind::Embree, ""}, buffers, plan);
-    render_frame(*embree, scene, buffers, s);
-    const std::vector<IcRecord>& records = s.ic_state->cache().records();
-    const std::vector<float>& vpls = s.ic_state->vpls();
-    const uint32_t nv = static_cast<uint32_t>(vpls.size() / TS_VPL_FLOATS);
+    const test::IcTestFrame frame;
+    const std::vector<IcRecord>& records = frame.records();
+    const std::vector<float>& vpls = frame.vpls();
+    const uint32_t nv = static_cast<uint32_t>(frame.vpl_count());
     ASSERT_GT(records.size(), 40u);
     ASSERT_GT(nv, 50u);
     const float b = 0.5f;  // bounds some geometry terms, so the clamp's select is exercised
 
     // Rows from the traced pairs; every fifth row cleared (a record that sees no VPL).
-    std::vector<uint32_t> pairs, hits;
-    for (uint32_t i = 0; i < records.size(); ++i)
-        for (uint32_t j = 0; j < nv; ++j) pairs.insert(pairs.end(), {i, j});
-    ic_set_record_inputs(*embree, records, vpls);
-    ic_trace_pairs(*embree, b, pairs, hits);
+    std::vector<uint32_t> pairs, hits, rows;
+    frame.trace_all_pairs(b, pairs, hits, rows);
     const size_t words = TS_IC_VISIBLE_WORDS(nv);
-    std::vector<uint32_t> rows(records.size() * words);
-    for (size_t i = 0; i < records.size(); ++i)
-        if (i % 5 != 0) ic_pack_visible(reinterpret_cast<const int32_t*>(&hits[i * nv]), nv, &rows[i * words]);
+    for (size_t i = 0; i < records.size(); i += 5) std::fill(&rows[i * words], &rows[i * words] + words, 0u);
 
     // 37 items: records drawn at random (repeats allowed), each with a random row.
     std::mt19937 rng(7);
@@ -72,11 +50,11 @@ TEST(EmbreeIcGather, SixteenRecordsAtOnceEqualOneAtATime) {
     sv.ic_record_surfaces = surfaces.data();
     sv.ic_visibility = rows.data();
     sv.items = items.data();
-    TsFrame frame{};
-    frame.igi_g_clamp = b;
+    TsFrame f{};
+    f.igi_g_clamp = b;
     const size_t count = items.size() / TS_IC_GATHER_WORDS;
     std::vector<float> lanes(count * TS_IC_GATHER_FLOATS);
-    ic_gather_lanes(sv, frame, count, lanes);
+    ic_gather_lanes(sv, f, count, lanes);
 
     const ts::TsMedium med = ts::ts_medium_load(no_medium.data());
     size_t seen_none = 0;

@@ -8,12 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "gi/ic_gather.h"
-#include "gi/instant_cache.h"
-#include "device/effect_plan.h"
-#include "render/renderer.h"
-#include "device/scene_buffers.h"
-#include "scene/loader.h"
-#include "support/render_helpers.h"
+#include "support/ic_test_frame.h"
 
 namespace tessera {
 namespace {
@@ -35,40 +30,20 @@ KernelResults run_kernels(Backend& backend, const std::vector<IcRecord>& records
 }
 
 TEST(IcGatherKernels, OpenClAndEmbreeAgreeOnPairsAndSumsOfAnAnimatedFrame) {
-    const Scene rest = load_scene(default_scene_path().parent_path() / "cornell-box-animated.json",
-                                  make_data_path(std::nullopt));
-    const Scene scene = scene_at_frame(rest, 12);  // the cube mid-way across the floor
-    const SceneBuffers buffers = make_scene_buffers(scene);
-    const EffectPlan plan = plan_effects(scene);
-    RenderSettings s;
-    s.method = Method::Tic;
-    s.spp = 1;
-    s.width = s.height = 40;
-    s.igi.tile = 1;
-    s.ic.paths = 64;
-    s.ic.temporal = true;
-    s.ic_state = std::make_shared<InstantCache>(s.ic, scene.objects);
-    auto embree = make_backend({BackendKind::Embree, ""}, buffers, plan);
-    auto opencl = make_backend({BackendKind::OpenCL, ""}, buffers, plan);
-    render_frame(*embree, scene, buffers, s);
-    const std::vector<IcRecord>& records = s.ic_state->cache().records();
-    const std::vector<float>& vpls = s.ic_state->vpls();
-    const size_t nv = vpls.size() / TS_VPL_FLOATS;
+    const test::IcTestFrame frame;
+    auto opencl = make_backend({BackendKind::OpenCL, ""}, frame.buffers, frame.plan);
+    const std::vector<IcRecord>& records = frame.records();
+    const std::vector<float>& vpls = frame.vpls();
+    const size_t nv = frame.vpl_count();
     ASSERT_GT(records.size(), 10u);
     ASSERT_GT(nv, 50u);
     const float b = 0.5f;  // bounds some geometry terms (G reaches ~10² near the walls' corners)
 
-    std::vector<uint32_t> pairs;
-    for (uint32_t i = 0; i < records.size(); ++i)
-        for (uint32_t j = 0; j < nv; ++j) pairs.insert(pairs.end(), {i, j});
     // The rows the gathers sum over: the Embree pair results, packed as the cache packs
     // its rows (visible = TS_IC_PAIR_VISIBLE; facing and occluded pairs are not).
-    std::vector<uint32_t> hits, rows(records.size() * TS_IC_VISIBLE_WORDS(nv));
-    ic_set_record_inputs(*embree, records, vpls);
-    ic_trace_pairs(*embree, b, pairs, hits);
-    for (size_t i = 0; i < records.size(); ++i)
-        ic_pack_visible(reinterpret_cast<const int32_t*>(&hits[i * nv]), nv, &rows[i * TS_IC_VISIBLE_WORDS(nv)]);
-    const KernelResults e = run_kernels(*embree, records, vpls, b, pairs, rows);
+    std::vector<uint32_t> pairs, hits, rows;
+    frame.trace_all_pairs(b, pairs, hits, rows);
+    const KernelResults e = run_kernels(*frame.embree, records, vpls, b, pairs, rows);
     const KernelResults c = run_kernels(*opencl, records, vpls, b, pairs, rows);
 
     // The same shadow rays (the same shared code builds them) through two traversals,

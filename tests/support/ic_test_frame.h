@@ -1,0 +1,66 @@
+// One tic frame for the tests of the cache's record–VPL kernels: frame 12 of the animated
+// Cornell box (the cube mid-way across the floor), 40², 64 light paths, the cache built on
+// Embree, and the visibility of every record–VPL pair as the Embree pair kernel finds it.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "backend/backend.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
+#include "gi/ic_gather.h"
+#include "gi/instant_cache.h"
+#include "render/renderer.h"
+#include "scene/loader.h"
+
+namespace tessera::test {
+
+struct IcTestFrame {
+    Scene scene;
+    SceneBuffers buffers;
+    EffectPlan plan;
+    RenderSettings settings;
+    std::unique_ptr<Backend> embree;  // holds references to buffers: the frame is not copied
+
+    IcTestFrame()
+        : scene(scene_at_frame(load_scene(default_scene_path().parent_path() / "cornell-box-animated.json",
+                                          make_data_path(std::nullopt)),
+                               12)),
+          buffers(make_scene_buffers(scene)),
+          plan(plan_effects(scene)) {
+        settings.method = Method::Tic;
+        settings.spp = 1;
+        settings.width = settings.height = 40;
+        settings.igi.tile = 1;
+        settings.ic.paths = 64;
+        settings.ic.temporal = true;
+        settings.ic_state = std::make_shared<InstantCache>(settings.ic, scene.objects);
+        embree = make_backend({BackendKind::Embree, ""}, buffers, plan);
+        render_frame(*embree, scene, buffers, settings);
+    }
+    IcTestFrame(const IcTestFrame&) = delete;
+    IcTestFrame& operator=(const IcTestFrame&) = delete;
+
+    const std::vector<IcRecord>& records() const { return settings.ic_state->cache().records(); }
+    const std::vector<float>& vpls() const { return settings.ic_state->vpls(); }
+    size_t vpl_count() const { return vpls().size() / TS_VPL_FLOATS; }
+
+    /// Every (record, VPL) pair in order (TS_IC_PAIR_WORDS each), its code from the Embree
+    /// pair kernel with bound b, and the records' rows packed as the cache packs them
+    /// (TS_IC_VISIBLE_WORDS(vpl_count()) uints a record; visible = TS_IC_PAIR_VISIBLE).
+    void trace_all_pairs(float b, std::vector<uint32_t>& pairs, std::vector<uint32_t>& hits,
+                         std::vector<uint32_t>& rows) const {
+        const size_t nv = vpl_count(), words = TS_IC_VISIBLE_WORDS(nv);
+        pairs.clear();
+        for (uint32_t i = 0; i < records().size(); ++i)
+            for (uint32_t j = 0; j < nv; ++j) pairs.insert(pairs.end(), {i, j});
+        ic_set_record_inputs(*embree, records(), vpls());
+        ic_trace_pairs(*embree, b, pairs, hits);
+        rows.assign(records().size() * words, 0u);
+        for (size_t i = 0; i < records().size(); ++i)
+            ic_pack_visible(reinterpret_cast<const int32_t*>(&hits[i * nv]), nv, &rows[i * words]);
+    }
+};
+
+}  // namespace tessera::test
