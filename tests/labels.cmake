@@ -1,5 +1,5 @@
 # Labels every test of tessera_tests with its tier (tests/README.md, "Tiers"): exactly one
-# of unit, statistical, cli, bench. Included by CTest after gtest_discover_tests' list
+# of unit, statistical, cli, bench; and gives the tests that start Xvfb one resource lock. Included by CTest after gtest_discover_tests' list
 # (tests/CMakeLists.txt), where tessera_tests_TESTS holds every discovered test name, e.g.
 # `Methods/Contact.CornerWhereTheLightMeetsTheWallsStaysBounded/pt_Embree`.
 # A test no pattern matches is unit: a new test that renders many samples belongs in
@@ -19,6 +19,12 @@ set(tessera_statistical_tests
     "^Sampling\\.(CosineHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
     "^Medium\\.(FreeFlightDistancesAreExponential|RgbWeightsAreUnbiased)$")
 list(JOIN tessera_statistical_tests "|" tessera_statistical_tests)
+# Start an X server (tests/support/with-xvfb, which says why the viewer tests once failed
+# with "Failed to open display"). They also hold one lock, so CTest never starts two X
+# servers at once: a server trying a display number removes that display's socket file
+# before it binds its own (xtrans), which could take the file from a server starting
+# beside it.
+set(tessera_xvfb_tests "^([A-Za-z]+/)?ViewWindowCli\\.")
 
 foreach(test IN LISTS tessera_tests_TESTS)
   if(test MATCHES "${tessera_cli_tests}")
@@ -31,4 +37,7 @@ foreach(test IN LISTS tessera_tests_TESTS)
     set(label unit)
   endif()
   set_tests_properties("${test}" PROPERTIES LABELS ${label})
+  if(test MATCHES "${tessera_xvfb_tests}")
+    set_tests_properties("${test}" PROPERTIES RESOURCE_LOCK xvfb)
+  endif()
 endforeach()

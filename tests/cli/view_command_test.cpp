@@ -1,7 +1,7 @@
 // `tessera view` as a user runs it. Headless (no window, no OpenGL): a fly-through writes
 // per-frame times and images, and the screenshot key's EXR equals `tessera render` with
 // the same camera, method, seed and passes. Windowed, under Xvfb with Mesa's software
-// OpenGL (skipped when this build has no window module or xvfb-run is missing): the same
+// OpenGL (skipped when this build has no window module or Xvfb is missing): the same
 // screenshot and fly-through checks through the window, keys sent by an input script and
 // by xdotool, and a window without a display fails with one line suggesting render.
 #include <algorithm>
@@ -71,13 +71,18 @@ constexpr bool kSanitized = false;
 
 bool window_tests_possible() {
     return !kSanitized && fs::exists(fs::path(TESSERA_EXE).parent_path() / "libtessera_view_window.so") &&
-           tessera::test::shell_status("command -v xvfb-run >/dev/null") == 0;
+           tessera::test::shell_status("command -v Xvfb >/dev/null") == 0;
 }
 
-// The tessera command line under a fresh Xvfb screen with Mesa's software OpenGL.
-std::string under_xvfb(const std::string& args) {
-    return "LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(TESSERA_EXE) + " " + args;
+// `command` under a fresh Xvfb screen (tests/support/with-xvfb: a display no other test
+// can take) with Mesa's software OpenGL.
+std::string with_xvfb(const std::string& command) {
+    const fs::path script = fs::path(TESSERA_TEST_DATA).parent_path() / "support" / "with-xvfb";
+    return "env LIBGL_ALWAYS_SOFTWARE=1 sh " + script.string() + " " + command;
 }
+
+// The tessera command line under a fresh Xvfb screen.
+std::string under_xvfb(const std::string& args) { return with_xvfb(std::string(TESSERA_EXE) + " " + args); }
 
 class ViewCli : public tessera::test::ScratchDirTest {
 protected:
@@ -169,7 +174,7 @@ protected:
     void SetUp() override {
         ViewCli::SetUp();
         if (!window_tests_possible())
-            GTEST_SKIP() << "no window module in this build, no xvfb-run, or a sanitized build";
+            GTEST_SKIP() << "no window module in this build, no Xvfb, or a sanitized build";
     }
 };
 
@@ -204,7 +209,7 @@ TEST_F(ViewWindowCli, XdotoolKeysMoveAndScreenshot) {
         "xdotool keydown w && sleep 0.3 && xdotool keyup w && sleep 1 && xdotool key c && xdotool key p && "
         "sleep 0.5 && xdotool key Escape";
     const std::string script = write("keys.sh", "#!/bin/sh\n" + view + " &\npid=$!\n(" + keys + ")\nwait $pid\n").string();
-    const CliResult r = run_shell("LIBGL_ALWAYS_SOFTWARE=1 timeout 120 xvfb-run -a -s '-screen 0 1024x768x24' sh " + script);
+    const CliResult r = run_shell("timeout 120 " + with_xvfb("sh " + script));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     std::smatch camera, passes;
     ASSERT_TRUE(std::regex_search(r.output, camera, std::regex("\"camera\": \\{[^}]*\\}"))) << r.output;
