@@ -3,9 +3,10 @@
 // both backends in one run; then the error of each method against per-frame path-traced
 // references for a few frames. Writes ic_bench.{json,md}.
 //
-// Every frame is rendered as `tessera render --frames` renders it: pose, flatten, a fresh
-// backend (BVH build and upload: "set-up", reported apart), one pass (1 spp). tic keeps one
-// cache across the frames; the others start from nothing each frame.
+// Every frame is rendered as `tessera render --frames` renders it: pose, flatten, give the
+// sequence's backend the frame's scene (Backend::set_scene: BVH build and upload,
+// "set-up", reported apart; the first frame makes the backend), one pass (1 spp). tic
+// keeps one cache across the frames; the others start from nothing each frame.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -59,12 +60,18 @@ std::vector<FrameResult> run_sequence(const Scene& rest, Method m, BackendKind k
                                       int size, int frames, bool keep_images) {
     RenderSettings s = method_settings(m, size);
     std::vector<FrameResult> out;
+    std::unique_ptr<SceneBuffers> buffers;  // before the backend, which reads it
+    std::unique_ptr<Backend> backend;
     for (int f = 0; f < frames; ++f) {
         const auto t0 = std::chrono::steady_clock::now();
         const Scene scene = scene_at_frame(rest, f);
-        const SceneBuffers buffers = make_scene_buffers(scene);
+        auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene));
         const EffectPlan plan = plan_effects(scene);
-        auto backend = make_backend({kind, device}, buffers, plan);
+        if (backend)
+            backend->set_scene(*next, plan);
+        else
+            backend = make_backend({kind, device}, *next, plan);
+        buffers = std::move(next);
         FrameResult r;
         r.setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         if (m == Method::Tic && !s.ic_state) {
@@ -73,7 +80,7 @@ std::vector<FrameResult> run_sequence(const Scene& rest, Method m, BackendKind k
             s.ic_state = std::make_shared<InstantCache>(ics, rest.objects);
         }
         RenderStats st;
-        Image img = render_frame(*backend, scene, buffers, s, &st);
+        Image img = render_frame(*backend, scene, *buffers, s, &st);
         r.seconds = st.seconds;
         r.records = st.ic.records;
         r.recomputed = st.ic.created + st.ic.resummed;

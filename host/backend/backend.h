@@ -77,6 +77,17 @@ public:
     /// memory (Embree, OpenCL on CPUs), whose host filter is as fast.
     virtual bool resolves_on_device() const { return false; }
 
+    /// Replaces the scene the backend traces and shades, e.g. the next frame of an
+    /// animation: a new BVH (built from `scene`) and new scene buffers. What does not
+    /// depend on the scene is kept: the device and its context, compiled programs
+    /// (rebuilt on their next use only when `plan`'s compile-time defines differ from
+    /// the last plan's), persistent device buffers and the named inputs. A per-frame
+    /// fresh backend spent ~3 ms loading each OpenCL program it used again
+    /// (docs/ARCHITECTURE.md, "How a pass flows"). Same images as a fresh backend for `scene`. `scene`
+    /// must outlive the backend or the next set_scene; the previous one may be freed
+    /// once this returns. Throws what make_backend throws for `scene`.
+    virtual void set_scene(const SceneBuffers& scene, const EffectPlan& plan) = 0;
+
     /// How many times kernel `k` was launched on this backend.
     uint64_t dispatch_count(KernelId k) const { return dispatches_[static_cast<int>(k)]; }
 

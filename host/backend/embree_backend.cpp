@@ -51,12 +51,21 @@ ts::TsRay ray_from(const float* r) {
 class EmbreeBackend final : public Backend {
 public:
     EmbreeBackend(const SceneBuffers& scene, bool packets)
-        : buffers_(scene), scene_(build_embree_scene(scene)), packets_(packets) {
+        : buffers_(&scene), scene_(build_embree_scene(scene)), packets_(packets) {
         tracer_.scene = scene_;
         store_input(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
         store_input(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
     }
     ~EmbreeBackend() override { rtcReleaseScene(scene_); }
+
+    // The plan is not needed: the C++ build has every effect compiled in.
+    void set_scene(const SceneBuffers& scene, const EffectPlan&) override {
+        RTCScene next = build_embree_scene(scene);  // throws before anything changes
+        rtcReleaseScene(scene_);
+        scene_ = next;
+        tracer_.scene = scene_;
+        buffers_ = &scene;
+    }
 
     std::string description() const override {
         return std::string("embree (Embree 3 ") +
@@ -97,7 +106,7 @@ protected:
 
 private:
     ts::TsSceneView scene_view(const TsFrame& frame) const {
-        ts::TsSceneView sv = make_scene_view(buffers_);
+        ts::TsSceneView sv = make_scene_view(*buffers_);
         sv.light_count = frame.light_count;
         sv.vpls = input<float>(KernelInput::Vpls);
         sv.vpl_set_start = input<uint32_t>(KernelInput::VplSetStart);
@@ -194,7 +203,7 @@ private:
         });
     }
 
-    const SceneBuffers& buffers_;
+    const SceneBuffers* buffers_;  // the caller keeps it (make_backend, set_scene)
     RTCScene scene_ = nullptr;
     ts::TsTracer tracer_{};
     bool packets_;

@@ -60,19 +60,7 @@ public:
         try {
             ctx_ = cl::Context(dev_.device);
             queue_ = cl::CommandQueue(ctx_, dev_.device);
-            FlatBvh bvh = build_bvh(positions_of(scene));
-            nodes_ = upload("BVH nodes", bvh.nodes);
-            tris_ = upload("BVH triangles", bvh.tris);
-            tri_pos_ = upload("triangle positions", scene.tri_pos);
-            tri_nrm_ = upload("triangle normals", scene.tri_nrm);
-            tri_uv_ = upload("triangle uvs", scene.tri_uv);
-            tri_mat_ = upload("triangle materials", scene.tri_mat);
-            materials_ = upload("materials", scene.materials);
-            tex_info_ = upload("texture table", scene.tex_info);
-            tex_texels_ = upload("textures", scene.tex_texels);
-            lights_ = upload("lights", scene.lights);
-            light_cdf_ = upload("light CDF", scene.light_cdf);
-            medium_ = upload("medium", scene.medium);
+            upload_scene(scene);
             store(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
             store(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
             for (KernelInput in : {KernelInput::IcGbuffer, KernelInput::IcNodes, KernelInput::IcRecords,
@@ -84,6 +72,20 @@ public:
             throw RuntimeError("OpenCL setup on " + dev_.name + " failed: " + describe_cl_error(e) +
                                " (try --backend embree)");
         }
+    }
+
+    // Programs are kept unless the plan's defines change: they are what set_scene saves.
+    void set_scene(const SceneBuffers& scene, const EffectPlan& plan) override {
+        try {
+            upload_scene(scene);
+        } catch (const cl::Error& e) {
+            throw RuntimeError("OpenCL upload of the scene to " + dev_.name + " failed: " + describe_cl_error(e));
+        }
+        if (plan.cl_defines() != plan_.cl_defines()) {
+            kernels_.clear();
+            programs_.clear();
+        }
+        plan_ = plan;
     }
 
     std::string description() const override {
@@ -193,6 +195,22 @@ private:
         const size_t grown = std::min<size_t>(std::max(bytes, capacity + capacity / 2), dev_.max_alloc);
         buf = cl::Buffer(ctx_, CL_MEM_READ_WRITE, grown);
         capacity = grown;
+    }
+
+    // Builds the BVH of `scene` and uploads it with the scene's buffers. The buffers are
+    // replaced only once all uploads succeeded.
+    void upload_scene(const SceneBuffers& scene) {
+        FlatBvh bvh = build_bvh(positions_of(scene));
+        std::array<cl::Buffer, 12> b = {
+            upload("BVH nodes", bvh.nodes),           upload("BVH triangles", bvh.tris),
+            upload("triangle positions", scene.tri_pos), upload("triangle normals", scene.tri_nrm),
+            upload("triangle uvs", scene.tri_uv),     upload("triangle materials", scene.tri_mat),
+            upload("materials", scene.materials),     upload("texture table", scene.tex_info),
+            upload("textures", scene.tex_texels),     upload("lights", scene.lights),
+            upload("light CDF", scene.light_cdf),     upload("medium", scene.medium)};
+        cl::Buffer* dst[12] = {&nodes_, &tris_,      &tri_pos_,    &tri_nrm_, &tri_uv_,    &tri_mat_,
+                               &materials_, &tex_info_, &tex_texels_, &lights_, &light_cdf_, &medium_};
+        for (int i = 0; i < 12; ++i) *dst[i] = std::move(b[i]);
     }
 
     static std::vector<glm::vec3> positions_of(const SceneBuffers& s) {

@@ -52,17 +52,24 @@ void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& 
     validate_settings(sequence_settings);  // before the tic cache is made from them
     RenderSettings settings = sequence_settings;
     prepare_sequence(settings, rest);
+    // One backend for the sequence, given each frame's scene with set_scene: the BVH is
+    // rebuilt and every scene buffer re-uploaded (simple and correct for moving
+    // geometry; refitting and uploading only what changed is a later optimisation),
+    // while the device and its compiled programs stay.
+    std::unique_ptr<SceneBuffers> buffers;  // declared before the backend, which reads it
+    std::unique_ptr<Backend> backend;
     for (int frame = range.first; frame <= range.last; ++frame) {
         const auto start = std::chrono::steady_clock::now();
         const Scene scene = scene_at_frame(rest, frame);
-        const SceneBuffers buffers = make_scene_buffers(scene);
-        const EffectPlan plan = plan_effects(scene);  // declared before the backend, which may keep it
-        // A fresh backend per frame: rebuilding the BVH and re-uploading every buffer is
-        // simple and correct for moving geometry; refitting and uploading only what
-        // changed is a later optimisation.
-        const std::unique_ptr<Backend> backend = make_backend(backend_options, buffers, plan);
+        auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene));
+        const EffectPlan plan = plan_effects(scene);
+        if (backend)
+            backend->set_scene(*next, plan);
+        else
+            backend = make_backend(backend_options, *next, plan);
+        buffers = std::move(next);  // the previous frame's buffers go only now
         RenderStats stats;
-        const Image image = render_frame(*backend, scene, buffers, settings, &stats, progress);
+        const Image image = render_frame(*backend, scene, *buffers, settings, &stats, progress);
         done(frame, image, stats,
              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }

@@ -80,13 +80,18 @@ ViewSession::~ViewSession() {
     backend_.reset();
 }
 
+// The first call makes the backend; later ones (a new animation frame) give it the new
+// scene, keeping the device and its compiled programs (Backend::set_scene).
 void ViewSession::build_backend() {
     integrator_.reset();
-    backend_.reset();
     scene_ = rest_.animation.animated() ? scene_at_frame(rest_, anim_frame_) : rest_;
-    buffers_ = std::make_unique<SceneBuffers>(make_scene_buffers(scene_));
+    auto buffers = std::make_unique<SceneBuffers>(make_scene_buffers(scene_));
     plan_ = plan_effects(scene_);
-    backend_ = make_backend(options_.backend, *buffers_, plan_);
+    if (backend_)
+        backend_->set_scene(*buffers, plan_);
+    else
+        backend_ = make_backend(options_.backend, *buffers, plan_);
+    buffers_ = std::move(buffers);  // the previous frame's buffers go only now
     acc_anim_frame_ = anim_frame_;
     dirty_ = true;
 }

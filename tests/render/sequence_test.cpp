@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include "scene/animation.h"
 #include "scene/scene_test_util.h"
+#include "support/render_helpers.h"
 
 namespace tessera {
 namespace {
@@ -64,6 +66,30 @@ TEST(Sequence, RendersEachFrameInOrder) {
                         EXPECT_GE(seconds, stats.seconds);
                     });
     EXPECT_EQ(frames, (std::vector<int>{2, 3, 4}));
+}
+
+// The sequence's one backend (Backend::set_scene per frame) renders each frame as a
+// backend made for that frame alone does, bit for bit.
+TEST(Sequence, FramesEqualRendersOnAFreshBackend) {
+    const Scene rest = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-animated.json",
+                                  make_data_path(std::nullopt));
+    RenderSettings settings;
+    settings.method = Method::Igi;
+    settings.width = settings.height = 16;
+    settings.spp = 1;
+    settings.igi.paths_per_set = 4;
+    for (BackendKind kind : {BackendKind::OpenCL, BackendKind::Embree}) {
+        int checked = 0;
+        render_sequence(rest, {3, 5}, BackendOptions{kind, ""}, settings,
+                        [&](int frame, const Image& img, const RenderStats&, double) {
+                            const Image fresh = test::render_with(kind, scene_at_frame(rest, frame), settings);
+                            const auto& a = img.find("R")->data;
+                            const auto& b = fresh.find("R")->data;
+                            EXPECT_EQ(a, b) << "frame " << frame;
+                            checked += a.size() == 256 && test::channel_mean(fresh, "R") > 0.0;
+                        });
+        EXPECT_EQ(checked, 3);
+    }
 }
 
 }  // namespace
