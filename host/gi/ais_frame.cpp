@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "gi/ais_reconstruct.h"
 #include "kernels/shared/layout.h"
 #include "kernels/shared/sampling.h"
@@ -14,6 +17,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// f(p) for p in [0, pixels), over TBB.
+template <class F>
+void parallel_pixels(size_t pixels, F&& f) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t p = r.begin(); p < r.end(); ++p) f(p);
+    });
+}
 
 }  // namespace
 
@@ -30,22 +41,22 @@ void AisFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
 void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = raw_[kAisSS].size() / 3;
     AisBaseBuffers base;
-    base.geometry = geometry_;
     base.visibility.resize(pixels);
     base.indirect.resize(pixels);
-    for (size_t p = 0; p < pixels; ++p) {
-        const float* v = &surf[p * TS_IGI_SURF_FLOATS];
-        base.visibility[p] = v[TS_IGI_SURF_VISIBLE];
-        base.indirect[p] = ts::ts_luminance(ts::ts_f3_load(v + TS_IGI_SURF_E_ID));
-    }
     if (!media.empty()) {
         base.lit_fraction.resize(pixels);
         base.medium_length.resize(pixels);
-        for (size_t p = 0; p < pixels; ++p) {
-            base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LIT];
-            base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LENGTH];
-        }
     }
+    parallel_pixels(pixels, [&](size_t p) {
+        const float* v = &surf[p * TS_IGI_SURF_FLOATS];
+        base.visibility[p] = v[TS_IGI_SURF_VISIBLE];
+        base.indirect[p] = ts::ts_luminance(ts::ts_f3_load(v + TS_IGI_SURF_E_ID));
+        if (media.empty()) return;
+        base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LIT];
+        base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LENGTH];
+    });
+    // The G-buffer is lent to the guidance, not copied (9 MB at 512², 3 ms), and taken back.
+    base.geometry = std::move(geometry_);
     const uint32_t bits = effective_components();
     const std::array<bool, kAisComponents> enabled = {(bits & TS_COMPONENT_SS) != 0, (bits & TS_COMPONENT_ID) != 0,
                                                       (bits & TS_COMPONENT_PM) != 0 && !media.empty()};
@@ -54,6 +65,7 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
     AisThresholds t = settings_.ais;
     t.id_cov *= std::sqrt(float(AisThresholds::kIdCovPaths) / float(std::max(1u, settings_.paths_per_set)));
     guidance_ = compute_guidance(base, settings_.discontinuity, t, enabled);
+    geometry_ = std::move(base.geometry);
     schedule_ = make_schedule(guidance_, t, settings_.ais_mode, geometry_.width, geometry_.height,
                               static_cast<int>(settings_.tile));
     stats_.flagged = schedule_.flagged;
@@ -67,12 +79,21 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
     }
     std::vector<float> items;
     backend_.launch_items(KernelId::AisItem, frame, list, items);
+    // own_sum_ is read only where a pixel evaluated more than its own set
+    // (ais_reconstruct); elsewhere it is left unset, and raw_ = own sum / 1 unchanged.
     for (int c = 0; c < kAisComponents; ++c) {
         base_[c] = raw_[c];
-        own_sum_[c].clear();
-        if (schedule_.sets[c].empty()) continue;
-        own_sum_[c].assign(raw_[c].begin(), raw_[c].end());
+        if (schedule_.sets[c].empty()) {
+            own_sum_[c].clear();
+            continue;
+        }
+        own_sum_[c].resize(raw_[c].size());
+        parallel_pixels(pixels, [&](size_t p) {
+            if (schedule_.sets[c][p] < 2) return;
+            for (int j = 0; j < 3; ++j) own_sum_[c][3 * p + j] = raw_[c][3 * p + j];
+        });
     }
+    // Item order: each pixel's extra sets in increasing order.
     for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
         const size_t p = schedule_.item_pixels[i];
         for (int c = 0; c < kAisComponents; ++c)
@@ -81,9 +102,11 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
     }
     for (int c = 0; c < kAisComponents; ++c) {
         if (schedule_.sets[c].empty()) continue;
-        for (size_t p = 0; p < pixels; ++p)
+        parallel_pixels(pixels, [&](size_t p) {
+            if (schedule_.sets[c][p] < 2) return;
             for (int j = 0; j < 3; ++j)
                 raw_[c][3 * p + j] = static_cast<float>(own_sum_[c][3 * p + j] / schedule_.sets[c][p]);
+        });
     }
 }
 

@@ -1,6 +1,7 @@
 #include "gi/ais_schedule.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 
@@ -16,41 +17,54 @@ struct WindowBits {
     uint64_t accepted = 0;  ///< ... and p accepts it (p itself included)
 };
 
-WindowBits window_bits(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y) {
-    int lo, hi;
-    discontinuity_window(s.tile, &lo, &hi);
+// Constants of the window walks of one frame: the pixel offset of each window position,
+// and the set each position holds for a pixel of each own set (an n×n window holds each
+// set once, where depends only on the pixel's own set). Saves the walks a division and a
+// modulo by n per position.
+struct WindowWalk {
+    int n, lo, hi, width, height;
+    uint64_t all;  // every window position
+    std::array<ptrdiff_t, 64> offset;
+    std::vector<std::array<uint8_t, 64>> set_at;  // [own set][position]
+
+    WindowWalk(int tile, int w, int h) : n(tile), width(w), height(h), set_at(size_t(tile) * tile) {
+        discontinuity_window(n, &lo, &hi);
+        all = n * n == 64 ? ~0ull : (1ull << (n * n)) - 1;
+        offset = discontinuity_window_offsets(n, w);
+        for (int own = 0; own < n * n; ++own)  // a pixel of set `own` with its window in x, y >= 0
+            for (int i = 0; i < n * n; ++i)
+                set_at[own][i] = static_cast<uint8_t>(interleave_set(own % n + n + lo + i % n, own / n + n + lo + i / n, n));
+    }
+
+    // Calls f(q) for each window position of `bits` around pixel p (pixel index q).
+    template <class F>
+    void for_positions(uint64_t bits, size_t p, F&& f) const {
+        for (; bits; bits &= bits - 1) f(p + offset[std::countr_zero(bits)]);
+    }
+
+    // The sets held by the window positions in `bits` of a pixel of set `own`.
+    uint64_t sets_of(uint64_t bits, int own) const {
+        uint64_t sets = 0;
+        for (; bits; bits &= bits - 1) sets |= 1ull << set_at[own][std::countr_zero(bits)];
+        return sets;
+    }
+};
+
+WindowBits window_bits(const GeometryBuffer& g, const DiscontinuitySettings& s, const WindowWalk& walk, int x,
+                       int y) {
     WindowBits b;
-    int i = 0;
-    for (int dy = lo; dy <= hi; ++dy)
-        for (int dx = lo; dx <= hi; ++dx, ++i) {
-            const int qx = x + dx, qy = y + dy;
-            if (qx >= 0 && qy >= 0 && qx < g.width && qy < g.height) b.in_image |= 1ull << i;
-        }
+    if (x + walk.lo >= 0 && y + walk.lo >= 0 && x + walk.hi < g.width && y + walk.hi < g.height) {
+        b.in_image = walk.all;
+    } else {
+        int i = 0;
+        for (int dy = walk.lo; dy <= walk.hi; ++dy)
+            for (int dx = walk.lo; dx <= walk.hi; ++dx, ++i) {
+                const int qx = x + dx, qy = y + dy;
+                if (qx >= 0 && qy >= 0 && qx < g.width && qy < g.height) b.in_image |= 1ull << i;
+            }
+    }
     b.accepted = discontinuity_window_mask(g, s, x, y);
     return b;
-}
-
-// Calls f(q) for each window position of `bits` (pixel index q).
-template <class F>
-void for_positions(uint64_t bits, int tile, int width, int x, int y, F&& f) {
-    int lo, hi;
-    discontinuity_window(tile, &lo, &hi);
-    for (; bits; bits &= bits - 1) {
-        const int i = std::countr_zero(bits);
-        f(size_t(y + lo + i / tile) * width + (x + lo + i % tile));
-    }
-}
-
-// The sets held by the window positions in `bits`.
-uint64_t sets_of(uint64_t bits, int tile, int x, int y) {
-    int lo, hi;
-    discontinuity_window(tile, &lo, &hi);
-    uint64_t sets = 0;
-    for (; bits; bits &= bits - 1) {
-        const int i = std::countr_zero(bits);
-        sets |= 1ull << interleave_set(x + lo + i % tile, y + lo + i / tile, tile);
-    }
-    return sets;
 }
 
 // Whether the filter cannot clean p: it accepts fewer than `min_acc` neighbours because
@@ -86,11 +100,9 @@ struct Value {
     float g, grade;
 };
 
-Value ss_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const WindowBits& wb, int min_acc, int x,
-                  int y) {
-    const size_t p = size_t(y) * b.geometry.width + x;
+Value ss_guidance(const AisBaseBuffers& b, const WindowWalk& walk, const WindowBits& wb, int min_acc, size_t p) {
     float lo = INFINITY, hi = -INFINITY;
-    for_positions(wb.accepted, s.tile, b.geometry.width, x, y, [&](size_t q) {
+    walk.for_positions(wb.accepted, p, [&](size_t q) {
         lo = std::min(lo, b.visibility[q]);
         hi = std::max(hi, b.visibility[q]);
     });
@@ -100,10 +112,11 @@ Value ss_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const
 }
 
 Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const AisThresholds& t,
-                  const WindowBits& wb, int min_acc, int x, int y) {
+                  const WindowWalk& walk, const WindowBits& wb, int min_acc, int x, int y) {
+    const size_t p = size_t(y) * b.geometry.width + x;
     double sum = 0.0, sum2 = 0.0;
     int count = 0;
-    for_positions(wb.accepted, s.tile, b.geometry.width, x, y, [&](size_t q) {
+    walk.for_positions(wb.accepted, p, [&](size_t q) {
         sum += b.indirect[q];
         sum2 += double(b.indirect[q]) * b.indirect[q];
         ++count;
@@ -119,16 +132,16 @@ Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const
 // g_len looks only at the neighbours the filter rejects: a smooth change of the medium
 // length (a slanted wall) is no failure, as the box filter's mean of a linear ramp is its
 // centre value (docs/ais.md §3).
-Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const WindowBits& wb, int x, int y) {
-    const size_t p = size_t(y) * b.geometry.width + x;
+Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const WindowWalk& walk,
+                  const WindowBits& wb, size_t p) {
     const float lp = b.medium_length[p];
     float lo = INFINITY, hi = -INFINITY;
-    for_positions(wb.in_image, s.tile, b.geometry.width, x, y, [&](size_t q) {
+    walk.for_positions(wb.in_image, p, [&](size_t q) {
         lo = std::min(lo, b.lit_fraction[q]);
         hi = std::max(hi, b.lit_fraction[q]);
     });
     bool length_edge = false;
-    for_positions(wb.in_image & ~wb.accepted, s.tile, b.geometry.width, x, y, [&](size_t q) {
+    walk.for_positions(wb.in_image & ~wb.accepted, p, [&](size_t q) {
         length_edge |= std::abs(b.medium_length[q] - lp) > s.depth_rel * lp;
     });
     return {length_edge ? 1.0f : hi - lo, hi - lo};
@@ -207,19 +220,21 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
     if (!any) return out;
     out.missing.assign(size_t(w) * h, 0);
     out.held.assign(size_t(w) * h, 0);
+    const WindowWalk walk(filter.tile, w, h);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t p = size_t(y) * w + x;
-                const WindowBits wb = window_bits(base.geometry, filter, x, y);
-                out.missing[p] = sets_of(wb.in_image & ~wb.accepted, filter.tile, x, y);
-                out.held[p] = sets_of(wb.accepted, filter.tile, x, y);
+                const WindowBits wb = window_bits(base.geometry, filter, walk, x, y);
+                const int own = interleave_set(x, y, filter.tile);
+                out.missing[p] = walk.sets_of(wb.in_image & ~wb.accepted, own);
+                out.held[p] = walk.sets_of(wb.accepted, own);
                 for (int c = 0; c < kAisComponents; ++c) {
                     if (out.g[c].empty()) continue;
                     if (c != kAisPM && !std::isfinite(base.geometry.depth[p])) continue;  // nothing to shade
-                    const Value v = c == kAisSS   ? ss_guidance(base, filter, wb, min_acc, x, y)
-                                    : c == kAisID ? id_guidance(base, filter, t, wb, min_acc, x, y)
-                                                  : pm_guidance(base, filter, wb, x, y);
+                    const Value v = c == kAisSS   ? ss_guidance(base, walk, wb, min_acc, p)
+                                    : c == kAisID ? id_guidance(base, filter, t, walk, wb, min_acc, x, y)
+                                                  : pm_guidance(base, filter, walk, wb, p);
                     out.g[c][p] = v.g;
                     out.grade[c][p] = v.grade;
                 }
@@ -241,40 +256,48 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
         if (guidance.g[c].empty()) continue;
         s.masks[c].resize(pixels);
         s.sets[c].resize(pixels);
-        size_t flagged = 0;
-        for (size_t p = 0; p < pixels; ++p) {
-            const int x = static_cast<int>(p % width), y = static_cast<int>(p / width);
-            const int own = interleave_set(x, y, tile);
-            uint64_t mask = 1ull << own;
-            if (guidance.g[c][p] > trigger[c]) {
-                ++flagged;
-                if (mode == AisMode::AMax) {
-                    mask = all;
-                } else {
-                    mask = a_mask(guidance, p, own, complete, grade_of(guidance, c, p, trigger[c]), orders[own], sets);
+        // Rows in parallel, each row's flagged count apart (summed in row order below).
+        std::vector<uint32_t> flagged_in_row(size_t(height), 0);
+        tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+            for (int y = rows.begin(); y < rows.end(); ++y)
+                for (int x = 0; x < width; ++x) {
+                    const size_t p = size_t(y) * width + x;
+                    const int own = interleave_set(x, y, tile);
+                    uint64_t mask = 1ull << own;
+                    if (guidance.g[c][p] > trigger[c]) {
+                        ++flagged_in_row[y];
+                        if (mode == AisMode::AMax) {
+                            mask = all;
+                        } else {
+                            mask = a_mask(guidance, p, own, complete, grade_of(guidance, c, p, trigger[c]),
+                                          orders[own], sets);
+                        }
+                    }
+                    s.masks[c][p] = mask;
+                    s.sets[c][p] = static_cast<uint8_t>(std::popcount(mask));
                 }
-            }
-            s.masks[c][p] = mask;
-            s.sets[c][p] = static_cast<uint8_t>(std::popcount(mask));
-        }
+        });
+        size_t flagged = 0;
+        for (uint32_t f : flagged_in_row) flagged += f;
         s.flagged[c] = pixels ? double(flagged) / pixels : 0.0;
     }
-    // Items grouped by set, then by tile and pixel, over the pixels that have extra sets at all.
-    std::vector<uint32_t> refined;
-    for (size_t p = 0; p < pixels; ++p) {
+    // Items grouped by set, then by tile and pixel, over the pixels that have extra sets at
+    // all. Within a set, items run tile by tile (kItemTile² pixels, rows of tiles, scanline
+    // inside a tile), so the 16 consecutive items a packet backend traces together lie
+    // close on screen. Each pixel still adds its sets in increasing order: images do not
+    // change.
+    auto is_refined = [&](size_t p) {
         uint64_t extra = 0;
         for (int c = 0; c < kAisComponents; ++c)
             if (!s.masks[c].empty()) extra |= s.masks[c][p];
-        if (std::popcount(extra) > 1) refined.push_back(static_cast<uint32_t>(p));
-    }
-    // Within a set, items run tile by tile (kItemTile² pixels, rows of tiles, scanline inside
-    // a tile), so the 16 consecutive items a packet backend traces together lie close on
-    // screen. Each pixel still adds its sets in increasing order: images do not change.
-    const uint32_t tiles_x = (static_cast<uint32_t>(width) + kItemTile - 1) / kItemTile;
-    auto tile_of = [&](uint32_t p) {
-        return (p / width / kItemTile) * tiles_x + (p % width) / kItemTile;
+        return std::popcount(extra) > 1;
     };
-    std::stable_sort(refined.begin(), refined.end(), [&](uint32_t a, uint32_t b) { return tile_of(a) < tile_of(b); });
+    std::vector<uint32_t> refined;
+    for (int ty = 0; ty < height; ty += int(kItemTile))
+        for (int tx = 0; tx < width; tx += int(kItemTile))
+            for (int y = ty; y < std::min(height, ty + int(kItemTile)); ++y)
+                for (int x = tx; x < std::min(width, tx + int(kItemTile)); ++x)
+                    if (is_refined(size_t(y) * width + x)) refined.push_back(static_cast<uint32_t>(size_t(y) * width + x));
     for (int k = 0; k < sets; ++k)
         for (uint32_t p : refined) {
             if (k == interleave_set(static_cast<int>(p % width), static_cast<int>(p / width), tile)) continue;

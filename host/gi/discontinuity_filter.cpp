@@ -1,7 +1,12 @@
 #include "gi/discontinuity_filter.h"
 
+#include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +24,15 @@ bool discontinuity_accepts(const GeometryBuffer& g, const DiscontinuitySettings&
 }
 
 void discontinuity_window(int n, int* lo, int* hi) { ts::ts_discontinuity_window(n, lo, hi); }
+
+std::array<ptrdiff_t, 64> discontinuity_window_offsets(int n, int width) {
+    int lo, hi;
+    discontinuity_window(n, &lo, &hi);
+    std::array<ptrdiff_t, 64> offset{};
+    for (int i = 0; i < n * n && i < 64; ++i)
+        offset[i] = static_cast<ptrdiff_t>(lo + i / n) * width + (lo + i % n);
+    return offset;
+}
 
 namespace {
 
@@ -42,13 +56,82 @@ bool same_settings(const DiscontinuitySettings& a, const DiscontinuitySettings& 
     return a.tile == b.tile && a.normal_cos == b.normal_cos && a.depth_rel == b.depth_rel;
 }
 
+// Pixel y·w + x's bit i of its window mask, for x in [x0, x1) of row y and window offset
+// (dx, dy) at position i: one offset over a run of a row, a loop GCC vectorises (the
+// per-pixel, per-neighbour calls of compute_window_mask do not). The caller keeps
+// (x + dx, y + dy) inside the image. Same test, same operands: the same bits. Plane:
+// g has positions (the test's use_plane).
+template <bool Plane>
+void window_bits_run(const GeometryBuffer& g, const DiscontinuitySettings& s, int y, int x0, int x1, int dx, int dy,
+                     int i, uint64_t* __restrict bits) {
+    const size_t w = static_cast<size_t>(g.width);
+    const float* __restrict z = g.depth.data();
+    const float* __restrict n = g.normal.data();
+    const float* __restrict x = g.position.data();
+    const size_t off = static_cast<size_t>(static_cast<ptrdiff_t>(dy) * static_cast<ptrdiff_t>(w) + dx);
+    const uint64_t bit = 1ull << i;
+    const float cos_min = s.normal_cos, depth_rel = s.depth_rel;
+    for (int px = x0; px < x1; ++px) {
+        const size_t p = size_t(y) * w + px, q = p + off;  // unsigned wrap-around adds a negative offset
+        const ts::float3 np = ts::make_float3(n[3 * p], n[3 * p + 1], n[3 * p + 2]);
+        const ts::float3 nq = ts::make_float3(n[3 * q], n[3 * q + 1], n[3 * q + 2]);
+        ts::float3 xp = ts::make_float3(0.0f, 0.0f, 0.0f), xq = xp;
+        if constexpr (Plane) {
+            xp = ts::make_float3(x[3 * p], x[3 * p + 1], x[3 * p + 2]);
+            xq = ts::make_float3(x[3 * q], x[3 * q + 1], x[3 * q + 2]);
+        }
+        const int ok = ts::ts_discontinuity_accepts(z[p], np, xp, z[q], nq, xq, Plane, cos_min, depth_rel);
+        bits[px] |= bit & (0ull - static_cast<uint64_t>(ok != 0));
+    }
+}
+
+// The filter of rows [y0, y1) with C channels: each pixel's mean over its accepted window
+// positions, summed in double in increasing bit order (row by row, as the test ran).
+template <int C>
+void filter_rows(const GeometryBuffer& g, const DiscontinuitySettings& s, bool precomputed, const float* __restrict in,
+                 float* __restrict out, uint8_t* accepted, int y0, int y1) {
+    const int w = g.width;
+    const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(s.tile, w);
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t p = size_t(y) * w + x;
+            double sum[C] = {};
+            uint64_t bits = precomputed ? g.accepted[p] : compute_window_mask(g, s, x, y);
+            const int count = std::popcount(bits);
+            for (; bits; bits &= bits - 1) {
+                const float* v = in + (p + offset[std::countr_zero(bits)]) * C;
+                for (int c = 0; c < C; ++c) sum[c] += v[c];
+            }
+            for (int c = 0; c < C; ++c) out[p * C + c] = static_cast<float>(sum[c] / count);
+            if (accepted) accepted[p] = static_cast<uint8_t>(count);
+        }
+}
+
 }  // namespace
 
 void discontinuity_precompute(GeometryBuffer& g, const DiscontinuitySettings& s) {
-    g.accepted.assign(size_t(g.width) * g.height, 0);
-    tbb::parallel_for(tbb::blocked_range<int>(0, g.height), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int x = 0; x < g.width; ++x) g.accepted[size_t(y) * g.width + x] = compute_window_mask(g, s, x, y);
+    const int w = g.width, h = g.height;
+    int lo, hi;
+    discontinuity_window(s.tile, &lo, &hi);
+    g.accepted.assign(size_t(w) * h, 0);
+    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            uint64_t* bits = &g.accepted[size_t(y) * w];
+            int i = 0;
+            for (int dy = lo; dy <= hi; ++dy)
+                for (int dx = lo; dx <= hi; ++dx, ++i) {
+                    if (y + dy < 0 || y + dy >= h) continue;
+                    if (dx == 0 && dy == 0) {  // p accepts itself
+                        for (int x = 0; x < w; ++x) bits[x] |= 1ull << i;
+                        continue;
+                    }
+                    const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
+                    if (g.position.empty())
+                        window_bits_run<false>(g, s, y, x0, x1, dx, dy, i, bits);
+                    else
+                        window_bits_run<true>(g, s, y, x0, x1, dx, dy, i, bits);
+                }
+        }
     });
     g.accepted_for = s;
 }
@@ -60,28 +143,18 @@ uint64_t discontinuity_window_mask(const GeometryBuffer& g, const DiscontinuityS
 
 void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& s, int channels,
                           const std::vector<float>& in, std::vector<float>& out, std::vector<uint8_t>* accepted) {
-    const int w = g.width, h = g.height, n = s.tile;
-    int lo, hi;
-    discontinuity_window(n, &lo, &hi);
+    if (channels != 1 && channels != 3)
+        throw std::invalid_argument("discontinuity_filter: 1 or 3 channels, not " + std::to_string(channels));
+    const int w = g.width, h = g.height;
     out.assign(in.size(), 0.0f);
     if (accepted) accepted->assign(size_t(w) * h, 0);
+    const bool precomputed = !g.accepted.empty() && same_settings(g.accepted_for, s);
+    uint8_t* acc = accepted ? accepted->data() : nullptr;
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-        std::vector<double> sum(channels);
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int x = 0; x < w; ++x) {
-                const size_t p = size_t(y) * w + x;
-                std::fill(sum.begin(), sum.end(), 0.0);
-                // Window positions in increasing bit order: row by row, as the test ran.
-                uint64_t bits = discontinuity_window_mask(g, s, x, y);
-                const int count = std::popcount(bits);
-                for (; bits; bits &= bits - 1) {
-                    const int i = std::countr_zero(bits);
-                    const size_t q = size_t(y + lo + i / n) * w + (x + lo + i % n);
-                    for (int c = 0; c < channels; ++c) sum[c] += in[q * channels + c];
-                }
-                for (int c = 0; c < channels; ++c) out[p * channels + c] = static_cast<float>(sum[c] / count);
-                if (accepted) (*accepted)[p] = static_cast<uint8_t>(count);
-            }
+        if (channels == 1)
+            filter_rows<1>(g, s, precomputed, in.data(), out.data(), acc, rows.begin(), rows.end());
+        else
+            filter_rows<3>(g, s, precomputed, in.data(), out.data(), acc, rows.begin(), rows.end());
     });
 }
 

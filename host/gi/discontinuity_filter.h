@@ -5,6 +5,7 @@
 // test are kernels/shared/discontinuity.h's, which the device resolve
 // (kernels/shared/igi_resolve.h) uses too.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -56,11 +57,17 @@ bool discontinuity_accepts(const GeometryBuffer& g, const DiscontinuitySettings&
 /// The window offsets lo..hi (inclusive, on each axis) for tile edge n.
 void discontinuity_window(int n, int* lo, int* hi);
 
+/// Window position i (row-major, (dy − lo)·n + (dx − lo), as in the window masks) as a
+/// pixel index offset in an image `width` pixels wide: q = p + offset[i]. Positions past
+/// n² are 0. Saves the loops over a mask's bits a division and a modulo by n per bit.
+std::array<ptrdiff_t, 64> discontinuity_window_offsets(int n, int width);
+
 /// Filters `channels` interleaved floats per pixel of `in` into `out`. Window: offsets
 /// -(n-1)/2 .. (n-1)/2 for odd n, -n/2 .. n/2-1 for even n (each n×n window then holds
 /// every set (x mod n, y mod n) exactly once). A pixel always accepts itself; pixels
 /// whose rays escaped accept only other escaped pixels. `accepted`, if given, receives
-/// |A(p)| per pixel (the guidance signal AIS uses).
+/// |A(p)| per pixel (the guidance signal AIS uses). `channels` is 1 or 3 (else
+/// std::invalid_argument); sums are double, in window order.
 void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& s, int channels,
                           const std::vector<float>& in, std::vector<float>& out,
                           std::vector<uint8_t>* accepted = nullptr);

@@ -133,50 +133,54 @@ GeometryBuffer random_geometry(int w, int h, uint32_t seed) {
     return g;
 }
 
-// The masks precomputed once per frame hold exactly the pairwise tests, and the filter
-// reading them gives the same bits and counts as the filter testing each pair.
+// The masks precomputed once per frame (row by row, one window offset at a time) hold
+// exactly the pairwise tests, with positions (plane distances) and without (depths), and
+// the filter reading them gives the same bits and counts as the filter testing each pair.
 TEST(DiscontinuityFilter, PrecomputedMasksMatchThePairwiseTest) {
     for (int n : {1, 2, 3, 4, 5, 8}) {
-        SCOPED_TRACE(n);
-        const DiscontinuitySettings s{n, 0.9f, 0.05f};
-        GeometryBuffer g = random_geometry(23, 17, 11u + n);
-        std::vector<float> in(23 * 17 * 3);
-        std::mt19937 rng(5);
-        for (float& v : in) v = std::uniform_real_distribution<float>(0.0f, 10.0f)(rng);
-        std::vector<float> tested, masked;
-        std::vector<uint8_t> count_tested, count_masked;
-        discontinuity_filter(g, s, 3, in, tested, &count_tested);
-        discontinuity_precompute(g, s);
-        discontinuity_filter(g, s, 3, in, masked, &count_masked);
-        ASSERT_EQ(std::memcmp(tested.data(), masked.data(), tested.size() * 4), 0);
-        EXPECT_EQ(count_tested, count_masked);
-        int lo, hi;
-        discontinuity_window(n, &lo, &hi);
-        size_t accepted = 0, pairs = 0;
-        for (int y = 0; y < 17; ++y)
-            for (int x = 0; x < 23; ++x) {
-                const uint64_t m = g.accepted[size_t(y) * 23 + x];
-                for (int i = 0; i < n * n; ++i) {
-                    const int qx = x + lo + i % n, qy = y + lo + i / n;
-                    const bool inside = qx >= 0 && qy >= 0 && qx < 23 && qy < 17;
-                    const size_t p = size_t(y) * 23 + x, q = size_t(qy) * 23 + qx;
-                    const bool want = inside && (p == q || discontinuity_accepts(g, s, p, q));
-                    ASSERT_EQ(bool(m >> i & 1), want) << x << "," << y << " position " << i;
-                    pairs += inside && p != q;
-                    accepted += want && p != q;
+        for (bool positions : {true, false}) {
+            SCOPED_TRACE(testing::Message() << "tile " << n << (positions ? ", plane test" : ", depth test"));
+            const DiscontinuitySettings s{n, 0.9f, 0.05f};
+            GeometryBuffer g = random_geometry(23, 17, 11u + n);
+            if (!positions) g.position.clear();
+            std::vector<float> in(23 * 17 * 3);
+            std::mt19937 rng(5);
+            for (float& v : in) v = std::uniform_real_distribution<float>(0.0f, 10.0f)(rng);
+            std::vector<float> tested, masked;
+            std::vector<uint8_t> count_tested, count_masked;
+            discontinuity_filter(g, s, 3, in, tested, &count_tested);
+            discontinuity_precompute(g, s);
+            discontinuity_filter(g, s, 3, in, masked, &count_masked);
+            ASSERT_EQ(std::memcmp(tested.data(), masked.data(), tested.size() * 4), 0);
+            EXPECT_EQ(count_tested, count_masked);
+            int lo, hi;
+            discontinuity_window(n, &lo, &hi);
+            size_t accepted = 0, pairs = 0;
+            for (int y = 0; y < 17; ++y)
+                for (int x = 0; x < 23; ++x) {
+                    const uint64_t m = g.accepted[size_t(y) * 23 + x];
+                    for (int i = 0; i < n * n; ++i) {
+                        const int qx = x + lo + i % n, qy = y + lo + i / n;
+                        const bool inside = qx >= 0 && qy >= 0 && qx < 23 && qy < 17;
+                        const size_t p = size_t(y) * 23 + x, q = size_t(qy) * 23 + qx;
+                        const bool want = inside && (p == q || discontinuity_accepts(g, s, p, q));
+                        ASSERT_EQ(bool(m >> i & 1), want) << x << "," << y << " position " << i;
+                        pairs += inside && p != q;
+                        accepted += want && p != q;
+                    }
                 }
+            if (n > 1) {
+                EXPECT_GT(accepted, pairs / 20) << "the geometry should pass some tests";
+                EXPECT_LT(accepted, pairs * 9 / 10) << "... and fail others";
             }
-        if (n > 1) {
-            EXPECT_GT(accepted, pairs / 20) << "the geometry should pass some tests";
-            EXPECT_LT(accepted, pairs * 9 / 10) << "... and fail others";
+            // Masks made for other settings are not used.
+            const DiscontinuitySettings looser{n, 0.0f, 1.0f};
+            EXPECT_EQ(discontinuity_window_mask(g, looser, 11, 8), [&] {
+                GeometryBuffer fresh = g;
+                fresh.accepted.clear();
+                return discontinuity_window_mask(fresh, looser, 11, 8);
+            }());
         }
-        // Masks made for other settings are not used.
-        const DiscontinuitySettings looser{n, 0.0f, 1.0f};
-        EXPECT_EQ(discontinuity_window_mask(g, looser, 11, 8), [&] {
-            GeometryBuffer fresh = g;
-            fresh.accepted.clear();
-            return discontinuity_window_mask(fresh, looser, 11, 8);
-        }());
     }
 }
 
