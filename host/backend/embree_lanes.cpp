@@ -57,7 +57,8 @@ float masked(float x, int mask) { return ts::as_float(ts::as_int(x) & mask); }
 // qualifiers, here and on the callers' parameters, are what let GCC vectorise.
 template <bool Medium>
 void vpl_links_of_kind(const LaneState& __restrict ls, const float (&__restrict vpl)[TS_VPL_FLOATS], float b,
-                       float hg, float* __restrict g, RTCRay16& __restrict r) {
+                       float hg, const int* __restrict in, float* __restrict g, int* __restrict traced,
+                       RTCRay16& __restrict r) {
     if (ts::ts_vpl_in_medium(vpl) != Medium) __builtin_unreachable();
     for (int i = 0; i < kLanes; ++i) {
         const ts::TsSurface s = lane_surface(ls, i);
@@ -65,6 +66,7 @@ void vpl_links_of_kind(const LaneState& __restrict ls, const float (&__restrict 
         g[i] = ts::ts_vpl_geometry(&s, vpl, b, hg, &sh);
         set_lane_ray(r, i, sh);
     }
+    for (int i = 0; i < kLanes; ++i) traced[i] = (g[i] > 0.0f ? -1 : 0) & in[i];
 }
 
 }  // namespace
@@ -82,17 +84,29 @@ void lane_set(LaneState& ls, int i, const ts::TsSurface& s) {
     ls.seen[i] = 0;
 }
 
-void light_links(const LaneState& __restrict ls, const ts::TsLightSample& sample, float (&__restrict c)[3][kLanes],
-                 int (&__restrict traced)[kLanes], RTCRay16& __restrict r) {
+void light_links(const LaneState& __restrict ls, const ts::TsLightSample& sample, const int (&__restrict in)[kLanes],
+                 float (&__restrict c)[3][kLanes], int (&__restrict traced)[kLanes], RTCRay16& __restrict r) {
     const ts::TsLightSample q = sample;  // a local copy: invariant in the loop
     for (int i = 0; i < kLanes; ++i) {
         const ts::TsSurface s = lane_surface(ls, i);
         ts::TsRay sh;
         const ts::float3 ci = ts::ts_light_contribution(&s, q, &sh);
         c[0][i] = ci.x, c[1][i] = ci.y, c[2][i] = ci.z;
-        traced[i] = ts::ts_igi_light_link_traced(ci) ? -1 : 0;
+        traced[i] = (ts::ts_igi_light_link_traced(ci) ? -1 : 0) & in[i];
         set_lane_ray(r, i, sh);
     }
+}
+
+void lane_occlusion(const ts::TsTracer& tracer, RTCRay16& r, const int (&__restrict traced)[kLanes], bool coherent,
+                    int (&__restrict visible)[kLanes]) {
+    int any = 0;
+    for (int i = 0; i < kLanes; ++i) any |= traced[i];
+    if (any) {
+        RTCIntersectContext ctx = ts::ts_packet_context(coherent);
+        rtcOccluded16(traced, tracer.scene, &ctx, &r);
+    }
+    // Embree sets a blocked lane's tfar to -inf (ts_occluded16); the others keep theirs.
+    for (int i = 0; i < kLanes; ++i) visible[i] = traced[i] & (r.tfar[i] < 0.0f ? 0 : -1);
 }
 
 void light_gather(LaneState& __restrict ls, const float (&__restrict c)[3][kLanes],
@@ -122,11 +136,12 @@ void light_gather(LaneState& __restrict ls, const float (&__restrict c)[3][kLane
 }
 
 void vpl_links(const LaneState& __restrict ls, const float (&__restrict vpl)[TS_VPL_FLOATS], float b, float hg,
-               float (&__restrict g)[kLanes], RTCRay16& __restrict r) {
+               const int (&__restrict in)[kLanes], float (&__restrict g)[kLanes], int (&__restrict traced)[kLanes],
+               RTCRay16& __restrict r) {
     if (ts::ts_vpl_in_medium(vpl))
-        vpl_links_of_kind<true>(ls, vpl, b, hg, g, r);
+        vpl_links_of_kind<true>(ls, vpl, b, hg, in, g, traced, r);
     else
-        vpl_links_of_kind<false>(ls, vpl, b, hg, g, r);
+        vpl_links_of_kind<false>(ls, vpl, b, hg, in, g, traced, r);
 }
 
 void vpl_gather(LaneState& __restrict ls, const float (&__restrict vpl)[TS_VPL_FLOATS],

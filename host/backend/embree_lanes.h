@@ -38,10 +38,10 @@ void lane_set(LaneState& ls, int i, const ts::TsSurface& s);
 
 /// Light sample `sample` against every lane: contributions c (3 × kLanes, RGB rows) and
 /// shadow rays written into r (origin, direction, tnear, tfar; the caller sets the other
-/// fields). `traced[i]` is -1 where lane i's ray must be traced (ts_igi_light_link_traced),
-/// else 0.
-void light_links(const LaneState& ls, const ts::TsLightSample& sample, float (&c)[3][kLanes],
-                 int (&traced)[kLanes], RTCRay16& r);
+/// fields). `traced[i]` is -1 where lane i takes part (in[i] = -1) and its ray must be
+/// traced (ts_igi_light_link_traced), else 0.
+void light_links(const LaneState& ls, const ts::TsLightSample& sample, const int (&in)[kLanes],
+                 float (&c)[3][kLanes], int (&traced)[kLanes], RTCRay16& r);
 
 /// Adds the light-sample terms c of the lanes with visible[i] = -1 (0: occluded or not
 /// traced) to their E_ss and counts them as seen, with the medium's transmittance along
@@ -51,9 +51,15 @@ void light_gather(LaneState& ls, const float (&c)[3][kLanes], const int (&visibl
 
 /// VPL `vpl` (TS_VPL_FLOATS floats, a copy) against every lane: clamped geometry terms g
 /// (ts_vpl_geometry; b the clamp, hg the medium's Henyey–Greenstein g) and shadow rays
-/// written into r as for light_links.
-void vpl_links(const LaneState& ls, const float (&vpl)[TS_VPL_FLOATS], float b, float hg, float (&g)[kLanes],
-               RTCRay16& r);
+/// written into r as for light_links; traced[i] = -1 where in[i] = -1 and g[i] > 0.
+void vpl_links(const LaneState& ls, const float (&vpl)[TS_VPL_FLOATS], float b, float hg, const int (&in)[kLanes],
+               float (&g)[kLanes], int (&traced)[kLanes], RTCRay16& r);
+
+/// Traces the rays of r whose traced[i] is -1 as one rtcOccluded16 packet (none when no
+/// lane is traced), in Embree's coherent mode if `coherent`; visible[i] = -1 for those
+/// found unoccluded, 0 for the others. r's other lanes are not read.
+void lane_occlusion(const ts::TsTracer& tracer, RTCRay16& r, const int (&traced)[kLanes], bool coherent,
+                    int (&visible)[kLanes]);
 
 /// Adds the VPL's terms to E_id of the lanes with visible[i] = -1, as light_gather.
 void vpl_gather(LaneState& ls, const float (&vpl)[TS_VPL_FLOATS], const float (&g)[kLanes],

@@ -62,27 +62,20 @@ void gather_set(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsF
         r.id[i] = static_cast<unsigned>(i);
         r.flags[i] = 0;
     }
-    // Traces the lanes with traced[i] = -1 among `in`; visible[i] = -1 for those unoccluded.
+    // traced[i] = -1: lane i's ray goes into the packet; visible[i] = -1: it came back unoccluded.
     alignas(64) int traced[kLanes], visible[kLanes];
-    auto trace = [&](const int* in) {
-        bool any = false;
-        for (int i = 0; i < kLanes; ++i) any |= (traced[i] &= in[i]) != 0;
-        const uint32_t blocked = any ? ts::ts_occluded16(&tracer, r, traced, coherent) : 0u;
-        for (int i = 0; i < kLanes; ++i) visible[i] = blocked >> i & 1u ? 0 : traced[i];
-    };
     alignas(64) float c[3][kLanes];
     for (uint32_t j = 0; any_ss && j < frame.shadow_samples; ++j) {
-        light_links(ls, ts::ts_igi_light_sample(&sv, &frame, k, j), c, traced, r);
-        trace(in_ss);
+        light_links(ls, ts::ts_igi_light_sample(&sv, &frame, k, j), in_ss, c, traced, r);
+        lane_occlusion(tracer, r, traced, coherent, visible);
         light_gather(ls, c, visible, med, r);
     }
     alignas(64) float g[kLanes];
     float vpl[TS_VPL_FLOATS];
     for (uint32_t v = sv.vpl_set_start[k]; any_id && v < sv.vpl_set_start[k + 1]; ++v) {
         std::copy(sv.vpls + size_t(v) * TS_VPL_FLOATS, sv.vpls + size_t(v + 1) * TS_VPL_FLOATS, vpl);
-        vpl_links(ls, vpl, frame.igi_g_clamp, sv.medium[TS_MEDIUM_G], g, r);
-        for (int i = 0; i < kLanes; ++i) traced[i] = g[i] > 0.0f ? -1 : 0;
-        trace(in_id);
+        vpl_links(ls, vpl, frame.igi_g_clamp, sv.medium[TS_MEDIUM_G], in_id, g, traced, r);
+        lane_occlusion(tracer, r, traced, coherent, visible);
         vpl_gather(ls, vpl, g, visible, med, r);
     }
     for (int i = 0; i < p.lanes; ++i) {

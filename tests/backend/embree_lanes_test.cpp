@@ -2,7 +2,9 @@
 // bit for bit what the shared one-pixel functions give (ts_light_contribution,
 // ts_vpl_geometry, the gather terms), over lanes that face the link, face away, sit on
 // the VPL itself (d = 0) or are hidden, with and without a medium, with the clamp on and
-// off. No tracing: the functions only fill and read an RTCRay16.
+// off. No tracing (the functions only fill and read an RTCRay16), except lane_occlusion,
+// which traces a packet through the Cornell box.
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -11,6 +13,8 @@
 #include <gtest/gtest.h>
 
 #include "backend/embree_lanes.h"
+#include "bvh/embree_scene.h"
+#include "support/render_helpers.h"
 
 // After the tracer (embree_lanes.h includes it).
 #include "kernels/shared/igi.h"
@@ -79,12 +83,15 @@ TEST(EmbreeLanes, VplLinksEqualTheSharedGeometryTermPerLane) {
             const LaneState ls = lanes_of(s);
             alignas(64) RTCRay16 r;
             alignas(64) float g[kLanes];
-            vpl_links(ls, vpl, b, 0.7f, g, r);
+            alignas(64) int in[kLanes], traced[kLanes];
+            for (int i = 0; i < kLanes; ++i) in[i] = i % 4 == 3 ? 0 : -1;  // lanes 3, 7, ... take no part
+            vpl_links(ls, vpl, b, 0.7f, in, g, traced, r);
             int facing = 0;
             for (int i = 0; i < kLanes; ++i) {
                 ts::TsRay want;
                 const float gw = ts::ts_vpl_geometry(&s[i], vpl, b, 0.7f, &want);
                 EXPECT_TRUE(same_bits(g[i], gw)) << "lane " << i << ": " << g[i] << " vs " << gw;
+                EXPECT_EQ(traced[i], gw > 0.0f && in[i] ? -1 : 0) << "lane " << i;
                 expect_ray(r, i, want);
                 facing += gw > 0.0f;
             }
@@ -106,14 +113,15 @@ TEST(EmbreeLanes, LightLinksEqualTheSharedContributionPerLane) {
     const LaneState ls = lanes_of(s);
     alignas(64) RTCRay16 r;
     alignas(64) float c[3][kLanes];
-    alignas(64) int traced[kLanes];
-    light_links(ls, q, c, traced, r);
+    alignas(64) int in[kLanes], traced[kLanes];
+    for (int i = 0; i < kLanes; ++i) in[i] = i == 6 ? 0 : -1;  // lane 6 takes no part
+    light_links(ls, q, in, c, traced, r);
     int lit = 0;
     for (int i = 0; i < kLanes; ++i) {
         ts::TsRay want;
         const ts::float3 cw = ts::ts_light_contribution(&s[i], q, &want);
         EXPECT_TRUE(same_bits(c[0][i], cw.x) && same_bits(c[1][i], cw.y) && same_bits(c[2][i], cw.z)) << "lane " << i;
-        EXPECT_EQ(traced[i], ts::ts_igi_light_link_traced(cw) ? -1 : 0) << "lane " << i;
+        EXPECT_EQ(traced[i], ts::ts_igi_light_link_traced(cw) && in[i] ? -1 : 0) << "lane " << i;
         expect_ray(r, i, want);
         lit += traced[i] != 0;
     }
@@ -143,7 +151,9 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
         alignas(64) RTCRay16 r;
         alignas(64) int visible[kLanes];
         alignas(64) float g[kLanes];
-        vpl_links(ls, vpl, 0.5f, 0.0f, g, r);
+        alignas(64) int all[kLanes], traced[kLanes];
+        std::fill(std::begin(all), std::end(all), -1);
+        vpl_links(ls, vpl, 0.5f, 0.0f, all, g, traced, r);
         for (int i = 0; i < kLanes; ++i) visible[i] = g[i] > 0.0f && (i + round) % 3 != 0 ? -1 : 0;
         vpl_gather(ls, vpl, g, visible, med, r);
         for (int i = 0; i < kLanes; ++i) {
@@ -154,8 +164,7 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
             ts::ts_igi_gather_add(&want[i], &sv, &med, &l);
         }
         alignas(64) float c[3][kLanes];
-        alignas(64) int traced[kLanes];
-        light_links(ls, q, c, traced, r);
+        light_links(ls, q, all, c, traced, r);
         for (int i = 0; i < kLanes; ++i) visible[i] = traced[i] && (i + round) % 4 != 1 ? -1 : 0;
         light_gather(ls, c, visible, med, r);
         for (int i = 0; i < kLanes; ++i) {
@@ -178,6 +187,47 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
         any += want[i].id.x > 0.0f && want[i].ss.x > 0.0f;
     }
     EXPECT_GT(any, 0) << "the pattern must leave some lanes with both sums";
+}
+
+// The packet's answers are the single rays' (ts_trace_occluded) for the traced lanes, in
+// both packet modes; untraced lanes come back not visible.
+TEST(EmbreeLanes, OcclusionEqualsSingleRays) {
+    const Scene scene = test::cornell_box();
+    const SceneBuffers buffers = make_scene_buffers(scene);
+    ts::TsTracer tracer{};
+    tracer.scene = build_embree_scene(buffers);
+    const SceneBounds box = scene_bounds(buffers);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0.02f, 0.98f);
+    auto inside = [&] {
+        return ts::make_float3(box.lo.x + u(rng) * (box.hi.x - box.lo.x), box.lo.y + u(rng) * (box.hi.y - box.lo.y),
+                               box.lo.z + u(rng) * (box.hi.z - box.lo.z));
+    };
+    int blocked = 0, open = 0;
+    for (int round = 0; round < 8; ++round) {
+        alignas(64) RTCRay16 r;
+        alignas(64) int traced[kLanes], visible[kLanes];
+        std::array<ts::TsRay, kLanes> rays;
+        for (int i = 0; i < kLanes; ++i) {
+            rays[i].org = inside();
+            rays[i].dir = inside() - rays[i].org;
+            rays[i].tmin = 0.0f;
+            rays[i].tmax = 1.0f;
+            ts::ts_packet_set(r, i, rays[i]);
+            r.time[i] = 0.0f, r.mask[i] = 0xffffffffu, r.id[i] = unsigned(i), r.flags[i] = 0;
+            traced[i] = (i + round) % 5 == 0 ? 0 : -1;
+        }
+        lane_occlusion(tracer, r, traced, round % 2 == 0, visible);
+        for (int i = 0; i < kLanes; ++i) {
+            const bool hidden = ts::ts_trace_occluded(&tracer, rays[i]);
+            EXPECT_EQ(visible[i], traced[i] && !hidden ? -1 : 0) << "round " << round << ", lane " << i;
+            blocked += traced[i] && hidden;
+            open += traced[i] && !hidden;
+        }
+    }
+    rtcReleaseScene(tracer.scene);
+    EXPECT_GT(blocked, 5) << "the short and tall blocks should stop some rays";
+    EXPECT_GT(open, 5);
 }
 
 TEST(EmbreeLanes, GatherWithoutMediumEqualsOnePixelGather) {
