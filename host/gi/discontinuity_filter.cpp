@@ -146,8 +146,8 @@ void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& 
     if (channels != 1 && channels != 3)
         throw std::invalid_argument("discontinuity_filter: 1 or 3 channels, not " + std::to_string(channels));
     const int w = g.width, h = g.height;
-    out.assign(in.size(), 0.0f);
-    if (accepted) accepted->assign(size_t(w) * h, 0);
+    out.resize(in.size());  // every pixel is written: no zero fill
+    if (accepted) accepted->resize(size_t(w) * h);
     const bool precomputed = !g.accepted.empty() && same_settings(g.accepted_for, s);
     uint8_t* acc = accepted ? accepted->data() : nullptr;
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {

@@ -112,7 +112,8 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     if (!reconstructs_on_host()) return resolve_on_device(frame, surface_frame, out);
 
     t0 = Clock::now();
-    std::vector<float> surf, media;
+    std::vector<float>&surf = surf_, &media = media_;
+    media.clear();
     backend_.launch(KernelId::IgiSurface, surface_frame, surf);
     stats_.surface_seconds = since(t0);
     stats_.media_seconds = 0.0;

@@ -148,6 +148,9 @@ protected:
     std::array<std::vector<double>, 6> component_sums_;
     std::array<std::vector<float>, kAisComponents> raw_, final_;
     std::vector<float> transmittance_;
+    // The surface and media kernels' outputs, kept across passes: a fresh 32 MB (512², 31
+    // floats a pixel) each pass cost its zero fill and page faults, ~5 ms.
+    std::vector<float> surf_, media_;
     GeometryBuffer geometry_;
 
 private:
