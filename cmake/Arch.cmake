@@ -1,7 +1,7 @@
 # The instruction set the C++ code is compiled for (TESSERA_ARCH). The host's hot loops
-# (the Embree packet lanes, the instant cache's gathers and scans, the discontinuity
-# filter) are written for GCC's vectoriser; with the x86-64 baseline (SSE2) it has 4-wide
-# vectors and no shuffles for 3-float pixel layouts, with x86-64-v3 (AVX2, 2013 on) 8-wide.
+# (the Embree packet lanes, the instant cache's gathers and scans) are written for GCC's
+# vectoriser: with the x86-64 baseline (SSE2) it has 4-wide vectors, with x86-64-v3 (AVX2,
+# 2013 on) 8-wide.
 # Images are the same either way: FMA contraction stays off (CMakeLists.txt) and vector
 # code rounds as scalar code does. Measured: bench/results/frame_times.md.
 #   auto (default): x86-64-v3 when the compiler has it and the build machine runs it

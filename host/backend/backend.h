@@ -83,9 +83,9 @@ public:
     /// (rebuilt on their next use only when `plan`'s compile-time defines differ from
     /// the last plan's), persistent device buffers and the named inputs. A per-frame
     /// fresh backend spent ~3 ms loading each OpenCL program it used again
-    /// (docs/ARCHITECTURE.md, "How a pass flows"). Same images as a fresh backend for `scene`. `scene`
-    /// must outlive the backend or the next set_scene; the previous one may be freed
-    /// once this returns. Throws what make_backend throws for `scene`.
+    /// (docs/ARCHITECTURE.md, "How a pass flows"). Same images as a fresh backend for
+    /// `scene`, which must outlive the backend or the next set_scene; the previous scene
+    /// may be freed once this returns. Throws what make_backend throws for `scene`.
     virtual void set_scene(const SceneBuffers& scene, const EffectPlan& plan) = 0;
 
     /// How many times kernel `k` was launched on this backend.

@@ -22,18 +22,19 @@ struct WindowBits {
 // set once, where depends only on the pixel's own set). Saves the walks a division and a
 // modulo by n per position.
 struct WindowWalk {
-    int n, lo, hi, width, height;
+    int lo, hi;    // the window's offsets on each axis
     uint64_t all;  // every window position
     std::array<ptrdiff_t, 64> offset;
     std::vector<std::array<uint8_t, 64>> set_at;  // [own set][position]
 
-    WindowWalk(int tile, int w, int h) : n(tile), width(w), height(h), set_at(size_t(tile) * tile) {
+    WindowWalk(int n, int width) : set_at(size_t(n) * n) {
         discontinuity_window(n, &lo, &hi);
         all = n * n == 64 ? ~0ull : (1ull << (n * n)) - 1;
-        offset = discontinuity_window_offsets(n, w);
+        offset = discontinuity_window_offsets(n, width);
         for (int own = 0; own < n * n; ++own)  // a pixel of set `own` with its window in x, y >= 0
             for (int i = 0; i < n * n; ++i)
-                set_at[own][i] = static_cast<uint8_t>(interleave_set(own % n + n + lo + i % n, own / n + n + lo + i / n, n));
+                set_at[own][i] =
+                    static_cast<uint8_t>(interleave_set(own % n + n + lo + i % n, own / n + n + lo + i / n, n));
     }
 
     // Calls f(q) for each window position of `bits` around pixel p (pixel index q).
@@ -220,7 +221,7 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
     if (!any) return out;
     out.missing.assign(size_t(w) * h, 0);
     out.held.assign(size_t(w) * h, 0);
-    const WindowWalk walk(filter.tile, w, h);
+    const WindowWalk walk(filter.tile, w);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < w; ++x) {
@@ -297,7 +298,8 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
         for (int tx = 0; tx < width; tx += int(kItemTile))
             for (int y = ty; y < std::min(height, ty + int(kItemTile)); ++y)
                 for (int x = tx; x < std::min(width, tx + int(kItemTile)); ++x)
-                    if (is_refined(size_t(y) * width + x)) refined.push_back(static_cast<uint32_t>(size_t(y) * width + x));
+                    if (is_refined(size_t(y) * width + x))
+                        refined.push_back(static_cast<uint32_t>(size_t(y) * width + x));
     for (int k = 0; k < sets; ++k)
         for (uint32_t p : refined) {
             if (k == interleave_set(static_cast<int>(p % width), static_cast<int>(p / width), tile)) continue;

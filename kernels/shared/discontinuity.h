@@ -21,19 +21,16 @@ TS_INLINE void ts_discontinuity_window(int n, int* lo, int* hi) {
 }
 
 /* Whether p (depth zp, unit normal np, position xp) accepts q; use_plane 0 tests depths
- * instead of the plane distance. Written out term by term so C++ and OpenCL round alike.
- * Branch-free: every term is computed and the answer selected, so that a loop of tests
- * over pixels vectorises (host/gi/discontinuity_filter.cpp); the terms of an escaped
- * pixel (z = +inf) may be NaN or inf and are not selected. A NaN cosine passes the
- * normal test, as `c < cos_min` rejects only when true. */
+ * instead of the plane distance. Written out term by term so C++ and OpenCL round alike. */
 TS_INLINE int ts_discontinuity_accepts(float zp, float3 np, float3 xp, float zq, float3 nq, float3 xq,
                                        int use_plane, float cos_min, float depth_rel) {
     int mp = !isfinite(zp), mq = !isfinite(zq);
+    if (mp || mq) return mp && mq;
     float c = np.x * nq.x + np.y * nq.y + np.z * nq.z;
+    if (c < cos_min) return 0;
+    if (!use_plane) return fabs(zp - zq) <= depth_rel * zp;
     float plane = np.x * (xq.x - xp.x) + np.y * (xq.y - xp.y) + np.z * (xq.z - xp.z);
-    float dist = use_plane ? fabs(plane) : fabs(zp - zq);
-    int near = !(c < cos_min) & (dist <= depth_rel * zp);
-    return (mp | mq) ? (mp & mq) : near;
+    return fabs(plane) <= depth_rel * zp;
 }
 
 TS_NAMESPACE_END
