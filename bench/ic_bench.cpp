@@ -67,10 +67,7 @@ std::vector<FrameResult> run_sequence(const Scene& rest, Method m, BackendKind k
         const Scene scene = scene_at_frame(rest, f);
         auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene));
         const EffectPlan plan = plan_effects(scene);
-        if (backend)
-            backend->set_scene(*next, plan);
-        else
-            backend = make_backend({kind, device}, *next, plan);
+        give_scene(backend, {kind, device}, *next, plan);
         buffers = std::move(next);
         FrameResult r;
         r.setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -71,6 +71,14 @@ void Backend::set_input(KernelInput in, const std::vector<uint32_t>& data) {
     store_input(in, data);
 }
 
+void give_scene(std::unique_ptr<Backend>& backend, const BackendOptions& options, const SceneBuffers& scene,
+                const EffectPlan& plan) {
+    if (backend)
+        backend->set_scene(scene, plan);
+    else
+        backend = make_backend(options, scene, plan);
+}
+
 std::unique_ptr<Backend> make_backend(const BackendOptions& options, const SceneBuffers& scene,
                                       const EffectPlan& plan) {
     if (options.kind == BackendKind::Embree) {

@@ -142,6 +142,12 @@ private:
 std::unique_ptr<Backend> make_backend(const BackendOptions& options, const SceneBuffers& scene,
                                       const EffectPlan& plan);
 
+/// The backend of a sequence of scenes (animation frames): `backend` given `scene` with
+/// Backend::set_scene when it exists, else made for it with make_backend(options, ...).
+/// The same requirements on `scene` and the same errors as those two.
+void give_scene(std::unique_ptr<Backend>& backend, const BackendOptions& options, const SceneBuffers& scene,
+                const EffectPlan& plan);
+
 std::unique_ptr<Backend> make_embree_backend(const SceneBuffers& scene, bool packets = true);
 /// The OpenCL backend with `options` as given (make_backend applies the TESSERA_CL_*
 /// environment overrides first).

@@ -63,10 +63,7 @@ void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& 
         const Scene scene = scene_at_frame(rest, frame);
         auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene));
         const EffectPlan plan = plan_effects(scene);
-        if (backend)
-            backend->set_scene(*next, plan);
-        else
-            backend = make_backend(backend_options, *next, plan);
+        give_scene(backend, backend_options, *next, plan);
         buffers = std::move(next);  // the previous frame's buffers go only now
         RenderStats stats;
         const Image image = render_frame(*backend, scene, *buffers, settings, &stats, progress);

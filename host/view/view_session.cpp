@@ -87,10 +87,7 @@ void ViewSession::build_backend() {
     scene_ = rest_.animation.animated() ? scene_at_frame(rest_, anim_frame_) : rest_;
     auto buffers = std::make_unique<SceneBuffers>(make_scene_buffers(scene_));
     plan_ = plan_effects(scene_);
-    if (backend_)
-        backend_->set_scene(*buffers, plan_);
-    else
-        backend_ = make_backend(options_.backend, *buffers, plan_);
+    give_scene(backend_, options_.backend, *buffers, plan_);
     buffers_ = std::move(buffers);  // the previous frame's buffers go only now
     acc_anim_frame_ = anim_frame_;
     dirty_ = true;

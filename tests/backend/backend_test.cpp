@@ -53,10 +53,7 @@ TEST_P(SetScene, RendersWhatAFreshBackendRenders) {
     for (int i = 0; i < 4; ++i) {
         auto next = std::make_unique<SceneBuffers>(make_scene_buffers(chain[i]));
         const EffectPlan plan = plan_effects(chain[i]);
-        if (kept)
-            kept->set_scene(*next, plan);
-        else
-            kept = make_backend({GetParam(), ""}, *next, plan);
+        give_scene(kept, {GetParam(), ""}, *next, plan);
         buffers = std::move(next);
         const Image a = render_frame(*kept, chain[i], *buffers, s);
         const Image b = test::render_with(GetParam(), chain[i], s);
