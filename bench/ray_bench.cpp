@@ -16,8 +16,7 @@
 //            incoherent case)
 // Every tracer gets the rays in the batch form the renderer issues: OpenCL one upload,
 // kernel and read-back per query, per ray (TESSERA_CL_PACKETS=0 form) and as by default
-// (16 consecutive rays per work-item on CPU devices for any-hit queries and for coherent
-// closest-hit ones, kernels/bvh_packet.h), and the GPU variant (per ray with the short-stack traversal of
+// (16 consecutive rays per work-item on CPU devices, kernels/bvh_packet.h), and the GPU variant (per ray with the short-stack traversal of
 // kernels/bvh_short_stack.h, forced on the CPU device: what it costs there; its GPU
 // rates need a GPU); Embree single rtcIntersect1/rtcOccluded1 per
 // ray over TBB; Embree packets rtcIntersect16/rtcOccluded16 over 16 consecutive rays
@@ -249,9 +248,8 @@ int main(int argc, char** argv) {
                       r.name.c_str(), r.n, r.clr, r.clg, r.cl, r.em, r.pk, r.pk / r.em, r.cl / r.em, r.cl / r.pk);
         md << buf;
     }
-    md << "\nRates in Mrays/s. OpenCL default on CPU devices: 16-ray packets for any-hit kinds "
-          "(trace_occluded_packets) and for coherent closest-hit kinds (trace_closest_packets: primary), per "
-          "ray for incoherent closest-hit kinds (ic, random). OpenCL GPU variant: per ray with the short-stack traversal "
+    md << "\nRates in Mrays/s. OpenCL default on CPU devices: 16-ray packets for every kind "
+          "(trace_occluded_packets, trace_closest_packets). OpenCL GPU variant: per ray with the short-stack traversal "
           "(TESSERA_CL_GPU=1), the default on GPU devices. Ray kinds and how each tracer is driven: the header of "
           "bench/ray_bench.cpp.\n";
     std::snprintf(buf, sizeof buf,

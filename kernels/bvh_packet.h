@@ -50,21 +50,25 @@ static inline uint ts_lane_bits16(int16 m) {
     return (uint)(d.x | d.y);
 }
 
-/* ts_lane_bits16 of four masks, as (bits of m0, m1, m2, m3): two masks share each
- * 32-bit lane (m0 in the low half, m1 in the high half), halving the reduction steps. */
-static inline uint4 ts_lane_bits16x4(int16 m0, int16 m1, int16 m2, int16 m3) {
-    const uint16 b = as_uint16(TS_LANE_BITS16);
-    uint16 t = (as_uint16(m0) & b) | ((as_uint16(m1) & b) << 16);
-    uint16 u = (as_uint16(m2) & b) | ((as_uint16(m3) & b) << 16);
-    uint8 t8 = t.lo | t.hi, u8 = u.lo | u.hi;
-    uint8 a = (uint8)(t8.lo | t8.hi, u8.lo | u8.hi);
-    uint4 c = (uint4)(a.s01 | a.s23, a.s45 | a.s67);
-    uint2 d = (uint2)(c.s0 | c.s1, c.s2 | c.s3);
-    return (uint4)(d.x & 0xffffu, d.x >> 16, d.y & 0xffffu, d.y >> 16);
-}
-
 /* -1 in lane i where bit i of `bits` is set, else 0. */
 static inline int16 ts_lane_mask16(uint bits) { return ((int16)((int)bits) & TS_LANE_BITS16) != (int16)(0); }
+
+/* 1 when some lane of the mask m (-1 or 0 per lane) is set. The traversals keep their
+ * lane masks as int16 and ask only this in their loops: with Clang's vector reduction
+ * (PoCL) it is one test of the comparison's mask register, where forming the lane bits
+ * (ts_lane_bits16, no movemask in OpenCL C) takes a dozen shuffles and ORs. */
+#ifdef __has_builtin
+#if __has_builtin(__builtin_reduce_or)
+#define TS_HAVE_REDUCE_OR 1
+#endif
+#endif
+static inline int ts_any16(int16 m) {
+#ifdef TS_HAVE_REDUCE_OR
+    return __builtin_reduce_or(m != (int16)(0)) != 0; /* "!= 0" lets LLVM fold a compare's mask into the test */
+#else
+    return ts_lane_bits16(m) != 0u;
+#endif
+}
 
 /* Lane-wise ts_f3_get: component k (0 = x, 1 = y, 2 = z) of (x, y, z) per lane. */
 static inline float16 ts_pick16(float16 x, float16 y, float16 z, int16 k) {
@@ -131,8 +135,8 @@ static inline int16 ts_packet_box_near(__global const float* node, int c, const 
     float16 n_x = (select(mnx, mxx, p->nx) - r->ox) * p->ix, f_x = (select(mxx, mnx, p->nx) - r->ox) * p->ix;
     float16 n_y = (select(mny, mxy, p->ny) - r->oy) * p->iy, f_y = (select(mxy, mny, p->ny) - r->oy) * p->iy;
     float16 n_z = (select(mnz, mxz, p->nz) - r->oz) * p->iz, f_z = (select(mxz, mnz, p->nz) - r->oz) * p->iz;
-    float16 tn = fmax(fmax(n_x, n_y), fmax(n_z, r->tmin));
-    float16 tf = fmin(fmin(f_x, f_y), fmin(f_z, r->tmax)) * TS_BOX_TFAR_SCALE;
+    float16 tn = TS_SLAB_MAX(TS_SLAB_MAX(n_x, n_y), TS_SLAB_MAX(n_z, r->tmin));
+    float16 tf = TS_SLAB_MIN(TS_SLAB_MIN(f_x, f_y), TS_SLAB_MIN(f_z, r->tmax)) * TS_BOX_TFAR_SCALE;
     *tnear = tn;
     return tn <= tf;
 }
@@ -186,44 +190,43 @@ static inline uint ts_bvh_occluded16(__global const float* nodes, __global const
                                      uint active) {
     if (active == 0u) return 0u;
     TsPacketSetup p = ts_packet_setup(r);
-    uint occluded = 0u;
+    const int16 live = ts_lane_mask16(active);
+    int16 occluded = (int16)(0);
     int stack[TS_BVH_STACK_SIZE];
-    uint lanes[TS_BVH_STACK_SIZE]; /* the lanes visiting each entry */
+    int16 lanes[TS_BVH_STACK_SIZE]; /* the lanes visiting each entry */
     int sp = 0;
     stack[sp] = 0;
-    lanes[sp++] = active;
+    lanes[sp++] = live;
     while (sp > 0) {
         --sp;
         int ref = stack[sp];
-        uint m = lanes[sp] & ~occluded;
-        if (m == 0u) continue;
+        int16 m = lanes[sp] & ~occluded;
+        if (!ts_any16(m)) continue;
         if (ref >= 0) {
             __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
-            int16 act = ts_lane_mask16(m);
-            int16 h0 = ts_packet_box(node, 0, r, &p) & act, h1 = ts_packet_box(node, 1, r, &p) & act;
-            int16 h2 = ts_packet_box(node, 2, r, &p) & act, h3 = ts_packet_box(node, 3, r, &p) & act;
-            uint4 bits = ts_lane_bits16x4(h0, h1, h2, h3);
             /* Children are pushed in slot order, not sorted near to far: for IGI's
              * shadow rays, mostly unoccluded, every hit child is visited anyway, and
              * sorting by the lanes' entry distances cost 10% of the pass on Sibenik. */
+            int16 h[4] = {ts_packet_box(node, 0, r, &p) & m, ts_packet_box(node, 1, r, &p) & m,
+                          ts_packet_box(node, 2, r, &p) & m, ts_packet_box(node, 3, r, &p) & m};
             for (int c = 0; c < 4; ++c) {
-                uint b = c == 0 ? bits.x : c == 1 ? bits.y : c == 2 ? bits.z : bits.w;
-                if (b == 0u) continue;
+                if (!ts_any16(h[c])) continue;
                 stack[sp] = as_int(node[TS_NODE_REFS + c]);
-                lanes[sp++] = b;
+                lanes[sp++] = h[c];
             }
         } else {
             uint v = ~(uint)ref;
             uint first = v >> 3, count = v & 7u;
-            for (uint i = 0u; i < count && m != 0u; ++i) {
-                uint hit = ts_lane_bits16(ts_packet_triangle(tris + (first + i) * TS_BVH_TRI_FLOATS, r, &p)) & m;
+            for (uint i = 0u; i < count; ++i) {
+                int16 hit = ts_packet_triangle(tris + (first + i) * TS_BVH_TRI_FLOATS, r, &p) & m;
                 occluded |= hit;
                 m &= ~hit;
+                if (!ts_any16(m)) break;
             }
-            if (occluded == active) return occluded;
+            if (!ts_any16(live & ~occluded)) break;
         }
     }
-    return occluded;
+    return ts_lane_bits16(occluded) & active;
 }
 
 /* Closest hits of 16 rays, structure of arrays (TsHit per lane): t (tmax where nothing
@@ -250,12 +253,12 @@ static inline void ts_hit16_unpack(const TsHit16* h, uint valid, TsHit* hits) {
     }
 }
 
-/* The least of the 16 lanes of x. */
+/* The least of the 16 lanes of x (no lane NaN: entry distances or +inf). */
 static inline float ts_min16(float16 x) {
-    float8 a = fmin(x.lo, x.hi);
-    float4 b = fmin(a.lo, a.hi);
-    float2 c = fmin(b.lo, b.hi);
-    return fmin(c.x, c.y);
+    float8 a = TS_SLAB_MIN(x.lo, x.hi);
+    float4 b = TS_SLAB_MIN(a.lo, a.hi);
+    float2 c = TS_SLAB_MIN(b.lo, b.hi);
+    return TS_SLAB_MIN(c.x, c.y);
 }
 
 /* Closest hit of each lane in `active` (bit i = lane i), equal to ts_bvh_closest for
@@ -279,27 +282,24 @@ static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global con
     if (active == 0u) return h;
     TsPacketSetup p = ts_packet_setup(&r);
     int stack[TS_BVH_STACK_SIZE];
-    uint lanes[TS_BVH_STACK_SIZE];
+    int16 lanes[TS_BVH_STACK_SIZE]; /* the lanes visiting each entry */
     int sp = 0;
     stack[sp] = 0;
-    lanes[sp++] = active;
+    lanes[sp++] = ts_lane_mask16(active);
     while (sp > 0) {
         --sp;
         int ref = stack[sp];
-        uint m = lanes[sp];
-        int16 act = ts_lane_mask16(m);
+        int16 act = lanes[sp];
         if (ref >= 0) {
             __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
             float16 tn[4];
             int16 hc[4];
             for (int c = 0; c < 4; ++c) hc[c] = ts_packet_box_near(node, c, &r, &p, &tn[c]) & act;
-            uint4 bits = ts_lane_bits16x4(hc[0], hc[1], hc[2], hc[3]);
-            uint b[4] = {bits.x, bits.y, bits.z, bits.w};
             /* Push far to near, so the child some lane enters first is visited first. */
             float key[4];
             int order[4], n = 0;
             for (int c = 0; c < 4; ++c) {
-                if (b[c] == 0u) continue;
+                if (!ts_any16(hc[c])) continue;
                 key[c] = ts_min16(select((float16)(INFINITY), tn[c], hc[c]));
                 int j = n++;
                 while (j > 0 && key[order[j - 1]] < key[c]) {
@@ -310,7 +310,7 @@ static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global con
             }
             for (int j = 0; j < n; ++j) {
                 stack[sp] = as_int(node[TS_NODE_REFS + order[j]]);
-                lanes[sp++] = b[order[j]];
+                lanes[sp++] = hc[order[j]];
             }
         } else {
             uint v = ~(uint)ref;
@@ -319,7 +319,7 @@ static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global con
                 __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
                 float16 t, u, w;
                 int16 hit = ts_packet_triangle_uv(tri, &r, &p, &t, &u, &w) & act;
-                if (ts_lane_bits16(hit) == 0u) continue;
+                if (!ts_any16(hit)) continue;
                 r.tmax = select(r.tmax, t, hit);
                 h.u = select(h.u, u, hit);
                 h.v = select(h.v, w, hit);

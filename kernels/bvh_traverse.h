@@ -30,6 +30,16 @@
 #define TS_BOX_TFAR_SCALE 1.0000003576278687f
 #endif
 
+/* Larger and smaller of two slab distances, componentwise, as compare-selects: one
+ * maxps/minps on x86, where OpenCL's fmax/fmin must also return the non-NaN operand and
+ * cost two more instructions per call on PoCL. No slab distance is NaN for a ray with
+ * finite origin and direction (1/d is finite and non-zero, ts_slab_setup; an empty
+ * child's infinite bounds give ±inf), so the values equal fmax/fmin's; a ray with a NaN
+ * component now misses every box where fmax/fmin let it enter all, a no-hit either way
+ * (its triangle tests all fail). */
+#define TS_SLAB_MAX(a, b) ((a) > (b) ? (a) : (b))
+#define TS_SLAB_MIN(a, b) ((a) < (b) ? (a) : (b))
+
 /* Per-ray constants of the watertight test: the axis permutation and the shear. */
 typedef struct TsWatertight {
     int kx, ky, kz;
@@ -90,8 +100,8 @@ static inline int4 ts_node_hits(__global const float* node, float3 org, float3 i
     float4 n_x = (lo_x - org.x) * inv.x, f_x = (hi_x - org.x) * inv.x;
     float4 n_y = (lo_y - org.y) * inv.y, f_y = (hi_y - org.y) * inv.y;
     float4 n_z = (lo_z - org.z) * inv.z, f_z = (hi_z - org.z) * inv.z;
-    float4 tn = fmax(fmax(n_x, n_y), fmax(n_z, (float4)(tmin)));
-    float4 tf = fmin(fmin(f_x, f_y), fmin(f_z, (float4)(tmax))) * TS_BOX_TFAR_SCALE;
+    float4 tn = TS_SLAB_MAX(TS_SLAB_MAX(n_x, n_y), TS_SLAB_MAX(n_z, (float4)(tmin)));
+    float4 tf = TS_SLAB_MIN(TS_SLAB_MIN(f_x, f_y), TS_SLAB_MIN(f_z, (float4)(tmax))) * TS_BOX_TFAR_SCALE;
     *tnear_out = tn;
     return tn <= tf;
 }
