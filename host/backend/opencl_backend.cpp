@@ -39,6 +39,7 @@ const char* packet_kernel(KernelId id) {
     if (id == KernelId::IgiSurface) return "igi_surface_packets";
     if (id == KernelId::AisItem) return "ais_extra_packets";
     if (id == KernelId::IgiMedia) return "igi_media_packets";
+    if (id == KernelId::IcPair) return "ic_pair_packets";
     return nullptr;
 }
 

@@ -23,18 +23,22 @@ TS_INLINE void ts_ic_interpolate_kernel_pixel(const TsSceneView* sv, const TsTra
                             py * f->width + px, out);
 }
 
-/* Pair item i: the first triangle on the shadow ray from record to VPL (TS_IC_PAIR_FLOATS);
- * TS_IC_PAIR_FACING when the clamped geometry term (f->igi_g_clamp) is 0 and no ray is
- * needed. */
-TS_INLINE void ts_ic_pair_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
-                               float* out) {
+/* Pair item i's shadow ray from record to VPL in *shadow; returns 0 when the clamped
+ * geometry term (f->igi_g_clamp) is 0 and no ray is needed. */
+TS_INLINE int ts_ic_pair_ray(const TsSceneView* sv, const TsFrame* f, uint i, TsRay* shadow) {
     TS_GLOBAL const uint* item = sv->items + (size_t)TS_IC_PAIR_WORDS * i;
     TsSurface s = ts_ic_record_surface(sv->ic_record_surfaces + (size_t)TS_IC_GBUF_FLOATS * item[TS_IC_PAIR_RECORD]);
+    return ts_vpl_geometry(&s, sv->vpls + (size_t)TS_VPL_FLOATS * item[TS_IC_PAIR_VPL], f->igi_g_clamp,
+                           sv->medium[TS_MEDIUM_G], shadow) > 0.0f;
+}
+
+/* Pair item i: the first triangle on its shadow ray (TS_IC_PAIR_FLOATS);
+ * TS_IC_PAIR_FACING when no ray is needed (ts_ic_pair_ray). */
+TS_INLINE void ts_ic_pair_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                               float* out) {
     TsRay shadow;
     uint hit = TS_IC_PAIR_FACING;
-    if (ts_vpl_geometry(&s, sv->vpls + (size_t)TS_VPL_FLOATS * item[TS_IC_PAIR_VPL], f->igi_g_clamp,
-                        sv->medium[TS_MEDIUM_G], &shadow) > 0.0f)
-        hit = ts_trace_closest(tracer, shadow).prim;
+    if (ts_ic_pair_ray(sv, f, i, &shadow)) hit = ts_trace_closest(tracer, shadow).prim;
     out[TS_IC_PAIR_HIT] = as_float(hit);
 }
 

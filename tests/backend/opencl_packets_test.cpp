@@ -1,5 +1,5 @@
 // The OpenCL backend's 16-ray packet kernels on CPU devices (host/backend/opencl_backend.cpp,
-// kernels/bvh_packet.h, kernels/igi_packets.h): each lane of a packet must get the
+// kernels/bvh_packet.h, kernels/igi_packets.h, kernels/ic.cl): each lane of a packet must get the
 // occlusion (ts_bvh_occluded) and the closest hit (ts_bvh_closest) its own per-ray
 // traversal gives, so images with packets on
 // equal those with packets off, bit for bit. Both run the same shared transport in the
@@ -142,9 +142,10 @@ TEST(OpenCLPackets, DescriptionNamesTheTraversal) {
     EXPECT_NE(opencl(buffers, scene, false)->description().find("per-ray BVH4"), std::string::npos);
 }
 
-// Images: igi, ais and ais-max (surface pass and AIS items go through packets), at a
-// size that is not a multiple of the tile nor of the 4×4 packet block, so packets with
-// idle lanes and sets of unequal size are covered. Fog adds the media part of AIS items.
+// Images: igi, ais and ais-max (surface pass and AIS items go through packets) and ic
+// (the record-VPL pair rays, ic_pair_packets), at a size that is not a multiple of the
+// tile nor of the 4×4 packet block, so packets with idle lanes and sets of unequal size
+// are covered. Fog adds the media part of AIS items.
 class OpenCLPacketImages : public ::testing::TestWithParam<Method> {};
 
 TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBit) {
@@ -157,7 +158,8 @@ TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBit) {
     test::expect_images_identical(render_frame(*single, scene, buffers, rs), render_frame(*packets, scene, buffers, rs));
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, OpenCLPacketImages, ::testing::Values(Method::Igi, Method::Ais, Method::AisMax),
+INSTANTIATE_TEST_SUITE_P(Methods, OpenCLPacketImages,
+                         ::testing::Values(Method::Igi, Method::Ais, Method::AisMax, Method::Ic),
                          [](const auto& info) { return test::method_param_name(info.param); });
 
 }  // namespace
