@@ -10,8 +10,14 @@
 //            hit): IGI's light-sample shadow rays, one sample shared by a set's pixels
 //   vpl      from the tile's 16 hits to one VPL per tile, a random surface point seen
 //            from the camera (any hit): IGI's VPL shadow rays
-//   ic       from one record point (a tile's first hit) to 16 different VPLs (closest
-//            hit: the instant cache keeps the occluder), one record per 16 rays
+//   ic       the instant cache's placement pairs as the renderer lists them (closest hit:
+//            the cache keeps the occluder): VPL by VPL, each from the records of a pixel
+//            grid in Morton order of their cells (16 consecutive rays: a 4×4 block of
+//            records to one VPL). The records are the primary hits on the stride-8 grid,
+//            placement's first and only dense level (host/gi/instant_cache.cpp); its
+//            finer levels place sparser records, whose packets are less coherent
+//   ic-update  the temporal update's re-traced pairs, listed record by record: from one
+//            record point (a tile's first hit) to 16 different VPLs
 //   random   from each primary hit in a uniform random direction (closest hit; the
 //            incoherent case)
 // Every tracer gets the rays in the batch form the renderer issues: OpenCL one upload,
@@ -21,7 +27,8 @@
 // rates need a GPU); Embree single rtcIntersect1/rtcOccluded1 per
 // ray over TBB; Embree packets rtcIntersect16/rtcOccluded16 over 16 consecutive rays
 // (Backend::trace_* of the Embree backend with packets on; Embree's coherent mode for
-// primary, light and vpl, as the renderer's packets use it, incoherent for ic and random).
+// primary, light, vpl and ic, as the renderer's packets use it, incoherent for ic-update
+// and random).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -84,10 +91,22 @@ void tiled_pixel(int i, int w, int* x, int* y) {
     *y = ty * 4 + (i % 16) / 4;
 }
 
+// The Z-order index of cell (x, y): as placement orders its records (instant_cache.cpp).
+uint32_t morton2(uint32_t x, uint32_t y) {
+    auto spread = [](uint32_t v) {
+        v &= 0xffffu;
+        v = (v | v << 8) & 0x00ff00ffu;
+        v = (v | v << 4) & 0x0f0f0f0fu;
+        v = (v | v << 2) & 0x33333333u;
+        return (v | v << 1) & 0x55555555u;
+    };
+    return spread(x) | spread(y) << 1;
+}
+
 std::vector<RaySet> make_rays(const Scene& scene, const SceneBuffers& b, Backend& embree, int w, int h) {
     TsFrame f = make_frame(scene.camera, w, h, 1, 1, b.light_count);
     RaySet primary{"primary", true, {}}, light{"light", false, {}}, vpl{"vpl", false, {}}, ic{"ic", true, {}},
-        random{"random", true, {}};
+        ic_update{"ic-update", true, {}}, random{"random", true, {}};
     for (int i = 0; i < w * h; ++i) {
         int x, y;
         tiled_pixel(i, w, &x, &y);
@@ -101,6 +120,7 @@ std::vector<RaySet> make_rays(const Scene& scene, const SceneBuffers& b, Backend
         ts::float3 origin, position, normal;
     };
     std::vector<Point> points;  // the primary hits, tile order
+    std::vector<int> point_of(size_t(w) * h, -1);  // pixel -> index in points
     for (size_t i = 0; i < primary.rays.size() / TS_RAY_FLOATS; ++i) {
         const float* hi = &hits[TS_HIT_FLOATS * i];
         uint32_t prim;
@@ -110,8 +130,16 @@ std::vector<RaySet> make_rays(const Scene& scene, const SceneBuffers& b, Backend
         const ts::TsRay r{ts::ts_f3_load(pr + TS_RAY_ORG), ts::ts_f3_load(pr + TS_RAY_DIR), 0.0f, INFINITY};
         const ts::TsHit hit{hi[TS_HIT_T], hi[TS_HIT_U], hi[TS_HIT_V], prim};
         const ts::TsSurface s = ts::ts_surface_at(&sv, r, hit);
+        int x, y;
+        tiled_pixel(static_cast<int>(i), w, &x, &y);
+        point_of[size_t(y) * w + x] = static_cast<int>(points.size());
         points.push_back({ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale), s.position, s.geo_normal});
     }
+    std::vector<std::pair<uint32_t, int>> cells;  // (Morton code, point) of the stride-8 records
+    for (int y = 0; y < h; y += 8)
+        for (int x = 0; x < w; x += 8)
+            if (const int p = point_of[size_t(y) * w + x]; p >= 0) cells.push_back({morton2(x / 8, y / 8), p});
+    std::sort(cells.begin(), cells.end());
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     std::normal_distribution<float> g;
@@ -129,13 +157,22 @@ std::vector<RaySet> make_rays(const Scene& scene, const SceneBuffers& b, Backend
         push_ray(light.rays, o, to_light - o, 0.99999f);
         push_ray(vpl.rays, o, to_vpl - o, 0.99999f);
         const Point rec = points[i - i % 16], v = any_point();
-        push_ray(ic.rays, rec.origin, v.position + v.normal * 1e-3f - rec.origin, 0.99999f);
+        push_ray(ic_update.rays, rec.origin, v.position + v.normal * 1e-3f - rec.origin, 0.99999f);
         ts::float3 dr = ts::normalize(ts::make_float3(g(rng), g(rng), g(rng)));
         if (ts::dot(dr, points[i].normal) < 0.0f) dr = -dr;  // leave the surface on its lit side
         push_ray(random.rays, o, dr, INFINITY);
     }
-    for (RaySet* s : {&primary, &light, &vpl}) s->order = Backend::RayOrder::Coherent16;
-    return {primary, light, vpl, ic, random};
+    ts::float3 to{};
+    for (size_t i = 0; i < points.size(); ++i) {  // VPL by VPL, the records in Morton order
+        if (i % cells.size() == 0) {
+            const Point v = any_point();
+            to = v.position + v.normal * 1e-3f;
+        }
+        const Point rec = points[cells[i % cells.size()].second];
+        push_ray(ic.rays, rec.origin, to - rec.origin, 0.99999f);
+    }
+    for (RaySet* s : {&primary, &light, &vpl, &ic}) s->order = Backend::RayOrder::Coherent16;
+    return {primary, light, vpl, ic, ic_update, random};
 }
 
 std::string machine_name() {

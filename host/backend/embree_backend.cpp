@@ -25,6 +25,7 @@
 #include "backend/embree_tracer.h"
 #include "backend/embree_media_packets.h"
 #include "backend/embree_ic_gather.h"
+#include "backend/embree_ic_pairs.h"
 #include "backend/embree_packets.h"
 
 // TS_HAS_TEXTURES and TS_HAS_MEDIUM are defined for all C++ code (CMakeLists.txt): a
@@ -69,7 +70,7 @@ public:
 
     std::string description() const override {
         return std::string("embree (Embree 3 ") +
-               (packets_ ? "16-ray packets for igi/ais shadow rays" : "single rays") + ", TBB, " +
+               (packets_ ? "16-ray packets for igi/ais/ic rays" : "single rays") + ", TBB, " +
                std::to_string(tbb::info::default_concurrency()) + " threads)";
     }
 
@@ -94,6 +95,7 @@ protected:
         if (packets_ && k == KernelId::IgiSurface) return igi_surface_packets(sv, tracer_, frame, out);
         if (packets_ && k == KernelId::AisItem) return ais_item_packets(sv, tracer_, frame, count, out);
         if (packets_ && k == KernelId::IgiMedia) return igi_media_packets(sv, tracer_, frame, out);
+        if (packets_ && k == KernelId::IcPair) return ic_pair_packets(sv, tracer_, frame, count, out);
         if (packets_ && k == KernelId::IcGather && !ts::ts_medium_load(sv.medium).present)
             return ic_gather_lanes(sv, frame, count, out);
         switch (k) {

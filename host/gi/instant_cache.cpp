@@ -29,6 +29,19 @@ bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_
 
 size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / TS_VPL_FLOATS; }
 
+// The Z-order (Morton) index of grid cell (x, y), x and y below 2^16: the bits of x and y
+// interleaved, so cells close in the index are close on the grid.
+uint32_t morton2(uint32_t x, uint32_t y) {
+    auto spread = [](uint32_t v) {
+        v &= 0xffffu;
+        v = (v | v << 8) & 0x00ff00ffu;
+        v = (v | v << 4) & 0x0f0f0f0fu;
+        v = (v | v << 2) & 0x33333333u;
+        return (v | v << 1) & 0x55555555u;
+    };
+    return spread(x) | spread(y) << 1;
+}
+
 }  // namespace
 
 void ic_gbuffer_from_surface(const std::vector<float>& surf, std::vector<float>& g) {
@@ -89,6 +102,19 @@ void InstantCache::concat_vpls() {
     vpls_.clear();
     for (const LightPath& p : paths_) vpls_.insert(vpls_.end(), p.vpls.begin(), p.vpls.end());
     stats_.vpls = vpl_count(vpls_);
+}
+
+// Every pair of the records in `records` and VPLs 0 .. nv-1, VPL by VPL and the records in
+// the given order: placement gives its records in Morton order of their grid cells, so 16
+// consecutive pairs are a 4×4 block of records and one VPL, rays that end at one point
+// and trace as a coherent packet (docs/instant-caching.md §7). Pairs are independent, so
+// the order changes no result.
+std::vector<InstantCache::Pair> InstantCache::vpl_major_pairs(const std::vector<uint32_t>& records, size_t nv) {
+    std::vector<Pair> pairs;
+    pairs.reserve(records.size() * nv);
+    for (uint32_t j = 0; j < nv; ++j)
+        for (uint32_t r : records) pairs.push_back({r, j});
+    return pairs;
 }
 
 // Traces the shadow ray of every pair whose geometry term is positive (the pair kernel)
@@ -189,18 +215,21 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         const size_t first = cache_.records().size();
         const size_t fresh_count = std::count(covered.begin(), covered.end(), uint8_t(0));
         check_pairs(first + fresh_count, nv);
-        std::vector<Pair> pairs;
+        std::vector<std::pair<uint32_t, uint32_t>> blocked;  // (Morton code of the grid cell, record)
         for (size_t i = 0; i < candidates.size(); ++i) {
             if (covered[i]) continue;
             IcRecord rec;
             std::memcpy(rec.surface.data(), &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS],
                         sizeof(float) * TS_IC_GBUF_FLOATS);
-            const auto id = static_cast<uint32_t>(cache_.records().size());
+            const uint32_t x = candidates[i] % frame.width / stride, y = candidates[i] / frame.width / stride;
+            blocked.push_back({morton2(x, y), static_cast<uint32_t>(cache_.records().size())});
             cache_.records().push_back(rec);  // inserted in the octree once its radius is known
             rows_.emplace_back(nv, kIcFacing);
-            for (uint32_t j = 0; j < nv; ++j) pairs.push_back({id, j});
         }
-        stats_.shadow_rays += trace_pairs(backend, vpls_, pairs, g_clamp, rows_);
+        std::sort(blocked.begin(), blocked.end());
+        std::vector<uint32_t> order(blocked.size());
+        for (size_t i = 0; i < order.size(); ++i) order[i] = blocked[i].second;
+        stats_.shadow_rays += trace_pairs(backend, vpls_, vpl_major_pairs(order, nv), g_clamp, rows_);
         std::vector<uint32_t> which(cache_.records().size() - first);
         for (size_t i = 0; i < which.size(); ++i) which[i] = static_cast<uint32_t>(first + i);
         const std::vector<float> harmonic = gather(backend, vpls_, rows_, cache_.records(), which, g_clamp);
@@ -301,10 +330,9 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
     const size_t nv = vpl_count(vpls);
     const std::vector<IcRecord>& records = cache_.records();
     std::vector<Row> rows(records.size(), Row(nv, kIcFacing));
-    std::vector<Pair> pairs;
-    for (uint32_t i = 0; i < records.size(); ++i)
-        for (uint32_t j = 0; j < nv; ++j) pairs.push_back({i, j});
-    trace_pairs(backend, vpls, pairs, g_clamp, rows);
+    std::vector<uint32_t> order(records.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    trace_pairs(backend, vpls, vpl_major_pairs(order, nv), g_clamp, rows);
     std::vector<IcRecord> out(records);
     std::vector<uint32_t> all(out.size());
     for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;

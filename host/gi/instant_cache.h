@@ -113,6 +113,7 @@ private:
     void start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block);
     void concat_vpls();
     void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp);
+    static std::vector<Pair> vpl_major_pairs(const std::vector<uint32_t>& records, size_t nv);
     uint64_t trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
                          float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
     std::vector<float> gather(Backend& backend, const std::vector<float>& vpls, const std::vector<Row>& rows,

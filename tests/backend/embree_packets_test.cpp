@@ -112,7 +112,8 @@ TEST(EmbreePackets, RaysEqualSingleRaysOnSibenik) {
     expect_packets_equal_single_rays(s, Backend::RayOrder::Coherent16);
 }
 
-// Images: igi, ais and ais-max (surface pass and AIS items go through packets), at a
+// Images: igi, ais and ais-max (surface pass and AIS items go through packets) and ic
+// (the record-VPL pair rays, embree_ic_pairs.cpp), at a
 // size that is not a multiple of the tile nor of the 4×4 packet block, so packets with
 // idle lanes and sets of unequal size are covered. Fog adds the media part of AIS items,
 // medium VPLs and the per-lane transmittance of the gather; the fog-free box the
@@ -130,7 +131,7 @@ TEST_P(PacketImages, EqualSingleRayImagesBitForBit) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, PacketImages,
-                         ::testing::Combine(::testing::Values(Method::Igi, Method::Ais, Method::AisMax),
+                         ::testing::Combine(::testing::Values(Method::Igi, Method::Ais, Method::AisMax, Method::Ic),
                                             ::testing::Values("cornell-box-fog.json", "cornell-box.json")),
                          [](const auto& info) {
                              const std::string scene = std::get<1>(info.param);
