@@ -53,6 +53,7 @@
 #include "render/renderer.h"
 #include "device/scene_view.h"
 #include "scene/loader.h"
+#include "util/morton.h"
 
 using namespace tessera;
 namespace fs = std::filesystem;
@@ -89,18 +90,6 @@ void tiled_pixel(int i, int w, int* x, int* y) {
     const int tile = i / 16, tx = tile % (w / 4), ty = tile / (w / 4);
     *x = tx * 4 + (i % 16) % 4;
     *y = ty * 4 + (i % 16) / 4;
-}
-
-// The Z-order index of cell (x, y): as placement orders its records (instant_cache.cpp).
-uint32_t morton2(uint32_t x, uint32_t y) {
-    auto spread = [](uint32_t v) {
-        v &= 0xffffu;
-        v = (v | v << 8) & 0x00ff00ffu;
-        v = (v | v << 4) & 0x0f0f0f0fu;
-        v = (v | v << 2) & 0x33333333u;
-        return (v | v << 1) & 0x55555555u;
-    };
-    return spread(x) | spread(y) << 1;
 }
 
 std::vector<RaySet> make_rays(const Scene& scene, const SceneBuffers& b, Backend& embree, int w, int h) {

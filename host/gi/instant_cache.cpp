@@ -13,6 +13,7 @@
 #include "kernels/shared/ic_lookup.h"
 #include "kernels/shared/sampling.h"
 #include "util/error.h"
+#include "util/morton.h"
 
 namespace tessera {
 namespace {
@@ -28,19 +29,6 @@ constexpr size_t kGatherBatch = size_t(1) << 24;
 bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_NO_HIT; }
 
 size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / TS_VPL_FLOATS; }
-
-// The Z-order (Morton) index of grid cell (x, y), x and y below 2^16: the bits of x and y
-// interleaved, so cells close in the index are close on the grid.
-uint32_t morton2(uint32_t x, uint32_t y) {
-    auto spread = [](uint32_t v) {
-        v &= 0xffffu;
-        v = (v | v << 8) & 0x00ff00ffu;
-        v = (v | v << 4) & 0x0f0f0f0fu;
-        v = (v | v << 2) & 0x33333333u;
-        return (v | v << 1) & 0x55555555u;
-    };
-    return spread(x) | spread(y) << 1;
-}
 
 }  // namespace
 
