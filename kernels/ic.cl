@@ -15,10 +15,11 @@ TS_ITEM_KERNEL(ic_pair_pass, ts_ic_pair_item, TS_IC_PAIR_FLOATS)
 
 TS_ITEM_KERNEL(ic_gather_pass, ts_ic_gather_item, TS_IC_GATHER_FLOATS)
 
-/* The pair items, 16 consecutive items per work-item (CPU devices; the host lists a
- * record's pairs together, so a packet's rays mostly leave one point): the items' shadow
- * rays (ts_ic_pair_ray) as one ts_bvh_closest16 packet, whose per-lane hit is
- * ts_bvh_closest's; written as ic_pair_pass writes them. work_items = the number of items. */
+/* The pair items, 16 consecutive items per work-item (CPU devices; placement lists a
+ * block of records per VPL, so a packet's rays mostly end at one point; the temporal
+ * update lists a record's pairs together): the items' shadow rays (ts_ic_pair_ray) as one
+ * ts_bvh_closest16 packet, whose per-lane hit is ts_bvh_closest's; written as
+ * ic_pair_pass writes them. work_items = the number of items. */
 __kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
 void ic_pair_packets(TS_KERNEL_ARGS) {
     uint first = get_global_id(0) * TS_PACKET_LANES;
