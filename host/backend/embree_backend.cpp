@@ -26,6 +26,7 @@
 #include "backend/embree_media_packets.h"
 #include "backend/embree_ic_gather.h"
 #include "backend/embree_ic_pairs.h"
+#include "backend/embree_packet_loop.h"
 #include "backend/embree_packets.h"
 
 // TS_HAS_TEXTURES and TS_HAS_MEDIUM are defined for all C++ code (CMakeLists.txt): a
@@ -195,16 +196,6 @@ public:
     }
 
 private:
-    // Calls fn(first, lanes) for consecutive groups of at most 16 of n rays, over TBB.
-    template <class Fn>
-    static void for_each_packet(size_t n, Fn fn) {
-        const size_t packets = (n + 15) / 16;
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 16), [&](const tbb::blocked_range<size_t>& r) {
-            set_ftz_daz();
-            for (size_t q = r.begin(); q < r.end(); ++q) fn(16 * q, std::min<size_t>(16, n - 16 * q));
-        });
-    }
-
     const SceneBuffers* buffers_;  // the caller keeps it (make_backend, set_scene)
     RTCScene scene_ = nullptr;
     ts::TsTracer tracer_{};

@@ -4,38 +4,29 @@
 #include <algorithm>
 #include <cstring>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
-#include "bvh/embree_device.h"
+#include "backend/embree_packet_loop.h"
 #include "kernels/shared/ic.h"
 
 namespace tessera {
 
 void ic_pair_packets(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, size_t count,
                      std::vector<float>& out) {
-    constexpr size_t kLanes = TS_PACKET_LANES;
     static_assert(TS_IC_PAIR_FLOATS == 1 && TS_IC_PAIR_HIT == 0, "one hit code per pair");
-    const size_t packets = (count + kLanes - 1) / kLanes;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 16), [&](const tbb::blocked_range<size_t>& r) {
-        set_ftz_daz();  // as the one-pair dispatch
-        for (size_t k = r.begin(); k < r.end(); ++k) {
-            const size_t first = k * kLanes, n = std::min(kLanes, count - first);
-            ts::TsRay rays[kLanes] = {};
-            ts::TsHit hits[kLanes] = {};
-            int valid[kLanes] = {};
-            bool one_vpl = true;
-            for (size_t i = 0; i < n; ++i) {
-                valid[i] = ts::ts_ic_pair_ray(&sv, &frame, static_cast<uint32_t>(first + i), &rays[i]) ? -1 : 0;
-                one_vpl = one_vpl && sv.items[TS_IC_PAIR_WORDS * (first + i) + TS_IC_PAIR_VPL] ==
-                                         sv.items[TS_IC_PAIR_WORDS * first + TS_IC_PAIR_VPL];
-            }
-            if (std::any_of(valid, valid + n, [](int v) { return v != 0; }))
-                ts::ts_trace_closest16(&tracer, rays, valid, one_vpl, hits);
-            for (size_t i = 0; i < n; ++i) {
-                const uint32_t hit = valid[i] ? hits[i].prim : uint32_t(TS_IC_PAIR_FACING);
-                std::memcpy(&out[first + i], &hit, sizeof hit);
-            }
+    for_each_packet(count, [&](size_t first, size_t n) {
+        ts::TsRay rays[TS_PACKET_LANES] = {};
+        ts::TsHit hits[TS_PACKET_LANES] = {};
+        int valid[TS_PACKET_LANES] = {};
+        bool one_vpl = true;
+        for (size_t i = 0; i < n; ++i) {
+            valid[i] = ts::ts_ic_pair_ray(&sv, &frame, static_cast<uint32_t>(first + i), &rays[i]) ? -1 : 0;
+            one_vpl = one_vpl && sv.items[TS_IC_PAIR_WORDS * (first + i) + TS_IC_PAIR_VPL] ==
+                                     sv.items[TS_IC_PAIR_WORDS * first + TS_IC_PAIR_VPL];
+        }
+        if (std::any_of(valid, valid + n, [](int v) { return v != 0; }))
+            ts::ts_trace_closest16(&tracer, rays, valid, one_vpl, hits);
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t hit = valid[i] ? hits[i].prim : uint32_t(TS_IC_PAIR_FACING);
+            std::memcpy(&out[first + i], &hit, sizeof hit);
         }
     });
 }
