@@ -21,6 +21,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// The clamp c of the VPL importance (VplSettings::importance_clamp): the default clamp's.
+constexpr float kImportanceClampC = 0.1f;
+
 // One field of a per-pixel record: `offset` within each pixel's floats, into `dst`
 // (3 floats a pixel, or 1 for a scalar).
 struct Field {
@@ -53,6 +56,7 @@ IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan
     for (int a = 0; a < 3; ++a) diag2 += (b.hi[a] - b.lo[a]) * (b.hi[a] - b.lo[a]);
     const float c = settings.clamp_c;
     g_clamp_ = c > 0.0f ? 1.0f / (c * c * diag2) : std::numeric_limits<float>::infinity();
+    importance_clamp_ = 1.0f / (kImportanceClampC * kImportanceClampC * diag2);
     // A ray that leaves the scene's bounds never returns: march at most this far.
     march_far_ = 2.0f * std::sqrt(diag2);
 }
@@ -93,6 +97,13 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         vs.paths_per_set = settings_.paths_per_set;
         vs.frame = frame.pass;
         vs.medium_scattering = settings_.multiple_scattering;
+        ViewPoints view;
+        if (settings_.vpl_importance > 1) {
+            view = trace_view_points(backend_, scene_, frame, settings_.view_grid);
+            vs.importance_oversampling = settings_.vpl_importance;
+            vs.view = &view;
+            vs.importance_clamp = importance_clamp_;
+        }
         vpls = generate_vpls(backend_, scene_, vs);
     } else {  // nothing reflects: no light paths, no VPLs (the kernels see empty sets)
         vpls.set_start.assign(sets + 1, 0u);
@@ -214,11 +225,13 @@ void IgiFrame::add_to_sums() {
 }
 
 std::string IgiFrame::describe() const {
-    char buf[320];
+    char buf[360], view[64] = "";
+    if (settings_.vpl_importance > 1)
+        std::snprintf(view, sizeof view, ", kept for the view from %ux", settings_.vpl_importance);
     std::snprintf(buf, sizeof buf,
-                  "igi: tile %ux%u, %zu VPLs from %u paths per set (%llu light-path rays), G clamp %.4g, "
+                  "igi: tile %ux%u, %zu VPLs from %u paths per set%s (%llu light-path rays), G clamp %.4g, "
                   "last frame: VPLs %.1f ms, surface %.1f ms, media %.1f ms%s, filter+composite %.1f ms",
-                  settings_.tile, settings_.tile, stats_.vpls, settings_.paths_per_set,
+                  settings_.tile, settings_.tile, stats_.vpls, settings_.paths_per_set, view,
                   static_cast<unsigned long long>(stats_.vpl_rays), g_clamp_, 1e3 * stats_.vpl_seconds,
                   1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
                   1e3 * stats_.filter_seconds);

@@ -37,6 +37,13 @@ struct IgiSettings {
     /// while every single frame keeps the clamp's low noise (docs/igi.md §4). 0: the same
     /// clamp in every pass. Integrators whose passes reuse one VPL set (tic) keep c fixed.
     float clamp_decay = 0.25f;
+    /// VPLs for the view (gi/vpl_importance.h, docs/igi.md §3b): K > 1 traces K times the
+    /// light paths and keeps, on average, paths_per_set paths' worth of VPLs per set, by
+    /// their importance for view_grid² view points of the frame's camera. 1: off. K = 4
+    /// and 16² points: a single Cornell box frame's relMSE 21% lower and 0.1 JOD higher
+    /// at 256² for ~4 ms (K = 8 gained 0.03 JOD more; 8² to 64² points measured alike).
+    uint32_t vpl_importance = 4;
+    uint32_t view_grid = 16;       ///< view points per image side for vpl_importance
     bool filter = true;            ///< the discontinuity buffer (off: raw interleaved image)
     /// Media: light paths scatter in the medium and leave medium VPLs, which surfaces and
     /// the ray march gather (multiple scattering, converging to `pt`; docs/igi.md §6);
@@ -142,6 +149,7 @@ protected:
     EffectPlan plan_;
     IgiSettings settings_;
     float g_clamp_ = 0.0f;
+    float importance_clamp_ = 0.0f;  ///< VplSettings::importance_clamp of this scene
     float march_far_ = 0.0f;
     IgiFrameStats stats_;
     // Raw and reconstructed components (3 floats per pixel each), summed over frames.

@@ -7,10 +7,12 @@
 
 #include "backend/backend.h"
 #include "device/scene_buffers.h"
+#include "gi/vpl_importance.h"
 
 namespace tessera {
 
-/// Path index p of set k in frame f is f·sets·paths_per_set + k·paths_per_set + j: fixed
+/// Path index p of set k in frame f is f·sets·P + k·P + j, P = paths_per_set (times
+/// importance_oversampling when a view is given): fixed
 /// indices, so a frame's paths are the same every time it is generated.
 struct VplSettings {
     uint32_t sets = 9;             ///< interleave sets N = n²
@@ -24,6 +26,17 @@ struct VplSettings {
     uint32_t frame = 0;            ///< selects the block of path indices
     uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
     bool medium_scattering = false;    ///< LightPathSettings::medium_scattering
+    /// VPLs for the view (gi/vpl_importance.h): K > 1 traces K·paths_per_set candidate
+    /// paths per set and keeps, on average, paths_per_set paths' worth of VPLs, chosen by
+    /// their importance for `view` (unbiased: kept VPLs carry 1/p). 1: every VPL of
+    /// paths_per_set paths, as IGI.
+    uint32_t importance_oversampling = 1;
+    const ViewPoints* view = nullptr;  ///< required when importance_oversampling > 1
+    /// Clamp b of the importance's geometry terms (scene units^-2): scene-relative, the
+    /// default clamp (c = 0.1) whatever the frame's. Unclamped, a VPL next to one view
+    /// point takes that point's whole share and the rest of the VPLs look unimportant
+    /// there (measured: unclamped IGI at 256 paths, relMSE 0.008 → 0.022).
+    float importance_clamp = 0.0f;
 };
 
 struct VplList {

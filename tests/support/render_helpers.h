@@ -1,5 +1,6 @@
 // Helpers shared by rendering tests: run a backend on a scene, compare images.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -129,7 +130,8 @@ inline double channel_mean(const Image& img, const char* name) {
 /// Renders `scene` with `rs` on OpenCL and on Embree (same seed) and on Embree with seed
 /// + 1000, and expects the two backends to agree: their relMSE under 2% of the seed-to-seed
 /// relMSE (the noise), and at most 1 in 200 pixel channels differing by more than 1e-3
-/// relative (unless count_differing_pixels is false). Same seed means the same random numbers (counter-based RNG) through the same
+/// relative, or one filtered ray's worth where that is more (unless count_differing_pixels
+/// is false). Same seed means the same random numbers (counter-based RNG) through the same
 /// shading source, so only traversal rounding may differ; tests/render/backend_agreement_test.cpp
 /// states the reasoning.
 inline void expect_backends_agree(const Scene& scene, RenderSettings rs, bool count_differing_pixels = true) {
@@ -156,8 +158,12 @@ inline void expect_backends_agree(const Scene& scene, RenderSettings rs, bool co
             differ += std::abs(a[i] - b[i]) > 1e-3f * (std::abs(b[i]) + 0.01f);
     }
     std::printf("  %s: %zu of %zu pixel channels differ by more than 1e-3\n", scene.name.c_str(), differ, total);
+    // One ray that rounding sends elsewhere changes one pixel, and the discontinuity
+    // filter spreads that pixel over its tile² window: 3·tile² channels. At 32² a
+    // 1/200 share (15 channels) is less than one such ray, so allow one.
+    const size_t one_ray = 3u * rs.igi.tile * rs.igi.tile;
     if (count_differing_pixels) {
-        EXPECT_LE(differ, total / 200);
+        EXPECT_LE(differ, std::max(total / 200, one_ray));
     }
 }
 

@@ -1,0 +1,175 @@
+#include "gi/vpl_importance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "device/scene_view.h"
+#include "kernels/shared/bsdf.h"
+#include "kernels/shared/rng.h"
+#include "kernels/shared/sampling.h"
+#include "kernels/shared/vpl.h"
+
+namespace tessera {
+namespace {
+
+using ts::float3;
+
+// The cell offset of every view ray: irrational-looking, so no ray runs exactly along an
+// edge of axis-aligned geometry in a symmetric view (ts_igi_camera_ray's concern).
+constexpr float kCellOffset[2] = {0.3819660f, 0.6180340f};
+// ε of the keep probability (Georgiev and Slusallek's floor). Single Cornell box frames
+// measured alike for ε = 0.1-1; 0.3 was as good at one frame and best at 4 passes.
+constexpr double kFloor = 1.0;
+// Steps of the keep probability (keep_probabilities rounds up to them).
+constexpr double kSteps = 64.0;
+// Seed of the keep decisions ("vpli"), apart from every other stream.
+constexpr uint32_t kKeepSeed = 0x76706c69u;
+
+uint32_t path_of(const float* v) {
+    uint32_t p;
+    std::memcpy(&p, v + TS_VPL_PATH, 4);
+    return p;
+}
+
+// τ with Σ min(1, a_i / τ) = target (0 < target < n): the sum falls as τ grows.
+double keep_threshold(const std::vector<double>& a, double target) {
+    double lo = 0.0, hi = 0.0;
+    for (double x : a) hi += x;
+    hi /= target;  // Σ a_i / τ ≤ target here, and min(1, ·) only lowers the sum
+    for (int it = 0; it < 100; ++it) {
+        const double tau = 0.5 * (lo + hi);
+        double s = 0.0;
+        for (double x : a) s += std::min(1.0, x / tau);
+        (s > target ? lo : hi) = tau;
+    }
+    return hi;
+}
+
+}  // namespace
+
+ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, uint32_t grid) {
+    std::vector<float> rays(size_t(TS_RAY_FLOATS) * grid * grid), hits;
+    for (uint32_t gy = 0; gy < grid; ++gy)
+        for (uint32_t gx = 0; gx < grid; ++gx) {
+            // A point in cell (gx, gy) in pixel units: pixel px plus a fraction.
+            const float x = (gx + kCellOffset[0]) * frame.width / grid, y = (gy + kCellOffset[1]) * frame.height / grid;
+            const auto px = static_cast<uint32_t>(x), py = static_cast<uint32_t>(y);
+            const ts::TsRay r = ts::ts_camera_ray(&frame, px, py, x - px, y - py);
+            float* o = &rays[size_t(TS_RAY_FLOATS) * (gy * grid + gx)];
+            ts::ts_f3_store(o + TS_RAY_ORG, r.org);
+            o[TS_RAY_TMIN] = r.tmin;
+            ts::ts_f3_store(o + TS_RAY_DIR, r.dir);
+            o[TS_RAY_TMAX] = r.tmax;
+        }
+    backend.trace_closest(rays, hits);
+    const ts::TsSceneView sv = make_scene_view(scene);
+    ViewPoints out;
+    auto push = [](std::vector<float>& dst, float3 f) { dst.insert(dst.end(), {f.x, f.y, f.z}); };
+    for (size_t i = 0; i < size_t(grid) * grid; ++i) {
+        const float* h = &hits[TS_HIT_FLOATS * i];
+        ts::TsHit hit{h[TS_HIT_T], h[TS_HIT_U], h[TS_HIT_V], 0u};
+        std::memcpy(&hit.prim, &h[TS_HIT_PRIM], 4);
+        if (hit.prim == TS_NO_HIT) continue;
+        uint32_t kind;
+        std::memcpy(&kind, &scene.materials[TS_MATERIAL_FLOATS * scene.tri_mat[hit.prim] + TS_MAT_KIND], 4);
+        if (ts::ts_is_specular(kind)) continue;
+        const float* o = &rays[TS_RAY_FLOATS * i];
+        const ts::TsRay ray{ts::ts_f3_load(o + TS_RAY_ORG), ts::ts_f3_load(o + TS_RAY_DIR), o[TS_RAY_TMIN],
+                            o[TS_RAY_TMAX]};
+        const ts::TsSurface s = ts::ts_surface_at(&sv, ray, hit);
+        push(out.position, s.position);
+        push(out.normal, s.shading_normal);
+        push(out.geo_normal, s.geo_normal);
+    }
+    return out;
+}
+
+std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp) {
+    const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
+    std::vector<float> importance(nv, 0.0f);
+    if (np == 0) return importance;
+    // c_ij in point-major rows. The medium's HG parameter is not needed: medium VPLs get 0.
+    std::vector<float> c(np * nv, 0.0f);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t j = r.begin(); j < r.end(); ++j) {
+            const float3 x = ts::ts_f3_load(&points.position[3 * j]), n = ts::ts_f3_load(&points.normal[3 * j]),
+                         ng = ts::ts_f3_load(&points.geo_normal[3 * j]);
+            float* row = &c[j * nv];
+            for (size_t i = 0; i < nv; ++i) {
+                const float* v = &vpls[TS_VPL_FLOATS * i];
+                if (ts::ts_vpl_in_medium(v)) continue;
+                row[i] = ts::ts_luminance(ts::ts_f3_load(v + TS_VPL_FLUX)) *
+                         ts::ts_vpl_geometry_term_of(x, n, ng, v, g_clamp, 0.0f, 0);
+            }
+        }
+    });
+    std::vector<double> e(np, 0.0);
+    double mean = 0.0;
+    for (size_t j = 0; j < np; ++j) {
+        for (size_t i = 0; i < nv; ++i) e[j] += c[j * nv + i];
+        mean += e[j] / np;
+    }
+    if (!(mean > 0.0)) return importance;
+    std::vector<double> sum(nv, 0.0);
+    for (size_t j = 0; j < np; ++j) {
+        const double w = 1.0 / std::max(e[j], 1e-3 * mean);
+        for (size_t i = 0; i < nv; ++i) sum[i] += c[j * nv + i] * w;
+    }
+    for (size_t i = 0; i < nv; ++i) importance[i] = static_cast<float>(sum[i]);
+    return importance;
+}
+
+std::vector<double> keep_probabilities(const std::vector<float>& importance, const std::vector<bool>& medium,
+                                       uint32_t oversampling) {
+    const double k = std::max(1u, oversampling);
+    size_t surface = 0;
+    double mean = 0.0;
+    for (size_t i = 0; i < importance.size(); ++i)
+        if (!medium[i]) {
+            mean += importance[i];
+            ++surface;
+        }
+    std::vector<double> p(importance.size(), 1.0 / k);
+    if (surface == 0 || !(mean > 0.0) || k == 1.0) return p;
+    mean /= surface;
+    std::vector<double> a;
+    for (size_t i = 0; i < importance.size(); ++i)
+        if (!medium[i]) a.push_back(importance[i] + kFloor * mean);
+    const double tau = keep_threshold(a, surface / k);
+    // Rounded up to a multiple of 1/64: the backends trace the view points with their own
+    // rounding, and an importance that differs in its last bits must not change a VPL's
+    // weight 1/p (or the image would differ between backends in every pixel it lights).
+    for (size_t i = 0, ai = 0; i < importance.size(); ++i)
+        if (!medium[i]) p[i] = std::min(1.0, std::ceil(a[ai++] / tau * kSteps) / kSteps);
+    return p;
+}
+
+uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& importance, size_t begin, size_t end,
+                     uint32_t oversampling, std::vector<float>& out) {
+    std::vector<bool> medium;
+    for (size_t i = begin; i < end; ++i) medium.push_back(ts::ts_vpl_in_medium(&vpls[TS_VPL_FLOATS * i]));
+    const std::vector<double> p =
+        keep_probabilities(std::vector<float>(importance.begin() + begin, importance.begin() + end), medium,
+                           oversampling);
+    uint32_t kept = 0, place = 0, last_path = ~0u;
+    for (size_t i = begin; i < end; ++i) {
+        const float* v = &vpls[TS_VPL_FLOATS * i];
+        const uint32_t path = path_of(v);
+        place = path == last_path ? place + 1 : 0;
+        last_path = path;
+        ts::TsRng rng = ts::ts_rng_seed(kKeepSeed, path, place);
+        const double pi = p[i - begin];
+        if (!(ts::ts_rng_next(&rng) < pi)) continue;
+        const size_t at = out.size();
+        out.insert(out.end(), v, v + TS_VPL_FLOATS);
+        for (int c = 0; c < 3; ++c) out[at + TS_VPL_FLUX + c] = static_cast<float>(v[TS_VPL_FLUX + c] / pi);
+        ++kept;
+    }
+    return kept;
+}
+
+}  // namespace tessera

@@ -1,0 +1,58 @@
+// VPLs that serve the view: candidate VPLs kept or dropped by their contribution to the
+// surfaces the camera sees, after Georgiev and Slusallek 2010 ("Simple and robust
+// iterative importance sampling of virtual point lights", Eurographics short papers),
+// docs/igi.md §3b. Host code shared by every backend: the view points are traced
+// through Backend::trace_closest, so all backends keep the same VPLs.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "backend/backend.h"
+#include "device/scene_buffers.h"
+#include "kernels/shared/layout.h"
+
+namespace tessera {
+
+/// Surfaces seen through a grid of camera rays: 3 floats each of position, shading
+/// normal and geometric normal (flipped toward the camera), scene units.
+struct ViewPoints {
+    std::vector<float> position, normal, geo_normal;
+    size_t count() const { return position.size() / 3; }
+};
+
+/// The first surfaces of grid × grid camera rays of `frame`'s camera, one through each
+/// cell of a grid over the image at a fixed offset in the cell (the same points for the
+/// same view, so the VPLs change only when the view or scene does). Rays that escape or
+/// first meet a mirror or dielectric leave no point.
+ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, uint32_t grid);
+
+/// Each VPL's importance for the view, one float per VPL of `vpls` (TS_VPL_FLOATS each):
+/// its share of the irradiance at each view point, Φ_i = Σ_j c_ij / E_j, with
+/// c_ij = luminance(C_i) · G'_ij (ts_vpl_geometry_term, clamped to `g_clamp` in scene
+/// units^-2; visibility is not tested) and E_j = Σ_i c_ij the candidates' own estimate at
+/// point j, floored at a thousandth of the points' mean so that a point that sees almost
+/// nothing does not claim the whole budget. The Φ_i of points that see something sum to
+/// 1 each.
+/// Why shares and no visibility: each view point counts alike whatever its brightness, so
+/// the measure follows relative error, as the eye does, where Georgiev and Slusallek
+/// weigh by absolute image contribution; and with shadow rays, measured on the Cornell
+/// box and Sibenik, the frames were no better at 1.6-2× the frame time (docs/igi.md §3b).
+/// Medium VPLs get 0: their value lies in the medium, which the points do not see.
+std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp);
+
+/// The keep probabilities of VPLs with importance `importance` (medium[i] marks a medium
+/// VPL): p_i = min(1, (Φ_i + ε Φ̄) / τ), Φ̄ the surface VPLs' mean and ε = 0.3 (no VPL has
+/// probability 0, so the estimate stays unbiased), τ chosen so that the surface VPLs'
+/// Σ p_i = their count / oversampling: on average, the VPL count of 1/oversampling of the
+/// paths. Medium VPLs, and all VPLs when no importance is positive: 1/oversampling.
+std::vector<double> keep_probabilities(const std::vector<float>& importance, const std::vector<bool>& medium,
+                                       uint32_t oversampling);
+
+/// Keeps each VPL i of [begin, end) of `vpls` with its keep_probabilities p_i and divides
+/// a kept VPL's flux by p_i. The decision is the counter-based generator keyed by the
+/// VPL's path index and its place in the path, so the same candidates keep the same VPLs.
+/// Appends the kept VPLs to `out` and returns their count.
+uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& importance, size_t begin, size_t end,
+                     uint32_t oversampling, std::vector<float>& out);
+
+}  // namespace tessera

@@ -1,0 +1,162 @@
+// VPLs for the view (gi/vpl_importance.h): the importance measure, the keep
+// probabilities, the unbiased selection and the VPL lists generate_vpls makes with them.
+#include <cmath>
+#include <array>
+#include <cstring>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gi/vpl_generator.h"
+#include "gi/vpl_importance.h"
+#include "device/frame.h"
+#include "support/render_helpers.h"
+
+namespace tessera {
+namespace {
+
+// A surface VPL at `pos` facing `normal` with grey flux `flux` from path `path`.
+std::vector<float> vpl(std::array<float, 3> pos, std::array<float, 3> normal, float flux, uint32_t path,
+                       bool medium = false) {
+    std::vector<float> v(TS_VPL_FLOATS, 0.0f);
+    for (int c = 0; c < 3; ++c) {
+        v[TS_VPL_POSITION + c] = pos[c];
+        v[TS_VPL_NORMAL + c] = normal[c];
+        v[TS_VPL_FLUX + c] = flux;
+    }
+    std::memcpy(&v[TS_VPL_PATH], &path, 4);
+    v[TS_VPL_POS_SCALE] = medium ? -1.0f : 2.0f;
+    return v;
+}
+
+void add(std::vector<float>& list, const std::vector<float>& v) { list.insert(list.end(), v.begin(), v.end()); }
+
+ViewPoints point_at_origin(std::array<float, 3> normal) {
+    ViewPoints p;
+    p.position = {0, 0, 0};
+    p.normal = p.geo_normal = {normal[0], normal[1], normal[2]};
+    return p;
+}
+
+TEST(VplImportance, IsEachVplsShareOfAPointsIrradiance) {
+    // One point at the origin facing +z; VPLs straight above at heights 1 and 2 facing
+    // down: G = 1 and 1/4, so the shares are 0.8 and 0.2. A medium VPL gets 0; a VPL
+    // behind the point gets 0.
+    std::vector<float> vpls;
+    add(vpls, vpl({0, 0, 1}, {0, 0, -1}, 1.0f, 0));
+    add(vpls, vpl({0, 0, 2}, {0, 0, -1}, 1.0f, 1));
+    add(vpls, vpl({0, 0, 1}, {0, 0, -1}, 1.0f, 2, /*medium=*/true));
+    add(vpls, vpl({0, 0, -1}, {0, 0, 1}, 1.0f, 3));
+    const std::vector<float> phi = vpl_view_importance(point_at_origin({0, 0, 1}), vpls, 1e30f);
+    ASSERT_EQ(phi.size(), 4u);
+    EXPECT_NEAR(phi[0], 0.8f, 1e-6f);
+    EXPECT_NEAR(phi[1], 0.2f, 1e-6f);
+    EXPECT_EQ(phi[2], 0.0f);
+    EXPECT_EQ(phi[3], 0.0f);
+    // The clamp b = 0.5 caps the first VPL's G at 0.5: shares 0.5/0.75 and 0.25/0.75.
+    const std::vector<float> clamped = vpl_view_importance(point_at_origin({0, 0, 1}), vpls, 0.5f);
+    EXPECT_NEAR(clamped[0], 2.0f / 3.0f, 1e-6f);
+    EXPECT_NEAR(clamped[1], 1.0f / 3.0f, 1e-6f);
+    // Shares are relative: ten times the flux on every VPL changes nothing.
+    std::vector<float> bright = vpls;
+    for (size_t i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) bright[i * TS_VPL_FLOATS + TS_VPL_FLUX + c] *= 10.0f;
+    EXPECT_NEAR(vpl_view_importance(point_at_origin({0, 0, 1}), bright, 1e30f)[0], 0.8f, 1e-6f);
+    // A point facing away sees none of them: no importance at all.
+    for (float x : vpl_view_importance(point_at_origin({0, 0, -1}), {vpls.begin(), vpls.begin() + 2 * TS_VPL_FLOATS},
+                                       1e30f))
+        EXPECT_EQ(x, 0.0f);
+}
+
+TEST(KeepProbabilities, MeetTheBudgetFavourImportanceAndBoundTheWeight) {
+    // 200 surface VPLs of importance i² (a skewed measure) and 20 medium VPLs, K = 4.
+    std::vector<float> importance;
+    std::vector<bool> medium;
+    for (int i = 0; i < 220; ++i) {
+        importance.push_back(i < 200 ? float(i * i) : 0.0f);
+        medium.push_back(i >= 200);
+    }
+    const uint32_t k = 4;
+    const std::vector<double> p = keep_probabilities(importance, medium, k);
+    double sum = 0.0;
+    for (int i = 0; i < 200; ++i) {
+        sum += p[i];
+        EXPECT_LE(p[i], 1.0);
+        // ε = 1 floors p at 1/(2K): a kept VPL weighs at most twice a uniform choice's.
+        EXPECT_GE(p[i], 0.5 / k) << i;
+        if (i > 0) EXPECT_GE(p[i], p[i - 1]) << i;
+        EXPECT_EQ(std::ceil(p[i] * 64.0), p[i] * 64.0) << "a multiple of 1/64";
+    }
+    // The budget: 200/K before rounding each p up to 1/64, at most 200/64 above it.
+    EXPECT_GE(sum, 200.0 / k - 1e-9);
+    EXPECT_LE(sum, 200.0 / k + 200.0 / 64.0);
+    // In proportion to Φ + ε Φ̄ (Φ̄ = 13233.5 here), each rounded up by less than 1/64: the
+    // last VPL is about 4× as likely as the first (3.99 before rounding).
+    EXPECT_GT(p[199] / p[0], 3.0);
+    EXPECT_LT(p[199] / p[0], 4.0);
+    for (int i = 200; i < 220; ++i) EXPECT_EQ(p[i], 1.0 / k) << "medium VPLs: uniform";
+    // Without any importance every VPL is kept with 1/K.
+    for (double q : keep_probabilities(std::vector<float>(10, 0.0f), std::vector<bool>(10, false), k))
+        EXPECT_EQ(q, 1.0 / k);
+}
+
+TEST(SelectVpls, KeepsTheFluxInExpectation) {
+    // 20000 candidates of flux 1 from 5000 paths (4 each), importance skewed. Each kept
+    // VPL carries 1/p, so the kept flux estimates the candidates' 20000 with variance
+    // Σ (1 − p)/p, and the kept count estimates Σ p with variance Σ p(1 − p): 5σ bounds.
+    std::vector<float> vpls, importance;
+    std::vector<bool> medium;
+    for (uint32_t i = 0; i < 20000; ++i) {
+        add(vpls, vpl({0, 0, 0}, {0, 0, 1}, 1.0f, i / 4, /*medium=*/i % 50 == 0));
+        importance.push_back(float((i * 7919u) % 100) * float((i * 104729u) % 13));
+        medium.push_back(i % 50 == 0);
+    }
+    const uint32_t k = 4;
+    const std::vector<double> p = keep_probabilities(importance, medium, k);
+    double var_flux = 0.0, var_count = 0.0, mean_count = 0.0;
+    for (double q : p) {
+        var_flux += (1.0 - q) / q;
+        var_count += q * (1.0 - q);
+        mean_count += q;
+    }
+    std::vector<float> kept;
+    const uint32_t n = select_vpls(vpls, importance, 0, 20000, k, kept);
+    ASSERT_EQ(kept.size(), size_t(n) * TS_VPL_FLOATS);
+    double flux = 0.0;
+    for (uint32_t i = 0; i < n; ++i) flux += kept[i * TS_VPL_FLOATS + TS_VPL_FLUX];
+    EXPECT_NEAR(flux, 20000.0, 5.0 * std::sqrt(var_flux));
+    EXPECT_NEAR(double(n), mean_count, 5.0 * std::sqrt(var_count));
+    // The same candidates keep the same VPLs.
+    std::vector<float> again;
+    select_vpls(vpls, importance, 0, 20000, k, again);
+    EXPECT_EQ(kept, again);
+}
+
+TEST(VplsForTheView, KeepASetsBudgetInItsSetAndRepeatExactly) {
+    Scene s = test::cornell_box();
+    SceneBuffers b = make_scene_buffers(s);
+    auto em = make_backend({BackendKind::Embree, ""}, b, plan_effects(s));
+    const TsFrame frame = make_frame(s.camera, 64, 64, 1, 1, b.light_count);
+    const ViewPoints view = trace_view_points(*em, b, frame, 16);
+    EXPECT_EQ(view.count(), 256u) << "every view ray of the closed box meets a diffuse wall";
+    VplSettings vs;
+    vs.sets = 9;
+    vs.paths_per_set = 32;
+    const VplList plain = generate_vpls(*em, b, vs);
+    vs.importance_oversampling = 4;
+    vs.view = &view;
+    vs.importance_clamp = 100.0f;
+    const VplList chosen = generate_vpls(*em, b, vs), again = generate_vpls(*em, b, vs);
+    EXPECT_EQ(chosen.vpls, again.vpls);
+    EXPECT_GT(chosen.rays, 3 * plain.rays) << "4× the candidate paths";
+    // On average a set keeps 32 paths' worth: within 25% of the plain sets' total.
+    EXPECT_NEAR(double(chosen.count()), double(plain.count()), 0.25 * plain.count());
+    for (uint32_t k = 0; k < vs.sets; ++k) {
+        ASSERT_LE(chosen.set_start[k], chosen.set_start[k + 1]);
+        for (uint32_t i = chosen.set_start[k]; i < chosen.set_start[k + 1]; ++i)
+            EXPECT_EQ(chosen.vpls[i * TS_VPL_FLOATS + TS_VPL_SET], float(k));
+    }
+}
+
+}  // namespace
+}  // namespace tessera
