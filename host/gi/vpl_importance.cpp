@@ -21,8 +21,10 @@ using ts::float3;
 // The cell offset of every view ray: irrational-looking, so no ray runs exactly along an
 // edge of axis-aligned geometry in a symmetric view (ts_igi_camera_ray's concern).
 constexpr float kCellOffset[2] = {0.3819660f, 0.6180340f};
-// ε of the keep probability (Georgiev and Slusallek's floor). Single Cornell box frames
-// measured alike for ε = 0.1-1; 0.3 was as good at one frame and best at 4 passes.
+// ε of the keep probability (Georgiev and Slusallek's floor). Cornell box frames measured
+// alike for ε = 0.1-1 (one frame and 4 passes); ε = 1 bounds p below by 1/(2K), so that a
+// kept VPL weighs at most twice a uniform choice's (keep_probabilities), which matters
+// once the clamp has decayed over passes.
 constexpr double kFloor = 1.0;
 // Steps of the keep probability (keep_probabilities rounds up to them).
 constexpr double kSteps = 64.0;

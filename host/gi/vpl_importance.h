@@ -41,8 +41,8 @@ ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const 
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp);
 
 /// The keep probabilities of VPLs with importance `importance` (medium[i] marks a medium
-/// VPL): p_i = min(1, (Φ_i + ε Φ̄) / τ), Φ̄ the surface VPLs' mean and ε = 0.3 (no VPL has
-/// probability 0, so the estimate stays unbiased), τ chosen so that the surface VPLs'
+/// VPL): p_i = min(1, (Φ_i + ε Φ̄) / τ), Φ̄ the surface VPLs' mean and ε = 1 (no VPL has
+/// probability 0, so the estimate stays unbiased, and p ≥ 1/(2K)), τ chosen so that the surface VPLs'
 /// Σ p_i = their count / oversampling: on average, the VPL count of 1/oversampling of the
 /// paths. Medium VPLs, and all VPLs when no importance is positive: 1/oversampling.
 std::vector<double> keep_probabilities(const std::vector<float>& importance, const std::vector<bool>& medium,
