@@ -33,9 +33,9 @@ struct VplSettings {
     uint32_t importance_oversampling = 1;
     const ViewPoints* view = nullptr;  ///< required when importance_oversampling > 1
     /// Clamp b of the importance's geometry terms (scene units^-2): scene-relative, the
-    /// default clamp (c = 0.1) whatever the frame's. Unclamped, a VPL next to one view
-    /// point takes that point's whole share and the rest of the VPLs look unimportant
-    /// there (measured: unclamped IGI at 256 paths, relMSE 0.008 → 0.022).
+    /// default clamp (c = 0.1) whatever the frame's, which loosens over passes or may be
+    /// off. Unclamped, a VPL next to one view point would take that point's whole share
+    /// and the other VPLs would look unimportant there.
     float importance_clamp = 0.0f;
 };
 
