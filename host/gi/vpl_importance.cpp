@@ -93,14 +93,14 @@ ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const 
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp) {
     const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
     std::vector<float> importance(nv, 0.0f);
-    if (np == 0) return importance;
+    if (np == 0 || nv == 0) return importance;
     // c_ij in point-major rows. The medium's HG parameter is not needed: medium VPLs get 0.
     std::vector<float> c(np * nv, 0.0f);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 16), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t j = r.begin(); j < r.end(); ++j) {
             const float3 x = ts::ts_f3_load(&points.position[3 * j]), n = ts::ts_f3_load(&points.normal[3 * j]),
                          ng = ts::ts_f3_load(&points.geo_normal[3 * j]);
-            float* row = &c[j * nv];
+            float* row = c.data() + j * nv;
             for (size_t i = 0; i < nv; ++i) {
                 const float* v = &vpls[TS_VPL_FLOATS * i];
                 if (ts::ts_vpl_in_medium(v)) continue;

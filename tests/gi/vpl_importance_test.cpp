@@ -62,6 +62,8 @@ TEST(VplImportance, IsEachVplsShareOfAPointsIrradiance) {
     for (size_t i = 0; i < 4; ++i)
         for (int c = 0; c < 3; ++c) bright[i * TS_VPL_FLOATS + TS_VPL_FLUX + c] *= 10.0f;
     EXPECT_NEAR(vpl_view_importance(point_at_origin({0, 0, 1}), bright, 1e30f)[0], 0.8f, 1e-6f);
+    // No VPLs (a scene where every light path escapes): nothing to weigh.
+    EXPECT_TRUE(vpl_view_importance(point_at_origin({0, 0, 1}), {}, 1e30f).empty());
     // A point facing away sees none of them: no importance at all.
     for (float x : vpl_view_importance(point_at_origin({0, 0, -1}), {vpls.begin(), vpls.begin() + 2 * TS_VPL_FLOATS},
                                        1e30f))
