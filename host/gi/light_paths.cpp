@@ -6,6 +6,7 @@
 #include "gi/halton.h"
 #include "kernels/shared/light_path.h"
 #include "kernels/shared/rng.h"
+#include "device/ray_records.h"
 #include "device/scene_view.h"
 
 namespace tessera {
@@ -88,21 +89,13 @@ uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const Li
     std::vector<float> rays, hits;
     for (uint32_t bounce = 0; bounce < settings.max_bounces && !live.empty(); ++bounce) {
         rays.assign(TS_RAY_FLOATS * live.size(), 0.0f);
-        for (size_t i = 0; i < live.size(); ++i) {
-            float* r = &rays[TS_RAY_FLOATS * i];
-            ts::ts_f3_store(r + TS_RAY_ORG, live[i].ray.org);
-            r[TS_RAY_TMIN] = live[i].ray.tmin;
-            ts::ts_f3_store(r + TS_RAY_DIR, live[i].ray.dir);
-            r[TS_RAY_TMAX] = live[i].ray.tmax;
-        }
+        for (size_t i = 0; i < live.size(); ++i) store_ray(live[i].ray, &rays[TS_RAY_FLOATS * i]);
         backend.trace_closest(rays, hits);
         traced += live.size();
         std::vector<InFlight> alive;
         for (size_t i = 0; i < live.size(); ++i) {
             InFlight p = live[i];
-            const float* h = &hits[TS_HIT_FLOATS * i];
-            ts::TsHit hit{h[TS_HIT_T], h[TS_HIT_U], h[TS_HIT_V], 0u};
-            std::memcpy(&hit.prim, &h[TS_HIT_PRIM], 4);
+            const ts::TsHit hit = load_hit(&hits[TS_HIT_FLOATS * i]);
             int attenuated = 0;
             if (settings.medium_scattering && med.present) {
                 const uint32_t m = medium_vertex(med, settings, bounce, hit, p);

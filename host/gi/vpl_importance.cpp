@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "device/ray_records.h"
 #include "device/scene_view.h"
 #include "kernels/shared/bsdf.h"
 #include "kernels/shared/rng.h"
@@ -54,34 +55,27 @@ double keep_threshold(const std::vector<double>& a, double target) {
 }  // namespace
 
 ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, uint32_t grid) {
+    std::vector<ts::TsRay> view_rays;
     std::vector<float> rays(size_t(TS_RAY_FLOATS) * grid * grid), hits;
     for (uint32_t gy = 0; gy < grid; ++gy)
         for (uint32_t gx = 0; gx < grid; ++gx) {
             // A point in cell (gx, gy) in pixel units: pixel px plus a fraction.
             const float x = (gx + kCellOffset[0]) * frame.width / grid, y = (gy + kCellOffset[1]) * frame.height / grid;
             const auto px = static_cast<uint32_t>(x), py = static_cast<uint32_t>(y);
-            const ts::TsRay r = ts::ts_camera_ray(&frame, px, py, x - px, y - py);
-            float* o = &rays[size_t(TS_RAY_FLOATS) * (gy * grid + gx)];
-            ts::ts_f3_store(o + TS_RAY_ORG, r.org);
-            o[TS_RAY_TMIN] = r.tmin;
-            ts::ts_f3_store(o + TS_RAY_DIR, r.dir);
-            o[TS_RAY_TMAX] = r.tmax;
+            view_rays.push_back(ts::ts_camera_ray(&frame, px, py, x - px, y - py));
+            store_ray(view_rays.back(), &rays[size_t(TS_RAY_FLOATS) * (gy * grid + gx)]);
         }
     backend.trace_closest(rays, hits);
     const ts::TsSceneView sv = make_scene_view(scene);
     ViewPoints out;
     auto push = [](std::vector<float>& dst, float3 f) { dst.insert(dst.end(), {f.x, f.y, f.z}); };
-    for (size_t i = 0; i < size_t(grid) * grid; ++i) {
-        const float* h = &hits[TS_HIT_FLOATS * i];
-        ts::TsHit hit{h[TS_HIT_T], h[TS_HIT_U], h[TS_HIT_V], 0u};
-        std::memcpy(&hit.prim, &h[TS_HIT_PRIM], 4);
+    for (size_t i = 0; i < view_rays.size(); ++i) {
+        const ts::TsHit hit = load_hit(&hits[TS_HIT_FLOATS * i]);
         if (hit.prim == TS_NO_HIT) continue;
         uint32_t kind;
         std::memcpy(&kind, &scene.materials[TS_MATERIAL_FLOATS * scene.tri_mat[hit.prim] + TS_MAT_KIND], 4);
         if (ts::ts_is_specular(kind)) continue;
-        const float* o = &rays[TS_RAY_FLOATS * i];
-        const ts::TsRay ray{ts::ts_f3_load(o + TS_RAY_ORG), ts::ts_f3_load(o + TS_RAY_DIR), o[TS_RAY_TMIN],
-                            o[TS_RAY_TMAX]};
+        const ts::TsRay& ray = view_rays[i];
         const ts::TsSurface s = ts::ts_surface_at(&sv, ray, hit);
         push(out.position, s.position);
         push(out.normal, s.shading_normal);
