@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "backend/backend.h"
+#include "bench/machine.h"
 #include "bench/igi_timing.h"
 #include "gi/igi_frame.h"
 #include "device/frame.h"
@@ -167,7 +168,7 @@ int main(int argc, char** argv) {
     std::ofstream(fs::path(out_dir) / "ais_bench.json") << j.dump(2) << "\n";
     std::ofstream(fs::path(out_dir) / "ais_bench.md")
         << "# AIS vs A-MAX vs IGI, " << size << "x" << size << ", median of " << frames << " frames\n\n"
-        << "Machine: 2-core KVM guest. All at tile 3x3, 32 VPL paths per set, 4 light samples per pixel, "
+        << "Machine: " << bench::machine_description() << ". All at tile 3x3, 32 VPL paths per set, 4 light samples per pixel, "
            "8 march steps; ID/SS/PM render that component alone, FULL all the scene calls for. FULL IGI "
            "is IGI at those same settings, i.e. the base pass AIS refines: A costs more than it by "
            "construction, and its error is lower. FULL IGI full-rate is IGI without interleaving taking the "

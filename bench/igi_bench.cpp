@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "backend/backend.h"
+#include "bench/machine.h"
 #include "bench/igi_timing.h"
 #include "gi/igi_frame.h"
 #include "device/frame.h"
@@ -58,7 +59,7 @@ int main(int argc, char** argv) {
     j["settings"] = "IgiSettings defaults: tile 3x3, 32 VPL paths per set, 4 light samples per pixel, "
                     "8 march steps, clamp c = 0.1 (pass 0 of its decay)";
     std::string md = "# IGI frame time, " + std::to_string(size) + "x" + std::to_string(size) + ", median of " +
-                     std::to_string(frames) + " frames\n\nMachine: 2-core KVM guest. " +
+                     std::to_string(frames) + " frames\n\nMachine: " + bench::machine_description() + ". " +
                      j["settings"].get<std::string>() +
                      ". Rays per frame count light-path, camera, shadow and VPL rays (the VPL count is the "
                      "set's average, an upper bound on traced VPL shadow rays).\n\n"

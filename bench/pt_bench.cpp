@@ -12,6 +12,7 @@
 #include <tbb/info.h>
 
 #include "backend/backend.h"
+#include "bench/machine.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
 
@@ -71,7 +72,7 @@ int main(int argc, char** argv) {
     std::ofstream(fs::path(out_dir) / "pt_bench.json") << j.dump(2) << "\n";
     std::ofstream(fs::path(out_dir) / "pt_bench.md")
         << "# `pt` throughput, " << size << "x" << size << ", median of " << passes << " passes\n\n"
-        << "Machine: 2-core KVM guest (" << j["threads"] << " threads); OpenCL: " << j["opencl"].get<std::string>()
+        << "Machine: " << bench::machine_description() << "; OpenCL: " << j["opencl"].get<std::string>()
         << ". A sample is one camera path (with next-event estimation at every vertex).\n\n"
         << "| scene | triangles | OpenCL (samples/s) | Embree (samples/s) | OpenCL / Embree |\n|---|---|---|---|---|\n"
         << rows;

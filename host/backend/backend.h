@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,11 +31,13 @@ struct BackendOptions {
     /// docs/ray-batches.md §4); false, or a GPU, traces one ray per work-item. Same
     /// images either way.
     bool cl_packets = true;
-    /// OpenCL: run the GPU variant on any device (per-ray kernels built with
-    /// -DTS_GPU_TRAVERSAL: the short-stack traversal of kernels/bvh_short_stack.h), as on
-    /// GPU devices, where it is the default; to test it on a CPU device. Same hits and
-    /// images as the per-ray kernels. TESSERA_CL_GPU=1 sets it per run.
-    bool cl_gpu_variant = false;
+    /// OpenCL: the GPU variant (per-ray kernels built with -DTS_GPU_TRAVERSAL: the
+    /// short-stack traversal of kernels/bvh_short_stack.h). Unset: the device decides
+    /// (cl_device_prefers_short_stack: GPU devices). true runs it on any device (to test
+    /// it on a CPU), false runs the full-stack per-ray kernels on any device (to compare
+    /// the two on a GPU). Same hits and images either way. TESSERA_CL_GPU=1 / 0 sets it
+    /// per run.
+    std::optional<bool> cl_gpu_variant;
     /// OpenCL: launch budget in milliseconds (host/opencl/launch.h): launches are split
     /// into tiles of about this time. Negative: the device's default (kDefaultGpuLaunchMs
     /// on GPUs and accelerators, whole launches on CPUs); 0: whole launches.

@@ -53,8 +53,8 @@ public:
     OpenCLBackend(const SceneBuffers& scene, const EffectPlan& plan, const BackendOptions& o)
         : dev_(select_cl_device(o.device)),
           plan_(plan),
-          packets_(o.cl_packets && !o.cl_gpu_variant && cl_device_prefers_packets(dev_)),
-          gpu_variant_(o.cl_gpu_variant || cl_device_prefers_short_stack(dev_)),
+          packets_(o.cl_packets && o.cl_gpu_variant != true && cl_device_prefers_packets(dev_)),
+          gpu_variant_(o.cl_gpu_variant.value_or(cl_device_prefers_short_stack(dev_))),
           launch_ms_(o.cl_launch_ms >= 0.0 ? o.cl_launch_ms : dev_.type == "CPU" ? 0.0 : kDefaultGpuLaunchMs),
           tile_groups_(o.cl_tile_groups) {
         if (const char* f = std::getenv("TESSERA_CL_FAIL_LAUNCH"); f && *f) fail_launch_ = std::atoi(f);

@@ -41,9 +41,12 @@ void check_compare_options(const CompareArgs& a, const CLI::App& cmd) {
     if (!a.flip_map.empty()) maps.push_back({a.flip_map, "--flip-map"});
     if (!a.cvvdp_map.empty()) maps.push_back({a.cvvdp_map, "--cvvdp-map"});
     check_outputs(maps, {});
+    // equivalent() with an error code: libstdc++ 13 and later report an error, not
+    // false, when a map does not exist yet.
+    std::error_code ec;
     for (const auto& [image, role] : {std::pair{a.ref, "reference"}, std::pair{a.test, "test"}})
         for (const OutputFile& m : maps)
-            if (fs::exists(image) && fs::equivalent(image, m.path))
+            if (fs::exists(image) && fs::equivalent(image, m.path, ec))
                 throw InputError(m.role + " " + m.path.string() + ": is the " + role + " image");
     prepare_output_directories(maps);
 }

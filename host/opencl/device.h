@@ -42,7 +42,7 @@ inline bool cl_device_prefers_packets(const ClDeviceInfo& d) { return d.type == 
 /// Whether the OpenCL backend builds its per-ray kernels for `d` with the short-stack
 /// traversal (-DTS_GPU_TRAVERSAL, kernels/bvh_short_stack.h) instead of the full
 /// 160-entry private stack, which a GPU keeps in slow scratch memory: on GPU devices.
-/// BackendOptions::cl_gpu_variant (TESSERA_CL_GPU=1) forces it on any device.
+/// BackendOptions::cl_gpu_variant (TESSERA_CL_GPU=1 / 0) forces it on or off on any device.
 inline bool cl_device_prefers_short_stack(const ClDeviceInfo& d) { return d.type == "GPU"; }
 
 /// Every device of every platform, in platform order. Empty if there is no platform

@@ -17,6 +17,7 @@
 #include "backend/backend.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
+#include "opencl/device.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
@@ -130,6 +131,21 @@ TEST(OpenCLGpuVariant, SameHitsWithAOneEntryRingOnSibenik) {
 TEST(OpenCLGpuVariant, SameHitsWithAOneEntryRingOnTheCornellBox) {
     ScopedClOptions opts("-DTS_BVH_SHORT_STACK=1");
     expect_same_hits(test::cornell_box());
+}
+
+// TESSERA_CL_GPU=1 / 0 force the variant on or off on any device; unset, the device
+// decides (on for GPUs). On a GPU this is what lets the tests above compare the two.
+TEST(OpenCLGpuVariant, EnvironmentForcesEitherWayAndUnsetLetsTheDeviceDecide) {
+    const Scene scene = test::cornell_box();
+    SceneBuffers buffers = make_scene_buffers(scene);
+    auto short_stack = [&](const char* env) {
+        test::ScopedEnv e("TESSERA_CL_GPU", env);
+        const std::string d = make_backend({BackendKind::OpenCL, ""}, buffers, plan_effects(scene))->description();
+        return d.find("short stack") != std::string::npos;
+    };
+    EXPECT_TRUE(short_stack("1"));
+    EXPECT_FALSE(short_stack("0"));
+    EXPECT_EQ(short_stack(nullptr), cl_device_prefers_short_stack(select_cl_device("")));
 }
 
 // The ring size is checked: a size that is not a power of two does not build (so the

@@ -65,12 +65,21 @@ TEST(IcGatherKernels, OpenClAndEmbreeAgreeOnPairsAndSumsOfAnAnimatedFrame) {
     EXPECT_EQ(differ, 0u);
 
     // The same rows, VPLs and records: both backends sum the same terms in the same order
-    // in double (PoCL has cl_khr_fp64), so the sums are the same floats.
+    // in double. The terms are float arithmetic and OpenCL built-ins (normalize, sqrt),
+    // which a device may round a few ulps apart from C++ (NVIDIA's do; PoCL's match to
+    // the bit). Each term is positive, so each sum keeps its terms' relative error:
+    // ~20 float operations of a few ulps each, ~1e-6; 1e-5 leaves 10x. A lost or
+    // mis-weighted term moves a sum by ~1/(VPLs) ~ 1e-2.
     ASSERT_EQ(c.sums.size(), e.sums.size());
     size_t lit = 0;
     for (size_t k = 0; k < e.sums.size(); ++k) {
         lit += e.sums[k] > 0.0f && (k % TS_IC_GATHER_FLOATS) == TS_IC_GATHER_E;
-        EXPECT_EQ(c.sums[k], e.sums[k]) << "record " << k / TS_IC_GATHER_FLOATS << " output " << k % TS_IC_GATHER_FLOATS;
+        if (std::isinf(e.sums[k])) {
+            EXPECT_EQ(c.sums[k], e.sums[k]) << "record " << k / TS_IC_GATHER_FLOATS << " output " << k % TS_IC_GATHER_FLOATS;
+            continue;
+        }
+        EXPECT_NEAR(c.sums[k], e.sums[k], 1e-5 * std::fabs(e.sums[k]))
+            << "record " << k / TS_IC_GATHER_FLOATS << " output " << k % TS_IC_GATHER_FLOATS;
     }
     EXPECT_GT(lit, records.size() / 2);
 }
