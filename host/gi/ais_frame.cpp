@@ -40,6 +40,7 @@ void AisFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
 // neighbours' reconstruction.
 void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = raw_[kAisSS].size() / 3;
+    const auto t_schedule = Clock::now();
     AisBaseBuffers base;
     base.visibility.resize(pixels);
     base.indirect.resize(pixels);
@@ -77,8 +78,12 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
         list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL] = schedule_.item_pixels[i];
         list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
     }
+    stats_.ais_schedule_seconds = since(t_schedule);
+    const auto t_kernel = Clock::now();
     std::vector<float> items;
     backend_.launch_items(KernelId::AisItem, frame, list, items);
+    stats_.ais_kernel_seconds = since(t_kernel);
+    const auto t_merge = Clock::now();
     // own_sum_ is read only where a pixel evaluated more than its own set
     // (ais_reconstruct); elsewhere it is left unset, and raw_ = own sum / 1 unchanged.
     for (int c = 0; c < kAisComponents; ++c) {
@@ -108,6 +113,7 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
                 raw_[c][3 * p + j] = static_cast<float>(own_sum_[c][3 * p + j] / schedule_.sets[c][p]);
         });
     }
+    stats_.ais_merge_seconds = since(t_merge);
 }
 
 // Each component: the discontinuity filter over the interleaved estimates; with AIS,
@@ -135,10 +141,13 @@ void AisFrame::add_to_sums() {
 
 std::string AisFrame::describe() const {
     char buf[320];
-    std::snprintf(buf, sizeof buf, "; %s: flagged SS %.1f%%, ID %.1f%%, PM %.1f%%, %zu extra set evaluations, %.1f ms",
+    std::snprintf(buf, sizeof buf,
+                  "; %s: flagged SS %.1f%%, ID %.1f%%, PM %.1f%%, %zu extra set evaluations, %.1f ms "
+                  "(guidance+schedule %.1f, extra sets %.1f, merge %.1f)",
                   settings_.ais_mode == AisMode::AMax ? "ais-max" : "ais", 100 * stats_.flagged[kAisSS],
                   100 * stats_.flagged[kAisID], 100 * stats_.flagged[kAisPM], stats_.ais_items,
-                  1e3 * stats_.ais_seconds);
+                  1e3 * stats_.ais_seconds, 1e3 * stats_.ais_schedule_seconds, 1e3 * stats_.ais_kernel_seconds,
+                  1e3 * stats_.ais_merge_seconds);
     return IgiFrame::describe() + buf;
 }
 

@@ -71,6 +71,9 @@ struct IgiFrameStats {
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
     double ais_seconds = 0;  ///< guidance, schedule and the extra sets (AIS only)
+    /// Its parts (AIS only): guidance and schedule on the host, the extra sets' kernel
+    /// launch with its read-back, and the host's merge of the extra sets into the pixels.
+    double ais_schedule_seconds = 0, ais_kernel_seconds = 0, ais_merge_seconds = 0;
     double cache_seconds = 0;  ///< the instant cache's indirect component (ic/tic only)
     size_t ais_items = 0;    ///< extra (pixel, set) evaluations (AIS only)
     std::array<double, kAisComponents> flagged{};  ///< fraction of pixels flagged (AIS only)
