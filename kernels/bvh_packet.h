@@ -183,6 +183,15 @@ static inline int16 ts_packet_triangle(__global const float* tri, const TsRay16*
     return ts_packet_triangle_uv(tri, r, p, &t, &u, &v);
 }
 
+/* Closest hits of 16 rays, structure of arrays (TsHit per lane): t (tmax where nothing
+ * is hit), u, v and prim (TS_NO_HIT where nothing is hit). */
+typedef struct TsHit16 {
+    float16 t, u, v;
+    uint16 prim;
+} TsHit16;
+
+#include "bvh_frustum.h"
+
 /* Occlusion of the lanes in `active` (bit i = lane i): returns the bits of those whose
  * ray hits a triangle with t in [tmin, tmax), each equal to ts_bvh_occluded for that
  * lane's ray. Lanes outside `active` are neither read as rays nor reported. */
@@ -229,13 +238,6 @@ static inline uint ts_bvh_occluded16(__global const float* nodes, __global const
     return ts_lane_bits16(occluded) & active;
 }
 
-/* Closest hits of 16 rays, structure of arrays (TsHit per lane): t (tmax where nothing
- * is hit), u, v and prim (TS_NO_HIT where nothing is hit). */
-typedef struct TsHit16 {
-    float16 t, u, v;
-    uint16 prim;
-} TsHit16;
-
 /* hits[i] = lane i of h for each lane i in `valid` (bit i); the other entries untouched. */
 static inline void ts_hit16_unpack(const TsHit16* h, uint valid, TsHit* hits) {
     float t[TS_PACKET_LANES], u[TS_PACKET_LANES], v[TS_PACKET_LANES];
@@ -251,14 +253,6 @@ static inline void ts_hit16_unpack(const TsHit16* h, uint valid, TsHit* hits) {
         hits[i].v = v[i];
         hits[i].prim = prim[i];
     }
-}
-
-/* The least of the 16 lanes of x (no lane NaN: entry distances or +inf). */
-static inline float ts_min16(float16 x) {
-    float8 a = TS_SLAB_MIN(x.lo, x.hi);
-    float4 b = TS_SLAB_MIN(a.lo, a.hi);
-    float2 c = TS_SLAB_MIN(b.lo, b.hi);
-    return TS_SLAB_MIN(c.x, c.y);
 }
 
 /* Closest hit of each lane in `active` (bit i = lane i), equal to ts_bvh_closest for
@@ -281,6 +275,9 @@ static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global con
     h.prim = (uint16)(TS_NO_HIT);
     if (active == 0u) return h;
     TsPacketSetup p = ts_packet_setup(&r);
+    TsFrustum f;
+    if (ts_packet_frustum(&r, &p, ts_lane_mask16(active), &f))
+        return ts_bvh_closest16_frustum(nodes, tris, r, &p, &f, ts_lane_mask16(active));
     int stack[TS_BVH_STACK_SIZE];
     int16 lanes[TS_BVH_STACK_SIZE]; /* the lanes visiting each entry */
     int sp = 0;

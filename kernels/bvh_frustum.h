@@ -1,0 +1,193 @@
+/* Frustum traversal of a 16-ray packet over the BVH4 of shared/layout.h, for packets
+ * whose rays share the sign of each direction component (docs/ray-batches.md §4).
+ *
+ * The lane-wise traversals of bvh_packet.h test every child box against all 16 lanes:
+ * four 16-wide slab tests per node. A coherent packet (a 4×4 tile of camera rays, or
+ * shadow rays from neighbouring points) mostly agrees on every box, so here a node's four
+ * boxes are tested once, with float4 arithmetic, against interval bounds of the packet
+ * (Reshetov, Soupikov & Hurley, "Multi-level ray tracing algorithm", SIGGRAPH 2005;
+ * Embree's coherent packets do likewise): the lanes' shared origin and per axis the
+ * least and greatest 1/d. Leaves test every live lane, lane-wise as before.
+ *
+ * Why each lane's answer is unchanged: the bounds hold for the lane's own computed slab
+ * distances, not only for exact ones. A lane's distance to a box plane P is
+ * round(a · i) with a = round(P − o), the same a for every lane (one origin), and i its
+ * 1/d in [imin, imax] (all of one sign). Correctly rounded multiplication is monotone in
+ * each operand, so round(a · imin) and round(a · imax) bound it: the lower bound is the
+ * one with imin for a ≥ 0 and with imax for a < 0, the upper bound the other. max, min
+ * and the TS_BOX_TFAR_SCALE product are monotone too, so when the packet's interval
+ * misses a box, every lane's own test (bvh_traverse.h's) misses it: the frustum visits
+ * a superset of the nodes each lane's traversal visits. Visiting extra leaves cannot
+ * change a lane's answer: the triangle test is exact for the lane's ray (a triangle it
+ * reports is hit in [tmin, tmax)), the closest-hit query keeps the least t of the hits it
+ * finds, and the superset contains every triangle the lane's own traversal would find.
+ * As in ts_bvh_closest16, only triangles hit at exactly the same t could be chosen
+ * differently (the visiting order differs).
+ *
+ * Stack bound: one pop, at most four pushes per node, as the single-ray traversal:
+ * TS_BVH_STACK_SIZE (layout.h) holds.
+ */
+#ifndef TS_BVH_FRUSTUM_H
+#define TS_BVH_FRUSTUM_H
+
+/* The least and the greatest lane of x (no lane NaN). */
+static inline float ts_min16(float16 x) {
+    float8 a = TS_SLAB_MIN(x.lo, x.hi);
+    float4 b = TS_SLAB_MIN(a.lo, a.hi);
+    float2 c = TS_SLAB_MIN(b.lo, b.hi);
+    return TS_SLAB_MIN(c.x, c.y);
+}
+
+static inline float ts_max16(float16 x) {
+    float8 a = TS_SLAB_MAX(x.lo, x.hi);
+    float4 b = TS_SLAB_MAX(a.lo, a.hi);
+    float2 c = TS_SLAB_MAX(b.lo, b.hi);
+    return TS_SLAB_MAX(c.x, c.y);
+}
+
+/* A packet's interval bounds, per axis (x, y, z of each field), over its live lanes. */
+typedef struct TsFrustum {
+    float3 org;    /* the lanes' shared origin */
+    float3 imin, imax; /* least and greatest 1/d (guarded as in ts_packet_setup) */
+    int3 neg;      /* -1 where every live lane's direction is negative, else 0 */
+    float tmin;    /* least tmin */
+} TsFrustum;
+
+/* Largest difference of a lane's unit direction from lane 0's, per component, for which
+ * a packet goes by its frustum. A 4×4 pixel tile at 512² spans 0.007 (Sibenik's 60°
+ * field of view) and passes; the renderer's own camera packets, 4×4 pixels of one
+ * interleave set (stride 4 and more) or 16 scattered AIS items, do not: on those the
+ * frustum, its leaves tested for all 16 lanes, made igi and ais frames 1–5% slower
+ * than the lane-wise traversal (Sibenik and the Cornell box, 512²). Only the choice of
+ * traversal depends on it, never a result. */
+#define TS_FRUSTUM_SPREAD 0.02f
+
+/* 1 when the live lanes share one origin, agree on all three direction signs and their
+ * directions lie within TS_FRUSTUM_SPREAD of one another (then *f holds their bounds),
+ * else 0 and *f is unset.
+ *
+ * Why a shared origin: with origins spread over a region (shadow rays from 16 surface
+ * points to one light sample), the interval product [P − omax, P − omin] · [imin, imax]
+ * (the bound for spread origins) is loose
+ * wherever one lane's direction component is small (imax ~ 1/|d| grows without bound),
+ * and the leaves of nearly every node the region's rays pass were tested for all 16
+ * lanes: Sibenik light-sample shadow rays ran at 4.7 Mrays/s against 37 lane-wise
+ * (bench/results/ray_bench.md). Camera rays of a pinhole camera share their origin,
+ * and for them the bounds are the tile's own frustum. */
+static inline int ts_packet_frustum(const TsRay16* r, const TsPacketSetup* p, int16 live, TsFrustum* f) {
+    /* Cheap tests first: the shadow-ray packets of IGI fail the first one, once per link
+     * of every packet. A packet whose lane 0 is idle goes lane-wise (none of ours does). */
+    if (!live.s0) return 0;
+    float3 o = make_float3(r->ox.s0, r->oy.s0, r->oz.s0);
+    int16 moved = (r->ox != (float16)(o.x)) | (r->oy != (float16)(o.y)) | (r->oz != (float16)(o.z));
+    if (ts_any16(live & moved)) return 0;
+    /* Directions within TS_FRUSTUM_SPREAD of lane 0's (unit vectors, per component). */
+    float16 rl = rsqrt(r->dx * r->dx + r->dy * r->dy + r->dz * r->dz);
+    float16 ux = r->dx * rl, uy = r->dy * rl, uz = r->dz * rl;
+    float16 spread = TS_SLAB_MAX(TS_SLAB_MAX(fabs(ux - (float16)(ux.s0)), fabs(uy - (float16)(uy.s0))),
+                                 fabs(uz - (float16)(uz.s0)));
+    if (ts_any16(live & ~(spread <= (float16)(TS_FRUSTUM_SPREAD)))) return 0;
+    int3 neg = (int3)(p->nx.s0, p->ny.s0, p->nz.s0);
+    int16 differs = (p->nx ^ (int16)(neg.x)) | (p->ny ^ (int16)(neg.y)) | (p->nz ^ (int16)(neg.z));
+    if (ts_any16(live & differs)) return 0;
+    const float16 inf = (float16)(INFINITY), ninf = (float16)(-INFINITY);
+    f->org = o;
+    f->imin = make_float3(ts_min16(select(inf, p->ix, live)), ts_min16(select(inf, p->iy, live)),
+                          ts_min16(select(inf, p->iz, live)));
+    f->imax = make_float3(ts_max16(select(ninf, p->ix, live)), ts_max16(select(ninf, p->iy, live)),
+                          ts_max16(select(ninf, p->iz, live)));
+    f->neg = neg;
+    f->tmin = ts_min16(select(inf, r->tmin, live));
+    return 1;
+}
+
+/* Lower bound of the lanes' distances to near planes P (see the header). */
+static inline float4 ts_frustum_near(float4 plane, float org, float imin, float imax) {
+    float4 a = plane - org;
+    return select(a * imax, a * imin, a >= (float4)(0.0f));
+}
+
+/* Upper bound of the lanes' distances to far planes P. */
+static inline float4 ts_frustum_far(float4 plane, float org, float imin, float imax) {
+    float4 b = plane - org;
+    return select(b * imin, b * imax, b >= (float4)(0.0f));
+}
+
+/* Children of `node` whose box the packet's interval meets before tmax (the greatest
+ * lane tmax), with the lower bound of the lanes' entry distances in *tnear. */
+static inline int4 ts_frustum_node(__global const float* node, const TsFrustum* f, float tmax, float4* tnear) {
+    float4 nx = ts_frustum_near(vload4(0, node + (f->neg.x ? TS_NODE_MAX(0) : TS_NODE_MIN(0))), f->org.x,
+                                f->imin.x, f->imax.x);
+    float4 fx = ts_frustum_far(vload4(0, node + (f->neg.x ? TS_NODE_MIN(0) : TS_NODE_MAX(0))), f->org.x,
+                               f->imin.x, f->imax.x);
+    float4 ny = ts_frustum_near(vload4(0, node + (f->neg.y ? TS_NODE_MAX(1) : TS_NODE_MIN(1))), f->org.y,
+                                f->imin.y, f->imax.y);
+    float4 fy = ts_frustum_far(vload4(0, node + (f->neg.y ? TS_NODE_MIN(1) : TS_NODE_MAX(1))), f->org.y,
+                               f->imin.y, f->imax.y);
+    float4 nz = ts_frustum_near(vload4(0, node + (f->neg.z ? TS_NODE_MAX(2) : TS_NODE_MIN(2))), f->org.z,
+                                f->imin.z, f->imax.z);
+    float4 fz = ts_frustum_far(vload4(0, node + (f->neg.z ? TS_NODE_MIN(2) : TS_NODE_MAX(2))), f->org.z,
+                               f->imin.z, f->imax.z);
+    float4 tn = TS_SLAB_MAX(TS_SLAB_MAX(nx, ny), TS_SLAB_MAX(nz, (float4)(f->tmin)));
+    float4 tf = TS_SLAB_MIN(TS_SLAB_MIN(fx, fy), TS_SLAB_MIN(fz, (float4)(tmax))) * TS_BOX_TFAR_SCALE;
+    *tnear = tn;
+    return tn <= tf;
+}
+
+/* ts_bvh_closest16 for a packet with a frustum (ts_packet_frustum): the same per-lane
+ * result. The frustum's far bound shrinks with the greatest lane hit so far. */
+static inline TsHit16 ts_bvh_closest16_frustum(__global const float* nodes, __global const float* tris, TsRay16 r,
+                                               const TsPacketSetup* p, const TsFrustum* f, int16 live) {
+    TsHit16 h;
+    h.u = h.v = (float16)(0.0f);
+    h.prim = (uint16)(TS_NO_HIT);
+    float tfar = ts_max16(select((float16)(-INFINITY), r.tmax, live));
+    int stack[TS_BVH_STACK_SIZE];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+        int ref = stack[--sp];
+        if (ref >= 0) {
+            __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
+            float4 tn;
+            int4 m = ts_frustum_node(node, f, tfar, &tn);
+            int4 refs = as_int4(vload4(0, node + TS_NODE_REFS));
+            int cr[4];
+            float ct[4];
+            int n = 0;
+            if (m.x) { cr[n] = refs.x; ct[n++] = tn.x; }
+            if (m.y) { cr[n] = refs.y; ct[n++] = tn.y; }
+            if (m.z) { cr[n] = refs.z; ct[n++] = tn.z; }
+            if (m.w) { cr[n] = refs.w; ct[n++] = tn.w; }
+            for (int i = 1; i < n; ++i) { /* insertion sort, descending: nearest popped first */
+                int c = cr[i];
+                float t = ct[i];
+                int j = i - 1;
+                while (j >= 0 && ct[j] < t) { cr[j + 1] = cr[j]; ct[j + 1] = ct[j]; --j; }
+                cr[j + 1] = c;
+                ct[j + 1] = t;
+            }
+            for (int i = 0; i < n; ++i) stack[sp++] = cr[i];
+        } else {
+            uint v = ~(uint)ref;
+            uint first = v >> 3, count = v & 7u;
+            int16 any_hit = (int16)(0);
+            for (uint i = 0u; i < count; ++i) {
+                __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
+                float16 t, u, w;
+                int16 hit = ts_packet_triangle_uv(tri, &r, p, &t, &u, &w) & live;
+                if (!ts_any16(hit)) continue;
+                any_hit |= hit;
+                r.tmax = select(r.tmax, t, hit);
+                h.u = select(h.u, u, hit);
+                h.v = select(h.v, w, hit);
+                h.prim = select(h.prim, (uint16)(as_uint(tri[TS_BVH_TRI_PRIM])), as_uint16(hit));
+            }
+            if (ts_any16(any_hit)) tfar = ts_max16(select((float16)(-INFINITY), r.tmax, live));
+        }
+    }
+    h.t = r.tmax;
+    return h;
+}
+
+#endif /* TS_BVH_FRUSTUM_H */
