@@ -15,6 +15,7 @@
 #include "support/shell.h"
 
 namespace fs = std::filesystem;
+using tessera::test::python_imports;
 using tessera::test::shell_status;
 
 namespace {
@@ -97,7 +98,7 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     }
 
     // The report reads those files and writes the tables (and the plot if matplotlib exists).
-    const bool mpl = shell_status("python3 -c 'import matplotlib' > /dev/null 2>&1") == 0;
+    const bool mpl = python_imports("matplotlib");
     ASSERT_EQ(shell_status("python3 " + src + "/bench/accuracy_report --dir " + out.string() + (mpl ? "" : " --no-plots") +
                   " > " + log.string() + " 2>&1"),
               0)

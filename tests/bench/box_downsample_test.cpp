@@ -23,7 +23,7 @@ std::string python_with_openexr() {
     std::vector<std::string> candidates = {"python3"};
     if (const char* p = std::getenv("TESSERA_CVVDP_PYTHON"); p && *p) candidates.emplace_back(p);
     for (const auto& py : candidates)
-        if (test::shell_status(py + " -c 'import OpenEXR, numpy' > /dev/null 2>&1") == 0) return py;
+        if (test::python_imports("OpenEXR, numpy", py)) return py;
     return "";
 }
 

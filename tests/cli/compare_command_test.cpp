@@ -25,6 +25,7 @@ using tessera::Image;
 namespace {
 
 using tessera::test::CliResult;
+using tessera::test::python_imports;
 using tessera::test::run_shell;
 using tessera::test::run_tessera;
 
@@ -32,7 +33,7 @@ CliResult run_compare(const std::string& args, const std::string& env = "") {
     return run_shell(env + " " + std::string(TESSERA_EXE) + " compare " + args);
 }
 
-bool flip_importable() { return run_shell("python3 -c 'import flip_evaluator, numpy'").exit_code == 0; }
+bool flip_importable() { return python_imports("flip_evaluator, numpy"); }
 
 // The interpreter `tessera compare --cvvdp` uses by default, and whether it imports pycvvdp.
 std::string cvvdp_python() {

@@ -18,6 +18,13 @@ inline int shell_status(const std::string& cmd) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+/// 1 when `python` (an interpreter's command, default python3) imports every module of
+/// `modules` ("numpy, matplotlib": a Python import list); for tests that skip without the
+/// optional Python tools of bench/requirements.txt.
+inline bool python_imports(const std::string& modules, const std::string& python = "python3") {
+    return shell_status(python + " -c 'import " + modules + "' > /dev/null 2>&1") == 0;
+}
+
 struct CliResult {
     int exit_code;       ///< the exit status, or -1 if the command did not exit normally
     std::string output;  ///< stdout and stderr together
