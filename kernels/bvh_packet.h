@@ -289,15 +289,24 @@ static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global con
         int16 act = lanes[sp];
         if (ref >= 0) {
             __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
-            float16 tn[4];
+            /* The four tests written out and their keys reduced together (ts_min16x4): a
+             * loop over c reducing each child's lanes in turn kept distances and masks in
+             * memory and chained four latency-bound reductions. */
+            float16 t0, t1, t2, t3;
             int16 hc[4];
-            for (int c = 0; c < 4; ++c) hc[c] = ts_packet_box_near(node, c, &r, &p, &tn[c]) & act;
+            hc[0] = ts_packet_box_near(node, 0, &r, &p, &t0) & act;
+            hc[1] = ts_packet_box_near(node, 1, &r, &p, &t1) & act;
+            hc[2] = ts_packet_box_near(node, 2, &r, &p, &t2) & act;
+            hc[3] = ts_packet_box_near(node, 3, &r, &p, &t3) & act;
             /* Push far to near, so the child some lane enters first is visited first. */
+            const float16 inf = (float16)(INFINITY);
             float key[4];
+            vstore4(ts_min16x4(select(inf, t0, hc[0]), select(inf, t1, hc[1]), select(inf, t2, hc[2]),
+                               select(inf, t3, hc[3])),
+                    0, key);
             int order[4], n = 0;
             for (int c = 0; c < 4; ++c) {
                 if (!ts_any16(hc[c])) continue;
-                key[c] = ts_min16(select((float16)(INFINITY), tn[c], hc[c]));
                 int j = n++;
                 while (j > 0 && key[order[j - 1]] < key[c]) {
                     order[j] = order[j - 1];
