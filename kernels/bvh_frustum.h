@@ -123,21 +123,21 @@ static inline float4 ts_frustum_far(float4 plane, float org, float imin, float i
     return select(b * imin, b * imax, b >= (float4)(0.0f));
 }
 
+/* Bounds of the lanes' distances to the near and far planes of the four child boxes of
+ * `node` on one axis (neg: the lanes' direction is negative there). */
+static inline void ts_frustum_slab(__global const float* node, int axis, int neg, float org, float imin, float imax,
+                                   float4* tnear, float4* tfar) {
+    *tnear = ts_frustum_near(vload4(0, node + (neg ? TS_NODE_MAX(axis) : TS_NODE_MIN(axis))), org, imin, imax);
+    *tfar = ts_frustum_far(vload4(0, node + (neg ? TS_NODE_MIN(axis) : TS_NODE_MAX(axis))), org, imin, imax);
+}
+
 /* Children of `node` whose box the packet's interval meets before tmax (the greatest
  * lane tmax), with the lower bound of the lanes' entry distances in *tnear. */
 static inline int4 ts_frustum_node(__global const float* node, const TsFrustum* f, float tmax, float4* tnear) {
-    float4 nx = ts_frustum_near(vload4(0, node + (f->neg.x ? TS_NODE_MAX(0) : TS_NODE_MIN(0))), f->org.x,
-                                f->imin.x, f->imax.x);
-    float4 fx = ts_frustum_far(vload4(0, node + (f->neg.x ? TS_NODE_MIN(0) : TS_NODE_MAX(0))), f->org.x,
-                               f->imin.x, f->imax.x);
-    float4 ny = ts_frustum_near(vload4(0, node + (f->neg.y ? TS_NODE_MAX(1) : TS_NODE_MIN(1))), f->org.y,
-                                f->imin.y, f->imax.y);
-    float4 fy = ts_frustum_far(vload4(0, node + (f->neg.y ? TS_NODE_MIN(1) : TS_NODE_MAX(1))), f->org.y,
-                               f->imin.y, f->imax.y);
-    float4 nz = ts_frustum_near(vload4(0, node + (f->neg.z ? TS_NODE_MAX(2) : TS_NODE_MIN(2))), f->org.z,
-                                f->imin.z, f->imax.z);
-    float4 fz = ts_frustum_far(vload4(0, node + (f->neg.z ? TS_NODE_MIN(2) : TS_NODE_MAX(2))), f->org.z,
-                               f->imin.z, f->imax.z);
+    float4 nx, fx, ny, fy, nz, fz;
+    ts_frustum_slab(node, 0, f->neg.x, f->org.x, f->imin.x, f->imax.x, &nx, &fx);
+    ts_frustum_slab(node, 1, f->neg.y, f->org.y, f->imin.y, f->imax.y, &ny, &fy);
+    ts_frustum_slab(node, 2, f->neg.z, f->org.z, f->imin.z, f->imax.z, &nz, &fz);
     float4 tn = TS_SLAB_MAX(TS_SLAB_MAX(nx, ny), TS_SLAB_MAX(nz, (float4)(f->tmin)));
     float4 tf = TS_SLAB_MIN(TS_SLAB_MIN(fx, fy), TS_SLAB_MIN(fz, (float4)(tmax))) * TS_BOX_TFAR_SCALE;
     *tnear = tn;
@@ -161,23 +161,7 @@ static inline TsHit16 ts_bvh_closest16_frustum(__global const float* nodes, __gl
             __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
             float4 tn;
             int4 m = ts_frustum_node(node, f, tfar, &tn);
-            int4 refs = as_int4(vload4(0, node + TS_NODE_REFS));
-            int cr[4];
-            float ct[4];
-            int n = 0;
-            if (m.x) { cr[n] = refs.x; ct[n++] = tn.x; }
-            if (m.y) { cr[n] = refs.y; ct[n++] = tn.y; }
-            if (m.z) { cr[n] = refs.z; ct[n++] = tn.z; }
-            if (m.w) { cr[n] = refs.w; ct[n++] = tn.w; }
-            for (int i = 1; i < n; ++i) { /* insertion sort, descending: nearest popped first */
-                int c = cr[i];
-                float t = ct[i];
-                int j = i - 1;
-                while (j >= 0 && ct[j] < t) { cr[j + 1] = cr[j]; ct[j + 1] = ct[j]; --j; }
-                cr[j + 1] = c;
-                ct[j + 1] = t;
-            }
-            for (int i = 0; i < n; ++i) stack[sp++] = cr[i];
+            sp = ts_push_hit_children(m, tn, as_int4(vload4(0, node + TS_NODE_REFS)), stack, sp);
         } else {
             uint v = ~(uint)ref;
             uint first = v >> 3, count = v & 7u;

@@ -186,6 +186,31 @@ static inline TsWatertight ts_traversal_begin(TsRay ray, TsHit* hit, float3* inv
     return ts_watertight_setup(ray.dir);
 }
 
+/* Pushes the hit children (m) of a node with references `refs` onto stack[sp..] far to
+ * near by entry distance tn, so the nearest is popped first; returns the new sp. No
+ * bound check: the builder refuses trees deeper than TS_BVH_MAX_DEPTH, and
+ * TS_BVH_STACK_SIZE >= 3 · TS_BVH_MAX_DEPTH + 1 is checked at compile time
+ * (shared/layout.h), so a push cannot overflow and no node is ever dropped. */
+static inline int ts_push_hit_children(int4 m, float4 tn, int4 refs, int* stack, int sp) {
+    int cr[4];
+    float ct[4];
+    int n = 0;
+    if (m.x) { cr[n] = refs.x; ct[n++] = tn.x; }
+    if (m.y) { cr[n] = refs.y; ct[n++] = tn.y; }
+    if (m.z) { cr[n] = refs.z; ct[n++] = tn.z; }
+    if (m.w) { cr[n] = refs.w; ct[n++] = tn.w; }
+    for (int i = 1; i < n; ++i) { /* insertion sort, descending distance */
+        int r = cr[i];
+        float t = ct[i];
+        int j = i - 1;
+        while (j >= 0 && ct[j] < t) { cr[j + 1] = cr[j]; ct[j + 1] = ct[j]; --j; }
+        cr[j + 1] = r;
+        ct[j + 1] = t;
+    }
+    for (int i = 0; i < n; ++i) stack[sp++] = cr[i];
+    return sp;
+}
+
 /* Traversal shared by closest and any hit. `any` is a compile-time constant at each
  * call site, so the compiler specialises the loop. */
 static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const float* tris, TsRay ray,
@@ -204,27 +229,7 @@ static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const 
             __global const float* node = nodes + (uint)ref * TS_NODE_FLOATS;
             float4 tn;
             int4 m = ts_node_hits(node, ray.org, inv, neg, ray.tmin, hit.t, &tn);
-            int4 refs = as_int4(vload4(0, node + TS_NODE_REFS));
-            /* Push hit children far to near so the nearest is visited first. */
-            int cr[4];
-            float ct[4];
-            int n = 0;
-            if (m.x) { cr[n] = refs.x; ct[n++] = tn.x; }
-            if (m.y) { cr[n] = refs.y; ct[n++] = tn.y; }
-            if (m.z) { cr[n] = refs.z; ct[n++] = tn.z; }
-            if (m.w) { cr[n] = refs.w; ct[n++] = tn.w; }
-            for (int i = 1; i < n; ++i) { /* insertion sort, descending distance */
-                int r = cr[i];
-                float t = ct[i];
-                int j = i - 1;
-                while (j >= 0 && ct[j] < t) { cr[j + 1] = cr[j]; ct[j + 1] = ct[j]; --j; }
-                cr[j + 1] = r;
-                ct[j + 1] = t;
-            }
-            /* No bound check: the builder refuses trees deeper than TS_BVH_MAX_DEPTH, and
-             * TS_BVH_STACK_SIZE >= 3 · TS_BVH_MAX_DEPTH + 1 is checked at compile time
-             * (shared/layout.h), so a push cannot overflow and no node is ever dropped. */
-            for (int i = 0; i < n; ++i) stack[sp++] = cr[i];
+            sp = ts_push_hit_children(m, tn, as_int4(vload4(0, node + TS_NODE_REFS)), stack, sp);
         } else if (ts_leaf_intersect(tris, ref, &w, ray, &hit, any)) {
             return hit;
         }
