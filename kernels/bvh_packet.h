@@ -265,6 +265,8 @@ static inline void ts_hit16_unpack(const TsHit16* h, uint valid, TsHit* hits) {
  * answer only between two triangles hit at exactly the same t. (Skipping a popped
  * entry whose lanes all have a hit nearer than its entry measured no faster: the child
  * box tests cull such nodes one level later.) Lanes outside `active` get TS_NO_HIT.
+ * A camera tile (ts_packet_frustum) goes by ts_bvh_closest16_frustum instead, with the
+ * same per-lane result (bvh_frustum.h).
  * Stack bound as ts_bvh_occluded16. */
 static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global const float* tris, const TsRay16* ray,
                                        uint active) {
