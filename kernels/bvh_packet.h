@@ -183,6 +183,31 @@ static inline int16 ts_packet_triangle(__global const float* tri, const TsRay16*
     return ts_packet_triangle_uv(tri, r, p, &t, &u, &v);
 }
 
+/* The least (greatest) lane of x (no lane NaN). */
+static inline float ts_min16(float16 x) {
+    float8 a = TS_SLAB_MIN(x.lo, x.hi);
+    float4 b = TS_SLAB_MIN(a.lo, a.hi);
+    float2 c = TS_SLAB_MIN(b.lo, b.hi);
+    return TS_SLAB_MIN(c.x, c.y);
+}
+
+/* The least lane of each of a, b, c and d (no lane NaN), as (min a, min b, min c, min d):
+ * the four reductions share their steps (halves, then even against odd lanes). */
+static inline float4 ts_min16x4(float16 a, float16 b, float16 c, float16 d) {
+    float16 ab = (float16)(TS_SLAB_MIN(a.lo, a.hi), TS_SLAB_MIN(b.lo, b.hi)); /* a: 8 | b: 8 */
+    float16 cd = (float16)(TS_SLAB_MIN(c.lo, c.hi), TS_SLAB_MIN(d.lo, d.hi));
+    float16 q = (float16)(TS_SLAB_MIN(ab.even, ab.odd), TS_SLAB_MIN(cd.even, cd.odd)); /* 4 each */
+    float8 e = TS_SLAB_MIN(q.even, q.odd);                                           /* 2 each */
+    return TS_SLAB_MIN(e.even, e.odd);
+}
+
+static inline float ts_max16(float16 x) {
+    float8 a = TS_SLAB_MAX(x.lo, x.hi);
+    float4 b = TS_SLAB_MAX(a.lo, a.hi);
+    float2 c = TS_SLAB_MAX(b.lo, b.hi);
+    return TS_SLAB_MAX(c.x, c.y);
+}
+
 /* Closest hits of 16 rays, structure of arrays (TsHit per lane): t (tmax where nothing
  * is hit), u, v and prim (TS_NO_HIT where nothing is hit). */
 typedef struct TsHit16 {
