@@ -141,21 +141,7 @@ static inline TsHit16 ts_bvh_closest16_frustum(__global const float* nodes, __gl
             int4 m = ts_frustum_node(node, f, tfar, &tn);
             sp = ts_push_hit_children(m, tn, as_int4(vload4(0, node + TS_NODE_REFS)), stack, sp);
         } else {
-            uint v = ~(uint)ref;
-            uint first = v >> 3, count = v & 7u;
-            int16 any_hit = (int16)(0);
-            for (uint i = 0u; i < count; ++i) {
-                __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
-                float16 t, u, w;
-                int16 hit = ts_packet_triangle_uv(tri, &r, p, &t, &u, &w) & live;
-                if (!ts_any16(hit)) continue;
-                any_hit |= hit;
-                r.tmax = select(r.tmax, t, hit);
-                h.u = select(h.u, u, hit);
-                h.v = select(h.v, w, hit);
-                h.prim = select(h.prim, (uint16)(as_uint(tri[TS_BVH_TRI_PRIM])), as_uint16(hit));
-            }
-            if (ts_any16(any_hit)) tfar = ts_max16(select((float16)(-INFINITY), r.tmax, live));
+            if (ts_any16(ts_packet_leaf_closest(tris, ref, &r, p, live, &h))) tfar = ts_max16(select((float16)(-INFINITY), r.tmax, live));
         }
     }
     h.t = r.tmax;

@@ -215,6 +215,28 @@ typedef struct TsHit16 {
     uint16 prim;
 } TsHit16;
 
+/* Tests the triangles of leaf `ref` against the lanes in `lanes`, shortening each lane's
+ * interval (r->tmax) to its nearest hit and recording t's triangle, u and v in *h (h->t
+ * is left to the caller: r->tmax holds it). Returns the lanes that found a nearer hit. */
+static inline int16 ts_packet_leaf_closest(__global const float* tris, int ref, TsRay16* r, const TsPacketSetup* p,
+                                           int16 lanes, TsHit16* h) {
+    uint v = ~(uint)ref;
+    uint first = v >> 3, count = v & 7u;
+    int16 any_hit = (int16)(0);
+    for (uint i = 0u; i < count; ++i) {
+        __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
+        float16 t, u, w;
+        int16 hit = ts_packet_triangle_uv(tri, r, p, &t, &u, &w) & lanes;
+        if (!ts_any16(hit)) continue;
+        any_hit |= hit;
+        r->tmax = select(r->tmax, t, hit);
+        h->u = select(h->u, u, hit);
+        h->v = select(h->v, w, hit);
+        h->prim = select(h->prim, (uint16)(as_uint(tri[TS_BVH_TRI_PRIM])), as_uint16(hit));
+    }
+    return any_hit;
+}
+
 #include "bvh_frustum.h"
 
 /* Occlusion of the lanes in `active` (bit i = lane i): returns the bits of those whose
@@ -346,18 +368,7 @@ static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global con
                 lanes[sp++] = hc[order[j]];
             }
         } else {
-            uint v = ~(uint)ref;
-            uint first = v >> 3, count = v & 7u;
-            for (uint i = 0u; i < count; ++i) {
-                __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
-                float16 t, u, w;
-                int16 hit = ts_packet_triangle_uv(tri, &r, &p, &t, &u, &w) & act;
-                if (!ts_any16(hit)) continue;
-                r.tmax = select(r.tmax, t, hit);
-                h.u = select(h.u, u, hit);
-                h.v = select(h.v, w, hit);
-                h.prim = select(h.prim, (uint16)(as_uint(tri[TS_BVH_TRI_PRIM])), as_uint16(hit));
-            }
+            ts_packet_leaf_closest(tris, ref, &r, &p, act, &h);
         }
     }
     h.t = r.tmax;
