@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "device/kernel_table.h"
@@ -21,6 +22,10 @@ enum class BackendKind { OpenCL, Embree };
 BackendKind parse_backend_kind(const std::string& s);
 
 struct BackendOptions {
+    BackendOptions() = default;
+    /// The backend and device; every other option at its default.
+    BackendOptions(BackendKind backend, std::string device_spec = {})
+        : kind(backend), device(std::move(device_spec)) {}
     BackendKind kind = BackendKind::OpenCL;
     std::string device;  ///< OpenCL device spec (see select_cl_device); ignored by embree
     /// Embree: trace the igi surface pass's and AIS items' shadow rays as 16-ray packets

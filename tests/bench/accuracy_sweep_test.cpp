@@ -91,7 +91,9 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
             // relMSE of an unbiased estimator falls ~1/spp: x4 spp must at least halve it.
             EXPECT_LT(pt[i]["relmse"].get<double>(), 0.5 * pt[i - 1]["relmse"].get<double>()) << backend << " " << i;
             EXPECT_GT(pt[i]["psnr_db"].get<double>(), pt[i - 1]["psnr_db"].get<double>());
-            if (have_flip) EXPECT_LT(pt[i]["flip_mean"].get<double>(), pt[i - 1]["flip_mean"].get<double>());
+            if (have_flip) {
+                EXPECT_LT(pt[i]["flip_mean"].get<double>(), pt[i - 1]["flip_mean"].get<double>());
+            }
         }
         // direct lacks indirect light: its error floors well above pt at 64 spp.
         EXPECT_GT(direct_best, 3.0 * pt.back()["relmse"].get<double>()) << backend;
@@ -107,7 +109,9 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     md << std::ifstream(out / "report.md").rdbuf();
     EXPECT_NE(md.str().find("## Table 1: frames per second"), std::string::npos);
     EXPECT_NE(md.str().find("| cornell-box |"), std::string::npos);
-    if (mpl) EXPECT_TRUE(fs::exists(out / "cornell-box.png"));
+    if (mpl) {
+        EXPECT_TRUE(fs::exists(out / "cornell-box.png"));
+    }
     EXPECT_NE(md.str().find("## Table 2b"), std::string::npos);
     EXPECT_NE(md.str().find("## Table 3b: ColorVideoVDP"), std::string::npos);
     EXPECT_NE(md.str().find("Not measured: cannot run /nonexistent/python3"), std::string::npos) << md.str();
@@ -123,7 +127,9 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     for (const auto& r : merged["rows"]) {
         pt_rows += r["method"] == "pt";
         direct_rows += r["method"] == "direct";
-        if (r["method"] == "direct") EXPECT_EQ(r["spp"], 4);
+        if (r["method"] == "direct") {
+            EXPECT_EQ(r["spp"], 4);
+        }
     }
     EXPECT_EQ(pt_rows, 8u) << "pt kept from the first sweep";
     EXPECT_EQ(direct_rows, 2u) << "direct replaced by the new sweep";

@@ -86,7 +86,9 @@ TEST(KeepProbabilities, MeetTheBudgetFavourImportanceAndBoundTheWeight) {
         EXPECT_LE(p[i], 1.0);
         // ε = 1 floors p at 1/(2K): a kept VPL weighs at most twice a uniform choice's.
         EXPECT_GE(p[i], 0.5 / k) << i;
-        if (i > 0) EXPECT_GE(p[i], p[i - 1]) << i;
+        if (i > 0) {
+            EXPECT_GE(p[i], p[i - 1]) << i;
+        }
         EXPECT_EQ(std::ceil(p[i] * 64.0), p[i] * 64.0) << "a multiple of 1/64";
     }
     // The budget: 200/K before rounding each p up to 1/64, at most 200/64 above it.

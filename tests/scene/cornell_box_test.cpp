@@ -1,5 +1,7 @@
 // The shipped scenes/cornell-box.json (our own OBJ from the published Cornell data).
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "scene/scene_test_util.h"
 
@@ -94,10 +96,14 @@ TEST_F(CornellBox, CameraMatchesPublishedSetup) {
 }
 
 TEST_F(CornellBox, MtlReflectances) {
-    for (const auto& m : scene_->materials) {
-        if (m.name == "red") EXPECT_EQ(m.albedo, glm::vec3(0.63f, 0.065f, 0.05f));
-        if (m.name == "green") EXPECT_EQ(m.albedo, glm::vec3(0.14f, 0.45f, 0.091f));
-        if (m.name == "white") EXPECT_EQ(m.albedo, glm::vec3(0.725f, 0.71f, 0.68f));
+    const std::pair<const char*, glm::vec3> expected[] = {{"red", glm::vec3(0.63f, 0.065f, 0.05f)},
+                                                          {"green", glm::vec3(0.14f, 0.45f, 0.091f)},
+                                                          {"white", glm::vec3(0.725f, 0.71f, 0.68f)}};
+    for (const auto& [name, albedo] : expected) {
+        const auto m = std::find_if(scene_->materials.begin(), scene_->materials.end(),
+                                    [&](const auto& x) { return x.name == name; });
+        ASSERT_NE(m, scene_->materials.end()) << "no material " << name;
+        EXPECT_EQ(m->albedo, albedo) << name;
     }
 }
 
