@@ -16,6 +16,7 @@
 #include "device/scene_buffers.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
+#include "support/data_files.h"
 #include "support/render_helpers.h"
 
 namespace tessera {
@@ -24,7 +25,11 @@ namespace {
 std::unique_ptr<Backend> embree(const SceneBuffers& buffers, const Scene& scene, bool packets) {
     BackendOptions o{BackendKind::Embree, ""};
     o.embree_packets = packets;
-    return make_backend(o, buffers, plan_effects(scene));
+    auto b = make_backend(o, buffers, plan_effects(scene));
+    // Each test compares the two modes: it must really get both (no override by
+    // TESSERA_EMBREE_PACKETS, backend.cpp).
+    EXPECT_EQ(b->description().find("16-ray packets") != std::string::npos, packets) << b->description();
+    return b;
 }
 
 // Rays from uniform points in the scene's bounds (as tests/backend/traversal_test.cpp)
@@ -92,12 +97,6 @@ void expect_packets_equal_single_rays(const Scene& scene, Backend::RayOrder orde
     EXPECT_LT(hits, n * 9 / 10);
 }
 
-bool have_sibenik(const DataPath& data) {
-    for (const auto& r : data.roots)
-        if (std::filesystem::exists(r / "sibenik" / "sibenik.obj")) return true;
-    return false;
-}
-
 TEST(EmbreePackets, RaysEqualSingleRaysOnTheCornellBox) {
     const Scene s = load_scene(default_scene_path(), make_data_path(std::nullopt));
     expect_packets_equal_single_rays(s, Backend::RayOrder::Incoherent);
@@ -106,7 +105,7 @@ TEST(EmbreePackets, RaysEqualSingleRaysOnTheCornellBox) {
 
 TEST(EmbreePackets, RaysEqualSingleRaysOnSibenik) {
     DataPath data = make_data_path(std::nullopt);
-    if (!have_sibenik(data)) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
+    if (!test::on_data_path(data, "sibenik/sibenik.obj")) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
     const Scene s = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data);
     expect_packets_equal_single_rays(s, Backend::RayOrder::Incoherent);
     expect_packets_equal_single_rays(s, Backend::RayOrder::Coherent16);

@@ -14,6 +14,7 @@
 #include "device/effect_plan.h"
 #include "device/frame.h"
 #include "gi/ais_frame.h"
+#include "opencl/device.h"
 #include "scene/loader.h"
 
 namespace tessera {
@@ -43,6 +44,11 @@ std::vector<float> items_of(BackendKind kind, bool packets, bool multiple_scatte
     BackendOptions o{kind, ""};
     o.embree_packets = o.cl_packets = packets;
     auto be = make_backend(o, b, plan_effects(s));
+    // Packets must really be on where asked (Embree always, OpenCL on CPU devices), or the
+    // comparison is one mode against itself.
+    if (kind == BackendKind::Embree || cl_device_prefers_packets(select_cl_device(""))) {
+        EXPECT_EQ(be->description().find("16-ray packets") != std::string::npos, packets) << be->description();
+    }
     IgiSettings is;
     is.paths_per_set = 8;
     is.multiple_scattering = multiple_scattering;

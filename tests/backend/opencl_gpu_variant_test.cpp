@@ -20,6 +20,7 @@
 #include "opencl/device.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
+#include "support/data_files.h"
 #include "support/render_helpers.h"
 #include "support/scoped_env.h"
 
@@ -106,24 +107,18 @@ void expect_same_hits(const Scene& scene) {
     EXPECT_LT(blocked, 3 * n / 4 + n / 8);
 }
 
-bool have_sibenik(const DataPath& data) {
-    for (const auto& r : data.roots)
-        if (std::filesystem::exists(r / "sibenik" / "sibenik.obj")) return true;
-    return false;
-}
-
 
 TEST(OpenCLGpuVariant, SameHitsAsFullStackOnTheCornellBox) { expect_same_hits(test::cornell_box()); }
 
 TEST(OpenCLGpuVariant, SameHitsAsFullStackOnSibenik) {
     DataPath data = make_data_path(std::nullopt);
-    if (!have_sibenik(data)) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
+    if (!test::on_data_path(data, "sibenik/sibenik.obj")) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
     expect_same_hits(load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data));
 }
 
 TEST(OpenCLGpuVariant, SameHitsWithAOneEntryRingOnSibenik) {
     DataPath data = make_data_path(std::nullopt);
-    if (!have_sibenik(data)) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
+    if (!test::on_data_path(data, "sibenik/sibenik.obj")) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
     ScopedClOptions opts("-DTS_BVH_SHORT_STACK=1");
     expect_same_hits(load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data));
 }

@@ -14,8 +14,10 @@
 #include "backend/backend.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
+#include "opencl/device.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
+#include "support/data_files.h"
 #include "support/render_helpers.h"
 
 namespace tessera {
@@ -27,8 +29,10 @@ std::unique_ptr<Backend> opencl(const SceneBuffers& buffers, const Scene& scene,
     return make_backend(o, buffers, plan_effects(scene));
 }
 
-// Skips unless `b` traces packets (the default device is a CPU): on a GPU both backends
-// would trace per ray and the comparison would be vacuous.
+// Packets are the OpenCL backend's choice on CPU devices (cl_device_prefers_packets): on
+// a GPU both backends would trace per ray and the comparison would be vacuous, so the
+// tests skip there. On a CPU device the packet backend must trace packets, or they fail.
+bool cpu_device() { return cl_device_prefers_packets(select_cl_device("")); }
 bool runs_packets(const Backend& b) { return b.description().find("16-ray packets") != std::string::npos; }
 
 // Shadow-ray-like queries, 16 per packet, in five kinds of packets (n rays in all):
@@ -88,7 +92,8 @@ std::vector<float> packet_rays(const Scene& s, size_t n, uint32_t seed) {
 void expect_packets_equal_single_rays(const Scene& scene) {
     SceneBuffers buffers = make_scene_buffers(scene);
     auto single = opencl(buffers, scene, false), packets = opencl(buffers, scene, true);
-    if (!runs_packets(*packets)) GTEST_SKIP() << "not a CPU device: " << packets->description();
+    if (!cpu_device()) GTEST_SKIP() << "not a CPU device: " << packets->description();
+    ASSERT_TRUE(runs_packets(*packets)) << packets->description();
     ASSERT_FALSE(runs_packets(*single));
     // 60007 rays: the last packet has 7 lanes, the rest of its lanes idle.
     const std::vector<float> rays = packet_rays(scene, 60007, 11);
@@ -135,19 +140,13 @@ void expect_packets_equal_single_rays(const Scene& scene) {
     EXPECT_GT(hit, os.size() * 9 / 10);
 }
 
-bool have_sibenik(const DataPath& data) {
-    for (const auto& r : data.roots)
-        if (std::filesystem::exists(r / "sibenik" / "sibenik.obj")) return true;
-    return false;
-}
-
 TEST(OpenCLPackets, OcclusionEqualsPerRayOnTheCornellBox) {
     expect_packets_equal_single_rays(load_scene(default_scene_path(), make_data_path(std::nullopt)));
 }
 
 TEST(OpenCLPackets, OcclusionEqualsPerRayOnSibenik) {
     DataPath data = make_data_path(std::nullopt);
-    if (!have_sibenik(data)) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
+    if (!test::on_data_path(data, "sibenik/sibenik.obj")) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
     expect_packets_equal_single_rays(load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data));
 }
 
@@ -155,7 +154,8 @@ TEST(OpenCLPackets, DescriptionNamesTheTraversal) {
     const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
     SceneBuffers buffers = make_scene_buffers(scene);
     auto packets = opencl(buffers, scene, true);
-    if (!runs_packets(*packets)) GTEST_SKIP() << "not a CPU device: " << packets->description();
+    if (!cpu_device()) GTEST_SKIP() << "not a CPU device: " << packets->description();
+    ASSERT_TRUE(runs_packets(*packets)) << packets->description();
     EXPECT_NE(opencl(buffers, scene, false)->description().find("per-ray BVH4"), std::string::npos);
 }
 
@@ -171,7 +171,8 @@ TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBit) {
     SceneBuffers buffers = make_scene_buffers(scene);
     const RenderSettings rs = test::packet_test_settings(GetParam());
     auto single = opencl(buffers, scene, false), packets = opencl(buffers, scene, true);
-    if (!runs_packets(*packets)) GTEST_SKIP() << "not a CPU device: " << packets->description();
+    if (!cpu_device()) GTEST_SKIP() << "not a CPU device: " << packets->description();
+    ASSERT_TRUE(runs_packets(*packets)) << packets->description();
     test::expect_images_identical(render_frame(*single, scene, buffers, rs), render_frame(*packets, scene, buffers, rs));
 }
 

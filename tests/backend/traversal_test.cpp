@@ -11,6 +11,7 @@
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
 #include "scene/loader.h"
+#include "support/data_files.h"
 
 namespace tessera {
 namespace {
@@ -109,9 +110,7 @@ TEST(Traversal, CornellBoxMatchesEmbree) {
 
 TEST(Traversal, SibenikMatchesEmbree) {
     DataPath data = make_data_path(std::nullopt);
-    bool have = false;
-    for (const auto& r : data.roots) have |= std::filesystem::exists(r / "sibenik" / "sibenik.obj");
-    if (!have) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
+    if (!test::on_data_path(data, "sibenik/sibenik.obj")) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
     Scene s = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data);
     expect_traversal_agrees(s);
 }

@@ -33,8 +33,10 @@ TEST(AisGuidance, FlatLitWallFlagsNothing) {
     AisBaseBuffers b = flat_wall();
     AisGuidance g = compute_guidance(b, kFilter, AisThresholds{}, kSurface);
     AisSchedule s = make_schedule(g, AisThresholds{}, AisMode::AMax, W, H, 3);
-    for (int c : {kAisSS, kAisID})
+    for (int c : {kAisSS, kAisID}) {
+        ASSERT_EQ(s.sets[c].size(), size_t(W * H));
         for (uint8_t n : s.sets[c]) ASSERT_EQ(n, 1);
+    }
     EXPECT_TRUE(s.item_pixels.empty());
     EXPECT_TRUE(g.g[kAisPM].empty()) << "no medium: no PM guidance";
 }

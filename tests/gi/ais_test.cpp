@@ -82,6 +82,7 @@ TEST(Ais, SchedulesAgreeAcrossBackends) {
     }
     for (int c : {kAisSS, kAisID}) {
         const auto &a = sched[0].sets[c], &e = sched[1].sets[c];
+        ASSERT_EQ(a.size(), size_t(96 * 96));
         ASSERT_EQ(a.size(), e.size());
         size_t same = 0;
         for (size_t p = 0; p < a.size(); ++p) same += a[p] == e[p];

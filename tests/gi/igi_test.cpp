@@ -43,7 +43,10 @@ TEST(Vpls, SetsOwnDisjointPathBlocksAndRepeatExactly) {
             ASSERT_LT(p, first + (k + 1) * vs.paths_per_set);
             paths.insert(p);
         }
-    EXPECT_LE(paths.size(), size_t(vs.sets) * vs.paths_per_set);
+    // In a closed box nearly every path leaves a VPL, and the view's selection keeps most
+    // paths represented (121 of 144 when written).
+    std::printf("  %zu of %u paths left VPLs\n", paths.size(), vs.sets * vs.paths_per_set);
+    EXPECT_GE(paths.size(), size_t(vs.sets) * vs.paths_per_set * 2 / 3);
     // The OpenCL backend traces the same paths to the same VPLs (same rays, same hits).
     auto cl = make_backend({BackendKind::OpenCL, ""}, b, plan_effects(s));
     VplList c = generate_vpls(*cl, b, vs);

@@ -65,9 +65,10 @@ TEST(VplImportance, IsEachVplsShareOfAPointsIrradiance) {
     // No VPLs (a scene where every light path escapes): nothing to weigh.
     EXPECT_TRUE(vpl_view_importance(point_at_origin({0, 0, 1}), {}, 1e30f).empty());
     // A point facing away sees none of them: no importance at all.
-    for (float x : vpl_view_importance(point_at_origin({0, 0, -1}), {vpls.begin(), vpls.begin() + 2 * TS_VPL_FLOATS},
-                                       1e30f))
-        EXPECT_EQ(x, 0.0f);
+    const std::vector<float> away =
+        vpl_view_importance(point_at_origin({0, 0, -1}), {vpls.begin(), vpls.begin() + 2 * TS_VPL_FLOATS}, 1e30f);
+    ASSERT_EQ(away.size(), 2u);
+    for (float x : away) EXPECT_EQ(x, 0.0f);
 }
 
 TEST(KeepProbabilities, MeetTheBudgetFavourImportanceAndBoundTheWeight) {
@@ -100,8 +101,9 @@ TEST(KeepProbabilities, MeetTheBudgetFavourImportanceAndBoundTheWeight) {
     EXPECT_LT(p[199] / p[0], 4.0);
     for (int i = 200; i < 220; ++i) EXPECT_EQ(p[i], 1.0 / k) << "medium VPLs: uniform";
     // Without any importance every VPL is kept with 1/K.
-    for (double q : keep_probabilities(std::vector<float>(10, 0.0f), std::vector<bool>(10, false), k))
-        EXPECT_EQ(q, 1.0 / k);
+    const std::vector<double> flat = keep_probabilities(std::vector<float>(10, 0.0f), std::vector<bool>(10, false), k);
+    ASSERT_EQ(flat.size(), 10u);
+    for (double q : flat) EXPECT_EQ(q, 1.0 / k);
 }
 
 TEST(SelectVpls, KeepsTheFluxInExpectation) {

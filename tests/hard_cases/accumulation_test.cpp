@@ -29,6 +29,10 @@ TEST(LongAccumulation, ThreeThousandPassesOfAConstantStayExact) {
     }
     ASSERT_NE(naive / 3000.0f, 0.1f) << "the float sum was meant to drift";
     const Image img = acc.mean_image(true, true);
+    for (const char* c : {"R", "G", "B", "Z", "albedo.R", "variance.R"}) {
+        ASSERT_NE(img.find(c), nullptr) << c;
+        ASSERT_EQ(img.find(c)->data.size(), size_t(w * h)) << c;
+    }
     for (float v : img.find("R")->data) EXPECT_EQ(v, 0.1f);
     for (float v : img.find("G")->data) EXPECT_EQ(v, 1e-7f);
     for (float v : img.find("B")->data) EXPECT_EQ(v, 3.3333333f);
@@ -54,6 +58,10 @@ TEST_P(LongAccumulation, TwentyFiveHundredPassesOfAnEmitter) {
     s.camera.look_at = {0, 0, -1};
     s.camera.width = s.camera.height = 4;
     const Image img = render(s, 2500);
+    for (const char* c : {"R", "G", "B"}) {
+        ASSERT_NE(img.find(c), nullptr) << c;
+        ASSERT_EQ(img.find(c)->data.size(), 16u) << c;
+    }
     for (float v : img.find("R")->data) EXPECT_EQ(v, 0.1f);
     for (float v : img.find("G")->data) EXPECT_EQ(v, 0.3f);
     for (float v : img.find("B")->data) EXPECT_EQ(v, 1e-3f);

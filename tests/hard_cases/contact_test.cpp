@@ -39,7 +39,8 @@ TEST_P(Contact, CornerWhereTheLightMeetsTheWallsStaysBounded) {
     const float mx = radiance_max(img);
     RecordProperty("max_over_bound", std::to_string(mx / bound));
     EXPECT_LE(mx, bound) << "firefly: a pixel mean exceeds the energy bound";
-    EXPECT_GE(channel_max(img, "R"), 0.0f);
+    // The light fills the middle of the view: pixels on it are kLe (its albedo is 0).
+    EXPECT_GE(mx, 0.99f * kLe) << "the emitter in view is dark";
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, Contact, ::testing::ValuesIn(hard_case_params()), hard_case_name);

@@ -16,6 +16,7 @@
 #include "scene/loader.h"
 #include "util/error.h"
 
+#include "support/data_files.h"
 #include "support/render_helpers.h"
 #include "support/test_scenes.h"
 
@@ -67,12 +68,8 @@ TEST(BackendAgreement, FoggyCornellBoxPathTracerAndIgiSameSeed) {
 
 TEST(BackendAgreement, SibenikTexturedSameSeed) {
     DataPath data = make_data_path(std::nullopt);
-    Scene s;
-    try {
-        s = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data);
-    } catch (const InputError& e) {
-        GTEST_SKIP() << "Sibenik data not on the data path: " << e.what();
-    }
+    if (!test::on_data_path(data, "sibenik/sibenik.obj")) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
+    const Scene s = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data);
     RenderSettings rs;
     rs.width = rs.height = 48;
     rs.spp = 2;

@@ -79,12 +79,15 @@ TEST_F(CornellBox, WallsFaceIntoTheRoom) {
     // the box centre.
     const Scene& s = *scene_;
     const glm::vec3 centre(0.278f, 0.274f, 0.280f);
+    int walls = 0;
     for (size_t i = 0; i < s.triangle_count(); ++i) {
         const std::string& name = s.materials[s.material[i]].name;
         if (name != "red" && name != "green") continue;
+        ++walls;
         const glm::vec3 p = s.positions[3 * i];
         EXPECT_GT(glm::dot(test::geometric_normal(s, i), centre - p), 0.0f) << name;
     }
+    EXPECT_GE(walls, 4) << "two triangles or more per coloured wall";
 }
 
 TEST_F(CornellBox, CameraMatchesPublishedSetup) {
