@@ -90,7 +90,7 @@ public:
     /// clamp_decays(), else b (scene units^-2, +inf without clamping).
     float g_clamp_for(uint32_t pass) const;
 
-    /// `frame` with the igi fields filled in as render() uses them (tile, set samples,
+    /// `frame` with the igi fields filled in as render_pass() uses them (tile, set samples,
     /// march steps, clamp, components, the frame's Cranley–Patterson shift).
     TsFrame prepare(TsFrame frame) const;
 
