@@ -23,8 +23,9 @@ BackendKind parse_backend_kind(const std::string& s);
 
 struct BackendOptions {
     BackendOptions() = default;
-    /// The backend and device; every other option at its default.
-    BackendOptions(BackendKind backend, std::string device_spec = {})
+    /// The backend and device; every other option at its default. (Two arguments, so
+    /// that a BackendKind never converts to options by itself.)
+    BackendOptions(BackendKind backend, std::string device_spec)
         : kind(backend), device(std::move(device_spec)) {}
     BackendKind kind = BackendKind::OpenCL;
     std::string device;  ///< OpenCL device spec (see select_cl_device); ignored by embree
