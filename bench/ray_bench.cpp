@@ -22,7 +22,9 @@
 //            incoherent case)
 // Every tracer gets the rays in the batch form the renderer issues: OpenCL one upload,
 // kernel and read-back per query, per ray (TESSERA_CL_PACKETS=0 form) and as by default
-// (16 consecutive rays per work-item on CPU devices, kernels/bvh_packet.h), and the GPU variant (per ray with the short-stack traversal of
+// (16 consecutive rays per work-item on CPU devices, kernels/bvh_packet.h; incoherent
+// batches sorted first, host/backend/ray_order.h), unsorted packets (the default before
+// the sort), and the GPU variant (per ray with the short-stack traversal of
 // kernels/bvh_short_stack.h, forced on the CPU device: what it costs there; its GPU
 // rates need a GPU); Embree single rtcIntersect1/rtcOccluded1 per
 // ray over TBB; Embree packets rtcIntersect16/rtcOccluded16 over 16 consecutive rays
@@ -197,6 +199,9 @@ int main(int argc, char** argv) {
     cl_ray_opts.cl_packets = false;
     cl_ray_opts.cl_gpu_variant = false;  // the full-stack per-ray kernels, on a GPU too
     auto clr = make_backend(cl_ray_opts, b, plan);
+    BackendOptions cl_unsorted_opts{BackendKind::OpenCL, device};
+    cl_unsorted_opts.cl_sort_incoherent = false;
+    auto clu = make_backend(cl_unsorted_opts, b, plan);
     BackendOptions cl_gpu_opts{BackendKind::OpenCL, device};
     cl_gpu_opts.cl_gpu_variant = true;
     auto clg = make_backend(cl_gpu_opts, b, plan);
@@ -219,7 +224,7 @@ int main(int argc, char** argv) {
     struct Row {
         std::string name;
         size_t n;
-        double clr, clg, cl, em, pk;  // OpenCL per ray, GPU variant, as default; Embree single, packets
+        double clr, clg, clu, cl, em, pk;  // OpenCL per ray, GPU variant, unsorted, as default; Embree single, packets
     };
     std::vector<Row> rows;
     for (const RaySet& set : sets) {
@@ -235,15 +240,16 @@ int main(int argc, char** argv) {
             trace();
             return mrays(set.rays.size() / TS_RAY_FLOATS, median_seconds(repeats, trace));
         };
-        Row row{set.name, set.rays.size() / TS_RAY_FLOATS, rate(*clr), rate(*clg), rate(*cl), rate(*em), rate(*pk)};
+        Row row{set.name, set.rays.size() / TS_RAY_FLOATS, rate(*clr), rate(*clg), rate(*clu), rate(*cl), rate(*em), rate(*pk)};
         rows.push_back(row);
-        std::fprintf(stderr, "%-8s %8zu rays  OpenCL per ray %6.2f  GPU variant %6.2f  default %6.2f  Embree single %6.2f  "
-                     "packets %6.2f Mrays/s\n",
-                     set.name, row.n, row.clr, row.clg, row.cl, row.em, row.pk);
+        std::fprintf(stderr, "%-8s %8zu rays  OpenCL per ray %6.2f  GPU variant %6.2f  unsorted %6.2f  default %6.2f  "
+                     "Embree single %6.2f  packets %6.2f Mrays/s\n",
+                     set.name, row.n, row.clr, row.clg, row.clu, row.cl, row.em, row.pk);
         j["rays"][row.name] = {{"count", row.n},
                                {"closest_hit", set.closest},
                                {"opencl_per_ray_mrays_s", row.clr},
                                {"opencl_gpu_variant_mrays_s", row.clg},
+                               {"opencl_unsorted_mrays_s", row.clu},
                                {"opencl_mrays_s", row.cl},
                                {"embree_single_mrays_s", row.em},
                                {"embree_packet16_mrays_s", row.pk},
@@ -273,18 +279,20 @@ int main(int argc, char** argv) {
     md << "# Ray throughput and `direct` frame time: " << scene.name << ", " << size << "x" << size << "\n\n"
        << "Machine: " << j["machine"]["cpu"].get<std::string>() << ", " << tbb::info::default_concurrency()
        << " threads. OpenCL: " << cl->description() << ". Medians of " << repeats << " runs.\n\n"
-       << "| rays | count | OpenCL per ray | OpenCL GPU variant | OpenCL default | Embree single | Embree packets | Embree packets / "
-          "single | OpenCL default / Embree single | OpenCL default / Embree packets |\n"
-          "|---|---|---|---|---|---|---|---|---|---|\n";
+       << "| rays | count | OpenCL per ray | OpenCL GPU variant | OpenCL packets unsorted | OpenCL default | Embree single | "
+          "Embree packets | Embree packets / single | OpenCL default / Embree single | OpenCL default / Embree packets |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|\n";
     char buf[256];
     for (const auto& r : rows) {
-        std::snprintf(buf, sizeof buf, "| %s | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
-                      r.name.c_str(), r.n, r.clr, r.clg, r.cl, r.em, r.pk, r.pk / r.em, r.cl / r.em, r.cl / r.pk);
+        std::snprintf(buf, sizeof buf, "| %s | %zu | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
+                      r.name.c_str(), r.n, r.clr, r.clg, r.clu, r.cl, r.em, r.pk, r.pk / r.em, r.cl / r.em, r.cl / r.pk);
         md << buf;
     }
     md << "\nRates in Mrays/s. OpenCL per ray: the full-stack traversal (TESSERA_CL_GPU=0 on a GPU). "
           "OpenCL default on CPU devices: 16-ray packets for every kind "
-          "(trace_occluded_packets, trace_closest_packets). OpenCL GPU variant: per ray with the short-stack traversal "
+          "(trace_occluded_packets, trace_closest_packets), incoherent batches (ic-update, random) traced in "
+          "coherent_ray_order, the sort's time included (host/backend/ray_order.h); OpenCL packets unsorted: the same "
+          "without the sort (BackendOptions::cl_sort_incoherent = false). OpenCL GPU variant: per ray with the short-stack traversal "
           "(TESSERA_CL_GPU=1), the default on GPU devices. Ray kinds and how each tracer is driven: the header of "
           "bench/ray_bench.cpp.\n";
     if (direct_frame) {

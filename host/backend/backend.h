@@ -44,6 +44,10 @@ struct BackendOptions {
     /// the two on a GPU). Same hits and images either way. TESSERA_CL_GPU=1 / 0 sets it
     /// per run.
     std::optional<bool> cl_gpu_variant;
+    /// OpenCL packets: trace Incoherent batches of trace_closest/trace_occluded in
+    /// coherent_ray_order (host/backend/ray_order.h) and return results in the caller's
+    /// order. Same results either way; false measures the unsorted packets.
+    bool cl_sort_incoherent = true;
     /// OpenCL: launch budget in milliseconds (host/opencl/launch.h): launches are split
     /// into tiles of about this time. Negative: the device's default (kDefaultGpuLaunchMs
     /// on GPUs and accelerators, whole launches on CPUs); 0: whole launches.

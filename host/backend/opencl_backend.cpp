@@ -16,8 +16,14 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 
 #include "backend/backend.h"
+#include "backend/ray_order.h"
 #include "bvh/bvh_builder.h"
 #include "kernels/shared/geometry.h"
 #include "opencl/cl.h"
@@ -33,6 +39,12 @@ size_t round_up(size_t n, size_t m) { return (n + m - 1) / m * m; }
 
 constexpr size_t kLanes = TS_PACKET_LANES;
 
+// Below this many rays an incoherent batch is traced as given: the sort gains with the
+// batch's size (Sibenik random rays: +2% at 16k rays, +14% at 65k, +30% at 262k; its key
+// cells fill up) and breaks even about here. The renderer's own incoherent batches (VPL
+// path bounces, VPL importance's 256 view points) are smaller and stay unsorted.
+constexpr size_t kMinSortedRays = 16384;
+
 // The packet variant of kernel `id` (kernels/igi_packets.h), or null where it has none,
 // and its work-item count for a launch over `count` pixels or items.
 const char* packet_kernel(KernelId id) {
@@ -41,6 +53,11 @@ const char* packet_kernel(KernelId id) {
     if (id == KernelId::IgiMedia) return "igi_media_packets";
     if (id == KernelId::IcPair) return "ic_pair_packets";
     return nullptr;
+}
+
+RayKeyGrid scene_key_grid(const SceneBuffers& scene) {
+    const SceneBounds b = scene_bounds(scene);
+    return RayKeyGrid(&b.lo.x, &b.hi.x);
 }
 
 size_t packet_work_items(KernelId id, const TsFrame& frame, size_t count) {
@@ -54,6 +71,8 @@ public:
         : dev_(select_cl_device(o.device)),
           plan_(plan),
           packets_(o.cl_packets && o.cl_gpu_variant != true && cl_device_prefers_packets(dev_)),
+          sort_incoherent_(o.cl_sort_incoherent),
+          key_grid_(scene_key_grid(scene)),
           gpu_variant_(o.cl_gpu_variant.value_or(cl_device_prefers_short_stack(dev_))),
           launch_ms_(o.cl_launch_ms >= 0.0 ? o.cl_launch_ms : dev_.type == "CPU" ? 0.0 : kDefaultGpuLaunchMs),
           tile_groups_(o.cl_tile_groups) {
@@ -132,17 +151,16 @@ public:
     // keeps its lane masks as vectors (kernels/bvh_packet.h) it beats per-ray traversal
     // even on incoherent rays (bench/results/ray_bench.md, Sibenik: random rays 4.68
     // against 4.30 Mrays/s, one record point to 16 VPLs 7.06 against 5.59), as any-hit
-    // packets did before.
-    void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder) override {
+    // packets did before. Incoherent batches are traced sorted (sorted_trace).
+    void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder order) override {
         hits.resize(rays.size() / TS_RAY_FLOATS * TS_HIT_FLOATS);
-        trace(packets_ ? "trace_closest_packets" : "trace_closest", rays, hits.data(), hits.size() * sizeof(float),
-              packets_ ? kLanes : 1);
+        sorted_trace(packets_ ? "trace_closest_packets" : "trace_closest", rays, hits.data(), TS_HIT_FLOATS, order);
     }
 
-    void trace_occluded_rays(const std::vector<float>& rays, std::vector<uint32_t>& occluded, RayOrder) override {
+    void trace_occluded_rays(const std::vector<float>& rays, std::vector<uint32_t>& occluded,
+                             RayOrder order) override {
         occluded.resize(rays.size() / TS_RAY_FLOATS);
-        trace(packets_ ? "trace_occluded_packets" : "trace_occluded", rays, occluded.data(),
-              occluded.size() * sizeof(uint32_t), packets_ ? kLanes : 1);
+        sorted_trace(packets_ ? "trace_occluded_packets" : "trace_occluded", rays, occluded.data(), 1, order);
     }
 
 private:
@@ -201,6 +219,7 @@ private:
     // Builds the BVH of `scene` and uploads it with the scene's buffers. The buffers are
     // replaced only once all uploads succeeded.
     void upload_scene(const SceneBuffers& scene) {
+        key_grid_ = scene_key_grid(scene);
         FlatBvh bvh = build_bvh(positions_of(scene));
         std::array<cl::Buffer, 12> b = {
             upload("BVH nodes", bvh.nodes),           upload("BVH triangles", bvh.tris),
@@ -321,12 +340,59 @@ private:
     }
 
     // Traces `rays` with kernel `name` of trace.cl, `per_item` rays per work-item.
-    void trace(const char* name, const std::vector<float>& rays, void* result, size_t result_bytes,
-               size_t per_item) {
-        const size_t n = rays.size() / TS_RAY_FLOATS;
+    // Traces `rays` with trace.cl's kernel `name` into `result` (`words` 32-bit words per
+    // ray). An incoherent batch of at least kMinSortedRays rays on a packet device is
+    // traced in coherent_ray_order (host/backend/ray_order.h): gathered into that order,
+    // traced, and its results put back at their rays' indices. Packets of similar rays
+    // traverse together, and a ray's result is the same in any order. (The gather runs on
+    // the host, into the mapped ray buffer: reading rays through the order inside the
+    // kernel cost ~5 ms per 262k rays, the gather ~1.5.) bench/results/
+    // ray_bench_experiments.md, "Sorting incoherent batches".
+    template <class T>
+    void sorted_trace(const char* name, const std::vector<float>& rays, T* result, size_t words, RayOrder order) {
+        const size_t n = rays.size() / TS_RAY_FLOATS, per_item = packets_ ? kLanes : 1;
+        const size_t bytes = n * words * sizeof(T);
+        if (!packets_ || !sort_incoherent_ || order != RayOrder::Incoherent || n < kMinSortedRays) {
+            trace(name, n, bytes, per_item, [&](float* dst) { std::memcpy(dst, rays.data(), n * kRayBytes); },
+                  [&](const void* src) { std::memcpy(result, src, bytes); });
+            return;
+        }
+        const std::vector<uint32_t> perm = coherent_ray_order(rays.data(), n, key_grid_);
+        auto in_parallel = [n](auto&& f) {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+                for (size_t j = r.begin(); j < r.end(); ++j) f(j);
+            });
+        };
+        trace(
+            name, n, bytes, per_item,
+            [&](float* dst) {
+                in_parallel([&](size_t j) {
+                    std::memcpy(dst + j * TS_RAY_FLOATS, &rays[perm[j] * size_t(TS_RAY_FLOATS)], kRayBytes);
+                });
+            },
+            [&](const void* src) {
+                in_parallel([&](size_t j) {
+                    std::memcpy(result + perm[j] * words, static_cast<const T*>(src) + j * words, words * sizeof(T));
+                });
+            });
+    }
+
+    static constexpr size_t kRayBytes = TS_RAY_FLOATS * sizeof(float);
+
+    // Traces `n` rays with trace.cl's kernel `name`, `per_item` rays per work-item:
+    // `fill(float*)` writes the rays into the mapped ray buffer, `take(const void*)` reads
+    // the `result_bytes` of results from the mapped output buffer. Mapped, not copied
+    // through host vectors: on CPU devices a map is the buffer itself, so a batch is
+    // written and read once.
+    template <class Fill, class Take>
+    void trace(const char* name, size_t n, size_t result_bytes, size_t per_item, Fill&& fill, Take&& take) {
         if (n == 0) return;
         run([&] {
-            write(rays_, rays_bytes_, "ray", rays);
+            const size_t ray_bytes = n * kRayBytes;
+            reserve(rays_, rays_bytes_, "ray", ray_bytes);
+            void* dst = queue_.enqueueMapBuffer(rays_, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, ray_bytes);
+            fill(static_cast<float*>(dst));
+            queue_.enqueueUnmapMemObject(rays_, dst);
             cl::Buffer& out = output_buffer(result_bytes);
             cl::Kernel& k = kernel("trace.cl", name);
             k.setArg(0, nodes_);
@@ -334,14 +400,19 @@ private:
             k.setArg(2, rays_);
             k.setArg(3, static_cast<cl_uint>(n));
             k.setArg(4, out);
-            dispatch(name, k, (n + per_item - 1) / per_item,
-                     [&] { queue_.enqueueReadBuffer(out, CL_TRUE, 0, result_bytes, result); });
+            dispatch(name, k, (n + per_item - 1) / per_item, [&] {
+                const void* src = queue_.enqueueMapBuffer(out, CL_TRUE, CL_MAP_READ, 0, result_bytes);
+                take(src);
+                queue_.enqueueUnmapMemObject(out, const_cast<void*>(src));
+            });
         });
     }
 
     ClDeviceInfo dev_;
     EffectPlan plan_;
     bool packets_;  // CPU device and packets wanted: the packet kernels replace their per-ray ones
+    bool sort_incoherent_;  // BackendOptions::cl_sort_incoherent
+    RayKeyGrid key_grid_;   // sorted_trace's origin grid: the scene's bounding box
     bool gpu_variant_;     // per-ray kernels built with -DTS_GPU_TRAVERSAL (GPU devices, or forced)
     double launch_ms_;     // launch budget, ms (0: whole launches)
     uint32_t tile_groups_; // fixed tile size in work-groups (tests; 0: by budget)

@@ -4,6 +4,7 @@
 // traversal gives, so images with packets on
 // equal those with packets off, bit for bit. Both run the same shared transport in the
 // same link order per pixel; only the traversal differs.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -138,6 +139,26 @@ void expect_packets_equal_single_rays(const Scene& scene) {
     EXPECT_EQ(wrong, 0u);
     EXPECT_LE(ties, os.size() / 10000);
     EXPECT_GT(hit, os.size() * 9 / 10);
+
+    // The same rays as an incoherent batch: 60007 rays, more than the backend's
+    // kMinSortedRays, so the packets trace them in coherent_ray_order
+    // (host/backend/ray_order.h) and must put each result back at its ray's index. With
+    // the order reversed first, a result left where its packet traced it would land on
+    // another ray.
+    std::vector<float> reversed(open.size());
+    for (size_t i = 0; i < os.size(); ++i)
+        std::memcpy(&reversed[TS_RAY_FLOATS * i], &open[TS_RAY_FLOATS * (os.size() - 1 - i)], TS_RAY_FLOATS * 4);
+    std::vector<float> hr;
+    packets->trace_closest(reversed, hr, Backend::RayOrder::Incoherent);
+    ASSERT_EQ(hr.size(), hs.size());
+    wrong = 0;
+    for (size_t i = 0; i < os.size(); ++i) {
+        const float* a = &hs[TS_HIT_FLOATS * (os.size() - 1 - i)];
+        const float* b = &hr[TS_HIT_FLOATS * i];
+        if (std::memcmp(a + TS_HIT_T, b + TS_HIT_T, 4) != 0 && wrong++ < 5)
+            ADD_FAILURE() << "sorted batch, ray " << i << ": per-ray t " << a[TS_HIT_T] << ", packet t " << b[TS_HIT_T];
+    }
+    EXPECT_EQ(wrong, 0u);
 }
 
 TEST(OpenCLPackets, OcclusionEqualsPerRayOnTheCornellBox) {
@@ -148,6 +169,34 @@ TEST(OpenCLPackets, OcclusionEqualsPerRayOnSibenik) {
     DataPath data = make_data_path(std::nullopt);
     if (!test::on_data_path(data, "sibenik/sibenik.obj")) GTEST_SKIP() << "sibenik/sibenik.obj is not on the data path";
     expect_packets_equal_single_rays(load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik.json", data));
+}
+
+// Sorting an incoherent batch changes the order packets trace it in, never a result: the
+// occlusion and closest hits of the 60007 rays are the same, bit for bit, with the sort
+// off (BackendOptions::cl_sort_incoherent). Both trace packets; only their lanes differ.
+TEST(OpenCLPackets, SortedIncoherentBatchesGiveTheUnsortedResults) {
+    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
+    SceneBuffers buffers = make_scene_buffers(scene);
+    auto sorted = opencl(buffers, scene, true);
+    BackendOptions o{BackendKind::OpenCL, ""};
+    o.cl_sort_incoherent = false;
+    auto unsorted = make_backend(o, buffers, plan_effects(scene));
+    if (!cpu_device()) GTEST_SKIP() << "not a CPU device: " << sorted->description();
+    std::vector<float> rays = packet_rays(scene, 60007, 5);
+    std::vector<uint32_t> oa, ob;
+    sorted->trace_occluded(rays, oa);
+    unsorted->trace_occluded(rays, ob);
+    EXPECT_EQ(oa, ob);
+    EXPECT_GT(std::count(oa.begin(), oa.end(), 1u), 6000);
+    for (size_t i = 0; i < oa.size(); ++i) rays[TS_RAY_FLOATS * i + TS_RAY_TMAX] = INFINITY;
+    std::vector<float> ha, hb;
+    sorted->trace_closest(rays, ha);
+    unsorted->trace_closest(rays, hb);
+    ASSERT_EQ(ha.size(), hb.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < oa.size(); ++i)
+        differ += std::memcmp(&ha[TS_HIT_FLOATS * i + TS_HIT_T], &hb[TS_HIT_FLOATS * i + TS_HIT_T], 4) != 0;
+    EXPECT_EQ(differ, 0u);
 }
 
 TEST(OpenCLPackets, DescriptionNamesTheTraversal) {
