@@ -344,67 +344,76 @@ private:
     // ray). An incoherent batch of at least kMinSortedRays rays on a packet device is
     // traced in coherent_ray_order (host/backend/ray_order.h): gathered into that order,
     // traced, and its results put back at their rays' indices. Packets of similar rays
-    // traverse together, and a ray's result is the same in any order. (The gather runs on
-    // the host, into the mapped ray buffer: reading rays through the order inside the
-    // kernel cost ~5 ms per 262k rays, the gather ~1.5.) bench/results/
-    // ray_bench_experiments.md, "Sorting incoherent batches".
+    // traverse together, and a ray's result is the same in any order. (Reading the rays
+    // through the order inside the kernel cost ~5 ms per 262k rays, the host's gather
+    // ~1.5.) Measured in bench/results/ray_bench_sorted.md.
     template <class T>
     void sorted_trace(const char* name, const std::vector<float>& rays, T* result, size_t words, RayOrder order) {
+        static_assert(sizeof(T) == sizeof(uint32_t), "results are 32-bit words");
         const size_t n = rays.size() / TS_RAY_FLOATS, per_item = packets_ ? kLanes : 1;
         const size_t bytes = n * words * sizeof(T);
         if (!packets_ || !sort_incoherent_ || order != RayOrder::Incoherent || n < kMinSortedRays) {
-            trace(name, n, bytes, per_item, [&](float* dst) { std::memcpy(dst, rays.data(), n * kRayBytes); },
-                  [&](const void* src) { std::memcpy(result, src, bytes); });
+            trace(name, rays, result, bytes, per_item);
             return;
         }
-        const std::vector<uint32_t> perm = coherent_ray_order(rays.data(), n, key_grid_);
+        trace_in_order(name, rays, coherent_ray_order(rays.data(), n, key_grid_), result, words, per_item);
+    }
+
+    // Traces `rays` in the order `perm` (perm[j]: the ray traced j-th) with kernel `name`
+    // and writes each ray's `words` result words at its own index in `result`. Gathered
+    // straight into the mapped ray buffer and scattered straight from the mapped results
+    // (on a CPU device a map is the buffer itself): ~1.5 ms less per 262k rays than
+    // staging copies.
+    template <class T>
+    void trace_in_order(const char* name, const std::vector<float>& rays, const std::vector<uint32_t>& perm,
+                        T* result, size_t words, size_t per_item) {
+        const size_t n = perm.size(), bytes = n * words * sizeof(T);
         auto in_parallel = [n](auto&& f) {
             tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
                 for (size_t j = r.begin(); j < r.end(); ++j) f(j);
             });
         };
-        trace(
-            name, n, bytes, per_item,
-            [&](float* dst) {
-                in_parallel([&](size_t j) {
-                    std::memcpy(dst + j * TS_RAY_FLOATS, &rays[perm[j] * size_t(TS_RAY_FLOATS)], kRayBytes);
-                });
-            },
-            [&](const void* src) {
-                in_parallel([&](size_t j) {
-                    std::memcpy(result + perm[j] * words, static_cast<const T*>(src) + j * words, words * sizeof(T));
-                });
+        const size_t ray_bytes = n * TS_RAY_FLOATS * sizeof(float);
+        run([&] {
+            reserve(rays_, rays_bytes_, "ray", ray_bytes);
+            auto* dst = static_cast<float*>(
+                queue_.enqueueMapBuffer(rays_, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, ray_bytes));
+            in_parallel([&](size_t j) {
+                std::memcpy(dst + j * TS_RAY_FLOATS, &rays[perm[j] * size_t(TS_RAY_FLOATS)], TS_RAY_FLOATS * sizeof(float));
             });
+            queue_.enqueueUnmapMemObject(rays_, dst);
+            cl::Buffer& out = output_buffer(bytes);
+            cl::Kernel& k = trace_kernel(name, n, out);
+            dispatch(name, k, (n + per_item - 1) / per_item, [&] {
+                const auto* src = static_cast<const T*>(queue_.enqueueMapBuffer(out, CL_TRUE, CL_MAP_READ, 0, bytes));
+                in_parallel([&](size_t j) { std::memcpy(result + perm[j] * words, src + j * words, words * sizeof(T)); });
+                queue_.enqueueUnmapMemObject(out, const_cast<T*>(src));
+            });
+        });
     }
 
-    static constexpr size_t kRayBytes = TS_RAY_FLOATS * sizeof(float);
+    // trace.cl's kernel `name` with its arguments bound: the BVH, the ray buffer, `n`
+    // rays and the output buffer `out`.
+    cl::Kernel& trace_kernel(const char* name, size_t n, cl::Buffer& out) {
+        cl::Kernel& k = kernel("trace.cl", name);
+        k.setArg(0, nodes_);
+        k.setArg(1, tris_);
+        k.setArg(2, rays_);
+        k.setArg(3, static_cast<cl_uint>(n));
+        k.setArg(4, out);
+        return k;
+    }
 
-    // Traces `n` rays with trace.cl's kernel `name`, `per_item` rays per work-item:
-    // `fill(float*)` writes the rays into the mapped ray buffer, `take(const void*)` reads
-    // the `result_bytes` of results from the mapped output buffer. Mapped, not copied
-    // through host vectors: on CPU devices a map is the buffer itself, so a batch is
-    // written and read once.
-    template <class Fill, class Take>
-    void trace(const char* name, size_t n, size_t result_bytes, size_t per_item, Fill&& fill, Take&& take) {
+    void trace(const char* name, const std::vector<float>& rays, void* result, size_t result_bytes,
+               size_t per_item) {
+        const size_t n = rays.size() / TS_RAY_FLOATS;
         if (n == 0) return;
         run([&] {
-            const size_t ray_bytes = n * kRayBytes;
-            reserve(rays_, rays_bytes_, "ray", ray_bytes);
-            void* dst = queue_.enqueueMapBuffer(rays_, CL_TRUE, CL_MAP_WRITE_INVALIDATE_REGION, 0, ray_bytes);
-            fill(static_cast<float*>(dst));
-            queue_.enqueueUnmapMemObject(rays_, dst);
+            write(rays_, rays_bytes_, "ray", rays);
             cl::Buffer& out = output_buffer(result_bytes);
-            cl::Kernel& k = kernel("trace.cl", name);
-            k.setArg(0, nodes_);
-            k.setArg(1, tris_);
-            k.setArg(2, rays_);
-            k.setArg(3, static_cast<cl_uint>(n));
-            k.setArg(4, out);
-            dispatch(name, k, (n + per_item - 1) / per_item, [&] {
-                const void* src = queue_.enqueueMapBuffer(out, CL_TRUE, CL_MAP_READ, 0, result_bytes);
-                take(src);
-                queue_.enqueueUnmapMemObject(out, const_cast<void*>(src));
-            });
+            cl::Kernel& k = trace_kernel(name, n, out);
+            dispatch(name, k, (n + per_item - 1) / per_item,
+                     [&] { queue_.enqueueReadBuffer(out, CL_TRUE, 0, result_bytes, result); });
         });
     }
 

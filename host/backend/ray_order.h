@@ -1,6 +1,6 @@
 // An order for an incoherent ray batch in which neighbouring rays start close together
 // and head the same way, so that 16 consecutive rays make a packet worth tracing
-// together (docs/ray-batches.md §4, "Sorting incoherent batches").
+// together (docs/ray-batches.md §4, "Sorted incoherent batches").
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -9,15 +9,15 @@
 namespace tessera {
 
 /// Bits of the sort key (ray_sort_key): per axis of the origin's grid and of the
-/// direction's. Chosen by measurement (bench/results/ray_bench_experiments.md, "Sorting
-/// incoherent batches"): on Sibenik's random and `ic-update` rays 4 and 5 bits traced
-/// fastest of 2–5 × 4–6; coarser grids leave packets spread, finer ones order by the
-/// low bits of one axis only.
+/// direction's. Chosen by measurement (bench/results/ray_bench_sorted.md): on Sibenik's
+/// random and `ic-update` rays 4 and 5 bits traced fastest of the grids tried (2–5 origin
+/// bits × 0–6 direction bits); coarser grids leave a packet's lanes spread, finer ones
+/// split rays that would share nodes.
 inline constexpr int kRayOrderOriginBits = 4;
 inline constexpr int kRayOrderDirectionBits = 5;
 
 /// The origin grid of ray_sort_key: 2^kRayOrderOriginBits cells per axis over the box
-/// [lo, hi] (scene units; a flat box gets one cell across).
+/// [lo, hi] (scene units; on an axis where lo = hi, origins on the box are in cell 0).
 struct RayKeyGrid {
     RayKeyGrid(const float lo[3], const float hi[3]);
     float lo[3], scale[3];  ///< cell of coordinate v on axis a: (v − lo[a]) · scale[a]
