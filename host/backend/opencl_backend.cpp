@@ -40,7 +40,7 @@ size_t round_up(size_t n, size_t m) { return (n + m - 1) / m * m; }
 constexpr size_t kLanes = TS_PACKET_LANES;
 
 // Below this many rays an incoherent batch is traced as given: the sort gains with the
-// batch's size (Sibenik random rays: +2% at 16k rays, +14% at 65k, +30% at 262k; its key
+// batch's size (Sibenik random rays: +2% at 16k rays, +14% at 65k, +35–40% at 262k; its key
 // cells fill up) and breaks even about here. The renderer's own incoherent batches (VPL
 // path bounces, VPL importance's 256 view points) are smaller and stay unsorted.
 constexpr size_t kMinSortedRays = 16384;
