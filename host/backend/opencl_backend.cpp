@@ -356,7 +356,8 @@ private:
             trace(name, rays, result, bytes, per_item);
             return;
         }
-        trace_in_order(name, rays, coherent_ray_order(rays.data(), n, key_grid_), result, words, per_item);
+        trace_in_order(name, rays, coherent_ray_order(rays.data(), n, key_grid_, sort_buffers_), result, words,
+                       per_item);
     }
 
     // Traces `rays` in the order `perm` (perm[j]: the ray traced j-th) with kernel `name`
@@ -422,6 +423,7 @@ private:
     bool packets_;  // CPU device and packets wanted: the packet kernels replace their per-ray ones
     bool sort_incoherent_;  // BackendOptions::cl_sort_incoherent
     RayKeyGrid key_grid_;   // sorted_trace's origin grid: the scene's bounding box
+    RaySortBuffers sort_buffers_;  // sorted_trace's, kept between batches
     bool gpu_variant_;     // per-ray kernels built with -DTS_GPU_TRAVERSAL (GPU devices, or forced)
     double launch_ms_;     // launch budget, ms (0: whole launches)
     uint32_t tile_groups_; // fixed tile size in work-groups (tests; 0: by budget)
