@@ -104,6 +104,10 @@ public:
     /// How many times kernel `k` was launched on this backend.
     uint64_t dispatch_count(KernelId k) const { return dispatches_[static_cast<int>(k)]; }
 
+    /// How many trace_closest/trace_occluded batches this backend traced in a sorted order
+    /// (OpenCL packets, host/backend/ray_order.h); 0 on every other backend.
+    uint64_t sorted_batch_count() const { return sorted_batches_; }
+
     /// Sets named input `in` (layout in KernelInput's doc) for the launches that follow.
     /// Throws std::logic_error when the element type is not input_info(in)'s.
     void set_input(KernelInput in, const std::vector<float>& data);
@@ -143,6 +147,8 @@ protected:
     virtual void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) = 0;
     virtual void store_input(KernelInput in, const std::vector<float>& data) = 0;
     virtual void store_input(KernelInput in, const std::vector<uint32_t>& data) = 0;
+
+    uint64_t sorted_batches_ = 0;  ///< counted by backends that sort batches (sorted_batch_count)
 
 private:
     uint64_t dispatches_[kKernelCount] = {};

@@ -39,10 +39,12 @@ size_t round_up(size_t n, size_t m) { return (n + m - 1) / m * m; }
 
 constexpr size_t kLanes = TS_PACKET_LANES;
 
-// Below this many rays an incoherent batch is traced as given: the sort gains with the
-// batch's size (Sibenik random rays: +2% at 16k rays, +14% at 65k, +35–40% at 262k; its key
-// cells fill up) and breaks even about here. The renderer's own incoherent batches (VPL
-// path bounces, VPL importance's 256 view points) are smaller and stay unsorted.
+// Below this many rays an incoherent batch is traced as given. On Sibenik the sort's gain
+// on random rays grows with the batch (+2% at 16k rays, +14% at 65k, +35–40% at 262k, as
+// its key cells fill up); on `ic-update` rays it was +12%, −6% and +7–10%
+// (bench/results/ray_bench_sorted.md): about break-even at 16k. The renderer's own
+// incoherent batches (VPL path bounces, VPL importance's 256 view points) are smaller
+// and stay unsorted.
 constexpr size_t kMinSortedRays = 16384;
 
 // The packet variant of kernel `id` (kernels/igi_packets.h), or null where it has none,
@@ -149,9 +151,10 @@ public:
 
     // Closest hits go as packets whatever the order hint: since the packet traversal
     // keeps its lane masks as vectors (kernels/bvh_packet.h) it beats per-ray traversal
-    // even on incoherent rays (bench/results/ray_bench.md, Sibenik: random rays 4.68
-    // against 4.30 Mrays/s, one record point to 16 VPLs 7.06 against 5.59), as any-hit
-    // packets did before. Incoherent batches are traced sorted (sorted_trace).
+    // even on incoherent rays (bench/results/ray_bench.md, Sibenik, unsorted packets
+    // against per ray: random rays 4.81 against 4.17 Mrays/s, one record point to 16 VPLs
+    // 7.22 against 5.52), as any-hit packets did before. Large incoherent batches are
+    // traced sorted (sorted_trace).
     void trace_closest_rays(const std::vector<float>& rays, std::vector<float>& hits, RayOrder order) override {
         hits.resize(rays.size() / TS_RAY_FLOATS * TS_HIT_FLOATS);
         sorted_trace(packets_ ? "trace_closest_packets" : "trace_closest", rays, hits.data(), TS_HIT_FLOATS, order);
@@ -219,7 +222,6 @@ private:
     // Builds the BVH of `scene` and uploads it with the scene's buffers. The buffers are
     // replaced only once all uploads succeeded.
     void upload_scene(const SceneBuffers& scene) {
-        key_grid_ = scene_key_grid(scene);
         FlatBvh bvh = build_bvh(positions_of(scene));
         std::array<cl::Buffer, 12> b = {
             upload("BVH nodes", bvh.nodes),           upload("BVH triangles", bvh.tris),
@@ -231,6 +233,7 @@ private:
         cl::Buffer* dst[12] = {&nodes_, &tris_,      &tri_pos_,    &tri_nrm_, &tri_uv_,    &tri_mat_,
                                &materials_, &tex_info_, &tex_texels_, &lights_, &light_cdf_, &medium_};
         for (int i = 0; i < 12; ++i) *dst[i] = std::move(b[i]);
+        key_grid_ = scene_key_grid(scene);
     }
 
     static std::vector<glm::vec3> positions_of(const SceneBuffers& s) {
@@ -339,7 +342,6 @@ private:
         return out_;
     }
 
-    // Traces `rays` with kernel `name` of trace.cl, `per_item` rays per work-item.
     // Traces `rays` with trace.cl's kernel `name` into `result` (`words` 32-bit words per
     // ray). An incoherent batch of at least kMinSortedRays rays on a packet device is
     // traced in coherent_ray_order (host/backend/ray_order.h): gathered into that order,
@@ -356,8 +358,11 @@ private:
             trace(name, rays, result, bytes, per_item);
             return;
         }
+        // The ray buffer first: an oversized batch fails here, before the sort's buffers.
+        run([&] { reserve(rays_, rays_bytes_, "ray", rays.size() * sizeof(float)); });
         trace_in_order(name, rays, coherent_ray_order(rays.data(), n, key_grid_, sort_buffers_), result, words,
                        per_item);
+        ++sorted_batches_;
     }
 
     // Traces `rays` in the order `perm` (perm[j]: the ray traced j-th) with kernel `name`
@@ -405,6 +410,8 @@ private:
         return k;
     }
 
+    // Traces `rays` with trace.cl's kernel `name`, `per_item` rays per work-item, into the
+    // `result_bytes` at `result`, in the batch's own order.
     void trace(const char* name, const std::vector<float>& rays, void* result, size_t result_bytes,
                size_t per_item) {
         const size_t n = rays.size() / TS_RAY_FLOATS;

@@ -1,11 +1,11 @@
 #include "backend/ray_order.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <cstdint>
+#include <stdexcept>
 #include <utility>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -86,6 +86,7 @@ const std::vector<uint32_t>& coherent_ray_order(const float* rays, size_t n, con
     // per ray: a pass writes one stream, not a key's and an index's.
     constexpr int kDigitBits = 10, kPasses = 3, kDigits = 1 << kDigitBits;
     static_assert(kDigitBits * kPasses == 3 + 3 * (kRayOrderOriginBits + kRayOrderDirectionBits));
+    if (n > UINT32_MAX) throw std::length_error("coherent_ray_order: more than 2^32 rays");  // indices are 32-bit
     const size_t chunks = std::max<size_t>(1, std::min<size_t>(tbb::this_task_arena::max_concurrency(), n / 4096));
     const size_t per = (n + chunks - 1) / chunks;
     // Kept between calls: fresh buffers cost page faults and zeroing (the OpenCL backend's

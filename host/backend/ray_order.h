@@ -38,13 +38,14 @@ void ray_sort_keys(const float* rays, size_t n, const RayKeyGrid& grid, uint32_t
 /// ray_sort_key on `grid` (the OpenCL backend's: the scene's bounding box): element j is
 /// the index of the ray traced j-th. Stable (equal keys keep their input order), so the
 /// order is a function of the batch alone. LSD radix sort, 3 passes of 10 bits, each in
-/// parallel over TBB; O(n) time, 24n bytes of buffers. This follows the ray sorting of
+/// parallel over TBB; O(n) time, 20n bytes of buffers. Throws std::length_error for more
+/// than 2^32 rays (the indices are 32-bit). This follows the ray sorting of
 /// Garanzha and Loop 2010 ("Fast ray sorting and breadth-first packet traversal for GPU ray
 /// tracing": keys from quantised origin and direction) with the octant first, as packet
 /// tracers bin rays by their direction signs.
 std::vector<uint32_t> coherent_ray_order(const float* rays, size_t n, const RayKeyGrid& grid);
 
-/// The sort's buffers, for callers that sort batch after batch (24 bytes per ray and
+/// The sort's buffers, for callers that sort batch after batch (20 bytes per ray and
 /// 4 KB per thread).
 struct RaySortBuffers {
     std::vector<uint64_t> a, b;   ///< (key << 32 | index), ping-pong

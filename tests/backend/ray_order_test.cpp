@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include "backend/ray_order.h"
 #include "kernels/shared/layout.h"
@@ -50,6 +51,8 @@ TEST(RaySortKey, NonFiniteRaysGetAValidKey) {
     EXPECT_EQ(ray_sort_key(ray(INFINITY, -INFINITY, 0, 1, 0, 0).data(), g) >> 15 & 0xfffu, 0x249u);
 }
 
+// ray_sort_key is ray_sort_keys of one ray: this checks that the lanes of a block (and of a
+// partial last block) do not leak into one another.
 TEST(RaySortKey, BlockAndSingleKeysAgree) {
     const RayKeyGrid g(kLo, kHi);
     std::mt19937 rng(3);
@@ -65,7 +68,7 @@ TEST(RaySortKey, BlockAndSingleKeysAgree) {
 }
 
 // The radix sort equals a stable comparison sort by key, on a batch large enough for
-// every chunk of the parallel passes, with many equal keys (coarse origins, few
+// five chunks of the parallel passes, with many equal keys (coarse origins, few
 // directions) so that stability is tested.
 TEST(CoherentRayOrder, IsTheStableSortByKey) {
     const RayKeyGrid g(kLo, kHi);
@@ -80,7 +83,10 @@ TEST(CoherentRayOrder, IsTheStableSortByKey) {
         const std::vector<float> r = ray(u(rng), u(rng), u(rng), d[k][0], d[k][1], d[k][2]);
         rays.insert(rays.end(), r.begin(), r.end());
     }
-    const std::vector<uint32_t> order = coherent_ray_order(rays.data(), n, g);
+    // Five threads' worth of chunks whatever the machine's cores, so the passes' prefix
+    // sums run across chunks (a one-core machine would otherwise sort in one chunk).
+    std::vector<uint32_t> order;
+    tbb::task_arena(5).execute([&] { order = coherent_ray_order(rays.data(), n, g); });
     std::vector<uint32_t> expected(n);
     std::iota(expected.begin(), expected.end(), 0u);
     std::stable_sort(expected.begin(), expected.end(), [&](uint32_t a, uint32_t b) {
