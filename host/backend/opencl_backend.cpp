@@ -21,7 +21,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-
 #include "backend/backend.h"
 #include "backend/ray_order.h"
 #include "bvh/bvh_builder.h"
