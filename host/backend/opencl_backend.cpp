@@ -73,7 +73,6 @@ public:
           plan_(plan),
           packets_(o.cl_packets && o.cl_gpu_variant != true && cl_device_prefers_packets(dev_)),
           sort_incoherent_(o.cl_sort_incoherent),
-          key_grid_(scene_key_grid(scene)),
           gpu_variant_(o.cl_gpu_variant.value_or(cl_device_prefers_short_stack(dev_))),
           launch_ms_(o.cl_launch_ms >= 0.0 ? o.cl_launch_ms : dev_.type == "CPU" ? 0.0 : kDefaultGpuLaunchMs),
           tile_groups_(o.cl_tile_groups) {
@@ -428,7 +427,7 @@ private:
     EffectPlan plan_;
     bool packets_;  // CPU device and packets wanted: the packet kernels replace their per-ray ones
     bool sort_incoherent_;  // BackendOptions::cl_sort_incoherent
-    RayKeyGrid key_grid_;   // sorted_trace's origin grid: the scene's bounding box
+    RayKeyGrid key_grid_;   // sorted_trace's origin grid: the scene's bounding box (upload_scene)
     RaySortBuffers sort_buffers_;  // sorted_trace's, kept between batches
     bool gpu_variant_;     // per-ray kernels built with -DTS_GPU_TRAVERSAL (GPU devices, or forced)
     double launch_ms_;     // launch budget, ms (0: whole launches)

@@ -19,8 +19,9 @@ inline constexpr int kRayOrderDirectionBits = 5;
 /// The origin grid of ray_sort_key: 2^kRayOrderOriginBits cells per axis over the box
 /// [lo, hi] (scene units; on an axis where lo = hi, origins on the box are in cell 0).
 struct RayKeyGrid {
+    RayKeyGrid() = default;  ///< every origin in cell 0, until a box is given
     RayKeyGrid(const float lo[3], const float hi[3]);
-    float lo[3], scale[3];  ///< cell of coordinate v on axis a: (v − lo[a]) · scale[a]
+    float lo[3] = {}, scale[3] = {};  ///< cell of coordinate v on axis a: (v − lo[a]) · scale[a]
 };
 
 /// The key of one ray, 30 bits: the octant of its direction (3 bits, highest), then the
