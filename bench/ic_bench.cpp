@@ -74,7 +74,7 @@ std::vector<FrameResult> run_sequence(const Scene& rest, Method m, BackendKind k
         if (m == Method::Tic && !s.ic_state) {
             IcSettings ics = s.ic;
             ics.temporal = true;
-            s.ic_state = std::make_shared<InstantCache>(ics, rest.objects);
+            s.ic_state = std::make_shared<IcPassCaches>(ics, rest.objects);
         }
         RenderStats st;
         Image img = render_frame(*backend, scene, *buffers, s, &st);

@@ -16,7 +16,13 @@ void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const
     (void)media;
     if (!(frame.igi_components & TS_COMPONENT_ID)) return;
     const auto tc = Clock::now();
-    if (plan_.indirect) cache_->indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, raw_[kAisID]);
+    if (plan_.indirect) {
+        InstantCache& cache = caches_->pass(frame.pass);
+        cache.indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, caches_->gbuffer(), raw_[kAisID]);
+        frame_stats_ += cache.stats();
+        released_ += caches_->after_pass(frame.pass) ? 1 : 0;
+        ++passes_;
+    }
     stats_.cache_seconds = since(tc);
 }
 
@@ -27,11 +33,17 @@ void IcFrame::reconstruct_component(int c) {
         IgiFrame::reconstruct_component(c);
 }
 
-std::string IcFrame::describe() const { return IgiFrame::describe() + "; " + cache_->describe(); }
+std::string IcFrame::describe() const {
+    std::string line = IgiFrame::describe() + "; " + describe_ic(caches_->settings(), frame_stats_, passes_);
+    if (caches_->temporal())
+        line += "; " + std::to_string(caches_->kept()) + " pass caches kept" +
+                (released_ ? " (" + std::to_string(released_) + " released over the memory budget)" : "");
+    return line;
+}
 
 void IcFrame::report(IntegratorStats& stats) const {
     IgiFrame::report(stats);
-    stats.ic = cache_->stats();
+    stats.ic = frame_stats_;
 }
 
 }  // namespace tessera

@@ -62,7 +62,7 @@ IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan
 }
 
 float IgiFrame::g_clamp_for(uint32_t pass) const {
-    if (!clamp_decays() || !(settings_.clamp_decay > 0.0f)) return g_clamp_;
+    if (!(settings_.clamp_decay > 0.0f)) return g_clamp_;
     // b ∝ 1/c², so c_p = c · (p + 1)^-a gives b_p = b · (p + 1)^(2a).
     return g_clamp_ * std::pow(static_cast<float>(pass) + 1.0f, 2.0f * settings_.clamp_decay);
 }
@@ -91,11 +91,12 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     const TsFrame frame = prepare(unprepared);
     auto t0 = Clock::now();
     VplList vpls;
-    if (plan_.indirect && (frame.igi_components & TS_COMPONENT_ID) && interleaved_indirect()) {
+    if (needs_vpl_sets(frame.igi_components)) {
         VplSettings vs;
         vs.sets = sets;
         vs.paths_per_set = settings_.paths_per_set;
         vs.frame = frame.pass;
+        vs.seed = frame.seed;
         vs.medium_scattering = settings_.multiple_scattering;
         ViewPoints view;
         if (settings_.vpl_importance > 1) {
@@ -118,7 +119,8 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     TsFrame surface_frame = frame;
     if (!interleaved_indirect()) surface_frame.igi_components &= ~TS_COMPONENT_ID;
     const uint64_t pixels = uint64_t(frame.width) * frame.height;
-    stats_.pixel_rays = pixels * (1 + settings_.set_shadow_samples + stats_.vpls / sets);
+    const bool surface_vpls = surface_frame.igi_components & TS_COMPONENT_ID;
+    stats_.pixel_rays = pixels * (1 + settings_.set_shadow_samples + (surface_vpls ? stats_.vpls / sets : 0));
     if (frame.igi_components & TS_COMPONENT_PM) stats_.pixel_rays += pixels * (1 + settings_.march_steps);
     if (!reconstructs_on_host()) return resolve_on_device(frame, surface_frame, out);
 
@@ -148,6 +150,14 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     composite(surf, out);
     if (settings_.component_aovs) add_to_sums();
     stats_.filter_seconds = since(t0);
+}
+
+bool IgiFrame::needs_vpl_sets(uint32_t components) const {
+    // Surfaces gather the sets for ID where the sets make it; the ray march gathers them
+    // for light scattered more than once, whatever makes ID (ic's cache, or nothing).
+    const bool for_id = plan_.indirect && (components & TS_COMPONENT_ID) && interleaved_indirect();
+    const bool for_media = plan_.area_lights && (components & TS_COMPONENT_PM) && settings_.multiple_scattering;
+    return for_id || for_media;
 }
 
 void IgiFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) {

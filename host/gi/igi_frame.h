@@ -35,7 +35,7 @@ struct IgiSettings {
     /// Exponent a of the clamp's decay over passes: pass p uses c_p = clamp_c · (p + 1)^-a,
     /// so that an accumulation of passes converges to the unclamped (path-traced) image
     /// while every single frame keeps the clamp's low noise (docs/igi.md §4). 0: the same
-    /// clamp in every pass. Integrators whose passes reuse one VPL set (tic) keep c fixed.
+    /// clamp in every pass.
     float clamp_decay = 0.25f;
     /// VPLs for the view (gi/vpl_importance.h, docs/igi.md §3b): K > 1 traces K times the
     /// light paths and keeps, on average, paths_per_set paths' worth of VPLs per set, by
@@ -86,8 +86,9 @@ public:
 
     /// Geometry-term clamp b of pass 0 in scene units^-2 (+inf without clamping).
     float g_clamp() const { return g_clamp_; }
-    /// Geometry-term clamp b of `pass`: b · (pass + 1)^(2a), a = clamp_decay where
-    /// clamp_decays(), else b (scene units^-2, +inf without clamping).
+    /// Geometry-term clamp b of `pass`: b · (pass + 1)^(2a), a = clamp_decay (scene
+    /// units^-2, +inf without clamping). Every igi-family pass draws its own VPLs (tic's
+    /// pass p always the same ones), so the loosening clamp converges.
     float g_clamp_for(uint32_t pass) const;
 
     /// `frame` with the igi fields filled in as render_pass() uses them (tile, set samples,
@@ -127,11 +128,9 @@ protected:
         return settings_.component_aovs || !backend_.resolves_on_device();
     }
     /// True when the indirect component comes from the interleaved VPL sets (igi, ais);
-    /// false: no VPL sets are made, the surface kernel skips ID and refine() supplies it.
+    /// false: the surface kernel skips ID and refine() supplies it (the sets are still
+    /// made when the media need them, needs_vpl_sets).
     virtual bool interleaved_indirect() const { return true; }
-    /// True when every pass draws new VPLs, so that a clamp loosening over passes
-    /// converges; false for an integrator that reuses one VPL set (tic).
-    virtual bool clamp_decays() const { return true; }
     /// Runs after the base pass, before reconstruction: may replace or refine the raw
     /// components (raw_). Its time is not counted as the filter's.
     virtual void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
@@ -146,6 +145,10 @@ protected:
                                 int channels, uint32_t frames);
 
     uint32_t effective_components() const;
+    /// Whether a frame computing `components` makes the interleaved VPL sets: for ID where
+    /// interleaved_indirect(), and for PM's multiple scattering (the ray march gathers the
+    /// sets' VPLs, docs/igi.md §6) in every igi-family method, ic and tic included.
+    bool needs_vpl_sets(uint32_t components) const;
 
     Backend& backend_;
     const SceneBuffers& scene_;

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "gi/ic_gather.h"
+#include "gi/ic_probe.h"
 #include "kernels/shared/ic_lookup.h"
 #include "kernels/shared/sampling.h"
 #include "util/error.h"
@@ -75,13 +77,18 @@ uint32_t InstantCache::object_of(uint32_t triangle) const {
     return static_cast<uint32_t>(it - object_first_.begin()) - 1u;
 }
 
-void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block) {
-    paths_.assign(settings_.paths, LightPath{});
-    for (uint32_t j = 0; j < settings_.paths; ++j) paths_[j].index = uint64_t(block) * settings_.paths + j;
+LightPathSettings InstantCache::path_settings() const {
     LightPathSettings ls;
     ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
     ls.medium_scattering = settings_.multiple_scattering;
-    stats_.light_path_rays += trace_light_paths(backend, scene, ls, paths_);
+    ls.seed = seed_;
+    return ls;
+}
+
+void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block) {
+    paths_.assign(settings_.paths, LightPath{});
+    for (uint32_t j = 0; j < settings_.paths; ++j) paths_[j].index = uint64_t(block) * settings_.paths + j;
+    stats_.light_path_rays += trace_light_paths(backend, scene, path_settings(), paths_);
     stats_.paths_retraced = paths_.size();
     concat_vpls();
 }
@@ -90,6 +97,27 @@ void InstantCache::concat_vpls() {
     vpls_.clear();
     for (const LightPath& p : paths_) vpls_.insert(vpls_.end(), p.vpls.begin(), p.vpls.end());
     stats_.vpls = vpl_count(vpls_);
+}
+
+uint64_t InstantCache::probe(Backend& backend, std::vector<IcRecord>& records,
+                             const std::vector<uint32_t>& which) const {
+    // Only a hit nearer than 2a·R_max can lower R_i below its upper clamp R_max.
+    std::vector<float> reach(which.size());
+    for (size_t k = 0; k < which.size(); ++k)
+        reach[k] = 2.0f * settings_.error_bound * settings_.max_radius_px * records[which[k]].pixel_size;
+    uint64_t rays = 0;
+    const std::vector<float> d = ic_probe_distances(backend, records, which, reach, &rays);
+    for (size_t k = 0; k < which.size(); ++k) records[which[k]].probe = d[k];
+    return rays;
+}
+
+float InstantCache::radius_of(const IcRecord& r, float harmonic_mean) const {
+    // The validity ball a·R_i stays within half the probe's nearest hit: the probe's 32
+    // rays see the nearest surface only to within ~1.3× its distance (a ray seldom grazes
+    // toward it), and half leaves that margin.
+    const float bound = r.probe / (2.0f * settings_.error_bound);
+    return ic_record_radius(std::min(harmonic_mean, bound), r.pixel_size, settings_.min_radius_px,
+                            settings_.max_radius_px);
 }
 
 // Every pair of the records in `records` and VPLs 0 .. nv-1, VPL by VPL and the records in
@@ -209,6 +237,8 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
             IcRecord rec;
             std::memcpy(rec.surface.data(), &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS],
                         sizeof(float) * TS_IC_GBUF_FLOATS);
+            rec.pixel_size = rec.surface[TS_IC_GBUF_DISTANCE] * footprint;
+            rec.last_in_view = frame_count_;
             const uint32_t x = candidates[i] % frame.width / stride, y = candidates[i] / frame.width / stride;
             blocked.push_back({morton2(x, y), static_cast<uint32_t>(cache_.records().size())});
             cache_.records().push_back(rec);  // inserted in the octree once its radius is known
@@ -220,14 +250,12 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         stats_.shadow_rays += trace_pairs(backend, vpls_, vpl_major_pairs(order, nv), g_clamp, rows_);
         std::vector<uint32_t> which(cache_.records().size() - first);
         for (size_t i = 0; i < which.size(); ++i) which[i] = static_cast<uint32_t>(first + i);
+        stats_.probe_rays += probe(backend, cache_.records(), which);
         const std::vector<float> harmonic = gather(backend, vpls_, rows_, cache_.records(), which, g_clamp);
         std::vector<IcRecord> fresh(cache_.records().begin() + first, cache_.records().end());
         cache_.records().resize(first);
         for (size_t i = 0; i < fresh.size(); ++i) {
-            const float hm = harmonic[i];
-            fresh[i].pixel_size = fresh[i].surface[TS_IC_GBUF_DISTANCE] * footprint;
-            fresh[i].last_in_view = frame_count_;
-            fresh[i].radius = ic_record_radius(hm, fresh[i].pixel_size, settings_.min_radius_px, settings_.max_radius_px);
+            fresh[i].radius = radius_of(fresh[i], harmonic[i]);
             cache_.insert(fresh[i]);
         }
         stats_.created += fresh.size();
@@ -235,20 +263,25 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
 }
 
 void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame,
-                            const std::vector<float>& surf, float g_clamp, std::vector<float>& e_id) {
+                            const std::vector<float>& surf, float g_clamp, std::vector<float>& gbuffer,
+                            std::vector<float>& e_id) {
     stats_ = IcFrameStats{};
     auto t0 = Clock::now();
     if (!settings_.temporal || !have_previous_) {
         cache_ = IrradianceCache(settings_.error_bound);
         rows_.clear();
-        start_paths(backend, scene, settings_.temporal ? 0u : frame.pass);
+        pass_ = frame.pass, seed_ = frame.seed;
+        start_paths(backend, scene, frame.pass);
     } else {
+        if (frame.pass != pass_ || frame.seed != seed_)
+            throw std::logic_error("tic: a temporal cache serves one pass and seed (pass " + std::to_string(pass_) +
+                                   ", seed " + std::to_string(seed_) + "), asked for pass " +
+                                   std::to_string(frame.pass) + ", seed " + std::to_string(frame.seed));
         update(backend, scene, g_clamp);
     }
     stats_.update_seconds = since(t0);
 
     t0 = Clock::now();
-    std::vector<float>& gbuffer = gbuffer_;  // kept: a fresh 15 MB a frame costs its page faults
     ic_gbuffer_from_surface(surf, gbuffer);
     const SceneBounds bounds = scene_bounds(scene);
     cache_.rebuild(bounds.lo, bounds.hi);
@@ -309,10 +342,7 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
                                                    float g_clamp) const {
     std::vector<LightPath> paths(paths_.size());
     for (size_t j = 0; j < paths.size(); ++j) paths[j].index = paths_[j].index;
-    LightPathSettings ls;
-    ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
-    ls.medium_scattering = settings_.multiple_scattering;
-    trace_light_paths(backend, scene, ls, paths);
+    trace_light_paths(backend, scene, path_settings(), paths);
     std::vector<float> vpls;
     for (const LightPath& p : paths) vpls.insert(vpls.end(), p.vpls.begin(), p.vpls.end());
     const size_t nv = vpl_count(vpls);
@@ -324,23 +354,33 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
     std::vector<IcRecord> out(records);
     std::vector<uint32_t> all(out.size());
     for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+    probe(backend, out, all);
     const std::vector<float> harmonic = gather(backend, vpls, rows, out, all, g_clamp);
-    for (size_t i = 0; i < out.size(); ++i)
-        out[i].radius =
-            ic_record_radius(harmonic[i], out[i].pixel_size, settings_.min_radius_px, settings_.max_radius_px);
+    for (size_t i = 0; i < out.size(); ++i) out[i].radius = radius_of(out[i], harmonic[i]);
     return out;
 }
 
-std::string InstantCache::describe() const {
-    char buf[400];
+IcFrameStats& IcFrameStats::operator+=(const IcFrameStats& o) {
+    records += o.records, created += o.created, removed += o.removed, resummed += o.resummed;
+    evicted += o.evicted, vpls += o.vpls, paths_retraced += o.paths_retraced, vpls_changed += o.vpls_changed;
+    light_path_rays += o.light_path_rays, shadow_rays += o.shadow_rays, probe_rays += o.probe_rays;
+    fallback_pixels += o.fallback_pixels;
+    update_seconds += o.update_seconds, place_seconds += o.place_seconds;
+    interpolate_seconds += o.interpolate_seconds;
+    return *this;
+}
+
+std::string describe_ic(const IcSettings& settings, const IcFrameStats& s, uint32_t passes) {
+    char buf[480], over[48] = "";
+    if (passes > 1) std::snprintf(over, sizeof over, " summed over %u passes", passes);
     std::snprintf(buf, sizeof buf,
-                  "%s: a %.2f, %u paths, %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed), %zu paths re-traced, "
-                  "rays: %llu light-path + %llu shadow, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms",
-                  settings_.temporal ? "tic" : "ic", settings_.error_bound, settings_.paths, stats_.vpls,
-                  stats_.records, stats_.created, stats_.removed, stats_.resummed, stats_.paths_retraced,
-                  static_cast<unsigned long long>(stats_.light_path_rays),
-                  static_cast<unsigned long long>(stats_.shadow_rays), 1e3 * stats_.update_seconds,
-                  1e3 * stats_.place_seconds, 1e3 * stats_.interpolate_seconds);
+                  "%s: a %.2f, %u paths%s: %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed), %zu paths re-traced, "
+                  "rays: %llu light-path + %llu shadow + %llu probe, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms",
+                  settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, over, s.vpls, s.records,
+                  s.created, s.removed, s.resummed, s.paths_retraced,
+                  static_cast<unsigned long long>(s.light_path_rays), static_cast<unsigned long long>(s.shadow_rays),
+                  static_cast<unsigned long long>(s.probe_rays),
+                  1e3 * s.update_seconds, 1e3 * s.place_seconds, 1e3 * s.interpolate_seconds);
     return buf;
 }
 

@@ -49,17 +49,23 @@ struct IcSettings {
     bool multiple_scattering = true;   ///< light paths scatter in the medium (IgiSettings)
 };
 
-/// Counts and times of the last frame (of indirect()).
+/// Counts and times of the last indirect() call (one pass), or summed over a frame's
+/// passes (IcFrame; records then counts each pass's cache).
 struct IcFrameStats {
     size_t records = 0, created = 0, removed = 0, resummed = 0;
     size_t evicted = 0;  ///< records dropped for being out of view (tic)
     size_t vpls = 0, paths_retraced = 0, vpls_changed = 0;
     uint64_t light_path_rays = 0;  ///< rays of (re-)traced light paths
     uint64_t shadow_rays = 0;      ///< record–VPL shadow rays
+    uint64_t probe_rays = 0;       ///< the new records' hemisphere probes (gi/ic_probe.h)
     size_t fallback_pixels = 0;    ///< pixels the kernel found uncovered (rounding), shaded on the host
     double update_seconds = 0, place_seconds = 0, interpolate_seconds = 0;
-    uint64_t indirect_rays() const { return light_path_rays + shadow_rays; }
+    uint64_t indirect_rays() const { return light_path_rays + shadow_rays + probe_rays; }
+    IcFrameStats& operator+=(const IcFrameStats& o);
 };
+
+/// One log line: the cache's settings and `stats` (one pass, or summed over `passes`).
+std::string describe_ic(const IcSettings& settings, const IcFrameStats& stats, uint32_t passes);
 
 /// Visibility of one record–VPL pair, as kept per record (one int32 per VPL; the bits of
 /// the pair kernel's TS_IC_PAIR_FACING and TS_IC_PAIR_VISIBLE, layout.h):
@@ -81,14 +87,16 @@ public:
     InstantCache(const IcSettings& settings, const std::vector<SceneObject>& objects);
 
     /// E_id (irradiance / π, 3 floats per pixel) for `frame` (prepared by the igi frame).
-    /// Non-temporal: a fresh cache from path block frame.pass. Temporal: path block 0
-    /// always; on the first call a fresh cache, later the changes since the previous call
-    /// (moved objects, materials, lights) are applied first (docs/instant-caching.md §8).
+    /// The light paths are path block frame.pass drawn with frame.seed. Non-temporal: a
+    /// fresh cache every call. Temporal: on the first call a fresh cache, later the changes
+    /// since the previous call (moved objects, materials, lights) are applied first
+    /// (docs/instant-caching.md §8); every call must then be for the same pass and seed
+    /// (one cache per pass: IcPassCaches), or std::logic_error is thrown.
     /// `surf` is the igi surface pass's output for `frame` (TS_IGI_SURF_FLOATS per pixel,
     /// row-major): the surfaces records are made at and looked up for. `g_clamp` is the
-    /// igi geometry-term bound b.
+    /// igi geometry-term bound b. `gbuffer` is scratch (its contents are overwritten).
     void indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, const std::vector<float>& surf,
-                  float g_clamp, std::vector<float>& e_id);
+                  float g_clamp, std::vector<float>& gbuffer, std::vector<float>& e_id);
 
     /// The current records (same surfaces) with E and R recomputed from scratch on
     /// `scene`: fresh light paths (same indices), every shadow ray traced. The temporal
@@ -99,9 +107,11 @@ public:
     const std::vector<float>& vpls() const { return vpls_; }
     const IrradianceCache& cache() const { return cache_; }
     const IcFrameStats& stats() const { return stats_; }
-    /// tic: one VPL set for every frame and pass.
     bool temporal() const { return settings_.temporal; }
-    std::string describe() const;
+    const IcSettings& settings() const { return settings_; }
+    /// Record–VPL visibilities kept (4 bytes each).
+    size_t pairs_kept() const { return rows_.empty() ? 0 : rows_.size() * rows_.front().size(); }
+    std::string describe() const { return describe_ic(settings_, stats_, 1); }
 
 private:
     struct Pair {
@@ -111,6 +121,12 @@ private:
     struct Change;  // what differs from the previous frame (temporal_update.cpp)
 
     void start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block);
+    LightPathSettings path_settings() const;
+    /// Probes records[which[k]] (their pixel_size set) into their `probe` field; returns rays.
+    uint64_t probe(Backend& backend, std::vector<IcRecord>& records, const std::vector<uint32_t>& which) const;
+    /// R_i of `r` from the harmonic mean distance to its visible VPLs and its probe
+    /// (docs/instant-caching.md §4).
+    float radius_of(const IcRecord& r, float harmonic_mean) const;
     void concat_vpls();
     void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp);
     static std::vector<Pair> vpl_major_pairs(const std::vector<uint32_t>& records, size_t nv);
@@ -135,8 +151,8 @@ private:
     std::vector<LightPath> paths_;
     std::vector<float> vpls_;
     std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL
-    std::vector<float> gbuffer_;              // the last frame's G-buffer (TS_IC_GBUF_FLOATS per pixel)
     IcFrameStats stats_;
+    uint32_t pass_ = 0, seed_ = 1;  // the path block and seed of the current light paths
     // The previous frame, for the temporal update.
     bool have_previous_ = false;
     uint32_t frame_count_ = 0;  // indirect() calls so far

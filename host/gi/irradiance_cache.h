@@ -9,6 +9,7 @@
 // same G-buffer gives the same records on every backend and every run.
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -34,6 +35,9 @@ struct IcRecord {
     std::array<float, TS_IC_GBUF_FLOATS> surface{};  ///< the G-buffer entry (layout.h)
     float radius = 0.0f;                              ///< R_i, scene units
     float pixel_size = 0.0f;  ///< a pixel's footprint at the record when it was made (radius clamp)
+    /// The nearest surface its hemisphere probe found (scene units, capped at the probe's
+    /// reach; gi/ic_probe.h): R_i ≤ probe / (2a), so the validity ball stays clear of it.
+    float probe = INFINITY;
     uint32_t last_in_view = 0;  ///< the last frame (InstantCache's count) whose view held it
     std::array<float, 3> e{};                         ///< irradiance / π, W/m² / π
     glm::vec3 position() const {

@@ -49,7 +49,8 @@ void store_vpl(LightPath& path, float3 position, float3 normal, float3 flux, flo
 // Returns what ts_light_path_medium returns; on an event records the segment up to it.
 uint32_t medium_vertex(const ts::TsMedium& med, const LightPathSettings& settings, uint32_t bounce,
                        const ts::TsHit& hit, InFlight& p) {
-    ts::TsRng rng = ts::ts_rng_seed(settings.halton_seed ^ 0x6d656469u, static_cast<uint32_t>(p.path->index), bounce);
+    const uint32_t scramble = settings.halton_seed ^ light_path_seed_mix(settings.seed);
+    ts::TsRng rng = ts::ts_rng_seed(scramble ^ 0x6d656469u, static_cast<uint32_t>(p.path->index), bounce);
     float u[5];
     for (float& x : u) x = ts::ts_rng_next(&rng);
     const ts::TsRay before = p.ray;
@@ -72,11 +73,14 @@ PathSegment segment_of(const ts::TsRay& r, const ts::TsHit& hit) {
 
 }  // namespace
 
+uint32_t light_path_seed_mix(uint32_t seed) { return ts::ts_pcg_hash(seed) ^ ts::ts_pcg_hash(1u); }
+
 uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
                            std::vector<LightPath>& paths) {
     const ts::TsSceneView sv = make_scene_view(scene);
     const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
-    const ScrambledHalton halton(5 + 3 * static_cast<int>(settings.max_bounces), settings.halton_seed);
+    const ScrambledHalton halton(5 + 3 * static_cast<int>(settings.max_bounces),
+                                 settings.halton_seed ^ light_path_seed_mix(settings.seed));
     std::vector<InFlight> live;
     for (LightPath& p : paths) {
         p.vpls.clear();

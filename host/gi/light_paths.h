@@ -39,11 +39,20 @@ struct LightPathSettings {
     /// ended every path in practice.
     uint32_t max_bounces = 64;
     uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
+    /// The render's --seed: the scrambling used is halton_seed ^ light_path_seed_mix(seed),
+    /// so each seed draws its own light paths (docs/igi.md §3).
+    uint32_t seed = 1;
     float inv_paths = 1.0f;            ///< 1 / (paths per set): each VPL's weight carries it
     /// Paths scatter in the scene's medium and leave medium VPLs there (multiple
     /// scattering, ts_light_path_medium); false: segments only attenuate (single scattering).
     bool medium_scattering = false;
 };
+
+/// What a render's --seed changes in the light paths' Halton scrambling and the VPL
+/// selection's keep decisions: a hash of the seed, 0 for the default seed 1, so that every
+/// seed gives independent VPL sets while seed 1 keeps the sequence the project's figures
+/// were measured with.
+uint32_t light_path_seed_mix(uint32_t seed);
 
 /// Traces `paths` (index and set filled in; vpls, segments and light are overwritten),
 /// all bounces of all paths batched through Backend::trace_closest. Returns the number

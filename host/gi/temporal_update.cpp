@@ -11,9 +11,10 @@
 //               it cannot have blocked it before, or the segment would have hit it).
 //               A re-traced path's VPLs that land where they were keep their visibility
 //               (only their weight changes); the others are new.
-//   record      removed if it lies on an object of O or its validity sphere (x_i, R_i)
-//               meets the old or new box of an object of O (its radius and neighbourhood
-//               may be stale); placement recreates records where coverage is missing.
+//   record      removed if it lies on an object of O or its sphere (x_i, max(R_i, probe_i))
+//               meets the old or new box of an object of O (its radius, probe and
+//               neighbourhood may be stale); placement recreates records where coverage
+//               is missing.
 //   pair        (record, VPL) re-traced if the VPL is new, its stored occluder is in O
 //               (the blocker moved), or it was unoccluded and its shadow segment meets the
 //               new box of an object of O. A pair blocked by a static object stays
@@ -232,10 +233,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
         if (path_invalid(paths_[p])) redo.push_back(p);
     std::vector<LightPath> fresh(redo.size());
     for (size_t i = 0; i < redo.size(); ++i) fresh[i].index = paths_[redo[i]].index, fresh[i].set = paths_[redo[i]].set;
-    LightPathSettings ls;
-    ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
-    ls.medium_scattering = settings_.multiple_scattering;
-    if (!fresh.empty()) stats_.light_path_rays += trace_light_paths(backend, scene, ls, fresh);
+    if (!fresh.empty()) stats_.light_path_rays += trace_light_paths(backend, scene, path_settings(), fresh);
     stats_.paths_retraced = redo.size();
 
     // New VPL columns: each kept VPL maps to its old column (same position, normal, scale).
@@ -284,9 +282,12 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
         uint32_t prim;
         std::memcpy(&prim, &r.surface[TS_IC_GBUF_PRIM], 4);
         bool stale = ch.is_moved[object_of(prim)] != 0;
+        // The radius depends on the probe's nearest hit too: a moved object within it
+        // may have been that hit, or now be nearer (the probe's reach caps it).
+        const float reach = std::max(r.radius, r.probe);
         for (uint32_t o : ch.moved)
-            stale = stale || ch.old_box[o].meets_sphere(r.position(), r.radius) ||
-                    ch.new_box[o].meets_sphere(r.position(), r.radius);
+            stale = stale || ch.old_box[o].meets_sphere(r.position(), reach) ||
+                    ch.new_box[o].meets_sphere(r.position(), reach);
         if (stale)
             ++stats_.removed;
         else
@@ -355,7 +356,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     for (size_t k = 0; k < resum.size(); ++k) {
         IcRecord& r = records[resum[k]];
         // The visible VPLs may have changed, and with them the harmonic mean distance.
-        r.radius = ic_record_radius(harmonic[k], r.pixel_size, settings_.min_radius_px, settings_.max_radius_px);
+        r.radius = radius_of(r, harmonic[k]);
     }
     stats_.resummed += resum.size();
 }

@@ -15,7 +15,7 @@ void keep_for_view(const VplSettings& settings, uint32_t oversampling, VplList& 
     std::vector<uint32_t> start(settings.sets + 1, 0u);
     for (uint32_t k = 0; k < settings.sets; ++k)
         start[k + 1] = start[k] + select_vpls(list.vpls, importance, list.set_start[k], list.set_start[k + 1],
-                                              oversampling, kept);
+                                              oversampling, light_path_seed_mix(settings.seed), kept);
     list.vpls.swap(kept);
     list.set_start.swap(start);
 }
@@ -39,6 +39,7 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
     LightPathSettings ls;
     ls.max_bounces = settings.max_bounces;
     ls.halton_seed = settings.halton_seed;
+    ls.seed = settings.seed;
     ls.medium_scattering = settings.medium_scattering;
     ls.inv_paths = 1.0f / static_cast<float>(per_set);
     out.rays = trace_light_paths(backend, scene, ls, paths);

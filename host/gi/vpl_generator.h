@@ -25,6 +25,7 @@ struct VplSettings {
     uint32_t max_bounces = 64;
     uint32_t frame = 0;            ///< selects the block of path indices
     uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
+    uint32_t seed = 1;                 ///< the render's --seed (LightPathSettings::seed)
     bool medium_scattering = false;    ///< LightPathSettings::medium_scattering
     /// VPLs for the view (gi/vpl_importance.h): K > 1 traces K·paths_per_set candidate
     /// paths per set and keeps, on average, paths_per_set paths' worth of VPLs, chosen by

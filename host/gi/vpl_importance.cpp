@@ -145,7 +145,7 @@ std::vector<double> keep_probabilities(const std::vector<float>& importance, con
 }
 
 uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& importance, size_t begin, size_t end,
-                     uint32_t oversampling, std::vector<float>& out) {
+                     uint32_t oversampling, uint32_t seed_mix, std::vector<float>& out) {
     std::vector<bool> medium;
     for (size_t i = begin; i < end; ++i) medium.push_back(ts::ts_vpl_in_medium(&vpls[TS_VPL_FLOATS * i]));
     const std::vector<double> p =
@@ -157,7 +157,7 @@ uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& i
         const uint32_t path = path_of(v);
         place = path == last_path ? place + 1 : 0;
         last_path = path;
-        ts::TsRng rng = ts::ts_rng_seed(kKeepSeed, path, place);
+        ts::TsRng rng = ts::ts_rng_seed(kKeepSeed ^ seed_mix, path, place);
         const double pi = p[i - begin];
         if (!(ts::ts_rng_next(&rng) < pi)) continue;
         const size_t at = out.size();

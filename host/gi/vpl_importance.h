@@ -50,9 +50,10 @@ std::vector<double> keep_probabilities(const std::vector<float>& importance, con
 
 /// Keeps each VPL i of [begin, end) of `vpls` with its keep_probabilities p_i and divides
 /// a kept VPL's flux by p_i. The decision is the counter-based generator keyed by the
-/// VPL's path index and its place in the path, so the same candidates keep the same VPLs.
+/// VPL's path index and its place in the path, so the same candidates keep the same VPLs;
+/// `seed_mix` (light_path_seed_mix of the render's seed) gives each seed its own decisions.
 /// Appends the kept VPLs to `out` and returns their count.
 uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& importance, size_t begin, size_t end,
-                     uint32_t oversampling, std::vector<float>& out);
+                     uint32_t oversampling, uint32_t seed_mix, std::vector<float>& out);
 
 }  // namespace tessera

@@ -20,13 +20,16 @@ std::unique_ptr<Integrator> make_integrator(Backend& backend, const Scene& scene
         case Method::AisMax: return std::make_unique<AisFrame>(backend, buffers, plan_effects(scene), is);
         case Method::Ic:
         case Method::Tic: {
-            std::shared_ptr<InstantCache> cache;
-            if (settings.method == Method::Tic) cache = settings.ic_state;
+            std::shared_ptr<IcPassCaches> cache;
+            // ic may be handed caches too (to look at them afterwards); they make no
+            // difference to its image, which rebuilds every pass.
+            if (settings.ic_state && settings.ic_state->temporal() == (settings.method == Method::Tic))
+                cache = settings.ic_state;
             if (!cache) {
                 IcSettings ics = settings.ic;
                 ics.temporal = settings.method == Method::Tic;
                 ics.multiple_scattering = settings.igi.multiple_scattering;
-                cache = std::make_shared<InstantCache>(ics, scene.objects);
+                cache = std::make_shared<IcPassCaches>(ics, scene.objects);
             }
             return std::make_unique<IcFrame>(backend, buffers, plan_effects(scene), is, std::move(cache));
         }
@@ -39,7 +42,7 @@ void prepare_sequence(IntegratorSettings& settings, const Scene& rest) {
         IcSettings ics = settings.ic;
         ics.temporal = true;
         ics.multiple_scattering = settings.igi.multiple_scattering;
-        settings.ic_state = std::make_shared<InstantCache>(ics, rest.objects);
+        settings.ic_state = std::make_shared<IcPassCaches>(ics, rest.objects);
     }
 }
 

@@ -8,7 +8,7 @@
 
 #include "backend/backend.h"
 #include "gi/igi_frame.h"
-#include "gi/instant_cache.h"
+#include "gi/ic_passes.h"
 #include "integrators/integrator.h"
 #include "integrators/method.h"
 #include "scene/scene.h"
@@ -22,10 +22,11 @@ struct IntegratorSettings {
     uint32_t max_scatter = 0;       ///< pt: medium scattering vertices per path, 0 = unlimited
     IgiSettings igi;                ///< igi (set_shadow_samples comes from shadow_samples)
     IcSettings ic;                  ///< ic, tic (temporal is set from the method)
-    /// tic: the cache kept across the frames of a sequence (render it frame by frame with
-    /// the same settings; render_sequence makes one); null: a cache for this call only.
-    /// It must belong to the scene being rendered (its object table).
-    std::shared_ptr<InstantCache> ic_state;
+    /// tic: the caches (one per pass) kept across the frames of a sequence (render it
+    /// frame by frame with the same settings; render_sequence makes them); null: caches
+    /// for this call only. They must belong to the scene being rendered (its object table).
+    /// ic uses non-temporal ones when given (only so that a caller can inspect them).
+    std::shared_ptr<IcPassCaches> ic_state;
     uint32_t shadow_samples = 8;    ///< area-light samples per camera hit and pass
     /// Textures at camera hits are read from the mip level of the pixel's ray cone
     /// (TsFrame::pixel_cone); false: always the finest level. pt ignores it (it
@@ -37,7 +38,7 @@ struct IntegratorSettings {
 struct IntegratorStats {
     std::string detail;              ///< method-specific log line ("" for none)
     IgiFrameStats igi;               ///< igi-family methods: the last pass's counts and stage times
-    IcFrameStats ic;                 ///< ic, tic: the last pass's cache counts (records, rays)
+    IcFrameStats ic;                 ///< ic, tic: the cache counts (records, rays) summed over the frame's passes
 };
 
 /// The integrator of settings.method for `scene` (flattened into `buffers`, which
@@ -46,7 +47,7 @@ std::unique_ptr<Integrator> make_integrator(Backend& backend, const Scene& scene
                                             const IntegratorSettings& settings);
 
 /// Before a sequence of frames of `rest` rendered with `settings`: makes the state a
-/// method keeps across frames (tic: one temporal instant cache, in settings.ic_state).
+/// method keeps across frames (tic: its temporal instant caches, in settings.ic_state).
 void prepare_sequence(IntegratorSettings& settings, const Scene& rest);
 
 }  // namespace tessera

@@ -93,13 +93,14 @@ TEST(Ais, SchedulesAgreeAcrossBackends) {
 
 TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
     // Against the path-traced reference of the same transport (pt --max-scatter 1) on
-    // the Cornell box at the same tile (3×3), 64², 1 pass, seeds 1-5: A must beat IGI
-    // (extra sets where the guidance flags interleaving failures) and A-MAX must do at
-    // least as well as A (a superset of A's sets at every pixel). At 1 pass the VPL noise
-    // is large and differs by seed (seed 4 has a VPL spike: relMSE 0.27 against 0.02 for
-    // seeds 1-3), so the test compares the mean over seeds of the per-seed error ratios,
-    // which no single seed dominates. Measured (defaults of ais_schedule.h): A/IGI 0.91-
-    // 1.005 per seed, mean 0.967; A-MAX/A 0.952-0.996, mean 0.981; A-MAX < IGI on every
+    // the Cornell box at the same tile (3×3), 64², 1 pass, seeds 1-5 (each with its own
+    // VPL sets), away from the light (test::away_from_emitter): A must beat IGI (extra sets
+    // where the guidance flags interleaving failures) and A-MAX must do at least as well
+    // as A (a superset of A's sets at every pixel). Near the light the error is the camera
+    // jitter's coverage of the emitter's edge (relMSE 0.26 for seed 4 against 0.01-0.02),
+    // which no schedule changes and which would swamp the ratios. The test compares the
+    // mean over seeds of the per-seed error ratios. Measured (defaults of ais_schedule.h):
+    // A/IGI 0.93-1.004 per seed, mean 0.966; A-MAX/A 0.86-1.05, mean 0.953; A-MAX < IGI on every
     // seed. An A that adds nothing gives A/IGI = 1 exactly and fails; an A-MAX with fewer
     // sets than A fails the second. The clamp's darkening in corners is common to all
     // three and sets the floor. The clamp is pinned at c = 0.05 (the default these ratios
@@ -115,6 +116,7 @@ TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
     ref.width = ref.height = 64;
     ref.spp = 2048;
     const Image reference = test::render_with(BackendKind::Embree, s, ref);
+    const std::vector<bool> keep = test::away_from_emitter(reference);
     double a_over_igi = 0.0, amax_over_a = 0.0;
     for (uint32_t seed : {1u, 2u, 3u, 4u, 5u}) {
         double err[3];
@@ -128,7 +130,7 @@ TEST(Ais, ErrorOrderIsIgiThenAThenAMax) {
             rs.shadow_samples = 4;
             rs.igi.clamp_c = 0.05f;
             rs.igi.vpl_importance = 1;
-            err[i++] = test::rel_mse(test::render_with(BackendKind::Embree, s, rs), reference);
+            err[i++] = test::rel_mse_where(test::render_with(BackendKind::Embree, s, rs), reference, keep);
         }
         std::printf("  seed %u: relMSE igi %.5f, ais %.5f, ais-max %.5f\n", seed, err[0], err[1], err[2]);
         EXPECT_LT(err[2], err[0]) << "seed " << seed;

@@ -7,7 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "gi/igi_frame.h"
-#include "gi/instant_cache.h"
+#include "gi/ic_passes.h"
+#include "kernels/shared/ic_probe.h"
 #include "device/effect_plan.h"
 #include "render/renderer.h"
 #include "device/scene_buffers.h"
@@ -76,14 +77,15 @@ struct TemporalRun {
     uint64_t update_rays = 0, full_rays = 0;
 };
 
-// Renders every frame of `rest` with one temporal cache; after each frame the cache's
-// records must equal a rebuild from scratch (fresh light paths with the same indices,
-// every shadow ray traced).
-TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest) {
+// Renders every frame of `rest` with tic at `spp` passes; after each frame every pass's
+// cache must equal a rebuild from scratch (fresh light paths with the same indices,
+// every shadow ray traced, the pass's own clamp).
+TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest, uint32_t spp = 1) {
     RenderSettings s = small(Method::Tic, 40);
+    s.spp = spp;
     s.ic.paths = 64;
     s.ic.temporal = true;
-    s.ic_state = std::make_shared<InstantCache>(s.ic, rest.objects);
+    s.ic_state = std::make_shared<IcPassCaches>(s.ic, rest.objects);
     TemporalRun run;
     for (int f = 0; f < rest.animation.frame_count; ++f) {
         const Scene scene = scene_at_frame(rest, f);
@@ -91,33 +93,35 @@ TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest) {
         const EffectPlan plan = plan_effects(scene);
         auto backend = make_backend({kind, ""}, buffers, plan);
         render_frame(*backend, scene, buffers, s);
-        const InstantCache& c = *s.ic_state;
-        const float b = IgiFrame(*backend, buffers, plan, s.igi).g_clamp();
-        const auto rebuilt = c.rebuilt_records(*backend, buffers, b);
-        const auto& records = c.cache().records();
-        EXPECT_EQ(rebuilt.size(), records.size());
-        EXPECT_GT(records.size(), 10u);
-        // The interpolation kernel covers what the host's placement covered (a few pixels
-        // may round differently at a record's edge; a kernel that found nothing would
-        // leave all of them to the host fallback).
-        EXPECT_LE(c.stats().fallback_pixels, 16u) << "frame " << f;
-        auto close = [](float a, float b) { return std::fabs(a - b) <= 1e-6f * std::fabs(b) + 1e-12f; };
-        for (size_t i = 0; i < records.size() && i < rebuilt.size(); ++i) {
-            bool same = close(records[i].radius, rebuilt[i].radius);
-            for (int k = 0; k < 3; ++k) same = same && close(records[i].e[k], rebuilt[i].e[k]);
-            if (!same) {
-                ADD_FAILURE() << "frame " << f << " record " << i << ": E " << records[i].e[0] << " R "
-                              << records[i].radius << " updated vs E " << rebuilt[i].e[0] << " R "
-                              << rebuilt[i].radius << " rebuilt";
-                return run;
+        for (uint32_t pass = 0; pass < spp; ++pass) {
+            const InstantCache& c = s.ic_state->pass(pass);
+            const float b = IgiFrame(*backend, buffers, plan, s.igi).g_clamp_for(pass);
+            const auto rebuilt = c.rebuilt_records(*backend, buffers, b);
+            const auto& records = c.cache().records();
+            EXPECT_EQ(rebuilt.size(), records.size());
+            EXPECT_GT(records.size(), 10u);
+            // The interpolation kernel covers what the host's placement covered (a few
+            // pixels may round differently at a record's edge; a kernel that found nothing
+            // would leave all of them to the host fallback).
+            EXPECT_LE(c.stats().fallback_pixels, 16u) << "frame " << f;
+            auto close = [](float a, float b) { return std::fabs(a - b) <= 1e-6f * std::fabs(b) + 1e-12f; };
+            for (size_t i = 0; i < records.size() && i < rebuilt.size(); ++i) {
+                bool same = close(records[i].radius, rebuilt[i].radius);
+                for (int k = 0; k < 3; ++k) same = same && close(records[i].e[k], rebuilt[i].e[k]);
+                if (!same) {
+                    ADD_FAILURE() << "frame " << f << " pass " << pass << " record " << i << ": E "
+                                  << records[i].e[0] << " R " << records[i].radius << " updated vs E "
+                                  << rebuilt[i].e[0] << " R " << rebuilt[i].radius << " rebuilt";
+                    return run;
+                }
             }
+            if (f == 0) continue;
+            run.removed += c.stats().removed;
+            run.retraced += c.stats().paths_retraced;
+            run.paths += s.ic.paths;
+            run.update_rays += c.stats().shadow_rays + c.stats().probe_rays;
+            run.full_rays += records.size() * (c.vpls().size() / TS_VPL_FLOATS + TS_IC_PROBE_RAYS);
         }
-        if (f == 0) continue;
-        run.removed += c.stats().removed;
-        run.retraced += c.stats().paths_retraced;
-        run.paths += s.ic.paths;
-        run.update_rays += c.stats().shadow_rays;
-        run.full_rays += records.size() * (c.vpls().size() / TS_VPL_FLOATS);
     }
     return run;
 }
@@ -127,7 +131,8 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     // changes colour, all at once (so every light path is re-traced every frame).
     const Scene rest = load("cornell-box-animated.json");
     ASSERT_EQ(rest.animation.frame_count, 30);
-    const TemporalRun all = run_and_compare_with_rebuild(GetParam(), rest);
+    // Two passes: each pass's cache is updated and must equal its own rebuild.
+    const TemporalRun all = run_and_compare_with_rebuild(GetParam(), rest, 2);
     EXPECT_GT(all.removed, 0u);
     EXPECT_EQ(all.retraced, all.paths);
     EXPECT_LT(all.update_rays, all.full_rays / 4);
@@ -166,17 +171,17 @@ TEST_P(InstantCacheOn, ChangeFreeFrameTracesNoIndirectRays) {
     RenderSettings s = small(Method::Tic, 40);
     s.ic.paths = 64;
     s.ic.temporal = true;
-    s.ic_state = std::make_shared<InstantCache>(s.ic, scene.objects);
+    s.ic_state = std::make_shared<IcPassCaches>(s.ic, scene.objects);
     const SceneBuffers buffers = make_scene_buffers(scene);
     auto backend = make_backend({GetParam(), ""}, buffers, plan_effects(scene));
     const Image first = render_frame(*backend, scene, buffers, s);
-    EXPECT_GT(s.ic_state->stats().indirect_rays(), 0u);
-    const size_t records = s.ic_state->cache().records().size();
+    EXPECT_GT(s.ic_state->pass(0).stats().indirect_rays(), 0u);
+    const size_t records = s.ic_state->pass(0).cache().records().size();
     const Image second = render_frame(*backend, scene, buffers, s);
-    EXPECT_EQ(s.ic_state->stats().light_path_rays, 0u);
-    EXPECT_EQ(s.ic_state->stats().shadow_rays, 0u);
-    EXPECT_EQ(s.ic_state->stats().created, 0u);
-    EXPECT_EQ(s.ic_state->cache().records().size(), records);
+    EXPECT_EQ(s.ic_state->pass(0).stats().light_path_rays, 0u);
+    EXPECT_EQ(s.ic_state->pass(0).stats().shadow_rays, 0u);
+    EXPECT_EQ(s.ic_state->pass(0).stats().created, 0u);
+    EXPECT_EQ(s.ic_state->pass(0).cache().records().size(), records);
     // Same records and E; only the order of the octree's record lists (rebuilt each frame)
     // changes the float sums of the interpolation.
     EXPECT_LT(test::rel_mse(second, first), 1e-12);
@@ -188,11 +193,11 @@ TEST_P(InstantCacheOn, EvictsRecordsLongOutOfView) {
     s.ic.paths = 32;
     s.ic.temporal = true;
     s.ic.evict_after_frames = 2;
-    s.ic_state = std::make_shared<InstantCache>(s.ic, scene.objects);
+    s.ic_state = std::make_shared<IcPassCaches>(s.ic, scene.objects);
     const SceneBuffers buffers = make_scene_buffers(scene);
     auto backend = make_backend({GetParam(), ""}, buffers, plan_effects(scene));
     render_frame(*backend, scene, buffers, s);
-    const size_t records = s.ic_state->cache().records().size();
+    const size_t records = s.ic_state->pass(0).cache().records().size();
     ASSERT_GT(records, 10u);
     // Turn round: the camera looks out of the open box at nothing.
     Scene away = scene;
@@ -200,14 +205,14 @@ TEST_P(InstantCacheOn, EvictsRecordsLongOutOfView) {
     size_t evicted = 0;
     for (int f = 0; f < 3; ++f) {
         render_frame(*backend, away, buffers, s);
-        evicted += s.ic_state->stats().evicted;
-        EXPECT_EQ(s.ic_state->stats().created, 0u);
+        evicted += s.ic_state->pass(0).stats().evicted;
+        EXPECT_EQ(s.ic_state->pass(0).stats().created, 0u);
     }
     EXPECT_EQ(evicted, records);
-    EXPECT_EQ(s.ic_state->cache().records().size(), 0u);
+    EXPECT_EQ(s.ic_state->pass(0).cache().records().size(), 0u);
     // Turning back recreates them.
     render_frame(*backend, scene, buffers, s);
-    EXPECT_GT(s.ic_state->stats().created, 10u);
+    EXPECT_GT(s.ic_state->pass(0).stats().created, 10u);
 }
 
 // The cache's G-buffer is the surface pass's view: a miss and a black surface serve no

@@ -126,7 +126,7 @@ TEST(SelectVpls, KeepsTheFluxInExpectation) {
         mean_count += q;
     }
     std::vector<float> kept;
-    const uint32_t n = select_vpls(vpls, importance, 0, 20000, k, kept);
+    const uint32_t n = select_vpls(vpls, importance, 0, 20000, k, 0u, kept);
     ASSERT_EQ(kept.size(), size_t(n) * TS_VPL_FLOATS);
     double flux = 0.0;
     for (uint32_t i = 0; i < n; ++i) flux += kept[i * TS_VPL_FLOATS + TS_VPL_FLUX];
@@ -134,7 +134,7 @@ TEST(SelectVpls, KeepsTheFluxInExpectation) {
     EXPECT_NEAR(double(n), mean_count, 5.0 * std::sqrt(var_count));
     // The same candidates keep the same VPLs.
     std::vector<float> again;
-    select_vpls(vpls, importance, 0, 20000, k, again);
+    select_vpls(vpls, importance, 0, 20000, k, 0u, again);
     EXPECT_EQ(kept, again);
 }
 

@@ -10,7 +10,7 @@
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
 #include "gi/ic_gather.h"
-#include "gi/instant_cache.h"
+#include "gi/ic_passes.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
 
@@ -35,15 +35,15 @@ struct IcTestFrame {
         settings.igi.tile = 1;
         settings.ic.paths = 64;
         settings.ic.temporal = true;
-        settings.ic_state = std::make_shared<InstantCache>(settings.ic, scene.objects);
+        settings.ic_state = std::make_shared<IcPassCaches>(settings.ic, scene.objects);
         embree = make_backend({BackendKind::Embree, ""}, buffers, plan);
         render_frame(*embree, scene, buffers, settings);
     }
     IcTestFrame(const IcTestFrame&) = delete;
     IcTestFrame& operator=(const IcTestFrame&) = delete;
 
-    const std::vector<IcRecord>& records() const { return settings.ic_state->cache().records(); }
-    const std::vector<float>& vpls() const { return settings.ic_state->vpls(); }
+    const std::vector<IcRecord>& records() const { return settings.ic_state->pass(0).cache().records(); }
+    const std::vector<float>& vpls() const { return settings.ic_state->pass(0).vpls(); }
     size_t vpl_count() const { return vpls().size() / TS_VPL_FLOATS; }
 
     /// Every (record, VPL) pair in order (TS_IC_PAIR_WORDS each), its code from the Embree

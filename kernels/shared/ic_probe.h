@@ -1,0 +1,43 @@
+/* The hemisphere probe of an instant-cache record (docs/instant-caching.md §4): Ward's
+ * hemisphere rays (Ward, Rubinstein & Clear 1988), kept only for the distance to the
+ * nearest surface over the record. A record's validity ball is then kept inside that
+ * distance, so a record never serves a point behind an occluder its probe saw (a wall
+ * between two rooms, the far side of a doorway's jamb). The host traces the rays
+ * (host/gi/ic_probe.h); the directions are shared code so any device could trace them.
+ *
+ * TS_IC_PROBE_RAYS directions: a 4 × 8 stratified grid over the unit disk (radius² × angle),
+ * lifted to a cosine-weighted hemisphere about the geometric normal (Malley's method), and
+ * shifted (Cranley–Patterson) by a hash of the record's position, so records a pixel apart
+ * do not share blind spots and the same record always gets the same rays. */
+#ifndef TS_IC_PROBE_H
+#define TS_IC_PROBE_H
+#include "shared/compat.h"
+#include "shared/geometry.h"
+#include "shared/rng.h"
+#include "shared/sampling.h"
+
+TS_NAMESPACE_BEGIN
+
+#define TS_IC_PROBE_RAYS 32u
+#define TS_IC_PROBE_RINGS 4u /* strata in radius²; TS_IC_PROBE_RAYS / TS_IC_PROBE_RINGS in angle */
+
+/* Probe ray k (0 ≤ k < TS_IC_PROBE_RAYS) of the record surface s, of unit direction and
+ * length `reach` (scene units): hits beyond it cannot bound the record. */
+TS_INLINE TsRay ts_ic_probe_ray(const TsSurface* s, uint k, float reach) {
+    const uint sectors = TS_IC_PROBE_RAYS / TS_IC_PROBE_RINGS;
+    TsRng rng = ts_rng_seed(as_uint(s->position.x) ^ 0x70726f62u, as_uint(s->position.y),
+                            as_uint(s->position.z));
+    float su = ts_rng_next(&rng), sv = ts_rng_next(&rng);
+    float u = ((float)(k % TS_IC_PROBE_RINGS) + su) / (float)TS_IC_PROBE_RINGS;
+    float v = ((float)(k / TS_IC_PROBE_RINGS) + sv) / (float)sectors;
+    TsRay r;
+    r.org = ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale);
+    r.dir = ts_from_local(s->geo_normal, ts_sample_cosine_hemisphere(fmin(u, 0.99999994f), v));
+    r.tmin = 0.0f;
+    r.tmax = reach;
+    return r;
+}
+
+TS_NAMESPACE_END
+
+#endif /* TS_IC_PROBE_H */

@@ -1,0 +1,111 @@
+// The instant caches of a frame's passes (gi/ic_passes.h): pass p of ic and of tic draws
+// path block p, so tic's frame 0 is ic's image for any spp, tic's passes carry different
+// VPLs that stay the ones ic would draw after the update, the clamp loosens per pass,
+// the caches over the memory budget are released, and the stats sum over the passes.
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
+#include "gi/ic_passes.h"
+#include "render/renderer.h"
+#include "scene/loader.h"
+#include "support/render_helpers.h"
+#include "util/error.h"
+
+namespace tessera {
+namespace {
+
+Scene load(const char* file) {
+    return load_scene(default_scene_path().parent_path() / file, make_data_path(std::nullopt));
+}
+
+RenderSettings small(Method m, uint32_t spp) {
+    RenderSettings s;
+    s.method = m;
+    s.spp = spp;
+    s.width = s.height = 32;
+    s.igi.tile = 1;
+    s.ic.paths = 32;
+    return s;
+}
+
+class IcPassesOn : public ::testing::TestWithParam<BackendKind> {};
+
+TEST_P(IcPassesOn, TicFrameZeroIsIcForEverySpp) {
+    // Pass p of both draws path block p with pass p's clamp and places the same records
+    // from the same G-buffer: the same bits, at any spp. (Before, tic drew block 0 in
+    // every pass with a fixed clamp: its spp = 4 image was its spp = 1 image.)
+    const Scene scene = test::cornell_box();
+    for (uint32_t spp : {1u, 2u, 4u}) {
+        const Image ic = test::render_with(GetParam(), scene, small(Method::Ic, spp));
+        const Image tic = test::render_with(GetParam(), scene, small(Method::Tic, spp));
+        test::expect_images_identical(ic, tic);
+    }
+    const Image one = test::render_with(GetParam(), scene, small(Method::Tic, 1));
+    const Image four = test::render_with(GetParam(), scene, small(Method::Tic, 4));
+    EXPECT_GT(test::rel_mse(four, one), 1e-5) << "tic's passes must differ";
+}
+
+TEST_P(IcPassesOn, EachPassKeepsItsOwnLightPathsAcrossFrames) {
+    // Two frames of the animated Cornell box with tic at 2 spp: after the update, pass p's
+    // cache gathers from exactly the VPLs ic draws for pass p on that frame, and passes 0
+    // and 1 gather from different VPLs.
+    const Scene rest = load("cornell-box-animated.json");
+    RenderSettings tic = small(Method::Tic, 2);
+    tic.ic.temporal = true;
+    tic.ic_state = std::make_shared<IcPassCaches>(tic.ic, rest.objects);
+    RenderStats stats;
+    for (int f = 0; f < 2; ++f) {
+        const Scene scene = scene_at_frame(rest, f);
+        const SceneBuffers buffers = make_scene_buffers(scene);
+        auto backend = make_backend({GetParam(), ""}, buffers, plan_effects(scene));
+        render_frame(*backend, scene, buffers, tic, &stats);
+        if (f == 0) {
+            // Frame 0 traces both passes' paths afresh; the stats sum over the passes.
+            EXPECT_EQ(stats.ic.paths_retraced, 2u * tic.ic.paths);
+            EXPECT_EQ(stats.ic.records, tic.ic_state->pass(0).cache().records().size() +
+                                            tic.ic_state->pass(1).cache().records().size());
+            EXPECT_NE(stats.detail.find("summed over 2 passes"), std::string::npos) << stats.detail;
+        }
+    }
+    EXPECT_GT(stats.ic.paths_retraced, 0u) << "the light dims on frame 1: every path of both passes re-traced";
+    EXPECT_EQ(tic.ic_state->kept(), 2u);
+    const std::vector<float>& v0 = tic.ic_state->pass(0).vpls();
+    const std::vector<float>& v1 = tic.ic_state->pass(1).vpls();
+    EXPECT_NE(v0, v1);
+    const Scene scene = scene_at_frame(rest, 1);
+    const SceneBuffers buffers = make_scene_buffers(scene);
+    auto backend = make_backend({GetParam(), ""}, buffers, plan_effects(scene));
+    for (uint32_t pass : {0u, 1u}) {
+        RenderSettings ic = small(Method::Ic, pass + 1);  // ic's one cache holds its last pass
+        ic.ic_state = std::make_shared<IcPassCaches>(ic.ic, rest.objects);
+        render_frame(*backend, scene, buffers, ic);
+        EXPECT_EQ(ic.ic_state->pass(pass).vpls(), tic.ic_state->pass(pass).vpls()) << "pass " << pass;
+    }
+}
+
+TEST(IcPasses, ReleasesCachesOverTheMemoryBudget) {
+    IcSettings s;
+    s.temporal = true;
+    IcPassCaches caches(s, {});
+    EXPECT_FALSE(caches.after_pass(0)) << "nothing kept yet";
+    EXPECT_THROW(static_cast<const IcPassCaches&>(caches).pass(3), std::out_of_range);
+    IcSettings bad;
+    bad.min_radius_px = 0.0f;
+    EXPECT_THROW(IcPassCaches(bad, {}), InputError) << "bad settings fail before the first pass";
+    IcSettings fresh;  // ic: one cache serves every pass
+    IcPassCaches ic(fresh, {});
+    EXPECT_EQ(&ic.pass(0), &ic.pass(5));
+    EXPECT_NE(&caches.pass(0), &caches.pass(1));
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, IcPassesOn, ::testing::Values(BackendKind::Embree, BackendKind::OpenCL),
+                         [](const auto& info) { return info.param == BackendKind::Embree ? "Embree" : "OpenCL"; });
+
+}  // namespace
+}  // namespace tessera
