@@ -13,7 +13,7 @@ set(tessera_bench_tests "^(AccuracyReport|AccuracySweep|AisBound)\\.")
 # chi-square and moment tests of the sampling routines, backend agreement, error orders.
 set(tessera_statistical_tests
     "^Methods/"
-    "^Backends/(PtFurnace|PtMedium|PlaneUnderLight|InstantCacheOn)\\."
+    "^Backends/(PtFurnace|PtMedium|PlaneUnderLight|InstantCacheOn|IcPassesOn)\\."
     "^(BackendAgreement|PtAgreement|Traversal|IgiAgreement|IgiConvergence|IgiMedia|Ais|LightSelection|PassConvergence)\\."
     "^G/HenyeyGreenstein\\.SamplesMatchThePhaseFunction/"
     "^Sampling\\.(CosineHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
