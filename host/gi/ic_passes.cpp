@@ -11,14 +11,14 @@ IcPassCaches::IcPassCaches(const IcSettings& settings, const std::vector<SceneOb
 }
 
 InstantCache& IcPassCaches::pass(uint32_t pass) {
-    const size_t at = settings_.temporal ? pass : 0;
+    const size_t at = slot(pass);
     if (caches_.size() <= at) caches_.resize(at + 1);
     if (!caches_[at]) caches_[at] = std::make_unique<InstantCache>(settings_, objects_);
     return *caches_[at];
 }
 
 const InstantCache& IcPassCaches::pass(uint32_t pass) const {
-    const size_t at = settings_.temporal ? pass : 0;
+    const size_t at = slot(pass);
     if (at >= caches_.size() || !caches_[at])
         throw std::out_of_range("ic: no cache for pass " + std::to_string(pass) + " yet");
     return *caches_[at];

@@ -46,6 +46,8 @@ public:
     static constexpr size_t kKeptPairs = size_t(1) << 28;
 
 private:
+    size_t slot(uint32_t pass) const { return settings_.temporal ? pass : 0; }
+
     IcSettings settings_;
     std::vector<SceneObject> objects_;
     std::vector<std::unique_ptr<InstantCache>> caches_;  // tic: index = pass; ic: one

@@ -47,9 +47,8 @@ void store_vpl(LightPath& path, float3 position, float3 normal, float3 flux, flo
 // by path and bounce, not the Halton point, whose dimensions stay those of the surface
 // vertices (images without a medium, or with single scattering, keep their VPLs).
 // Returns what ts_light_path_medium returns; on an event records the segment up to it.
-uint32_t medium_vertex(const ts::TsMedium& med, const LightPathSettings& settings, uint32_t bounce,
+uint32_t medium_vertex(const ts::TsMedium& med, const LightPathSettings& settings, uint32_t scramble, uint32_t bounce,
                        const ts::TsHit& hit, InFlight& p) {
-    const uint32_t scramble = settings.halton_seed ^ light_path_seed_mix(settings.seed);
     ts::TsRng rng = ts::ts_rng_seed(scramble ^ 0x6d656469u, static_cast<uint32_t>(p.path->index), bounce);
     float u[5];
     for (float& x : u) x = ts::ts_rng_next(&rng);
@@ -79,8 +78,9 @@ uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const Li
                            std::vector<LightPath>& paths) {
     const ts::TsSceneView sv = make_scene_view(scene);
     const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
-    const ScrambledHalton halton(5 + 3 * static_cast<int>(settings.max_bounces),
-                                 settings.halton_seed ^ light_path_seed_mix(settings.seed));
+    // The Halton digits and the medium events' generator share one scramble of the seed.
+    const uint32_t scramble = settings.halton_seed ^ light_path_seed_mix(settings.seed);
+    const ScrambledHalton halton(5 + 3 * static_cast<int>(settings.max_bounces), scramble);
     std::vector<InFlight> live;
     for (LightPath& p : paths) {
         p.vpls.clear();
@@ -102,7 +102,7 @@ uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const Li
             const ts::TsHit hit = load_hit(&hits[TS_HIT_FLOATS * i]);
             int attenuated = 0;
             if (settings.medium_scattering && med.present) {
-                const uint32_t m = medium_vertex(med, settings, bounce, hit, p);
+                const uint32_t m = medium_vertex(med, settings, scramble, bounce, hit, p);
                 if (m & TS_LIGHT_PATH_MEDIUM) {
                     if (m & TS_LIGHT_PATH_CONTINUES) alive.push_back(p);
                     continue;

@@ -1,11 +1,25 @@
 #include "integrators/factory.h"
 
+#include <vector>
+
 #include "gi/ais_frame.h"
 #include "gi/ic_frame.h"
 #include "integrators/kernel_integrator.h"
 #include "device/effect_plan.h"
 
 namespace tessera {
+namespace {
+
+// The caches of `settings.method` (ic or tic) for a scene with `objects`.
+std::shared_ptr<IcPassCaches> make_ic_caches(const IntegratorSettings& settings,
+                                             const std::vector<SceneObject>& objects) {
+    IcSettings ics = settings.ic;
+    ics.temporal = settings.method == Method::Tic;
+    ics.multiple_scattering = settings.igi.multiple_scattering;
+    return std::make_shared<IcPassCaches>(ics, objects);
+}
+
+}  // namespace
 
 std::unique_ptr<Integrator> make_integrator(Backend& backend, const Scene& scene, const SceneBuffers& buffers,
                                             const IntegratorSettings& settings) {
@@ -25,12 +39,7 @@ std::unique_ptr<Integrator> make_integrator(Backend& backend, const Scene& scene
             // difference to its image, which rebuilds every pass.
             if (settings.ic_state && settings.ic_state->temporal() == (settings.method == Method::Tic))
                 cache = settings.ic_state;
-            if (!cache) {
-                IcSettings ics = settings.ic;
-                ics.temporal = settings.method == Method::Tic;
-                ics.multiple_scattering = settings.igi.multiple_scattering;
-                cache = std::make_shared<IcPassCaches>(ics, scene.objects);
-            }
+            if (!cache) cache = make_ic_caches(settings, scene.objects);
             return std::make_unique<IcFrame>(backend, buffers, plan_effects(scene), is, std::move(cache));
         }
     }
@@ -39,10 +48,7 @@ std::unique_ptr<Integrator> make_integrator(Backend& backend, const Scene& scene
 
 void prepare_sequence(IntegratorSettings& settings, const Scene& rest) {
     if (settings.method == Method::Tic) {  // one cache for this sequence, of this scene
-        IcSettings ics = settings.ic;
-        ics.temporal = true;
-        ics.multiple_scattering = settings.igi.multiple_scattering;
-        settings.ic_state = std::make_shared<IcPassCaches>(ics, rest.objects);
+        settings.ic_state = make_ic_caches(settings, rest.objects);
     }
 }
 

@@ -20,10 +20,6 @@
 namespace tessera {
 namespace {
 
-Scene load(const char* file) {
-    return load_scene(default_scene_path().parent_path() / file, make_data_path(std::nullopt));
-}
-
 RenderSettings small(Method m, uint32_t spp) {
     RenderSettings s;
     s.method = m;
@@ -55,7 +51,7 @@ TEST_P(IcPassesOn, EachPassKeepsItsOwnLightPathsAcrossFrames) {
     // Two frames of the animated Cornell box with tic at 2 spp: after the update, pass p's
     // cache gathers from exactly the VPLs ic draws for pass p on that frame, and passes 0
     // and 1 gather from different VPLs.
-    const Scene rest = load("cornell-box-animated.json");
+    const Scene rest = test::shipped_scene("cornell-box-animated.json");
     RenderSettings tic = small(Method::Tic, 2);
     tic.ic.temporal = true;
     tic.ic_state = std::make_shared<IcPassCaches>(tic.ic, rest.objects);

@@ -229,8 +229,7 @@ TEST(IgiMedia, EveryIgiFamilyMethodScattersMoreThanOnce) {
     // their PM was single scattering alone (0.046 against igi's 0.107 on a foggy corridor).
     // igi, ic and tic: the same bits (same sets, same march). ais and ais-max refine PM
     // with extra sets: the same mean within 3% (measured 0.1% and 1.6% at 32², 2 passes).
-    const Scene fog = load_scene(default_scene_path().parent_path() / "cornell-box-fog.json",
-                                 make_data_path(std::nullopt));
+    const Scene fog = test::shipped_scene("cornell-box-fog.json");
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         auto pm = [&](Method m, bool multiple) {
             RenderSettings rs;

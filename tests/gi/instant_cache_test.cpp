@@ -18,10 +18,6 @@
 namespace tessera {
 namespace {
 
-Scene load(const char* file) {
-    return load_scene(default_scene_path().parent_path() / file, make_data_path(std::nullopt));
-}
-
 RenderSettings small(Method m, int size) {
     RenderSettings s;
     s.method = m;
@@ -52,7 +48,7 @@ TEST_P(InstantCacheOn, MatchesIgiWithTheSameVpls) {
     // cache's interpolation error, which must shrink with Ward's a. Measured on 64²
     // (Embree and OpenCL alike): a = 0.05: 4.5e-4, 0.3: 6.4e-3, 1.0: 1.9e-2. A cache with
     // the wrong VPLs, weights or visibility stays far off at small a.
-    const Scene scene = load("cornell-box.json");
+    const Scene scene = test::shipped_scene("cornell-box.json");
     RenderSettings igi = small(Method::Igi, 64);
     igi.igi.paths_per_set = 256;
     igi.igi.vpl_importance = 1;  // the plain paths 0..255, as the cache's
@@ -129,7 +125,7 @@ TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest, ui
 TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     // The shipped animation: a cube slides across the floor, the light dims, a wall
     // changes colour, all at once (so every light path is re-traced every frame).
-    const Scene rest = load("cornell-box-animated.json");
+    const Scene rest = test::shipped_scene("cornell-box-animated.json");
     ASSERT_EQ(rest.animation.frame_count, 30);
     // Two passes: each pass's cache is updated and must equal its own rebuild.
     const TemporalRun all = run_and_compare_with_rebuild(GetParam(), rest, 2);
@@ -167,7 +163,7 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
 }
 
 TEST_P(InstantCacheOn, ChangeFreeFrameTracesNoIndirectRays) {
-    const Scene scene = scene_at_frame(load("cornell-box-animated.json"), 7);
+    const Scene scene = scene_at_frame(test::shipped_scene("cornell-box-animated.json"), 7);
     RenderSettings s = small(Method::Tic, 40);
     s.ic.paths = 64;
     s.ic.temporal = true;
@@ -188,7 +184,7 @@ TEST_P(InstantCacheOn, ChangeFreeFrameTracesNoIndirectRays) {
 }
 
 TEST_P(InstantCacheOn, EvictsRecordsLongOutOfView) {
-    Scene scene = load("cornell-box.json");
+    Scene scene = test::shipped_scene("cornell-box.json");
     RenderSettings s = small(Method::Tic, 32);
     s.ic.paths = 32;
     s.ic.temporal = true;

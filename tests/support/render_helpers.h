@@ -22,6 +22,11 @@ namespace tessera::test {
 /// The default scene (scenes/cornell-box.json), loaded without a data directory.
 inline Scene cornell_box() { return load_scene(default_scene_path(), make_data_path(std::nullopt)); }
 
+/// The shipped scene `file` of scenes/ (e.g. "cornell-box-animated.json"), without a data directory.
+inline Scene shipped_scene(const char* file) {
+    return load_scene(default_scene_path().parent_path() / file, make_data_path(std::nullopt));
+}
+
 inline Image render_with(BackendKind kind, const Scene& scene, const RenderSettings& settings) {
     SceneBuffers buffers = make_scene_buffers(scene);
     auto backend = make_backend(BackendOptions{kind, ""}, buffers, plan_effects(scene));
