@@ -18,8 +18,13 @@ void require_regular_file(const fs::path& file, const std::string& what) {
     if (!fs::is_regular_file(st)) throw InputError(file.string() + ": " + what + " is not a regular file");
 }
 
-std::string read_input_file(const fs::path& file, const std::string& what) {
+std::string read_input_file(const fs::path& file, const std::string& what, std::uintmax_t max_bytes) {
     require_regular_file(file, what);
+    std::error_code ec;
+    const std::uintmax_t size = fs::file_size(file, ec);
+    if (!ec && size > max_bytes)
+        throw InputError(file.string() + ": " + what + " of " + std::to_string(size) + " bytes exceeds the limit of " +
+                         std::to_string(max_bytes) + " bytes");
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError(file.string() + ": cannot read " + what + " (permission denied?)");
     std::ostringstream text;

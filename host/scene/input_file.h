@@ -1,6 +1,7 @@
 // Checks and reads an input file (scene, OBJ, MTL, texture) so that every kind of
 // "cannot use this path" gets one message naming the file and the reason.
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -13,7 +14,9 @@ namespace tessera::scene_detail {
 void require_regular_file(const std::filesystem::path& file, const std::string& what);
 
 /// The bytes of `file` after require_regular_file(); throws InputError
-/// "<file>: cannot read <what>" when it cannot be opened or read (permissions).
-std::string read_input_file(const std::filesystem::path& file, const std::string& what);
+/// "<file>: cannot read <what>" when it cannot be opened or read (permissions), and
+/// "<file>: <what> of N bytes exceeds the limit of M" when it is larger than `max_bytes`
+/// (util/input_limits.h), before reading any of it.
+std::string read_input_file(const std::filesystem::path& file, const std::string& what, std::uintmax_t max_bytes);
 
 }  // namespace tessera::scene_detail

@@ -5,6 +5,7 @@
 #include "scene/input_file.h"
 #include "scene/json_field.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera::scene_detail {
 
@@ -13,63 +14,68 @@ namespace {
 using json = nlohmann::json;
 
 // Follows the parser through the document to know the key path of the value being read,
-// for duplicate keys (which nlohmann::json would silently resolve to the last value) and
-// for a number that overflows (which its exception does not place).
+// for duplicate keys (which nlohmann::json would silently resolve to the last value), for
+// a number that overflows (which its exception does not place) and for nesting deeper
+// than limits::kJsonDepth. Each level keeps its own key or index only: the path is put
+// together when a message needs it, so memory grows with the depth, not its square.
 class KeyTracker {
 public:
-    KeyTracker(const std::filesystem::path& file) : file_(file) {}
+    explicit KeyTracker(const std::filesystem::path& file) : file_(file) {}
 
     bool event(json::parse_event_t event, const json& parsed) {
         switch (event) {
             case json::parse_event_t::object_start:
             case json::parse_event_t::array_start:
-                frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}, next_path()});
+                if (frames_.size() >= size_t(limits::kJsonDepth))
+                    throw InputError(file_.string() + ": " + where(current_path()) + ": JSON nested deeper than " +
+                                     std::to_string(limits::kJsonDepth) + " levels (the limit for any input file)");
+                frames_.push_back({event == json::parse_event_t::array_start, 0, {}, {}});
                 break;
             case json::parse_event_t::object_end:
             case json::parse_event_t::array_end:
                 frames_.pop_back();
+                advance();
                 break;
             case json::parse_event_t::key: {
                 Frame& f = frames_.back();
                 f.key = parsed.get<std::string>();
                 if (!f.keys.insert(f.key).second)
-                    throw InputError(file_.string() + ": duplicate key '" + join(f.path, f.key) +
+                    throw InputError(file_.string() + ": duplicate key '" + current_path() +
                                      "' (a key may appear once in an object)");
                 break;
             }
             case json::parse_event_t::value:
-                (void)next_path();
+                advance();
                 break;
         }
         return true;
     }
 
-    /// The path of the value the parser is reading now ("" at the top level).
+    /// The path of the value the parser is reading now ("" at the top level), e.g.
+    /// "objects[2].transform"; a path past 120 characters keeps its start and ends in "...".
     std::string current_path() const {
-        if (frames_.empty()) return "";
-        const Frame& f = frames_.back();
-        return f.array ? f.path + "[" + std::to_string(f.next) + "]" : join(f.path, f.key);
+        std::string p;
+        for (const Frame& f : frames_) {
+            if (p.size() > 120) return p.substr(0, 117) + "...";
+            if (f.array) p += "[" + std::to_string(f.next) + "]";
+            else p += (p.empty() ? "" : ".") + f.key;
+        }
+        return p.size() > 120 ? p.substr(0, 117) + "..." : p;
     }
 
 private:
     struct Frame {
         bool array;
-        size_t next;                 // index of the next element (arrays)
+        size_t next;                 // index of the element being read (arrays)
         std::string key;             // the last key read (objects)
         std::set<std::string> keys;  // keys read so far (objects)
-        std::string path;
     };
 
-    static std::string join(const std::string& path, const std::string& key) {
-        return path.empty() ? key : path + "." + key;
-    }
+    static std::string where(const std::string& path) { return path.empty() ? "top level" : "key '" + path + "'"; }
 
-    // The path of the element starting now; advances the enclosing array's index.
-    std::string next_path() {
-        if (frames_.empty()) return "";
-        std::string p = current_path();
-        if (frames_.back().array) ++frames_.back().next;
-        return p;
+    // A value or a nested array/object has ended: the enclosing array moves to its next element.
+    void advance() {
+        if (!frames_.empty() && frames_.back().array) ++frames_.back().next;
     }
 
     const std::filesystem::path& file_;
@@ -86,8 +92,8 @@ std::string parse_error_reason(const std::string& what) {
 
 }  // namespace
 
-json parse_json_file(const std::filesystem::path& file) {
-    const std::string s = read_input_file(file, "scene file");
+json parse_json_file(const std::filesystem::path& file, const std::string& what) {
+    const std::string s = read_input_file(file, what, limits::kJsonFileBytes);
     KeyTracker tracker(file);
     try {
         return json::parse(s, [&](int, json::parse_event_t event, json& parsed) {

@@ -75,10 +75,12 @@ glm::vec3 read_colour(const JsonField& j, bool at_most_one);
 /// zero), with a finite cross product. Throws InputError naming `where` otherwise.
 void check_camera_view(const JsonField& where, glm::vec3 position, glm::vec3 look_at, glm::vec3 up);
 
-/// Reads and parses a JSON file. Throws InputError naming the file if it is missing, a
-/// directory or unreadable; "<file>:<line>:<column>: malformed JSON: <reason>" for a
-/// syntax error; and naming the key path for a duplicate key or a number literal that
-/// overflows a double (1e999).
-nlohmann::json parse_json_file(const std::filesystem::path& file);
+/// Reads and parses a JSON file; `what` names its role in messages ("scene file", "camera
+/// path"). Throws InputError naming the file if it is missing, a directory, unreadable or
+/// larger than limits::kJsonFileBytes; "<file>:<line>:<column>: malformed JSON: <reason>"
+/// for a syntax error; and naming the key path for a duplicate key, a number literal that
+/// overflows a double (1e999) or nesting deeper than limits::kJsonDepth. Memory and time
+/// are linear in the file's size (util/input_limits.h).
+nlohmann::json parse_json_file(const std::filesystem::path& file, const std::string& what = "scene file");
 
 }  // namespace tessera::scene_detail

@@ -11,6 +11,7 @@
 #include "scene/mtl_scan.h"
 #include "scene/obj_scan.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera::scene_detail {
 
@@ -128,11 +129,11 @@ void check_index(const fs::path& obj, const std::string& shape, size_t face, con
 }  // namespace
 
 ObjMesh load_obj_mesh(const fs::path& obj_file) {
-    const ObjScan scan = scan_obj(obj_file, read_input_file(obj_file, "OBJ file"));
+    const ObjScan scan = scan_obj(obj_file, read_input_file(obj_file, "OBJ file", limits::kMeshFileBytes));
     std::map<std::string, MtlDefinition> defined;
     for (const MtlLibLine& lib : scan.mtllibs) {
         const std::string why = "MTL file (mtllib at " + obj_file.string() + ":" + std::to_string(lib.line) + ")";
-        scan_mtl(lib.file, read_input_file(lib.file, why), defined);
+        scan_mtl(lib.file, read_input_file(lib.file, why, limits::kMeshFileBytes), defined);
     }
     check_usemtl(obj_file, scan, defined);
 

@@ -1,64 +1,61 @@
 #include "view/camera_path.h"
 
-#include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "image/atomic_file.h"
+#include "scene/json_field.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera::view {
 namespace {
 
-glm::vec3 read_vec3(const nlohmann::json& e, const char* key, const std::string& where) {
-    if (!e.contains(key) || !e[key].is_array() || e[key].size() != 3)
-        throw InputError(where + ": \"" + key + "\" must be an array of 3 numbers");
-    glm::vec3 v;
-    for (int i = 0; i < 3; ++i) {
-        if (!e[key][i].is_number() || !std::isfinite(e[key][i].get<double>()))
-            throw InputError(where + ": \"" + key + "\" must be an array of 3 finite numbers");
-        v[i] = e[key][i].get<float>();
+using scene_detail::JsonField;
+
+PathFrame read_entry(const JsonField& e) {
+    e.require_known_keys({"position", "look_at", "up", "vfov", "frame"});
+    PathFrame f;
+    f.camera.position = e["position"].vec3();
+    f.camera.look_at = e["look_at"].vec3();
+    f.camera.up = e["up"].vec3();
+    // The same test as the scene's camera block: a path replays through the same camera code.
+    scene_detail::check_camera_view(e, f.camera.position, f.camera.look_at, f.camera.up);
+    const JsonField vfov = e["vfov"];
+    f.camera.vfov_deg = vfov.number();
+    if (!(f.camera.vfov_deg > 0.0f && f.camera.vfov_deg < 180.0f)) vfov.fail("must be degrees in (0, 180)");
+    if (const auto frame = e.find("frame")) {
+        f.frame = frame->integer();
+        if (f.frame < 0 || f.frame >= limits::kViewFrames)
+            frame->fail("must be an animation frame in 0.." + std::to_string(limits::kViewFrames - 1));
     }
-    return v;
+    return f;
+}
+
+std::vector<PathFrame> read_entries(const std::filesystem::path& path) {
+    const nlohmann::json doc = scene_detail::parse_json_file(path, "camera path");
+    const JsonField root(doc, path, "");
+    root.require_known_keys({"cameras"});
+    const JsonField cameras = root["cameras"];
+    if (cameras.size() == 0) cameras.fail("a camera path needs at least one camera");
+    if (cameras.size() > limits::kPathEntries)
+        cameras.fail("more than " + std::to_string(limits::kPathEntries) + " cameras (the limit for a path)");
+    std::vector<PathFrame> frames;
+    frames.reserve(cameras.size());
+    for (size_t i = 0; i < cameras.size(); ++i) frames.push_back(read_entry(cameras.at(i)));
+    return frames;
 }
 
 }  // namespace
 
 std::vector<PathFrame> read_camera_path(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError("--camera-path " + path.string() + ": cannot open the file");
-    nlohmann::json doc;
     try {
-        doc = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-        throw InputError("--camera-path " + path.string() + ": not valid JSON (" + e.what() + ")");
+        return read_entries(path);
+    } catch (const InputError& e) {
+        throw InputError(std::string("--camera-path ") + e.what());
     }
-    if (!doc.is_object() || !doc.contains("cameras") || !doc["cameras"].is_array() || doc["cameras"].empty())
-        throw InputError("--camera-path " + path.string() + ": expected an object with a non-empty \"cameras\" array");
-    std::vector<PathFrame> frames;
-    for (size_t i = 0; i < doc["cameras"].size(); ++i) {
-        const nlohmann::json& e = doc["cameras"][i];
-        const std::string where = "--camera-path " + path.string() + ": cameras[" + std::to_string(i) + "]";
-        if (!e.is_object()) throw InputError(where + ": expected an object");
-        PathFrame f;
-        f.camera.position = read_vec3(e, "position", where);
-        f.camera.look_at = read_vec3(e, "look_at", where);
-        f.camera.up = read_vec3(e, "up", where);
-        if (!e.contains("vfov") || !e["vfov"].is_number() || !(e["vfov"].get<double>() > 0) ||
-            !(e["vfov"].get<double>() < 180))
-            throw InputError(where + ": \"vfov\" must be a number of degrees in (0, 180)");
-        f.camera.vfov_deg = e["vfov"].get<float>();
-        if (e.contains("frame")) {
-            if (!e["frame"].is_number_integer() || e["frame"].get<int>() < 0)
-                throw InputError(where + ": \"frame\" must be an integer >= 0");
-            f.frame = e["frame"].get<int>();
-        }
-        frames.push_back(f);
-    }
-    return frames;
 }
 
 void write_camera_path(const std::filesystem::path& path, const std::vector<PathFrame>& frames) {

@@ -16,9 +16,14 @@ struct PathFrame {
 };
 
 /// Reads {"cameras": [{"position": [x,y,z], "look_at": [x,y,z], "up": [x,y,z], "vfov": deg,
-/// "frame": F (optional, default 0)}, ...]}. Consecutive equal cameras are a camera at
-/// rest: the viewer accumulates passes there. Throws InputError naming the file and entry
-/// when a field is missing or not finite, or the list is empty.
+/// "frame": F (optional, default 0)}, ...]} (scene units and degrees). Consecutive equal
+/// cameras are a camera at rest: the viewer accumulates passes there. The whole file is
+/// checked before it is returned, so nothing renders from a path that fails later.
+/// Throws InputError "--camera-path <file>: key 'cameras[2].up' = [0,1,0]: <why>" for a
+/// missing, misspelt or unknown key, a value that is not finite or out of range (vfov in
+/// (0, 180), frame in 0..limits::kViewFrames-1), a camera whose view is degenerate (up zero
+/// or parallel to the view, look_at equal to position), an empty list or more than
+/// limits::kPathEntries cameras, and for the file errors of scene_detail::parse_json_file.
 std::vector<PathFrame> read_camera_path(const std::filesystem::path& path);
 
 /// Writes `frames` in the format read_camera_path reads (numbers with 9 significant

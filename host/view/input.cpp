@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
+#include "scene/json_field.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera::view {
 
@@ -20,63 +22,86 @@ int key_code(const std::string& name) {
 
 namespace {
 
-int parse_key(const nlohmann::json& v, const std::string& where) {
-    const int code = v.is_string() ? key_code(v.get<std::string>()) : -1;
-    if (code < 0) throw InputError(where + ": key " + v.dump() + " is not one character, \"space\" or \"escape\"");
+using scene_detail::JsonField;
+
+constexpr float kMaxDragPixels = 1e5f;  // a drag larger than any window (16384 px) by 6x
+constexpr const char* kDragRange = "-100000..100000 pixels";
+constexpr float kMaxScrollNotches = 100.0f;  // 1.25^100 = 5e9: any speed change a user can want
+
+int parse_key(const JsonField& v) {
+    const int code = key_code(v.string());
+    if (code < 0) v.fail("a key is one character, \"space\" or \"escape\"");
     return code;
 }
 
-float parse_number(const nlohmann::json& v, const std::string& where) {
-    if (!v.is_number()) throw InputError(where + ": expected a number, got " + v.dump());
-    return v.get<float>();
+// A finite number with |x| <= bound; `range` says the bound in words for the message.
+float bounded(const JsonField& v, float bound, const char* range) {
+    const float x = v.number();
+    if (std::fabs(x) > bound) v.fail(std::string("must be within ") + range);
+    return x;
+}
+
+// One entry: "frame" and exactly one action, so that no action is silently dropped.
+void read_event(const JsonField& e, std::vector<ScriptedEvent>& events) {
+    static constexpr const char* kActions[] = {"press", "release", "tap", "drag", "scroll", "quit"};
+    e.require_known_keys({"frame", "press", "release", "tap", "drag", "scroll", "quit"});
+    const JsonField frame = e["frame"];
+    ScriptedEvent s;
+    s.frame = frame.integer();
+    if (s.frame < 0 || s.frame >= limits::kViewFrames)
+        frame.fail("must be a viewer frame in 0.." + std::to_string(limits::kViewFrames - 1));
+    std::vector<const char*> given;
+    for (const char* a : kActions)
+        if (e.find(a)) given.push_back(a);
+    if (given.size() != 1)
+        e.fail(given.empty() ? "needs one of \"press\", \"release\", \"tap\", \"drag\", \"scroll\", \"quit\""
+                             : std::string("has both \"") + given[0] + "\" and \"" + given[1] +
+                                   "\"; give one action per entry");
+    const std::string action = given[0];
+    const JsonField v = e[given[0]];
+    using K = InputEvent::Kind;
+    if (action == "press") {
+        s.event = {K::Press, parse_key(v)};
+    } else if (action == "release") {
+        s.event = {K::Release, parse_key(v)};
+    } else if (action == "tap") {
+        s.event = {K::Press, parse_key(v)};
+        events.push_back(s);
+        s.event.kind = K::Release;
+    } else if (action == "drag") {
+        if (v.size() != 2) v.fail("\"drag\" must be [dx, dy] in pixels");
+        s.event = {K::Drag, 0, bounded(v.at(0), kMaxDragPixels, kDragRange), bounded(v.at(1), kMaxDragPixels, kDragRange)};
+    } else if (action == "scroll") {
+        s.event = {K::Scroll, 0, 0.0f, bounded(v, kMaxScrollNotches, "-100..100 notches")};
+    } else {
+        if (!v.raw().is_boolean() || !v.raw().get<bool>()) v.fail("\"quit\" must be true (leave the entry out not to quit)");
+        s.event = {K::Quit};
+    }
+    events.push_back(s);
+}
+
+std::vector<ScriptedEvent> read_events(const std::filesystem::path& path) {
+    const nlohmann::json doc = scene_detail::parse_json_file(path, "input script");
+    const JsonField root(doc, path, "");
+    root.require_known_keys({"events"});
+    const JsonField list = root["events"];
+    if (list.size() > limits::kPathEntries)
+        list.fail("more than " + std::to_string(limits::kPathEntries) + " events (the limit for a script)");
+    std::vector<ScriptedEvent> events;
+    for (size_t i = 0; i < list.size(); ++i) read_event(list.at(i), events);
+    std::stable_sort(events.begin(), events.end(),
+                     [](const ScriptedEvent& a, const ScriptedEvent& b) { return a.frame < b.frame; });
+    return events;
 }
 
 }  // namespace
 
 std::vector<ScriptedEvent> read_input_script(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw InputError("--input-script " + path.string() + ": cannot open the file");
-    nlohmann::json doc;
     try {
-        doc = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-        throw InputError("--input-script " + path.string() + ": not valid JSON (" + e.what() + ")");
+        return read_events(path);
+    } catch (const InputError& e) {
+        throw InputError(std::string("--input-script ") + e.what());
     }
-    if (!doc.is_object() || !doc.contains("events") || !doc["events"].is_array())
-        throw InputError("--input-script " + path.string() + ": expected an object with an \"events\" array");
-    std::vector<ScriptedEvent> events;
-    for (size_t i = 0; i < doc["events"].size(); ++i) {
-        const nlohmann::json& e = doc["events"][i];
-        const std::string where = "--input-script " + path.string() + ": events[" + std::to_string(i) + "]";
-        if (!e.is_object() || !e.contains("frame") || !e["frame"].is_number_integer() || e["frame"].get<int>() < 0)
-            throw InputError(where + ": needs \"frame\", an integer >= 0");
-        ScriptedEvent s;
-        s.frame = e["frame"].get<int>();
-        using K = InputEvent::Kind;
-        if (e.contains("press")) {
-            s.event = {K::Press, parse_key(e["press"], where)};
-        } else if (e.contains("release")) {
-            s.event = {K::Release, parse_key(e["release"], where)};
-        } else if (e.contains("tap")) {
-            s.event = {K::Press, parse_key(e["tap"], where)};
-            events.push_back(s);
-            s.event.kind = K::Release;
-        } else if (e.contains("drag")) {
-            const nlohmann::json& d = e["drag"];
-            if (!d.is_array() || d.size() != 2) throw InputError(where + ": \"drag\" must be [dx, dy]");
-            s.event = {K::Drag, 0, parse_number(d[0], where), parse_number(d[1], where)};
-        } else if (e.contains("scroll")) {
-            s.event = {K::Scroll, 0, 0.0f, parse_number(e["scroll"], where)};
-        } else if (e.contains("quit")) {
-            s.event = {K::Quit};
-        } else {
-            throw InputError(where + ": needs one of \"press\", \"release\", \"tap\", \"drag\", \"scroll\", \"quit\"");
-        }
-        events.push_back(s);
-    }
-    std::stable_sort(events.begin(), events.end(),
-                     [](const ScriptedEvent& a, const ScriptedEvent& b) { return a.frame < b.frame; });
-    return events;
 }
 
 }  // namespace tessera::view

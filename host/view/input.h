@@ -30,9 +30,13 @@ struct ScriptedEvent {
 
 /// Reads an input script (--input-script): a JSON object {"events": [...]} whose entries
 /// are {"frame": F, ACTION} with ACTION one of "press": KEY, "release": KEY, "tap": KEY
-/// (press and release in the same frame), "drag": [dx, dy] (pixels), "scroll": notches,
-/// "quit": true. Events are returned sorted by frame (stable). Throws InputError naming
-/// the file and the entry for anything else.
+/// (press and release in the same frame), "drag": [dx, dy] (pixels, each within
+/// +-100000), "scroll": notches (within +-100), "quit": true; exactly one ACTION per entry
+/// and F in 0..limits::kViewFrames-1. Events are returned sorted by frame (stable). The
+/// whole file is checked first. Throws InputError "--input-script <file>: key
+/// 'events[3].quit' = false: <why>" for anything else (an unknown key, a second action,
+/// a value out of range, more than limits::kPathEntries events) and for the file errors
+/// of scene_detail::parse_json_file.
 std::vector<ScriptedEvent> read_input_script(const std::filesystem::path& path);
 
 }  // namespace tessera::view

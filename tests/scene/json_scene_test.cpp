@@ -163,6 +163,23 @@ TEST_F(SceneJson, CommentKeysAreIgnored) {
     EXPECT_TRUE(found);
 }
 
+// A nesting bomb (tens of thousands of levels) stops at limits::kJsonDepth with the file
+// and where it was; 64 levels of legitimate nesting still parse (then fail as a scene).
+TEST_F(SceneJson, DeepNestingIsRejectedAtTheLimit) {
+    std::string objects;
+    for (int i = 0; i < 50000; ++i) objects += "{\"a\":";
+    for (const std::string& bomb : {std::string(50000, '['), objects}) {
+        const std::string e = test::load_error(write(bomb));
+        EXPECT_CONTAINS(e, (dir_ / "bad.json").string());
+        EXPECT_CONTAINS(e, "nested deeper than 64 levels");
+    }
+    EXPECT_CONTAINS(test::load_error(write(objects)), "key 'a.a.a.a");
+    const std::string at_limit = std::string(64, '[') + std::string(64, ']');
+    const std::string e = test::load_error(write(at_limit));
+    EXPECT_EQ(e.find("nested deeper"), std::string::npos) << e;
+    EXPECT_CONTAINS(e, "expected an object");
+}
+
 TEST_F(SceneJson, SceneFileThatIsADirectory) {
     std::filesystem::create_directories(dir_ / "dir.json");
     const std::string e = test::load_error(dir_ / "dir.json");

@@ -48,16 +48,58 @@ TEST_F(CameraPath, RoundTripsExactly) {
     }
 }
 
+// Each bad file: the message names the file, the entry's key path and the reason.
 TEST_F(CameraPath, RejectsBadEntriesNamingThem) {
-    const std::string ok = R"({"position": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 40})";
-    EXPECT_CONTAINS(error_of(R"({"cameras": []})"), "non-empty");
-    EXPECT_CONTAINS(error_of(R"({"cameras": [)" + ok + R"(, {"position": [0,0], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 40}]})"),
-                    "cameras[1]: \"position\"");
-    EXPECT_CONTAINS(error_of(R"({"cameras": [{"position": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 180}]})"),
-                    "\"vfov\"");
-    EXPECT_CONTAINS(error_of(R"({"cameras": [{"position": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 40, "frame": -2}]})"),
-                    "\"frame\"");
-    EXPECT_EQ(error_of(R"({"cameras": [)" + ok + "]}"), "");
+    const std::string ok = R"({"position": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 40)";
+    struct Case {
+        std::string text, key, reason;
+    };
+    const std::vector<Case> cases = {
+        {R"({"cameras": []})", "'cameras'", "at least one camera"},
+        {R"({"cameras": [)" + ok + R"(}, {"position": [0,0], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 40}]})",
+         "'cameras[1].position'", "3 numbers"},
+        {R"({"cameras": [)" + ok + R"(, "vfov": 180}]})", "duplicate key 'cameras[0].vfov'", "once"},
+        {R"({"cameras": [{"position": [0,0,0], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 180}]})",
+         "'cameras[0].vfov' = 180", "(0, 180)"},
+        {R"({"cameras": [)" + ok + R"(, "frame": -2}]})", "'cameras[0].frame' = -2", "0..999999"},
+        {R"({"cameras": [)" + ok + R"(, "frame": 4294967296}]})", "'cameras[0].frame' = 4294967296", "out of range"},
+        {R"({"cameras": [)" + ok + R"(, "frame": 1.5}]})", "'cameras[0].frame' = 1.5", "integer"},
+        {R"({"cameras": [)" + ok + R"(, "fov": 30}]})", "'cameras[0].fov'", "did you mean 'vfov'"},
+        {R"({"cameras": [)" + ok + R"(, "positon": [0,0,0]}]})", "'cameras[0].positon'", "did you mean 'position'"},
+        {R"({"cameras": [)" + ok + "}], \"speed\": 2}", "'speed'", "known keys here: cameras"},
+        // The third camera is degenerate: found before anything renders.
+        {R"({"cameras": [)" + ok + "}, " + ok + R"(}, {"position": [0,0,0], "look_at": [0,1,0], "up": [0,1,0], "vfov": 40}]})",
+         "'cameras[2]'", "parallel"},
+        {R"({"cameras": [{"position": [0,0,0], "look_at": [0,0,-1], "up": [0,0,0], "vfov": 40}]})", "'cameras[0]'",
+         "zero"},
+        {R"({"cameras": [{"position": [1,2,3], "look_at": [1,2,3], "up": [0,1,0], "vfov": 40}]})", "'cameras[0]'",
+         "equals position"},
+        {R"({"cameras": [{"position": [0,0,1e39], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 40}]})",
+         "'cameras[0].position[2]'", "float"},
+        {"{\"cameras\": [", "path.json:1:", "malformed JSON"},
+        {std::string(100, '[') + std::string(100, ']'), "path.json", "nested deeper than 64"},
+    };
+    for (const Case& c : cases) {
+        const std::string e = error_of(c.text);
+        EXPECT_CONTAINS(e, "--camera-path ");
+        EXPECT_CONTAINS(e, "path.json");
+        EXPECT_CONTAINS(e, c.key);
+        EXPECT_CONTAINS(e, c.reason);
+    }
+    EXPECT_EQ(error_of(R"({"cameras": [)" + ok + "}]}"), "");
+}
+
+// A path that is a directory or missing: the file and what is wrong, not a stream error.
+TEST_F(CameraPath, DirectoryOrMissingFileIsNamed) {
+    for (const auto& [p, reason] : {std::pair{dir_, "is a directory"}, std::pair{dir_ / "none.json", "not found"}}) {
+        try {
+            read_camera_path(p);
+            ADD_FAILURE() << p;
+        } catch (const InputError& e) {
+            EXPECT_CONTAINS(e.what(), "--camera-path " + p.string());
+            EXPECT_CONTAINS(e.what(), reason);
+        }
+    }
 }
 
 }  // namespace

@@ -60,20 +60,48 @@ TEST_F(InputScript, ReadsEventsSortedByFrame) {
     EXPECT_EQ(events[6].event.kind, K::Quit);
 }
 
+// Each bad script: the message names the file, the entry's key path and the reason.
 TEST_F(InputScript, RejectsBadEntriesNamingThem) {
-    EXPECT_CONTAINS(error_of("{"), "not valid JSON");
-    EXPECT_CONTAINS(error_of(R"({"ev": []})"), "\"events\"");
-    EXPECT_CONTAINS(error_of(R"({"events": [{"press": "w"}]})"), "events[0]: needs \"frame\"");
-    EXPECT_CONTAINS(error_of(R"({"events": [{"frame": 1, "press": "w"}, {"frame": -1, "press": "w"}]})"), "events[1]");
-    EXPECT_CONTAINS(error_of(R"({"events": [{"frame": 1, "press": "up"}]})"), "\"up\"");
-    EXPECT_CONTAINS(error_of(R"({"events": [{"frame": 1, "drag": [1]}]})"), "[dx, dy]");
-    EXPECT_CONTAINS(error_of(R"({"events": [{"frame": 1, "jump": 1}]})"), "needs one of");
-    try {
-        read_input_script(dir_ / "missing.json");
-        FAIL();
-    } catch (const InputError& e) {
-        EXPECT_CONTAINS(e.what(), "--input-script");
-        EXPECT_CONTAINS(e.what(), "missing.json");
+    struct Case {
+        std::string text, key, reason;
+    };
+    const std::vector<Case> cases = {
+        {"{", "script.json:1:", "malformed JSON"},
+        {R"({"ev": []})", "'ev'", "known keys here: events"},
+        {R"({"events": [{"press": "w"}]})", "'events[0].frame'", "missing"},
+        {R"({"events": [{"frame": 1, "press": "w"}, {"frame": -1, "press": "w"}]})", "'events[1].frame' = -1",
+         "0..999999"},
+        {R"({"events": [{"frame": 4294967296, "quit": true}]})", "'events[0].frame' = 4294967296", "out of range"},
+        {R"({"events": [{"frame": 4294967297, "quit": true}]})", "'events[0].frame' = 4294967297", "out of range"},
+        {R"({"events": [{"frame": 1, "press": "up"}]})", "'events[0].press' = \"up\"", "one character"},
+        {R"({"events": [{"frame": 1, "drag": [1]}]})", "'events[0].drag'", "[dx, dy]"},
+        {R"({"events": [{"frame": 1, "drag": [1, 1e6]}]})", "'events[0].drag[1]'", "100000"},
+        {R"({"events": [{"frame": 1, "jump": 1}]})", "'events[0].jump'", "known keys here"},
+        {R"({"events": [{"frame": 1, "fov": 1, "quit": true}]})", "'events[0].fov'", "known keys here"},
+        {R"({"events": [{"frame": 1}]})", "'events[0]'", "needs one of"},
+        {R"({"events": [{"frame": 1, "quit": false}]})", "'events[0].quit' = false", "must be true"},
+        {R"({"events": [{"frame": 1, "quit": 1}]})", "'events[0].quit' = 1", "must be true"},
+        {R"({"events": [{"frame": 1, "tap": "p", "quit": true}]})", "'events[0]'", "one action per entry"},
+        {R"({"events": [{"frame": 1, "scroll": 1e39}]})", "'events[0].scroll'", "float"},
+        {R"({"events": [{"frame": 1, "scroll": 101}]})", "'events[0].scroll' = 101", "100 notches"},
+        {R"({"events": [], "events": []})", "duplicate key 'events'", "once"},
+        {R"({"events": )" + std::string(20000, '['), "key 'events[0][0][0]", "nested deeper than 64"},
+    };
+    for (const Case& c : cases) {
+        const std::string e = error_of(c.text);
+        EXPECT_CONTAINS(e, "--input-script ");
+        EXPECT_CONTAINS(e, "script.json");
+        EXPECT_CONTAINS(e, c.key);
+        EXPECT_CONTAINS(e, c.reason);
+    }
+    for (const auto& [p, reason] : {std::pair{dir_ / "missing.json", "not found"}, std::pair{dir_, "is a directory"}}) {
+        try {
+            read_input_script(p);
+            ADD_FAILURE() << p;
+        } catch (const InputError& e) {
+            EXPECT_CONTAINS(e.what(), "--input-script " + p.string());
+            EXPECT_CONTAINS(e.what(), reason);
+        }
     }
 }
 

@@ -1,0 +1,60 @@
+// What one input may cost: the bounds every reader checks before it allocates, so that a
+// hostile or broken file is rejected in well under a second and a few MB of memory
+// (docs/input-limits.md lists them for users). Each bound is far above any real input of
+// its kind; the reason for each value is beside it.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "util/error.h"
+
+namespace tessera::limits {
+
+/// Bytes of one JSON file (scene, camera path, input script). The largest shipped scene
+/// file is a few kB and a 10,000-frame camera path about 2 MB; 64 MiB leaves 30x room.
+constexpr std::uintmax_t kJsonFileBytes = std::uintmax_t(64) << 20;
+
+/// Nesting depth of JSON arrays and objects. Scene files nest 5 deep at most (an object's
+/// animation keys' vectors); 64 keeps every legitimate file and stops a `[[[[...` bomb
+/// after 64 levels of parser state.
+constexpr int kJsonDepth = 64;
+
+/// Bytes of one OBJ or MTL file, read into memory whole: 2 GiB is the largest size the
+/// 32-bit vertex and index counts of the scanner can describe in practice.
+constexpr std::uintmax_t kMeshFileBytes = std::uintmax_t(2) << 30;
+
+/// Pixels on either side of an input image (texture, `compare` and `--reference` EXR,
+/// checkpoint): the same bound as --width and --height (render/parameters.cpp).
+constexpr int kImageSide = 16384;
+
+/// Float values (pixels times channels) of one input EXR: 2^28 floats are 1 GiB, enough
+/// for a 16384 x 16384 single-channel or 8192 x 8192 x 4 image, and bound what a header
+/// with a huge data window (a file of a few bytes) makes the reader allocate.
+constexpr std::uint64_t kImageFloats = std::uint64_t(1) << 28;
+
+/// Entries of a camera path and events of an input script: 10^6 frames are 9 hours at
+/// 30 fps, far beyond a fly-through, and keep a hostile file's parse under a second.
+constexpr std::size_t kPathEntries = 1000000;
+
+/// Viewer frame numbers in an input script (0-based) and animation frames in a camera path
+/// stay below this: the same 10^6 as kPathEntries, so a script cannot ask the headless
+/// viewer for days of frames before its first event.
+constexpr int kViewFrames = 1000000;
+
+/// Throws InputError "<what> <file>: <w>x<h> [x <channels>] exceeds <bound>" when an image
+/// header asks for more than kImageSide per side or kImageFloats values, before anything
+/// is allocated. `what` names the role ("texture", "reference image").
+inline void check_image_size(const std::string& what, const std::string& file, long long width, long long height,
+                             long long channels) {
+    const std::string size = std::to_string(width) + "x" + std::to_string(height);
+    if (width < 1 || height < 1) throw InputError(what + " " + file + ": image size " + size + " is empty");
+    if (width > kImageSide || height > kImageSide)
+        throw InputError(what + " " + file + ": image size " + size + " exceeds the limit of " +
+                         std::to_string(kImageSide) + " pixels per side");
+    if (channels > 0 && std::uint64_t(width) * std::uint64_t(height) * std::uint64_t(channels) > kImageFloats)
+        throw InputError(what + " " + file + ": " + size + " pixels x " + std::to_string(channels) +
+                         " channels exceed the limit of 2^28 values (1 GiB)");
+}
+
+}  // namespace tessera::limits
