@@ -41,6 +41,9 @@ void check_compare_options(const CompareArgs& a, const CLI::App& cmd) {
     if (!a.flip_map.empty()) maps.push_back({a.flip_map, "--flip-map"});
     if (!a.cvvdp_map.empty()) maps.push_back({a.cvvdp_map, "--cvvdp-map"});
     check_outputs(maps, {});
+    for (const OutputFile& m : maps)
+        if (m.path.extension() != ".png" && m.path.extension() != ".PNG")
+            throw InputError(m.role + " " + m.path.string() + ": the map is written as PNG; name it .png");
     // equivalent() with an error code: libstdc++ 13 and later report an error, not
     // false, when a map does not exist yet.
     std::error_code ec;
@@ -51,11 +54,30 @@ void check_compare_options(const CompareArgs& a, const CLI::App& cmd) {
     prepare_output_directories(maps);
 }
 
+// The two images cover the same pixels: the same size and the same data window origin
+// (pixel (x, y) of one is pixel (x, y) of the other), and the reference is radiance (>= 0).
+void check_comparable(const Image& ref, const Image& test, const CompareArgs& a) {
+    if (ref.x0 != test.x0 || ref.y0 != test.y0)
+        throw InputError("image data windows differ: " + a.ref + " starts at pixel (" + std::to_string(ref.x0) + ", " +
+                         std::to_string(ref.y0) + "), " + a.test + " at (" + std::to_string(test.x0) + ", " +
+                         std::to_string(test.y0) + "); they do not cover the same pixels");
+    for (const char* name : {"R", "G", "B"})
+        if (const ImageChannel* c = ref.find(name))
+            for (size_t i = 0; i < c->data.size(); ++i)
+                if (c->data[i] < 0.0f)
+                    throw InputError("reference " + a.ref + ": negative value " + std::to_string(c->data[i]) +
+                                     " in channel " + name + " at pixel (" + std::to_string(i % size_t(ref.width)) +
+                                     ", " + std::to_string(i / size_t(ref.width)) +
+                                     "); a reference is radiance, which is >= 0");
+}
+
 void run_compare(const CompareArgs& a, const CLI::App& cmd) {
     check_compare_options(a, cmd);
-    const metrics::RgbImage ref = metrics::rgb_for_metrics(read_exr(a.ref), a.ref);
-    const metrics::RgbImage test = metrics::rgb_for_metrics(read_exr(a.test), a.test);
+    const Image ref_image = read_exr(a.ref), test_image = read_exr(a.test);
+    const metrics::RgbImage ref = metrics::rgb_for_metrics(ref_image, a.ref);
+    const metrics::RgbImage test = metrics::rgb_for_metrics(test_image, a.test);
     metrics::check_same_size(ref, a.ref, test, a.test);
+    check_comparable(ref_image, test_image, a);
 
     const double rel = metrics::rel_mse(ref, test);
     const double rmse = metrics::rmse(ref, test);

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <set>
 #include <system_error>
@@ -21,6 +22,40 @@ CLI::Validator finite_number(const std::string& option) {
         const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
         if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || !std::isfinite(v))
             throw InputError(option + " " + (text.empty() ? "''" : text) + ": must be a finite number");
+        return std::string();
+    }, "");
+}
+
+namespace {
+
+// %g of a bound: "0", "1e+12", "240".
+std::string bound_text(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
+}  // namespace
+
+CLI::Validator finite_number_in(const std::string& option, double lo, double hi, bool lo_open) {
+    return CLI::Validator([=](std::string& text) {
+        double v = 0;
+        const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+        const bool number = !text.empty() && r.ec == std::errc() && r.ptr == text.data() + text.size();
+        if (!number || !std::isfinite(v) || (lo_open ? !(v > lo) : !(v >= lo)) || !(v <= hi))
+            throw InputError(option + " " + (text.empty() ? "''" : text) + ": must be a finite number " +
+                             (lo_open ? "> " : ">= ") + bound_text(lo) + " and <= " + bound_text(hi));
+        return std::string();
+    }, "");
+}
+
+CLI::Validator integer_in(const std::string& option, long long lo, long long hi) {
+    return CLI::Validator([=](std::string& text) {
+        long long v = 0;
+        const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || v < lo || v > hi)
+            throw InputError(option + " " + (text.empty() ? "''" : text) + ": must be an integer in " +
+                             std::to_string(lo) + ".." + std::to_string(hi));
         return std::string();
     }, "");
 }

@@ -14,6 +14,15 @@ namespace tessera::cli {
 /// ("--exposure nan: must be a finite number").
 CLI::Validator finite_number(const std::string& option);
 
+/// A validator for a real-valued option that must be finite and within (lo, hi] when
+/// `lo_open`, else [lo, hi]; the message says the range in words ("--speed 0: must be a
+/// finite number > 0 and <= 1e+12"), never a machine bound such as DBL_MAX.
+CLI::Validator finite_number_in(const std::string& option, double lo, double hi, bool lo_open);
+
+/// A validator for an integer option within [lo, hi]: "--screenshot-window-frame -1: must be
+/// an integer in 0..999999".
+CLI::Validator integer_in(const std::string& option, long long lo, long long hi);
+
 /// Every option and positional of `cmd` that was given with an empty value:
 /// "--out '': must not be empty".
 void reject_empty_values(const CLI::App& cmd);

@@ -63,8 +63,9 @@ void print_progress(uint32_t done, uint32_t total, double elapsed, uint32_t rest
 // Timing of this run for the accuracy sweeps (bench/accuracy). A pass is one frame of a
 // progressive method: reaching `spp` passes costs about spp x median_pass_seconds.
 // `tracer` is the backend's description (device and traversal).
+// `ranks`: the MPI ranks that rendered it (1 alone), which divide the passes between them.
 void write_stats_json(const fs::path& path, const RenderArgs& a, const RenderSettings& s, const RenderStats& stats,
-                      const std::string& tracer) {
+                      const std::string& tracer, int ranks) {
     const nlohmann::json j = {
         {"median_pass_seconds", stats.median_pass_seconds},
         {"passes", stats.passes},  // rendered by this run (excludes passes restored by --resume)
@@ -74,6 +75,7 @@ void write_stats_json(const fs::path& path, const RenderArgs& a, const RenderSet
         {"tracer", tracer},
         {"spp", s.spp},
         {"shadow_samples", s.shadow_samples},
+        {"mpi_ranks", ranks},
     };
     const std::string text = j.dump(2) + "\n";
     write_file_atomic(path, text.data(), text.size());
@@ -124,8 +126,7 @@ void check_render_options(const RenderArgs& a, const CLI::App& cmd, const Backen
 
 // Settings that make no sense for this scene.
 void check_scene_options(const RenderSettings& s, const Scene& scene, const fs::path& scene_path) {
-    const bool igi_family = s.method != Method::Direct && s.method != Method::PathTrace;  // they march media
-    if (igi_family && s.igi.march_steps == 0 && plan_effects(scene).medium)
+    if (igi_family(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
         throw InputError("--march-steps 0: scene " + scene_path.string() +
                          " has a medium, which --method " + method_name(s.method) +
                          " ray-marches; give at least 1 step");
@@ -201,6 +202,9 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         bo = BackendOptions{parse_backend_kind(a.backend), a.device};
         settings.method = parse_method(a.method);
         settings.igi.components = parse_components(a.components);
+        if (cmd.count("--components") && !igi_family(settings.method))
+            throw InputError("--components " + a.components + ": --method " + a.method +
+                             " has no components (they select what igi, ais, ais-max, ic and tic compute)");
         validate_settings(settings);  // before the scene loads: a bad option fails at once
         check_render_options(a, cmd, bo);
         check_distributed_options(a, settings, cluster);
@@ -249,7 +253,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     CommitGroup outputs;  // all of them or none
     write_exr(outputs.add(out), img);
     write_png(outputs.add(png), img, a.exposure);
-    if (!a.stats_json.empty()) write_stats_json(outputs.add(a.stats_json), a, settings, stats, backend->description());
+    if (!a.stats_json.empty()) write_stats_json(outputs.add(a.stats_json), a, settings, stats, backend->description(), cluster.size());
     {
         const InterruptDeferral defer;
         outputs.commit();

@@ -22,6 +22,7 @@
 #include "render/sequence.h"
 #include "scene/loader.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 #include "view/camera_path.h"
 #include "view/frame_budget.h"
 #include "view/input.h"
@@ -37,6 +38,12 @@ namespace tessera::cli {
 namespace fs = std::filesystem;
 using namespace tessera::view;
 namespace {
+
+// Bounds of the viewer's real options: far above any use (a 1000 fps budget is 1 ms a
+// frame; 1e12 scene units per second crosses any float scene in a frame), low enough
+// that what they feed (a frame time, a camera step) stays finite.
+constexpr double kMaxTargetFps = 1000.0;
+constexpr double kMaxSpeed = 1e12;
 
 struct ViewArgs {
     std::string scene, backend = "opencl", device, method = "igi", components = "ss,id,pm", data_dir;
@@ -149,7 +156,34 @@ std::vector<BudgetPoint> load_pareto(const ViewArgs& a, const Scene& scene) {
     if (!fs::exists(csv)) throw InputError("--target-fps needs an accuracy sweep: " + csv.string() + " does not exist (--pareto FILE.csv)");
     std::vector<BudgetPoint> points = read_pareto_front(csv, a.backend);
     if (points.empty()) throw InputError("--pareto " + csv.string() + ": no one-pass igi/ais rows for --backend " + a.backend);
+    std::string methods;
+    bool starting = false;
+    for (const BudgetPoint& p : points) {
+        starting |= p.method == a.method;
+        if (methods.find(p.method + ", ") == std::string::npos) methods += p.method + ", ";
+    }
+    if (!starting)
+        throw InputError("--method " + a.method + " with --target-fps: no settings to choose from in " +
+                         csv.string() + " (it has " +
+                         methods.substr(0, methods.size() - 2) + "); start with one of those");
     return points;
+}
+
+// The frames a headless run or a replayed path will write under --frame-images: none of
+// their files may be a directory or other non-file, checked before frame 0 is written
+// (check_outputs has checked frame 0 and the directory itself).
+void check_frame_images(const fs::path& dir, const LoopOptions& lo) {
+    const int frames = !lo.path.empty()                     ? static_cast<int>(lo.path.size())
+                       : (lo.headless && !lo.script.empty()) ? lo.script.back().frame + 1
+                                                             : 1;
+    std::error_code ec;
+    for (int i = 1; i < frames; ++i) {
+        const fs::path f = frame_output_path(dir / "frame.exr", i);
+        const fs::file_status st = fs::symlink_status(f, ec);
+        if (fs::exists(st) && !fs::is_regular_file(fs::status(f, ec)))
+            throw InputError("--frame-images " + dir.string() + ": " + f.filename().string() + " (frame " +
+                             std::to_string(i) + ") exists and is not a regular file");
+    }
 }
 
 void run_view(const ViewArgs& a, const CLI::App& cmd) {
@@ -164,7 +198,8 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     check_data_dir(a.data_dir);
     if (cmd.count("--device") && o.backend.kind != BackendKind::OpenCL)
         throw InputError("--device " + a.device + ": only --backend opencl uses a device");
-    if (a.target_fps < 0) throw InputError("--target-fps " + std::to_string(a.target_fps) + ": must be > 0");
+    if (cmd.count("--pareto") && !cmd.count("--target-fps"))
+        throw InputError("--pareto " + a.pareto + ": is read only with --target-fps (the frame budget it feeds)");
     if (a.record && a.camera_path.empty()) throw InputError("--record needs --camera-path FILE.json to record into");
     if (a.record && a.headless) throw InputError("--record records a windowed session; it cannot be used with --headless");
     if (a.headless && a.camera_path.empty() && a.input_script.empty())
@@ -205,6 +240,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (!a.screenshot_window.empty()) files.push_back({a.screenshot_window, "--screenshot-window"});
     if (!a.frame_images.empty()) files.push_back({fs::path(a.frame_images) / "frame.0000.exr", "--frame-images"});
     check_outputs(files, scene_path);
+    if (!a.frame_images.empty()) check_frame_images(a.frame_images, lo);
     prepare_output_directories(files);
 
     ViewSession session(scene, o);
@@ -251,13 +287,14 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--screenshot-window", args->screenshot_window, "Write the window with its HUD as PNG");
     cmd->add_option("--screenshot-window-frame", args->screenshot_window_frame, "Frame after which --screenshot-window is taken")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(integer_in("--screenshot-window-frame", 0, limits::kViewFrames - 1));
     cmd->add_option("--reference", args->reference, "Reference EXR of the same size: error AOV and relMSE in the HUD");
     cmd->add_option("--target-fps", args->target_fps,
-                    "Moving-camera frame budget: pick tile, VPL paths and light samples from the accuracy sweep's Pareto front");
+                    "Moving-camera frame budget: pick tile, VPL paths and light samples from the accuracy sweep's Pareto front")
+        ->check(finite_number_in("--target-fps", 0, kMaxTargetFps, true));
     cmd->add_option("--pareto", args->pareto, "Accuracy sweep CSV for --target-fps (default bench/results/accuracy/<scene>.csv)");
     cmd->add_option("--speed", args->speed, "Movement speed, scene units per second (default: a quarter of the scene diagonal)")
-        ->check(CLI::PositiveNumber);
+        ->check(finite_number_in("--speed", 0, kMaxSpeed, true));
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");
     cmd->callback([args, cmd] { run_view(*args, *cmd); });
 }

@@ -14,6 +14,7 @@
 #include "image/image_check.h"
 #include "image/image_io.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera {
 
@@ -25,18 +26,18 @@ void write_exr(const fs::path& path, const Image& image) {
         try {
             Imf::Header header(image.width, image.height);
             header.compression() = Imf::ZIP_COMPRESSION;
+            const Imath::Box2i dw(Imath::V2i(image.x0, image.y0),
+                                  Imath::V2i(image.x0 + image.width - 1, image.y0 + image.height - 1));
+            header.dataWindow() = dw;
             Imf::FrameBuffer frame;
-            const std::size_t xs = sizeof(float);
-            const std::size_t ys = sizeof(float) * static_cast<std::size_t>(image.width);
             for (const ImageChannel& c : image.channels) {
                 header.channels().insert(c.name, Imf::Channel(Imf::FLOAT));
                 // OpenEXR only reads through the pointer when writing.
-                char* base = reinterpret_cast<char*>(const_cast<float*>(c.data.data()));
-                frame.insert(c.name, Imf::Slice(Imf::FLOAT, base, xs, ys));
+                frame.insert(c.name, Imf::Slice::Make(Imf::FLOAT, c.data.data(), dw));
             }
             Imf::OutputFile file(temp.c_str(), header);
             file.setFrameBuffer(frame);
-            file.writePixels(image.height);
+            file.writePixels(image.height);  // from the data window's first row
         } catch (const std::exception& e) {
             throw RuntimeError("cannot write '" + path.string() + "': " + e.what());
         }
@@ -52,13 +53,20 @@ Image read_exr(const fs::path& path) {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
         Image image;
-        image.width = dw.max.x - dw.min.x + 1;
-        image.height = dw.max.y - dw.min.y + 1;
-        if (image.width <= 0 || image.height <= 0)
-            throw InputError("cannot read '" + path.string() + "': empty data window");
+        // In 64 bits: a hostile header's window can span the whole int range.
+        const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+        const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+        if (w <= 0 || h <= 0) throw InputError("cannot read '" + path.string() + "': empty data window");
+        const Imf::ChannelList& list = file.header().channels();
+        long long channels = 0;
+        for (auto it = list.begin(); it != list.end(); ++it) ++channels;
+        limits::check_image_size("EXR", path.string(), w, h, channels);
+        image.width = static_cast<int>(w);
+        image.height = static_cast<int>(h);
+        image.x0 = dw.min.x;
+        image.y0 = dw.min.y;
         const std::size_t pixels =
             static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
-        const Imf::ChannelList& list = file.header().channels();
         for (auto it = list.begin(); it != list.end(); ++it)
             image.channels.push_back({it.name(), std::vector<float>(pixels, 0.0f)});
         Imf::FrameBuffer frame;

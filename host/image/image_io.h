@@ -20,6 +20,9 @@ struct Image {
     int width = 0;
     int height = 0;
     std::vector<ImageChannel> channels;
+    /// Pixel coordinates of the top-left pixel: an EXR's data window minimum (0, 0 for
+    /// every image Tessera renders; write_exr writes the data window there).
+    int x0 = 0, y0 = 0;
 
     /// The channel called `name`, or nullptr.
     const ImageChannel* find(const std::string& name) const;
@@ -30,8 +33,10 @@ struct Image {
 /// case any existing file at `path` is left untouched.
 void write_exr(const std::filesystem::path& path, const Image& image);
 
-/// Reads every channel of an OpenEXR file as float. Throws InputError naming `path`
-/// when the file is missing or not a readable EXR.
+/// Reads every channel of an OpenEXR file as float, with the data window's origin in
+/// x0, y0. Throws InputError naming `path` when the file is missing or not a readable EXR,
+/// and before allocating when its data window exceeds limits::kImageSide per side or its
+/// pixels times channels limits::kImageFloats (util/input_limits.h).
 Image read_exr(const std::filesystem::path& path);
 
 /// Writes an 8-bit sRGB PNG preview of channels R, G, B: each value is multiplied by

@@ -31,16 +31,20 @@ const char* method_name(Method m) {
     return "?";
 }
 
+bool igi_family(Method m) { return m != Method::Direct && m != Method::PathTrace; }
+
 uint32_t parse_components(const std::string& list) {
     uint32_t bits = 0;
     size_t start = 0;
     while (start <= list.size()) {
         const size_t end = std::min(list.find(',', start), list.size());
         const std::string c = list.substr(start, end - start);
-        if (c == "ss") bits |= TS_COMPONENT_SS;
-        else if (c == "id") bits |= TS_COMPONENT_ID;
-        else if (c == "pm") bits |= TS_COMPONENT_PM;
-        else throw InputError("--components " + list + ": expected a comma-separated list of ss, id, pm");
+        const uint32_t bit = c == "ss" ? TS_COMPONENT_SS : c == "id" ? TS_COMPONENT_ID : c == "pm" ? TS_COMPONENT_PM : 0;
+        if (bit == 0)
+            throw InputError("--components " + list + ": expected a comma-separated list of ss, id, pm" +
+                             (c.empty() ? " (an entry is empty)" : ", got '" + c + "'"));
+        if (bits & bit) throw InputError("--components " + list + ": '" + c + "' is listed twice");
+        bits |= bit;
         start = end + 1;
     }
     return bits;

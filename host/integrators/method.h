@@ -20,8 +20,14 @@ enum class Method {
 Method parse_method(const std::string& name);
 const char* method_name(Method m);
 
+/// True for the methods built on VPLs and interleaved sampling (igi, ais, ais-max, ic,
+/// tic): they take --components, march media and read the igi settings; direct and pt
+/// do not. The one definition every command and the viewer use.
+bool igi_family(Method m);
+
 /// Parses a comma-separated list of "ss", "id", "pm" into TS_COMPONENT_* bits; throws
-/// InputError naming --components for anything else or an empty list.
+/// InputError naming --components for anything else, an empty entry or a component
+/// listed twice ("ss,ss").
 uint32_t parse_components(const std::string& list);
 
 }  // namespace tessera

@@ -1,6 +1,7 @@
 #include "render/checkpoint.h"
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <system_error>
@@ -113,6 +114,20 @@ struct Reader {
         return v;
     }
 };
+
+/// A checksum only says the file is what was written; the sums must also be finite (a
+/// NaN or Inf would reach every pixel written from them) and the squares non-negative.
+void check_sums(const Reader& r, int32_t width, const std::vector<double>& v, std::size_t per_pixel,
+                const char* what) {
+    const bool squares = per_pixel == 3;
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (!std::isfinite(v[i]) || (squares && v[i] < 0.0)) {
+            const std::size_t pixel = i / per_pixel;
+            r.fail("corrupt (" + std::string(std::isfinite(v[i]) ? "negative" : std::isnan(v[i]) ? "NaN" : "infinite") +
+                   " " + what + " at pixel (" + std::to_string(pixel % std::size_t(width)) + ", " +
+                   std::to_string(pixel / std::size_t(width)) + ")); delete it to render from the start");
+        }
+}
 
 /// "checkpoint X was made with --seed 1, this run has --seed 2" for the first field of
 /// the identity that differs ("" if none does).
@@ -260,6 +275,12 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
     if (r.get<uint64_t>() != computed) r.fail("corrupt (checksum mismatch)");
     if (saved.width != w || saved.height != h || settings_hash != identity_hash(saved))
         r.fail("corrupt (header fields disagree)");
+    check_sums(r, w, sums, TS_PASS_FLOATS, "sum");
+    check_sums(r, w, sums_sq, 3, "sum of squares");
+    for (std::size_t i = 0; i < n; ++i)
+        if (hits[i] > passes)
+            r.fail("corrupt (pixel (" + std::to_string(i % std::size_t(w)) + ", " + std::to_string(i / std::size_t(w)) +
+                   ") has more hits than passes); delete it to render from the start");
 
     if (settings_hash != identity_hash(id) || !(saved == id)) {
         const std::string what = describe_difference(r.name, saved, id);

@@ -18,12 +18,11 @@ namespace {
 
 constexpr float kTurnPerPixel = 0.004f;   // radians of yaw/pitch per pixel dragged
 constexpr float kSpeedStep = 1.25f;       // speed factor per scroll notch
+constexpr float kMaxScrollNotches = 100;  // 1.25^100 = 5e9 either way of the start speed
 constexpr float kExposureStep = 0.5f;     // stops per [ or ] press
 
 constexpr std::array<Method, 7> kMethods = {Method::Direct, Method::PathTrace, Method::Igi, Method::Ais,
                                             Method::AisMax, Method::Ic, Method::Tic};
-
-bool igi_family(Method m) { return m != Method::Direct && m != Method::PathTrace; }
 
 // Display transfer: the PNG preview's (clamp, sRGB OETF) from a table, one entry per
 // 1/16384 of the unit range: a pow per channel would cost ~10 ms a frame at 512².
@@ -60,7 +59,7 @@ ViewSession::ViewSession(const Scene& rest, const ViewOptions& options)
     height_ = settings_.height > 0 ? settings_.height : rest_.camera.height;
     camera_.width = home_camera_.width = width_;
     camera_.height = home_camera_.height = height_;
-    speed_ = options.speed > 0 ? options.speed : default_speed(rest_);
+    speed_ = start_speed_ = options.speed > 0 ? options.speed : default_speed(rest_);
     anim_frame_ = options.first_frame;
     if (!options.reference.empty()) {
         reference_ = read_exr(options.reference);
@@ -184,7 +183,13 @@ void ViewSession::handle(const InputEvent& e) {
         case K::Quit: quit_ = true; return;
         case K::Release: held_.erase(e.key); return;
         case K::Drag: camera_ = turn_camera(camera_, -e.dx * kTurnPerPixel, -e.dy * kTurnPerPixel); return;
-        case K::Scroll: speed_ *= std::pow(kSpeedStep, e.dy); return;
+        case K::Scroll: {
+            // Scene-relative bounds: at most kMaxScrollNotches notches from the start speed
+            // either way, so a long scroll cannot reach 0 or overflow a float.
+            const float bound = std::pow(kSpeedStep, kMaxScrollNotches);
+            speed_ = std::clamp(speed_ * std::pow(kSpeedStep, e.dy), start_speed_ / bound, start_speed_ * bound);
+            return;
+        }
         case K::Press: break;
     }
     held_.insert(e.key);

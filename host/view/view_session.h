@@ -139,6 +139,7 @@ private:
     Camera camera_, home_camera_, acc_camera_;
     int anim_frame_ = 0, acc_anim_frame_ = -1;
     float speed_ = 1.0f, exposure_ = 0.0f;
+    float start_speed_ = 1.0f;  ///< the speed at start: scrolling stays within kMaxScrollNotches of it
     std::set<int> held_, pressed_;  // keys down now; keys pressed since the last advance()
     bool dirty_ = true, paused_ = false, playing_ = false, quit_ = false, hud_visible_ = true;
     bool acc_budgeted_ = false;   // the accumulation uses the budget's settings, not settings_

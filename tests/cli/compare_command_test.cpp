@@ -147,6 +147,34 @@ TEST_F(CompareCli, NanOrInfInEitherImage) {
     expect_error(a + " " + c, "inf.exr: infinite");
 }
 
+// The same pixels in the same order but a shifted data window: not the same image.
+TEST_F(CompareCli, DifferentDataWindows) {
+    Image shifted = constant(8, 8, 1.f);
+    shifted.x0 = 10;
+    const std::string a = write("a.exr", constant(8, 8, 1.f)), b = write("shifted.exr", shifted);
+    EXPECT_EQ(tessera::read_exr(b).x0, 10);
+    expect_error(a + " " + b + " --no-flip", "data windows differ");
+    expect_error(a + " " + b + " --no-flip", "shifted.exr at (10, 0)");
+}
+
+TEST_F(CompareCli, NegativeReference) {
+    Image negative = constant(8, 8, 1.f);
+    negative.channels[1].data[9] = -0.5f;
+    const std::string a = write("a.exr", constant(8, 8, 1.f)), n = write("neg.exr", negative);
+    expect_error(n + " " + a + " --no-flip", "reference " + n + ": negative value -0.500000 in channel G at pixel (1, 1)");
+    EXPECT_EQ(run_compare(a + " " + n + " --no-flip").exit_code, 0) << "a test image may be negative (a denoiser's)";
+}
+
+// Each map is a PNG: a map named .exr would hold PNG bytes under an EXR name.
+TEST_F(CompareCli, MapsMustBePng) {
+    const std::string a = write("a.exr", constant(8, 8, 1.f));
+    for (const char* option : {"--map", "--flip-map"}) {
+        const fs::path map = dir_ / "m.exr";
+        expect_error(a + " " + a + " " + option + " " + map.string(), std::string(option) + " " + map.string() + ": the map is written as PNG");
+        EXPECT_FALSE(fs::exists(map));
+    }
+}
+
 TEST_F(CompareCli, MissingChannel) {
     Image rg{4, 4, {{"R", std::vector<float>(16, 1.f)}, {"G", std::vector<float>(16, 1.f)}}};
     const std::string a = write("a.exr", constant(4, 4, 1.f)), b = write("rg.exr", rg);

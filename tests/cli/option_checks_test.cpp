@@ -146,6 +146,49 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
     for (const Case& c : cases) expect_rejected(c);
 }
 
+// The viewer's options and files, --components and compare's maps: rejected with the
+// option (or file and entry) and the value, before the first frame, nothing written.
+TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
+    const std::string cam = R"({"position": [0.278, 0.273, -0.8], "look_at": [0.278, 0.273, 0], "up": [0, 1, 0], "vfov": 39})";
+    auto files = [cam](const fs::path& d) {
+        std::ofstream(d / "s.json") << R"({"events": [{"frame": 4, "quit": true}]})";
+        std::ofstream(d / "path.json") << "{\"cameras\": [" + cam + ", " + cam +
+                                              R"(, {"position": [0, 0, 0], "look_at": [0, 1, 0], "up": [0, 1, 0], "vfov": 39}]})";
+        fs::create_directories(d / "frames" / "frame.0002.exr");
+    };
+    const std::string view = "view --backend embree --headless --width 8 --height 8 --input-script $D/s.json ";
+    const std::vector<Case> cases = {
+        {view + "--speed 0", "--speed 0: must be a finite number > 0 and <= 1e+12", 2, files},
+        {view + "--speed inf", "--speed inf: must be a finite number > 0 and <= 1e+12", 2, files},
+        {view + "--speed nan", "--speed nan: must be a finite number > 0 and <= 1e+12", 2, files},
+        {view + "--screenshot-window-frame -1", "--screenshot-window-frame -1: must be an integer in 0..999999", 2, files},
+        {view + "--target-fps 0", "--target-fps 0: must be a finite number > 0 and <= 1000", 2, files},
+        {view + "--target-fps nan", "--target-fps nan: must be a finite number > 0 and <= 1000", 2, files},
+        {view + "--target-fps inf", "--target-fps inf: must be a finite number > 0 and <= 1000", 2, files},
+        {view + "--target-fps 5 --method pt --pareto " + std::string(TESSERA_SOURCE_DIR) +
+             "/bench/results/accuracy/cornell-box.csv",
+         "--method pt with --target-fps: no settings to choose from in " + std::string(TESSERA_SOURCE_DIR) +
+             "/bench/results/accuracy/cornell-box.csv (it has ais, ais-max, igi); start with one of those",
+         2, files},
+        {view + "--pareto $D/none.csv", "--pareto $D/none.csv: is read only with --target-fps (the frame budget it feeds)",
+         2, files},
+        {view + "--frame-images $D/frames",
+         "--frame-images $D/frames: frame.0002.exr (frame 2) exists and is not a regular file", 2, files},
+        {"view --backend embree --headless --width 8 --height 8 --camera-path $D/path.json --frame-images $D/out",
+         "--camera-path $D/path.json: key 'cameras[2]' = {\"look_at\":[0,1,0],\"position\":[0,0,0],\"up\":[0,1,0],\"vfov\"...: "
+         "up is zero or parallel to the view direction",
+         2, files},
+        {kRender + "--components ss,ss" + kOut, "--components ss,ss: 'ss' is listed twice"},
+        {kRender + "--components ss,id,pm,ss" + kOut, "--components ss,id,pm,ss: 'ss' is listed twice"},
+        {kRender + "--components ss," + kOut, "--components ss,: expected a comma-separated list of ss, id, pm (an entry is empty)"},
+        {kRender + "--method pt --components ss" + kOut,
+         "--components ss: --method pt has no components (they select what igi, ais, ais-max, ic and tic compute)"},
+        {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},
+        {"compare $D/img.exr $D/img.exr --flip-map $D/f.exr", "--flip-map $D/f.exr: the map is written as PNG; name it .png"},
+    };
+    for (const Case& c : cases) expect_rejected(c);
+}
+
 // A valid run replaces every output, leaves no temporary file and no checkpoint.
 TEST_F(ContractCli, AValidRunWritesEveryOutputAndNothingElse) {
     for (const char* name : {"img.exr", "img.png", "stats.json"}) std::ofstream(dir_ / name) << "OLD";

@@ -111,6 +111,7 @@ TEST_F(RenderCli, StatsJson) {
     EXPECT_EQ(j["spp"], 3);
     EXPECT_EQ(j["method"], "direct");
     EXPECT_EQ(j["backend"], "embree");
+    EXPECT_EQ(j["mpi_ranks"], 1);
     EXPECT_EQ(j["tracer"].get<std::string>().substr(0, 7), "embree ") << j["tracer"];  // Backend::description()
     EXPECT_GT(j["median_pass_seconds"].get<double>(), 0.0);
     EXPECT_LE(j["median_pass_seconds"].get<double>(), j["seconds"].get<double>());

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <optional>
 
 #include <gtest/gtest.h>
@@ -125,6 +127,47 @@ TEST_F(Checkpoint, CorruptTruncatedOrMissingFileIsInputErrorNamingIt) {
 
     fs::remove(file);
     expect_input_error(load, {file.string()});
+}
+
+// A file whose checksum is right but whose sums are not usable (a NaN, an Inf, a negative
+// square, more hits than passes) is refused before the accumulator is touched.
+TEST_F(Checkpoint, NonFiniteSumsWithAValidChecksumAreRefused) {
+    const int w = 4, h = 3;
+    const size_t n = size_t(w) * h;
+    Accumulator a(w, h);
+    a.add(synthetic_pass(w, h, 0));
+    const fs::path file = dir_ / "x.ckpt";
+    // Replaces the bytes at `from_end` bytes before the checksum and re-signs the file.
+    auto forge = [&](size_t from_end, const void* bytes, size_t size) {
+        save_checkpoint(file, some_identity(w, h), 4, a);
+        std::ifstream in(file, std::ios::binary);
+        std::vector<char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::memcpy(b.data() + b.size() - 8 - from_end, bytes, size);
+        const uint64_t sum = fnv1a64(b.data(), b.size() - 8);
+        std::memcpy(b.data() + b.size() - 8, &sum, 8);
+        std::ofstream(file, std::ios::binary | std::ios::trunc).write(b.data(), std::streamsize(b.size()));
+    };
+    const size_t hits = 4 * n, squares = hits + 3 * 8 * n, sums = squares + TS_PASS_FLOATS * 8 * n;
+    struct Case {
+        size_t from_end;
+        double value;
+        const char* what;
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+    for (const Case& c : {Case{sums, nan, "NaN sum at pixel (0, 0)"}, Case{sums - 8 * TS_PASS_FLOATS * 5, inf,
+                                                                         "infinite sum at pixel (1, 1)"},
+                          Case{squares, -1.0, "negative sum of squares at pixel (0, 0)"}}) {
+        forge(c.from_end, &c.value, sizeof c.value);
+        Accumulator b(w, h);
+        const auto before = b.sums();
+        expect_input_error([&] { load_checkpoint(file, some_identity(w, h), b); }, {file.string(), c.what});
+        EXPECT_EQ(b.passes(), 0u);
+        EXPECT_EQ(b.sums(), before);
+    }
+    const uint32_t many = 7;
+    forge(hits, &many, sizeof many);
+    Accumulator b(w, h);
+    expect_input_error([&] { load_checkpoint(file, some_identity(w, h), b); }, {file.string(), "more hits than passes"});
 }
 
 TEST_F(Checkpoint, DifferentSettingsAreNamed) {

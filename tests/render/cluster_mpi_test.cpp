@@ -23,6 +23,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "support/scratch_dir.h"
 #include "support/shell.h"
@@ -120,6 +121,19 @@ TEST_F(DistributedCli, IgiFamilyWithoutAovsGivesTheBitsOfOneProcess) {
         const std::string args = base + " --method " + method;
         EXPECT_TRUE(render(3, scene("cornell-box-fog.json"), args, "three") ==
                     render(0, scene("cornell-box-fog.json"), args, "alone"));
+    }
+}
+
+// --stats-json says how many ranks shared the passes, so timings of distributed and
+// single-process runs are not mistaken for each other.
+TEST_F(DistributedCli, StatsJsonRecordsTheRanks) {
+    for (const int ranks : {0, 2}) {
+        const fs::path stats = dir_ / ("stats" + std::to_string(ranks) + ".json");
+        render(ranks, scene("cornell-box.json"),
+               "--backend embree --width 16 --height 16 --spp 4 --method pt --stats-json " + stats.string(), "s");
+        std::ifstream in(stats);
+        ASSERT_TRUE(in) << stats;
+        EXPECT_EQ(nlohmann::json::parse(in)["mpi_ranks"].get<int>(), ranks == 0 ? 1 : ranks);
     }
 }
 
