@@ -60,7 +60,7 @@ Image read_exr(const fs::path& path) {
         const Imf::ChannelList& list = file.header().channels();
         long long channels = 0;
         for (auto it = list.begin(); it != list.end(); ++it) ++channels;
-        limits::check_image_size("EXR", path.string(), w, h, channels);
+        limits::check_image_size("EXR image", path.string(), w, h, channels);
         image.width = static_cast<int>(w);
         image.height = static_cast<int>(h);
         image.x0 = dw.min.x;

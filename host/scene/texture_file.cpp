@@ -6,12 +6,16 @@
 
 #include "scene/input_file.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera::scene_detail {
 
 Texture load_texture(const std::filesystem::path& file) {
     require_regular_file(file, "texture");
     int w = 0, h = 0, channels = 0;
+    // The header's size first: a few bytes of PNG header can ask for gigabytes of pixels.
+    if (stbi_info(file.string().c_str(), &w, &h, &channels))
+        limits::check_image_size("texture", file.string(), w, h, 4);
     std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
         stbi_load(file.string().c_str(), &w, &h, &channels, 4), stbi_image_free);
     if (!pixels)

@@ -42,19 +42,17 @@ constexpr std::size_t kPathEntries = 1000000;
 /// viewer for days of frames before its first event.
 constexpr int kViewFrames = 1000000;
 
-/// Throws InputError "<what> <file>: <w>x<h> [x <channels>] exceeds <bound>" when an image
-/// header asks for more than kImageSide per side or kImageFloats values, before anything
-/// is allocated. `what` names the role ("texture", "reference image").
+/// Throws InputError "<file>: <what> of <w>x<h> pixels exceeds ..." when an image header
+/// asks for more than kImageSide per side or (with `channels` > 0) kImageFloats values,
+/// before anything is allocated. `what` names the role ("texture", "EXR image").
 inline void check_image_size(const std::string& what, const std::string& file, long long width, long long height,
                              long long channels) {
-    const std::string size = std::to_string(width) + "x" + std::to_string(height);
-    if (width < 1 || height < 1) throw InputError(what + " " + file + ": image size " + size + " is empty");
+    const std::string head = file + ": " + what + " of " + std::to_string(width) + "x" + std::to_string(height) + " pixels";
+    if (width < 1 || height < 1) throw InputError(head + " is empty");
     if (width > kImageSide || height > kImageSide)
-        throw InputError(what + " " + file + ": image size " + size + " exceeds the limit of " +
-                         std::to_string(kImageSide) + " pixels per side");
+        throw InputError(head + " exceeds the limit of " + std::to_string(kImageSide) + " pixels per side");
     if (channels > 0 && std::uint64_t(width) * std::uint64_t(height) * std::uint64_t(channels) > kImageFloats)
-        throw InputError(what + " " + file + ": " + size + " pixels x " + std::to_string(channels) +
-                         " channels exceed the limit of 2^28 values (1 GiB)");
+        throw InputError(head + " and " + std::to_string(channels) + " channels exceeds the limit of 2^28 values (1 GiB)");
 }
 
 }  // namespace tessera::limits

@@ -157,6 +157,12 @@ TEST_F(CompareCli, DifferentDataWindows) {
     expect_error(a + " " + b + " --no-flip", "shifted.exr at (10, 0)");
 }
 
+// An EXR wider than limits::kImageSide is refused from its header, before its pixels.
+TEST_F(CompareCli, OversizedImageIsRefusedFromItsHeader) {
+    const std::string a = write("a.exr", constant(8, 8, 1.f)), wide = write("wide.exr", constant(20000, 1, 1.f));
+    expect_error(a + " " + wide + " --no-flip", "wide.exr: EXR image of 20000x1 pixels exceeds the limit of 16384 pixels per side");
+}
+
 TEST_F(CompareCli, NegativeReference) {
     Image negative = constant(8, 8, 1.f);
     negative.channels[1].data[9] = -0.5f;

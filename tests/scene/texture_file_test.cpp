@@ -12,7 +12,7 @@
 namespace tessera {
 namespace {
 
-enum class Make { Nothing, Directory, Text, Empty, TruncatedPng, Png };
+enum class Make { Nothing, Directory, Text, Empty, TruncatedPng, HugePnm, Png };
 
 struct BadTexture {
     const char* name;
@@ -32,6 +32,7 @@ protected:
             case Make::Text: std::ofstream(tex) << "not an image\n"; break;
             case Make::Empty: std::ofstream{tex}; break;
             case Make::TruncatedPng: std::ofstream(tex, std::ios::binary) << bytes.substr(0, bytes.size() / 2); break;
+            case Make::HugePnm: std::ofstream(tex, std::ios::binary) << "P6\n20000 8\n255\n" << bytes; break;
             case Make::Png: std::ofstream(tex, std::ios::binary) << bytes; break;
         }
     }
@@ -71,7 +72,9 @@ INSTANTIATE_TEST_SUITE_P(
                       BadTexture{"Directory", Make::Directory, "is a directory, not a file"},
                       BadTexture{"NotAnImage", Make::Text, "texture is not a decodable image"},
                       BadTexture{"Empty", Make::Empty, "texture is not a decodable image"},
-                      BadTexture{"TruncatedPng", Make::TruncatedPng, "texture is not a decodable image"}),
+                      BadTexture{"TruncatedPng", Make::TruncatedPng, "texture is not a decodable image"},
+                      // A header asking for more than limits::kImageSide: refused before decoding.
+                      BadTexture{"HugeHeader", Make::HugePnm, "texture of 20000x8 pixels exceeds the limit of 16384"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // The map_Kd message also says which MTL line and material named the texture.
