@@ -1,6 +1,7 @@
 #include "view/frame_budget.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -77,6 +78,10 @@ std::vector<BudgetPoint> read_pareto_front(const std::filesystem::path& csv, con
         } catch (const std::exception&) {
             throw InputError("accuracy sweep " + csv.string() + ": malformed row: " + line);
         }
+        // A time or error that is not a finite positive number would steer the budget to nonsense.
+        if (!std::isfinite(p.seconds) || !(p.seconds > 0) || !std::isfinite(p.relmse) || !(p.relmse >= 0))
+            throw InputError("accuracy sweep " + csv.string() + ": row with median_pass_s " + f[c_time] + " and relmse " +
+                             f[c_err] + " (each must be a finite number, the time > 0): " + line);
         by_method[p.method].push_back(p);
     }
     std::vector<BudgetPoint> all;

@@ -2,9 +2,16 @@
 // setting from measured frame times (hysteresis included).
 #include "view/frame_budget.h"
 
+#include <unistd.h>
+
 #include <filesystem>
+#include <fstream>
+#include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
+
+#include "util/error.h"
 
 namespace tessera::view {
 namespace {
@@ -71,6 +78,28 @@ TEST(FrameBudget, ReadsTheCommittedSweepFront) {
         }
         for (const BudgetPoint& p : one) EXPECT_TRUE(p.tile >= 1 && p.tile <= 8 && p.vpl_paths > 0);
     }
+}
+
+// A row whose time or error is not a finite number (or a time <= 0) is refused naming the
+// file and the values, not fed to the budget.
+TEST(FrameBudget, NonFiniteSweepRowsAreRefused) {
+    const auto dir = std::filesystem::temp_directory_path() / ("tessera-budget-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string head = "scene,backend,method,setting,spp,median_pass_s,relmse\n";
+    const std::string setting = "\"tile=1,vpl-paths=8,shadow-samples=1\"";  // as the sweep writes one
+    for (const auto& [time, err] : {std::pair{"nan", "0.1"}, std::pair{"0.01", "inf"}, std::pair{"0", "0.1"},
+                                    std::pair{"-1", "0.1"}}) {
+        const auto csv = dir / "sweep.csv";
+        std::ofstream(csv) << head << "box,embree,igi," << setting << ",1," << time << "," << err << "\n";
+        try {
+            read_pareto_front(csv, "embree");
+            ADD_FAILURE() << time << " " << err;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(csv.string()), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(std::string("median_pass_s ") + time), std::string::npos) << e.what();
+        }
+    }
+    std::filesystem::remove_all(dir);
 }
 
 }  // namespace
