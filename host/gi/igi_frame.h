@@ -50,6 +50,11 @@ struct IgiSettings {
     /// false: single scattering from the lights only (converging to `pt --max-scatter 1`).
     /// Uses the ID component's VPLs.
     bool multiple_scattering = true;
+    /// Media: the ray march's light samples and VPL links at equiangular distances toward
+    /// each light sample or VPL (Kulla and Fajardo 2012), the light samples combined by MIS
+    /// with the phase samples at the march's points (docs/igi.md §6); false
+    /// (`--uniform-march`): all of them at the march's own stratified points.
+    bool equiangular = true;
     DiscontinuitySettings discontinuity;
     /// Components to compute (TS_COMPONENT_SS | _ID | _PM); the ones the scene does not
     /// call for are dropped anyway (no medium: no PM).

@@ -55,6 +55,8 @@ const Parameter kParameters[] = {
      .doc = "igi: skip the discontinuity filter"},
     {.option = "--single-scattering", .value_name = "", .field = TS_SETTING(igi.multiple_scattering), .negated = true,
      .doc = "igi family: media: single scattering from the lights only (default: also VPLs at scattering events in the medium)"},
+    {.option = "--uniform-march", .value_name = "", .field = TS_SETTING(igi.equiangular), .negated = true,
+     .doc = "igi family: media: light samples and VPLs gathered at the ray march's stratified points (default: at equiangular distances toward each)"},
     {.option = "--no-mipmaps", .value_name = "", .field = TS_SETTING(texture_filter), .negated = true,
      .doc = "textures at camera hits from the finest mip level, not the pixel's ray-cone level (pt always)"},
     {.option = "--ais-ss-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.ss_trigger), .min = 0, .max = 1,

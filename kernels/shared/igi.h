@@ -302,17 +302,18 @@ TS_INLINE int ts_igi_may_meet_emitter(const TsSceneView* sv, float3 x, float3 wi
 }
 
 /* Light arriving at medium point x from direction `wi` found by tracing a ray, and the
- * pdf (per steradian) with which light sampling would have picked that emitter point:
- * for the phase-sampled half of the ray march's MIS. Zero when the ray misses, hits a
- * non-emitter or an emitter's back. */
+ * pdf (per steradian) with which light sampling would have picked that emitter point and
+ * its distance *t_hit: for the phase-sampled half of the ray march's MIS. Zero when the
+ * ray misses, hits a non-emitter or an emitter's back. */
 TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                      const TsMedium* med, float3 x, float3 wi, float* pdf_light) {
+                                      const TsMedium* med, float3 x, float3 wi, float* pdf_light, float* t_hit) {
     TsRay r;
     r.org = x;
     r.dir = wi;
     r.tmin = 0.0f;
     r.tmax = TS_INF;
     *pdf_light = 0.0f;
+    *t_hit = 0.0f;
     if (!ts_igi_may_meet_emitter(sv, x, wi)) return make_float3(0.0f, 0.0f, 0.0f);
     TsHit h = ts_trace_closest(tracer, r);
     if (h.prim == TS_NO_HIT) return make_float3(0.0f, 0.0f, 0.0f);
@@ -322,6 +323,7 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
     float cos_y = -dot(s.geo_normal, wi);
     TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * s.material;
     *pdf_light = ts_light_pdf_area(M[TS_MAT_SELECTION], f->light_power) * h.t * h.t / cos_y;
+    *t_hit = h.t;
     return le * ts_medium_transmittance(med, x, wi, 0.0f, h.t);
 }
 
@@ -341,7 +343,7 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
  * ray: the camera ray; prng: the set's phase-sample stream; [t0, t1]: the camera
  * segment in the medium (scene units along ray), marched in steps of `step` when
  * `active`; L: the in-scattered radiance so far; lit: the steps whose light sample was
- * visible. */
+ * visible; equiangular: f->igi_equiangular (ts_igi_march_light_link). */
 typedef struct TsIgiMarch {
     TsRay ray;
     TsRng prng;
@@ -349,6 +351,7 @@ typedef struct TsIgiMarch {
     float3 L;
     uint lit;
     int active;
+    int equiangular;
 } TsIgiMarch;
 
 /* Traces pixel (px, py)'s camera ray and clips its segment to the medium. An escaping
@@ -369,25 +372,55 @@ TS_INLINE TsIgiMarch ts_igi_march_begin(const TsTracer* tracer, const TsFrame* f
     m.t1 = hit.prim != TS_NO_HIT ? hit.t : (med->bounded ? TS_INF : f->igi_march_far);
     m.active = ts_medium_clip(med, m.ray.org, m.ray.dir, &m.t0, &m.t1) && f->igi_steps > 0u;
     m.step = m.active ? (m.t1 - m.t0) / (float)f->igi_steps : 0.0f;
+    m.equiangular = f->igi_equiangular != 0u;
     return m;
 }
 
-/* Distance along the camera ray of step i: offset by (k + ξ)/N of a step for set k. */
+/* Distance along the camera ray of step i: offset by (k + ξ)/N of a step for set k, ξ the
+ * frame's igi_march_rotation. */
 TS_INLINE float ts_igi_march_t(const TsFrame* f, const TsIgiMarch* m, uint k, uint i) {
     float N = (float)(f->igi_tile * f->igi_tile);
-    return m->t0 + ((float)i + ((float)k + f->igi_rotation[0]) / N) * m->step;
+    return m->t0 + ((float)i + ((float)k + f->igi_march_rotation) / N) * m->step;
 }
 
-/* Step i's light-sample link at medium point x: one of set k's light samples, taken in
- * turn. Returns 0 when the sample faces away (nothing to trace); else the shadow ray,
- * the sample's radiance and its weight phase · w_MIS / pdf (per steradian), for
- * ts_igi_march_light_add when the ray is unoccluded. */
+/* The density of step i's light-sample distance relative to the march's uniform one
+ * (1 / (t1 - t0)), for a light point p at distance t: the equiangular density toward p
+ * (ts_equiangular_pdf) times the segment's length. The power heuristic compares it, times
+ * the light pdf, with the phase sample's pdf at the same point. */
+TS_INLINE float ts_igi_march_eq_ratio(const TsIgiMarch* m, float3 p, float t) {
+    TsEquiangular e = ts_equiangular_setup(m->ray.org, m->ray.dir, m->t0, m->t1, p, 0.0f);
+    return ts_equiangular_pdf(&e, t) * (m->t1 - m->t0);
+}
+
+/* Step i's light-sample link: one of set k's light samples, taken in turn, seen from a
+ * point of the camera segment. With m->equiangular (the default) the point is drawn by
+ * equiangular sampling toward the light sample (Kulla and Fajardo 2012), with the
+ * march's stratified offset (t - t0)/(t1 - t0) as its uniform number, and the link
+ * carries its own distance: *radiance is the light's radiance times sigma_s and the
+ * camera segment's transmittance up to that point, and *w = phase · w_MIS · step / (pl · eq)
+ * (eq: ts_igi_march_eq_ratio, step = (t1 - t0)/N), so that ts_igi_march_light_add adds the
+ * step's share of single scattering to the march's radiance directly. w_MIS is the power
+ * heuristic of this technique against the phase-sampled one at the march's points
+ * (ts_igi_march_phase_add), in the joint density of distance and direction. Without
+ * m->equiangular, the link is at the march's point x = org + t·dir with *w = phase ·
+ * w_MIS / pl, the direction-only MIS, for the step's `in`. Returns 0 when the sample
+ * faces away (nothing to trace); else the shadow ray too, for ts_igi_march_light_add
+ * when the ray is unoccluded. */
 TS_INLINE int ts_igi_march_light_link(const TsSceneView* sv, const TsFrame* f, const TsMedium* med,
-                                      const TsIgiMarch* m, float3 x, uint k, uint i, TsRay* shadow,
+                                      const TsIgiMarch* m, float t, uint k, uint i, TsRay* shadow,
                                       float3* radiance, float* w) {
     uint n = f->shadow_samples;
     float3 q = ts_igi_light_point(f, k * n + i % n);
     TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
+    float len = m->t1 - m->t0, eq = 1.0f;
+    if (m->equiangular) {
+        if (!(len > 0.0f)) return 0;
+        TsEquiangular e = ts_equiangular_setup(m->ray.org, m->ray.dir, m->t0, m->t1, ls.position, 0.0f);
+        t = ts_equiangular_sample(&e, m->t0, m->t1, (t - m->t0) / len);
+        eq = ts_equiangular_pdf(&e, t) * len;
+        if (!(eq > 0.0f && eq < TS_INF)) return 0;
+    }
+    float3 x = m->ray.org + m->ray.dir * t;
     float3 d = ls.position - x;
     float dist2 = dot(d, d);
     float3 wi = d / sqrt(dist2);
@@ -396,33 +429,46 @@ TS_INLINE int ts_igi_march_light_link(const TsSceneView* sv, const TsFrame* f, c
     *shadow = ts_shadow_ray(x, ls.position, ls.normal, ls.pos_scale);
     float pl = ls.pdf_area * dist2 / cos_y;
     float phase = ts_hg_phase(dot(m->ray.dir, wi), med->g);
-    *radiance = ls.radiance;
-    *w = phase * ts_power_heuristic(pl, phase) / pl;
+    if (!m->equiangular) {
+        *radiance = ls.radiance;
+        *w = phase * ts_power_heuristic(pl, phase) / pl;
+        return 1;
+    }
+    *radiance = ls.radiance * med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0)));
+    /* 1 / (density of t) = (t1 - t0) / eq, over N steps: m->step / eq. */
+    *w = phase * ts_power_heuristic(pl * eq, phase) * m->step / (pl * eq);
     return 1;
 }
 
-/* Adds a visible light-sample link (ts_igi_march_light_link) to the step's
- * in-scattered light `in`, with the medium's transmittance along its shadow ray. */
+/* Adds a visible light-sample link (ts_igi_march_light_link), with the medium's
+ * transmittance along its shadow ray: to the step's in-scattered light `in`, or with
+ * m->equiangular, where the link carries its own distance, to the march's radiance. */
 TS_INLINE void ts_igi_march_light_add(TsIgiMarch* m, const TsMedium* med, TsRay shadow, float3 radiance, float w,
                                       float3* in) {
     ++m->lit;
     float3 tr = ts_medium_transmittance(med, shadow.org, shadow.dir, 0.0f, 1.0f);
-    *in += radiance * tr * w;
+    if (m->equiangular) m->L += radiance * tr * w;
+    else *in += radiance * tr * w;
 }
 
-/* Adds the phase-sampled half of step i's MIS at medium point x to `in`: a
- * Henyey–Greenstein direction (weight phase/pdf = 1) traced to whatever emitter it
- * meets (ts_igi_emitter_along). Draws two numbers from the march's phase stream. */
+/* Adds the phase-sampled half of step i's MIS at medium point x (distance t along the
+ * camera ray) to `in`: a Henyey–Greenstein direction (weight phase/pdf = 1) traced to
+ * whatever emitter it meets (ts_igi_emitter_along). Its MIS weight compares the phase pdf
+ * with the light-sample technique's density at this point: the light pdf, times with
+ * m->equiangular the relative density of the distance toward the emitter point met
+ * (ts_igi_march_eq_ratio). Draws two numbers from the march's phase stream. */
 TS_INLINE void ts_igi_march_phase_add(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                      const TsMedium* med, TsIgiMarch* m, float3 x, float3* in) {
+                                      const TsMedium* med, TsIgiMarch* m, float3 x, float t, float3* in) {
     /* Two declarations, not two arguments: C leaves argument order open, and both backends
        must draw the two numbers in the same order for one seed. */
     float u1 = ts_rng_next(&m->prng);
     float u2 = ts_rng_next(&m->prng);
     float3 wp = ts_sample_hg(m->ray.dir, med->g, u1, u2);
-    float pl2;
-    float3 le = ts_igi_emitter_along(sv, tracer, f, med, x, wp, &pl2);
-    if (pl2 > 0.0f) *in += le * ts_power_heuristic(ts_hg_phase(dot(m->ray.dir, wp), med->g), pl2);
+    float pl2, t_hit;
+    float3 le = ts_igi_emitter_along(sv, tracer, f, med, x, wp, &pl2, &t_hit);
+    if (!(pl2 > 0.0f)) return;
+    if (m->equiangular) pl2 *= ts_igi_march_eq_ratio(m, x + wp * t_hit, t);
+    *in += le * ts_power_heuristic(ts_hg_phase(dot(m->ray.dir, wp), med->g), pl2);
 }
 
 /* The share of set k's VPLs that step i gathers: indices *first, *first + *stride, ...
@@ -433,30 +479,65 @@ TS_INLINE void ts_igi_march_vpl_share(const TsSceneView* sv, const TsFrame* f, u
     *first = sv->vpl_set_start[k] + (i + k) % *stride;
 }
 
-/* VPL `vpl`'s link at medium point x on a camera ray along unit `dir`: 0 when the VPL
- * sends nothing toward x (nothing to trace); else the shadow ray and the clamped weight
- * w = min(e · phase(dir, ω_i) / d², b) with e the VPL's emission factor toward x
- * (ts_vpl_emission_factor) and b the geometry clamp, so every VPL adds at most C·b, as at
- * surfaces (shared/vpl.h). A visible link adds C · Tr · w (ts_vpl_gather_add). */
-TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, float3 x, float3 dir,
-                                    TS_GLOBAL const float* vpl, TsRay* shadow, float* w) {
-    float3 d = ts_f3_load(vpl + TS_VPL_POSITION) - x;
+/* VPL `vpl`'s link from the camera segment of march m at step i, whose own distance is t:
+ * 0 when the VPL sends nothing toward the point (nothing to trace); else the shadow ray,
+ * the clamped weight w = min(e · phase(dir, ω_i) / d², b) (e the VPL's emission factor
+ * toward the point, ts_vpl_emission_factor; b the geometry clamp, so every VPL adds at
+ * most C·b, as at surfaces: shared/vpl.h) and the colour factor *tint. Without
+ * m->equiangular the point is the step's own, x = org + t·dir, *tint = 1, and a visible
+ * link adds C · Tr · w to the step's in-scattered light. With it (the default) the point
+ * is drawn toward the VPL by equiangular sampling (Kulla and Fajardo 2012) with the
+ * step's stratified offset as its uniform number, D floored at the clamp's radius
+ * 1/sqrt(b), inside which the clamped term no longer falls as 1/d² (so no weight grows
+ * without bound when a VPL lies near the camera ray), and *tint = sigma_s · T(t0, t) ·
+ * step / eq (eq: the density relative to the uniform one, as in
+ * ts_igi_march_light_link): the link then adds its share of the march's radiance
+ * directly (ts_igi_march_vpls_add). */
+TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const TsIgiMarch* m, float t,
+                                    TS_GLOBAL const float* vpl, TsRay* shadow, float* w, float3* tint) {
+    float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
+    *tint = make_float3(1.0f, 1.0f, 1.0f);
+    if (m->equiangular) {
+        float len = m->t1 - m->t0;
+        if (!(len > 0.0f)) return 0;
+        TsEquiangular e = ts_equiangular_setup(m->ray.org, m->ray.dir, m->t0, m->t1, y, 1.0f / sqrt(f->igi_g_clamp));
+        t = ts_equiangular_sample(&e, m->t0, m->t1, (t - m->t0) / len);
+        float eq = ts_equiangular_pdf(&e, t) * len;
+        if (!(eq > 0.0f && eq < TS_INF)) return 0;
+        *tint = med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0))) * (m->step / eq);
+    }
+    float3 x = m->ray.org + m->ray.dir * t;
+    float3 d = y - x;
     float dist2 = dot(d, d);
     if (!(dist2 > 0.0f)) return 0;
     float3 wi = d / sqrt(dist2);
     float e = ts_vpl_emission_factor(vpl, -wi, med->g);
     if (!(e > 0.0f)) return 0;
     *shadow = ts_vpl_shadow_ray(x, vpl);
-    *w = fmin(e * ts_hg_phase(dot(dir, wi), med->g) / dist2, f->igi_g_clamp);
+    *w = fmin(e * ts_hg_phase(dot(m->ray.dir, wi), med->g) / dist2, f->igi_g_clamp);
     return 1;
 }
 
-/* In-scattered radiance per unit sigma_s at medium point x toward the camera, from the
- * share of set k's VPLs that step i gathers (ts_igi_march_vpl_share), times the share's
- * stride: over all its steps a pixel traces one shadow ray per VPL, as a surface does
- * (ours, docs/igi.md §6). */
+/* Adds a visible VPL link (ts_igi_march_vpl_link) to *sum: C · Tr · w · tint. */
+TS_INLINE void ts_igi_march_vpl_add(float3* sum, TS_GLOBAL const float* vpl, const TsMedium* med, TsRay shadow,
+                                    float w, float3 tint) {
+    *sum += ts_vpl_gather_term(vpl, ts_shadow_transmittance(med, shadow), w) * tint;
+}
+
+/* Adds the VPL share's sum of step i (the share's terms times its stride) where its links
+ * put it: to the step's in-scattered light `in`, or with m->equiangular, where each link
+ * carries its own distance, to the march's radiance. */
+TS_INLINE void ts_igi_march_vpls_add(TsIgiMarch* m, float3 share, float3* in) {
+    if (m->equiangular) m->L += share;
+    else *in += share;
+}
+
+/* The VPL share's sum at step i of march m (distance t): the links of the share of set
+ * k's VPLs that step i gathers (ts_igi_march_vpl_share), times the share's stride: over
+ * all its steps a pixel traces one shadow ray per VPL, as a surface does (ours,
+ * docs/igi.md §6). Light scattered more than once, for ts_igi_march_vpls_add. */
 TS_INLINE float3 ts_igi_media_vpls(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                   const TsMedium* med, float3 x, float3 dir, uint k, uint i) {
+                                   const TsMedium* med, const TsIgiMarch* m, float t, uint k, uint i) {
     float3 sum = make_float3(0.0f, 0.0f, 0.0f);
     uint first, stride;
     ts_igi_march_vpl_share(sv, f, k, i, &first, &stride);
@@ -464,8 +545,9 @@ TS_INLINE float3 ts_igi_media_vpls(const TsSceneView* sv, const TsTracer* tracer
         TS_GLOBAL const float* vpl = sv->vpls + j * TS_VPL_FLOATS;
         TsRay shadow;
         float w;
-        if (ts_igi_march_vpl_link(f, med, x, dir, vpl, &shadow, &w) && !ts_trace_occluded(tracer, shadow))
-            ts_vpl_gather_add(&sum, vpl, med, shadow, w);
+        float3 tint;
+        if (ts_igi_march_vpl_link(f, med, m, t, vpl, &shadow, &w, &tint) && !ts_trace_occluded(tracer, shadow))
+            ts_igi_march_vpl_add(&sum, vpl, med, shadow, w, tint);
     }
     return sum * (float)stride;
 }
@@ -512,12 +594,12 @@ TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, c
         TsRay shadow;
         float3 radiance;
         float w;
-        if (ts_igi_march_light_link(sv, f, &med, &m, x, k, i, &shadow, &radiance, &w) &&
+        if (ts_igi_march_light_link(sv, f, &med, &m, t, k, i, &shadow, &radiance, &w) &&
             !ts_trace_occluded(tracer, shadow))
             ts_igi_march_light_add(&m, &med, shadow, radiance, w, &in);
-        ts_igi_march_phase_add(sv, tracer, f, &med, &m, x, &in);
+        ts_igi_march_phase_add(sv, tracer, f, &med, &m, x, t, &in);
         /* Multiple scattering: light that reached the medium or a surface first. */
-        if (f->igi_media_vpls) in += ts_igi_media_vpls(sv, tracer, f, &med, x, m.ray.dir, k, i);
+        if (f->igi_media_vpls) ts_igi_march_vpls_add(&m, ts_igi_media_vpls(sv, tracer, f, &med, &m, t, k, i), &in);
         ts_igi_march_step_end(&m, &med, t, in);
     }
     ts_igi_march_end(f, &m, &med, out);

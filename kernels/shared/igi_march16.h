@@ -13,7 +13,7 @@
  * which traces the rays of the lanes whose bit is set in `valid` as one packet and
  * returns the bit mask of those found blocked (the rays of other lanes are not read).
  *
- * Private memory: 16 marches (≈ 100 B each) and one step's lane state (≈ 2 KB). */
+ * Private memory: 16 marches (≈ 100 B each) and one step's lane state (≈ 2.2 KB). */
 #ifndef TS_IGI_MARCH16_H
 #define TS_IGI_MARCH16_H
 #include "shared/igi.h"
@@ -25,7 +25,8 @@ TS_NAMESPACE_BEGIN
  * share's sum. */
 typedef struct TsMarchStep {
     float t[TS_PACKET_LANES], w[TS_PACKET_LANES];
-    float3 x[TS_PACKET_LANES], light[TS_PACKET_LANES], radiance[TS_PACKET_LANES], vpl_sum[TS_PACKET_LANES];
+    float3 x[TS_PACKET_LANES], light[TS_PACKET_LANES], radiance[TS_PACKET_LANES], vpl_sum[TS_PACKET_LANES],
+        tint[TS_PACKET_LANES];
     TsRay shadow[TS_PACKET_LANES];
 } TsMarchStep;
 
@@ -44,14 +45,14 @@ TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer
         s->t[l] = ts_igi_march_t(f, &m[l], k, i);
         s->x[l] = m[l].ray.org + m[l].ray.dir * s->t[l];
         s->light[l] = make_float3(0.0f, 0.0f, 0.0f);
-        if (ts_igi_march_light_link(sv, f, med, &m[l], s->x[l], k, i, &s->shadow[l], &s->radiance[l], &s->w[l]))
+        if (ts_igi_march_light_link(sv, f, med, &m[l], s->t[l], k, i, &s->shadow[l], &s->radiance[l], &s->w[l]))
             valid |= 1u << l;
     }
     uint seen = ts_march16_visible(tracer, s, valid);
     for (int l = 0; l < TS_PACKET_LANES; ++l)
         if (seen >> l & 1u) ts_igi_march_light_add(&m[l], med, s->shadow[l], s->radiance[l], s->w[l], &s->light[l]);
     for (int l = 0; l < TS_PACKET_LANES; ++l)
-        if (in >> l & 1u) ts_igi_march_phase_add(sv, tracer, f, med, &m[l], s->x[l], &s->light[l]);
+        if (in >> l & 1u) ts_igi_march_phase_add(sv, tracer, f, med, &m[l], s->x[l], s->t[l], &s->light[l]);
     if (f->igi_media_vpls) {
         uint first, stride;
         ts_igi_march_vpl_share(sv, f, k, i, &first, &stride);
@@ -60,14 +61,15 @@ TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer
             TS_GLOBAL const float* vpl = sv->vpls + j * TS_VPL_FLOATS;
             valid = 0u;
             for (int l = 0; l < TS_PACKET_LANES; ++l)
-                if ((in >> l & 1u) && ts_igi_march_vpl_link(f, med, s->x[l], m[l].ray.dir, vpl, &s->shadow[l], &s->w[l]))
+                if ((in >> l & 1u) &&
+                    ts_igi_march_vpl_link(f, med, &m[l], s->t[l], vpl, &s->shadow[l], &s->w[l], &s->tint[l]))
                     valid |= 1u << l;
             seen = ts_march16_visible(tracer, s, valid);
             for (int l = 0; l < TS_PACKET_LANES; ++l)
-                if (seen >> l & 1u) ts_vpl_gather_add(&s->vpl_sum[l], vpl, med, s->shadow[l], s->w[l]);
+                if (seen >> l & 1u) ts_igi_march_vpl_add(&s->vpl_sum[l], vpl, med, s->shadow[l], s->w[l], s->tint[l]);
         }
         for (int l = 0; l < TS_PACKET_LANES; ++l)
-            if (in >> l & 1u) s->light[l] += s->vpl_sum[l] * (float)stride;
+            if (in >> l & 1u) ts_igi_march_vpls_add(&m[l], s->vpl_sum[l] * (float)stride, &s->light[l]);
     }
     for (int l = 0; l < TS_PACKET_LANES; ++l)
         if (in >> l & 1u) ts_igi_march_step_end(&m[l], med, s->t[l], s->light[l]);

@@ -180,6 +180,13 @@ typedef struct TsFrame {
                                     igi_tile), 0 = components unfiltered (shared/igi_resolve.h) */
     float igi_filter_cos;        /* igi resolve: the filter's normal threshold (cos) */
     float igi_filter_depth;      /* igi resolve: the filter's plane distance, relative to depth */
+    unsigned int igi_equiangular; /* igi: 1 = the ray march's light samples at equiangular
+                                     distances, MIS with the march's (shared/igi.h); 0 = at
+                                     the march's own points */
+    float igi_march_rotation;     /* igi: per-frame Cranley–Patterson shift of the ray march's
+                                     points, apart from igi_rotation: one shared shift would tie
+                                     each step's distance to its light sample's position
+                                     (shared/igi.h, ts_igi_march_t) */
 } TsFrame;
 
 /* VPLs (host/gi/light_paths.cpp): TS_VPL_FLOATS floats each, sorted by sample set:
@@ -484,15 +491,16 @@ static_assert(tessera::layout_check::tiles({{TS_PASS_RADIANCE, 3}, {TS_PASS_ALBE
                                             {TS_PASS_DEPTH, 1}},
                                            TS_PASS_FLOATS),
               "layout.h: pass output fields do not tile TS_PASS_FLOATS");
-/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 35 4-byte
+/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 37 4-byte
  * scalars with no padding, so its layout is the same in both languages. */
 static_assert(std::is_standard_layout_v<TsFrame> && std::is_trivially_copyable_v<TsFrame>,
               "layout.h: TsFrame must stay a plain struct");
-static_assert(sizeof(TsFrame) == 35 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
+static_assert(sizeof(TsFrame) == 37 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
                   offsetof(TsFrame, light_power) == 20 * 4 && offsetof(TsFrame, igi_components) == 28 * 4 &&
                   offsetof(TsFrame, ic_error_bound) == 29 * 4 && offsetof(TsFrame, pixel_cone) == 31 * 4 &&
-                  offsetof(TsFrame, igi_filter_depth) == 34 * 4,
-              "layout.h: TsFrame is not 35 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
+                  offsetof(TsFrame, igi_filter_depth) == 34 * 4 && offsetof(TsFrame, igi_equiangular) == 35 * 4 &&
+                  offsetof(TsFrame, igi_march_rotation) == 36 * 4,
+              "layout.h: TsFrame is not 37 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
 #endif /* __cplusplus */
 
 #endif /* TS_LAYOUT_H */

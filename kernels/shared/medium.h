@@ -81,6 +81,45 @@ TS_INLINE float ts_medium_sample_distance(const TsMedium* m, float len, float u_
     return len;
 }
 
+/* Equiangular sampling of a distance along a ray toward a point p (Kulla and Fajardo
+ * 2012, "Importance sampling techniques for path tracing in participating media", §4.1):
+ * t = delta + D tan(theta), theta uniform in [theta_a, theta_b], so the density
+ *   pdf(t) = D / ((theta_b - theta_a) (D^2 + (t - delta)^2))   (per scene unit)
+ * follows the 1/distance^2 fall-off of light from p. delta: p's projection on the ray,
+ * D: p's distance from the ray's line, floored at d_min and at 1e-5 of the segment's
+ * extent from the origin, so that a point on the line gives a finite (narrow) density,
+ * not a NaN. A larger floor only widens the density (any D > 0 gives an unbiased
+ * estimate): callers whose integrand is clamped near p set d_min to the clamp's radius,
+ * where 1/distance^2 stops describing it (shared/igi.h, ts_igi_march_vpl_link). */
+typedef struct TsEquiangular {
+    float delta, D, theta_a, theta_b;
+} TsEquiangular;
+
+/* The sampler for the segment [a, b] of the ray (org, unit dir) toward p, D at least
+ * d_min (scene units; 0: no floor beyond the rounding one). */
+TS_INLINE TsEquiangular ts_equiangular_setup(float3 org, float3 dir, float a, float b, float3 p, float d_min) {
+    TsEquiangular e;
+    float3 op = p - org;
+    e.delta = dot(op, dir);
+    float3 perp = op - dir * e.delta;
+    e.D = fmax(fmax(length(perp), d_min), 1e-5f * fmax(fabs(b), fabs(e.delta)) + 1e-30f);
+    e.theta_a = atan2(a - e.delta, e.D);
+    e.theta_b = atan2(b - e.delta, e.D);
+    return e;
+}
+
+/* The distance for uniform u in [0, 1), clamped to [a, b] against rounding of tan. */
+TS_INLINE float ts_equiangular_sample(const TsEquiangular* e, float a, float b, float u) {
+    float t = e->delta + e->D * tan(e->theta_a + u * (e->theta_b - e->theta_a));
+    return fmin(fmax(t, a), b);
+}
+
+/* The density of ts_equiangular_sample at t (per scene unit). */
+TS_INLINE float ts_equiangular_pdf(const TsEquiangular* e, float t) {
+    float x = t - e->delta;
+    return e->D / ((e->theta_b - e->theta_a) * (e->D * e->D + x * x));
+}
+
 /* Transmittance along a shadow ray over its (tmin, tmax); 1 where the medium is compiled
  * out (OpenCL builds without TS_HAS_MEDIUM; every C++ build has it, and a scene without a
  * medium gives 1 through ts_medium_clip). */

@@ -1,7 +1,9 @@
 // kernels/shared/medium.h compiled as C++: Beer–Lambert transmittance through the box,
-// the free-flight distance distribution, and the unbiasedness of the RGB weights.
+// the free-flight distance distribution, the unbiasedness of the RGB weights, and
+// equiangular distance sampling (its pdf and its finite densities).
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -62,6 +64,65 @@ TEST(Medium, FreeFlightDistancesAreExponential) {
     }
     auto r = test::chi_square(observed, expected);
     EXPECT_FALSE(r.reject) << "chi2 " << r.statistic << " dof " << r.dof << " z " << r.z;
+}
+
+TEST(Medium, EquiangularDistancesFollowTheirPdf) {
+    // ts_equiangular_sample against ts_equiangular_pdf: fifty bins whose expected counts
+    // are the pdf integrated over each bin (Simpson, 64 panels), so a sampler and a pdf
+    // that disagree (a lost D, a wrong angle range) fail. A point 0.3 off the ray, its
+    // projection inside the segment [0.5, 6]: a sharp peak, the case the method is for.
+    const ts::float3 org = make_float3(0, 0, 0), dir = make_float3(0, 0, 1), p = make_float3(0.3f, 0, 2);
+    const float a = 0.5f, b = 6.0f;
+    ts::TsEquiangular e = ts::ts_equiangular_setup(org, dir, a, b, p, 0.0f);
+    EXPECT_NEAR(e.delta, 2.0f, 1e-6f);
+    EXPECT_NEAR(e.D, 0.3f, 1e-6f);
+    const int bins = 50, n = 200000;
+    std::vector<double> observed(bins, 0.0), expected(bins, 0.0);
+    const double width = (b - a) / bins;
+    double total = 0.0;
+    for (int k = 0; k < bins; ++k) {
+        const int panels = 64;
+        const double h = width / panels;
+        double s = 0.0;
+        for (int j = 0; j <= panels; ++j) {
+            const double t = a + k * width + j * h;
+            const double c = (j == 0 || j == panels) ? 1.0 : (j % 2 ? 4.0 : 2.0);
+            s += c * ts::ts_equiangular_pdf(&e, float(t));
+        }
+        expected[k] = s * h / 3.0 * n;
+        total += expected[k];
+    }
+    EXPECT_NEAR(total / n, 1.0, 1e-4) << "the pdf integrates to one over [a, b]";
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int i = 0; i < n; ++i) {
+        float t = ts::ts_equiangular_sample(&e, a, b, u(rng));
+        ASSERT_TRUE(t >= a && t <= b) << t;
+        observed[std::min(bins - 1, int((t - a) / width))] += 1.0;
+    }
+    auto r = test::chi_square(observed, expected);
+    EXPECT_FALSE(r.reject) << "chi2 " << r.statistic << " dof " << r.dof << " z " << r.z;
+}
+
+TEST(Medium, EquiangularStaysFiniteForAPointOnTheRay) {
+    // A light or VPL exactly on the camera ray's line (D = 0) would give 0/0 angles and an
+    // infinite density at its projection: the rounding floor keeps D > 0, so samples and
+    // densities stay finite; d_min widens the density to the given distance (the VPL
+    // clamp's radius in shared/igi.h).
+    const ts::float3 org = make_float3(0, 0, 0), dir = make_float3(0, 0, 1), p = make_float3(0, 0, 3);
+    ts::TsEquiangular e = ts::ts_equiangular_setup(org, dir, 0.0f, 10.0f, p, 0.0f);
+    EXPECT_GT(e.D, 0.0f);
+    for (float u : {0.0f, 0.25f, 0.5f, 0.75f, 0.999f}) {
+        const float t = ts::ts_equiangular_sample(&e, 0.0f, 10.0f, u);
+        EXPECT_TRUE(std::isfinite(t) && t >= 0.0f && t <= 10.0f) << u << " " << t;
+        const float pdf = ts::ts_equiangular_pdf(&e, t);
+        EXPECT_TRUE(std::isfinite(pdf) && pdf > 0.0f) << u << " " << pdf;
+    }
+    ts::TsEquiangular wide = ts::ts_equiangular_setup(org, dir, 0.0f, 10.0f, p, 0.5f);
+    EXPECT_EQ(wide.D, 0.5f);
+    // The peak density of a Cauchy law of scale D truncated to [0, 10] around 3: about
+    // 1 / (pi D), here 1 / ((atan(14) + atan(6)) · 0.5).
+    EXPECT_NEAR(ts::ts_equiangular_pdf(&wide, 3.0f), 1.0 / ((std::atan(14.0) + std::atan(6.0)) * 0.5), 1e-5);
 }
 
 TEST(Medium, RgbWeightsAreUnbiased) {
