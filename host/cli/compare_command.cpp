@@ -15,6 +15,7 @@
 #include "cli/option_checks.h"
 #include "image/image_io.h"
 #include "metrics/cvvdp.h"
+#include "metrics/hdrvdp.h"
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "util/error.h"
@@ -29,13 +30,15 @@ struct CompareArgs {
     bool json = false;
     bool no_flip = false;
     bool cvvdp = false;
+    bool hdrvdp = false;
 };
 
 // Before reading the images: the error maps can be written, the metric options are sane,
-// and a requested ColorVideoVDP can run (check_cvvdp throws naming --cvvdp).
+// and a requested ColorVideoVDP or HDR-VDP-3 can run (the checks throw naming the option).
 void check_compare_options(const CompareArgs& a, const CLI::App& cmd) {
     reject_empty_values(cmd);
     if (a.cvvdp) metrics::check_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), "--cvvdp");
+    if (a.hdrvdp) metrics::check_hdrvdp(metrics::hdrvdp_tool(), "--hdrvdp");
     std::vector<OutputFile> maps;
     if (!a.map.empty()) maps.push_back({a.map, "--map"});
     if (!a.flip_map.empty()) maps.push_back({a.flip_map, "--flip-map"});
@@ -94,6 +97,8 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
     if (a.cvvdp)
         cvvdp = metrics::compute_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), a.ref, a.test,
                                        a.cvvdp_map.empty() ? std::nullopt : std::optional<fs::path>(a.cvvdp_map));
+    std::optional<metrics::HdrvdpResult> hdrvdp;
+    if (a.hdrvdp) hdrvdp = metrics::compute_hdrvdp(metrics::hdrvdp_tool(), a.ref, a.test);
 
     if (a.json) {
         nlohmann::json j = {
@@ -122,6 +127,12 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
                                              {"display", cvvdp->display},
                                              {"implementation", cvvdp->implementation}}
                             : nlohmann::json{{"unavailable", "not requested (--cvvdp)"}}},
+            {"hdrvdp", hdrvdp ? nlohmann::json{{"p_ge_75", hdrvdp->pct_p_ge_75},
+                                               {"p_ge_95", hdrvdp->pct_p_ge_95},
+                                               {"q_jod", hdrvdp->q_jod},
+                                               {"pixels_per_degree", hdrvdp->ppd},
+                                               {"implementation", hdrvdp->implementation}}
+                              : nlohmann::json{{"unavailable", "not requested (--hdrvdp)"}}},
         };
         std::printf("%s\n", j.dump(2).c_str());
         return;
@@ -143,6 +154,11 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
                     "peak %g cd/m^2, %g pixels/degree, reference mean %g cd/m^2)\n",
                     cvvdp->jod, cvvdp->pct_ge_1jod, cvvdp->pct_ge_2_44jod, cvvdp->implementation.c_str(),
                     cvvdp->display.c_str(), cvvdp->peak_cd_m2, cvvdp->ppd, cvvdp->mean_luminance);
+    if (hdrvdp)
+        std::printf("HDR-VDP-3  %.3f%% of pixels P >= 75%%, %.3f%% P >= 95%%, Q %.4f JOD (%s; %g pixels/degree, "
+                    "reference mean 100 cd/m^2)\n",
+                    hdrvdp->pct_p_ge_75, hdrvdp->pct_p_ge_95, hdrvdp->q_jod, hdrvdp->implementation.c_str(),
+                    hdrvdp->ppd);
 }
 
 }  // namespace
@@ -170,6 +186,10 @@ void add_compare_command(CLI::App& app) {
     cmd->add_option("--cvvdp-python", args->cvvdp_python,
                     "Python interpreter that imports pycvvdp (default $TESSERA_CVVDP_PYTHON, else python3)")
         ->needs(cvvdp);
+    cmd->add_flag("--hdrvdp", args->hdrvdp,
+                  "Also run HDR-VDP-3 (bench/hdrvdp_metric.py; needs GNU Octave with its statistics and image "
+                  "packages): % of pixels with P >= 75% / 95% of a visible difference and Q_JOD, 32.45 "
+                  "pixels/degree, reference mean 100 cd/m^2 (the seed's Table 5.3 figures)");
     cmd->callback([args, cmd] { run_compare(*args, *cmd); });
 }
 

@@ -15,15 +15,6 @@ const char* const kInstallHint =
     "install cvvdp in a venv (bench/README.md, 'Perceptual metric') and name its python with --cvvdp-python or "
     "TESSERA_CVVDP_PYTHON";
 
-// Why a run failed, in one line: the interpreter missing, or the script's last message.
-std::string failure(const CvvdpTool& tool, const ToolRun& run) {
-    if (!run.started) return "cannot run " + tool.python + " (" + run.spawn_error + ")";
-    if (run.exit_code == 127) return tool.python + " not found";
-    std::string why = last_line(run.err);
-    return why.empty() ? tool.script.filename().string() + " exited with status " + std::to_string(run.exit_code)
-                       : why;
-}
-
 }  // namespace
 
 CvvdpTool cvvdp_tool(const std::string& python_option) {
@@ -37,7 +28,7 @@ std::string check_cvvdp(const CvvdpTool& tool, const std::string& option) {
     const ToolRun run = run_tool({tool.python, tool.script.string(), "--check"});
     if (!run.started || run.exit_code != 0)
         throw InputError(option + ": ColorVideoVDP is not available with " + tool.python + ": " +
-                         failure(tool, run) + "; " + kInstallHint);
+                         tool_failure(tool.python, tool.script, run) + "; " + kInstallHint);
     return last_line(run.out);
 }
 
@@ -46,7 +37,7 @@ CvvdpResult compute_cvvdp(const CvvdpTool& tool, const fs::path& ref, const fs::
     std::vector<std::string> args = {tool.python, tool.script.string(), ref.string(), test.string()};
     if (heatmap_png) args.insert(args.end(), {"--heatmap", heatmap_png->string()});
     const ToolRun run = run_tool(args);
-    if (!run.started || run.exit_code != 0) throw RuntimeError("ColorVideoVDP failed: " + failure(tool, run));
+    if (!run.started || run.exit_code != 0) throw RuntimeError("ColorVideoVDP failed: " + tool_failure(tool.python, tool.script, run));
     CvvdpResult r;
     try {
         const auto j = nlohmann::json::parse(run.out);

@@ -75,4 +75,11 @@ ToolRun run_tool(const std::vector<std::string>& args) {
     return r;
 }
 
+std::string tool_failure(const std::string& python, const std::filesystem::path& script, const ToolRun& run) {
+    if (!run.started) return "cannot run " + python + " (" + run.spawn_error + ")";
+    if (run.exit_code == 127) return python + " not found";
+    std::string why = last_line(run.err);
+    return why.empty() ? script.filename().string() + " exited with status " + std::to_string(run.exit_code) : why;
+}
+
 }  // namespace tessera::metrics

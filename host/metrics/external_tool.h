@@ -1,6 +1,7 @@
 // Running an external metric tool (a Python script: bench/flip_metric.py,
 // bench/cvvdp_metric.py) as a subprocess and capturing what it prints.
 #pragma once
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ ToolRun run_tool(const std::vector<std::string>& args);
 
 /// The last non-empty line of `s` (a Python tool's error message), without the newline.
 std::string last_line(std::string s);
+
+/// Why a run of `python script` failed, in one line: the interpreter missing or not
+/// started, or the script's last message (its exit status when it printed none).
+std::string tool_failure(const std::string& python, const std::filesystem::path& script, const ToolRun& run);
 
 /// $name if set and not empty, else `fallback`.
 std::string env_or(const char* name, const std::string& fallback);

@@ -107,6 +107,8 @@ using std::fabs;
 using std::floor;
 using std::sin;
 using std::sqrt;
+using std::tan;
+using std::atan2;
 using std::pow;
 using std::isfinite;
 inline float clamp(float x, float lo, float hi) { return fmin(fmax(x, lo), hi); }

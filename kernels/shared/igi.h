@@ -383,12 +383,41 @@ TS_INLINE float ts_igi_march_t(const TsFrame* f, const TsIgiMarch* m, uint k, ui
     return m->t0 + ((float)i + ((float)k + f->igi_march_rotation) / N) * m->step;
 }
 
-/* The density of step i's light-sample distance relative to the march's uniform one
- * (1 / (t1 - t0)), for a light point p at distance t: the equiangular density toward p
- * (ts_equiangular_pdf) times the segment's length. The power heuristic compares it, times
- * the light pdf, with the phase sample's pdf at the same point. */
+/* Equiangular sampling pays (its inverse trigonometry costs more than the march's shadow
+ * ray saves) only for a point light whose 1/d^2 peak on the camera ray is narrower than a
+ * few steps, which the march's stratified points resolve badly: D, its distance from the
+ * ray's line (floored), under this many steps. Farther ones keep the stratified point. */
+#ifndef TS_IGI_EQUIANGULAR_REACH
+#define TS_IGI_EQUIANGULAR_REACH 2.0f
+#endif
+
+/* Where march m gathers point light p at the step whose own distance is t: returns the
+ * distance and sets *eq, its density relative to the march's uniform one (1/(t1 - t0)).
+ * With m->equiangular and p within TS_IGI_EQUIANGULAR_REACH steps of the ray (D floored at
+ * d_min), the distance is drawn by equiangular sampling toward p (ts_equiangular_sample)
+ * with the step's stratified offset (t - t0)/(t1 - t0) as its uniform number, and *eq is
+ * its pdf times the segment's length; else t itself with *eq = 1. *eq = 0: nothing to
+ * gather (an empty segment, or a density rounding made unusable). */
+TS_INLINE float ts_igi_march_toward(const TsIgiMarch* m, float3 p, float d_min, float t, float* eq) {
+    float len = m->t1 - m->t0;
+    *eq = len > 0.0f ? 1.0f : 0.0f;
+    if (!m->equiangular || !(len > 0.0f)) return t;
+    TsEquiangular e = ts_equiangular_setup(m->ray.org, m->ray.dir, m->t1, p, d_min);
+    if (!(e.D < TS_IGI_EQUIANGULAR_REACH * m->step)) return t;
+    e = ts_equiangular_angles(e, m->t0, m->t1);
+    t = ts_equiangular_sample(&e, m->t0, m->t1, (t - m->t0) / len);
+    *eq = ts_equiangular_pdf(&e, t) * len;
+    if (!(*eq > 0.0f && *eq < TS_INF)) *eq = 0.0f;
+    return t;
+}
+
+/* The density of light point p's distance t relative to the march's uniform one, as
+ * ts_igi_march_toward draws it for a light sample at p: the power heuristic compares it,
+ * times the light pdf, with the phase sample's pdf at the same point. */
 TS_INLINE float ts_igi_march_eq_ratio(const TsIgiMarch* m, float3 p, float t) {
-    TsEquiangular e = ts_equiangular_setup(m->ray.org, m->ray.dir, m->t0, m->t1, p, 0.0f);
+    TsEquiangular e = ts_equiangular_setup(m->ray.org, m->ray.dir, m->t1, p, 0.0f);
+    if (!(e.D < TS_IGI_EQUIANGULAR_REACH * m->step)) return 1.0f;
+    e = ts_equiangular_angles(e, m->t0, m->t1);
     return ts_equiangular_pdf(&e, t) * (m->t1 - m->t0);
 }
 
@@ -412,13 +441,10 @@ TS_INLINE int ts_igi_march_light_link(const TsSceneView* sv, const TsFrame* f, c
     uint n = f->shadow_samples;
     float3 q = ts_igi_light_point(f, k * n + i % n);
     TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
-    float len = m->t1 - m->t0, eq = 1.0f;
+    float eq = 1.0f;
     if (m->equiangular) {
-        if (!(len > 0.0f)) return 0;
-        TsEquiangular e = ts_equiangular_setup(m->ray.org, m->ray.dir, m->t0, m->t1, ls.position, 0.0f);
-        t = ts_equiangular_sample(&e, m->t0, m->t1, (t - m->t0) / len);
-        eq = ts_equiangular_pdf(&e, t) * len;
-        if (!(eq > 0.0f && eq < TS_INF)) return 0;
+        t = ts_igi_march_toward(m, ls.position, 0.0f, t, &eq);
+        if (!(eq > 0.0f)) return 0;
     }
     float3 x = m->ray.org + m->ray.dir * t;
     float3 d = ls.position - x;
@@ -498,12 +524,9 @@ TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const
     float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
     *tint = make_float3(1.0f, 1.0f, 1.0f);
     if (m->equiangular) {
-        float len = m->t1 - m->t0;
-        if (!(len > 0.0f)) return 0;
-        TsEquiangular e = ts_equiangular_setup(m->ray.org, m->ray.dir, m->t0, m->t1, y, 1.0f / sqrt(f->igi_g_clamp));
-        t = ts_equiangular_sample(&e, m->t0, m->t1, (t - m->t0) / len);
-        float eq = ts_equiangular_pdf(&e, t) * len;
-        if (!(eq > 0.0f && eq < TS_INF)) return 0;
+        float eq;
+        t = ts_igi_march_toward(m, y, 1.0f / sqrt(f->igi_g_clamp), t, &eq);
+        if (!(eq > 0.0f)) return 0;
         *tint = med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0))) * (m->step / eq);
     }
     float3 x = m->ray.org + m->ray.dir * t;

@@ -95,14 +95,22 @@ typedef struct TsEquiangular {
     float delta, D, theta_a, theta_b;
 } TsEquiangular;
 
-/* The sampler for the segment [a, b] of the ray (org, unit dir) toward p, D at least
- * d_min (scene units; 0: no floor beyond the rounding one). */
-TS_INLINE TsEquiangular ts_equiangular_setup(float3 org, float3 dir, float a, float b, float3 p, float d_min) {
+/* The sampler's geometry for a segment ending at b of the ray (org, unit dir) toward p:
+ * delta and D, at least d_min (scene units; 0: no floor beyond the rounding one). The
+ * angles come apart (ts_equiangular_angles), so a caller can look at D before paying for
+ * the inverse trigonometry. */
+TS_INLINE TsEquiangular ts_equiangular_setup(float3 org, float3 dir, float b, float3 p, float d_min) {
     TsEquiangular e;
     float3 op = p - org;
     e.delta = dot(op, dir);
     float3 perp = op - dir * e.delta;
     e.D = fmax(fmax(length(perp), d_min), 1e-5f * fmax(fabs(b), fabs(e.delta)) + 1e-30f);
+    e.theta_a = e.theta_b = 0.0f;
+    return e;
+}
+
+/* The angles of the segment [a, b]'s ends seen from p (after ts_equiangular_setup). */
+TS_INLINE TsEquiangular ts_equiangular_angles(TsEquiangular e, float a, float b) {
     e.theta_a = atan2(a - e.delta, e.D);
     e.theta_b = atan2(b - e.delta, e.D);
     return e;

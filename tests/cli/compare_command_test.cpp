@@ -46,6 +46,10 @@ bool cvvdp_importable() {
 
 // A deterministic test pattern: a smooth HDR gradient with a bright patch (values up to
 // ~8, as in a rendering with a light source), perturbed by `noise` of relative amplitude.
+bool hdrvdp_runs() {
+    return run_shell(std::string("python3 ") + TESSERA_SOURCE_DIR + "/bench/hdrvdp_metric.py --check").exit_code == 0;
+}
+
 Image pattern(int w, int h, float noise, unsigned seed) {
     Image img{w, h, {{"R", {}}, {"G", {}}, {"B", {}}, {"variance.R", {}}}};
     for (auto& c : img.channels) c.data.resize(w * h);
@@ -347,4 +351,81 @@ TEST_F(CompareCli, CvvdpFallsWithNoiseAndIgnoresOverallScale) {
         compare_json(write("ref8.exr", ref), write("strong8.exr", strong) + " --no-flip --cvvdp")["cvvdp"];
     EXPECT_NEAR(j8["jod"].get<double>(), js["jod"].get<double>(), 1e-4);
     EXPECT_NEAR(j8["p_ge_1jod"].get<double>(), js["p_ge_1jod"].get<double>(), 100.0 / (w * h) + 1e-9);
+}
+
+// --hdrvdp without a usable HDR-VDP-3: one error naming the option and the reason, before
+// any work (the --map output is not written). The reason is the script's: a stand-in that
+// answers --check as the real one does without Octave (exit 3, the message on stderr).
+TEST_F(CompareCli, HdrvdpUnavailableIsOneErrorBeforeAnyWork) {
+    const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
+    const fs::path map = dir_ / "map.png";
+    CliResult r = run_compare(a + " " + b + " --hdrvdp --map " + map.string(),
+                              "TESSERA_HDRVDP_SCRIPT=/nonexistent/hdrvdp_metric.py");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("tessera: error: --hdrvdp: script /nonexistent/hdrvdp_metric.py not found"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(map));
+    const fs::path fake = dir_ / "no_octave.py";
+    std::ofstream(fake) << "import sys\nprint('hdrvdp_metric: octave-cli not found (Debian: apt-get install octave "
+                           "octave-statistics octave-image)', file=sys.stderr)\nsys.exit(3)\n";
+    r = run_compare(a + " " + b + " --hdrvdp --map " + map.string(), "TESSERA_HDRVDP_SCRIPT=" + fake.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--hdrvdp: HDR-VDP-3 is not available: hdrvdp_metric: octave-cli not found"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("relMSE"), std::string::npos) << "no metric printed:\n" << r.output;
+    EXPECT_FALSE(fs::exists(map));
+    nlohmann::json j = compare_json(a, b + " --no-flip", "TESSERA_HDRVDP_SCRIPT=" + fake.string());
+    EXPECT_EQ(j["hdrvdp"]["unavailable"], "not requested (--hdrvdp)");
+}
+
+// The plumbing from the script's JSON line to compare's text and JSON, with a stand-in
+// script answering --check and printing fixed values.
+TEST_F(CompareCli, HdrvdpValuesReachTextAndJson) {
+    const fs::path fake = dir_ / "fixed.py";
+    std::ofstream(fake) << "import sys\n"
+                           "if sys.argv[1] == '--check':\n    print('hdrvdp-3.0.7 in GNU Octave, version 7.3.0')\n"
+                           "else:\n    print('{\"p_ge_75\": 24.25, \"p_ge_95\": 2.5, \"q_jod\": 8.125, "
+                           "\"pixels_per_degree\": 32.45, \"implementation\": \"hdrvdp-3.0.7 in GNU Octave\"}')\n";
+    const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
+    const std::string env = "TESSERA_HDRVDP_SCRIPT=" + fake.string();
+    nlohmann::json j = compare_json(a, b + " --no-flip --hdrvdp", env);
+    EXPECT_EQ(j["hdrvdp"]["p_ge_75"].get<double>(), 24.25);
+    EXPECT_EQ(j["hdrvdp"]["p_ge_95"].get<double>(), 2.5);
+    EXPECT_EQ(j["hdrvdp"]["q_jod"].get<double>(), 8.125);
+    EXPECT_EQ(j["hdrvdp"]["pixels_per_degree"].get<double>(), 32.45);
+    CliResult text = run_compare(a + " " + b + " --no-flip --hdrvdp", env);
+    EXPECT_EQ(text.exit_code, 0) << text.output;
+    EXPECT_NE(text.output.find("HDR-VDP-3  24.250% of pixels P >= 75%, 2.500% P >= 95%, Q 8.1250 JOD "
+                               "(hdrvdp-3.0.7 in GNU Octave; 32.45 pixels/degree, reference mean 100 cd/m^2)"),
+              std::string::npos)
+        << text.output;
+}
+
+// The real metric (skipped where Octave, its packages or the sources are missing):
+// identical images show no visible difference; noise shows some, more noise more; and as
+// both images are scaled so that the reference's mean luminance is 100 cd/m^2, scaling
+// both by 8 (exact in float) leaves the verdict unchanged.
+TEST_F(CompareCli, HdrvdpSeesNoiseAndIgnoresOverallScale) {
+    if (!hdrvdp_runs()) GTEST_SKIP() << "bench/hdrvdp_metric.py --check fails (no Octave or HDR-VDP-3 sources)";
+    const int w = 64, h = 48;
+    Image ref = pattern(w, h, 0.0f, 1), weak = pattern(w, h, 0.05f, 2), strong = pattern(w, h, 0.6f, 3);
+    const std::string r = write("ref.exr", ref);
+    const nlohmann::json same = compare_json(r, r + " --no-flip --hdrvdp")["hdrvdp"];
+    EXPECT_EQ(same["p_ge_75"].get<double>(), 0.0) << same.dump();
+    EXPECT_NEAR(same["q_jod"].get<double>(), 10.0, 1e-6);
+    const nlohmann::json jw = compare_json(r, write("weak.exr", weak) + " --no-flip --hdrvdp")["hdrvdp"];
+    const nlohmann::json js = compare_json(r, write("strong.exr", strong) + " --no-flip --hdrvdp")["hdrvdp"];
+    std::printf("  HDR-VDP-3 weak noise: %s\n  strong noise: %s\n", jw.dump().c_str(), js.dump().c_str());
+    EXPECT_LT(js["q_jod"].get<double>(), jw["q_jod"].get<double>());
+    EXPECT_GT(js["p_ge_75"].get<double>(), jw["p_ge_75"].get<double>());
+    EXPECT_LE(js["p_ge_95"].get<double>(), js["p_ge_75"].get<double>());
+    for (Image* img : {&ref, &strong})
+        for (int c = 0; c < 3; ++c)
+            for (float& v : img->channels[c].data) v *= 8.0f;
+    const nlohmann::json j8 =
+        compare_json(write("ref8.exr", ref), write("strong8.exr", strong) + " --no-flip --hdrvdp")["hdrvdp"];
+    EXPECT_NEAR(j8["q_jod"].get<double>(), js["q_jod"].get<double>(), 1e-4);
+    EXPECT_NEAR(j8["p_ge_75"].get<double>(), js["p_ge_75"].get<double>(), 100.0 / (w * h) + 1e-9);
 }

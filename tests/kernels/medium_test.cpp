@@ -73,7 +73,7 @@ TEST(Medium, EquiangularDistancesFollowTheirPdf) {
     // projection inside the segment [0.5, 6]: a sharp peak, the case the method is for.
     const ts::float3 org = make_float3(0, 0, 0), dir = make_float3(0, 0, 1), p = make_float3(0.3f, 0, 2);
     const float a = 0.5f, b = 6.0f;
-    ts::TsEquiangular e = ts::ts_equiangular_setup(org, dir, a, b, p, 0.0f);
+    ts::TsEquiangular e = ts::ts_equiangular_angles(ts::ts_equiangular_setup(org, dir, b, p, 0.0f), a, b);
     EXPECT_NEAR(e.delta, 2.0f, 1e-6f);
     EXPECT_NEAR(e.D, 0.3f, 1e-6f);
     const int bins = 50, n = 200000;
@@ -110,7 +110,7 @@ TEST(Medium, EquiangularStaysFiniteForAPointOnTheRay) {
     // densities stay finite; d_min widens the density to the given distance (the VPL
     // clamp's radius in shared/igi.h).
     const ts::float3 org = make_float3(0, 0, 0), dir = make_float3(0, 0, 1), p = make_float3(0, 0, 3);
-    ts::TsEquiangular e = ts::ts_equiangular_setup(org, dir, 0.0f, 10.0f, p, 0.0f);
+    ts::TsEquiangular e = ts::ts_equiangular_angles(ts::ts_equiangular_setup(org, dir, 10.0f, p, 0.0f), 0.0f, 10.0f);
     EXPECT_GT(e.D, 0.0f);
     for (float u : {0.0f, 0.25f, 0.5f, 0.75f, 0.999f}) {
         const float t = ts::ts_equiangular_sample(&e, 0.0f, 10.0f, u);
@@ -118,7 +118,8 @@ TEST(Medium, EquiangularStaysFiniteForAPointOnTheRay) {
         const float pdf = ts::ts_equiangular_pdf(&e, t);
         EXPECT_TRUE(std::isfinite(pdf) && pdf > 0.0f) << u << " " << pdf;
     }
-    ts::TsEquiangular wide = ts::ts_equiangular_setup(org, dir, 0.0f, 10.0f, p, 0.5f);
+    ts::TsEquiangular wide =
+        ts::ts_equiangular_angles(ts::ts_equiangular_setup(org, dir, 10.0f, p, 0.5f), 0.0f, 10.0f);
     EXPECT_EQ(wide.D, 0.5f);
     // The peak density of a Cauchy law of scale D truncated to [0, 10] around 3: about
     // 1 / (pi D), here 1 / ((atan(14) + atan(6)) · 0.5).
