@@ -508,9 +508,9 @@ TS_INLINE void ts_igi_march_vpl_share(const TsSceneView* sv, const TsFrame* f, u
 /* VPL `vpl`'s link from the camera segment of march m at step i, whose own distance is t:
  * 0 when the VPL sends nothing toward the point (nothing to trace); else the shadow ray,
  * the clamped weight w = min(e · phase(dir, ω_i) / d², b) (e the VPL's emission factor
- * toward the point, ts_vpl_emission_factor; b the geometry clamp, so every VPL adds at
- * most C·b, as at surfaces: shared/vpl.h) and the colour factor *tint. Without
- * m->equiangular the point is the step's own, x = org + t·dir, *tint = 1, and a visible
+ * toward the point, ts_vpl_emission_factor; b the geometry clamp, a medium VPL's times
+ * TS_VPL_MEDIUM_CLAMP_SCALE, so every VPL adds at most C·b, as at surfaces:
+ * shared/vpl.h) and the colour factor *tint. Without m->equiangular the point is the step's own, x = org + t·dir, *tint = 1, and a visible
  * link adds C · Tr · w to the step's in-scattered light. With it (the default) the point
  * is drawn toward the VPL by equiangular sampling (Kulla and Fajardo 2012) with the
  * step's stratified offset as its uniform number, D floored at the clamp's radius
@@ -522,10 +522,11 @@ TS_INLINE void ts_igi_march_vpl_share(const TsSceneView* sv, const TsFrame* f, u
 TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const TsIgiMarch* m, float t,
                                     TS_GLOBAL const float* vpl, TsRay* shadow, float* w, float3* tint) {
     float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
+    float b = ts_vpl_in_medium(vpl) ? f->igi_g_clamp * TS_VPL_MEDIUM_CLAMP_SCALE : f->igi_g_clamp;
     *tint = make_float3(1.0f, 1.0f, 1.0f);
     if (m->equiangular) {
         float eq;
-        t = ts_igi_march_toward(m, y, 1.0f / sqrt(f->igi_g_clamp), t, &eq);
+        t = ts_igi_march_toward(m, y, 1.0f / sqrt(b), t, &eq);
         if (!(eq > 0.0f)) return 0;
         *tint = med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0))) * (m->step / eq);
     }
@@ -537,7 +538,7 @@ TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const
     float e = ts_vpl_emission_factor(vpl, -wi, med->g);
     if (!(e > 0.0f)) return 0;
     *shadow = ts_vpl_shadow_ray(x, vpl);
-    *w = fmin(e * ts_hg_phase(dot(m->ray.dir, wi), med->g) / dist2, f->igi_g_clamp);
+    *w = fmin(e * ts_hg_phase(dot(m->ray.dir, wi), med->g) / dist2, b);
     return 1;
 }
 

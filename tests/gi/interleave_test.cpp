@@ -97,10 +97,13 @@ TEST(VplGeometry, ClampBoundsEveryContribution) {
     EXPECT_FLOAT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.5f, &shadow), 0.75f / (4.0f * pi * 0.125f) / 4.0f);
     // The shadow ray ends at the point itself (no surface to offset from).
     EXPECT_FLOAT_EQ(shadow.org.z + shadow.dir.z, 2.0f);
-    put(0, 0, 1e-4f, 0, 0, -1);  // close: clamped to b, like a surface VPL
-    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), b);
-    put(0, 0, 2.0f, 0, 0, -1);  // a peaked phase function (g = 0.999: 1.6e5 at cos 1): b
-    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.999f, &shadow), b);
+    // Close: clamped to b/4, a radius twice a surface VPL's (TS_VPL_MEDIUM_CLAMP_SCALE:
+    // no cosine at the VPL keeps a medium VPL's 1/d² spike from fading near surfaces).
+    put(0, 0, 1e-4f, 0, 0, -1);
+    EXPECT_EQ(TS_VPL_MEDIUM_CLAMP_SCALE, 0.25f);
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.0f, &shadow), b * 0.25f);
+    put(0, 0, 2.0f, 0, 0, -1);  // a peaked phase function (g = 0.999: 1.6e5 at cos 1): b/4
+    EXPECT_EQ(ts::ts_vpl_geometry(&s, vpl, b, 0.999f, &shadow), b * 0.25f);
 }
 
 }  // namespace
