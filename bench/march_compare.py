@@ -1,180 +1,26 @@
 #!/usr/bin/env python3
 """One AIS frame in fog with the media ray march's two distance samplers, both backends.
 
-For each fog scene: one frame of `ais` at the `ais_bench` settings (tile 3, 32 VPL paths per
-set, 4 light samples, 8 march steps, one pass) with equiangular distances (the default,
-docs/igi.md §6) and with `--uniform-march` (the stratified march alone), on Embree and
-OpenCL, seeds 1-3. Reports per mode and backend the frame time (median over the seeds, from
---stats-json: set-up excluded), relMSE and HDR-FLIP (`tessera compare`) and HDR-VDP-3
-(bench/hdrvdp_metric.py, the protocol of ../shared/tools/README.md; skipped with a note
-when Octave is missing): medians over the seeds, with the ratio equiangular / uniform.
-Beside them, the reference's own noise: `pt` at --floor-spp with seed 2 against it.
-
-The reference: --reference DIR/<scene>.exr if there, else `pt` on Embree at
---reference-spp (default 4096; SCENE=N items per scene) with seed 7919, written to DIR
-(reused when it exists; give the spp it was made with, which the table names).
+For each fog scene: one frame of `ais` at the `ais_bench` settings with equiangular distances
+(the default, docs/igi.md §6) and with `--uniform-march` (the stratified march alone), on
+Embree and OpenCL, seeds 1-3; time, relMSE, HDR-FLIP and HDR-VDP-3 as bench/mode_compare.py
+describes, with the ratio equiangular / uniform and the reference's own noise.
 
 Usage: march_compare.py [--tessera build/tessera] [--size 256 256] [--reference DIR]
                         [--reference-spp N|SCENE=N ...] [--floor-spp 256] [--out bench/results/march_compare.md]
 Writes Markdown (--out) and JSON beside it.
 """
-import argparse
-import datetime
-import json
-import platform
-import statistics
-import subprocess
 import sys
-import tempfile
-from pathlib import Path
 
-import hdrvdp_metric
+from mode_compare import ROOT, Comparison
 
-ROOT = Path(__file__).resolve().parent.parent
 SCENES = {"cornell-box-fog": ROOT / "scenes/cornell-box-fog.json",
           "sibenik-fog": ROOT / "scenes/sibenik-fog.json"}
-DATA = ROOT.parent / "shared" / "scenes"
-AIS_BENCH = ["--method", "ais", "--spp", "1", "--tile", "3", "--vpl-paths", "32", "--shadow-samples", "4",
-             "--march-steps", "8"]
 MODES = {"equiangular": [], "uniform": ["--uniform-march"]}
-BACKENDS = ("embree", "opencl")
-SEEDS = (1, 2, 3)
 
-
-def render(binary, scene, args, size, out):
-    cmd = [binary, "render", str(scene), "--data-dir", str(DATA), "--width", str(size[0]), "--height",
-           str(size[1]), "--out", str(out), "--stats-json", str(out.with_suffix(".json"))] + args
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    return json.loads(out.with_suffix(".json").read_text())["seconds"]
-
-
-def compare(binary, ref, test):
-    r = subprocess.run([binary, "compare", str(ref), str(test), "--json"], check=True, capture_output=True, text=True)
-    d = json.loads(r.stdout)
-    return {"relmse": d["relmse"], "flip_gt_0_1": d["flip"]["p_gt_0_1"], "flip_mean": d["flip"]["mean"]}
-
-
-def hdrvdp(pairs):
-    """HDR-VDP-3 of each (ref, test) pair, or None (with the reason on stderr) without Octave."""
-    try:
-        return hdrvdp_metric.compare_files([str(p) for pair in pairs for p in pair])
-    except hdrvdp_metric.Missing as e:
-        print(f"march_compare: no HDR-VDP-3: {e}", file=sys.stderr)
-        return None
-
-
-def reference(binary, name, scene, size, args):
-    path = Path(args.reference) / f"{name}.exr"
-    if not path.exists():
-        path.parent.mkdir(parents=True, exist_ok=True)
-        render(binary, scene, ["--method", "pt", "--spp", str(reference_spp(args, name)), "--seed", "7919",
-                               "--backend", "embree"], size, path)
-    return path
-
-
-def measure(binary, name, scene, size, args, tmp):
-    ref = reference(binary, name, scene, size, args)
-    runs = []
-    for mode, extra in MODES.items():
-        for backend in BACKENDS:
-            for seed in SEEDS:
-                out = tmp / f"{name}-{mode}-{backend}-{seed}.exr"
-                t = render(binary, scene, AIS_BENCH + extra + ["--backend", backend, "--seed", str(seed)], size, out)
-                runs.append({"mode": mode, "backend": backend, "seed": seed, "seconds": t, "exr": out,
-                             **compare(binary, ref, out)})
-    floor = None
-    if args.floor_spp:
-        out = tmp / f"{name}-floor.exr"
-        render(binary, scene, ["--method", "pt", "--spp", str(args.floor_spp), "--seed", "2", "--backend", "embree"],
-               size, out)
-        floor = {"spp": args.floor_spp, "exr": out, **compare(binary, ref, out)}
-    vdp = hdrvdp([(ref, r["exr"]) for r in runs] + ([(ref, floor["exr"])] if floor else []))
-    if vdp:
-        for r, v in zip(runs + ([floor] if floor else []), vdp):
-            r.update({"p_ge_75": v["p_ge_75"], "p_ge_95": v["p_ge_95"], "q_jod": v["q_jod"]})
-    for r in runs + ([floor] if floor else []):
-        del r["exr"]
-    return {"scene": name, "reference": str(ref), "reference_spp": reference_spp(args, name), "runs": runs,
-            "floor": floor}
-
-
-def reference_spp(args, name):
-    return args.reference_spp.get(name, args.reference_spp.get("", 4096))
-
-
-def median(runs, mode, backend, key):
-    vals = [r[key] for r in runs if r["mode"] == mode and r["backend"] == backend and key in r]
-    return statistics.median(vals) if vals else None
-
-
-def fmt(v, spec):
-    return "—" if v is None else format(v, spec)
-
-
-def markdown(results, size, machine):
-    lines = ["# Media ray march: equiangular distances against the stratified march (one AIS frame)", "",
-             f"Machine: {machine}. {size[0]}x{size[1]}, `ais` at the `ais_bench` settings (tile 3, 32 VPL paths per "
-             "set, 4 light samples, 8 march steps), one pass, seeds 1-3: medians over the seeds. Equiangular: the "
-             "default (docs/igi.md §6); uniform: `--uniform-march`. Time: the frame's seconds from `--stats-json` "
-             "(set-up excluded). HDR-VDP-3: % of pixels with P >= 75% / >= 95% and Q_JOD "
-             "(bench/hdrvdp_metric.py, the protocol of ../shared/tools/README.md). Generated by "
-             "`bench/march_compare.py`.", "",
-             "| scene | backend | march | time (s) | relMSE | FLIP > 0.1 (mean) | HDR-VDP-3 P≥75 / P≥95 | Q_JOD |",
-             "|---|---|---|---|---|---|---|---|"]
-    for res in results:
-        for backend in BACKENDS:
-            for mode in MODES:
-                g = lambda k: median(res["runs"], mode, backend, k)  # noqa: E731
-                lines.append(f"| {res['scene']} | {backend} | {mode} | {fmt(g('seconds'), '.3f')} | "
-                             f"{fmt(g('relmse'), '.5f')} | {fmt(g('flip_gt_0_1'), '.2f')}% ({fmt(g('flip_mean'), '.4f')}) | "
-                             f"{fmt(g('p_ge_75'), '.2f')}% / {fmt(g('p_ge_95'), '.2f')}% | {fmt(g('q_jod'), '.3f')} |")
-            e = {k: median(res["runs"], "equiangular", backend, k) for k in ("seconds", "relmse", "p_ge_75")}
-            u = {k: median(res["runs"], "uniform", backend, k) for k in ("seconds", "relmse", "p_ge_75")}
-            ratio = lambda k: fmt(e[k] / u[k] if e[k] is not None and u[k] else None, ".3f")  # noqa: E731
-            lines.append(f"| {res['scene']} | {backend} | equiangular / uniform | {ratio('seconds')} | "
-                         f"{ratio('relmse')} | | {ratio('p_ge_75')} (P≥75) | |")
-    lines += ["", "Reference noise (`pt` at the floor's spp, seed 2, against the reference; a reference of k x more "
-              "spp has 1/sqrt(k) of that noise):", "",
-              "| scene | reference | floor | relMSE | FLIP > 0.1 | HDR-VDP-3 P≥75 / P≥95 |", "|---|---|---|---|---|---|"]
-    for res in results:
-        f = res["floor"]
-        if f:
-            lines.append(f"| {res['scene']} | pt {res['reference_spp']} spp | pt {f['spp']} spp | {f['relmse']:.5f} | "
-                         f"{f['flip_gt_0_1']:.2f}% | {fmt(f.get('p_ge_75'), '.2f')}% / {fmt(f.get('p_ge_95'), '.2f')}% |")
-    return "\n".join(lines) + "\n"
-
-
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--tessera", default=str(ROOT / "build/tessera"))
-    ap.add_argument("--size", type=int, nargs=2, default=(256, 256))
-    ap.add_argument("--reference", default=str(ROOT / "out/references"), help="folder of <scene>.exr references")
-    ap.add_argument("--reference-spp", nargs="*", default=["4096"],
-                    help="spp of the references rendered (and named in the table): N and/or SCENE=N items")
-    ap.add_argument("--floor-spp", type=int, default=256)
-    ap.add_argument("--scenes", nargs="*", default=list(SCENES))
-    ap.add_argument("--machine", default=f"{platform.node()} ({platform.processor() or platform.machine()})")
-    ap.add_argument("--out", default=str(ROOT / "bench/results/march_compare.md"))
-    args = ap.parse_args()
-    spp = {}
-    for item in args.reference_spp:
-        name, _, n = item.rpartition("=")
-        if not n.isdigit() or int(n) < 1 or (name and name not in SCENES):
-            ap.error(f"--reference-spp {item}: expected N or SCENE=N with N >= 1 and SCENE one of {', '.join(SCENES)}")
-        spp[name] = int(n)
-    args.reference_spp = spp
-    unknown = [s for s in args.scenes if s not in SCENES]
-    if unknown:
-        ap.error(f"--scenes {unknown[0]}: not one of {', '.join(SCENES)}")
-    with tempfile.TemporaryDirectory(prefix="march-") as tmp:
-        results = [measure(args.tessera, s, SCENES[s], args.size, args, Path(tmp)) for s in args.scenes]
-    out = Path(args.out)
-    machine = f"{args.machine}, {datetime.date.today().isoformat()}"
-    out.write_text(markdown(results, args.size, machine))
-    out.with_suffix(".json").write_text(json.dumps({"machine": machine, "size": list(args.size),
-                                                    "results": results}, indent=1) + "\n")
-    print(out)
-
+COMPARISON = Comparison("march_compare", SCENES, MODES,
+                        "Media ray march: equiangular distances against the stratified march (one AIS frame)",
+                        "Equiangular: the default (docs/igi.md §6); uniform: `--uniform-march`.", 4096)
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(COMPARISON.main(__doc__, "bench/results/march_compare.md"))
