@@ -9,6 +9,7 @@
 #include "tracer.h"
 #include "shared/igi.h"
 #include "shared/igi_resolve.h"
+#include "shared/edge_samples.h"
 #include "igi_packets.h"
 
 TS_PIXEL_KERNEL(igi_surface_pass, ts_igi_surface_pixel, TS_IGI_SURF_FLOATS)
@@ -16,6 +17,10 @@ TS_PIXEL_KERNEL(igi_surface_pass, ts_igi_surface_pixel, TS_IGI_SURF_FLOATS)
 /* AIS extra evaluations: item i (pixel, set | components << 8; items come grouped by
  * set) evaluates that set for those components at that pixel. */
 TS_ITEM_KERNEL(ais_extra_pass, ts_ais_extra_item, TS_AIS_ITEM_FLOATS)
+
+/* AIS edge samples: item i (pixel, sample j) traces the pixel's j-th extra camera sample
+ * to its first diffuse surface (shared/edge_samples.h). */
+TS_ITEM_KERNEL(edge_sample_pass, ts_edge_sample_item, TS_EDGE_SAMPLE_FLOATS)
 
 /* The frame's filter and composite where the kernels ran (GPU variant; shared/igi_resolve.h):
  * reads the surface and media kernels' outputs in place, writes the pass image. */

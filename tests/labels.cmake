@@ -17,7 +17,8 @@ set(tessera_statistical_tests
     "^(BackendAgreement|PtAgreement|Traversal|IgiAgreement|IgiConvergence|IgiMedia|Ais|LightSelection|PassConvergence)\\."
     "^G/HenyeyGreenstein\\.SamplesMatchThePhaseFunction/"
     "^Sampling\\.(CosineHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
-    "^Medium\\.(FreeFlightDistancesAreExponential|RgbWeightsAreUnbiased|EquiangularDistancesFollowTheirPdf)$")
+    "^Medium\\.(FreeFlightDistancesAreExponential|RgbWeightsAreUnbiased|EquiangularDistancesFollowTheirPdf)$"
+    "^EdgeSamples\\.EachSampleIsUniformOverThePixel$")
 list(JOIN tessera_statistical_tests "|" tessera_statistical_tests)
 # Start an X server (tests/support/with-xvfb, which says why the viewer tests once failed
 # with "Failed to open display"). They also hold one lock, so CTest never starts two X

@@ -33,6 +33,7 @@
 // material without a texture never reaches the lookup, and a scene without a medium
 // has medium.present = 0, so results equal the OpenCL builds without them.
 #include "kernels/shared/direct.h"
+#include "kernels/shared/edge_samples.h"
 #include "kernels/shared/ic.h"
 #include "kernels/shared/igi.h"
 #include "kernels/shared/igi_resolve.h"

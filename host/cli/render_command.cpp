@@ -39,7 +39,7 @@ struct RenderArgs {
     std::string out;
     std::string data_dir;
     std::string method = "direct";
-    std::string components = "ss,id,pm";
+    std::string components = "ss,id,pm,edge";
     std::string stats_json;
     std::string frames;  ///< --frames A:B, "" for one still image
     float exposure = 0.0f;
@@ -205,6 +205,10 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (cmd.count("--components") && !igi_family(settings.method))
             throw InputError("--components " + a.components + ": --method " + a.method +
                              " has no components (they select what igi, ais, ais-max, ic and tic compute)");
+        if (cmd.count("--components") && (settings.igi.components & TS_COMPONENT_EDGE) &&
+            settings.method != Method::Ais && settings.method != Method::AisMax)
+            throw InputError("--components " + a.components + ": edge samples are an AIS component (--method ais or "
+                             "ais-max), not --method " + a.method);
         validate_settings(settings);  // before the scene loads: a bad option fails at once
         check_render_options(a, cmd, bo);
         check_distributed_options(a, settings, cluster);
@@ -281,7 +285,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
     cmd->add_option("--method", args->method, "Rendering method: direct, pt, igi, ais, ais-max, ic or tic")
         ->capture_default_str();
-    cmd->add_option("--components", args->components, "igi/ais: components to compute, e.g. ss,id,pm")
+    cmd->add_option("--components", args->components, "igi/ais: components to compute, e.g. ss,id,pm (ais: also edge)")
         ->capture_default_str();
     add_parameter_options(*cmd, args->settings);  // --spp, --tile, ...: render/parameters.cpp
     cmd->add_option("--out", args->out, "Output EXR (default out/<scene>.exr); a PNG preview is written beside it");

@@ -46,7 +46,7 @@ constexpr double kMaxTargetFps = 1000.0;
 constexpr double kMaxSpeed = 1e12;
 
 struct ViewArgs {
-    std::string scene, backend = "opencl", device, method = "igi", components = "ss,id,pm", data_dir;
+    std::string scene, backend = "opencl", device, method = "igi", components = "ss,id,pm,edge", data_dir;
     std::string frames, camera_path, input_script, frame_images, times, screenshot, screenshot_window, reference;
     std::string pareto;
     int screenshot_window_frame = 10;
@@ -268,7 +268,7 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
     cmd->add_option("--method", args->method, "Starting method: direct, pt, igi, ais, ais-max, ic or tic (M/N switch)")
         ->capture_default_str();
-    cmd->add_option("--components", args->components, "igi/ais: starting components (1/2/3 toggle)")
+    cmd->add_option("--components", args->components, "igi/ais: starting components (1/2/3/4 toggle)")
         ->capture_default_str();
     add_parameter_options(*cmd, args->settings);  // --spp is the passes accumulated at rest
     cmd->add_option("--exposure", args->exposure, "Display and PNG exposure in stops ([ and ] change it)")

@@ -127,6 +127,29 @@ void AisFrame::reconstruct_component(int c) {
         IgiFrame::reconstruct_component(c);
 }
 
+void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
+    edge_guidance_.clear();
+    edge_schedule_ = EdgeSchedule{};
+    stats_.edge_samples = 0;
+    stats_.edge_flagged = 0;
+    stats_.edge_seconds = 0;
+    if (!(effective_components() & TS_COMPONENT_EDGE)) return;
+    const auto t0 = Clock::now();
+    edge_guidance_ = edge_guidance(geometry_, settings_.discontinuity, out, settings_.edges.dark);
+    edge_schedule_ = make_edge_schedule(edge_guidance_, settings_.edges, settings_.ais_mode);
+    const auto t_kernel = Clock::now();
+    std::vector<float> samples;
+    backend_.launch_items(KernelId::EdgeSample, frame, edge_schedule_.items, samples);
+    const auto t_merge = Clock::now();
+    merge_edge_samples(geometry_, settings_.discontinuity, edge_schedule_, samples,
+                       {&final_[kAisSS], &final_[kAisID], &final_[kAisPM], &transmittance_}, out);
+    stats_.edge_samples = edge_schedule_.items.size() / TS_EDGE_ITEM_WORDS;
+    stats_.edge_flagged = edge_schedule_.flagged;
+    stats_.edge_seconds = since(t0);
+    stats_.edge_schedule_seconds = std::chrono::duration<double>(t_kernel - t0).count();
+    stats_.edge_kernel_seconds = std::chrono::duration<double>(t_merge - t_kernel).count();
+}
+
 void AisFrame::add_to_sums() {
     IgiFrame::add_to_sums();
     auto add = [](std::vector<double>& sum, const auto& v) {
@@ -137,26 +160,37 @@ void AisFrame::add_to_sums() {
         if (!guidance_.g[c].empty()) add(guidance_sums_[c], guidance_.g[c]);
         if (!schedule_.sets[c].empty()) add(guidance_sums_[3 + c], schedule_.sets[c]);
     }
+    if (!edge_guidance_.empty()) {
+        add(guidance_sums_[6], edge_guidance_);
+        std::vector<float> samples(edge_schedule_.samples.begin(), edge_schedule_.samples.end());
+        for (float& n : samples) n += 1.0f;
+        add(guidance_sums_[7], samples);
+    }
 }
 
 std::string AisFrame::describe() const {
-    char buf[320];
+    char buf[480];
     std::snprintf(buf, sizeof buf,
                   "; %s: flagged SS %.1f%%, ID %.1f%%, PM %.1f%%, %zu extra set evaluations, %.1f ms "
-                  "(guidance+schedule %.1f, extra sets %.1f, merge %.1f)",
+                  "(guidance+schedule %.1f, extra sets %.1f, merge %.1f); edges %.1f%%, %zu camera samples, %.1f ms "
+                  "(guidance+schedule %.1f, samples %.1f)",
                   settings_.ais_mode == AisMode::AMax ? "ais-max" : "ais", 100 * stats_.flagged[kAisSS],
                   100 * stats_.flagged[kAisID], 100 * stats_.flagged[kAisPM], stats_.ais_items,
                   1e3 * stats_.ais_seconds, 1e3 * stats_.ais_schedule_seconds, 1e3 * stats_.ais_kernel_seconds,
-                  1e3 * stats_.ais_merge_seconds);
+                  1e3 * stats_.ais_merge_seconds, 100 * stats_.edge_flagged, stats_.edge_samples,
+                  1e3 * stats_.edge_seconds, 1e3 * stats_.edge_schedule_seconds, 1e3 * stats_.edge_kernel_seconds);
     return IgiFrame::describe() + buf;
 }
 
 void AisFrame::add_aov_channels(Image& image, uint32_t frames) const {
     IgiFrame::add_aov_channels(image, frames);
-    static const char* names[6] = {"guidance.SS", "guidance.ID", "guidance.PM", "sets.SS", "sets.ID", "sets.PM"};
+    static const char* names[8] = {"guidance.SS", "guidance.ID", "guidance.PM", "sets.SS",
+                                   "sets.ID",     "sets.PM",     "guidance.edge", "samples.edge"};
     const uint32_t bits = effective_components();
     for (int i = 0; i < 6; ++i)
         if (bits & (1u << (i % 3))) append_channels(image, guidance_sums_[i], names[i], 1, frames);
+    if (bits & TS_COMPONENT_EDGE)
+        for (int i = 6; i < 8; ++i) append_channels(image, guidance_sums_[i], names[i], 1, frames);
 }
 
 }  // namespace tessera

@@ -25,12 +25,17 @@ public:
 
     /// The last frame's schedule.
     const AisSchedule& schedule() const { return schedule_; }
+    /// The last frame's edge samples per pixel (empty without TS_COMPONENT_EDGE).
+    const EdgeSchedule& edge_schedule() const { return edge_schedule_; }
 
 protected:
     /// The schedule (AIS) and the cache (ic) are host code: components always come back.
     bool reconstructs_on_host() const override { return true; }
     void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) override;
     void reconstruct_component(int c) override;
+    /// Edge samples (TS_COMPONENT_EDGE): guidance from the pass image and the G-buffer,
+    /// the schedule, the samples' camera paths, their merge (gi/ais_edges.h).
+    void finish(const TsFrame& frame, std::vector<float>& out) override;
     void add_to_sums() override;
 
 private:
@@ -41,8 +46,11 @@ private:
     std::array<std::vector<double>, kAisComponents> own_sum_;
     AisGuidance guidance_;
     AisSchedule schedule_;
-    // Guidance (1 per pixel per component), then set counts, summed over frames.
-    std::array<std::vector<double>, 6> guidance_sums_;
+    // Guidance (1 per pixel per component), then set counts, summed over frames; then the
+    // edge guidance and each pixel's camera samples (1 + its edge samples).
+    std::array<std::vector<double>, 8> guidance_sums_;
+    std::vector<float> edge_guidance_;
+    EdgeSchedule edge_schedule_;
 };
 
 }  // namespace tessera

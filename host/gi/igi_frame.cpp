@@ -72,7 +72,8 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     frame.shadow_samples = settings_.set_shadow_samples;
     frame.igi_steps = settings_.march_steps;
     frame.igi_g_clamp = g_clamp_for(frame.pass);
-    frame.igi_components = effective_components();
+    // The kernels see the light-transport components only; edges are host scheduling.
+    frame.igi_components = effective_components() & ~TS_COMPONENT_EDGE;
     frame.igi_media_vpls = settings_.multiple_scattering ? 1u : 0u;
     frame.igi_equiangular = settings_.equiangular ? 1u : 0u;
     frame.igi_filter = settings_.filter ? 1u : 0u;
@@ -153,6 +154,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         else final_[c] = raw_[c];  // not computed: zeros, which the filter would keep
     }
     composite(surf, out);
+    finish(frame, out);
     if (settings_.component_aovs) add_to_sums();
     stats_.filter_seconds = since(t0);
 }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "backend/backend.h"
+#include "gi/ais_edges.h"
 #include "gi/ais_schedule.h"
 #include "gi/discontinuity_filter.h"
 #include "gi/vpl_generator.h"
@@ -56,9 +57,9 @@ struct IgiSettings {
     /// (`--uniform-march`): all of them at the march's own stratified points.
     bool equiangular = true;
     DiscontinuitySettings discontinuity;
-    /// Components to compute (TS_COMPONENT_SS | _ID | _PM); the ones the scene does not
-    /// call for are dropped anyway (no medium: no PM).
-    uint32_t components = 7u;
+    /// Components to compute (TS_COMPONENT_SS | _ID | _PM | _EDGE); the ones the scene does
+    /// not call for are dropped anyway (no medium: no PM), and only AIS takes edge samples.
+    uint32_t components = TS_COMPONENT_SS | TS_COMPONENT_ID | TS_COMPONENT_PM | TS_COMPONENT_EDGE;
     /// Bring the components to the host every frame, for the per-component AOVs
     /// (add_aov_channels) and the viewer's AOV display. false lets igi resolve its frame
     /// where the kernels ran (Backend::resolves_on_device: OpenCL's GPU variant), reading
@@ -67,6 +68,8 @@ struct IgiSettings {
     /// Adaptive Interleaved Sampling (AisFrame, ais_schedule.h): the mode and thresholds.
     AisMode ais_mode = AisMode::A;
     AisThresholds ais;
+    /// AIS edge samples (TS_COMPONENT_EDGE; gi/ais_edges.h).
+    EdgeSettings edges;
 };
 
 /// Timings and counts of the last frame, for the log and the benchmark.
@@ -81,7 +84,11 @@ struct IgiFrameStats {
     double ais_schedule_seconds = 0, ais_kernel_seconds = 0, ais_merge_seconds = 0;
     double cache_seconds = 0;  ///< the instant cache's indirect component (ic/tic only)
     size_t ais_items = 0;    ///< extra (pixel, set) evaluations (AIS only)
+    size_t edge_samples = 0; ///< extra camera samples on edges (AIS only)
+    double edge_seconds = 0; ///< edge guidance, samples and their merge (AIS only)
+    double edge_schedule_seconds = 0, edge_kernel_seconds = 0;  ///< its guidance+schedule and samples parts
     std::array<double, kAisComponents> flagged{};  ///< fraction of pixels flagged (AIS only)
+    double edge_flagged = 0;  ///< fraction of pixels given edge samples (AIS only)
 };
 
 class IgiFrame : public Integrator {
@@ -143,6 +150,9 @@ protected:
     }
     /// final_[c] from raw_[c]: the discontinuity filter (or a copy with the filter off).
     virtual void reconstruct_component(int c);
+    /// Runs after the composite, on the pass image `out` (TS_PASS_FLOATS per pixel): may
+    /// refine its radiance (AIS's edge samples). Counted as filter+composite time.
+    virtual void finish(const TsFrame& frame, std::vector<float>& out) { (void)frame, (void)out; }
     /// Adds this frame's raw and final components to the AOV sums.
     virtual void add_to_sums();
     /// Appends `sum` / frames as channel `name` (channels 1) or name.R/G/B (channels 3).

@@ -39,9 +39,13 @@ uint32_t parse_components(const std::string& list) {
     while (start <= list.size()) {
         const size_t end = std::min(list.find(',', start), list.size());
         const std::string c = list.substr(start, end - start);
-        const uint32_t bit = c == "ss" ? TS_COMPONENT_SS : c == "id" ? TS_COMPONENT_ID : c == "pm" ? TS_COMPONENT_PM : 0;
+        const uint32_t bit = c == "ss"     ? TS_COMPONENT_SS
+                             : c == "id"   ? TS_COMPONENT_ID
+                             : c == "pm"   ? TS_COMPONENT_PM
+                             : c == "edge" ? TS_COMPONENT_EDGE
+                                           : 0;
         if (bit == 0)
-            throw InputError("--components " + list + ": expected a comma-separated list of ss, id, pm" +
+            throw InputError("--components " + list + ": expected a comma-separated list of ss, id, pm, edge" +
                              (c.empty() ? " (an entry is empty)" : ", got '" + c + "'"));
         if (bits & bit) throw InputError("--components " + list + ": '" + c + "' is listed twice");
         bits |= bit;

@@ -25,7 +25,8 @@ const char* method_name(Method m);
 /// do not. The one definition every command and the viewer use.
 bool igi_family(Method m);
 
-/// Parses a comma-separated list of "ss", "id", "pm" into TS_COMPONENT_* bits; throws
+/// Parses a comma-separated list of "ss", "id", "pm", "edge" (AIS's edge samples) into
+/// TS_COMPONENT_* bits; throws
 /// InputError naming --components for anything else, an empty entry or a component
 /// listed twice ("ss,ss").
 uint32_t parse_components(const std::string& list);

@@ -151,8 +151,8 @@ void ViewSession::switch_method(int step) {
 
 void ViewSession::toggle_component(uint32_t bit) {
     const uint32_t next = settings_.igi.components ^ bit;
-    if (next == 0) {
-        std::fprintf(stderr, "tessera view: at least one component stays on\n");
+    if ((next & ~TS_COMPONENT_EDGE) == 0) {  // edge samples refine the others' pixels
+        std::fprintf(stderr, "tessera view: at least one of SS, ID and PM stays on\n");
         return;
     }
     settings_.igi.components = next;
@@ -203,6 +203,7 @@ void ViewSession::handle(const InputEvent& e) {
         case '1': toggle_component(TS_COMPONENT_SS); break;
         case '2': toggle_component(TS_COMPONENT_ID); break;
         case '3': toggle_component(TS_COMPONENT_PM); break;
+        case '4': toggle_component(TS_COMPONENT_EDGE); break;
         case 'V': cycle_aov(1); break;
         case 'B': cycle_aov(-1); break;
         case '[': exposure_ -= kExposureStep; break;
@@ -217,7 +218,7 @@ void ViewSession::handle(const InputEvent& e) {
 
 std::vector<std::string> ViewSession::key_help() {
     return {"W/A/S/D, Q/E: move; drag: look; scroll: speed; R: reset camera; C: print camera JSON",
-            "M/N: next/previous method; 1/2/3: toggle SS/ID/PM; V/B: next/previous AOV; [ ]: exposure",
+            "M/N: next/previous method; 1/2/3/4: toggle SS/ID/PM/edge; V/B: next/previous AOV; [ ]: exposure",
             "Space: pause; T: play animation (--frames); P: screenshot (EXR + PNG); H: HUD; Esc: quit"};
 }
 
@@ -385,9 +386,10 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
                   paused_ ? " (paused)" : "", playing_ ? " (playing)" : "", width_, height_, anim_frame_);
     lines.push_back(buf);
     const uint32_t c = settings_.igi.components;
-    std::snprintf(buf, sizeof buf, "components %s%s%s | AOV %s | exposure %+.1f | speed %.3g/s",
+    std::snprintf(buf, sizeof buf, "components %s%s%s%s | AOV %s | exposure %+.1f | speed %.3g/s",
                   c & TS_COMPONENT_SS ? "SS " : "", c & TS_COMPONENT_ID ? "ID " : "",
-                  c & TS_COMPONENT_PM ? "PM" : "", aov_name(aov_), exposure_, speed_);
+                  c & TS_COMPONENT_PM ? "PM " : "", c & TS_COMPONENT_EDGE ? "edge" : "", aov_name(aov_), exposure_,
+                  speed_);
     lines.push_back(buf);
     if (budget_) {
         const BudgetPoint& b = budget_->choice();

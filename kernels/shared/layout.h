@@ -274,6 +274,30 @@ typedef struct TsFrame {
 #define TS_COMPONENT_SS 1u
 #define TS_COMPONENT_ID 2u
 #define TS_COMPONENT_PM 4u
+/* Edge samples (AIS only; shared/edge_samples.h, host/gi/ais_edges.h): extra camera
+ * samples in pixels on geometric edges. Host-side only: kernels never see this bit
+ * (IgiFrame::prepare masks it out of TsFrame.igi_components). */
+#define TS_COMPONENT_EDGE 8u
+/* An edge sample's output, TS_EDGE_SAMPLE_FLOATS floats: the first diffuse surface of the
+ * sample's camera path, as the surface pass stores it (TS_IGI_SURF_*):
+ *   TS_EDGE_SAMPLE_ALBEDO     3 floats: albedo
+ *   TS_EDGE_SAMPLE_EMISSION   3 floats: emitted radiance (W/(sr·m²))
+ *   TS_EDGE_SAMPLE_THROUGHPUT 3 floats: the specular bounces' throughput
+ *   TS_EDGE_SAMPLE_NORMAL     3 floats: shading normal
+ *   TS_EDGE_SAMPLE_POSITION   3 floats: hit position (scene units)
+ *   TS_EDGE_SAMPLE_DISTANCE   distance along the camera path (scene units; +inf: escaped) */
+#define TS_EDGE_SAMPLE_FLOATS 16
+#define TS_EDGE_SAMPLE_ALBEDO 0
+#define TS_EDGE_SAMPLE_EMISSION 3
+#define TS_EDGE_SAMPLE_THROUGHPUT 6
+#define TS_EDGE_SAMPLE_NORMAL 9
+#define TS_EDGE_SAMPLE_POSITION 12
+#define TS_EDGE_SAMPLE_DISTANCE 15
+/* An item of the edge-sample kernel's list, TS_EDGE_ITEM_WORDS uints: the pixel
+ * (row-major index) and the sample's index j >= 1 within the pixel. */
+#define TS_EDGE_ITEM_WORDS 2
+#define TS_EDGE_ITEM_PIXEL 0
+#define TS_EDGE_ITEM_SAMPLE 1
 
 /* Instant caching (shared/ic.h, host/gi/irradiance_cache.h).
  * The ic G-buffer, TS_IC_GBUF_FLOATS floats per pixel: the first diffuse surface seen
@@ -458,6 +482,11 @@ static_assert(TS_AIS_ITEM_COMPONENT(0) == TS_AIS_ITEM_E_SS && TS_AIS_ITEM_COMPON
                   TS_AIS_ITEM_COMPONENT(2) == TS_AIS_ITEM_PM && TS_COMPONENT_SS == 1u << 0 &&
                   TS_COMPONENT_ID == 1u << 1 && TS_COMPONENT_PM == 1u << 2,
               "layout.h: TS_AIS_ITEM_COMPONENT(c) must start component c = the bit index of TS_COMPONENT_*");
+static_assert(tessera::layout_check::tiles({{TS_EDGE_SAMPLE_ALBEDO, 3}, {TS_EDGE_SAMPLE_EMISSION, 3},
+                                            {TS_EDGE_SAMPLE_THROUGHPUT, 3}, {TS_EDGE_SAMPLE_NORMAL, 3},
+                                            {TS_EDGE_SAMPLE_POSITION, 3}, {TS_EDGE_SAMPLE_DISTANCE, 1}},
+                                           TS_EDGE_SAMPLE_FLOATS),
+              "layout.h: edge-sample fields do not tile TS_EDGE_SAMPLE_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_IC_GBUF_POSITION, 3}, {TS_IC_GBUF_NORMAL, 3},
                                             {TS_IC_GBUF_GEO_NORMAL, 3}, {TS_IC_GBUF_ORIGIN, 3},
                                             {TS_IC_GBUF_POS_SCALE, 1}, {TS_IC_GBUF_PRIM, 1},

@@ -147,7 +147,7 @@ TEST(ViewSession, MethodAndComponentSwitchesRestartWithTheNewSettings) {
     session.handle({InputEvent::Kind::Press, '2'});  // ID off
     session.advance(0);
     session.advance(0);
-    o.settings.igi.components = TS_COMPONENT_SS | TS_COMPONENT_PM;
+    o.settings.igi.components = TS_COMPONENT_SS | TS_COMPONENT_PM | TS_COMPONENT_EDGE;  // the rest stay on
     expect_equal_images(session.accumulation(), still(scene, scene.camera, o.settings, 2));
 }
 

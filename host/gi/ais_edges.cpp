@@ -1,0 +1,147 @@
+#include "gi/ais_edges.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "kernels/shared/composite.h"
+#include "kernels/shared/discontinuity.h"
+#include "kernels/shared/layout.h"
+#include "kernels/shared/sampling.h"
+
+namespace tessera {
+namespace {
+
+// p's 3×3 window: itself, the 4 sides, then the corners (the order ties are broken in).
+constexpr int kWindow[9][2] = {{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+
+ts::float3 f3(const std::vector<float>& v, size_t p) { return ts::ts_f3_load(&v[3 * p]); }
+
+template <class F>
+void parallel_rows(int height, F&& f) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, height, 8), [&](const tbb::blocked_range<int>& r) {
+        for (int y = r.begin(); y < r.end(); ++y) f(y);
+    });
+}
+
+}  // namespace
+
+std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySettings& s,
+                                 const std::vector<float>& radiance, float dark) {
+    const size_t pixels = size_t(g.width) * g.height;
+    std::vector<float> y(pixels);
+    double sum = 0.0;
+    for (size_t p = 0; p < pixels; ++p) {
+        y[p] = ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
+        sum += y[p];
+    }
+    const float eps = dark * static_cast<float>(sum / std::max<size_t>(1, pixels));
+    std::vector<float> out(pixels, 0.0f);
+    parallel_rows(g.height, [&](int py) {
+        for (int px = 0; px < g.width; ++px) {
+            const size_t p = size_t(py) * g.width + px;
+            float best = 0.0f;
+            for (int i = 1; i < 9; ++i) {
+                const int qx = px + kWindow[i][0], qy = py + kWindow[i][1];
+                if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
+                const size_t q = size_t(qy) * g.width + qx;
+                if (discontinuity_accepts(g, s, p, q)) continue;
+                const float denominator = y[p] + y[q] + eps;
+                // A NaN or infinite luminance flags nothing (the comparison fails).
+                const float c = denominator > 0.0f ? std::fabs(y[p] - y[q]) / denominator : 0.0f;
+                if (c > best) best = std::min(c, 1.0f);
+            }
+            out[p] = best;
+        }
+    });
+    return out;
+}
+
+EdgeSchedule make_edge_schedule(const std::vector<float>& guidance, const EdgeSettings& e, AisMode mode) {
+    EdgeSchedule s;
+    s.samples.assign(guidance.size(), 0);
+    const uint32_t most = std::clamp<uint32_t>(e.samples, 1u, 15u);
+    size_t flagged = 0;
+    for (size_t p = 0; p < guidance.size(); ++p) {
+        if (!(guidance[p] > e.trigger)) continue;
+        ++flagged;
+        uint32_t n = most;
+        if (mode == AisMode::A && e.full > e.trigger) {
+            const float a = std::clamp((guidance[p] - e.trigger) / (e.full - e.trigger), 0.0f, 1.0f);
+            n = std::clamp(static_cast<uint32_t>(std::ceil(a * static_cast<float>(most))), 1u, most);
+        }
+        s.samples[p] = static_cast<uint8_t>(n);
+        for (uint32_t j = 1; j <= n; ++j) {
+            s.items.push_back(static_cast<uint32_t>(p));
+            s.items.push_back(j);
+        }
+    }
+    s.flagged = guidance.empty() ? 0.0 : double(flagged) / double(guidance.size());
+    return s;
+}
+
+size_t edge_sample_match(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y, const float* sample) {
+    const float zs = sample[TS_EDGE_SAMPLE_DISTANCE];
+    const ts::float3 ns = ts::ts_f3_load(sample + TS_EDGE_SAMPLE_NORMAL);
+    const ts::float3 xs = ts::ts_f3_load(sample + TS_EDGE_SAMPLE_POSITION);
+    const bool plane = !g.position.empty();
+    const ts::float3 none = ts::make_float3(0.0f, 0.0f, 0.0f);
+    const size_t p = size_t(y) * g.width + x;
+    size_t accepted = p, nearest = p;
+    float accepted_d = std::numeric_limits<float>::infinity(), depth_d = accepted_d;
+    bool any = false;
+    for (const auto& o : kWindow) {
+        const int qx = x + o[0], qy = y + o[1];
+        if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
+        const size_t q = size_t(qy) * g.width + qx;
+        const float zq = g.depth[q];
+        const ts::float3 xq = plane ? f3(g.position, q) : none;
+        if (ts::ts_discontinuity_accepts(zs, ns, plane ? xs : none, zq, f3(g.normal, q), xq, plane, s.normal_cos,
+                                         s.depth_rel)) {
+            // Escaped samples match the first escaped pixel; surfaces the nearest point.
+            const ts::float3 d = xq - xs;
+            const float d2 = !std::isfinite(zs) ? 0.0f : plane ? ts::dot(d, d) : std::fabs(zq - zs);
+            if (!any || d2 < accepted_d) accepted = q, accepted_d = d2;
+            any = true;
+        } else if (std::isfinite(zs) && std::isfinite(zq)) {
+            const float dz = std::fabs(zq - zs);
+            if (dz < depth_d) nearest = q, depth_d = dz;
+        }
+    }
+    if (!std::isfinite(zs) && !any) return p;
+    return any ? accepted : nearest;
+}
+
+void merge_edge_samples(const GeometryBuffer& g, const DiscontinuitySettings& s, const EdgeSchedule& schedule,
+                        const std::vector<float>& samples, const EdgeShading& shading, std::vector<float>& out) {
+    // Each flagged pixel's first item: its samples are consecutive items.
+    std::vector<size_t> first(schedule.samples.size(), 0);
+    for (size_t i = 0, n = schedule.items.size() / TS_EDGE_ITEM_WORDS; i < n; ++i) {
+        const size_t p = schedule.items[TS_EDGE_ITEM_WORDS * i + TS_EDGE_ITEM_PIXEL];
+        if (schedule.items[TS_EDGE_ITEM_WORDS * i + TS_EDGE_ITEM_SAMPLE] == 1) first[p] = i;
+    }
+    parallel_rows(g.height, [&](int y) {
+        for (int x = 0; x < g.width; ++x) {
+            const size_t p = size_t(y) * g.width + x;
+            const uint32_t n = schedule.samples[p];
+            if (n == 0) continue;
+            float* o = &out[p * TS_PASS_FLOATS + TS_PASS_RADIANCE];
+            double sum[3] = {o[0], o[1], o[2]};
+            for (uint32_t j = 0; j < n; ++j) {
+                const float* e = &samples[(first[p] + j) * TS_EDGE_SAMPLE_FLOATS];
+                const size_t q = edge_sample_match(g, s, x, y, e);
+                const ts::float3 l = ts::ts_igi_composite(
+                    f3(*shading.transmittance, q), ts::ts_f3_load(e + TS_EDGE_SAMPLE_THROUGHPUT),
+                    ts::ts_f3_load(e + TS_EDGE_SAMPLE_EMISSION), ts::ts_f3_load(e + TS_EDGE_SAMPLE_ALBEDO),
+                    f3(*shading.e_ss, q), f3(*shading.e_id, q), f3(*shading.l_pm, q));
+                sum[0] += l.x, sum[1] += l.y, sum[2] += l.z;
+            }
+            for (int c = 0; c < 3; ++c) o[c] = static_cast<float>(sum[c] / (n + 1));
+        }
+    });
+}
+
+}  // namespace tessera

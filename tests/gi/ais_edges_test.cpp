@@ -1,0 +1,151 @@
+// AIS edge samples on synthetic buffers: the guidance flags geometric edges with contrast
+// and nothing else, A grades and A-MAX saturates, a sample takes the neighbour on its own
+// surface, and the merge is the mean of the pixel's samples.
+#include "gi/ais_edges.h"
+
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+#include <gtest/gtest.h>
+
+#include "kernels/shared/layout.h"
+
+namespace tessera {
+namespace {
+
+constexpr int W = 8, H = 6;
+const DiscontinuitySettings kFilter{3, 0.9f, 0.05f};
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Columns x < 4: a wall facing the camera at depth 2; x >= 4: at depth `right_depth`
+// (a parallel wall behind it: a depth edge between columns 3 and 4), positions on z.
+GeometryBuffer two_walls(float right_depth) {
+    GeometryBuffer g;
+    g.width = W;
+    g.height = H;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const float z = x < 4 ? 2.0f : right_depth;
+            g.normal.insert(g.normal.end(), {0.0f, 0.0f, 1.0f});
+            g.position.insert(g.position.end(), {0.1f * x, 0.1f * y, -z});
+            g.depth.push_back(z);
+        }
+    return g;
+}
+
+// A pass image with radiance `left` for x < 4 and `right` elsewhere.
+std::vector<float> pass_image(float left, float right) {
+    std::vector<float> out(size_t(W) * H * TS_PASS_FLOATS, 0.0f);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            for (int c = 0; c < 3; ++c) out[(size_t(y) * W + x) * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] = x < 4 ? left : right;
+    return out;
+}
+
+TEST(AisEdgeGuidance, DepthEdgeWithContrastFlagsBothSides) {
+    const GeometryBuffer g = two_walls(4.0f);
+    const std::vector<float> guidance = edge_guidance(g, kFilter, pass_image(1.0f, 0.25f), 0.01f);
+    // ε = 0.01 · mean Y = 0.01 · 0.625; contrast (1 − 0.25) / (1.25 + ε).
+    const float expected = 0.75f / (1.25f + 0.00625f);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            SCOPED_TRACE(testing::Message() << "pixel " << x << "," << y);
+            EXPECT_NEAR(guidance[size_t(y) * W + x], x == 3 || x == 4 ? expected : 0.0f, 1e-6f);
+        }
+}
+
+TEST(AisEdgeGuidance, NoContrastOrNoGeometricEdgeFlagsNothing) {
+    // The same depth edge with equal radiance on both sides: nothing to anti-alias.
+    for (float g_value : edge_guidance(two_walls(4.0f), kFilter, pass_image(0.5f, 0.5f), 0.01f))
+        EXPECT_EQ(g_value, 0.0f);
+    // Contrast on one wall (a shadow edge): the light's edge, not coverage; SS's business.
+    for (float g_value : edge_guidance(two_walls(2.0f), kFilter, pass_image(1.0f, 0.0f), 0.01f))
+        EXPECT_EQ(g_value, 0.0f);
+}
+
+TEST(AisEdgeGuidance, EscapedRaysAreAnEdgeAndDarkDifferencesAreNot) {
+    GeometryBuffer g = two_walls(kInf);  // right half: the camera rays escaped
+    std::vector<float> guidance = edge_guidance(g, kFilter, pass_image(1.0f, 0.0f), 0.01f);
+    EXPECT_GT(guidance[3], 0.9f);
+    EXPECT_GT(guidance[4], 0.9f);
+    EXPECT_EQ(guidance[0], 0.0f);
+    // Both sides far below ε: a step of 1e-4 in a frame whose mean luminance is about 1
+    // (one pixel holds it all) is no edge to see.
+    std::vector<float> img = pass_image(1e-4f, 0.0f);
+    img[0 + TS_PASS_RADIANCE] = img[1 + TS_PASS_RADIANCE] = img[2 + TS_PASS_RADIANCE] = 1.0f * W * H;  // the mean
+    guidance = edge_guidance(g, kFilter, img, 0.01f);
+    EXPECT_LT(guidance[size_t(3) * W + 3], 0.05f);
+}
+
+TEST(AisEdgeSchedule, AGradesAndAMaxSaturates) {
+    EdgeSettings e;  // trigger 0.05, full 0.5, 8 samples
+    const std::vector<float> g = {0.0f, 0.05f, 0.06f, 0.27f, 0.5f, 1.0f};
+    const EdgeSchedule a = make_edge_schedule(g, e, AisMode::A);
+    // a = (g − 0.05) / 0.45: 0.022 -> 1 sample, 0.49 -> 4, 1 -> 8; at or below the trigger none.
+    EXPECT_EQ(std::vector<int>(a.samples.begin(), a.samples.end()), (std::vector<int>{0, 0, 1, 4, 8, 8}));
+    const EdgeSchedule m = make_edge_schedule(g, e, AisMode::AMax);
+    EXPECT_EQ(std::vector<int>(m.samples.begin(), m.samples.end()), (std::vector<int>{0, 0, 8, 8, 8, 8}));
+    EXPECT_DOUBLE_EQ(m.flagged, 4.0 / 6.0);
+    // Items: each flagged pixel's samples j = 1..n together, pixels in order.
+    ASSERT_EQ(a.items.size(), size_t(TS_EDGE_ITEM_WORDS) * (1 + 4 + 8 + 8));
+    EXPECT_EQ(a.items[TS_EDGE_ITEM_PIXEL], 2u);
+    EXPECT_EQ(a.items[TS_EDGE_ITEM_SAMPLE], 1u);
+    EXPECT_EQ(a.items[TS_EDGE_ITEM_WORDS * 1 + TS_EDGE_ITEM_PIXEL], 3u);
+    EXPECT_EQ(a.items[TS_EDGE_ITEM_WORDS * 4 + TS_EDGE_ITEM_SAMPLE], 4u);
+}
+
+// An edge sample on the plane z = −depth at (px, py) in the two walls' coordinates.
+std::vector<float> sample_at(float x, float y, float depth) {
+    std::vector<float> s(TS_EDGE_SAMPLE_FLOATS, 0.0f);
+    s[TS_EDGE_SAMPLE_NORMAL + 2] = 1.0f;
+    s[TS_EDGE_SAMPLE_POSITION] = x, s[TS_EDGE_SAMPLE_POSITION + 1] = y, s[TS_EDGE_SAMPLE_POSITION + 2] = -depth;
+    s[TS_EDGE_SAMPLE_DISTANCE] = depth;
+    for (int c = 0; c < 3; ++c) s[TS_EDGE_SAMPLE_THROUGHPUT + c] = 1.0f;
+    return s;
+}
+
+TEST(AisEdgeMatch, SampleTakesTheNeighbourOnItsSurface) {
+    const GeometryBuffer g = two_walls(4.0f);
+    // Pixel (3, 2) sees the near wall; a sample of it on the far wall takes (4, 2), the
+    // far-wall pixel nearest to it; one on the near wall takes (3, 2) itself.
+    EXPECT_EQ(edge_sample_match(g, kFilter, 3, 2, sample_at(0.38f, 0.2f, 4.0f).data()), size_t(2 * W + 4));
+    EXPECT_EQ(edge_sample_match(g, kFilter, 3, 2, sample_at(0.31f, 0.2f, 2.0f).data()), size_t(2 * W + 3));
+    // A sample on the near wall but close to row 3's pixel: the nearest accepted in space.
+    EXPECT_EQ(edge_sample_match(g, kFilter, 3, 2, sample_at(0.3f, 0.29f, 2.0f).data()), size_t(3 * W + 3));
+    // On neither wall (depth 3): the neighbour nearest in depth.
+    EXPECT_EQ(g.depth[edge_sample_match(g, kFilter, 3, 2, sample_at(0.35f, 0.2f, 3.5f).data())], 4.0f);
+    // Escaped: p itself when no neighbour escaped.
+    std::vector<float> escaped = sample_at(0, 0, kInf);
+    EXPECT_EQ(edge_sample_match(g, kFilter, 3, 2, escaped.data()), size_t(2 * W + 3));
+}
+
+TEST(AisEdgeMerge, PixelIsTheMeanOfItsSamplesShadedByTheirMatches) {
+    const GeometryBuffer g = two_walls(4.0f);
+    const size_t pixels = size_t(W) * H;
+    // Near wall irradiance/π 1, far wall 0.25; no medium.
+    std::vector<float> e_ss(3 * pixels), e_id(3 * pixels, 0.0f), l_pm(3 * pixels, 0.0f), tr(3 * pixels, 1.0f);
+    for (size_t p = 0; p < pixels; ++p)
+        for (int c = 0; c < 3; ++c) e_ss[3 * p + c] = (p % W) < 4 ? 1.0f : 0.25f;
+    std::vector<float> out = pass_image(0.5f, 0.125f);  // albedo 0.5: the base radiance
+    EdgeSchedule s;
+    s.samples.assign(pixels, 0);
+    const size_t p = 2 * W + 3;
+    s.samples[p] = 3;
+    for (uint32_t j = 1; j <= 3; ++j) s.items.insert(s.items.end(), {static_cast<uint32_t>(p), j});
+    std::vector<float> samples;
+    // Two samples on the far wall, one on the near wall, albedo 0.5, one with emission 1.
+    const std::tuple<float, float, float> at[] = {{0.38f, 4.0f, 0.0f}, {0.39f, 4.0f, 0.0f}, {0.31f, 2.0f, 1.0f}};
+    for (const auto& [x, depth, le] : at) {
+        std::vector<float> e = sample_at(x, 0.2f, depth);
+        for (int c = 0; c < 3; ++c) e[TS_EDGE_SAMPLE_ALBEDO + c] = 0.5f, e[TS_EDGE_SAMPLE_EMISSION + c] = le;
+        samples.insert(samples.end(), e.begin(), e.end());
+    }
+    merge_edge_samples(g, kFilter, s, samples, {&e_ss, &e_id, &l_pm, &tr}, out);
+    // (0.5 base + 0.125 + 0.125 + (1 + 0.5)) / 4
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(out[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + c], 2.25f / 4.0f);
+    EXPECT_FLOAT_EQ(out[(p + 1) * TS_PASS_FLOATS + TS_PASS_RADIANCE], 0.125f);  // unflagged: unchanged
+}
+
+}  // namespace
+}  // namespace tessera
