@@ -39,6 +39,11 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
         sum += y[p];
     }
     const float eps = dark * static_cast<float>(sum / std::max<size_t>(1, pixels));
+    // With tile 3 the filter's window is this 3×3 window, and the frame's precomputed masks
+    // (discontinuity_precompute) hold the test's answers: bit (dy + 1)·3 + (dx + 1). The
+    // test per pair took 6 ms of a 256² frame; the masks give the same bits.
+    const bool masks = s.tile == 3 && g.accepted.size() == pixels && g.accepted_for.tile == s.tile &&
+                       g.accepted_for.normal_cos == s.normal_cos && g.accepted_for.depth_rel == s.depth_rel;
     std::vector<float> out(pixels, 0.0f);
     parallel_rows(g.height, [&](int py) {
         for (int px = 0; px < g.width; ++px) {
@@ -48,7 +53,9 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
                 const int qx = px + kWindow[i][0], qy = py + kWindow[i][1];
                 if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
                 const size_t q = size_t(qy) * g.width + qx;
-                if (discontinuity_accepts(g, s, p, q)) continue;
+                const bool accepted = masks ? (g.accepted[p] >> ((kWindow[i][1] + 1) * 3 + kWindow[i][0] + 1)) & 1u
+                                            : discontinuity_accepts(g, s, p, q);
+                if (accepted) continue;
                 const float denominator = y[p] + y[q] + eps;
                 // A NaN or infinite luminance flags nothing (the comparison fails).
                 const float c = denominator > 0.0f ? std::fabs(y[p] - y[q]) / denominator : 0.0f;

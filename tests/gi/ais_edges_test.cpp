@@ -55,6 +55,18 @@ TEST(AisEdgeGuidance, DepthEdgeWithContrastFlagsBothSides) {
         }
 }
 
+TEST(AisEdgeGuidance, PrecomputedWindowMasksGiveTheSameGuidance) {
+    // The frame's discontinuity masks (tile 3: the same 3×3 window) stand in for the test.
+    GeometryBuffer g = two_walls(4.0f);
+    g.normal[3 * (2 * W + 1) + 0] = 1.0f, g.normal[3 * (2 * W + 1) + 2] = 0.0f;  // a crease at (1, 2)
+    const std::vector<float> img = pass_image(1.0f, 0.25f);
+    const std::vector<float> tested = edge_guidance(g, kFilter, img, 0.01f);
+    discontinuity_precompute(g, kFilter);
+    ASSERT_EQ(g.accepted.size(), size_t(W * H));
+    EXPECT_EQ(edge_guidance(g, kFilter, img, 0.01f), tested);
+    EXPECT_EQ(tested[2 * W + 1], 0.0f);  // a crease with no contrast across it
+}
+
 TEST(AisEdgeGuidance, NoContrastOrNoGeometricEdgeFlagsNothing) {
     // The same depth edge with equal radiance on both sides: nothing to anti-alias.
     for (float g_value : edge_guidance(two_walls(4.0f), kFilter, pass_image(0.5f, 0.5f), 0.01f))
@@ -79,7 +91,8 @@ TEST(AisEdgeGuidance, EscapedRaysAreAnEdgeAndDarkDifferencesAreNot) {
 }
 
 TEST(AisEdgeSchedule, AGradesAndAMaxSaturates) {
-    EdgeSettings e;  // trigger 0.05, full 0.5, 8 samples
+    EdgeSettings e;  // trigger 0.05, full 0.5
+    e.samples = 8;
     const std::vector<float> g = {0.0f, 0.05f, 0.06f, 0.27f, 0.5f, 1.0f};
     const EdgeSchedule a = make_edge_schedule(g, e, AisMode::A);
     // a = (g − 0.05) / 0.45: 0.022 -> 1 sample, 0.49 -> 4, 1 -> 8; at or below the trigger none.
