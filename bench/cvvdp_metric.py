@@ -8,11 +8,11 @@ dependency (bench/README.md, "Perceptual metric"); it runs on the CPU.
 Viewing conditions (also written to the output JSON under "viewing"):
   * luminance: inputs are linear Rec. 709 RGB radiance; both images are multiplied by one
     factor so that the reference's mean luminance (Y = 0.2126 R + 0.7152 G + 0.0722 B) is
-    100 cd/m^2, as issue 18's HDR-VDP-3 measurements do;
+    100 cd/m^2, as the HDR-VDP-3 protocol does (../shared/tools/README.md);
   * display photometry: cvvdp's `standard_hdr_linear` display: linear BT.709 input in
     cd/m^2, peak 1500 cd/m^2 (brighter pixels clip, as on that display), contrast
     1,000,000:1, 10 lux ambient light, screen reflectivity 0.5%;
-  * geometry: 32.45 pixels per degree at every eccentricity (issue 18's HDR-VDP set-up; a
+  * geometry: 32.45 pixels per degree at every eccentricity (the HDR-VDP-3 protocol's; a
     256-pixel-wide image spans 7.9 degrees of visual field, e.g. 256 pixels of a 30-inch 4K
     monitor seen from 1.0 m).
 --ppd, --peak and --mean-luminance change these; the JSON says what was used.
@@ -45,8 +45,8 @@ import json
 import math
 import sys
 
-PPD = 32.45                 # pixels per degree: issue 18's HDR-VDP-3 set-up
-MEAN_LUMINANCE = 100.0      # cd/m^2 of the reference's mean luminance: issue 18's set-up
+PPD = 32.45                 # pixels per degree: the HDR-VDP-3 protocol's
+MEAN_LUMINANCE = 100.0      # cd/m^2 of the reference's mean luminance: the protocol's
 DISPLAY = "standard_hdr_linear"  # cvvdp's display model: photometry (peak, contrast, ambient)
 D_1JOD = 0.1                # D = 1 - JOD_local/10 at a local difference of 1 JOD (75% choose)
 JOD_95 = 1.6448536269514722 / 0.6744897501960817  # 2.4387 JOD: 95% choose (Thurstone case V)

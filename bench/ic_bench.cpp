@@ -1,4 +1,4 @@
-// Instant caching over animations (issue 8): per frame of each animated scene, the frame
+// Instant caching over animations (docs/instant-caching.md): per frame of each animated scene, the frame
 // time, the records (re)computed and the indirect rays traced, for igi, ais, ic and tic on
 // both backends in one run; then the error of each method against per-frame path-traced
 // references for a few frames. Writes ic_bench.{json,md}.

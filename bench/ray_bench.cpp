@@ -236,7 +236,7 @@ int main(int argc, char** argv) {
             };
             // One untimed run first: on a GPU the first launches of a kernel also pay for
             // its loading and the clocks' ramp from idle (the same kernels measured 2.2x
-            // apart on an H100 without it, bench/results/gpu_h100.md).
+            // apart on an H100 without it, bench/results/gpu-h100/README.md).
             trace();
             return mrays(set.rays.size() / TS_RAY_FLOATS, median_seconds(repeats, trace));
         };

@@ -1,4 +1,4 @@
-// `tessera view [SCENE] [options]`: the interactive viewer (issue 16). The window lives in
+// `tessera view [SCENE] [options]`: the interactive viewer (docs/viewer.md). The window lives in
 // a module loaded with dlopen (view/window_api.h); `--headless` runs the same frame loop
 // (view/view_loop.h) with no window and no OpenGL at all.
 #include <dlfcn.h>

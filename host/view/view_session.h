@@ -1,4 +1,4 @@
-// The interactive viewer's state without a window (issue 16): camera, controls,
+// The interactive viewer's state without a window (docs/viewer.md): camera, controls,
 // progressive accumulation, method and component switches, AOV selection, stage timings
 // and the frame-time budget. The window (view/window/) and `tessera view --headless`
 // drive it through ViewLoop (view/view_loop.h); tests drive it directly.

@@ -78,7 +78,7 @@ TS_INLINE float ts_power_heuristic(float a, float b) {
     return r * r / (1.0f + r * r);
 }
 
-/* Rec. 709 luminance: the power measure lights are picked by (host/render/scene_buffers.cpp),
+/* Rec. 709 luminance: the power measure lights are picked by (host/device/scene_buffers.cpp),
  * the light paths' roulette (shared/light_path.h) and AIS's indirect guidance
  * (host/gi/igi_frame.cpp); the one copy of the weights. */
 TS_INLINE float ts_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }

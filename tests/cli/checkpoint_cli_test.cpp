@@ -78,7 +78,7 @@ TEST_F(CheckpointCli, InterruptThenResume) {
     EXPECT_FALSE(fs::exists(ckpt));
 }
 
-// Two SIGINTs back to back (issue 17: they once killed the render with no checkpoint):
+// Two SIGINTs back to back (they once killed the render with no checkpoint):
 // the second is ignored, the first leaves a checkpoint that --resume finishes. Sent on
 // the line printed just before the first pass, or on the first progress line.
 TEST_F(CheckpointCli, TwoSignalsAtOnceStillLeaveACheckpoint) {

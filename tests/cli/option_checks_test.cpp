@@ -1,4 +1,4 @@
-// The input contract of the command line (issue 17): every bad option value and every
+// The input contract of the command line (docs/input-limits.md): every bad option value and every
 // output that cannot be written is rejected before any work, with one message naming
 // the option (or file) and the value, exit status 2 (bad input) or 1 (the environment),
 // and no file created or changed: each case first writes sentinel files where the run

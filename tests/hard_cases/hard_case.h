@@ -1,4 +1,4 @@
-// The hard-case suite (issue 7): each case is a scene builder run on every method in
+// The hard-case suite (tests/README.md, "Hard cases"): each case is a scene builder run on every method in
 // kHardCaseMethods and every backend in kHardCaseBackends. A new method is one line in
 // kHardCaseMethods; the cases then run it on both backends. tests/README.md lists the
 // cases, the methods and backends they run and the checks they make.

@@ -1,4 +1,4 @@
-// Kernels that build and give the same images with optimisation off (issue 21): drivers
+// Kernels that build and give the same images with optimisation off (README.md, TESSERA_CL_OPTIONS): drivers
 // that do not inline (clang-based ones, or any build at -cl-opt-disable) need every
 // shared function to have a definition they can link (TS_INLINE is `static inline` in
 // OpenCL C, kernels/shared/compat.h), and unoptimised code must round as optimised code

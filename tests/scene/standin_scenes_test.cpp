@@ -1,4 +1,4 @@
-// The stand-in scenes of scenes/generate/standins.py (issue 20): each loads with the lights
+// The stand-in scenes of scenes/generate/standins.py (scenes/README.md): each loads with the lights
 // it is built with, inside its room, `tessera info` lists the effects it calls for, a small
 // IGI render agrees across backends, and the generator reproduces the committed files (and
 // the build's generated mesh) byte for byte.
