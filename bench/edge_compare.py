@@ -8,7 +8,7 @@ HDR-FLIP and HDR-VDP-3 as bench/mode_compare.py describes, with the ratio edges 
 and the reference's own noise.
 
 Usage: edge_compare.py [--tessera build/tessera] [--size 256 256] [--reference DIR]
-                       [--reference-spp N|SCENE=N ...] [--floor-spp 256] [--out bench/results/edge_compare.md]
+                       [--reference-spp N|SCENE=N ...] [--floor-spp 256] [--time-passes 4] [--out bench/results/edge_compare.md]
 Writes Markdown (--out) and JSON beside it.
 """
 import sys

@@ -7,7 +7,7 @@ Embree and OpenCL, seeds 1-3; time, relMSE, HDR-FLIP and HDR-VDP-3 as bench/mode
 describes, with the ratio equiangular / uniform and the reference's own noise.
 
 Usage: march_compare.py [--tessera build/tessera] [--size 256 256] [--reference DIR]
-                        [--reference-spp N|SCENE=N ...] [--floor-spp 256] [--out bench/results/march_compare.md]
+                        [--reference-spp N|SCENE=N ...] [--floor-spp 256] [--time-passes 4] [--out bench/results/march_compare.md]
 Writes Markdown (--out) and JSON beside it.
 """
 import sys
