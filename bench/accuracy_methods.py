@@ -11,8 +11,8 @@ combination of the other keys once, over several passes.
 of the seed thesis); `converges_to_reference` is False for a method whose limit is not the
 pt reference (its error floors). Adding a method (igi, ais, ais-max, ic, tic) is one entry;
 `method` is the `--method` it renders with where the entry's name is a variant (ais-old:
-ais with the defaults before the clamp decay; ais-uniform: before VPLs for the view; so one
-sweep shows old against new).
+ais with the defaults before the clamp decay; ais-uniform: before VPLs for the view;
+ais-noedge: without edge samples; so one sweep shows old against new).
 """
 from dataclasses import dataclass, field
 
@@ -62,6 +62,11 @@ METHODS = {
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
         method="ais", extra_args=("--vpl-importance", "1"),
         note="ais with every VPL of M paths per set, as before VPLs for the view (docs/igi.md section 3b)"),
+    "ais-noedge": Method(
+        "ais-noedge", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
+        {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
+        method="ais", extra_args=("--components", "ss,id,pm"),
+        note="ais without its edge samples (docs/ais.md section 9): one camera sample per pixel and pass"),
     "ais-max": Method(
         "ais-max", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
