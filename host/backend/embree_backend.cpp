@@ -138,7 +138,7 @@ private:
     template <int Floats, int Words, class Fn>
     void dispatch(const ts::TsSceneView& sv, const TsFrame& frame, size_t count, std::vector<float>& out, Fn fn) {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 64), [&](const tbb::blocked_range<size_t>& r) {
-            set_ftz_daz();
+            const FtzDazScope ftz_daz;
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 if constexpr (Words == 0) {
                     uint32_t x, y;

@@ -47,7 +47,7 @@ void igi_media_packets(const ts::TsSceneView& sv, const ts::TsTracer& tracer, co
     coherent.coherent = true;
     const uint32_t blocks = ts::ts_packet_block_count(&frame);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, blocks, 4), [&](const tbb::blocked_range<uint32_t>& r) {
-        set_ftz_daz();
+        const FtzDazScope ftz_daz;
         for (uint32_t b = r.begin(); b < r.end(); ++b) media_block(sv, coherent, frame, b, out);
     });
 }

@@ -18,7 +18,7 @@ template <class Fn>
 void for_each_packet(size_t n, Fn fn) {
     const size_t packets = (n + 15) / 16;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 16), [&](const tbb::blocked_range<size_t>& r) {
-        set_ftz_daz();
+        const FtzDazScope ftz_daz;
         for (size_t q = r.begin(); q < r.end(); ++q) fn(16 * q, std::min<size_t>(16, n - 16 * q));
     });
 }

@@ -199,7 +199,7 @@ void igi_surface_packets(const ts::TsSceneView& sv, const ts::TsTracer& tracer, 
                          std::vector<float>& out) {
     const uint32_t blocks = ts::ts_packet_block_count(&frame);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, blocks, 4), [&](const tbb::blocked_range<uint32_t>& r) {
-        set_ftz_daz();
+        const FtzDazScope ftz_daz;
         for (uint32_t b = r.begin(); b < r.end(); ++b) surface_block(sv, tracer, frame, b, out);
     });
 }
@@ -208,7 +208,7 @@ void ais_item_packets(const ts::TsSceneView& sv, const ts::TsTracer& tracer, con
                       std::vector<float>& out) {
     const size_t packets = (count + kLanes - 1) / kLanes;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, packets, 4), [&](const tbb::blocked_range<size_t>& r) {
-        set_ftz_daz();
+        const FtzDazScope ftz_daz;
         for (size_t q = r.begin(); q < r.end(); ++q) ais_packet(sv, tracer, frame, q * kLanes, count, out);
     });
 }

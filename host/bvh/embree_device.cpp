@@ -40,9 +40,11 @@ void check_embree(const char* what) {
     }
 }
 
-void set_ftz_daz() {
+FtzDazScope::FtzDazScope() : saved_(_mm_getcsr()) {
     _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
     _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
 }
+
+FtzDazScope::~FtzDazScope() { _mm_setcsr(saved_); }
 
 }  // namespace tessera

@@ -14,8 +14,21 @@ RTCDevice embree_device();
 /// the device's error function on this thread) if the device has a pending error.
 void check_embree(const char* what);
 
-/// Sets flush-to-zero and denormals-are-zero on the calling thread, as Embree asks of
-/// every thread that traces rays (denormal slow paths otherwise cost up to 100x).
-void set_ftz_daz();
+/// Flush-to-zero and denormals-are-zero on the calling thread for the object's lifetime,
+/// as Embree asks of every thread that traces rays (denormal slow paths otherwise cost up
+/// to 100x); the thread's previous mode comes back at the end. A parallel loop's body
+/// holds one: TBB runs bodies on the calling thread too, and a mode set for good there
+/// once leaked into the host code after the kernels (a denormal below an option's minimum
+/// of 0 then compared equal to 0 and passed the range check).
+class FtzDazScope {
+public:
+    FtzDazScope();
+    ~FtzDazScope();
+    FtzDazScope(const FtzDazScope&) = delete;
+    FtzDazScope& operator=(const FtzDazScope&) = delete;
+
+private:
+    unsigned saved_;  ///< the thread's MXCSR before
+};
 
 }  // namespace tessera

@@ -81,10 +81,7 @@ EdgeSchedule make_edge_schedule(const std::vector<float>& guidance, const EdgeSe
             n = std::clamp(static_cast<uint32_t>(std::ceil(a * static_cast<float>(most))), 1u, most);
         }
         s.samples[p] = static_cast<uint8_t>(n);
-        for (uint32_t j = 1; j <= n; ++j) {
-            s.items.push_back(static_cast<uint32_t>(p));
-            s.items.push_back(j);
-        }
+        for (uint32_t j = 1; j <= n; ++j) s.items.insert(s.items.end(), {static_cast<uint32_t>(p), j, n});
     }
     s.flagged = guidance.empty() ? 0.0 : double(flagged) / double(guidance.size());
     return s;

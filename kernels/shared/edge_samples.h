@@ -25,18 +25,22 @@ TS_INLINE void ts_edge_sample_jitter(const TsFrame* f, uint px, uint py, uint j,
     *jy = y >= 1.0f ? y - 1.0f : y;
 }
 
-/* Edge sample `j` (≥ 1) of pixel (px, py): its camera path to the first diffuse surface.
- * Writes TS_EDGE_SAMPLE_FLOATS values (layout.h); a path that escapes stores distance
- * +inf, albedo and emission 0 and throughput 1, as ts_igi_surface_clear does. Dielectric
- * choices draw from the sample's own stream (seed hashed with j), independent of the
- * base sample's. */
+/* Edge sample `j` (≥ 1) of the `n` of pixel (px, py): its camera path to the first
+ * diffuse surface. Writes TS_EDGE_SAMPLE_FLOATS values (layout.h); a path that escapes
+ * stores distance +inf, albedo and emission 0 and throughput 1, as ts_igi_surface_clear
+ * does. Dielectric choices draw from the sample's own stream (seed hashed with j),
+ * independent of the base sample's. The ray cone is the pixel's narrowed by √(n + 1): the
+ * n + 1 samples split the pixel's footprint, so each filters textures over its share
+ * (docs/texture-filtering.md; as passes narrow it by √(pass + 1)). */
 TS_INLINE void ts_edge_sample(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint px, uint py,
-                              uint j, float* out) {
+                              uint j, uint n, float* out) {
     float jx, jy;
     ts_edge_sample_jitter(f, px, py, j, &jx, &jy);
     TsRng rng = ts_rng_seed(ts_pcg_hash(f->seed + j), py * f->width + px, f->pass);
     TsRay ray = ts_camera_ray(f, px, py, jx, jy);
-    TsIgiView v = ts_igi_view_from(sv, tracer, f, ray, ts_trace_closest(tracer, ray), &rng);
+    TsFrame narrow = *f;
+    narrow.pixel_cone = f->pixel_cone / sqrt((float)n + 1.0f);
+    TsIgiView v = ts_igi_view_from(sv, tracer, &narrow, ray, ts_trace_closest(tracer, ray), &rng);
     for (int i = 0; i < TS_EDGE_SAMPLE_FLOATS; ++i) out[i] = 0.0f;
     ts_f3_store(out + TS_EDGE_SAMPLE_THROUGHPUT, make_float3(1.0f, 1.0f, 1.0f));
     out[TS_EDGE_SAMPLE_DISTANCE] = TS_INF;
@@ -50,12 +54,13 @@ TS_INLINE void ts_edge_sample(const TsSceneView* sv, const TsTracer* tracer, con
 }
 
 /* The edge-sample kernel's work item i: item i of sv->items (TS_EDGE_ITEM_WORDS uints,
- * layout.h: the pixel's row-major index and the sample's index j ≥ 1). */
+ * layout.h: the pixel's row-major index, the sample's index j ≥ 1, the pixel's count). */
 TS_INLINE void ts_edge_sample_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
                                    float* out) {
     uint p = sv->items[TS_EDGE_ITEM_WORDS * i + TS_EDGE_ITEM_PIXEL];
     uint j = sv->items[TS_EDGE_ITEM_WORDS * i + TS_EDGE_ITEM_SAMPLE];
-    ts_edge_sample(sv, tracer, f, p % f->width, p / f->width, j, out);
+    uint n = sv->items[TS_EDGE_ITEM_WORDS * i + TS_EDGE_ITEM_COUNT];
+    ts_edge_sample(sv, tracer, f, p % f->width, p / f->width, j, n, out);
 }
 
 TS_NAMESPACE_END

@@ -294,10 +294,12 @@ typedef struct TsFrame {
 #define TS_EDGE_SAMPLE_POSITION 12
 #define TS_EDGE_SAMPLE_DISTANCE 15
 /* An item of the edge-sample kernel's list, TS_EDGE_ITEM_WORDS uints: the pixel
- * (row-major index) and the sample's index j >= 1 within the pixel. */
-#define TS_EDGE_ITEM_WORDS 2
+ * (row-major index), the sample's index j >= 1 within the pixel and the pixel's number n
+ * of edge samples (its texture footprint shrinks to 1/(n + 1) of the pixel). */
+#define TS_EDGE_ITEM_WORDS 3
 #define TS_EDGE_ITEM_PIXEL 0
 #define TS_EDGE_ITEM_SAMPLE 1
+#define TS_EDGE_ITEM_COUNT 2
 
 /* Instant caching (shared/ic.h, host/gi/irradiance_cache.h).
  * The ic G-buffer, TS_IC_GBUF_FLOATS floats per pixel: the first diffuse surface seen

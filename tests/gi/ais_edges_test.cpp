@@ -106,6 +106,7 @@ TEST(AisEdgeSchedule, AGradesAndAMaxSaturates) {
     EXPECT_EQ(a.items[TS_EDGE_ITEM_SAMPLE], 1u);
     EXPECT_EQ(a.items[TS_EDGE_ITEM_WORDS * 1 + TS_EDGE_ITEM_PIXEL], 3u);
     EXPECT_EQ(a.items[TS_EDGE_ITEM_WORDS * 4 + TS_EDGE_ITEM_SAMPLE], 4u);
+    EXPECT_EQ(a.items[TS_EDGE_ITEM_WORDS * 4 + TS_EDGE_ITEM_COUNT], 4u);
 }
 
 // An edge sample on the plane z = −depth at (px, py) in the two walls' coordinates.
@@ -145,7 +146,7 @@ TEST(AisEdgeMerge, PixelIsTheMeanOfItsSamplesShadedByTheirMatches) {
     s.samples.assign(pixels, 0);
     const size_t p = 2 * W + 3;
     s.samples[p] = 3;
-    for (uint32_t j = 1; j <= 3; ++j) s.items.insert(s.items.end(), {static_cast<uint32_t>(p), j});
+    for (uint32_t j = 1; j <= 3; ++j) s.items.insert(s.items.end(), {static_cast<uint32_t>(p), j, 3u});
     std::vector<float> samples;
     // Two samples on the far wall, one on the near wall, albedo 0.5, one with emission 1.
     const std::tuple<float, float, float> at[] = {{0.38f, 4.0f, 0.0f}, {0.39f, 4.0f, 0.0f}, {0.31f, 2.0f, 1.0f}};
