@@ -3,8 +3,9 @@
 // PyPI package `cvvdp`), computed by bench/cvvdp_metric.py, run as a subprocess with an
 // interpreter that can import pycvvdp (it needs PyTorch, so it usually lives in a venv of
 // its own: bench/README.md). The script states the viewing conditions; their defaults are
-// the HDR-VDP-3 protocol's (../shared/tools/README.md: 32.45 pixels per degree, the reference scaled to a mean
-// luminance of 100 cd/m^2) on cvvdp's `standard_hdr_linear` display (peak 1500 cd/m^2).
+// the HDR-VDP-3 protocol's (bench/README.md, "Perceptual metric: HDR-VDP-3": 32.45 pixels
+// per degree, the reference scaled to a mean luminance of 100 cd/m^2) on cvvdp's
+// `standard_hdr_linear` display (peak 1500 cd/m^2).
 #pragma once
 #include <filesystem>
 #include <optional>

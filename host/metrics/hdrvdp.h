@@ -1,9 +1,10 @@
 // HDR-VDP-3 (Mantiuk et al. 2023; the maintained successor of the HDR-VDP the seed thesis
 // validates with, its Table 5.3), computed by bench/hdrvdp_metric.py in GNU Octave, run as a
 // subprocess. An optional metric: it needs Octave with its statistics and image packages and
-// the HDR-VDP-3 sources (../shared/tools/hdrvdp-3.0.7 beside the repository). The protocol
-// (the script's docstring): both images scaled so that the reference's mean luminance is
-// 100 cd/m^2, 'rgb-native', 'side-by-side', 32.45 pixels per degree.
+// the HDR-VDP-3 sources (bench/README.md, "Perceptual metric: HDR-VDP-3", says where they
+// are looked for). The protocol (the same section and the script's docstring): both images
+// scaled so that the reference's mean luminance is 100 cd/m^2, 'rgb-native', 'side-by-side',
+// 32.45 pixels per degree.
 #pragma once
 #include <filesystem>
 #include <string>
