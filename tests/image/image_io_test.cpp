@@ -2,6 +2,7 @@
 #include <stb_image.h>
 #include <gtest/gtest.h>
 
+#include "support/error_of.h"
 #include "support/scratch_dir.h"
 #include <stdlib.h>
 #include <sys/stat.h>
@@ -22,6 +23,7 @@
 #include "util/error.h"
 
 namespace fs = std::filesystem;
+using tessera::test::error_of;
 using tessera::Image;
 using tessera::InputError;
 using tessera::RuntimeError;
@@ -88,16 +90,6 @@ std::vector<unsigned char> decode_png(const fs::path& p, int& w, int& h) {
     std::vector<unsigned char> out(data, data + static_cast<std::size_t>(w) * h * 3);
     stbi_image_free(data);
     return out;
-}
-
-template <class F>
-std::string error_of(F&& f) {
-    try {
-        f();
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return "<no exception>";
 }
 
 }  // namespace

@@ -10,11 +10,13 @@
 #include <gtest/gtest.h>
 
 #include "metrics/cvvdp.h"
+#include "support/error_of.h"
 #include "support/scoped_env.h"
 #include "support/scratch_dir.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
+using tessera::test::error_of;
 using namespace tessera;
 using namespace tessera::metrics;
 
@@ -33,16 +35,6 @@ protected:
         const fs::path script = dir_ / "cvvdp_metric.py";
         std::ofstream(script) << "# stand-in: the fake interpreter does not read it\n";
         return {python, script};
-    }
-    template <class F>
-    std::string error_of(F f) {
-        try {
-            f();
-        } catch (const std::exception& e) {
-            return e.what();
-        }
-        ADD_FAILURE() << "no exception";
-        return "";
     }
 };
 

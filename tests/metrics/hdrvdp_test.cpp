@@ -7,11 +7,13 @@
 #include <gtest/gtest.h>
 
 #include "metrics/hdrvdp.h"
+#include "support/error_of.h"
 #include "support/scoped_env.h"
 #include "support/scratch_dir.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
+using tessera::test::error_of;
 using namespace tessera;
 using namespace tessera::metrics;
 
@@ -24,16 +26,6 @@ protected:
         const fs::path p = dir_ / "hdrvdp_metric.py";
         std::ofstream(p) << "import sys\n" << body << "\n";
         return {"python3", p};
-    }
-    template <class F>
-    std::string error_of(F f) {
-        try {
-            f();
-        } catch (const std::exception& e) {
-            return e.what();
-        }
-        ADD_FAILURE() << "no exception";
-        return "";
     }
 };
 
