@@ -138,10 +138,9 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
     edge_guidance_ = edge_guidance(geometry_, settings_.discontinuity, out, settings_.edges.dark);
     edge_schedule_ = make_edge_schedule(edge_guidance_, settings_.edges, settings_.ais_mode);
     const auto t_kernel = Clock::now();
-    std::vector<float> samples;
-    backend_.launch_items(KernelId::EdgeSample, frame, edge_schedule_.items, samples);
+    backend_.launch_items(KernelId::EdgeSample, frame, edge_schedule_.items, edge_samples_);
     const auto t_merge = Clock::now();
-    merge_edge_samples(geometry_, settings_.discontinuity, edge_schedule_, samples,
+    merge_edge_samples(geometry_, settings_.discontinuity, edge_schedule_, edge_samples_,
                        {&final_[kAisSS], &final_[kAisID], &final_[kAisPM], &transmittance_}, out);
     stats_.edge_samples = edge_schedule_.items.size() / TS_EDGE_ITEM_WORDS;
     stats_.edge_flagged = edge_schedule_.flagged;

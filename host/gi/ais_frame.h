@@ -51,6 +51,9 @@ private:
     std::array<std::vector<double>, 8> guidance_sums_;
     std::vector<float> edge_guidance_;
     EdgeSchedule edge_schedule_;
+    // The edge samples' kernel output, kept across passes as IgiFrame keeps surf_ (Sibenik
+    // 512²: 11 MB a pass, whose fresh allocation would be zero-filled and faulted in anew).
+    std::vector<float> edge_samples_;
 };
 
 }  // namespace tessera
