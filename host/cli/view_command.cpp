@@ -3,13 +3,16 @@
 // (view/view_loop.h) with no window and no OpenGL at all.
 #include <dlfcn.h>
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <stb_image_write.h>
 
 #include "backend/backend.h"
@@ -51,7 +54,7 @@ struct ViewArgs {
     std::string pareto;
     int screenshot_window_frame = 10;
     float exposure = 0.0f, speed = 0.0f;
-    double target_fps = 0.0;
+    double target_fps = 0.0, min_scale = 0.25;
     bool headless = false, record = false, fixed_dt = false;
     RenderSettings settings;
 };
@@ -154,19 +157,27 @@ std::vector<BudgetPoint> load_pareto(const ViewArgs& a, const Scene& scene) {
         csv = fs::exists(dir / (scene.name + ".csv")) ? dir / (scene.name + ".csv") : dir / "cornell-box.csv";
     }
     if (!fs::exists(csv)) throw InputError("--target-fps needs an accuracy sweep: " + csv.string() + " does not exist (--pareto FILE.csv)");
-    std::vector<BudgetPoint> points = read_pareto_front(csv, a.backend);
-    if (points.empty()) throw InputError("--pareto " + csv.string() + ": no one-pass igi/ais rows for --backend " + a.backend);
-    std::string methods;
-    bool starting = false;
-    for (const BudgetPoint& p : points) {
-        starting |= p.method == a.method;
-        if (methods.find(p.method + ", ") == std::string::npos) methods += p.method + ", ";
+    // A method without rows (ic, tic, pt, direct) keeps its own settings: the budget then
+    // changes only the resolution (docs/viewer.md §4).
+    return read_pareto_front(csv, a.backend);
+}
+
+// The pixels of the sweep's images, from the JSON bench/accuracy writes beside the CSV
+// (0 when there is none): the first moving frame's prediction scales the sweep's times by
+// the window's pixels over these.
+double pareto_pixels(const ViewArgs& a, const Scene& scene) {
+    fs::path json = a.pareto.empty() ? fs::path(TESSERA_SOURCE_DIR) / "bench/results/accuracy" / (scene.name + ".json")
+                                     : fs::path(a.pareto);
+    json.replace_extension(".json");
+    std::ifstream in(json);
+    if (!in) return 0.0;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(in);
+        const double pixels = j.at("width").get<double>() * j.at("height").get<double>();
+        return std::isfinite(pixels) && pixels > 0 ? pixels : 0.0;
+    } catch (const std::exception&) {
+        return 0.0;  // not the sweep's JSON: the first frame's measurement sets the cost instead
     }
-    if (!starting)
-        throw InputError("--method " + a.method + " with --target-fps: no settings to choose from in " +
-                         csv.string() + " (it has " +
-                         methods.substr(0, methods.size() - 2) + "); start with one of those");
-    return points;
 }
 
 // The frames a headless run or a replayed path will write under --frame-images: none of
@@ -198,6 +209,8 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     check_data_dir(a.data_dir);
     if (cmd.count("--device") && o.backend.kind != BackendKind::OpenCL)
         throw InputError("--device " + a.device + ": only --backend opencl uses a device");
+    if (cmd.count("--min-scale") && !cmd.count("--target-fps"))
+        throw InputError("--min-scale " + cmd.get_option("--min-scale")->as<std::string>() + ": is read only with --target-fps (the floor of its resolution scale)");
     if (cmd.count("--pareto") && !cmd.count("--target-fps"))
         throw InputError("--pareto " + a.pareto + ": is read only with --target-fps (the frame budget it feeds)");
     if (a.record && a.camera_path.empty()) throw InputError("--record needs --camera-path FILE.json to record into");
@@ -218,7 +231,11 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (o.screenshot.extension() != ".exr") throw InputError("--screenshot " + o.screenshot.string() + ": must end in .exr");
     o.target_fps = a.target_fps;
     o.speed = a.speed;
-    if (a.target_fps > 0) o.pareto = load_pareto(a, scene);
+    o.min_scale = a.min_scale;
+    if (a.target_fps > 0) {
+        o.pareto = load_pareto(a, scene);
+        o.pareto_pixels = pareto_pixels(a, scene);
+    }
 
     LoopOptions lo;
     lo.headless = a.headless;
@@ -290,8 +307,12 @@ void add_view_command(CLI::App& app) {
         ->check(integer_in("--screenshot-window-frame", 0, limits::kViewFrames - 1));
     cmd->add_option("--reference", args->reference, "Reference EXR of the same size: error AOV and relMSE in the HUD");
     cmd->add_option("--target-fps", args->target_fps,
-                    "Moving-camera frame budget: pick tile, VPL paths and light samples from the accuracy sweep's Pareto front")
+                    "Moving-camera frame budget: pick tile, VPL paths and light samples from the accuracy sweep's Pareto front, "
+                    "and below full resolution when even the fastest misses")
         ->check(finite_number_in("--target-fps", 0, kMaxTargetFps, true));
+    cmd->add_option("--min-scale", args->min_scale, "Floor of --target-fps's per-axis resolution scale")
+        ->capture_default_str()
+        ->check(finite_number_in("--min-scale", 0, 1, true));
     cmd->add_option("--pareto", args->pareto, "Accuracy sweep CSV for --target-fps (default bench/results/accuracy/<scene>.csv)");
     cmd->add_option("--speed", args->speed, "Movement speed, scene units per second (default: a quarter of the scene diagonal)")
         ->check(finite_number_in("--speed", 0, kMaxSpeed, true));

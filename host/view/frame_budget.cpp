@@ -90,27 +90,68 @@ std::vector<BudgetPoint> read_pareto_front(const std::filesystem::path& csv, con
     return all;
 }
 
-FrameBudget::FrameBudget(double target_seconds, std::vector<BudgetPoint> front)
-    : target_(target_seconds), front_(std::move(front)) {
+namespace {
+constexpr double kUpWithin = 0.9;     // a slower choice only when predicted within 90% of the target
+// A new scale aims at 98% of the target and is kept while predicted within 90-108% of it: a
+// dead band wider than a frame's usual noise (a few %), so the image size does not change
+// every frame, and narrow enough that the rate stays within 10% of the target.
+constexpr double kScaleAim = 0.98;
+constexpr double kScaleKeepLow = 0.90, kScaleKeepHigh = 1.08;
+}  // namespace
+
+FrameBudget::FrameBudget(double target_seconds, std::vector<BudgetPoint> front, BudgetOptions options)
+    : target_(target_seconds), front_(std::move(front)), min_scale_(options.min_scale), cost_(options.initial_cost) {
     if (front_.empty()) throw std::invalid_argument("FrameBudget: empty front");
-    if (!(target_ > 0)) throw std::invalid_argument("FrameBudget: target must be > 0");
-    // Before any measurement: the best point the sweep's own times fit into the target.
+    if (!(target_ > 0) || !std::isfinite(target_)) throw std::invalid_argument("FrameBudget: target must be > 0");
+    if (!(min_scale_ > 0 && min_scale_ <= 1)) throw std::invalid_argument("FrameBudget: min_scale must be in (0, 1]");
+    if (!(cost_ > 0) || !std::isfinite(cost_)) throw std::invalid_argument("FrameBudget: initial_cost must be > 0");
+    // Before any measurement: the best point the predicted times fit into the target, else
+    // the fastest one at the scale that fits.
+    bool fits = false;
     for (size_t i = 0; i < front_.size(); ++i)
-        if (front_[i].seconds <= target_) choice_ = i;
+        if (predicted_seconds(i, 1.0) <= target_) choice_ = i, fits = true;
+    if (!fits) scale_ = fitting_scale();
 }
 
-void FrameBudget::observe(double measured_seconds) {
-    const double ratio = measured_seconds / std::max(front_[choice_].seconds, 1e-9);
-    scale_ = measured_ ? 0.7 * scale_ + 0.3 * ratio : ratio;
+double FrameBudget::predicted_seconds(size_t point, double scale) const {
+    return front_[point].seconds * cost_ * scale * scale;
+}
+
+// The scale at which the fastest setting is predicted to take kScaleAim of the target.
+double FrameBudget::fitting_scale() const {
+    const double s = std::sqrt(kScaleAim * target_ / std::max(predicted_seconds(0, 1.0), 1e-12));
+    return std::clamp(s, min_scale_, 1.0);
+}
+
+void FrameBudget::observe(double measured_seconds, double pixel_fraction) {
+    const double fraction = std::clamp(pixel_fraction, 1e-6, 1.0);
+    const double ratio = measured_seconds / std::max(front_[choice_].seconds * fraction, 1e-12);
+    cost_ = measured_ ? 0.7 * cost_ + 0.3 * ratio : ratio;
     measured_ = true;
-    // The front is sorted by time with falling error: the best fit is the last that fits.
+    const bool over = measured_seconds > target_;
+    if (scale_ < 1.0) {  // below full resolution: only the fastest setting is in use
+        if (predicted_seconds(0, 1.0) <= kUpWithin * target_) {
+            scale_ = 1.0;  // full resolution fits again (with margin); settings from the next frame
+            return;
+        }
+        const double predicted = predicted_seconds(0, scale_);
+        if (predicted > kScaleKeepHigh * target_ || predicted < kScaleKeepLow * target_) scale_ = fitting_scale();
+        return;
+    }
+    // Full resolution. The front is sorted by time with falling error: the best fit is the last that fits.
     size_t best = 0;
+    bool fits = false;
     for (size_t i = 0; i < front_.size(); ++i)
-        if (front_[i].seconds * scale_ <= target_) best = i;
+        if (predicted_seconds(i, 1.0) <= target_) best = i, fits = true;
+    if (!fits) {  // even the fastest setting misses: fewer pixels
+        choice_ = 0;
+        scale_ = fitting_scale();
+        return;
+    }
     if (best < choice_) {
-        if (measured_seconds > target_ || front_[choice_].seconds * scale_ > target_) choice_ = best;
+        if (over || predicted_seconds(choice_, 1.0) > target_) choice_ = best;
     } else if (best > choice_) {
-        while (best > choice_ && front_[best].seconds * scale_ > 0.9 * target_) --best;
+        while (best > choice_ && predicted_seconds(best, 1.0) > kUpWithin * target_) --best;
         choice_ = best;
     }
 }

@@ -62,6 +62,11 @@ void ViewLoop::finish(const std::string& scene_name) const {
                            {{"vpl", 1e3 * s.vpl}, {"surface", 1e3 * s.surface}, {"media", 1e3 * s.media},
                             {"filter", 1e3 * s.filter}, {"ais", 1e3 * s.ais}, {"cache", 1e3 * s.cache},
                             {"pass", 1e3 * s.total}}}});
+        const BudgetReport& b = t.report.budget;
+        if (b.applied)
+            frames.back()["budget"] = {{"scale", b.scale}, {"width", b.width}, {"height", b.height},
+                                       {"tile", b.tile}, {"vpl_paths", b.vpl_paths},
+                                       {"shadow_samples", b.shadow_samples}, {"out_of_reach", b.out_of_reach}};
     }
     const double moving_ms = moving ? 1e3 * moving_sum / moving : 0.0;
     if (!options_.times.empty()) {
@@ -70,6 +75,7 @@ void ViewLoop::finish(const std::string& scene_name) const {
                                   {"backend", session_.backend_description()},
                                   {"width", session_.width()},
                                   {"height", session_.height()},
+                                  {"target_fps", session_.target_fps()},
                                   {"frames", frames},
                                   {"moving_frames", moving},
                                   {"mean_moving_ms", moving_ms},

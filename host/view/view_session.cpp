@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "image/atomic_file.h"
+#include "image/resample.h"
 #include "metrics/image_metrics.h"
 #include "render/parameters.h"
 #include "render/sequence.h"
@@ -110,8 +111,13 @@ void ViewSession::restart() {
     // reconstructs on the host anyway, so this costs no read-back).
     if (s.method == Method::Ais || s.method == Method::AisMax) is.igi.component_aovs = true;
     integrator_ = make_integrator(*backend_, scene_, *buffers_, is);
-    frame_ = make_render_frame(camera_, width_, height_, *buffers_, s);
-    acc_ = std::make_unique<Accumulator>(width_, height_);
+    render_width_ = width_, render_height_ = height_;
+    if (acc_budgeted_ && budget_) {  // fewer pixels while moving; the same field of view
+        render_width_ = std::max(1, static_cast<int>(std::lround(width_ * budget_->scale())));
+        render_height_ = std::max(1, static_cast<int>(std::lround(height_ * budget_->scale())));
+    }
+    frame_ = make_render_frame(camera_, render_width_, render_height_, *buffers_, s);
+    acc_ = std::make_unique<Accumulator>(render_width_, render_height_);
     acc_camera_ = camera_;
     dirty_ = false;
 }
@@ -141,12 +147,30 @@ void ViewSession::switch_method(int step) {
         if (!aov_available(aov_)) aov_ = Aov::Radiance;
     }
     budget_.reset();
-    if (options_.target_fps > 0 && igi_family(settings_.method)) {
+    if (options_.target_fps > 0) {
+        const double target = 1.0 / options_.target_fps;
+        BudgetOptions bo;
+        bo.min_scale = options_.min_scale;
         std::vector<BudgetPoint> front;
         for (const BudgetPoint& p : options_.pareto)
             if (p.method == method_name(settings_.method)) front.push_back(p);
-        if (!front.empty()) budget_ = std::make_unique<FrameBudget>(1.0 / options_.target_fps, pareto_front(front));
+        if (!front.empty()) {
+            if (options_.pareto_pixels > 0) bo.initial_cost = double(width_) * height_ / options_.pareto_pixels;
+            front = pareto_front(front);
+        } else {
+            // No sweep rows for the method (ic, tic, pt, direct): its own settings, with the
+            // resolution as the only knob; assumed to fit until the first frame is measured.
+            BudgetPoint own;
+            own.method = method_name(settings_.method);
+            own.tile = settings_.igi.tile;
+            own.vpl_paths = settings_.igi.paths_per_set;
+            own.shadow_samples = settings_.shadow_samples;
+            own.seconds = target;
+            front = {own};
+        }
+        budget_ = std::make_unique<FrameBudget>(target, front, bo);
     }
+    misses_at_cheapest_ = 0;
 }
 
 void ViewSession::toggle_component(uint32_t bit) {
@@ -243,6 +267,7 @@ FrameReport ViewSession::advance(double dt) {
         anim_frame_ = anim_frame_ >= options_.last_frame ? options_.first_frame : anim_frame_ + 1;
     if (anim_frame_ != acc_anim_frame_) build_backend();
     const bool moved = dirty_ || !acc_ || camera_differs(camera_, acc_camera_);
+    const auto frame_start = std::chrono::steady_clock::now();  // the budget's time: set-up and pass
     if (moved) {
         acc_budgeted_ = budget_ != nullptr;
         restart();
@@ -269,17 +294,50 @@ FrameReport ViewSession::advance(double dt) {
         last_.rays = stats.igi.vpl_rays + stats.igi.pixel_rays + stats.ic.indirect_rays();
         last_.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         report.rendered = last_rendered_ = true;
-        if (moved && acc_budgeted_) budget_->observe(last_.total);
+        if (moved && acc_budgeted_)
+            observe_budget(std::chrono::duration<double>(std::chrono::steady_clock::now() - frame_start).count(), report);
     }
     report.passes = acc_->passes();
     report.stages = last_;
     return report;
 }
 
+// Records a budgeted moving frame's time and choice, and says once when even the cheapest
+// choice misses the target (three frames in a row, so one slow frame does not).
+void ViewSession::observe_budget(double frame_seconds, FrameReport& report) {
+    const BudgetPoint& c = budget_->choice();
+    BudgetReport& b = report.budget;
+    b.applied = true;
+    b.scale = budget_->scale();
+    b.width = render_width_, b.height = render_height_;
+    b.tile = c.tile, b.vpl_paths = c.vpl_paths, b.shadow_samples = c.shadow_samples;
+    const bool cheapest = budget_->at_cheapest();
+    b.out_of_reach = cheapest && frame_seconds > budget_->target_seconds();
+    b.seconds = frame_seconds;
+    misses_at_cheapest_ = b.out_of_reach ? misses_at_cheapest_ + 1 : 0;
+    if (misses_at_cheapest_ >= 3 && !reach_reported_) {
+        std::fprintf(stderr,
+                     "tessera view: --target-fps %g is out of reach: %.1f fps at the cheapest choice (scale %.2f, "
+                     "%dx%d, tile %u, %u VPL paths, %u light samples)\n",
+                     options_.target_fps, 1.0 / frame_seconds, b.scale, b.width, b.height, b.tile, b.vpl_paths,
+                     b.shadow_samples);
+        reach_reported_ = true;
+    }
+    last_budget_ = b;
+    budget_->observe(frame_seconds, double(render_width_) * render_height_ / (double(width_) * height_));
+}
+
+// An image of the accumulation's size at the window's: bilinear when the budget rendered
+// fewer pixels (docs/viewer.md §4 says why not a G-buffer-guided filter).
+Image ViewSession::to_window(Image image) const {
+    if (image.width == width_ && image.height == height_) return image;
+    return resize_bilinear(image, width_, height_);
+}
+
 Image ViewSession::accumulation() const {
     Image image = acc_->mean_image(settings_.aovs, true);
     if (settings_.aovs) integrator_->add_aov_channels(image, acc_->passes());
-    return image;
+    return to_window(std::move(image));
 }
 
 std::filesystem::path ViewSession::save_screenshot() {
@@ -299,12 +357,12 @@ std::filesystem::path ViewSession::save_screenshot() {
 Image ViewSession::aov_image() const {
     Image image = acc_->mean_image(true, false);
     integrator_->add_aov_channels(image, std::max(acc_->passes(), 1u));
-    return image;
+    return to_window(std::move(image));
 }
 
 double ViewSession::reference_error() const {
     if (!reference_ || !acc_ || acc_->passes() == 0) return -1.0;
-    const Image image = acc_->mean_image(false, false);
+    const Image image = to_window(acc_->mean_image(false, false));
     return metrics::rel_mse(metrics::rgb_for_metrics(*reference_, options_.reference),
                             metrics::rgb_for_metrics(image, "the view"));
 }
@@ -315,6 +373,13 @@ void ViewSession::display(std::vector<uint8_t>& rgba) const {
     if (!acc_ || acc_->passes() == 0) return;
     const double scale = std::exp2(double(exposure_));
     const SrgbTable& tm = srgb();
+    if (aov_ == Aov::Radiance && acc_->width() != width_) {  // a budgeted moving frame: upsampled
+        const Image image = to_window(acc_->mean_image(false, false));
+        const float* ch[3] = {image.find("R")->data.data(), image.find("G")->data.data(), image.find("B")->data.data()};
+        for (size_t p = 0; p < n; ++p)
+            for (int c = 0; c < 3; ++c) rgba[4 * p + c] = tm(ch[c][p] * scale);
+        return;
+    }
     if (aov_ == Aov::Radiance) {  // from the sums directly: the common case, every frame
         const std::vector<double>& s = acc_->sums();
         const double k = scale / acc_->passes();
@@ -391,13 +456,18 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
                   c & TS_COMPONENT_PM ? "PM " : "", c & TS_COMPONENT_EDGE ? "edge" : "", aov_name(aov_), exposure_,
                   speed_);
     lines.push_back(buf);
-    if (budget_) {
-        const BudgetPoint& b = budget_->choice();
-        std::snprintf(buf, sizeof buf, "budget %.0f fps: tile %u, %u VPL paths, %u light samples (scale %.2f)",
-                      1.0 / budget_->target_seconds(), b.tile, b.vpl_paths, b.shadow_samples, budget_->scale());
+    if (budget_ && last_budget_.applied) {  // what the last moving frame used
+        const BudgetReport& b = last_budget_;
+        std::snprintf(buf, sizeof buf, "budget %.3g fps: scale %.2f (%dx%d), tile %u, %u VPL paths, %u light samples",
+                      options_.target_fps, b.scale, b.width, b.height, b.tile, b.vpl_paths, b.shadow_samples);
         lines.push_back(buf);
-    } else if (options_.target_fps > 0) {
-        lines.push_back("budget: none for this method (igi, ais, ais-max only)");
+        if (misses_at_cheapest_ >= 3) {
+            std::snprintf(buf, sizeof buf, "budget out of reach: %.1f fps at the cheapest choice", 1.0 / last_budget_.seconds);
+            lines.push_back(buf);
+        }
+    } else if (budget_) {
+        std::snprintf(buf, sizeof buf, "budget %.3g fps: applies while the camera moves", options_.target_fps);
+        lines.push_back(buf);
     }
     if (reference_) {
         std::snprintf(buf, sizeof buf, "relMSE vs reference %.4g", reference_error());

@@ -44,6 +44,8 @@ struct ViewOptions {
     std::filesystem::path screenshot;  ///< screenshot n goes to frame_output_path(screenshot, n) (+ .png)
     double target_fps = 0.0;           ///< > 0: moving frames follow the frame-time budget
     std::vector<BudgetPoint> pareto;   ///< candidate settings for the budget (frame_budget.h)
+    double pareto_pixels = 0.0;        ///< pixels of the sweep's images (0: unknown), for the first prediction
+    double min_scale = 0.25;           ///< the floor of the budget's per-axis resolution scale (--min-scale)
     float speed = 0.0f;                ///< movement speed, scene units per second; 0: default_speed
 };
 
@@ -58,12 +60,23 @@ struct StageTimes {
     uint64_t rays = 0;     ///< rays the pass traced as the integrator counts them (0: not counted)
 };
 
+/// The frame-time budget's choice for a moving frame (all zero when no budget applied).
+struct BudgetReport {
+    bool applied = false;      ///< the frame was rendered with the budget's choice
+    double scale = 1.0;        ///< per-axis resolution scale of the frame
+    int width = 0, height = 0; ///< the frame's rendered size (upsampled to the window)
+    uint32_t tile = 0, vpl_paths = 0, shadow_samples = 0;
+    bool out_of_reach = false; ///< the cheapest choice there is, and the frame still missed the target
+    double seconds = 0;        ///< the frame's measured time (integrator set-up and pass)
+};
+
 /// What advance() did this frame.
 struct FrameReport {
     bool rendered = false;   ///< a pass was rendered (false: paused or all spp accumulated)
     bool moving = false;     ///< the accumulation was restarted this frame (camera, animation or switch)
     uint32_t passes = 0;     ///< passes in the accumulation after this frame
     StageTimes stages;
+    BudgetReport budget;
 };
 
 class ViewSession {
@@ -92,6 +105,8 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
     uint32_t passes() const { return acc_ ? acc_->passes() : 0; }
+    /// > 0 when moving frames follow a frame-time budget (--target-fps).
+    double target_fps() const { return budget_ ? options_.target_fps : 0.0; }
     bool quit_requested() const { return quit_; }
     bool hud_visible() const { return hud_visible_; }
     /// Nothing to render until an input arrives: paused, or all spp passes accumulated
@@ -102,7 +117,8 @@ public:
     Method method() const { return settings_.method; }
 
     /// The accumulation as `tessera render` writes it: R, G, B and variance.R/G/B (and
-    /// the AOV channels when settings.aovs).
+    /// the AOV channels when settings.aovs), at the window's size: a moving frame that the
+    /// budget rendered at a lower resolution is upsampled bilinearly (image/resample.h).
     Image accumulation() const;
     /// Writes the accumulation as EXR + PNG (atomic, both or neither) to the next
     /// screenshot path; returns the EXR path. Prints the EXR path on stdout and the pass
@@ -114,7 +130,8 @@ public:
     void display(std::vector<uint8_t>& rgba) const;
 
     /// The heads-up display's lines: fps, stage times, rays/s, method, backend, passes,
-    /// components, AOV and budget settings. `fps` is the window's measured rate.
+    /// components, AOV and budget settings (resolution scale included, and a line when the
+    /// target is out of reach). `fps` is the window's measured rate.
     std::vector<std::string> hud_lines(double fps) const;
     /// One line per key binding.
     static std::vector<std::string> key_help();
@@ -131,6 +148,8 @@ private:
     bool aov_available(Aov aov) const;
     RenderSettings pass_settings() const;
     Image aov_image() const;
+    Image to_window(Image image) const;
+    void observe_budget(double frame_seconds, FrameReport& report);
 
     Scene rest_, scene_;
     ViewOptions options_;
@@ -156,6 +175,10 @@ private:
     StageTimes last_;
     bool last_rendered_ = false;  // the last advance() rendered a pass
     std::unique_ptr<FrameBudget> budget_;
+    BudgetReport last_budget_;
+    int render_width_ = 0, render_height_ = 0;  // the accumulation's size (below the window's while moving on a budget)
+    int misses_at_cheapest_ = 0;                // consecutive moving frames over the target at the cheapest choice
+    bool reach_reported_ = false;               // the out-of-reach line was printed
 };
 
 }  // namespace tessera::view

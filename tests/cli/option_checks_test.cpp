@@ -165,10 +165,9 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {view + "--target-fps 0", "--target-fps 0: must be a finite number > 0 and <= 1000", 2, files},
         {view + "--target-fps nan", "--target-fps nan: must be a finite number > 0 and <= 1000", 2, files},
         {view + "--target-fps inf", "--target-fps inf: must be a finite number > 0 and <= 1000", 2, files},
-        {view + "--target-fps 5 --method pt --pareto " + std::string(TESSERA_SOURCE_DIR) +
-             "/bench/results/accuracy/cornell-box.csv",
-         "--method pt with --target-fps: no settings to choose from in " + std::string(TESSERA_SOURCE_DIR) +
-             "/bench/results/accuracy/cornell-box.csv (it has ais, ais-max, igi); start with one of those",
+        {view + "--min-scale 0", "--min-scale 0: must be a finite number > 0 and <= 1", 2, files},
+        {view + "--min-scale 1.5", "--min-scale 1.5: must be a finite number > 0 and <= 1", 2, files},
+        {view + "--min-scale 0.5", "--min-scale 0.5: is read only with --target-fps (the floor of its resolution scale)",
          2, files},
         {view + "--pareto $D/none.csv", "--pareto $D/none.csv: is read only with --target-fps (the frame budget it feeds)",
          2, files},

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -40,10 +41,10 @@ TEST(FrameBudget, ChoosesTheBestSettingThatFitsTheMeasuredScale) {
     FrameBudget budget(0.050, front);
     EXPECT_EQ(budget.choice().tile, 2u);  // the sweep's own times: 40 ms fits 50 ms
     budget.observe(0.080);                // twice as slow here: scale 2, only 20 ms × 2 fits
-    EXPECT_DOUBLE_EQ(budget.scale(), 2.0);
+    EXPECT_DOUBLE_EQ(budget.cost_factor(), 2.0);
     EXPECT_EQ(budget.choice().tile, 4u);
     budget.observe(0.020);  // 1x: scale 0.7·2 + 0.3·1 = 1.7; 40 ms × 1.7 = 68 ms does not fit
-    EXPECT_NEAR(budget.scale(), 1.7, 1e-12);
+    EXPECT_NEAR(budget.cost_factor(), 1.7, 1e-12);
     EXPECT_EQ(budget.choice().tile, 4u);
     for (int i = 0; i < 20; ++i) budget.observe(0.010);  // scale → 0.5: 80 ms × 0.5 = 40 ms fits
     EXPECT_EQ(budget.choice().tile, 1u);
@@ -57,10 +58,93 @@ TEST(FrameBudget, SlowerSettingOnlyWithinNinetyPercentOfTheTarget) {
     budget.observe(0.060);   // over budget: down to the fast setting
     EXPECT_EQ(budget.choice().tile, 4u);
     for (int i = 0; i < 30; ++i) budget.observe(0.010);  // scale → 1: 47 ms fits 50 ms but not 45 ms
-    EXPECT_NEAR(budget.scale(), 1.0, 1e-3);
+    EXPECT_NEAR(budget.cost_factor(), 1.0, 1e-3);
     EXPECT_EQ(budget.choice().tile, 4u);
     for (int i = 0; i < 30; ++i) budget.observe(0.009);  // scale → 0.9: 42.3 ms is within 45 ms
     EXPECT_EQ(budget.choice().tile, 2u);
+}
+
+// A synthetic cost model of a moving frame: a fixed cost (VPL tracing, set-up) plus a cost
+// per pixel, `per_pixel` times the sweep's time of the setting at the full window.
+struct SyntheticCost {
+    double fixed = 0.020, per_pixel = 10.0;
+    double operator()(const FrameBudget& b) const {
+        const double fraction = b.scale() * b.scale();
+        return fixed + per_pixel * b.choice().seconds * fraction;
+    }
+};
+
+// Runs `frames` frames of the model (with a deterministic +-`jitter` relative noise) and
+// returns the measured times.
+std::vector<double> run_frames(FrameBudget& budget, const SyntheticCost& cost, int frames, double jitter = 0.0) {
+    std::vector<double> times;
+    for (int f = 0; f < frames; ++f) {
+        const double t = cost(budget) * (1.0 + jitter * ((f * 7919) % 11 - 5) / 5.0);
+        times.push_back(t);
+        budget.observe(t, budget.scale() * budget.scale());
+    }
+    return times;
+}
+
+const std::vector<BudgetPoint> kFront = {point(8, 0.010, 0.5), point(4, 0.020, 0.3), point(2, 0.040, 0.2)};
+
+// Even the fastest setting takes 0.12 s at full resolution, the target is 0.05 s: the
+// scale falls until a frame takes about the target, and stays there.
+TEST(FrameBudget, ControllerConvergesOnTheScaleThatFitsTheTarget) {
+    FrameBudget budget(0.050, kFront);  // the sweep's own times first: 40 ms fits
+    const std::vector<double> t = run_frames(budget, SyntheticCost{}, 30);
+    for (int f = 15; f < 30; ++f) {
+        EXPECT_LE(t[f], 0.050 * 1.08) << f;  // within the dead band around the target
+        EXPECT_GE(t[f], 0.050 * 0.90) << f;
+    }
+    EXPECT_EQ(budget.choice().tile, 8u);  // resolution is lowered only with the fastest setting
+    // The fixed point: 0.02 + 0.1·s² = 0.05 → s ≈ 0.55; the model's scale is that within the dead band.
+    EXPECT_GT(budget.scale(), std::sqrt((0.90 * 0.05 - 0.02) / 0.1) - 1e-9);
+    EXPECT_LT(budget.scale(), std::sqrt((1.08 * 0.05 - 0.02) / 0.1) + 1e-9);
+}
+
+TEST(FrameBudget, ScaleHoldsStillUnderNoiseInsideTheDeadBand) {
+    FrameBudget budget(0.050, kFront);
+    run_frames(budget, SyntheticCost{}, 30);
+    int changes = 0;
+    double last = budget.scale();
+    for (int f = 0; f < 60; ++f) {  // +-3% noise on every frame
+        const double t = SyntheticCost{}(budget) * (1.0 + 0.03 * ((f * 7919) % 11 - 5) / 5.0);
+        budget.observe(t, budget.scale() * budget.scale());
+        if (budget.scale() != last) ++changes, last = budget.scale();
+    }
+    EXPECT_LE(changes, 3);  // +-3% stays inside the dead band
+}
+
+TEST(FrameBudget, ScaleNeverDropsBelowItsFloorAndSaysWhenTheTargetIsOutOfReach) {
+    BudgetOptions options;
+    options.min_scale = 0.25;
+    FrameBudget budget(0.010, kFront, options);  // the fixed 20 ms alone misses 10 ms
+    const std::vector<double> t = run_frames(budget, SyntheticCost{}, 40);
+    EXPECT_DOUBLE_EQ(budget.scale(), 0.25);
+    EXPECT_TRUE(budget.at_cheapest());
+    for (double x : t) EXPECT_GE(x, 0.020);
+    EXPECT_THROW(FrameBudget(0.01, kFront, BudgetOptions{0.0, 1.0}), std::invalid_argument);
+    EXPECT_THROW(FrameBudget(0.01, kFront, BudgetOptions{0.25, 0.0}), std::invalid_argument);
+}
+
+TEST(FrameBudget, BackToFullResolutionAndBetterSettingsWhenFramesGetCheaper) {
+    FrameBudget budget(0.050, kFront);
+    run_frames(budget, SyntheticCost{}, 30);
+    ASSERT_LT(budget.scale(), 1.0);
+    SyntheticCost cheap;  // e.g. the camera turned to a simpler view
+    cheap.fixed = 0.002, cheap.per_pixel = 0.5;
+    const std::vector<double> t = run_frames(budget, cheap, 40);
+    EXPECT_DOUBLE_EQ(budget.scale(), 1.0);
+    EXPECT_EQ(budget.choice().tile, 2u);  // the best setting: 0.002 + 0.5·0.04 = 22 ms fits 50 ms
+    for (double x : t) EXPECT_LE(x, 0.050);
+}
+
+// The first frame's prediction uses the initial cost factor (window pixels / sweep pixels).
+TEST(FrameBudget, InitialCostFactorScalesTheSweepTimes) {
+    FrameBudget budget(0.050, kFront, BudgetOptions{0.25, 16.0});  // a 512² window, a 128² sweep
+    EXPECT_EQ(budget.choice().tile, 8u);
+    EXPECT_NEAR(budget.scale(), std::sqrt(0.98 * 0.050 / (16 * 0.010)), 1e-12);
 }
 
 TEST(FrameBudget, ReadsTheCommittedSweepFront) {

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "image/resample.h"
 #include "metrics/image_metrics.h"
 #include "scene/animation.h"
 #include "scene/loader.h"
@@ -170,6 +171,67 @@ TEST(ViewSession, BudgetedMovingFramesThenFullSettingsAtRest) {
     session.advance(0);  // at rest: starts over with the full settings
     session.advance(0);
     expect_equal_images(session.accumulation(), still(scene, session.camera(), o.settings, 2));
+}
+
+// A budget no setting can meet at full resolution: moving frames drop to the scale's
+// floor, render that many pixels with the same camera and upsample them to the window;
+// at rest the accumulation is the full-resolution render's, bit for bit.
+TEST(ViewSession, BudgetLowersTheResolutionWhileMovingAndNotAtRest) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 2, 64);
+    o.target_fps = 1000.0;  // 1 ms
+    o.min_scale = 0.25;
+    o.pareto = {BudgetPoint{"igi", 8, 4, 1, 1e-6, 0.5}};  // a sweep time no frame here can match
+    ViewSession session(scene, o);
+    for (int f = 0; f < 4; ++f) {
+        session.handle({InputEvent::Kind::Press, 'W'});
+        const FrameReport r = session.advance(1.0 / 30);
+        session.handle({InputEvent::Kind::Release, 'W'});
+        ASSERT_TRUE(r.moving && r.budget.applied);
+        EXPECT_GE(r.budget.scale, 0.25) << f;  // never below the floor
+        EXPECT_EQ(r.budget.width, static_cast<int>(std::lround(64 * r.budget.scale))) << f;
+        if (f == 0) EXPECT_EQ(r.budget.scale, 1.0);  // before a measurement: the sweep's time fits
+    }
+    const FrameReport last = session.advance(0);  // the camera rests; this frame restarts at full size
+    EXPECT_FALSE(last.budget.applied);
+    // The frame before it: the floor, 16x16, upsampled.
+    session.handle({InputEvent::Kind::Press, 'W'});
+    const FrameReport moved = session.advance(1.0 / 30);
+    session.handle({InputEvent::Kind::Release, 'W'});
+    ASSERT_EQ(moved.budget.width, 16);
+    RenderSettings small = o.settings;
+    small.igi.tile = 8, small.igi.paths_per_set = 4, small.shadow_samples = 1;
+    small.width = small.height = 16;
+    const Image upsampled = resize_bilinear(still(scene, session.camera(), small, 1), 64, 64);
+    const Image shown = session.accumulation();
+    ASSERT_EQ(shown.width, 64);
+    EXPECT_EQ(shown.find("R")->data, upsampled.find("R")->data);
+    // At rest: full size, the command line's settings, bit for bit the still render.
+    session.advance(0);
+    session.advance(0);
+    const Image rest = session.accumulation();
+    const Image render = still(scene, session.camera(), o.settings, 2);
+    for (const char* c : {"R", "G", "B", "variance.R"}) EXPECT_EQ(rest.find(c)->data, render.find(c)->data) << c;
+}
+
+// ic and tic have no sweep rows: the budget keeps their settings and changes only the
+// resolution.
+TEST(ViewSession, BudgetWithoutSweepRowsChangesOnlyTheResolution) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Ic, 1, 64);
+    o.target_fps = 1000.0;
+    ViewSession session(scene, o);
+    FrameReport r;
+    for (int f = 0; f < 3; ++f) {
+        session.handle({InputEvent::Kind::Press, 'W'});
+        r = session.advance(1.0 / 30);
+        session.handle({InputEvent::Kind::Release, 'W'});
+    }
+    ASSERT_TRUE(r.budget.applied);
+    EXPECT_EQ(r.budget.scale, 0.25);
+    EXPECT_EQ(r.budget.tile, o.settings.igi.tile);
+    EXPECT_EQ(r.budget.shadow_samples, o.settings.shadow_samples);
+    for (float v : session.accumulation().find("R")->data) ASSERT_TRUE(std::isfinite(v));
 }
 
 TEST(ViewSession, PlayingAnAnimationRestartsEachFrameAndPauseHoldsTheImage) {
