@@ -136,6 +136,48 @@ TEST_F(ViewCli, HeadlessFlyThroughWritesTimesAndImages) {
     EXPECT_NE(r.output.find("5 frames, 2 moving"), std::string::npos) << r.output;
 }
 
+// Six cameras, each moved: every frame a moving frame.
+std::string moving_path() {
+    std::string cams;
+    for (int i = 0; i < 6; ++i) {
+        const std::string x = std::to_string(0.278 + 0.01 * i);
+        cams += std::string(i ? "," : "") + "{\"position\": [" + x + ", 0.273, -0.8], \"look_at\": [" + x +
+                ", 0.273, 0.0], \"up\": [0, 1, 0], \"vfov\": 39.3077}";
+    }
+    return "{\"cameras\": [" + cams + "]}";
+}
+
+// A target no frame can meet (1 ms): the budget goes to its floor scale, --times says the
+// scale and setting of every frame, the frames are written at the window's size, and one
+// line says the target is out of reach with the rate reached.
+TEST_F(ViewCli, TargetOutOfReachIsSaidOnceWithTheRate) {
+    const fs::path path = write("path.json", moving_path());
+    const CliResult r = run_tessera("view --headless --backend embree --method ais --width 32 --height 32 "
+                                    "--target-fps 1000 --min-scale 0.5 --camera-path " + path.string() + " --times " +
+                                    (dir_ / "times.json").string() + " --frame-images " + (dir_ / "frames").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const size_t line = r.output.find("--target-fps 1000 is out of reach: ");
+    ASSERT_NE(line, std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("out of reach", r.output.find('\n', line)), std::string::npos) << "said once: " << r.output;
+    EXPECT_NE(r.output.find("at the cheapest choice (scale 0.50, 16x16, tile ", line), std::string::npos) << r.output;
+    std::ifstream in(dir_ / "times.json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["target_fps"].get<double>(), 1000.0);
+    ASSERT_EQ(j["frames"].size(), 6u);
+    for (const auto& f : j["frames"]) {
+        const auto& b = f["budget"];
+        const double scale = b["scale"].get<double>();
+        EXPECT_GE(scale, 0.5);
+        EXPECT_LE(scale, 1.0);
+        EXPECT_EQ(b["width"].get<int>(), static_cast<int>(std::lround(32 * scale)));
+        EXPECT_GE(b["tile"].get<int>(), 1);
+    }
+    EXPECT_TRUE(j["frames"][5]["budget"]["out_of_reach"].get<bool>());
+    const Image last = tessera::read_exr(tessera::frame_output_path(dir_ / "frames/frame.exr", 5));
+    EXPECT_EQ(last.width, 32);
+    EXPECT_EQ(last.height, 32);
+}
+
 TEST_F(ViewCli, BadOptionsGiveOneClearMessage) {
     struct Case {
         std::string args, needle;
