@@ -171,11 +171,11 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
 void check_distributed_options(const RenderArgs& a, const RenderSettings& s, const Cluster& cluster) {
     if (cluster.size() == 1) return;
     const std::string job = "a distributed render (" + std::to_string(cluster.size()) + " MPI ranks)";
-    if (s.method == Method::Tic)
-        throw InputError("--method tic: " + job + " cannot split its passes: its instant cache carries over from "
-                         "one pass to the next (--method ic rebuilds it per pass)");
-    const bool own_aovs = s.method != Method::Direct && s.method != Method::PathTrace;
-    if (s.aovs && own_aovs)
+    const MethodInfo& m = method_info(s.method);
+    if (m.temporal)
+        throw InputError("--method " + a.method + ": " + job + " cannot split its passes: its state (tic: the "
+                         "instant cache) carries over from one pass to the next (--method ic rebuilds it per pass)");
+    if (s.aovs && m.own_aovs)
         throw InputError("--aov with --method " + a.method + ": " + job + " cannot write them: the method's own AOV "
                          "channels are sums kept by one process (render AOVs without mpirun, or use direct or pt)");
     if (!a.frames.empty()) throw InputError("--frames " + a.frames + ": " + job + " renders one still frame");
@@ -206,15 +206,15 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
             throw InputError("--components " + a.components + ": --method " + a.method +
                              " has no components (they select what igi, ais, ais-max, ic and tic compute)");
         if (cmd.count("--components") && (settings.igi.components & TS_COMPONENT_EDGE) &&
-            settings.method != Method::Ais && settings.method != Method::AisMax)
+            !method_info(settings.method).adaptive)
             throw InputError("--components " + a.components + ": edge samples are an AIS component (--method ais or "
                              "ais-max), not --method " + a.method);
         validate_settings(settings);  // before the scene loads: a bad option fails at once
         check_render_options(a, cmd, bo);
         check_distributed_options(a, settings, cluster);
-        if (settings.method == Method::Tic && a.resume)
-            throw InputError("--method tic cannot be combined with --resume (a checkpoint does not hold the cache, so a "
-                             "resumed render would differ from the uninterrupted one)");
+        if (method_info(settings.method).temporal && a.resume)
+            throw InputError("--method " + a.method + " cannot be combined with --resume (a checkpoint does not hold "
+                             "its state, tic's cache, so a resumed render would differ from the uninterrupted one)");
         const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
         scene = load_scene(scene_path, data);
         out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);

@@ -1,37 +1,35 @@
 #include "integrators/method.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "kernels/shared/layout.h"
 #include "util/error.h"
 
 namespace tessera {
 
+const MethodInfo& method_info(Method m) {
+    const std::vector<MethodInfo>& table = method_table();
+    const size_t i = static_cast<size_t>(m);
+    if (i >= table.size() || table[i].method != m) throw std::logic_error("method_table(): no row in Method order for a method");
+    return table[i];
+}
+
 Method parse_method(const std::string& name) {
-    if (name == "direct") return Method::Direct;
-    if (name == "pt") return Method::PathTrace;
-    if (name == "igi") return Method::Igi;
-    if (name == "ais") return Method::Ais;
-    if (name == "ais-max") return Method::AisMax;
-    if (name == "ic") return Method::Ic;
-    if (name == "tic") return Method::Tic;
-    throw InputError("--method " + name + ": not available (implemented: direct, pt, igi, ais, ais-max, ic, tic)");
+    for (const MethodInfo& row : method_table())
+        if (name == row.name) return row.method;
+    throw InputError("--method " + name + ": not available (implemented: " + method_names() + ")");
 }
 
-const char* method_name(Method m) {
-    switch (m) {
-        case Method::Direct: return "direct";
-        case Method::PathTrace: return "pt";
-        case Method::Igi: return "igi";
-        case Method::Ais: return "ais";
-        case Method::AisMax: return "ais-max";
-        case Method::Ic: return "ic";
-        case Method::Tic: return "tic";
-    }
-    return "?";
+const char* method_name(Method m) { return method_info(m).name; }
+
+std::string method_names() {
+    std::string names;
+    for (const MethodInfo& row : method_table()) names += std::string(names.empty() ? "" : ", ") + row.name;
+    return names;
 }
 
-bool igi_family(Method m) { return m != Method::Direct && m != Method::PathTrace; }
+bool igi_family(Method m) { return method_info(m).igi_family; }
 
 uint32_t parse_components(const std::string& list) {
     uint32_t bits = 0;

@@ -22,9 +22,6 @@ constexpr float kSpeedStep = 1.25f;       // speed factor per scroll notch
 constexpr float kMaxScrollNotches = 100;  // 1.25^100 = 5e9 either way of the start speed
 constexpr float kExposureStep = 0.5f;     // stops per [ or ] press
 
-constexpr std::array<Method, 7> kMethods = {Method::Direct, Method::PathTrace, Method::Igi, Method::Ais,
-                                            Method::AisMax, Method::Ic, Method::Tic};
-
 // Display transfer: the PNG preview's (clamp, sRGB OETF) from a table, one entry per
 // 1/16384 of the unit range: a pow per channel would cost ~10 ms a frame at 512².
 struct SrgbTable {
@@ -70,7 +67,7 @@ ViewSession::ViewSession(const Scene& rest, const ViewOptions& options)
                              std::to_string(width_) + "x" + std::to_string(height_));
         metrics::rgb_for_metrics(*reference_, options.reference);  // checks R, G, B exist and are finite
     }
-    if (settings_.method == Method::Tic) prepare_sequence(settings_, rest_);
+    prepare_sequence(settings_, rest_);  // what the method keeps across frames (tic's cache)
     switch_method(0);  // the budget of the starting method
     build_backend();
 }
@@ -109,7 +106,7 @@ void ViewSession::restart() {
     IntegratorSettings is = integrator_settings(s);
     // The AIS guidance and sets AOVs can be shown at any time: keep their sums (AIS
     // reconstructs on the host anyway, so this costs no read-back).
-    if (s.method == Method::Ais || s.method == Method::AisMax) is.igi.component_aovs = true;
+    if (method_info(s.method).adaptive) is.igi.component_aovs = true;
     integrator_ = make_integrator(*backend_, scene_, *buffers_, is);
     render_width_ = width_, render_height_ = height_;
     if (acc_budgeted_ && budget_) {  // fewer pixels while moving; the same field of view
@@ -138,11 +135,11 @@ void ViewSession::set_animation_frame(int frame) {
 
 void ViewSession::switch_method(int step) {
     if (step != 0) {
-        const auto it = std::find(kMethods.begin(), kMethods.end(), settings_.method);
-        const int n = static_cast<int>(kMethods.size());
-        settings_.method = kMethods[((it - kMethods.begin()) + step + n) % n];
+        const std::vector<MethodInfo>& methods = method_table();
+        const int n = static_cast<int>(methods.size());
+        settings_.method = methods[(static_cast<int>(settings_.method) + step % n + n) % n].method;
         settings_.ic_state.reset();
-        if (settings_.method == Method::Tic) prepare_sequence(settings_, rest_);
+        prepare_sequence(settings_, rest_);
         dirty_ = true;
         if (!aov_available(aov_)) aov_ = Aov::Radiance;
     }
@@ -184,7 +181,7 @@ void ViewSession::toggle_component(uint32_t bit) {
 }
 
 bool ViewSession::aov_available(Aov aov) const {
-    const bool ais = settings_.method == Method::Ais || settings_.method == Method::AisMax;
+    const bool ais = method_info(settings_.method).adaptive;
     switch (aov) {
         case Aov::GuidanceSS: case Aov::GuidanceID: case Aov::SetsSS: case Aov::SetsID: return ais;
         case Aov::GuidancePM: case Aov::SetsPM: return ais && plan_.medium;

@@ -1,6 +1,6 @@
 // The hard-case suite (tests/README.md, "Hard cases"): each case is a scene builder run on every method in
-// kHardCaseMethods and every backend in kHardCaseBackends. A new method is one line in
-// kHardCaseMethods; the cases then run it on both backends. tests/README.md lists the
+// kHardCaseMethods (every row of the method table) and every backend in kHardCaseBackends: a
+// new method runs every case on both backends with no edit here. tests/README.md lists the
 // cases, the methods and backends they run and the checks they make.
 #pragma once
 #include <algorithm>
@@ -32,16 +32,16 @@ struct HardCaseMethod {
     bool single_scatter = false;
 };
 
-/// Every method the hard cases run. Add a method here (one line) and every case runs it.
-inline const std::vector<HardCaseMethod> kHardCaseMethods = {
-    {"direct", Method::Direct, Transport::Direct, false},
-    {"pt", Method::PathTrace, Transport::Global, true},
-    {"igi", Method::Igi, Transport::Global, true, true},
-    {"ais", Method::Ais, Transport::Global, true, true},
-    {"ais-max", Method::AisMax, Transport::Global, true, true},
-    {"ic", Method::Ic, Transport::Global, true, true},
-    {"tic", Method::Tic, Transport::Global, true, true},
-};
+/// Every method the hard cases run: every row of the method table (integrators/method.h),
+/// so a new method runs every case without an edit here.
+inline std::vector<HardCaseMethod> hard_case_methods() {
+    std::vector<HardCaseMethod> methods;
+    for (const MethodInfo& m : method_table())
+        methods.push_back({m.name, m.method, m.global ? Transport::Global : Transport::Direct, m.media,
+                           m.igi_family});  // igi-family media: IGI's single-scattering camera segment model
+    return methods;
+}
+inline const std::vector<HardCaseMethod> kHardCaseMethods = hard_case_methods();
 
 inline const std::vector<BackendKind> kHardCaseBackends = {BackendKind::Embree, BackendKind::OpenCL};
 
