@@ -23,7 +23,7 @@
 #include "backend/backend.h"
 #include "bench/machine.h"
 #include "bench/igi_timing.h"
-#include "gi/igi_frame.h"
+#include "integrators/igi_frame.h"
 #include "device/frame.h"
 #include "scene/loader.h"
 

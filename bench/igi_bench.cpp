@@ -16,7 +16,7 @@
 #include "backend/backend.h"
 #include "bench/machine.h"
 #include "bench/igi_timing.h"
-#include "gi/igi_frame.h"
+#include "integrators/igi_frame.h"
 #include "device/frame.h"
 #include "scene/loader.h"
 
@@ -56,8 +56,14 @@ int main(int argc, char** argv) {
     nlohmann::json j;
     j["size"] = size;
     j["frames"] = frames;
-    j["settings"] = "IgiSettings defaults: tile 3x3, 32 VPL paths per set, 4 light samples per pixel, "
-                    "8 march steps, clamp c = 0.1 (pass 0 of its decay)";
+    const IgiSettings defaults;
+    char clamp_c[32];
+    std::snprintf(clamp_c, sizeof clamp_c, "%g", defaults.clamp_c);
+    j["settings"] = "IgiSettings defaults: tile " + std::to_string(defaults.tile) + "x" + std::to_string(defaults.tile) +
+                    ", " + std::to_string(defaults.paths_per_set) + " VPL paths per set, " +
+                    std::to_string(defaults.set_shadow_samples) + " light samples per pixel, " +
+                    std::to_string(defaults.march_steps) + " march steps, clamp c = " + clamp_c +
+                    " (pass 0 of its decay)";
     std::string md = "# IGI frame time, " + std::to_string(size) + "x" + std::to_string(size) + ", median of " +
                      std::to_string(frames) + " frames\n\nMachine: " + bench::machine_description() + ". " +
                      j["settings"].get<std::string>() +

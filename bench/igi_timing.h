@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "gi/ais_frame.h"
+#include "integrators/ais_frame.h"
 #include "device/frame.h"
 #include "scene/scene.h"
 

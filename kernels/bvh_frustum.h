@@ -30,6 +30,7 @@
  */
 #ifndef TS_BVH_FRUSTUM_H
 #define TS_BVH_FRUSTUM_H
+#include "bvh_packet.h"
 
 /* A packet's interval bounds, per axis (x, y, z of each field), over its live lanes. */
 typedef struct TsFrustum {

@@ -237,8 +237,6 @@ static inline int16 ts_packet_leaf_closest(__global const float* tris, int ref, 
     return any_hit;
 }
 
-#include "bvh_frustum.h"
-
 /* Occlusion of the lanes in `active` (bit i = lane i): returns the bits of those whose
  * ray hits a triangle with t in [tmin, tmax), each equal to ts_bvh_occluded for that
  * lane's ray. Lanes outside `active` are neither read as rays nor reported. */
@@ -312,21 +310,17 @@ static inline void ts_hit16_unpack(const TsHit16* h, uint valid, TsHit* hits) {
  * answer only between two triangles hit at exactly the same t. (Skipping a popped
  * entry whose lanes all have a hit nearer than its entry measured no faster: the child
  * box tests cull such nodes one level later.) Lanes outside `active` get TS_NO_HIT.
- * A camera tile (ts_packet_frustum) goes by ts_bvh_closest16_frustum instead, with the
- * same per-lane result (bvh_frustum.h).
+ * The lane-wise traversal of ts_bvh_closest16 (bvh_packet_query.h), which sends a camera
+ * tile (ts_packet_frustum) to ts_bvh_closest16_frustum instead, with the same per-lane
+ * result (bvh_frustum.h). `p` is ts_packet_setup of `r`; `active` is not 0.
  * Stack bound as ts_bvh_occluded16. */
-static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global const float* tris, const TsRay16* ray,
-                                       uint active) {
-    TsRay16 r = *ray; /* r.tmax: each lane's nearest hit so far */
+static inline TsHit16 ts_bvh_closest16_lanes(__global const float* nodes, __global const float* tris, TsRay16 r,
+                                             const TsPacketSetup* p, uint active) {
+    /* r.tmax: each lane's nearest hit so far */
     TsHit16 h;
     h.t = r.tmax;
     h.u = h.v = (float16)(0.0f);
     h.prim = (uint16)(TS_NO_HIT);
-    if (active == 0u) return h;
-    TsPacketSetup p = ts_packet_setup(&r);
-    TsFrustum f;
-    if (ts_packet_frustum(&r, &p, ts_lane_mask16(active), &f))
-        return ts_bvh_closest16_frustum(nodes, tris, r, &p, &f, ts_lane_mask16(active));
     int stack[TS_BVH_STACK_SIZE];
     int16 lanes[TS_BVH_STACK_SIZE]; /* the lanes visiting each entry */
     int sp = 0;
@@ -343,10 +337,10 @@ static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global con
              * memory and chained four latency-bound reductions. */
             float16 t0, t1, t2, t3;
             int16 hc[4];
-            hc[0] = ts_packet_box_near(node, 0, &r, &p, &t0) & act;
-            hc[1] = ts_packet_box_near(node, 1, &r, &p, &t1) & act;
-            hc[2] = ts_packet_box_near(node, 2, &r, &p, &t2) & act;
-            hc[3] = ts_packet_box_near(node, 3, &r, &p, &t3) & act;
+            hc[0] = ts_packet_box_near(node, 0, &r, p, &t0) & act;
+            hc[1] = ts_packet_box_near(node, 1, &r, p, &t1) & act;
+            hc[2] = ts_packet_box_near(node, 2, &r, p, &t2) & act;
+            hc[3] = ts_packet_box_near(node, 3, &r, p, &t3) & act;
             /* Push far to near, so the child some lane enters first is visited first. */
             const float16 inf = (float16)(INFINITY);
             float key[4];
@@ -368,7 +362,7 @@ static inline TsHit16 ts_bvh_closest16(__global const float* nodes, __global con
                 lanes[sp++] = hc[order[j]];
             }
         } else {
-            ts_packet_leaf_closest(tris, ref, &r, &p, act, &h);
+            ts_packet_leaf_closest(tris, ref, &r, p, act, &h);
         }
     }
     h.t = r.tmax;

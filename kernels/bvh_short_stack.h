@@ -1,5 +1,5 @@
 /* BVH4 traversal with a short stack and a restart trail, for GPU devices (built with
- * -DTS_GPU_TRAVERSAL; included by bvh_traverse.h, whose node and leaf tests it uses).
+ * -DTS_GPU_TRAVERSAL; bvh_query.h picks it; it uses bvh_traverse.h's node and leaf tests).
  *
  * Why: the full-stack traversal keeps TS_BVH_STACK_SIZE = 160 ints (640 bytes) of
  * dynamically indexed private memory per work-item, one copy per inlined call site; GPUs
@@ -27,6 +27,7 @@
  * and never shortens t*, so it visits exactly the full stack's nodes up to that hit. */
 #ifndef TS_BVH_SHORT_STACK_H
 #define TS_BVH_SHORT_STACK_H
+#include "bvh_traverse.h"
 
 /* Ring entries. 8 keeps the private state at 8 · 5 bytes plus three 64-bit trail words;
  * tests build with 1 (restart after every pop) to exercise the trail. A power of two. */

@@ -237,23 +237,4 @@ static inline TsHit ts_bvh_traverse(__global const float* nodes, __global const 
     return hit;
 }
 
-#include "bvh_short_stack.h"
-
-/* The traversal the kernels use: the full stack above, or with -DTS_GPU_TRAVERSAL (the
- * OpenCL backend's choice on GPU devices, host/backend/opencl_backend.cpp) the short
- * stack with restart of bvh_short_stack.h; both return the same hits. */
-#ifdef TS_GPU_TRAVERSAL
-#define TS_BVH_TRAVERSE ts_bvh_traverse_short
-#else
-#define TS_BVH_TRAVERSE ts_bvh_traverse
-#endif
-
-static inline TsHit ts_bvh_closest(__global const float* nodes, __global const float* tris, TsRay ray) {
-    return TS_BVH_TRAVERSE(nodes, tris, ray, 0);
-}
-
-static inline int ts_bvh_occluded(__global const float* nodes, __global const float* tris, TsRay ray) {
-    return TS_BVH_TRAVERSE(nodes, tris, ray, 1).prim != TS_NO_HIT;
-}
-
 #endif /* TS_BVH_TRAVERSE_H */

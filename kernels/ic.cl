@@ -4,7 +4,7 @@
  * doubles where the device has cl_khr_fp64 (shared/compat.h TS_HAS_DOUBLE). */
 #include "shared/layout.h"
 #include "tracer.h"
-#include "bvh_packet.h"
+#include "bvh_packet_query.h"
 #include "shared/ic.h"
 
 TS_PIXEL_KERNEL(ic_interpolate, ts_ic_interpolate_kernel_pixel, TS_IC_INTERP_FLOATS)

@@ -17,7 +17,7 @@
  */
 #ifndef TS_IGI_PACKETS_H
 #define TS_IGI_PACKETS_H
-#include "bvh_packet.h"
+#include "bvh_packet_query.h"
 #include "tracer.h"
 #include "shared/igi.h"
 

@@ -7,7 +7,8 @@
  * trace_closest, tracing 16 consecutive rays per work-item as one packet (bvh_packet.h;
  * the OpenCL backend's batches on CPU devices). */
 #include "shared/layout.h"
-#include "bvh_packet.h"
+#include "bvh_packet_query.h"
+#include "bvh_query.h"
 
 static inline TsRay ts_load_ray(__global const float* rays, uint i) {
     __global const float* r = rays + TS_RAY_FLOATS * i;

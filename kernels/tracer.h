@@ -1,8 +1,8 @@
 /* The OpenCL backend's tracer for the shared shading code: BVH4 traversal
- * (bvh_traverse.h) over the Embree-built BVH. See shared/direct.h for the interface. */
+ * (bvh_query.h) over the Embree-built BVH. See shared/direct.h for the interface. */
 #ifndef TS_TRACER_CL_H
 #define TS_TRACER_CL_H
-#include "bvh_traverse.h"
+#include "bvh_query.h"
 
 typedef struct TsTracer {
     __global const float* nodes;

@@ -1,4 +1,4 @@
-#include "gi/ais_frame.h"
+#include "integrators/ais_frame.h"
 
 #include <algorithm>
 #include <chrono>

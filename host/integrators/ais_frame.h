@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gi/ais_schedule.h"
-#include "gi/igi_frame.h"
+#include "integrators/igi_frame.h"
 
 namespace tessera {
 

@@ -1,8 +1,8 @@
-#include "gi/ic_frame.h"
+#include "integrators/ic_frame.h"
 
 #include <chrono>
 
-#include "integrators/factory.h"
+#include "integrators/settings.h"
 
 namespace tessera {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "gi/ic_passes.h"
-#include "gi/igi_frame.h"
+#include "integrators/igi_frame.h"
 
 namespace tessera {
 

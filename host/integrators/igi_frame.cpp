@@ -1,4 +1,4 @@
-#include "gi/igi_frame.h"
+#include "integrators/igi_frame.h"
 
 #include <chrono>
 #include <initializer_list>
@@ -9,7 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "integrators/factory.h"
+#include "integrators/settings.h"
 #include "kernels/shared/composite.h"
 #include "kernels/shared/layout.h"
 #include "kernels/shared/rng.h"
@@ -87,7 +87,7 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     for (float& r : frame.igi_rotation) r = ts::ts_rng_next(&rng);
     // The march's own shift: with igi_rotation[0] each step's distance moved with its light
     // sample's point, a correlation that biased the march (+0.9% on the single-scattering
-    // quadrature at one 4-step pass, tests/gi/igi_test.cpp).
+    // quadrature at one 4-step pass, tests/integrators/igi_frame_test.cpp).
     frame.igi_march_rotation = ts::ts_rng_next(&rng);
     return frame;
 }

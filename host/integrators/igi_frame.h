@@ -2,8 +2,8 @@
 // VPLs (host), the per-pixel kernels (backend), the discontinuity filter and the
 // composite (host). Everything but the kernels is host code shared by every backend.
 // IgiFrame is the `igi` integrator and the base of the igi family: AisFrame
-// (gi/ais_frame.h) refines the components with extra sample sets, IcFrame
-// (gi/ic_frame.h) takes the indirect component from an instant cache; both through the
+// (integrators/ais_frame.h) refines the components with extra sample sets, IcFrame
+// (integrators/ic_frame.h) takes the indirect component from an instant cache; both through the
 // protected stages below.
 #pragma once
 #include <array>
@@ -26,7 +26,7 @@ namespace tessera {
 /// IGI settings; docs/igi.md gives each default and its source.
 struct IgiSettings {
     uint32_t tile = 3;             ///< interleave tile edge n, 1..8 (n² sample sets)
-    uint32_t paths_per_set = 32;   ///< light paths (VPL sources) per set
+    uint32_t paths_per_set = VplSettings{}.paths_per_set;  ///< light paths (VPL sources) per set
     uint32_t set_shadow_samples = 4;  ///< area-light samples per pixel (its set's share)
     uint32_t march_steps = 8;      ///< medium ray-march steps per pixel (the N sets stratify them)
     /// Geometry-term clamp b = 1 / (clamp_c · D)², D the scene's bounding-box diagonal:

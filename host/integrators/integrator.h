@@ -13,7 +13,7 @@
 
 namespace tessera {
 
-struct IntegratorStats;  // integrators/factory.h
+struct IntegratorStats;  // integrators/settings.h
 
 class Integrator {
 public:

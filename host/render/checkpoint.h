@@ -37,7 +37,7 @@
 
 #include "backend/backend.h"
 #include "render/accumulator.h"
-#include "render/renderer.h"
+#include "render/settings.h"
 #include "scene/scene.h"
 
 namespace tessera {

@@ -16,7 +16,7 @@
 #include "render/accumulator.h"
 #include "render/checkpoint.h"
 #include "render/interrupt.h"
-#include "render/renderer.h"
+#include "render/settings.h"
 #include "scene/scene.h"
 
 namespace tessera {

@@ -10,7 +10,7 @@
 #include <string>
 #include <variant>
 
-#include "render/renderer.h"
+#include "render/settings.h"
 
 namespace tessera {
 

@@ -22,7 +22,7 @@ namespace tessera::view {
 /// One setting of an igi-family method and its one-pass cost and error in the sweep.
 struct BudgetPoint {
     std::string method;          ///< "igi", "ais" or "ais-max" (or any method: a front of its own settings)
-    uint32_t tile = 3, vpl_paths = 32, shadow_samples = 8;
+    uint32_t tile = 0, vpl_paths = 0, shadow_samples = 0;  ///< the setting (from the sweep's row)
     double seconds = 0;          ///< median pass time in the sweep
     double relmse = 0;           ///< one pass's relMSE against the reference in the sweep
 };

@@ -1,5 +1,5 @@
 /* The igi composite of one pixel from its components, tracer-free so that the host's
- * frame (host/gi/igi_frame.cpp, after filtering or AIS reconstruction) uses the one
+ * frame (host/integrators/igi_frame.cpp, after filtering or AIS reconstruction) uses the one
  * formula of the transport model of shared/igi.h:
  *   L = Tr · β · (Le + ρ · (E_ss + E_id)) + L_pm
  * with Tr the transmittance of the camera segment (TS_IGI_MEDIA_TRANSMITTANCE; 1 without

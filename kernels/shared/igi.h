@@ -1,7 +1,7 @@
 /* Instant Global Illumination (Wald et al., EGWR 2002), per-pixel part: the surface
  * shading of one interleaved sample set, and the participating-media ray march. The
  * host generates the VPLs (host/gi/vpl_generator.cpp), filters and composites
- * (host/gi/igi_frame.cpp); docs/igi.md is our reading.
+ * (host/integrators/igi_frame.cpp); docs/igi.md is our reading.
  *
  * Interleaving (Keller & Heidrich 2001): pixel (x, y) uses sample set
  * k = (x mod n) + n (y mod n). Set k owns

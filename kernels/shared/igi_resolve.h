@@ -1,7 +1,7 @@
 /* The igi frame's reconstruction, per pixel: the discontinuity buffer (Keller 1998, as
  * IGI uses it, Wald et al. 2002 §4; docs/igi.md §8) over the interleaved components, then
  * the composite of shared/composite.h. The host runs the same two functions over its
- * copies of the components (host/gi/discontinuity_filter.cpp, host/gi/igi_frame.cpp);
+ * copies of the components (host/gi/discontinuity_filter.cpp, host/integrators/igi_frame.cpp);
  * ts_igi_resolve_pixel runs them where the kernels ran, reading the surface and media
  * kernels' outputs in place (TsSceneView.igi_surface / igi_media), so a device frame
  * comes back as its TS_PASS_FLOATS image only (docs/ray-batches.md §5).

@@ -80,7 +80,7 @@ TS_INLINE float ts_power_heuristic(float a, float b) {
 
 /* Rec. 709 luminance: the power measure lights are picked by (host/device/scene_buffers.cpp),
  * the light paths' roulette (shared/light_path.h) and AIS's indirect guidance
- * (host/gi/igi_frame.cpp); the one copy of the weights. */
+ * (host/integrators/igi_frame.cpp); the one copy of the weights. */
 TS_INLINE float ts_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 /* Area pdf (scene units^-2) with which ts_sample_light picks a point on an emitter whose

@@ -13,7 +13,7 @@
 #include "backend/backend.h"
 #include "device/effect_plan.h"
 #include "device/frame.h"
-#include "gi/ais_frame.h"
+#include "integrators/ais_frame.h"
 #include "opencl/device.h"
 #include "scene/loader.h"
 

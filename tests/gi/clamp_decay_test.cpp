@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "gi/ic_frame.h"
-#include "gi/igi_frame.h"
+#include "integrators/ic_frame.h"
+#include "integrators/igi_frame.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
 

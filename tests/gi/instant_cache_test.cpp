@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gi/igi_frame.h"
+#include "integrators/igi_frame.h"
 #include "gi/ic_passes.h"
 #include "kernels/shared/ic_probe.h"
 #include "device/effect_plan.h"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gi/ais_frame.h"
+#include "integrators/ais_frame.h"
 #include "device/frame.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "gi/igi_frame.h"
+#include "integrators/igi_frame.h"
 #include "gi/vpl_generator.h"
 #include "device/frame.h"
 #include "scene/loader.h"

@@ -1,7 +1,7 @@
 // The igi frame resolved where the kernels ran (kernels/shared/igi_resolve.h: the
 // discontinuity filter and the composite as KernelId::IgiResolve over the surface and
 // media kernels' outputs kept by Backend::launch_into) against the host's reconstruction
-// (host/gi/igi_frame.cpp, host/gi/discontinuity_filter.cpp). Both run the same shared
+// (host/integrators/igi_frame.cpp, host/gi/discontinuity_filter.cpp). Both run the same shared
 // functions and sum in double in window order, so the images must be the same bits; on a
 // device without fp64 the compensated float sums may differ by rounding only.
 #include <cmath>
@@ -15,7 +15,7 @@
 #include "backend/backend.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
-#include "gi/igi_frame.h"
+#include "integrators/igi_frame.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"

@@ -1,0 +1,3 @@
+// check-layers fixture: the other half of a folder cycle.
+#pragma once
+#include "gi/a.h"
