@@ -17,29 +17,22 @@ static inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
 }
 
 /* The argument list every kernel of the kernel table (host/device/kernel_table.h) takes,
- * in this order: the frame, the BVH, the scene's shading buffers, the named inputs
- * (KernelInput order), the launch's item list, the output and the number of work items. */
+ * in this order: the frame, the BVH, the scene's shading buffers and the named inputs
+ * (both lists in shared/kernel_inputs.h), the launch's item list, the output and the
+ * number of work items. */
+#define TS_KERNEL_SCENE_ARG(field, type, what) __global const type *field,
+#define TS_KERNEL_INPUT_ARG(name, field, type, what) __global const type *field,
 #define TS_KERNEL_ARGS                                                                    \
     TsFrame frame, __global const float *nodes, __global const float *tris,              \
-        __global const float *tri_pos, __global const float *tri_nrm,                    \
-        __global const float *tri_uv, __global const uint *tri_mat,                      \
-        __global const float *materials, __global const uint *tex_info,                  \
-        __global const uint *tex_texels, __global const float *lights,                   \
-        __global const float *light_cdf, __global const float *medium,                   \
-        __global const float *vpls, __global const uint *vpl_set_start,                  \
-        __global const float *ic_gbuffer, __global const float *ic_nodes,                \
-        __global const uint *ic_refs, __global const float *ic_records,                  \
-        __global const float *ic_record_surfaces, __global const uint *ic_visibility,    \
-        __global const float *igi_surface, __global const float *igi_media,              \
+        TS_SCENE_BUFFERS(TS_KERNEL_SCENE_ARG) TS_KERNEL_INPUTS(TS_KERNEL_INPUT_ARG)      \
         __global const uint *items, __global float *out, uint work_items
 
+#define TS_KERNEL_SCENE_VIEW(field, type, what) field,
+#define TS_KERNEL_INPUT_VIEW(name, field, type, what) field,
 #define TS_KERNEL_VIEWS                                                                   \
     TsTracer tracer = {nodes, tris};                                                     \
-    TsSceneView sv = {tri_pos, tri_nrm, tri_uv, tri_mat, materials, tex_info, tex_texels, \
-                      lights, light_cdf, medium, vpls, vpl_set_start, ic_gbuffer,        \
-                      ic_nodes, ic_refs, ic_records, ic_record_surfaces,                 \
-                      ic_visibility, igi_surface, igi_media, items,              \
-                      frame.light_count};
+    TsSceneView sv = {TS_SCENE_BUFFERS(TS_KERNEL_SCENE_VIEW) TS_KERNEL_INPUTS(TS_KERNEL_INPUT_VIEW) \
+                      items, frame.light_count};
 
 /* A per-pixel kernel `name`: one work-item per pixel runs `pixel_fn` (a ts_*_pixel
  * function of the shared code) and stores its `floats` outputs at the pixel's place.

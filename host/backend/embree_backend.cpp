@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
-#include <type_traits>
 #include <memory>
 #include <string>
+#include <type_traits>
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -41,6 +41,39 @@
 
 namespace tessera {
 namespace {
+
+// A kernel without a packet function (TS_KERNEL_TABLE's no_packets).
+struct NoPackets {};
+constexpr NoPackets no_packets{};
+
+// ic_gather_lanes gathers without transmittance: in a scene with a medium the per-item
+// kernel runs instead.
+bool ic_gather_packets(const ts::TsSceneView& sv, const ts::TsTracer&, const TsFrame& frame, size_t count,
+                       std::vector<float>& out) {
+    if (ts::ts_medium_load(sv.medium).present) return false;
+    ic_gather_lanes(sv, frame, count, out);
+    return true;
+}
+
+// Runs a kernel's packet function: a pixel kernel's (Words == 0) takes no item count. True
+// when it ran (a function returning bool may decline).
+template <int Words>
+bool run_packets(NoPackets, const ts::TsSceneView&, const ts::TsTracer&, const TsFrame&, size_t, std::vector<float>&) {
+    return false;
+}
+template <int Words, class Fn>
+bool run_packets(Fn fn, const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, size_t count,
+                 std::vector<float>& out) {
+    if constexpr (Words == 0) {
+        fn(sv, tracer, frame, out);
+        return true;
+    } else if constexpr (std::is_same_v<decltype(fn(sv, tracer, frame, count, out)), bool>) {
+        return fn(sv, tracer, frame, count, out);
+    } else {
+        fn(sv, tracer, frame, count, out);
+        return true;
+    }
+}
 
 ts::TsRay ray_from(const float* r) {
     ts::TsRay ray;
@@ -94,15 +127,13 @@ protected:
                     std::vector<float>& out) override {
         ts::TsSceneView sv = scene_view(frame);
         sv.items = items.data();
-        if (packets_ && k == KernelId::IgiSurface) return igi_surface_packets(sv, tracer_, frame, out);
-        if (packets_ && k == KernelId::AisItem) return ais_item_packets(sv, tracer_, frame, count, out);
-        if (packets_ && k == KernelId::IgiMedia) return igi_media_packets(sv, tracer_, frame, out);
-        if (packets_ && k == KernelId::IcPair) return ic_pair_packets(sv, tracer_, frame, count, out);
-        if (packets_ && k == KernelId::IcGather && !ts::ts_medium_load(sv.medium).present)
-            return ic_gather_lanes(sv, frame, count, out);
+        // The table's packet function where there is one and it takes the launch, else the
+        // per-ray shared function.
         switch (k) {
-#define TS_EMBREE_DISPATCH(id, name, program, floats, words, fn) \
-    case KernelId::id: return dispatch<floats, words>(sv, frame, count, out, ts::fn);
+#define TS_EMBREE_DISPATCH(id, name, program, floats, words, fn, cl_packets, packets)     \
+    case KernelId::id:                                                                    \
+        if (packets_ && run_packets<words>(packets, sv, tracer_, frame, count, out)) return; \
+        return dispatch<floats, words>(sv, frame, count, out, ts::fn);
             TS_KERNEL_TABLE(TS_EMBREE_DISPATCH)
 #undef TS_EMBREE_DISPATCH
         }
@@ -112,16 +143,9 @@ private:
     ts::TsSceneView scene_view(const TsFrame& frame) const {
         ts::TsSceneView sv = make_scene_view(*buffers_);
         sv.light_count = frame.light_count;
-        sv.vpls = input<float>(KernelInput::Vpls);
-        sv.vpl_set_start = input<uint32_t>(KernelInput::VplSetStart);
-        sv.ic_gbuffer = input<float>(KernelInput::IcGbuffer);
-        sv.ic_nodes = input<float>(KernelInput::IcNodes);
-        sv.ic_refs = input<uint32_t>(KernelInput::IcRefs);
-        sv.ic_records = input<float>(KernelInput::IcRecords);
-        sv.ic_record_surfaces = input<float>(KernelInput::IcRecordSurfaces);
-        sv.ic_visibility = input<uint32_t>(KernelInput::IcVisibility);
-        sv.igi_surface = input<float>(KernelInput::IgiSurface);
-        sv.igi_media = input<float>(KernelInput::IgiMedia);
+#define TS_SCENE_VIEW_INPUT(name, field, type, what) sv.field = input<TS_ELEMENT_TYPE(type)>(KernelInput::name);
+        TS_KERNEL_INPUTS(TS_SCENE_VIEW_INPUT)
+#undef TS_SCENE_VIEW_INPUT
         return sv;
     }
 

@@ -48,21 +48,15 @@ constexpr size_t kMinSortedRays = 16384;
 
 // The packet variant of kernel `id` (kernels/igi_packets.h), or null where it has none,
 // and its work-item count for a launch over `count` pixels or items.
-const char* packet_kernel(KernelId id) {
-    if (id == KernelId::IgiSurface) return "igi_surface_packets";
-    if (id == KernelId::AisItem) return "ais_extra_packets";
-    if (id == KernelId::IgiMedia) return "igi_media_packets";
-    if (id == KernelId::IcPair) return "ic_pair_packets";
-    return nullptr;
-}
-
 RayKeyGrid scene_key_grid(const SceneBuffers& scene) {
     const SceneBounds b = scene_bounds(scene);
     return RayKeyGrid(&b.lo.x, &b.hi.x);
 }
 
+// Work items of a packet kernel (TS_KERNEL_TABLE): a pixel kernel's 4x4 blocks, or an
+// item kernel's groups of kLanes items.
 size_t packet_work_items(KernelId id, const TsFrame& frame, size_t count) {
-    const bool blocks = id == KernelId::IgiSurface || id == KernelId::IgiMedia;
+    const bool blocks = kernel_info(id).item_words == 0;
     return blocks ? ts::ts_packet_block_count(&frame) : (count + kLanes - 1) / kLanes;
 }
 
@@ -172,15 +166,15 @@ private:
     void launch_kernel(KernelId id, const TsFrame& frame, size_t count, cl::Buffer& items, cl::Buffer& out,
                        int skip, R&& read_back) {
         const KernelInfo& info = kernel_info(id);
-        const char* packet = packets_ ? packet_kernel(id) : nullptr;
+        const char* packet = packets_ ? info.packet_name : nullptr;
         const size_t work_items = packet ? packet_work_items(id, frame, count) : count;
         const std::string name = packet ? packet : info.name;
         cl::Kernel& k = kernel(info.program, name);
         int a = 0;
         k.setArg(a++, sizeof(TsFrame), &frame);
-        for (cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
-                              &tex_texels_, &lights_, &light_cdf_, &medium_})
-            k.setArg(a++, *b);
+        k.setArg(a++, nodes_);
+        k.setArg(a++, tris_);
+        for (cl::Buffer& b : scene_) k.setArg(a++, b);
         for (int i = 0; i < kKernelInputCount; ++i) k.setArg(a++, i == skip ? no_items_ : inputs_[i]);
         k.setArg(a++, items);
         k.setArg(a++, out);
@@ -221,16 +215,15 @@ private:
     // replaced only once all uploads succeeded.
     void upload_scene(const SceneBuffers& scene) {
         FlatBvh bvh = build_bvh(positions_of(scene));
-        std::array<cl::Buffer, 12> b = {
-            upload("BVH nodes", bvh.nodes),           upload("BVH triangles", bvh.tris),
-            upload("triangle positions", scene.tri_pos), upload("triangle normals", scene.tri_nrm),
-            upload("triangle uvs", scene.tri_uv),     upload("triangle materials", scene.tri_mat),
-            upload("materials", scene.materials),     upload("texture table", scene.tex_info),
-            upload("textures", scene.tex_texels),     upload("lights", scene.lights),
-            upload("light CDF", scene.light_cdf),     upload("medium", scene.medium)};
-        cl::Buffer* dst[12] = {&nodes_, &tris_,      &tri_pos_,    &tri_nrm_, &tri_uv_,    &tri_mat_,
-                               &materials_, &tex_info_, &tex_texels_, &lights_, &light_cdf_, &medium_};
-        for (int i = 0; i < 12; ++i) *dst[i] = std::move(b[i]);
+        cl::Buffer nodes = upload("BVH nodes", bvh.nodes), tris = upload("BVH triangles", bvh.tris);
+        std::array<cl::Buffer, kSceneBufferCount> buffers = {
+#define TS_UPLOAD_SCENE_BUFFER(field, type, what) upload(what, scene.field),
+            TS_SCENE_BUFFERS(TS_UPLOAD_SCENE_BUFFER)
+#undef TS_UPLOAD_SCENE_BUFFER
+        };
+        nodes_ = std::move(nodes);
+        tris_ = std::move(tris);
+        scene_ = std::move(buffers);
         key_grid_ = scene_key_grid(scene);
     }
 
@@ -301,9 +294,8 @@ private:
             } catch (const cl::Error&) {
             }
         };
-        for (const cl::Buffer* b : {&nodes_, &tris_, &tri_pos_, &tri_nrm_, &tri_uv_, &tri_mat_, &materials_, &tex_info_,
-                                    &tex_texels_, &lights_, &light_cdf_, &medium_, &out_, &no_items_, &items_, &rays_})
-            add(*b);
+        for (const cl::Buffer* b : {&nodes_, &tris_, &out_, &no_items_, &items_, &rays_}) add(*b);
+        for (const cl::Buffer& b : scene_) add(b);
         for (const cl::Buffer& b : inputs_) add(b);
         return sum;
     }
@@ -435,8 +427,8 @@ private:
     int fail_launch_ = 0;  // TESSERA_CL_FAIL_LAUNCH test hook: error code to inject
     cl::Context ctx_;
     cl::CommandQueue queue_;
-    cl::Buffer nodes_, tris_, tri_pos_, tri_nrm_, tri_uv_, tri_mat_, materials_, tex_info_, tex_texels_,
-        lights_, light_cdf_, medium_, out_;
+    cl::Buffer nodes_, tris_, out_;
+    std::array<cl::Buffer, kSceneBufferCount> scene_;  // TS_SCENE_BUFFERS order (TS_KERNEL_ARGS)
     std::array<cl::Buffer, kKernelInputCount> inputs_;  // KernelInput order (TS_KERNEL_ARGS)
     std::array<size_t, kKernelInputCount> input_bytes_{};  // their capacities
     cl::Buffer no_items_;                               // bound for pixel kernels

@@ -9,33 +9,46 @@
 #pragma once
 #include <cstdint>
 
+#include "kernels/shared/kernel_inputs.h"
 #include "kernels/shared/layout.h"
 
 /* X(id, OpenCL kernel name, program file under kernels/, output floats per work item,
  *   item words (0: one work item per pixel of the frame, written at the pixel's place;
  *   n > 0: one per item of a list with n uints per item, written in list order),
- *   shared C++ function the Embree backend calls). */
-#define TS_KERNEL_TABLE(X)                                                                               \
-    X(Direct, "direct_pass", "direct.cl", TS_PASS_FLOATS, 0, ts_direct_pixel)                            \
-    X(PathTrace, "pt_pass", "pt.cl", TS_PASS_FLOATS, 0, ts_pt_pixel)                                     \
-    X(IgiSurface, "igi_surface_pass", "igi.cl", TS_IGI_SURF_FLOATS, 0, ts_igi_surface_pixel)             \
-    X(IgiMedia, "igi_media_pass", "igi.cl", TS_IGI_MEDIA_FLOATS, 0, ts_igi_media_pixel)                  \
-    X(IgiResolve, "igi_resolve_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_igi_resolve_pixel)                 \
-    X(AisItem, "ais_extra_pass", "igi.cl", TS_AIS_ITEM_FLOATS, TS_AIS_ITEM_WORDS, ts_ais_extra_item)     \
-    X(EdgeSample, "edge_sample_pass", "igi.cl", TS_EDGE_SAMPLE_FLOATS, TS_EDGE_ITEM_WORDS, ts_edge_sample_item) \
-    X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel)     \
-    X(IcPair, "ic_pair_pass", "ic.cl", TS_IC_PAIR_FLOATS, TS_IC_PAIR_WORDS, ts_ic_pair_item)             \
-    X(IcGather, "ic_gather_pass", "ic.cl", TS_IC_GATHER_FLOATS, TS_IC_GATHER_WORDS, ts_ic_gather_item)
+ *   shared C++ function the Embree backend calls,
+ *   OpenCL packet kernel in the same program (nullptr: none): on CPU devices it replaces
+ *   the per-ray kernel with 16 rays per work item, over 4x4 pixel blocks for a pixel
+ *   kernel (ts_packet_block_count) and over groups of 16 items for an item kernel,
+ *   Embree packet function (no_packets: none), host/backend/embree_packets.h and its
+ *   neighbours; it may decline a launch (the per-ray function then runs)). */
+#define TS_KERNEL_TABLE(X)                                                                                        \
+    X(Direct, "direct_pass", "direct.cl", TS_PASS_FLOATS, 0, ts_direct_pixel, nullptr, no_packets)                \
+    X(PathTrace, "pt_pass", "pt.cl", TS_PASS_FLOATS, 0, ts_pt_pixel, nullptr, no_packets)                         \
+    X(IgiSurface, "igi_surface_pass", "igi.cl", TS_IGI_SURF_FLOATS, 0, ts_igi_surface_pixel, "igi_surface_packets", \
+      igi_surface_packets)                                                                                        \
+    X(IgiMedia, "igi_media_pass", "igi.cl", TS_IGI_MEDIA_FLOATS, 0, ts_igi_media_pixel, "igi_media_packets",       \
+      igi_media_packets)                                                                                          \
+    X(IgiResolve, "igi_resolve_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_igi_resolve_pixel, nullptr, no_packets)     \
+    X(AisItem, "ais_extra_pass", "igi.cl", TS_AIS_ITEM_FLOATS, TS_AIS_ITEM_WORDS, ts_ais_extra_item,               \
+      "ais_extra_packets", ais_item_packets)                                                                      \
+    X(EdgeSample, "edge_sample_pass", "igi.cl", TS_EDGE_SAMPLE_FLOATS, TS_EDGE_ITEM_WORDS, ts_edge_sample_item,    \
+      nullptr, no_packets)                                                                                        \
+    X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel, nullptr,   \
+      no_packets)                                                                                                 \
+    X(IcPair, "ic_pair_pass", "ic.cl", TS_IC_PAIR_FLOATS, TS_IC_PAIR_WORDS, ts_ic_pair_item, "ic_pair_packets",    \
+      ic_pair_packets)                                                                                            \
+    X(IcGather, "ic_gather_pass", "ic.cl", TS_IC_GATHER_FLOATS, TS_IC_GATHER_WORDS, ts_ic_gather_item, nullptr,    \
+      ic_gather_packets)
 
 namespace tessera {
 
 enum class KernelId {
-#define TS_KERNEL_ID(id, name, program, floats, words, fn) id,
+#define TS_KERNEL_ID(id, name, program, floats, words, fn, cl_packets, packets) id,
     TS_KERNEL_TABLE(TS_KERNEL_ID)
 #undef TS_KERNEL_ID
 };
 
-#define TS_KERNEL_COUNT(id, name, program, floats, words, fn) +1
+#define TS_KERNEL_COUNT(id, name, program, floats, words, fn, cl_packets, packets) +1
 constexpr int kKernelCount = 0 TS_KERNEL_TABLE(TS_KERNEL_COUNT);
 #undef TS_KERNEL_COUNT
 
@@ -45,35 +58,32 @@ struct KernelInfo {
     const char* program;  ///< program file under kernels/
     int out_floats;       ///< output floats per work item (layout.h)
     int item_words;       ///< 0: launched over pixels; n: over items of n uints each
+    const char* packet_name;  ///< OpenCL packet kernel (nullptr: none), see TS_KERNEL_TABLE
 };
 
 const KernelInfo& kernel_info(KernelId k);
 
 /// The named inputs a backend keeps between launches (set with Backend::set_input):
-/// per-frame buffers the kernels read through TsSceneView (kernels/shared/geometry.h).
-/// Adding one: an entry here and in input_info, a TsSceneView field, a TS_KERNEL_ARGS
-/// argument (kernels/tracer.h) and its line in the Embree backend's scene_view().
+/// per-frame buffers the kernels read through TsSceneView, one per line of
+/// TS_KERNEL_INPUTS (kernels/shared/kernel_inputs.h, which gives each one's layout), in
+/// that order (the kernels' argument order).
 enum class KernelInput {
-    Vpls,         ///< floats: TS_VPL_FLOATS per VPL, sorted by sample set (layout.h)
-    VplSetStart,  ///< uints: sample set k's VPLs are [start[k], start[k+1])
-    IcGbuffer,    ///< floats: TS_IC_GBUF_FLOATS per pixel (ic_gbuffer_from_surface, gi/instant_cache.h)
-    IcNodes,      ///< floats: TS_IC_NODE_FLOATS per octree node, root first
-    IcRefs,       ///< uints: the octree nodes' record lists, concatenated
-    IcRecords,    ///< floats: TS_IC_RECORD_FLOATS per record
-    /// floats: TS_IC_GBUF_FLOATS per cache record, the G-buffer entry it was made at
-    /// (KernelId::IcPair and IcGather; their VPLs are the Vpls input, one set)
-    IcRecordSurfaces,
-    /// uints: record–VPL visibility rows, bit masks of TS_IC_VISIBLE_WORDS(VPLs of the
-    /// Vpls input) uints each (layout.h; KernelId::IcGather)
-    IcVisibility,
-    /// floats: TS_IGI_SURF_FLOATS per pixel, KernelId::IgiSurface's output kept where the
-    /// kernels run (Backend::launch_into; KernelId::IgiResolve reads it)
-    IgiSurface,
-    /// floats: TS_IGI_MEDIA_FLOATS per pixel, KernelId::IgiMedia's output kept likewise;
-    /// read only when the frame's components include TS_COMPONENT_PM
-    IgiMedia,
+#define TS_INPUT_ENUM(name, field, type, what) name,
+    TS_KERNEL_INPUTS(TS_INPUT_ENUM)
+#undef TS_INPUT_ENUM
 };
-constexpr int kKernelInputCount = 10;
+#define TS_INPUT_COUNT(name, field, type, what) +1
+constexpr int kKernelInputCount = 0 TS_KERNEL_INPUTS(TS_INPUT_COUNT);
+#undef TS_INPUT_COUNT
+#define TS_SCENE_COUNT(field, type, what) +1
+/// The scene's shading buffers each kernel receives (TS_SCENE_BUFFERS).
+constexpr int kSceneBufferCount = 0 TS_SCENE_BUFFERS(TS_SCENE_COUNT);
+#undef TS_SCENE_COUNT
+
+/// The C++ element type of a list's `type` token: TS_ELEMENT_TYPE(uint) is uint32_t.
+#define TS_ELEMENT_TYPE(type) TS_ELEMENT_TYPE_##type
+#define TS_ELEMENT_TYPE_float float
+#define TS_ELEMENT_TYPE_uint uint32_t
 
 struct KernelInputInfo {
     const char* name;  ///< for error messages ("VPL set table")

@@ -6,16 +6,15 @@
 
 namespace tessera {
 
-/// Points at `b`'s arrays; valid while `b` lives and is not modified.
+/// Points at `b`'s arrays (TS_SCENE_BUFFERS, kernels/shared/kernel_inputs.h); the named
+/// inputs are null. Valid while `b` lives and is not modified.
 inline ts::TsSceneView make_scene_view(const SceneBuffers& b) {
-    return ts::TsSceneView{b.tri_pos.data(),   b.tri_nrm.data(),   b.tri_uv.data(),
-                           b.tri_mat.data(),   b.materials.data(), b.tex_info.data(),
-                           b.tex_texels.data(), b.lights.data(),   b.light_cdf.data(),
-                           b.medium.data(),     nullptr,            nullptr,
-                           nullptr,             nullptr,            nullptr,
-                           nullptr,             nullptr,            nullptr,
-                           nullptr,             nullptr,            nullptr,
-                           b.light_count};
+    ts::TsSceneView sv{};
+#define TS_SCENE_VIEW_FIELD(field, type, what) sv.field = b.field.data();
+    TS_SCENE_BUFFERS(TS_SCENE_VIEW_FIELD)
+#undef TS_SCENE_VIEW_FIELD
+    sv.light_count = b.light_count;
+    return sv;
 }
 
 }  // namespace tessera

@@ -3,6 +3,7 @@
 #define TS_GEOMETRY_H
 #include "shared/compat.h"
 #include "shared/layout.h"
+#include "shared/kernel_inputs.h"
 
 TS_NAMESPACE_BEGIN
 
@@ -194,28 +195,10 @@ TS_INLINE int ts_packet_block_pixel(const TsFrame* f, uint k, uint bx, uint by, 
 
 /* Read-only views of the scene's shading buffers (layouts in shared/layout.h). */
 typedef struct TsSceneView {
-    TS_GLOBAL const float* tri_pos;
-    TS_GLOBAL const float* tri_nrm;
-    TS_GLOBAL const float* tri_uv;
-    TS_GLOBAL const uint* tri_mat;
-    TS_GLOBAL const float* materials;
-    TS_GLOBAL const uint* tex_info;
-    TS_GLOBAL const uint* tex_texels;
-    TS_GLOBAL const float* lights;
-    TS_GLOBAL const float* light_cdf;
-    TS_GLOBAL const float* medium;
-    TS_GLOBAL const float* vpls;
-    TS_GLOBAL const uint* vpl_set_start;
-    /* Named inputs beyond the scene (host/device/kernel_table.h KernelInput); null or a
-     * placeholder where the launch does not use them. */
-    TS_GLOBAL const float* ic_gbuffer;
-    TS_GLOBAL const float* ic_nodes;
-    TS_GLOBAL const uint* ic_refs;
-    TS_GLOBAL const float* ic_records;
-    TS_GLOBAL const float* ic_record_surfaces;
-    TS_GLOBAL const uint* ic_visibility;
-    TS_GLOBAL const float* igi_surface; /* the igi surface kernel's output, kept on the device */
-    TS_GLOBAL const float* igi_media;   /* the igi media kernel's output, kept on the device */
+    /* The scene's buffers, then the named inputs (host/device/kernel_table.h KernelInput;
+     * null or a placeholder where the launch does not use them): shared/kernel_inputs.h. */
+    TS_SCENE_BUFFERS(TS_VIEW_SCENE_FIELD)
+    TS_KERNEL_INPUTS(TS_VIEW_INPUT_FIELD)
     TS_GLOBAL const uint* items; /* the launch's item list (item kernels) */
     uint light_count;
 } TsSceneView;

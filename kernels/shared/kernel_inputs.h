@@ -1,0 +1,62 @@
+/* The buffers every kernel of the kernel table (host/device/kernel_table.h) reads after
+ * the frame and the BVH, declared once. From these two lists, in this order, come the
+ * kernels' argument list (TS_KERNEL_ARGS, kernels/tracer.h), the shading code's view of
+ * the buffers (TsSceneView, shared/geometry.h), the host's KernelInput enum, its count and
+ * input_info (host/device/kernel_table.h), the C++ scene view (host/device/scene_view.h,
+ * the Embree backend's scene_view) and the OpenCL backend's uploads and bindings.
+ *
+ * Adding a buffer: one line in a list; its data in SceneBuffers (a scene buffer, a
+ * member of the same name) or set with Backend::set_input (a named input); and its use in
+ * the shared code through TsSceneView::field.
+ */
+#ifndef TS_KERNEL_INPUTS_H
+#define TS_KERNEL_INPUTS_H
+
+/* X(field, element type, what): the scene's shading buffers, the SceneBuffers members of
+ * the same names (host/device/scene_buffers.h: the layouts are there), uploaded with the
+ * scene. */
+#define TS_SCENE_BUFFERS(X)                       \
+    X(tri_pos, float, "triangle positions")       \
+    X(tri_nrm, float, "triangle normals")         \
+    X(tri_uv, float, "triangle uvs")              \
+    X(tri_mat, uint, "triangle materials")        \
+    X(materials, float, "materials")              \
+    X(tex_info, uint, "texture table")            \
+    X(tex_texels, uint, "textures")               \
+    X(lights, float, "lights")                    \
+    X(light_cdf, float, "light CDF")              \
+    X(medium, float, "medium")
+
+/* X(KernelInput name, field, element type, what): the named inputs a backend keeps between
+ * launches (Backend::set_input), null or a placeholder where a launch does not use them:
+ *   Vpls             TS_VPL_FLOATS per VPL, sorted by sample set (layout.h)
+ *   VplSetStart      sample set k's VPLs are [start[k], start[k+1])
+ *   IcGbuffer        TS_IC_GBUF_FLOATS per pixel (ic_gbuffer_from_surface, gi/instant_cache.h)
+ *   IcNodes          TS_IC_NODE_FLOATS per octree node, root first
+ *   IcRefs           the octree nodes' record lists, concatenated
+ *   IcRecords        TS_IC_RECORD_FLOATS per record
+ *   IcRecordSurfaces TS_IC_GBUF_FLOATS per cache record, the G-buffer entry it was made at
+ *                    (KernelId::IcPair and IcGather; their VPLs are the Vpls input, one set)
+ *   IcVisibility     record–VPL visibility rows, bit masks of TS_IC_VISIBLE_WORDS(VPLs of
+ *                    the Vpls input) uints each (layout.h; KernelId::IcGather)
+ *   IgiSurface       TS_IGI_SURF_FLOATS per pixel, KernelId::IgiSurface's output kept where
+ *                    the kernels run (Backend::launch_into; KernelId::IgiResolve reads it)
+ *   IgiMedia         TS_IGI_MEDIA_FLOATS per pixel, KernelId::IgiMedia's output kept
+ *                    likewise; read only when the frame's components include TS_COMPONENT_PM */
+#define TS_KERNEL_INPUTS(X)                                                  \
+    X(Vpls, vpls, float, "VPL")                                              \
+    X(VplSetStart, vpl_set_start, uint, "VPL set table")                     \
+    X(IcGbuffer, ic_gbuffer, float, "ic G-buffer")                           \
+    X(IcNodes, ic_nodes, float, "ic octree")                                 \
+    X(IcRefs, ic_refs, uint, "ic record lists")                              \
+    X(IcRecords, ic_records, float, "ic records")                            \
+    X(IcRecordSurfaces, ic_record_surfaces, float, "ic record surfaces")     \
+    X(IcVisibility, ic_visibility, uint, "ic visibility")                    \
+    X(IgiSurface, igi_surface, float, "igi surface")                         \
+    X(IgiMedia, igi_media, float, "igi media")
+
+/* TsSceneView's pointer to one buffer (shared/geometry.h). */
+#define TS_VIEW_SCENE_FIELD(field, type, what) TS_GLOBAL const type* field;
+#define TS_VIEW_INPUT_FIELD(name, field, type, what) TS_GLOBAL const type* field;
+
+#endif /* TS_KERNEL_INPUTS_H */
