@@ -54,7 +54,7 @@ struct ViewArgs {
     std::string pareto;
     int screenshot_window_frame = 10;
     float exposure = 0.0f, speed = 0.0f;
-    double target_fps = 0.0, min_scale = 0.25;
+    double target_fps = 0.0, min_scale = view::BudgetOptions{}.min_scale;
     bool headless = false, record = false, fixed_dt = false;
     RenderSettings settings;
 };

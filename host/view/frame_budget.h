@@ -39,9 +39,10 @@ std::vector<BudgetPoint> read_pareto_front(const std::filesystem::path& csv, con
 std::vector<BudgetPoint> pareto_front(std::vector<BudgetPoint> points);
 
 struct BudgetOptions {
-    /// The floor of the per-axis resolution scale, in (0, 1]. 1/4 (1/16 of the pixels):
-    /// below it an upsampled frame no longer shows the scene's shapes at a 512² window.
-    double min_scale = 0.25;
+    /// The floor of the per-axis resolution scale, in (0, 1]. 1/8: Blender Cycles starts
+    /// its viewport preview at 64 pixels ("Start Pixels", preview_start_resolution, default
+    /// 64), 1/8 of a 512-pixel window, and refines from there; we go no lower.
+    double min_scale = 0.125;
     /// The cost factor before any frame is measured: the window's pixels / the sweep's
     /// (time grows with pixels); 1 when the sweep's size is unknown.
     double initial_cost = 1.0;

@@ -45,7 +45,7 @@ struct ViewOptions {
     double target_fps = 0.0;           ///< > 0: moving frames follow the frame-time budget
     std::vector<BudgetPoint> pareto;   ///< candidate settings for the budget (frame_budget.h)
     double pareto_pixels = 0.0;        ///< pixels of the sweep's images (0: unknown), for the first prediction
-    double min_scale = 0.25;           ///< the floor of the budget's per-axis resolution scale (--min-scale)
+    double min_scale = BudgetOptions{}.min_scale;  ///< the floor of the budget's per-axis resolution scale (--min-scale)
     float speed = 0.0f;                ///< movement speed, scene units per second; 0: default_speed
 };
 

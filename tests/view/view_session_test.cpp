@@ -228,7 +228,7 @@ TEST(ViewSession, BudgetWithoutSweepRowsChangesOnlyTheResolution) {
         session.handle({InputEvent::Kind::Release, 'W'});
     }
     ASSERT_TRUE(r.budget.applied);
-    EXPECT_EQ(r.budget.scale, 0.25);
+    EXPECT_EQ(r.budget.scale, o.min_scale);  // the default floor
     EXPECT_EQ(r.budget.tile, o.settings.igi.tile);
     EXPECT_EQ(r.budget.shadow_samples, o.settings.shadow_samples);
     for (float v : session.accumulation().find("R")->data) ASSERT_TRUE(std::isfinite(v));
