@@ -1,13 +1,13 @@
+// ViewSession's state machine: set-up, accumulation restarts, method and component
+// switches and the per-frame advance with the frame budget (docs/viewer.md §1, §4). Input
+// handling, the display and the HUD are in session_input.cpp, session_display.cpp and
+// session_hud.cpp; tests/view/view_session_test.cpp tests them together.
 #include "view/view_session.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 
-#include "image/atomic_file.h"
-#include "image/resample.h"
 #include "metrics/image_metrics.h"
 #include "render/parameters.h"
 #include "render/sequence.h"
@@ -15,39 +15,6 @@
 #include "view/camera_control.h"
 
 namespace tessera::view {
-namespace {
-
-constexpr float kTurnPerPixel = 0.004f;   // radians of yaw/pitch per pixel dragged
-constexpr float kSpeedStep = 1.25f;       // speed factor per scroll notch
-constexpr float kMaxScrollNotches = 100;  // 1.25^100 = 5e9 either way of the start speed
-constexpr float kExposureStep = 0.5f;     // stops per [ or ] press
-
-// Display transfer: the PNG preview's (clamp, sRGB OETF) from a table, one entry per
-// 1/16384 of the unit range: a pow per channel would cost ~10 ms a frame at 512².
-struct SrgbTable {
-    std::array<uint8_t, 16385> code;
-    SrgbTable() {
-        for (size_t i = 0; i < code.size(); ++i)
-            code[i] = static_cast<uint8_t>(std::lround(255.0 * metrics::tone_map_srgb(double(i) / 16384.0)));
-    }
-    uint8_t operator()(double v) const {
-        if (!(v > 0.0)) return 0;
-        if (v >= 1.0) return 255;
-        return code[static_cast<size_t>(v * 16384.0 + 0.5)];
-    }
-};
-const SrgbTable& srgb() {
-    static const SrgbTable table;
-    return table;
-}
-
-}  // namespace
-
-const char* aov_name(Aov aov) {
-    static const char* names[] = {"radiance", "albedo",      "normal",  "depth",   "guidance.SS", "guidance.ID",
-                                  "guidance.PM", "sets.SS", "sets.ID", "sets.PM", "error"};
-    return names[static_cast<int>(aov)];
-}
 
 ViewSession::ViewSession(const Scene& rest, const ViewOptions& options)
     : rest_(rest), options_(options), settings_(options.settings), exposure_(options.exposure) {
@@ -198,51 +165,6 @@ void ViewSession::cycle_aov(int step) {
     aov_ = static_cast<Aov>(a);
 }
 
-void ViewSession::handle(const InputEvent& e) {
-    using K = InputEvent::Kind;
-    switch (e.kind) {
-        case K::Quit: quit_ = true; return;
-        case K::Release: held_.erase(e.key); return;
-        case K::Drag: camera_ = turn_camera(camera_, -e.dx * kTurnPerPixel, -e.dy * kTurnPerPixel); return;
-        case K::Scroll: {
-            // Scene-relative bounds: at most kMaxScrollNotches notches from the start speed
-            // either way, so a long scroll cannot reach 0 or overflow a float.
-            const float bound = std::pow(kSpeedStep, kMaxScrollNotches);
-            speed_ = std::clamp(speed_ * std::pow(kSpeedStep, e.dy), start_speed_ / bound, start_speed_ * bound);
-            return;
-        }
-        case K::Press: break;
-    }
-    held_.insert(e.key);
-    pressed_.insert(e.key);
-    switch (e.key) {
-        case 'R': camera_ = home_camera_; break;
-        case 'C': std::printf("%s\n", camera_json(camera_).c_str()), std::fflush(stdout); break;
-        case 'P': std::printf("%s\n", save_screenshot().c_str()), std::fflush(stdout); break;
-        case 'M': switch_method(1); break;
-        case 'N': switch_method(-1); break;
-        case '1': toggle_component(TS_COMPONENT_SS); break;
-        case '2': toggle_component(TS_COMPONENT_ID); break;
-        case '3': toggle_component(TS_COMPONENT_PM); break;
-        case '4': toggle_component(TS_COMPONENT_EDGE); break;
-        case 'V': cycle_aov(1); break;
-        case 'B': cycle_aov(-1); break;
-        case '[': exposure_ -= kExposureStep; break;
-        case ']': exposure_ += kExposureStep; break;
-        case ' ': paused_ = !paused_; break;
-        case 'T': playing_ = !playing_ && options_.last_frame > options_.first_frame; break;
-        case 'H': hud_visible_ = !hud_visible_; break;
-        case kKeyEscape: quit_ = true; break;
-        default: break;
-    }
-}
-
-std::vector<std::string> ViewSession::key_help() {
-    return {"W/A/S/D, Q/E: move; drag: look; scroll: speed; R: reset camera; C: print camera JSON",
-            "M/N: next/previous method; 1/2/3/4: toggle SS/ID/PM/edge; V/B: next/previous AOV; [ ]: exposure",
-            "Space: pause; T: play animation (--frames); P: screenshot (EXR + PNG); H: HUD; Esc: quit"};
-}
-
 FrameReport ViewSession::advance(double dt) {
     FrameReport report;
     glm::vec3 axes(0.0f);
@@ -322,155 +244,6 @@ void ViewSession::observe_budget(double frame_seconds, FrameReport& report) {
     }
     last_budget_ = b;
     budget_->observe(frame_seconds, double(render_width_) * render_height_ / (double(width_) * height_));
-}
-
-// An image of the accumulation's size at the window's: bilinear when the budget rendered
-// fewer pixels (docs/viewer.md §4 says why not a G-buffer-guided filter).
-Image ViewSession::to_window(Image image) const {
-    if (image.width == width_ && image.height == height_) return image;
-    return resize_bilinear(image, width_, height_);
-}
-
-Image ViewSession::accumulation() const {
-    Image image = acc_->mean_image(settings_.aovs, true);
-    if (settings_.aovs) integrator_->add_aov_channels(image, acc_->passes());
-    return to_window(std::move(image));
-}
-
-std::filesystem::path ViewSession::save_screenshot() {
-    const std::filesystem::path exr = frame_output_path(options_.screenshot, screenshots_);
-    std::filesystem::path png = exr;
-    png.replace_extension(".png");
-    const Image image = accumulation();
-    CommitGroup outputs;  // both files or neither, like render
-    write_exr(outputs.add(exr), image);
-    write_png(outputs.add(png), image, exposure_);
-    outputs.commit();
-    ++screenshots_;
-    std::fprintf(stderr, "tessera view: screenshot of %u passes: %s\n", acc_->passes(), exr.c_str());
-    return exr;
-}
-
-Image ViewSession::aov_image() const {
-    Image image = acc_->mean_image(true, false);
-    integrator_->add_aov_channels(image, std::max(acc_->passes(), 1u));
-    return to_window(std::move(image));
-}
-
-double ViewSession::reference_error() const {
-    if (!reference_ || !acc_ || acc_->passes() == 0) return -1.0;
-    const Image image = to_window(acc_->mean_image(false, false));
-    return metrics::rel_mse(metrics::rgb_for_metrics(*reference_, options_.reference),
-                            metrics::rgb_for_metrics(image, "the view"));
-}
-
-void ViewSession::display(std::vector<uint8_t>& rgba) const {
-    const size_t n = size_t(width_) * height_;
-    rgba.assign(n * 4, 255);
-    if (!acc_ || acc_->passes() == 0) return;
-    const double scale = std::exp2(double(exposure_));
-    const SrgbTable& tm = srgb();
-    if (aov_ == Aov::Radiance && acc_->width() != width_) {  // a budgeted moving frame: upsampled
-        const Image image = to_window(acc_->mean_image(false, false));
-        const float* ch[3] = {image.find("R")->data.data(), image.find("G")->data.data(), image.find("B")->data.data()};
-        for (size_t p = 0; p < n; ++p)
-            for (int c = 0; c < 3; ++c) rgba[4 * p + c] = tm(ch[c][p] * scale);
-        return;
-    }
-    if (aov_ == Aov::Radiance) {  // from the sums directly: the common case, every frame
-        const std::vector<double>& s = acc_->sums();
-        const double k = scale / acc_->passes();
-        for (size_t p = 0; p < n; ++p)
-            for (int c = 0; c < 3; ++c) rgba[4 * p + c] = tm(s[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] * k);
-        return;
-    }
-    const Image image = aov_image();
-    auto put3 = [&](const char* a, const char* b, const char* c, double mul, double add, bool tone) {
-        const ImageChannel* ch[3] = {image.find(a), image.find(b), image.find(c)};
-        for (size_t p = 0; p < n; ++p)
-            for (int i = 0; i < 3; ++i) {
-                const double v = ch[i] ? ch[i]->data[p] * mul + add : 0.0;
-                rgba[4 * p + i] = tone ? tm(v) : static_cast<uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
-            }
-    };
-    auto put1 = [&](const std::vector<float>& v) {  // scaled by the maximum finite value
-        float hi = 0.0f;
-        for (float x : v)
-            if (std::isfinite(x)) hi = std::max(hi, x);
-        for (size_t p = 0; p < n; ++p) {
-            const float x = std::isfinite(v[p]) && hi > 0 ? v[p] / hi : 1.0f;
-            rgba[4 * p] = rgba[4 * p + 1] = rgba[4 * p + 2] = static_cast<uint8_t>(std::lround(255.0f * x));
-        }
-    };
-    switch (aov_) {
-        case Aov::Albedo: put3("albedo.R", "albedo.G", "albedo.B", 1.0, 0.0, true); break;
-        case Aov::Normal: put3("N.X", "N.Y", "N.Z", 0.5, 0.5, false); break;
-        case Aov::Error: {
-            const std::vector<double> map = metrics::rel_se_map(metrics::rgb_for_metrics(*reference_, options_.reference),
-                                                                metrics::rgb_for_metrics(image, "the view"));
-            std::vector<float> v(map.begin(), map.end());
-            for (float& x : v) x = std::sqrt(x);  // relative error, not its square: more of the range visible
-            put1(v);
-            break;
-        }
-        default: {
-            const ImageChannel* ch = image.find(aov_ == Aov::Depth ? "Z" : aov_name(aov_));
-            if (ch) put1(ch->data);
-            break;
-        }
-    }
-}
-
-std::string ViewSession::backend_description() const { return backend_->description(); }
-
-std::vector<std::string> ViewSession::hud_lines(double fps) const {
-    std::vector<std::string> lines;
-    char buf[256];
-    const double ms = 1e3 * last_.total;
-    const double mrays = last_.rays && last_.total > 0 ? last_.rays / last_.total * 1e-6 : 0.0;
-    if (last_rendered_)
-        std::snprintf(buf, sizeof buf, "%.1f fps, pass %.1f ms, %.2f Mrays/s", fps, ms, mrays);
-    else  // nothing rendered: the window's rate says nothing about the renderer
-        std::snprintf(buf, sizeof buf, "idle (%s), last pass %.1f ms, %.2f Mrays/s",
-                      paused_ ? "paused" : "all passes accumulated", ms, mrays);
-    lines.push_back(buf);
-    if (igi_family(settings_.method)) {
-        std::snprintf(buf, sizeof buf, "VPLs %.1f | SS+ID %.1f | PM %.1f | filter %.1f | AIS %.1f | cache %.1f ms",
-                      1e3 * last_.vpl, 1e3 * last_.surface, 1e3 * last_.media, 1e3 * last_.filter, 1e3 * last_.ais,
-                      1e3 * last_.cache);
-        lines.push_back(buf);
-    }
-    std::snprintf(buf, sizeof buf, "method %s on %s", method_name(settings_.method),
-                  options_.backend.kind == BackendKind::OpenCL ? "opencl" : "embree");
-    lines.push_back(buf);
-    lines.push_back("device: " + backend_->description());
-    std::snprintf(buf, sizeof buf, "passes %u/%u%s%s, %dx%d, frame %d", passes(), settings_.spp,
-                  paused_ ? " (paused)" : "", playing_ ? " (playing)" : "", width_, height_, anim_frame_);
-    lines.push_back(buf);
-    const uint32_t c = settings_.igi.components;
-    std::snprintf(buf, sizeof buf, "components %s%s%s%s | AOV %s | exposure %+.1f | speed %.3g/s",
-                  c & TS_COMPONENT_SS ? "SS " : "", c & TS_COMPONENT_ID ? "ID " : "",
-                  c & TS_COMPONENT_PM ? "PM " : "", c & TS_COMPONENT_EDGE ? "edge" : "", aov_name(aov_), exposure_,
-                  speed_);
-    lines.push_back(buf);
-    if (budget_ && last_budget_.applied) {  // what the last moving frame used
-        const BudgetReport& b = last_budget_;
-        std::snprintf(buf, sizeof buf, "budget %.3g fps: scale %.2f (%dx%d), tile %u, %u VPL paths, %u light samples",
-                      options_.target_fps, b.scale, b.width, b.height, b.tile, b.vpl_paths, b.shadow_samples);
-        lines.push_back(buf);
-        if (misses_at_cheapest_ >= 3) {
-            std::snprintf(buf, sizeof buf, "budget out of reach: %.1f fps at the cheapest choice", 1.0 / last_budget_.seconds);
-            lines.push_back(buf);
-        }
-    } else if (budget_) {
-        std::snprintf(buf, sizeof buf, "budget %.3g fps: applies while the camera moves", options_.target_fps);
-        lines.push_back(buf);
-    }
-    if (reference_) {
-        std::snprintf(buf, sizeof buf, "relMSE vs reference %.4g", reference_error());
-        lines.push_back(buf);
-    }
-    return lines;
 }
 
 }  // namespace tessera::view

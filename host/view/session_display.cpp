@@ -1,0 +1,143 @@
+// ViewSession's output: the accumulation at the window's size (upsampled from a budgeted
+// frame), screenshots, the error against --reference and the tone-mapped display of each
+// AOV (docs/viewer.md §1-3).
+#include "view/view_session.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+#include "image/atomic_file.h"
+#include "image/resample.h"
+#include "metrics/image_metrics.h"
+#include "render/sequence.h"
+
+namespace tessera::view {
+namespace {
+
+// Display transfer: the PNG preview's (clamp, sRGB OETF) from a table, one entry per
+// 1/16384 of the unit range: a pow per channel would cost ~10 ms a frame at 512².
+struct SrgbTable {
+    std::array<uint8_t, 16385> code;
+    SrgbTable() {
+        for (size_t i = 0; i < code.size(); ++i)
+            code[i] = static_cast<uint8_t>(std::lround(255.0 * metrics::tone_map_srgb(double(i) / 16384.0)));
+    }
+    uint8_t operator()(double v) const {
+        if (!(v > 0.0)) return 0;
+        if (v >= 1.0) return 255;
+        return code[static_cast<size_t>(v * 16384.0 + 0.5)];
+    }
+};
+const SrgbTable& srgb() {
+    static const SrgbTable table;
+    return table;
+}
+
+}  // namespace
+
+const char* aov_name(Aov aov) {
+    static const char* names[] = {"radiance", "albedo",      "normal",  "depth",   "guidance.SS", "guidance.ID",
+                                  "guidance.PM", "sets.SS", "sets.ID", "sets.PM", "error"};
+    return names[static_cast<int>(aov)];
+}
+
+// An image of the accumulation's size at the window's: bilinear when the budget rendered
+// fewer pixels (docs/viewer.md §4 says why not a G-buffer-guided filter).
+Image ViewSession::to_window(Image image) const {
+    if (image.width == width_ && image.height == height_) return image;
+    return resize_bilinear(image, width_, height_);
+}
+
+Image ViewSession::accumulation() const {
+    Image image = acc_->mean_image(settings_.aovs, true);
+    if (settings_.aovs) integrator_->add_aov_channels(image, acc_->passes());
+    return to_window(std::move(image));
+}
+
+std::filesystem::path ViewSession::save_screenshot() {
+    const std::filesystem::path exr = frame_output_path(options_.screenshot, screenshots_);
+    std::filesystem::path png = exr;
+    png.replace_extension(".png");
+    const Image image = accumulation();
+    CommitGroup outputs;  // both files or neither, like render
+    write_exr(outputs.add(exr), image);
+    write_png(outputs.add(png), image, exposure_);
+    outputs.commit();
+    ++screenshots_;
+    std::fprintf(stderr, "tessera view: screenshot of %u passes: %s\n", acc_->passes(), exr.c_str());
+    return exr;
+}
+
+Image ViewSession::aov_image() const {
+    Image image = acc_->mean_image(true, false);
+    integrator_->add_aov_channels(image, std::max(acc_->passes(), 1u));
+    return to_window(std::move(image));
+}
+
+double ViewSession::reference_error() const {
+    if (!reference_ || !acc_ || acc_->passes() == 0) return -1.0;
+    const Image image = to_window(acc_->mean_image(false, false));
+    return metrics::rel_mse(metrics::rgb_for_metrics(*reference_, options_.reference),
+                            metrics::rgb_for_metrics(image, "the view"));
+}
+
+void ViewSession::display(std::vector<uint8_t>& rgba) const {
+    const size_t n = size_t(width_) * height_;
+    rgba.assign(n * 4, 255);
+    if (!acc_ || acc_->passes() == 0) return;
+    const double scale = std::exp2(double(exposure_));
+    const SrgbTable& tm = srgb();
+    if (aov_ == Aov::Radiance && acc_->width() != width_) {  // a budgeted moving frame: upsampled
+        const Image image = to_window(acc_->mean_image(false, false));
+        const float* ch[3] = {image.find("R")->data.data(), image.find("G")->data.data(), image.find("B")->data.data()};
+        for (size_t p = 0; p < n; ++p)
+            for (int c = 0; c < 3; ++c) rgba[4 * p + c] = tm(ch[c][p] * scale);
+        return;
+    }
+    if (aov_ == Aov::Radiance) {  // from the sums directly: the common case, every frame
+        const std::vector<double>& s = acc_->sums();
+        const double k = scale / acc_->passes();
+        for (size_t p = 0; p < n; ++p)
+            for (int c = 0; c < 3; ++c) rgba[4 * p + c] = tm(s[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] * k);
+        return;
+    }
+    const Image image = aov_image();
+    auto put3 = [&](const char* a, const char* b, const char* c, double mul, double add, bool tone) {
+        const ImageChannel* ch[3] = {image.find(a), image.find(b), image.find(c)};
+        for (size_t p = 0; p < n; ++p)
+            for (int i = 0; i < 3; ++i) {
+                const double v = ch[i] ? ch[i]->data[p] * mul + add : 0.0;
+                rgba[4 * p + i] = tone ? tm(v) : static_cast<uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
+            }
+    };
+    auto put1 = [&](const std::vector<float>& v) {  // scaled by the maximum finite value
+        float hi = 0.0f;
+        for (float x : v)
+            if (std::isfinite(x)) hi = std::max(hi, x);
+        for (size_t p = 0; p < n; ++p) {
+            const float x = std::isfinite(v[p]) && hi > 0 ? v[p] / hi : 1.0f;
+            rgba[4 * p] = rgba[4 * p + 1] = rgba[4 * p + 2] = static_cast<uint8_t>(std::lround(255.0f * x));
+        }
+    };
+    switch (aov_) {
+        case Aov::Albedo: put3("albedo.R", "albedo.G", "albedo.B", 1.0, 0.0, true); break;
+        case Aov::Normal: put3("N.X", "N.Y", "N.Z", 0.5, 0.5, false); break;
+        case Aov::Error: {
+            const std::vector<double> map = metrics::rel_se_map(metrics::rgb_for_metrics(*reference_, options_.reference),
+                                                                metrics::rgb_for_metrics(image, "the view"));
+            std::vector<float> v(map.begin(), map.end());
+            for (float& x : v) x = std::sqrt(x);  // relative error, not its square: more of the range visible
+            put1(v);
+            break;
+        }
+        default: {
+            const ImageChannel* ch = image.find(aov_ == Aov::Depth ? "Z" : aov_name(aov_));
+            if (ch) put1(ch->data);
+            break;
+        }
+    }
+}
+
+}  // namespace tessera::view
