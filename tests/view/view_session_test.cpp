@@ -231,7 +231,8 @@ TEST(ViewSession, BudgetWithoutSweepRowsChangesOnlyTheResolution) {
     EXPECT_EQ(r.budget.scale, o.min_scale);  // the default floor
     EXPECT_EQ(r.budget.tile, o.settings.igi.tile);
     EXPECT_EQ(r.budget.shadow_samples, o.settings.shadow_samples);
-    for (float v : session.accumulation().find("R")->data) ASSERT_TRUE(std::isfinite(v));
+    const Image acc = session.accumulation();  // a value: find() points into it
+    for (float v : acc.find("R")->data) ASSERT_TRUE(std::isfinite(v));
 }
 
 TEST(ViewSession, PlayingAnAnimationRestartsEachFrameAndPauseHoldsTheImage) {
