@@ -1,4 +1,4 @@
-/* Frustum traversal of a 16-ray packet over the BVH4 of shared/layout.h, for packets
+/* Frustum traversal of a 16-ray packet over the BVH4 of shared/layout_scene.h, for packets
  * whose rays share one origin, the sign of each direction component and nearly one
  * direction: tiles of camera rays (docs/ray-batches.md §4).
  *
@@ -26,7 +26,7 @@
  * differently (the visiting order differs).
  *
  * Stack bound: one pop, at most four pushes per node, as the single-ray traversal:
- * TS_BVH_STACK_SIZE (layout.h) holds.
+ * TS_BVH_STACK_SIZE (layout_scene.h) holds.
  */
 #ifndef TS_BVH_FRUSTUM_H
 #define TS_BVH_FRUSTUM_H

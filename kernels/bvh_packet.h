@@ -1,5 +1,5 @@
 /* OpenCL any-hit traversal of a packet of up to 16 rays over the BVH4 of
- * shared/layout.h, for CPU devices (docs/ray-batches.md §4).
+ * shared/layout_scene.h, for CPU devices (docs/ray-batches.md §4).
  *
  * PoCL runs a work-group's work-items one after another and cannot vectorise the
  * per-ray loop of bvh_traverse.h across them; here one work-item holds 16 rays as
@@ -24,7 +24,7 @@
  *
  * Stack bound: visiting an inner node pops one entry and pushes at most its four
  * children, as in the single-ray traversal, so at depth d the stack holds at most
- * 3 d + 1 entries and TS_BVH_STACK_SIZE (layout.h, >= 3 TS_BVH_MAX_DEPTH + 1, depth
+ * 3 d + 1 entries and TS_BVH_STACK_SIZE (layout_scene.h, >= 3 TS_BVH_MAX_DEPTH + 1, depth
  * checked by the builder) bounds it.
  */
 #ifndef TS_BVH_PACKET_H

@@ -1,4 +1,4 @@
-/* OpenCL BVH4 traversal (layout in shared/layout.h): closest hit and any hit.
+/* OpenCL BVH4 traversal (layout in shared/layout_scene.h): closest hit and any hit.
  *
  * PoCL runs work-items of a work-group one after another and cannot vectorise a
  * traversal loop across them (its exit depends on the ray), so SIMD comes from inside
@@ -18,7 +18,8 @@
 #define TS_BVH_TRAVERSE_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/layout_rays.h"
+#include "shared/layout_scene.h"
 
 /* 1 + 2γ(3) with γ(n) = n ε / (1 − n ε), ε = 2^-24: the slab distance (b − o) · (1/d)
  * takes three correctly rounded operations. A device without correctly rounded division
@@ -190,7 +191,7 @@ static inline TsWatertight ts_traversal_begin(TsRay ray, TsHit* hit, float3* inv
  * near by entry distance tn, so the nearest is popped first; returns the new sp. No
  * bound check: the builder refuses trees deeper than TS_BVH_MAX_DEPTH, and
  * TS_BVH_STACK_SIZE >= 3 · TS_BVH_MAX_DEPTH + 1 is checked at compile time
- * (shared/layout.h), so a push cannot overflow and no node is ever dropped. */
+ * (shared/layout_scene.h), so a push cannot overflow and no node is ever dropped. */
 static inline int ts_push_hit_children(int4 m, float4 tn, int4 refs, int* stack, int sp) {
     int cr[4];
     float ct[4];

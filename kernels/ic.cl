@@ -2,7 +2,8 @@
  * records, set as named inputs), and the record-VPL pair and gather kernels; on CPU
  * devices the host launches the 16-ray packet variant of the pair kernel. Built with
  * doubles where the device has cl_khr_fp64 (shared/compat.h TS_HAS_DOUBLE). */
-#include "shared/layout.h"
+#include "shared/frame.h"
+#include "shared/layout_ic.h"
 #include "tracer.h"
 #include "bvh_packet_query.h"
 #include "shared/ic.h"

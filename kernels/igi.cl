@@ -5,7 +5,8 @@
  * scene has a medium and built with -DTS_HAS_MEDIUM only then. On CPU devices the host
  * launches the 16-ray packet variants of the surface and AIS kernels instead
  * (igi_packets.h: same images, faster traversal). */
-#include "shared/layout.h"
+#include "shared/layout_igi.h"
+#include "shared/layout_pass.h"
 #include "tracer.h"
 #include "shared/igi.h"
 #include "shared/igi_resolve.h"

@@ -1,19 +1,20 @@
 /* The 16-ray packet variants of the igi surface and AIS extra kernels for CPU OpenCL
  * devices (docs/ray-batches.md §4): the OpenCL counterpart of
  * host/backend/embree_packets.cpp. A work-item holds 16 lanes (pixels or AIS items);
- * each lane runs the shared per-pixel code of shared/igi.h up to its links, then for
- * link j = 0, 1, ... the shadow rays of link j of every lane that has one are traced
- * together (ts_bvh_occluded16, bvh_packet.h) and each lane gathers its visible links in
- * link order. Every lane so sums exactly the terms ts_igi_surface_set sums one ray at a
- * time, in the same order, and ts_bvh_occluded16's per-lane result is ts_bvh_occluded's:
+ * each lane runs the shared per-pixel code of shared/igi.h up to its links, then the
+ * lanes gather them set by set, each link of the set traced for all lanes as one packet
+ * (shared/igi_gather16.h, the Embree backend's gather too; ts_bvh_occluded16,
+ * bvh_packet.h). Every lane so sums exactly the terms ts_igi_surface_set sums one ray at
+ * a time, in the same order, and ts_bvh_occluded16's per-lane result is ts_bvh_occluded's:
  * the images equal the per-pixel kernels' bit for bit (tests/backend/opencl_packets_test.cpp).
  *
  * The media pass (igi_media_packets) and the media part of the AIS items run the shared
  * 16-lane ray march of shared/igi_march16.h, whose packet query ts_trace_occluded_lanes is
  * defined here.
  *
- * Private memory per work-item: 16 lanes × (view ~190 B + albedo 16 B + gather 32 B + link 64 B) +
- * the packet rays (512 B) + the traversal stack (TS_BVH_STACK_SIZE × 8 B) ≈ 6 KB.
+ * Private memory per work-item: 16 lanes × (view ~190 B + albedo 16 B + gather 32 B) + the
+ * gather's lanes (1.8 KB) + the packet rays (512 B) + the traversal stack
+ * (TS_BVH_STACK_SIZE × 8 B) ≈ 6 KB.
  */
 #ifndef TS_IGI_PACKETS_H
 #define TS_IGI_PACKETS_H
@@ -41,6 +42,44 @@ static inline void ts_trace_closest_lanes(const TsTracer* tracer, const TsRay* r
 }
 #include "shared/igi_view16.h"
 
+/* The 16-ray packet of shared/igi_gather16.h (which documents these calls): the arrays
+ * ts_ray16_load reads. */
+typedef struct TsRayLanes {
+    float a[8][TS_PACKET_LANES];
+} TsRayLanes;
+
+/* Zeroes every lane: a lane that is never put is then a finite ray, never traced. */
+static inline void ts_ray_lanes_init(TsRayLanes* r) {
+    for (int c = 0; c < 8; ++c)
+        for (int i = 0; i < TS_PACKET_LANES; ++i) r->a[c][i] = 0.0f;
+}
+
+static inline void ts_ray_lanes_put(TsRayLanes* r, int i, TsRay ray) { ts_ray16_put(r->a, i, ray); }
+
+static inline TsRay ts_ray_lanes_get(const TsRayLanes* r, int i) {
+    TsRay ray;
+    ray.org = make_float3(r->a[0][i], r->a[1][i], r->a[2][i]);
+    ray.dir = make_float3(r->a[3][i], r->a[4][i], r->a[5][i]);
+    ray.tmin = r->a[6][i];
+    ray.tmax = r->a[7][i];
+    return ray;
+}
+
+/* One ts_bvh_occluded16 packet of the lanes with traced[i] = -1 (its per-lane answers
+ * are ts_bvh_occluded's); visible[i] = -1 for those found unoccluded. */
+static inline void ts_trace_occluded_ray_lanes(const TsTracer* tracer, TsRayLanes* r, const int* traced,
+                                               int* visible) {
+    uint valid = 0u, blocked = 0u;
+    for (int i = 0; i < TS_PACKET_LANES; ++i)
+        if (traced[i]) valid |= 1u << i;
+    if (valid != 0u) {
+        TsRay16 p = ts_ray16_load(r->a);
+        blocked = ts_bvh_occluded16(tracer->nodes, tracer->tris, &p, valid);
+    }
+    for (int i = 0; i < TS_PACKET_LANES; ++i) visible[i] = traced[i] & (blocked >> i & 1u ? 0 : -1);
+}
+#include "shared/igi_gather16.h"
+
 /* The lanes in `want` see pixels (px[i], py[i]), their camera rays traced as one packet;
  * returns the lanes whose camera path found a surface, and sets each lane's links for
  * its set and components (p->set, p->mask; none when the albedo is black, as in
@@ -51,33 +90,10 @@ static inline uint ts_igi_packet_views(const TsSceneView* sv, const TsTracer* tr
     return ts_igi_view16_links(sv, f, want, p->view, p->set, p->mask, p->albedo, p->links);
 }
 
-/* Traces link j of every lane that has one as one packet, for j = 0 .. the most links
- * of any lane, and adds each lane's visible links to its gather in link order. */
+/* The links of the first `lanes` lanes, gathered set by set (shared/igi_gather16.h). */
 static inline void ts_igi_packet_gather(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                        TsIgiPacket* p) {
-    TsMedium med = ts_medium_load(sv->medium);
-    uint most = 0u;
-    for (int i = 0; i < TS_PACKET_LANES; ++i) {
-        p->gather[i] = ts_igi_gather_begin();
-        most = max(most, p->links[i]);
-    }
-    TsIgiLink link[TS_PACKET_LANES];
-    float rays[8][TS_PACKET_LANES]; /* zeroed: a lane without a link is never traced */
-    for (int a = 0; a < 8; ++a)
-        for (int i = 0; i < TS_PACKET_LANES; ++i) rays[a][i] = 0.0f;
-    for (uint j = 0u; j < most; ++j) {
-        uint valid = 0u;
-        for (int i = 0; i < TS_PACKET_LANES; ++i) {
-            if (j >= p->links[i] || !ts_igi_link(sv, f, &p->view[i].s, p->set[i], p->mask[i], j, &link[i])) continue;
-            valid |= 1u << i;
-            ts_ray16_put(rays, i, link[i].shadow);
-        }
-        if (valid == 0u) continue;
-        TsRay16 r = ts_ray16_load(rays);
-        uint seen = valid & ~ts_bvh_occluded16(tracer->nodes, tracer->tris, &r, valid);
-        for (int i = 0; i < TS_PACKET_LANES; ++i)
-            if (seen >> i & 1u) ts_igi_gather_add(&p->gather[i], sv, &med, &link[i]);
-    }
+                                        TsIgiPacket* p, int lanes) {
+    ts_igi_gather16(sv, tracer, f, lanes, p->view, p->set, p->mask, p->links, p->gather);
 }
 
 /* The igi surface pass, one work-item per packet block (ts_packet_block, shared/
@@ -91,13 +107,14 @@ void igi_surface_packets(TS_KERNEL_ARGS) {
     TsIgiPacket p;
     uint px[TS_PACKET_LANES], py[TS_PACKET_LANES], used = 0u;
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        p.set[i] = p.mask[i] = 0u;
         if (!ts_packet_block_pixel(&frame, k, bx, by, (uint)i, &px[i], &py[i])) continue;
         used |= 1u << i;
         p.set[i] = ts_igi_set(px[i], py[i], frame.igi_tile);
         p.mask[i] = frame.igi_components;
     }
     uint seen = ts_igi_packet_views(&sv, &tracer, &frame, &p, used, px, py);
-    ts_igi_packet_gather(&sv, &tracer, &frame, &p);
+    ts_igi_packet_gather(&sv, &tracer, &frame, &p, TS_PACKET_LANES);
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         if (!(used >> i & 1u)) continue;
         float v[TS_IGI_SURF_FLOATS];
@@ -169,7 +186,7 @@ void ais_extra_packets(TS_KERNEL_ARGS) {
         if (ts_ais_item_has_surface(mask)) want |= 1u << i;
     }
     uint seen = ts_igi_packet_views(&sv, &tracer, &frame, &p, want, px, py);
-    ts_igi_packet_gather(&sv, &tracer, &frame, &p);
+    ts_igi_packet_gather(&sv, &tracer, &frame, &p, lanes);
 #ifdef TS_HAS_MEDIUM
     /* The items with PM march side by side, set by set. */
     uint pm = 0u;

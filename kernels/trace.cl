@@ -1,12 +1,13 @@
 /* Ray-batch kernels: trace rays given by the host and return hits. Used by the
  * traversal tests (against Embree) and the ray-throughput benchmark.
- * rays: TS_RAY_FLOATS floats per ray (layout.h: org.xyz, tmin, dir.xyz, tmax).
+ * rays: TS_RAY_FLOATS floats per ray (layout_rays.h: org.xyz, tmin, dir.xyz, tmax).
  * trace_closest writes TS_HIT_FLOATS words per ray: t, u, v (floats), prim (uint bits).
  * trace_occluded writes 1 uint per ray: 1 if anything lies in (tmin, tmax);
  * trace_occluded_packets and trace_closest_packets the same as trace_occluded and
  * trace_closest, tracing 16 consecutive rays per work-item as one packet (bvh_packet.h;
  * the OpenCL backend's batches on CPU devices). */
-#include "shared/layout.h"
+#include "shared/frame.h"
+#include "shared/layout_rays.h"
 #include "bvh_packet_query.h"
 #include "bvh_query.h"
 

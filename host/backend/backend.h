@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "device/kernel_table.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/frame.h"
+#include "kernels/shared/layout_rays.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
 
@@ -70,11 +71,11 @@ public:
 
     /// Launches pixel kernel `k` (item_words 0) for every pixel of frame.width × height.
     /// `out` is resized to width × height × kernel_info(k).out_floats (layouts in
-    /// layout.h), row-major from the top-left pixel.
+    /// kernels/shared/layout_*.h), row-major from the top-left pixel.
     void launch(KernelId k, const TsFrame& frame, std::vector<float>& out);
 
     /// Launches item kernel `k` over `items` (kernel_info(k).item_words uints per item,
-    /// layout.h). `out` is resized to out_floats per item, in list order. No launch
+    /// kernels/shared/layout_*.h). `out` is resized to out_floats per item, in list order. No launch
     /// happens for an empty list.
     void launch_items(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items, std::vector<float>& out);
 
@@ -121,7 +122,7 @@ public:
     enum class RayOrder { Incoherent, Coherent16 };
 
     /// Closest-hit queries. `rays` holds TS_RAY_FLOATS floats per ray (org.xyz, tmin, dir.xyz,
-    /// tmax; layout.h); `hits` is resized to TS_HIT_FLOATS words per ray: t, u, v as floats and the triangle
+    /// tmax; layout_rays.h); `hits` is resized to TS_HIT_FLOATS words per ray: t, u, v as floats and the triangle
     /// index as uint bits (TS_NO_HIT on a miss, with t = tmax).
     void trace_closest(const std::vector<float>& rays, std::vector<float>& hits,
                        RayOrder order = RayOrder::Incoherent) {

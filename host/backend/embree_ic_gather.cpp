@@ -1,5 +1,5 @@
 // 16 records per batch through ts_ic_gather16 (embree_ic_gather.h). Built with
-// -fno-trapping-math, as embree_lanes.cpp and for the same reason (CMakeLists.txt).
+// -fno-trapping-math, as embree_packets.cpp and for the same reason (CMakeLists.txt).
 #include "backend/embree_ic_gather.h"
 
 #include "backend/embree_packet_loop.h"

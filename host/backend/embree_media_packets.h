@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "backend/embree_tracer.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/frame.h"
+#include "kernels/shared/layout_igi.h"
 
 namespace tessera {
 

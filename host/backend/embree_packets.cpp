@@ -1,25 +1,29 @@
 // Packet dispatch for the Embree backend (embree_packets.h). Each lane runs the shared
 // per-pixel code of kernels/shared/igi.h up to its links; then, set by set, each link (a
-// light sample or a VPL) is computed for the 16 lanes in SIMD (embree_lanes.h), traced as
-// one rtcOccluded16 packet and gathered per lane in link order, so every lane sums
-// exactly what ts_igi_surface_set sums one ray at a time.
+// light sample or a VPL) is computed for the 16 lanes in SIMD, traced as one
+// rtcOccluded16 packet and gathered per lane in link order (kernels/shared/igi_gather16.h,
+// which the OpenCL packet kernels run too), so every lane sums exactly what
+// ts_igi_surface_set sums one ray at a time. Built with -fno-trapping-math for the
+// gather's vector loops (CMakeLists.txt).
 #include <algorithm>
 #include <array>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "backend/embree_lanes.h"
 #include "backend/embree_packets.h"
 #include "bvh/embree_device.h"
 
 // After the tracer (embree_packets.h includes it): the shared code calls it.
 #include "kernels/shared/igi.h"
+#include "kernels/shared/igi_gather16.h"
 #include "kernels/shared/igi_march16.h"
 #include "kernels/shared/igi_view16.h"
 
 namespace tessera {
 namespace {
+
+constexpr int kLanes = TS_PACKET_LANES;
 
 // Up to 16 lanes, each a surface seen through a pixel and the links it gathers.
 struct Packet {
@@ -30,77 +34,15 @@ struct Packet {
     std::array<ts::TsIgiGather, kLanes> gather;
 };
 
-// Gathers the links of the lanes of sample set k (those with links), traced as 16-ray
-// packets: the set's light samples, then its VPLs, each link's math run over the 16
-// lanes at once (embree_lanes.h) with its rays written straight into Embree's packet
-// layout. A lane takes part in the light links if its mask has TS_COMPONENT_SS, in the
-// VPL links if it has TS_COMPONENT_ID: the links ts_igi_link gives it, in the same
-// order, so its sums are those of ts_igi_surface_set bit for bit. `coherent`: the lanes'
-// surfaces lie close together (a pixel block), so Embree's coherent mode pays; for lanes
-// scattered over the image it costs (docs/ray-batches.md §3).
-void gather_set(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p, uint32_t k,
-                bool coherent) {
-    const ts::TsMedium med = ts::ts_medium_load(sv.medium);
-    alignas(64) LaneState ls;
-    alignas(64) int in_ss[kLanes], in_id[kLanes];
-    int stand_in = -1;
-    bool any_ss = false, any_id = false;
-    for (int i = 0; i < p.lanes; ++i)
-        if (p.set[i] == k && p.links[i] > 0) stand_in = i;
-    for (int i = 0; i < kLanes; ++i) {
-        const bool lane = i < p.lanes && p.set[i] == k && p.links[i] > 0;
-        in_ss[i] = lane && ts::ts_igi_light_links(&sv, &frame, p.mask[i]) > 0 ? -1 : 0;
-        in_id[i] = lane && (p.mask[i] & TS_COMPONENT_ID) ? -1 : 0;
-        any_ss |= in_ss[i] != 0;
-        any_id |= in_id[i] != 0;
-        lane_set(ls, i, p.view[lane ? i : stand_in].s);
-    }
-    alignas(64) RTCRay16 r;
-    for (int i = 0; i < kLanes; ++i) {
-        r.time[i] = 0.0f;
-        r.mask[i] = 0xffffffffu;
-        r.id[i] = static_cast<unsigned>(i);
-        r.flags[i] = 0;
-    }
-    // traced[i] = -1: lane i's ray goes into the packet; visible[i] = -1: it came back unoccluded.
-    alignas(64) int traced[kLanes], visible[kLanes];
-    alignas(64) float c[3][kLanes];
-    for (uint32_t j = 0; any_ss && j < frame.shadow_samples; ++j) {
-        light_links(ls, ts::ts_igi_light_sample(&sv, &frame, k, j), in_ss, c, traced, r);
-        lane_occlusion(tracer, r, traced, coherent, visible);
-        light_gather(ls, c, visible, med, r);
-    }
-    alignas(64) float g[kLanes];
-    float vpl[TS_VPL_FLOATS];
-    for (uint32_t v = sv.vpl_set_start[k]; any_id && v < sv.vpl_set_start[k + 1]; ++v) {
-        std::copy(sv.vpls + size_t(v) * TS_VPL_FLOATS, sv.vpls + size_t(v + 1) * TS_VPL_FLOATS, vpl);
-        vpl_links(ls, vpl, frame.igi_g_clamp, sv.medium[TS_MEDIUM_G], in_id, g, traced, r);
-        lane_occlusion(tracer, r, traced, coherent, visible);
-        vpl_gather(ls, vpl, g, visible, med, r);
-    }
-    for (int i = 0; i < p.lanes; ++i) {
-        if (p.set[i] != k || p.links[i] == 0) continue;
-        p.gather[i].ss = ts::make_float3(ls.ss[0][i], ls.ss[1][i], ls.ss[2][i]);
-        p.gather[i].id = ts::make_float3(ls.id[0][i], ls.id[1][i], ls.id[2][i]);
-        p.gather[i].seen = ls.seen[i];
-    }
-}
-
-// Each lane's links, gathered set by set: a surface block is one set; AIS items, listed
-// by set, span one or two sets per packet.
+// Each lane's links, gathered set by set as 16-ray packets (kernels/shared/igi_gather16.h).
+// `coherent`: the lanes' surfaces lie close together (a pixel block), so Embree's coherent
+// mode pays; for lanes scattered over the image it costs (docs/ray-batches.md §3).
 void gather_links(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p,
                   bool coherent) {
-    uint32_t done = 0;  // bit i: lane i gathered or without links
-    for (int i = 0; i < p.lanes; ++i) {
-        p.gather[i] = ts::ts_igi_gather_begin();
-        if (p.links[i] == 0) done |= 1u << i;
-    }
-    for (int i = 0; i < p.lanes; ++i) {
-        if (done >> i & 1u) continue;
-        gather_set(sv, tracer, frame, p, p.set[i], coherent);
-        for (int l = i; l < p.lanes; ++l)
-            if (p.set[l] == p.set[i]) done |= 1u << l;
-    }
+    ts::TsTracer t = tracer;
+    t.coherent = coherent;
+    ts::ts_igi_gather16(&sv, &t, &frame, p.lanes, p.view.data(), p.set.data(), p.mask.data(), p.links.data(),
+                        p.gather.data());
 }
 
 // The lanes in `want` see pixels (px[i], py[i]), their camera rays traced as one packet

@@ -158,5 +158,51 @@ inline void ts_trace_closest_lanes(const TsTracer* tr, const TsRay* rays, uint32
     ts_trace_closest16(tr, rays, v, tr->coherent, hits);
 }
 
-}  // namespace tessera::ts
+/// The 16-ray packet of kernels/shared/igi_gather16.h (which documents the calls below):
+/// Embree's own layout, so the gather's vector loops write the rays straight into it.
+using TsRayLanes = RTCRay16;
 
+inline void ts_ray_lanes_init(TsRayLanes* r) {
+    for (int i = 0; i < 16; ++i) {
+        r->time[i] = 0.0f;
+        r->mask[i] = 0xffffffffu;
+        r->id[i] = static_cast<unsigned>(i);
+        r->flags[i] = 0;
+    }
+}
+
+inline void ts_ray_lanes_put(TsRayLanes* __restrict r, int i, const TsRay& ray) {
+    r->org_x[i] = ray.org.x;
+    r->org_y[i] = ray.org.y;
+    r->org_z[i] = ray.org.z;
+    r->dir_x[i] = ray.dir.x;
+    r->dir_y[i] = ray.dir.y;
+    r->dir_z[i] = ray.dir.z;
+    r->tnear[i] = ray.tmin;
+    r->tfar[i] = ray.tmax;
+}
+
+/// Lane i's ray; Embree changes only an occluded lane's tfar.
+inline TsRay ts_ray_lanes_get(const TsRayLanes* r, int i) {
+    TsRay ray;
+    ray.org = make_float3(r->org_x[i], r->org_y[i], r->org_z[i]);
+    ray.dir = make_float3(r->dir_x[i], r->dir_y[i], r->dir_z[i]);
+    ray.tmin = r->tnear[i];
+    ray.tmax = r->tfar[i];
+    return ray;
+}
+
+/// One rtcOccluded16 of the lanes with traced[i] = -1 (none when no lane is), in the
+/// tracer's packet mode; Embree sets a blocked lane's tfar to -inf (ts_occluded16).
+inline void ts_trace_occluded_ray_lanes(const TsTracer* tr, TsRayLanes* r, const int* __restrict traced,
+                                        int* __restrict visible) {
+    int any = 0;
+    for (int i = 0; i < 16; ++i) any |= traced[i];
+    if (any) {
+        RTCIntersectContext ctx = ts_packet_context(tr->coherent);
+        rtcOccluded16(traced, tr->scene, &ctx, r);
+    }
+    for (int i = 0; i < 16; ++i) visible[i] = traced[i] & (r->tfar[i] < 0.0f ? 0 : -1);
+}
+
+}  // namespace tessera::ts

@@ -9,7 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_rays.h"
 
 namespace tessera {
 namespace {

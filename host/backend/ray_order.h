@@ -27,7 +27,7 @@ struct RayKeyGrid {
 /// The key of one ray, 30 bits: the octant of its direction (3 bits, highest), then the
 /// Morton index of its origin's cell in `grid` (12 bits), then the Morton index of its
 /// direction's cell on a 2^5 grid per axis over the cube [-1, 1]³ (d / max|d_i|; 15
-/// bits). `ray` holds TS_RAY_FLOATS floats (layout.h); the direction need not be unit
+/// bits). `ray` holds TS_RAY_FLOATS floats (layout_rays.h); the direction need not be unit
 /// length. Values outside the grid clamp to its edge cells and NaN to cell 0 (the key is
 /// a hint: every key gives a valid order).
 uint32_t ray_sort_key(const float* ray, const RayKeyGrid& grid);

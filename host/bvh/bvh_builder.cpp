@@ -8,7 +8,7 @@
 #include <embree3/rtcore.h>
 
 #include "bvh/embree_device.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_scene.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -60,7 +60,7 @@ class Flattener {
 public:
     Flattener(const std::vector<glm::vec3>& positions, FlatBvh& out) : pos_(positions), out_(out) {}
 
-    // Returns the child reference for `n` (see layout.h).
+    // Returns the child reference for `n` (see layout_scene.h).
     int flatten(const BuildNode* n, int depth) {
         out_.depth = std::max(out_.depth, depth);
         if (n->leaf) return emit_leaf(static_cast<const LeafNode*>(n));
@@ -152,7 +152,7 @@ FlatBvh build_bvh(const std::vector<glm::vec3>& positions, const BvhBuildSetting
     // A leaf reference packs the first triangle's index above 3 count bits in 31 bits.
     if (count >= (size_t(1) << 28))
         throw InputError("scene has " + std::to_string(count) + " triangles: the BVH layout holds at most " +
-                         std::to_string((size_t(1) << 28) - 1) + " (28-bit triangle indices, kernels/shared/layout.h)");
+                         std::to_string((size_t(1) << 28) - 1) + " (28-bit triangle indices, kernels/shared/layout_scene.h)");
     FlatBvh out;
     Flattener flat(positions, out);
     if (count == 0) {

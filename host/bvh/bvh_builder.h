@@ -1,13 +1,13 @@
 // Builds the BVH that the OpenCL kernels traverse, with Embree's BVH builder
 // (rtcNewBVH / rtcBuildBVH and our own node callbacks), flattened into the node and
-// triangle arrays declared in kernels/shared/layout.h.
+// triangle arrays declared in kernels/shared/layout_scene.h.
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_scene.h"
 
 namespace tessera {
 
@@ -28,7 +28,7 @@ struct BvhBuildSettings {
 };
 
 /// The flattened BVH. `nodes` has TS_NODE_FLOATS floats per node and `tris`
-/// TS_BVH_TRI_FLOATS floats per triangle, both in the layout of shared/layout.h.
+/// TS_BVH_TRI_FLOATS floats per triangle, both in the layout of shared/layout_scene.h.
 struct FlatBvh {
     std::vector<float> nodes;
     std::vector<float> tris;
@@ -47,7 +47,7 @@ FlatBvh build_bvh(const std::vector<glm::vec3>& positions, const BvhBuildSetting
 
 /// Throws RuntimeError naming the value found and the limit if `bvh.depth` exceeds
 /// TS_BVH_MAX_DEPTH (the traversal stack of TS_BVH_STACK_SIZE entries holds
-/// 3 · depth + 1, kernels/shared/layout.h) or `bvh.max_leaf_size` exceeds
+/// 3 · depth + 1, kernels/shared/layout_scene.h) or `bvh.max_leaf_size` exceeds
 /// TS_BVH_LEAF_MAX (a leaf's count is packed in 3 bits). build_bvh calls it on every tree.
 void check_bvh_limits(const FlatBvh& bvh);
 

@@ -8,7 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/option_checks.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_scene.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
 #include "scene/loader.h"

@@ -1,8 +1,8 @@
-// Building the per-frame parameters (TsFrame, kernels/shared/layout.h) from the scene.
+// Building the per-frame parameters (TsFrame, kernels/shared/frame.h) from the scene.
 #pragma once
 #include <cstdint>
 
-#include "kernels/shared/layout.h"
+#include "kernels/shared/frame.h"
 #include "scene/scene.h"
 
 namespace tessera {

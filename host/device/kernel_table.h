@@ -5,12 +5,14 @@
 // Adding a kernel: one TS_KERNEL_TABLE entry below, the shared function in
 // kernels/shared/ (a per-pixel function `fn(sv, tracer, frame, x, y, out)` or a per-item
 // function `fn(sv, tracer, frame, i, out)`), its one-line OpenCL wrapper in `program`
-// (TS_PIXEL_KERNEL / TS_ITEM_KERNEL, kernels/tracer.h), and its output size in layout.h.
+// (TS_PIXEL_KERNEL / TS_ITEM_KERNEL, kernels/tracer.h), and its output size in the kernels/shared/layout_*.h of its concern.
 #pragma once
 #include <cstdint>
 
 #include "kernels/shared/kernel_inputs.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_ic.h"
+#include "kernels/shared/layout_igi.h"
+#include "kernels/shared/layout_pass.h"
 
 /* X(id, OpenCL kernel name, program file under kernels/, output floats per work item,
  *   item words (0: one work item per pixel of the frame, written at the pixel's place;
@@ -56,7 +58,7 @@ constexpr int kKernelCount = 0 TS_KERNEL_TABLE(TS_KERNEL_COUNT);
 struct KernelInfo {
     const char* name;     ///< OpenCL kernel name
     const char* program;  ///< program file under kernels/
-    int out_floats;       ///< output floats per work item (layout.h)
+    int out_floats;       ///< output floats per work item (kernels/shared/layout_*.h)
     int item_words;       ///< 0: launched over pixels; n: over items of n uints each
     const char* packet_name;  ///< OpenCL packet kernel (nullptr: none), see TS_KERNEL_TABLE
 };

@@ -1,11 +1,11 @@
-// A TsRay into the tracer's ray layout and a hit out of its hit layout (layout.h
+// A TsRay into the tracer's ray layout and a hit out of its hit layout (layout_rays.h
 // TS_RAY_FLOATS, TS_HIT_FLOATS), for host code that batches rays through
 // Backend::trace_closest.
 #pragma once
 #include <cstring>
 
 #include "kernels/shared/geometry.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_rays.h"
 
 namespace tessera {
 

@@ -3,7 +3,7 @@
 #include <cstring>
 
 #include "device/texture_mips.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_scene.h"
 #include "kernels/shared/sampling.h"
 
 namespace tessera {

@@ -1,4 +1,4 @@
-// The scene as flat buffers in the layouts of kernels/shared/layout.h: what both
+// The scene as flat buffers in the layouts of kernels/shared/layout_scene.h: what both
 // backends read. The OpenCL backend uploads them; the Embree backend points the shared
 // shading code at them directly.
 #pragma once

@@ -12,7 +12,7 @@ uint32_t mip_level_count(uint32_t w, uint32_t h);
 
 /// The full chain of an RGBA8 texture (sRGB-encoded RGB, linear alpha, R in the low byte,
 /// row-major, row 0 at the top; w·h texels), levels one after another from level 0 (the
-/// input itself), in the layout of kernels/shared/layout.h (textures). Each texel of level
+/// input itself), in the layout of kernels/shared/layout_scene.h (textures). Each texel of level
 /// l+1 is the mean of the 2×2 texels (2x..2x+1, 2y..2y+1) of level l, averaged in linear
 /// light (the decode is ts_srgb_table, the one the kernels use) and encoded back to the
 /// 8-bit value whose decode is nearest, so a flat texture stays bit-for-bit flat. A level

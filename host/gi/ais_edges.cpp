@@ -9,7 +9,8 @@
 
 #include "kernels/shared/composite.h"
 #include "kernels/shared/discontinuity.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_igi.h"
+#include "kernels/shared/layout_pass.h"
 #include "kernels/shared/sampling.h"
 
 namespace tessera {

@@ -48,7 +48,7 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
 struct EdgeSchedule {
     /// Per pixel: extra samples taken (0 unless flagged).
     std::vector<uint8_t> samples;
-    /// TS_EDGE_ITEM_WORDS uints per sample (layout.h): pixel, sample index j = 1..n, n;
+    /// TS_EDGE_ITEM_WORDS uints per sample (layout_igi.h): pixel, sample index j = 1..n, n;
     /// pixels in row-major order, each pixel's samples together.
     std::vector<uint32_t> items;
     double flagged = 0;  ///< fraction of pixels flagged

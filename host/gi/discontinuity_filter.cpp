@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -26,30 +27,19 @@ bool discontinuity_accepts(const GeometryBuffer& g, const DiscontinuitySettings&
 void discontinuity_window(int n, int* lo, int* hi) { ts::ts_discontinuity_window(n, lo, hi); }
 
 std::array<ptrdiff_t, 64> discontinuity_window_offsets(int n, int width) {
-    int lo, hi;
-    discontinuity_window(n, &lo, &hi);
+    static_assert(std::is_same_v<ptrdiff_t, long>, "ts_discontinuity_mean reads the offsets as long");
     std::array<ptrdiff_t, 64> offset{};
-    for (int i = 0; i < n * n && i < 64; ++i)
-        offset[i] = static_cast<ptrdiff_t>(lo + i / n) * width + (lo + i % n);
+    for (int i = 0; i < n * n && i < 64; ++i) offset[i] = ts::ts_discontinuity_offset(n, width, i);
     return offset;
 }
 
 namespace {
 
+// Pixel (x, y)'s mask computed now (shared/discontinuity.h, as the device resolve does).
 uint64_t compute_window_mask(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y) {
-    int lo, hi;
-    discontinuity_window(s.tile, &lo, &hi);
-    const size_t p = size_t(y) * g.width + x;
-    uint64_t bits = 0;
-    int i = 0;
-    for (int dy = lo; dy <= hi; ++dy)
-        for (int dx = lo; dx <= hi; ++dx, ++i) {
-            const int qx = x + dx, qy = y + dy;
-            if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
-            const size_t q = size_t(qy) * g.width + qx;
-            if (q == p || discontinuity_accepts(g, s, p, q)) bits |= 1ull << i;
-        }
-    return bits;
+    const bool plane = !g.position.empty();
+    return ts::ts_discontinuity_mask(x, y, g.width, g.height, s.tile, g.depth.data(), g.normal.data(),
+                                     plane ? g.position.data() : nullptr, 1, 3, plane, s.normal_cos, s.depth_rel);
 }
 
 bool same_settings(const DiscontinuitySettings& a, const DiscontinuitySettings& b) {
@@ -93,7 +83,7 @@ void window_bits_run(const GeometryBuffer& g, const DiscontinuitySettings& s, in
 }
 
 // The filter of rows [y0, y1) with C channels: each pixel's mean over its accepted window
-// positions, summed in double in increasing bit order (row by row, as the test ran).
+// positions (ts_discontinuity_mean, the device resolve's too).
 template <int C>
 void filter_rows(const GeometryBuffer& g, const DiscontinuitySettings& s, bool precomputed, const float* __restrict in,
                  float* __restrict out, uint8_t* accepted, int y0, int y1) {
@@ -102,15 +92,9 @@ void filter_rows(const GeometryBuffer& g, const DiscontinuitySettings& s, bool p
     for (int y = y0; y < y1; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t p = size_t(y) * w + x;
-            double sum[C] = {};
-            uint64_t bits = precomputed ? g.accepted[p] : compute_window_mask(g, s, x, y);
-            const int count = std::popcount(bits);
-            for (; bits; bits &= bits - 1) {
-                const float* v = in + (p + offset[std::countr_zero(bits)]) * C;
-                for (int c = 0; c < C; ++c) sum[c] += v[c];
-            }
-            for (int c = 0; c < C; ++c) out[p * C + c] = static_cast<float>(sum[c] / count);
-            if (accepted) accepted[p] = static_cast<uint8_t>(count);
+            const uint64_t bits = precomputed ? g.accepted[p] : compute_window_mask(g, s, x, y);
+            ts::ts_discontinuity_mean(in, C, C, p, offset.data(), bits, out + p * C);
+            if (accepted) accepted[p] = static_cast<uint8_t>(std::popcount(bits));
         }
 }
 

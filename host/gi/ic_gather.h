@@ -20,7 +20,7 @@ namespace tessera {
 void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records, const std::vector<float>& vpls);
 
 /// One launch of the pair kernel over `items` (TS_IC_PAIR_WORDS uints each: record, VPL;
-/// layout.h) with geometry-term bound `g_clamp`. `hits` gets one code per item: the first
+/// layout_ic.h) with geometry-term bound `g_clamp`. `hits` gets one code per item: the first
 /// triangle the shadow ray hits, TS_IC_PAIR_VISIBLE (unoccluded) or TS_IC_PAIR_FACING
 /// (geometry term 0, no ray traced).
 void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>& items,
@@ -28,11 +28,11 @@ void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>
 
 /// Packs the visibility `row` of `count` VPLs (the host's int32 per pair, kIcVisible where
 /// unoccluded; instant_cache.h) into the gather kernel's bit mask: TS_IC_VISIBLE_WORDS(count)
-/// uints at `mask` (layout.h).
+/// uints at `mask` (layout_ic.h).
 void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask);
 
 /// One launch of the gather kernel over `items` (TS_IC_GATHER_WORDS uints each: record,
-/// row of `visibility`; layout.h). `visibility` holds bit-mask rows
+/// row of `visibility`; layout_ic.h). `visibility` holds bit-mask rows
 /// (TS_IC_VISIBLE_WORDS(VPLs of the set input) uints each, ic_pack_visible). `out` gets
 /// TS_IC_GATHER_FLOATS per item: E = irradiance / π, then the harmonic mean distance
 /// (scene units, +inf when no VPL is visible).

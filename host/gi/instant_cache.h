@@ -68,13 +68,13 @@ struct IcFrameStats {
 std::string describe_ic(const IcSettings& settings, const IcFrameStats& stats, uint32_t passes);
 
 /// Visibility of one record–VPL pair, as kept per record (one int32 per VPL; the bits of
-/// the pair kernel's TS_IC_PAIR_FACING and TS_IC_PAIR_VISIBLE, layout.h):
+/// the pair kernel's TS_IC_PAIR_FACING and TS_IC_PAIR_VISIBLE, layout_ic.h):
 /// kIcFacing = the geometry term is 0 (no ray needed), kIcVisible = unoccluded, ≥ 0 the
 /// object (Scene::objects index) the shadow ray hit first.
 constexpr int32_t kIcFacing = -2;
 constexpr int32_t kIcVisible = -1;
 
-/// Sets `gbuffer` to the ic G-buffer (TS_IC_GBUF_FLOATS per pixel, layout.h) of the igi
+/// Sets `gbuffer` to the ic G-buffer (TS_IC_GBUF_FLOATS per pixel, layout_ic.h) of the igi
 /// surface pass's output `surf` (TS_IGI_SURF_FLOATS per pixel): each pixel's first
 /// diffuse surface, or TS_NO_HIT where the camera path found none or one of albedo 0 (no
 /// record serves it). The surface pass has traced the camera rays already; the cache

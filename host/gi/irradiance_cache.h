@@ -16,7 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "kernels/shared/geometry.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_ic.h"
 
 namespace tessera {
 
@@ -32,7 +32,7 @@ struct IcCacheBuffers {
 /// A record on the host: the surface it was made at, its validity radius and its
 /// gathered E = irradiance / π (albedo-free).
 struct IcRecord {
-    std::array<float, TS_IC_GBUF_FLOATS> surface{};  ///< the G-buffer entry (layout.h)
+    std::array<float, TS_IC_GBUF_FLOATS> surface{};  ///< the G-buffer entry (layout_ic.h)
     float radius = 0.0f;                              ///< R_i, scene units
     float pixel_size = 0.0f;  ///< a pixel's footprint at the record when it was made (radius clamp)
     /// The nearest surface its hemisphere probe found (scene units, capped at the probe's

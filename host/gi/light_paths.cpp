@@ -29,7 +29,7 @@ bool start_path(const ts::TsSceneView& sv, const ScrambledHalton& h, InFlight& p
 }
 
 // A VPL at `position`; `normal` is a surface VPL's normal or a medium VPL's propagation
-// direction, `pos_scale` the surface's (-1 marks a medium VPL; layout.h).
+// direction, `pos_scale` the surface's (-1 marks a medium VPL; layout_igi.h).
 void store_vpl(LightPath& path, float3 position, float3 normal, float3 flux, float pos_scale) {
     const auto index = static_cast<uint32_t>(path.index);
     float v[TS_VPL_FLOATS];

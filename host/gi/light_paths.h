@@ -20,7 +20,7 @@ struct PathSegment {
     uint32_t prim;
 };
 
-/// A light path and what it left: VPLs (TS_VPL_FLOATS each, layout.h, in path order) and
+/// A light path and what it left: VPLs (TS_VPL_FLOATS each, layout_igi.h, in path order) and
 /// the segments traced. `light` is the index of the emissive triangle it started on
 /// (SceneBuffers::lights order); a path whose start has zero pdf has no segments.
 struct LightPath {
@@ -66,7 +66,7 @@ uint32_t light_path_seed_mix(uint32_t seed);
 /// Mirrors reflect (α ← α·Ks); dielectrics reflect or refract by Fresnel; neither stores
 /// a VPL. With a medium every segment attenuates α by its transmittance (the
 /// single-scattering model of shared/igi.h), or with settings.medium_scattering samples a
-/// free-flight distance and may scatter in the medium, leaving a medium VPL (layout.h). Halton dimensions: 0 light, 1-2 point,
+/// free-flight distance and may scatter in the medium, leaving a medium VPL (layout_igi.h). Halton dimensions: 0 light, 1-2 point,
 /// 3-4 direction, then per bounce 2 for the direction and 1 for roulette/Fresnel.
 uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
                            std::vector<LightPath>& paths);

@@ -9,7 +9,8 @@
 
 #include "backend/backend.h"
 #include "device/scene_buffers.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/frame.h"
+#include "kernels/shared/layout_igi.h"
 
 namespace tessera {
 

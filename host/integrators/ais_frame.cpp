@@ -9,7 +9,8 @@
 #include <tbb/parallel_for.h>
 
 #include "gi/ais_reconstruct.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/frame.h"
+#include "kernels/shared/layout_igi.h"
 #include "kernels/shared/sampling.h"
 
 namespace tessera {

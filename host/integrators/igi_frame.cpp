@@ -11,7 +11,9 @@
 
 #include "integrators/settings.h"
 #include "kernels/shared/composite.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/frame.h"
+#include "kernels/shared/layout_igi.h"
+#include "kernels/shared/layout_pass.h"
 #include "kernels/shared/rng.h"
 #include "kernels/shared/sampling.h"
 

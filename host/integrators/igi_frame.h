@@ -114,7 +114,7 @@ public:
     /// Renders frame.pass: VPLs from path block `frame.pass`, the surface kernel, the media
     /// kernel when the scene has a medium, the filter, and the composite
     ///   L = T · throughput · (Le + albedo · (Ẽ_ss + Ẽ_id)) + L̃_pm
-    /// into TS_PASS_FLOATS per pixel (layout.h). Fills frame's igi fields itself. Filter
+    /// into TS_PASS_FLOATS per pixel (layout_pass.h). Fills frame's igi fields itself. Filter
     /// and composite run on the host, or, where reconstructs_on_host() is false, as
     /// KernelId::IgiResolve where the kernels ran (same formula and sums, same image).
     void render_pass(const TsFrame& frame, std::vector<float>& out) override;

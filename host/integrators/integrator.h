@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "image/image_io.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/frame.h"
+#include "kernels/shared/layout_pass.h"
 
 namespace tessera {
 
@@ -19,7 +20,7 @@ class Integrator {
 public:
     virtual ~Integrator() = default;
 
-    /// Renders pass frame.pass of `frame` into TS_PASS_FLOATS per pixel (layout.h),
+    /// Renders pass frame.pass of `frame` into TS_PASS_FLOATS per pixel (layout_pass.h),
     /// row-major from the top-left pixel; the frame loop accumulates the passes.
     virtual void render_pass(const TsFrame& frame, std::vector<float>& out) = 0;
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_igi.h"
 #include "util/error.h"
 
 namespace tessera {

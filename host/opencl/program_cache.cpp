@@ -8,7 +8,7 @@
 #include <system_error>
 #include <unistd.h>
 
-#include "kernels/shared/layout.h"
+#include "kernels/shared/frame.h"
 #include "opencl/kernel_source.h"
 #include "util/error.h"
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_pass.h"
 
 namespace tessera {
 

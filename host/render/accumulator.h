@@ -13,7 +13,7 @@ class Accumulator {
 public:
     Accumulator(int width, int height);
 
-    /// Adds one pass: width × height × TS_PASS_FLOATS floats (layout.h).
+    /// Adds one pass: width × height × TS_PASS_FLOATS floats (layout_pass.h).
     void add(const std::vector<float>& pass);
 
     uint32_t passes() const { return passes_; }

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "image/atomic_file.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_pass.h"
 #include "util/error.h"
 
 namespace tessera {

@@ -5,7 +5,7 @@
 #define TS_BSDF_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/layout_scene.h"
 
 TS_NAMESPACE_BEGIN
 
@@ -50,7 +50,7 @@ TS_INLINE float3 ts_sample_dielectric(float3 d, float3 n, int front, float ior, 
 /* 1 for the specular material kinds ts_specular_bounce handles. */
 TS_INLINE int ts_is_specular(uint kind) { return kind == TS_MAT_MIRROR || kind == TS_MAT_DIELECTRIC; }
 
-/* Continues *ray at the specular surface s of material M (TS_MATERIAL_FLOATS, layout.h):
+/* Continues *ray at the specular surface s of material M (TS_MATERIAL_FLOATS, layout_scene.h):
  * kind TS_MAT_MIRROR reflects about the shading normal and multiplies *throughput by Ks;
  * any other kind is the smooth dielectric, reflecting or refracting by Fresnel with `u`
  * in [0, 1) (throughput factor 1, ts_sample_dielectric). The new ray leaves from s's

@@ -18,6 +18,12 @@
 /* No contraction into FMA, so device and C++ (-ffp-contract=off) round alike. */
 #pragma OPENCL FP_CONTRACT OFF
 #define TS_GLOBAL __global
+/* 64-byte alignment of a struct (rtcOccluded16's valid mask wants it on Embree; one
+ * cache line per 16-lane row), a restrict-qualified pointer, and a branch the caller
+ * guarantees is never taken (a hint: OpenCL C has no portable form, so none). */
+#define TS_ALIGN64 __attribute__((aligned(64)))
+#define TS_RESTRICT restrict
+#define TS_UNREACHABLE() ((void)0)
 /* A read-only table at program scope (OpenCL 1.2 allows only __constant there). */
 #define TS_CONSTANT_TABLE __constant
 /* static: C99 gives a plain `inline` function no external definition, so a driver that
@@ -32,6 +38,9 @@
 static inline float3 ts_f3_load(TS_GLOBAL const float* p) { return vload3(0, p); }
 /* Writes v to p[0..2] of a work-item's own (private) output record. */
 static inline void ts_f3_store(float* p, float3 v) { p[0] = v.x; p[1] = v.y; p[2] = v.z; }
+/* Trailing zero bits of x != 0 (OpenCL 1.2 has clz but not ctz) and set bits of x. */
+static inline int ts_ctz64(ulong x) { return (int)(63ul - clz(x & (0ul - x))); }
+static inline int ts_popcount64(ulong x) { return (int)popcount(x); }
 /* TS_HAS_DOUBLE: `double` may be used (always in C++; in OpenCL 1.2 only where the device
  * has cl_khr_fp64). Code using it keeps a float form for the other devices, which
  * -DTS_NO_DOUBLE selects on any device (tests run the float forms on PoCL that way). */
@@ -48,6 +57,9 @@ static inline void ts_f3_store(float* p, float3 v) { p[0] = v.x; p[1] = v.y; p[2
 #include <limits>
 
 #define TS_GLOBAL
+#define TS_ALIGN64 alignas(64)
+#define TS_RESTRICT __restrict
+#define TS_UNREACHABLE() __builtin_unreachable()
 #define TS_CONSTANT_TABLE inline constexpr
 #define TS_INLINE inline
 #define TS_HAS_DOUBLE 1
@@ -57,6 +69,7 @@ static inline void ts_f3_store(float* p, float3 v) { p[0] = v.x; p[1] = v.y; p[2
 namespace tessera::ts {
 
 typedef uint32_t uint;
+typedef uint64_t ulong;
 
 struct float2 {
     float x, y;
@@ -115,6 +128,9 @@ inline float clamp(float x, float lo, float hi) { return fmin(fmax(x, lo), hi); 
 inline float3 clamp(float3 x, float3 lo, float3 hi) { return fmin(fmax(x, lo), hi); }
 inline float mix(float a, float b, float t) { return a + (b - a) * t; }
 
+/* Trailing zero bits of x != 0 and set bits of x, as the OpenCL side's. */
+inline int ts_ctz64(ulong x) { return std::countr_zero(x); }
+inline int ts_popcount64(ulong x) { return std::popcount(x); }
 inline uint as_uint(float f) { return std::bit_cast<uint>(f); }
 inline int as_int(float f) { return std::bit_cast<int>(f); }
 inline float as_float(uint u) { return std::bit_cast<float>(u); }
@@ -127,5 +143,15 @@ constexpr float TS_NAN = std::numeric_limits<float>::quiet_NaN();
 
 }  // namespace tessera::ts
 #endif
+
+TS_NAMESPACE_BEGIN
+/* Neumaier's compensated sum (for long float sums where double is missing): *s the
+ * running sum, *c the rounding error it lost; the result is *s + *c. */
+TS_INLINE void ts_sum_compensated_add(float* s, float* c, float x) {
+    float t = *s + x;
+    *c += fabs(*s) >= fabs(x) ? (*s - t) + x : (x - t) + *s;
+    *s = t;
+}
+TS_NAMESPACE_END
 
 #endif /* TS_COMPAT_H */

@@ -18,7 +18,9 @@
 #define TS_DIRECT_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/frame.h"
+#include "shared/layout_pass.h"
+#include "shared/layout_rays.h"
 #include "shared/material.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
@@ -61,7 +63,7 @@ TS_INLINE float3 ts_direct_irradiance(const TsSceneView* sv, const TsTracer* tra
 }
 
 /* One pass (1 spp) of the direct method for pixel (px, py); writes TS_PASS_FLOATS
- * values to out (layout in shared/layout.h). */
+ * values to out (layout in shared/layout_pass.h). */
 TS_INLINE void ts_direct_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                uint px, uint py, float* out) {
     TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);

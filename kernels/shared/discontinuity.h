@@ -33,5 +33,77 @@ TS_INLINE int ts_discontinuity_accepts(float zp, float3 np, float3 xp, float zq,
     return fabs(plane) <= depth_rel * zp;
 }
 
+/* Window position i of tile edge n (row by row from (lo, lo): i = (dy - lo)·n + (dx - lo))
+ * as a pixel index offset in an image `width` pixels wide: q = p + offset. */
+TS_INLINE long ts_discontinuity_offset(int n, int width, int i) {
+    int lo, hi;
+    ts_discontinuity_window(n, &lo, &hi);
+    return (long)(lo + i / n) * width + (lo + i % n);
+}
+
+/* Pixel (x, y)'s accepted window positions for tile edge n (<= 8) in a w × h image: bit i
+ * set where window position i lies in the image and p accepts the pixel there (p
+ * accepts itself). Pixel q's depth is depth[q · depth_stride], its unit normal and
+ * position normal[q · vec_stride + 0..2] and position[...] (not read when use_plane is
+ * 0), in scene units. */
+TS_INLINE ulong ts_discontinuity_mask(int x, int y, int w, int h, int n, TS_GLOBAL const float* depth,
+                                      TS_GLOBAL const float* normal, TS_GLOBAL const float* position,
+                                      uint depth_stride, uint vec_stride, int use_plane, float cos_min,
+                                      float depth_rel) {
+    int lo, hi;
+    ts_discontinuity_window(n, &lo, &hi);
+    const size_t p = (size_t)y * (size_t)w + (size_t)x;
+    const float zp = depth[p * depth_stride];
+    const float3 np = ts_f3_load(normal + p * vec_stride);
+    const float3 none = make_float3(0.0f, 0.0f, 0.0f);
+    const float3 xp = use_plane ? ts_f3_load(position + p * vec_stride) : none;
+    ulong bits = 0ul;
+    int i = 0;
+    for (int dy = lo; dy <= hi; ++dy)
+        for (int dx = lo; dx <= hi; ++dx, ++i) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const size_t q = (size_t)qy * (size_t)w + (size_t)qx;
+            if (q == p || ts_discontinuity_accepts(zp, np, xp, depth[q * depth_stride],
+                                                   ts_f3_load(normal + q * vec_stride),
+                                                   use_plane ? ts_f3_load(position + q * vec_stride) : none,
+                                                   use_plane, cos_min, depth_rel))
+                bits |= (ulong)1 << i;
+        }
+    return bits;
+}
+
+/* The window mean of pixel p: out[c] for c < channels (1..9) is the mean over the window
+ * positions in `bits` (not 0; as ts_discontinuity_mask sets them) of in[q · stride + c],
+ * q = p + offset[i] (offset[i] = ts_discontinuity_offset(n, width, i)). Summed in
+ * increasing bit order (the window's row order) in double where the device has it, so
+ * host and device agree bit for bit, else with compensation. */
+TS_INLINE void ts_discontinuity_mean(TS_GLOBAL const float* in, uint stride, int channels, size_t p,
+                                     const long* offset, ulong bits, float* out) {
+    const int count = ts_popcount64(bits);
+#ifdef TS_HAS_DOUBLE
+    double sum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+#else
+    float sum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, comp[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+#endif
+    for (; bits != 0ul; bits &= bits - 1ul) {
+        TS_GLOBAL const float* v = in + (size_t)((long)p + offset[ts_ctz64(bits)]) * stride;
+        for (int c = 0; c < channels; ++c) {
+#ifdef TS_HAS_DOUBLE
+            sum[c] += v[c];
+#else
+            ts_sum_compensated_add(&sum[c], &comp[c], v[c]);
+#endif
+        }
+    }
+    for (int c = 0; c < channels; ++c) {
+#ifdef TS_HAS_DOUBLE
+        out[c] = (float)(sum[c] / count);
+#else
+        out[c] = (sum[c] + comp[c]) / (float)count;
+#endif
+    }
+}
+
 TS_NAMESPACE_END
 #endif /* TS_DISCONTINUITY_H */

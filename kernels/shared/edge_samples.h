@@ -26,7 +26,7 @@ TS_INLINE void ts_edge_sample_jitter(const TsFrame* f, uint px, uint py, uint j,
 }
 
 /* Edge sample `j` (≥ 1) of the `n` of pixel (px, py): its camera path to the first
- * diffuse surface. Writes TS_EDGE_SAMPLE_FLOATS values (layout.h); a path that escapes
+ * diffuse surface. Writes TS_EDGE_SAMPLE_FLOATS values (layout_igi.h); a path that escapes
  * stores distance +inf, albedo and emission 0 and throughput 1, as ts_igi_surface_clear
  * does. Dielectric choices draw from the sample's own stream (seed hashed with j),
  * independent of the base sample's. The ray cone is the pixel's narrowed by √(n + 1): the
@@ -54,7 +54,7 @@ TS_INLINE void ts_edge_sample(const TsSceneView* sv, const TsTracer* tracer, con
 }
 
 /* The edge-sample kernel's work item i: item i of sv->items (TS_EDGE_ITEM_WORDS uints,
- * layout.h: the pixel's row-major index, the sample's index j ≥ 1, the pixel's count). */
+ * layout_igi.h: the pixel's row-major index, the sample's index j ≥ 1, the pixel's count). */
 TS_INLINE void ts_edge_sample_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
                                    float* out) {
     uint p = sv->items[TS_EDGE_ITEM_WORDS * i + TS_EDGE_ITEM_PIXEL];

@@ -2,7 +2,9 @@
 #ifndef TS_GEOMETRY_H
 #define TS_GEOMETRY_H
 #include "shared/compat.h"
-#include "shared/layout.h"
+#include "shared/frame.h"
+#include "shared/layout_rays.h"
+#include "shared/layout_scene.h"
 #include "shared/kernel_inputs.h"
 
 TS_NAMESPACE_BEGIN
@@ -193,7 +195,7 @@ TS_INLINE int ts_packet_block_pixel(const TsFrame* f, uint k, uint bx, uint by, 
     return 1;
 }
 
-/* Read-only views of the scene's shading buffers (layouts in shared/layout.h). */
+/* Read-only views of the scene's shading buffers (layouts in shared/layout_scene.h). */
 typedef struct TsSceneView {
     /* The scene's buffers, then the named inputs (host/device/kernel_table.h KernelInput;
      * null or a placeholder where the launch does not use them): shared/kernel_inputs.h. */

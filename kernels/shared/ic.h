@@ -10,7 +10,10 @@
 #include "shared/compat.h"
 #include "shared/ic_gather.h"
 #include "shared/ic_lookup.h"
-#include "shared/layout.h"
+#include "shared/frame.h"
+#include "shared/layout_ic.h"
+#include "shared/layout_igi.h"
+#include "shared/layout_scene.h"
 
 TS_NAMESPACE_BEGIN
 

@@ -5,7 +5,8 @@
 #define TS_IC_GATHER_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/layout_ic.h"
+#include "shared/layout_igi.h"
 #include "shared/medium.h"
 #include "shared/vpl.h"
 
@@ -27,7 +28,7 @@ TS_INLINE TsSurface ts_ic_record_surface(TS_GLOBAL const float* g) {
 }
 
 /* E = (1/π) Σ_j C_j T_j min(G_j, b) over the `count` VPLs (in order) whose bit in the
- * mask `visible` (TS_IC_VISIBLE_WORDS(count) uints, layout.h) is set, and the harmonic
+ * mask `visible` (TS_IC_VISIBLE_WORDS(count) uints, layout_ic.h) is set, and the harmonic
  * mean distance to them (+inf for none): the
  * radius estimate of docs/instant-caching.md §4 that needs no extra rays. Sums in double
  * where the device has it (bit-identical to the host's former double sums), else in

@@ -14,7 +14,7 @@
  * is rejected (Ward's test, with a tolerance relative to the record's radius so it does
  * not depend on the scene's scale). No gradients: interpolation is the weighted mean.
  *
- * The octree (layout.h TS_IC_NODE_FLOATS) stores a record in every node of one level
+ * The octree (layout_ic.h TS_IC_NODE_FLOATS) stores a record in every node of one level
  * whose box meets the bounding box of its validity sphere (radius a·R_i, the largest
  * distance at which ε < a); that level is the deepest whose half edge is still ≥ a·R_i.
  * A lookup walks from the root to the leaf containing x and tests the records of each
@@ -23,7 +23,8 @@
 #ifndef TS_IC_LOOKUP_H
 #define TS_IC_LOOKUP_H
 #include "shared/compat.h"
-#include "shared/layout.h"
+#include "shared/layout_ic.h"
+#include "shared/layout_rays.h"
 
 TS_NAMESPACE_BEGIN
 
@@ -97,7 +98,7 @@ TS_INLINE int ts_ic_covered(TS_GLOBAL const float* nodes, TS_GLOBAL const uint* 
     return 0;
 }
 
-/* Interpolation for pixel p of the G-buffer: writes TS_IC_INTERP_FLOATS values (layout.h):
+/* Interpolation for pixel p of the G-buffer: writes TS_IC_INTERP_FLOATS values (layout_ic.h):
  * E and Σ w, both 0 where no record is usable or the pixel has no surface. */
 TS_INLINE void ts_ic_interpolate_pixel(TS_GLOBAL const float* gbuffer, TS_GLOBAL const float* nodes,
                                        TS_GLOBAL const uint* refs, TS_GLOBAL const float* records, float a,

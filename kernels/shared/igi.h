@@ -29,7 +29,10 @@
 #include "shared/compat.h"
 #include "shared/direct.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/frame.h"
+#include "shared/layout_igi.h"
+#include "shared/layout_rays.h"
+#include "shared/layout_scene.h"
 #include "shared/material.h"
 #include "shared/medium.h"
 #include "shared/rng.h"
@@ -637,7 +640,7 @@ TS_INLINE void ts_igi_media_pixel(const TsSceneView* sv, const TsTracer* tracer,
 }
 
 /* Decodes item i of sv->items (TS_AIS_ITEM_WORDS,
- * layout.h): pixel (px, py), sample set k, components `mask` (TS_COMPONENT_*). */
+ * layout_igi.h): pixel (px, py), sample set k, components `mask` (TS_COMPONENT_*). */
 TS_INLINE void ts_ais_item_decode(const TsSceneView* sv, const TsFrame* f, uint i, uint* px, uint* py, uint* k,
                                   uint* mask) {
     uint p = sv->items[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL], code = sv->items[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE];

@@ -6,9 +6,9 @@
  * kernels' outputs in place (TsSceneView.igi_surface / igi_media), so a device frame
  * comes back as its TS_PASS_FLOATS image only (docs/ray-batches.md §5).
  *
- * The window and the acceptance test are shared/discontinuity.h's. Sums run in window
- * order in double where the device has it (bit-identical to the host), else with
- * compensation. Uses the tracer interface documented in shared/direct.h (for the
+ * The window, its mask and its mean are shared/discontinuity.h's, as the host filter's:
+ * sums run in window order in double where the device has it (bit-identical to the
+ * host), else with compensation. Uses the tracer interface documented in shared/direct.h (for the
  * kernel-table signature only: no ray is traced). */
 #ifndef TS_IGI_RESOLVE_H
 #define TS_IGI_RESOLVE_H
@@ -16,7 +16,9 @@
 #include "shared/composite.h"
 #include "shared/discontinuity.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/frame.h"
+#include "shared/layout_igi.h"
+#include "shared/layout_pass.h"
 #include "shared/vpl.h"
 
 TS_NAMESPACE_BEGIN
@@ -34,49 +36,19 @@ TS_INLINE void ts_igi_resolve_pixel(const TsSceneView* sv, const TsTracer* trace
     const size_t p = (size_t)y * frame->width + x;
     TS_GLOBAL const float* sp = sv->igi_surface + p * TS_IGI_SURF_FLOATS;
     const float zp = sp[TS_IGI_SURF_DISTANCE];
-    const float3 np = ts_f3_load(sp + TS_IGI_SURF_NORMAL), xp = ts_f3_load(sp + TS_IGI_SURF_POSITION);
-    int lo = 0, hi = 0;
-    if (frame->igi_filter) ts_discontinuity_window((int)frame->igi_tile, &lo, &hi);
-#ifdef TS_HAS_DOUBLE
-    double sum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-#else
-    float sum[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, comp[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-#endif
-    int count = 0;
-    for (int dy = lo; dy <= hi; ++dy)
-        for (int dx = lo; dx <= hi; ++dx) {
-            const int qx = (int)x + dx, qy = (int)y + dy;
-            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-            const size_t q = (size_t)qy * frame->width + (size_t)qx;
-            TS_GLOBAL const float* sq = sv->igi_surface + q * TS_IGI_SURF_FLOATS;
-            if (q != p && !ts_discontinuity_accepts(zp, np, xp, sq[TS_IGI_SURF_DISTANCE],
-                                                    ts_f3_load(sq + TS_IGI_SURF_NORMAL),
-                                                    ts_f3_load(sq + TS_IGI_SURF_POSITION), 1,
-                                                    frame->igi_filter_cos, frame->igi_filter_depth))
-                continue;
-            float v[9];
-            for (int c = 0; c < 3; ++c) {
-                v[c] = sq[TS_IGI_SURF_E_SS + c];
-                v[3 + c] = sq[TS_IGI_SURF_E_ID + c];
-                v[6 + c] = pm ? sv->igi_media[q * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_RADIANCE + c] : 0.0f;
-            }
-            for (int c = 0; c < 9; ++c) {
-#ifdef TS_HAS_DOUBLE
-                sum[c] += v[c];
-#else
-                ts_sum_compensated_add(&sum[c], &comp[c], v[c]);
-#endif
-            }
-            ++count;
-        }
-    float e[9];
-    for (int c = 0; c < 9; ++c) {
-#ifdef TS_HAS_DOUBLE
-        e[c] = (float)(sum[c] / count);
-#else
-        e[c] = (sum[c] + comp[c]) / (float)count;
-#endif
-    }
+    /* The window mask, then the means of E_ss and E_id (6 floats from TS_IGI_SURF_E_SS)
+     * and of the media radiance over it (shared/discontinuity.h, as the host's filter). */
+    const int n = frame->igi_filter ? (int)frame->igi_tile : 1;
+    const ulong bits = ts_discontinuity_mask((int)x, (int)y, w, h, n, sv->igi_surface + TS_IGI_SURF_DISTANCE,
+                                             sv->igi_surface + TS_IGI_SURF_NORMAL,
+                                             sv->igi_surface + TS_IGI_SURF_POSITION, TS_IGI_SURF_FLOATS,
+                                             TS_IGI_SURF_FLOATS, 1, frame->igi_filter_cos, frame->igi_filter_depth);
+    long offset[64];
+    for (int i = 0; i < n * n; ++i) offset[i] = ts_discontinuity_offset(n, w, i);
+    float e[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    ts_discontinuity_mean(sv->igi_surface + TS_IGI_SURF_E_SS, TS_IGI_SURF_FLOATS, 6, p, offset, bits, e);
+    if (pm)
+        ts_discontinuity_mean(sv->igi_media + TS_IGI_MEDIA_RADIANCE, TS_IGI_MEDIA_FLOATS, 3, p, offset, bits, e + 6);
     float3 tr = pm ? ts_f3_load(sv->igi_media + p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_TRANSMITTANCE)
                    : make_float3(1.0f, 1.0f, 1.0f);
     float3 l = ts_igi_composite(tr, ts_f3_load(sp + TS_IGI_SURF_THROUGHPUT), ts_f3_load(sp + TS_IGI_SURF_EMISSION),

@@ -29,7 +29,7 @@
 
 /* X(KernelInput name, field, element type, what): the named inputs a backend keeps between
  * launches (Backend::set_input), null or a placeholder where a launch does not use them:
- *   Vpls             TS_VPL_FLOATS per VPL, sorted by sample set (layout.h)
+ *   Vpls             TS_VPL_FLOATS per VPL, sorted by sample set (layout_igi.h)
  *   VplSetStart      sample set k's VPLs are [start[k], start[k+1])
  *   IcGbuffer        TS_IC_GBUF_FLOATS per pixel (ic_gbuffer_from_surface, gi/instant_cache.h)
  *   IcNodes          TS_IC_NODE_FLOATS per octree node, root first
@@ -38,7 +38,7 @@
  *   IcRecordSurfaces TS_IC_GBUF_FLOATS per cache record, the G-buffer entry it was made at
  *                    (KernelId::IcPair and IcGather; their VPLs are the Vpls input, one set)
  *   IcVisibility     record–VPL visibility rows, bit masks of TS_IC_VISIBLE_WORDS(VPLs of
- *                    the Vpls input) uints each (layout.h; KernelId::IcGather)
+ *                    the Vpls input) uints each (layout_ic.h; KernelId::IcGather)
  *   IgiSurface       TS_IGI_SURF_FLOATS per pixel, KernelId::IgiSurface's output kept where
  *                    the kernels run (Backend::launch_into; KernelId::IgiResolve reads it)
  *   IgiMedia         TS_IGI_MEDIA_FLOATS per pixel, KernelId::IgiMedia's output kept

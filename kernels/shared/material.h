@@ -3,7 +3,7 @@
 #define TS_MATERIAL_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/layout_scene.h"
 #include "shared/srgb_table.h"
 
 TS_NAMESPACE_BEGIN
@@ -33,7 +33,7 @@ TS_INLINE float3 ts_texture_bilinear(TS_GLOBAL const uint* texels, uint off, uin
 }
 
 /* Texel offset and size of mip level `level` of a texture whose level 0 is w×h at `off`
- * (levels stored one after another; layout.h textures). */
+ * (levels stored one after another; layout_scene.h textures). */
 TS_INLINE uint ts_mip_level(uint off, uint* w, uint* h, uint level) {
     for (uint l = 0u; l < level; ++l) {
         off += *w * *h;

@@ -1,10 +1,10 @@
-/* Homogeneous participating medium (layout in shared/layout.h): extent, transmittance
+/* Homogeneous participating medium (layout in shared/layout_scene.h): extent, transmittance
  * and free-flight distance sampling with RGB coefficients. */
 #ifndef TS_MEDIUM_H
 #define TS_MEDIUM_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/layout_scene.h"
 
 TS_NAMESPACE_BEGIN
 

@@ -34,7 +34,10 @@
 #include "shared/bsdf.h"
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/frame.h"
+#include "shared/layout_pass.h"
+#include "shared/layout_rays.h"
+#include "shared/layout_scene.h"
 #include "shared/material.h"
 #include "shared/medium.h"
 #include "shared/rng.h"
@@ -85,7 +88,7 @@ TS_INLINE int ts_roulette(float3* beta, uint depth, TsRng* rng) {
 }
 
 /* One pass (1 spp) of the path tracer for pixel (px, py); writes TS_PASS_FLOATS values
- * (layout.h) to out, with albedo, normal and depth from the first camera hit. */
+ * (layout_pass.h) to out, with albedo, normal and depth from the first camera hit. */
 TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                            uint px, uint py, float* out) {
     TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);

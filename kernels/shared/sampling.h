@@ -4,7 +4,7 @@
 #define TS_SAMPLING_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/layout_scene.h"
 
 TS_NAMESPACE_BEGIN
 
@@ -84,7 +84,7 @@ TS_INLINE float ts_power_heuristic(float a, float b) {
 TS_INLINE float ts_luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 /* Area pdf (scene units^-2) with which ts_sample_light picks a point on an emitter whose
- * material has selection luminance `selection` (materials TS_MAT_SELECTION, layout.h):
+ * material has selection luminance `selection` (materials TS_MAT_SELECTION, layout_scene.h):
  * power-proportional selection times uniform area sampling gives
  * (selection · area / total power) / area = selection / total power. */
 TS_INLINE float ts_light_pdf_area(float selection, float light_power) {

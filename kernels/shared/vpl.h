@@ -1,19 +1,19 @@
 /* The VPL connection and gather sum of instant radiosity (Keller 1997), shared by the
  * igi kernels (shared/igi.h) and the instant cache's gather kernels (shared/ic_gather.h),
- * so both weigh a VPL identically. VPL layout: layout.h
+ * so both weigh a VPL identically. VPL layout: layout_igi.h
  * TS_VPL_FLOATS. */
 #ifndef TS_VPL_H
 #define TS_VPL_H
 #include "shared/compat.h"
 #include "shared/geometry.h"
-#include "shared/layout.h"
+#include "shared/layout_igi.h"
 #include "shared/medium.h"
 #include "shared/sampling.h"
 
 TS_NAMESPACE_BEGIN
 
 /* Whether a VPL is a scattering vertex of a light path in the medium rather than a
- * surface hit: layout.h marks it with a negative TS_VPL_POS_SCALE. */
+ * surface hit: layout_igi.h marks it with a negative TS_VPL_POS_SCALE. */
 TS_INLINE int ts_vpl_in_medium(TS_GLOBAL const float* vpl) { return vpl[TS_VPL_POS_SCALE] < 0.0f; }
 
 /* The VPL's radiant intensity toward unit direction wo (leaving it) is C · this factor:
@@ -112,14 +112,6 @@ TS_INLINE void ts_vpl_gather_add(float3* sum, TS_GLOBAL const float* vpl, const 
 }
 
 TS_INLINE float3 ts_vpl_gather_result(float3 sum) { return sum * TS_INV_PI; }
-
-/* Neumaier's compensated sum: *s the running sum, *c the rounding error it lost; the
- * result is *s + *c. */
-TS_INLINE void ts_sum_compensated_add(float* s, float* c, float x) {
-    float t = *s + x;
-    *c += fabs(*s) >= fabs(x) ? (*s - t) + x : (x - t) + *s;
-    *s = t;
-}
 
 typedef struct TsSum3 {
     float s[3], c[3];

@@ -10,7 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include "backend/ray_order.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_rays.h"
 
 namespace tessera {
 namespace {

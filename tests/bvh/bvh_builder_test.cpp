@@ -16,7 +16,8 @@
 #include "backend/backend.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_rays.h"
+#include "kernels/shared/layout_scene.h"
 #include "support/test_scenes.h"
 #include "util/error.h"
 

@@ -9,7 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_igi.h"
+#include "kernels/shared/layout_pass.h"
 
 namespace tessera {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "support/scratch_dir.h"
 
-#include "kernels/shared/layout.h"
+#include "kernels/shared/layout_pass.h"
 #include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
 #include "scene/loader.h"

@@ -1,7 +1,7 @@
 // Lights are picked by their animation maximum (Material::emission_max), not by this
 // frame's emission, so a dimmed light is picked more often than its power warrants. The
 // estimators must stay unbiased: the MIS weight of an emitter hit uses the pick pdf the
-// light sampler really has (materials [12], layout.h), so the image cannot depend on
+// light sampler really has (materials [12], layout_scene.h), so the image cannot depend on
 // emission_max.
 #include <gtest/gtest.h>
 

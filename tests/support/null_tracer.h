@@ -17,5 +17,15 @@ struct TsTracer {};
         if (valid >> i & 1u) hits[i] = TsHit{0, 0, 0, TS_NO_HIT};
 }
 [[maybe_unused]] uint ts_trace_occluded_lanes(const TsTracer*, const TsRay*, uint) { return 0u; }
+// The packet of shared/igi_gather16.h: kept rays, nothing blocked.
+struct TsRayLanes {
+    TsRay ray[TS_PACKET_LANES];
+};
+[[maybe_unused]] void ts_ray_lanes_init(TsRayLanes*) {}
+[[maybe_unused]] void ts_ray_lanes_put(TsRayLanes* r, int i, TsRay ray) { r->ray[i] = ray; }
+[[maybe_unused]] TsRay ts_ray_lanes_get(const TsRayLanes* r, int i) { return r->ray[i]; }
+[[maybe_unused]] void ts_trace_occluded_ray_lanes(const TsTracer*, TsRayLanes*, const int* traced, int* visible) {
+    for (int i = 0; i < TS_PACKET_LANES; ++i) visible[i] = traced[i];
+}
 }  // namespace
 }  // namespace tessera::ts

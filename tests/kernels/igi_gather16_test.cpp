@@ -1,9 +1,11 @@
-// The SIMD link math of the Embree packets (host/backend/embree_lanes.cpp): for every lane,
-// bit for bit what the shared one-pixel functions give (ts_light_contribution,
-// ts_vpl_geometry, the gather terms), over lanes that face the link, face away, sit on
-// the VPL itself (d = 0) or are hidden, with and without a medium, with the clamp on and
-// off. No tracing (the functions only fill and read an RTCRay16), except lane_occlusion,
-// which traces a packet through the Cornell box.
+// The 16-lane link math of kernels/shared/igi_gather16.h, compiled as C++ with the Embree
+// tracer's packet (an RTCRay16): for every lane, bit for bit what the shared one-pixel
+// functions give (ts_light_contribution, ts_vpl_geometry, the gather terms), over lanes
+// that face the link, face away, sit on the VPL itself (d = 0) or are hidden, with and
+// without a medium, with the clamp on and off. No tracing (the functions only fill and
+// read the packet), except ts_trace_occluded_ray_lanes, which traces a packet through the
+// Cornell box. The whole gather is checked against the one-ray gather by the packet
+// kernels' image tests (tests/backend/).
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -12,15 +14,18 @@
 
 #include <gtest/gtest.h>
 
-#include "backend/embree_lanes.h"
+#include "backend/embree_tracer.h"
 #include "bvh/embree_scene.h"
 #include "support/render_helpers.h"
 
-// After the tracer (embree_lanes.h includes it).
+// After the tracer.
 #include "kernels/shared/igi.h"
+#include "kernels/shared/igi_gather16.h"
 
 namespace tessera {
 namespace {
+
+constexpr int kLanes = TS_PACKET_LANES;
 
 bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -45,9 +50,9 @@ std::vector<ts::TsSurface> surfaces(std::mt19937& rng, ts::float3 at) {
     return s;
 }
 
-LaneState lanes_of(const std::vector<ts::TsSurface>& s) {
-    LaneState ls;
-    for (int i = 0; i < kLanes; ++i) lane_set(ls, i, s[i]);
+ts::TsIgiLanes lanes_of(const std::vector<ts::TsSurface>& s) {
+    ts::TsIgiLanes ls;
+    for (int i = 0; i < kLanes; ++i) ts::ts_igi_lanes_set(&ls, i, &s[i]);
     return ls;
 }
 
@@ -63,7 +68,7 @@ void expect_ray(const RTCRay16& r, int i, const ts::TsRay& want) {
 }
 
 // A VPL at (0.1, 0.2, 0.3) with normal +y, flux (2, 1, 0.5); in_medium: pos_scale < 0
-// marks a medium VPL (layout.h), its normal then being the light's propagation direction.
+// marks a medium VPL (layout_igi.h), its normal then being the light's propagation direction.
 void make_vpl(float (&v)[TS_VPL_FLOATS], bool in_medium) {
     std::fill(std::begin(v), std::end(v), 0.0f);
     const float p[3] = {0.1f, 0.2f, 0.3f}, n[3] = {0.0f, 1.0f, 0.0f}, c[3] = {2.0f, 1.0f, 0.5f};
@@ -73,19 +78,21 @@ void make_vpl(float (&v)[TS_VPL_FLOATS], bool in_medium) {
     v[TS_VPL_POS_SCALE] = in_medium ? -1.0f : 1.0f;
 }
 
-TEST(EmbreeLanes, VplLinksEqualTheSharedGeometryTermPerLane) {
+TEST(IgiGather16, VplLinksEqualTheSharedGeometryTermPerLane) {
     std::mt19937 rng(3);
     for (bool in_medium : {false, true})
         for (float b : {0.5f, std::numeric_limits<float>::infinity()}) {
             float vpl[TS_VPL_FLOATS];
             make_vpl(vpl, in_medium);
             const auto s = surfaces(rng, ts::make_float3(vpl[0], vpl[1], vpl[2]));
-            const LaneState ls = lanes_of(s);
-            alignas(64) RTCRay16 r;
-            alignas(64) float g[kLanes];
-            alignas(64) int in[kLanes], traced[kLanes];
-            for (int i = 0; i < kLanes; ++i) in[i] = i % 4 == 3 ? 0 : -1;  // lanes 3, 7, ... take no part
-            vpl_links(ls, vpl, b, 0.7f, in, g, traced, r);
+            const ts::TsIgiLanes ls = lanes_of(s);
+            ts::TsRayLanes r;
+            ts::TsIgiLinkLanes L;
+            for (int i = 0; i < kLanes; ++i) L.in_id[i] = i % 4 == 3 ? 0 : -1;  // lanes 3, 7, ... take no part
+            ts::ts_igi_lanes_vpl_links(&ls, vpl, b, 0.7f, &L, &r);
+            const float* g = L.g;
+            const int* in = L.in_id;
+            const int* traced = L.traced;
             int facing = 0;
             for (int i = 0; i < kLanes; ++i) {
                 ts::TsRay want;
@@ -101,7 +108,7 @@ TEST(EmbreeLanes, VplLinksEqualTheSharedGeometryTermPerLane) {
         }
 }
 
-TEST(EmbreeLanes, LightLinksEqualTheSharedContributionPerLane) {
+TEST(IgiGather16, LightLinksEqualTheSharedContributionPerLane) {
     std::mt19937 rng(5);
     ts::TsLightSample q;
     q.position = ts::make_float3(0.0f, 0.9f, 0.0f);
@@ -110,12 +117,14 @@ TEST(EmbreeLanes, LightLinksEqualTheSharedContributionPerLane) {
     q.pdf_area = 4.0f;
     q.pos_scale = 1.0f;
     const auto s = surfaces(rng, ts::make_float3(0.0f, 0.0f, 0.0f));
-    const LaneState ls = lanes_of(s);
-    alignas(64) RTCRay16 r;
-    alignas(64) float c[3][kLanes];
-    alignas(64) int in[kLanes], traced[kLanes];
-    for (int i = 0; i < kLanes; ++i) in[i] = i == 6 ? 0 : -1;  // lane 6 takes no part
-    light_links(ls, q, in, c, traced, r);
+    const ts::TsIgiLanes ls = lanes_of(s);
+    ts::TsRayLanes r;
+    ts::TsIgiLinkLanes L;
+    for (int i = 0; i < kLanes; ++i) L.in_ss[i] = i == 6 ? 0 : -1;  // lane 6 takes no part
+    ts::ts_igi_lanes_light_links(&ls, q, &L, &r);
+    const auto& c = L.c;
+    const int* in = L.in_ss;
+    const int* traced = L.traced;
     int lit = 0;
     for (int i = 0; i < kLanes; ++i) {
         ts::TsRay want;
@@ -137,7 +146,7 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
     float vpl[TS_VPL_FLOATS];
     make_vpl(vpl, false);
     const auto s = surfaces(rng, ts::make_float3(vpl[0], vpl[1], vpl[2]));
-    LaneState ls = lanes_of(s);
+    ts::TsIgiLanes ls = lanes_of(s);
     ts::TsSceneView sv{};
     sv.vpls = vpl;
     std::vector<ts::TsIgiGather> want(kLanes, ts::ts_igi_gather_begin());
@@ -148,14 +157,14 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
     q.pdf_area = 4.0f;
     q.pos_scale = 1.0f;
     for (int round = 0; round < 2; ++round) {
-        alignas(64) RTCRay16 r;
-        alignas(64) int visible[kLanes];
-        alignas(64) float g[kLanes];
-        alignas(64) int all[kLanes], traced[kLanes];
-        std::fill(std::begin(all), std::end(all), -1);
-        vpl_links(ls, vpl, 0.5f, 0.0f, all, g, traced, r);
-        for (int i = 0; i < kLanes; ++i) visible[i] = g[i] > 0.0f && (i + round) % 3 != 0 ? -1 : 0;
-        vpl_gather(ls, vpl, g, visible, med, r);
+        ts::TsRayLanes r;
+        ts::TsIgiLinkLanes L;
+        std::fill(std::begin(L.in_id), std::end(L.in_id), -1);
+        std::fill(std::begin(L.in_ss), std::end(L.in_ss), -1);
+        ts::ts_igi_lanes_vpl_links(&ls, vpl, 0.5f, 0.0f, &L, &r);
+        for (int i = 0; i < kLanes; ++i) L.visible[i] = L.g[i] > 0.0f && (i + round) % 3 != 0 ? -1 : 0;
+        ts::ts_igi_lanes_vpl_gather(&ls, vpl, &L, &med, &r);
+        const int* visible = L.visible;
         for (int i = 0; i < kLanes; ++i) {
             if (!visible[i]) continue;
             ts::TsIgiLink l;
@@ -163,10 +172,9 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
             l.g = ts::ts_vpl_geometry(&s[i], vpl, 0.5f, 0.0f, &l.shadow);
             ts::ts_igi_gather_add(&want[i], &sv, &med, &l);
         }
-        alignas(64) float c[3][kLanes];
-        light_links(ls, q, all, c, traced, r);
-        for (int i = 0; i < kLanes; ++i) visible[i] = traced[i] && (i + round) % 4 != 1 ? -1 : 0;
-        light_gather(ls, c, visible, med, r);
+        ts::ts_igi_lanes_light_links(&ls, q, &L, &r);
+        for (int i = 0; i < kLanes; ++i) L.visible[i] = L.traced[i] && (i + round) % 4 != 1 ? -1 : 0;
+        ts::ts_igi_lanes_light_gather(&ls, &L, &med, &r);
         for (int i = 0; i < kLanes; ++i) {
             if (!visible[i]) continue;
             ts::TsIgiLink l;
@@ -191,7 +199,7 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
 
 // The packet's answers are the single rays' (ts_trace_occluded) for the traced lanes, in
 // both packet modes; untraced lanes come back not visible.
-TEST(EmbreeLanes, OcclusionEqualsSingleRays) {
+TEST(IgiGather16, OcclusionEqualsSingleRays) {
     const Scene scene = test::cornell_box();
     const SceneBuffers buffers = make_scene_buffers(scene);
     ts::TsTracer tracer{};
@@ -205,19 +213,22 @@ TEST(EmbreeLanes, OcclusionEqualsSingleRays) {
     };
     int blocked = 0, open = 0;
     for (int round = 0; round < 8; ++round) {
-        alignas(64) RTCRay16 r;
-        alignas(64) int traced[kLanes], visible[kLanes];
+        ts::TsRayLanes r;
+        ts::ts_ray_lanes_init(&r);
+        ts::TsIgiLinkLanes L;
+        int* traced = L.traced;
+        int* visible = L.visible;
         std::array<ts::TsRay, kLanes> rays;
         for (int i = 0; i < kLanes; ++i) {
             rays[i].org = inside();
             rays[i].dir = inside() - rays[i].org;
             rays[i].tmin = 0.0f;
             rays[i].tmax = 1.0f;
-            ts::ts_packet_set(r, i, rays[i]);
-            r.time[i] = 0.0f, r.mask[i] = 0xffffffffu, r.id[i] = unsigned(i), r.flags[i] = 0;
+            ts::ts_ray_lanes_put(&r, i, rays[i]);
             traced[i] = (i + round) % 5 == 0 ? 0 : -1;
         }
-        lane_occlusion(tracer, r, traced, round % 2 == 0, visible);
+        tracer.coherent = round % 2 == 0;
+        ts::ts_trace_occluded_ray_lanes(&tracer, &r, traced, visible);
         for (int i = 0; i < kLanes; ++i) {
             const bool hidden = ts::ts_trace_occluded(&tracer, rays[i]);
             EXPECT_EQ(visible[i], traced[i] && !hidden ? -1 : 0) << "round " << round << ", lane " << i;
@@ -230,12 +241,12 @@ TEST(EmbreeLanes, OcclusionEqualsSingleRays) {
     EXPECT_GT(open, 5);
 }
 
-TEST(EmbreeLanes, GatherWithoutMediumEqualsOnePixelGather) {
+TEST(IgiGather16, GatherWithoutMediumEqualsOnePixelGather) {
     ts::TsMedium none{};
     expect_gather_equals_one_pixel_gather(none);
 }
 
-TEST(EmbreeLanes, GatherInFogEqualsOnePixelGather) {
+TEST(IgiGather16, GatherInFogEqualsOnePixelGather) {
     ts::TsMedium fog{};
     fog.present = 1;
     fog.sigma_s = ts::make_float3(0.5f, 0.6f, 0.7f);

@@ -1,0 +1,259 @@
+/* The igi surface gather of 16 lanes side by side (docs/ray-batches.md §3, §4), for the
+ * backends that trace 16-ray packets: the Embree backend (host/backend/embree_packets.cpp)
+ * and the OpenCL CPU kernels (kernels/igi_packets.h). Set by set, each link of the set (a
+ * light sample, then a VPL: the same for every lane of the set) is computed for the 16
+ * lanes in loops GCC vectorises, its shadow rays written straight into the tracer's
+ * packet, traced as one packet and gathered per lane. A lane takes part in the light
+ * links if its mask has TS_COMPONENT_SS, in the VPL links if it has TS_COMPONENT_ID: the
+ * links ts_igi_link (shared/igi.h) gives it, in the same order, so its sums equal
+ * ts_igi_surface_set's bit for bit (tests/backend/packets_test.cpp,
+ * tests/backend/opencl_packets_test.cpp).
+ *
+ * Besides the tracer interface of shared/direct.h, the tracer provides a 16-ray packet
+ * in its own layout, TsRayLanes (Embree's RTCRay16; an 8 × 16 float array on OpenCL), and
+ *   void  ts_ray_lanes_init(TsRayLanes* r)              sets r's fields other than the rays
+ *   void  ts_ray_lanes_put(TsRayLanes* r, int i, TsRay)  lane i's ray
+ *   TsRay ts_ray_lanes_get(const TsRayLanes* r, int i)   lane i's ray (an unoccluded lane's
+ *                                                        unchanged by tracing)
+ *   void  ts_trace_occluded_ray_lanes(const TsTracer*, TsRayLanes* r, const int traced[16],
+ *                                     int visible[16])
+ * which traces the lanes with traced[i] = -1 as one packet (nothing when no lane is;
+ * traced is 64-byte aligned, as rtcOccluded16 wants) and sets visible[i] = -1 for those
+ * found unoccluded, 0 for the others.
+ *
+ * The loops vectorise because the shared functions they call are branch-free, their
+ * outputs are local arrays or fields apart from their inputs, and the Embree file that
+ * includes this is built with -fno-trapping-math (CMakeLists.txt says why that changes no
+ * value). Private memory: the lanes' surfaces and sums (1.3 KB) and one link's masks and
+ * terms (0.5 KB), besides the tracer's packet. */
+#ifndef TS_IGI_GATHER16_H
+#define TS_IGI_GATHER16_H
+#include "shared/igi.h"
+
+TS_NAMESPACE_BEGIN
+
+/* The lanes' surfaces as a structure of arrays (the fields the links read: positions and
+ * origins in scene units, unit normals, pos_scale as in TsSurface) and their running
+ * gather sums (TsIgiGather's: E_ss and E_id before normalisation, visible light
+ * samples). A lane without links holds a stand-in surface (another lane's) so that all
+ * its rays are finite; its sums are never read. */
+typedef struct TS_ALIGN64 TsIgiLanes {
+    float position[3][TS_PACKET_LANES], geo_normal[3][TS_PACKET_LANES], shading_normal[3][TS_PACKET_LANES],
+        origin[3][TS_PACKET_LANES];
+    float pos_scale[TS_PACKET_LANES];
+    float ss[3][TS_PACKET_LANES], id[3][TS_PACKET_LANES];
+    uint seen[TS_PACKET_LANES];
+} TsIgiLanes;
+
+/* One link against the lanes: which lanes take part (in_ss, in_id: -1 or 0), whose rays
+ * are traced (traced: -1 or 0) and come back unoccluded (visible), and the link's
+ * unoccluded terms (c: a light sample's contribution, RGB rows; g: a VPL's clamped
+ * geometry term). Every int row is 64 bytes, so each is 64-byte aligned. */
+typedef struct TS_ALIGN64 TsIgiLinkLanes {
+    int in_ss[TS_PACKET_LANES], in_id[TS_PACKET_LANES], traced[TS_PACKET_LANES], visible[TS_PACKET_LANES];
+    float c[3][TS_PACKET_LANES], g[TS_PACKET_LANES];
+} TsIgiLinkLanes;
+
+/* Lane i's surface, with the fields the links do not read set to constants (not
+ * value-initialised: GCC then clears the struct with a memset and stops vectorising). */
+TS_INLINE TsSurface ts_igi_lanes_surface(const TsIgiLanes* ls, int i) {
+    TsSurface s;
+    s.position = make_float3(ls->position[0][i], ls->position[1][i], ls->position[2][i]);
+    s.geo_normal = make_float3(ls->geo_normal[0][i], ls->geo_normal[1][i], ls->geo_normal[2][i]);
+    s.shading_normal = make_float3(ls->shading_normal[0][i], ls->shading_normal[1][i], ls->shading_normal[2][i]);
+    s.origin = make_float3(ls->origin[0][i], ls->origin[1][i], ls->origin[2][i]);
+    s.pos_scale = ls->pos_scale[i];
+    s.uv = make_float2(0.0f, 0.0f);
+    s.material = 0;
+    s.front_face = 1;
+    s.uv_footprint = 0.0f;
+    return s;
+}
+
+/* Sets lane i's surface and clears its sums. */
+TS_INLINE void ts_igi_lanes_set(TsIgiLanes* ls, int i, const TsSurface* s) {
+    ls->position[0][i] = s->position.x, ls->position[1][i] = s->position.y, ls->position[2][i] = s->position.z;
+    ls->geo_normal[0][i] = s->geo_normal.x, ls->geo_normal[1][i] = s->geo_normal.y;
+    ls->geo_normal[2][i] = s->geo_normal.z;
+    ls->shading_normal[0][i] = s->shading_normal.x, ls->shading_normal[1][i] = s->shading_normal.y;
+    ls->shading_normal[2][i] = s->shading_normal.z;
+    ls->origin[0][i] = s->origin.x, ls->origin[1][i] = s->origin.y, ls->origin[2][i] = s->origin.z;
+    ls->pos_scale[i] = s->pos_scale;
+    for (int a = 0; a < 3; ++a) ls->ss[a][i] = ls->id[a][i] = 0.0f;
+    ls->seen[i] = 0u;
+}
+
+/* x where mask is -1, +0 where it is 0: a select GCC 12 vectorises (it does not for
+ * `mask ? x : 0.0f` or x · (float)(mask != 0)). Adding the +0 of a hidden lane to a sum
+ * >= +0 leaves it unchanged bit for bit, so masked sums equal the sums of the visible
+ * terms alone (terms are finite: contributions and VPL flux are, and so is G' <= b or,
+ * with the clamp off, cosθ cosθ' / d² at d > 0). */
+TS_INLINE float ts_lanes_masked(float x, int mask) { return as_float(as_int(x) & mask); }
+
+/* Light sample q against every lane: L->c and the shadow rays in r; L->traced[i] = -1
+ * where lane i takes part (L->in_ss) and the ray must be traced (ts_igi_light_link_traced). */
+TS_INLINE void ts_igi_lanes_light_links(const TsIgiLanes* TS_RESTRICT ls, TsLightSample q,
+                                         TsIgiLinkLanes* TS_RESTRICT L, TsRayLanes* TS_RESTRICT r) {
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        const TsSurface s = ts_igi_lanes_surface(ls, i);
+        TsRay sh;
+        const float3 ci = ts_light_contribution(&s, q, &sh);
+        L->c[0][i] = ci.x;
+        L->c[1][i] = ci.y;
+        L->c[2][i] = ci.z;
+        L->traced[i] = (ts_igi_light_link_traced(ci) ? -1 : 0) & L->in_ss[i];
+        ts_ray_lanes_put(r, i, sh);
+    }
+}
+
+/* Adds the light-sample terms of the lanes with L->visible[i] = -1 to their E_ss and
+ * counts them as seen, with the medium's transmittance along each lane's ray in r. */
+TS_INLINE void ts_igi_lanes_light_gather(TsIgiLanes* TS_RESTRICT ls, const TsIgiLinkLanes* TS_RESTRICT L,
+                                          const TsMedium* med, const TsRayLanes* TS_RESTRICT r) {
+    if (!med->present) {
+        const float3 clear = make_float3(1.0f, 1.0f, 1.0f); /* ts_shadow_transmittance without a medium */
+        for (int i = 0; i < TS_PACKET_LANES; ++i) {
+            const int v = L->visible[i];
+            const float3 ci =
+                make_float3(ts_lanes_masked(L->c[0][i], v), ts_lanes_masked(L->c[1][i], v), ts_lanes_masked(L->c[2][i], v));
+            const float3 t = ts_igi_light_term(ci, clear);
+            ls->ss[0][i] += t.x;
+            ls->ss[1][i] += t.y;
+            ls->ss[2][i] += t.z;
+            ls->seen[i] += (uint)v & 1u;
+        }
+        return;
+    }
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        if (!L->visible[i]) continue;
+        const float3 ci = make_float3(L->c[0][i], L->c[1][i], L->c[2][i]);
+        const float3 t = ts_igi_light_term(ci, ts_shadow_transmittance(med, ts_ray_lanes_get(r, i)));
+        ls->ss[0][i] += t.x;
+        ls->ss[1][i] += t.y;
+        ls->ss[2][i] += t.z;
+        ++ls->seen[i];
+    }
+}
+
+/* ts_igi_lanes_vpl_links for VPLs of one kind (medium: 1 for a medium VPL): the kind
+ * test in the shared code folds away once this is inlined with a constant `medium`, so
+ * the vector loop computes only that kind's emission factor. */
+TS_INLINE void ts_igi_lanes_vpl_links_of(const TsIgiLanes* TS_RESTRICT ls, TS_GLOBAL const float* vpl, float b,
+                                          float hg, int medium, TsIgiLinkLanes* TS_RESTRICT L,
+                                          TsRayLanes* TS_RESTRICT r) {
+    if (ts_vpl_in_medium(vpl) != medium) TS_UNREACHABLE();
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        const TsSurface s = ts_igi_lanes_surface(ls, i);
+        TsRay sh;
+        L->g[i] = ts_vpl_geometry(&s, vpl, b, hg, &sh);
+        ts_ray_lanes_put(r, i, sh);
+    }
+    for (int i = 0; i < TS_PACKET_LANES; ++i) L->traced[i] = (L->g[i] > 0.0f ? -1 : 0) & L->in_id[i];
+}
+
+/* VPL `vpl` against every lane: clamped geometry terms L->g (ts_vpl_geometry; b the
+ * clamp, hg the medium's Henyey–Greenstein g) and shadow rays in r; L->traced[i] = -1
+ * where L->in_id[i] = -1 and g > 0. */
+TS_INLINE void ts_igi_lanes_vpl_links(const TsIgiLanes* ls, TS_GLOBAL const float* vpl, float b, float hg,
+                                      TsIgiLinkLanes* L, TsRayLanes* r) {
+    if (ts_vpl_in_medium(vpl))
+        ts_igi_lanes_vpl_links_of(ls, vpl, b, hg, 1, L, r);
+    else
+        ts_igi_lanes_vpl_links_of(ls, vpl, b, hg, 0, L, r);
+}
+
+/* Adds the VPL's terms to E_id of the lanes with L->visible[i] = -1, as
+ * ts_igi_lanes_light_gather. */
+TS_INLINE void ts_igi_lanes_vpl_gather(TsIgiLanes* TS_RESTRICT ls, TS_GLOBAL const float* vpl,
+                                        const TsIgiLinkLanes* TS_RESTRICT L, const TsMedium* med,
+                                        const TsRayLanes* TS_RESTRICT r) {
+    if (!med->present) {
+        const float3 clear = make_float3(1.0f, 1.0f, 1.0f); /* ts_shadow_transmittance without a medium */
+        for (int i = 0; i < TS_PACKET_LANES; ++i) {
+            const float3 t = ts_vpl_gather_term(vpl, clear, ts_lanes_masked(L->g[i], L->visible[i]));
+            ls->id[0][i] += t.x;
+            ls->id[1][i] += t.y;
+            ls->id[2][i] += t.z;
+        }
+        return;
+    }
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        if (!L->visible[i]) continue;
+        float3 sum = make_float3(ls->id[0][i], ls->id[1][i], ls->id[2][i]);
+        ts_vpl_gather_add(&sum, vpl, med, ts_ray_lanes_get(r, i), L->g[i]);
+        ls->id[0][i] = sum.x;
+        ls->id[1][i] = sum.y;
+        ls->id[2][i] = sum.z;
+    }
+}
+
+/* Gathers the links of the lanes of sample set k among the first `lanes` (those with
+ * links[i] > 0 and set[i] == k; at least one): the set's light samples, then its VPLs.
+ * view[i].s is lane i's surface; the sums go to gather[i] of those lanes only. */
+TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, int lanes,
+                                   const TsIgiView* view, const uint* set, const uint* mask, const uint* links,
+                                   uint k, TsIgiGather* gather) {
+    const TsMedium med = ts_medium_load(sv->medium);
+    TsIgiLanes ls;
+    TsIgiLinkLanes L;
+    TsRayLanes r;
+    int stand_in = 0, any_ss = 0, any_id = 0;
+    for (int i = 0; i < lanes; ++i)
+        if (set[i] == k && links[i] > 0u) stand_in = i;
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        const int lane = i < lanes && set[i] == k && links[i] > 0u;
+        L.in_ss[i] = lane && ts_igi_light_links(sv, f, mask[i]) > 0u ? -1 : 0;
+        L.in_id[i] = lane && (mask[i] & TS_COMPONENT_ID) ? -1 : 0;
+        any_ss |= L.in_ss[i] != 0;
+        any_id |= L.in_id[i] != 0;
+        ts_igi_lanes_set(&ls, i, &view[lane ? i : stand_in].s);
+    }
+    ts_ray_lanes_init(&r);
+    for (uint j = 0u; any_ss && j < f->shadow_samples; ++j) {
+        ts_igi_lanes_light_links(&ls, ts_igi_light_sample(sv, f, k, j), &L, &r);
+        ts_trace_occluded_ray_lanes(tracer, &r, L.traced, L.visible);
+        ts_igi_lanes_light_gather(&ls, &L, &med, &r);
+    }
+    for (uint v = sv->vpl_set_start[k]; any_id && v < sv->vpl_set_start[k + 1u]; ++v) {
+#ifdef __OPENCL_VERSION__
+        TS_GLOBAL const float* vpl = sv->vpls + (size_t)v * TS_VPL_FLOATS;
+#else
+        /* A local copy: the compiler then knows the lanes' stores leave it unchanged and
+         * keeps its fields out of the vector loops. */
+        float vpl[TS_VPL_FLOATS];
+        for (int c = 0; c < TS_VPL_FLOATS; ++c) vpl[c] = sv->vpls[(size_t)v * TS_VPL_FLOATS + c];
+#endif
+        ts_igi_lanes_vpl_links(&ls, vpl, f->igi_g_clamp, sv->medium[TS_MEDIUM_G], &L, &r);
+        ts_trace_occluded_ray_lanes(tracer, &r, L.traced, L.visible);
+        ts_igi_lanes_vpl_gather(&ls, vpl, &L, &med, &r);
+    }
+    for (int i = 0; i < lanes; ++i) {
+        if (set[i] != k || links[i] == 0u) continue;
+        gather[i].ss = make_float3(ls.ss[0][i], ls.ss[1][i], ls.ss[2][i]);
+        gather[i].id = make_float3(ls.id[0][i], ls.id[1][i], ls.id[2][i]);
+        gather[i].seen = ls.seen[i];
+    }
+}
+
+/* The gathers of the first `lanes` lanes (lane i sees view[i].s, of sample set set[i],
+ * components mask[i], links[i] links: 0 for nothing to gather), set by set: a surface
+ * block is one set; AIS items, listed by set, span one or two sets per packet. gather[i]
+ * ends as ts_igi_surface_set's sums for lane i (begun empty where links[i] is 0). */
+TS_INLINE void ts_igi_gather16(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, int lanes,
+                               const TsIgiView* view, const uint* set, const uint* mask, const uint* links,
+                               TsIgiGather* gather) {
+    uint done = 0u; /* bit i: lane i gathered or without links */
+    for (int i = 0; i < lanes; ++i) {
+        gather[i] = ts_igi_gather_begin();
+        if (links[i] == 0u) done |= 1u << i;
+    }
+    for (int i = 0; i < lanes; ++i) {
+        if (done >> i & 1u) continue;
+        ts_igi_gather16_set(sv, tracer, f, lanes, view, set, mask, links, set[i], gather);
+        for (int l = i; l < lanes; ++l)
+            if (set[l] == set[i]) done |= 1u << l;
+    }
+}
+
+TS_NAMESPACE_END
+#endif /* TS_IGI_GATHER16_H */

@@ -1,0 +1,155 @@
+/* The igi and AIS buffers, shared by the host (C++) and the kernels (OpenCL C): VPLs,
+ * the surface and media kernels' outputs, the AIS and edge-sample item lists and
+ * outputs, and the component bits. The rules of every layout are in
+ * shared/layout_check.h. */
+#ifndef TS_LAYOUT_IGI_H
+#define TS_LAYOUT_IGI_H
+
+/* VPLs (host/gi/light_paths.cpp): TS_VPL_FLOATS floats each, sorted by sample set:
+ *   TS_VPL_POSITION  3 floats: position
+ *   TS_VPL_NORMAL    3 floats: unit normal of the side it lights; for a medium VPL
+ *                    (a light path's scattering vertex in the medium) the unit
+ *                    propagation direction of the light that reached it
+ *   TS_VPL_FLUX      3 floats: flux weight C/M (the path throughput times albedo/π,
+ *                    divided by the paths per set; a medium VPL: the throughput times
+ *                    the free-flight sampling weight, divided by the paths per set)
+ *   TS_VPL_SET       set index
+ *   TS_VPL_PATH      path index (uint bits)
+ *   TS_VPL_POS_SCALE the largest vertex coordinate of the triangle it lies on (for
+ *                    ts_offset_ray_origin); -1 marks a medium VPL (shared/vpl.h)
+ * vpl_set_start[k] .. vpl_set_start[k+1] are set k's VPLs. */
+#define TS_VPL_FLOATS 12
+#define TS_VPL_POSITION 0
+#define TS_VPL_NORMAL 3
+#define TS_VPL_FLUX 6
+#define TS_VPL_SET 9
+#define TS_VPL_PATH 10
+#define TS_VPL_POS_SCALE 11
+
+/* Per-pixel output of the igi surface kernel: TS_IGI_SURF_FLOATS floats:
+ *   TS_IGI_SURF_E_SS       3 floats: E_ss, direct (area-light) irradiance / π
+ *   TS_IGI_SURF_E_ID       3 floats: E_id, indirect (VPL) irradiance / π (both the
+ *                          quantities albedo multiplies)
+ *   TS_IGI_SURF_ALBEDO     3 floats: albedo
+ *   TS_IGI_SURF_EMISSION   3 floats: emitted radiance seen
+ *   TS_IGI_SURF_NORMAL     3 floats: shading normal
+ *   TS_IGI_SURF_DISTANCE   distance to the surface along the camera path (+inf on a miss)
+ *   TS_IGI_SURF_THROUGHPUT 3 floats: throughput of specular bounces before it (1 for none)
+ *   TS_IGI_SURF_VISIBLE    fraction of the light samples that reached the light
+ *                          unoccluded (AIS soft-shadow guidance)
+ *   TS_IGI_SURF_POSITION   3 floats: the surface position (world space; for the filter's
+ *                          plane-distance test)
+ *   TS_IGI_SURF_GEO_NORMAL 3 floats: geometric normal (toward the viewer)
+ *   TS_IGI_SURF_ORIGIN     3 floats: ray origin for rays that leave the surface
+ *   TS_IGI_SURF_POS_SCALE  the origin's offset scale (TsSurface.pos_scale)
+ *   TS_IGI_SURF_PRIM       triangle index (uint bits; TS_NO_HIT on a miss)
+ * The last four are what the instant cache's G-buffer needs besides the first ones
+ * (TS_IC_GBUF_*): ic and tic take it from this pass instead of tracing the camera rays
+ * a second time (host/gi/instant_cache.cpp, ic_gbuffer_from_surface). */
+#define TS_IGI_SURF_FLOATS 31
+#define TS_IGI_SURF_E_SS 0
+#define TS_IGI_SURF_E_ID 3
+#define TS_IGI_SURF_ALBEDO 6
+#define TS_IGI_SURF_EMISSION 9
+#define TS_IGI_SURF_NORMAL 12
+#define TS_IGI_SURF_DISTANCE 15
+#define TS_IGI_SURF_THROUGHPUT 16
+#define TS_IGI_SURF_VISIBLE 19
+#define TS_IGI_SURF_POSITION 20
+#define TS_IGI_SURF_GEO_NORMAL 23
+#define TS_IGI_SURF_ORIGIN 26
+#define TS_IGI_SURF_POS_SCALE 29
+#define TS_IGI_SURF_PRIM 30
+/* Per-pixel output of the igi media kernel, TS_IGI_MEDIA_FLOATS floats:
+ *   TS_IGI_MEDIA_RADIANCE      3 floats: single-scattered radiance along the camera segment
+ *   TS_IGI_MEDIA_TRANSMITTANCE 3 floats: transmittance of that segment
+ *   TS_IGI_MEDIA_LIT           fraction of the march steps whose light sample was unoccluded
+ *   TS_IGI_MEDIA_LENGTH        length of the segment inside the medium (AIS
+ *                              participating-media guidance) */
+#define TS_IGI_MEDIA_FLOATS 8
+#define TS_IGI_MEDIA_RADIANCE 0
+#define TS_IGI_MEDIA_TRANSMITTANCE 3
+#define TS_IGI_MEDIA_LIT 6
+#define TS_IGI_MEDIA_LENGTH 7
+/* Per-item output of the ais extra kernel (one pixel, one extra sample set),
+ * TS_AIS_ITEM_FLOATS floats, for that set: TS_AIS_ITEM_E_SS 3 floats E_ss, TS_AIS_ITEM_E_ID
+ * 3 floats E_id, TS_AIS_ITEM_PM 3 floats single-scattered radiance. Component c (the bit
+ * index of TS_COMPONENT_*) starts at TS_AIS_ITEM_COMPONENT(c). */
+#define TS_AIS_ITEM_FLOATS 9
+#define TS_AIS_ITEM_E_SS 0
+#define TS_AIS_ITEM_E_ID 3
+#define TS_AIS_ITEM_PM 6
+#define TS_AIS_ITEM_COMPONENT(c) (3 * (c))
+/* An item of the ais extra kernel's list, TS_AIS_ITEM_WORDS uints: TS_AIS_ITEM_PIXEL the
+ * pixel (row-major index), TS_AIS_ITEM_CODE the sample set (low 8 bits) | TS_COMPONENT_*
+ * bits << 8. */
+#define TS_AIS_ITEM_WORDS 2
+#define TS_AIS_ITEM_PIXEL 0
+#define TS_AIS_ITEM_CODE 1
+/* Components (TsFrame.igi_components). */
+#define TS_COMPONENT_SS 1u
+#define TS_COMPONENT_ID 2u
+#define TS_COMPONENT_PM 4u
+/* Edge samples (AIS only; shared/edge_samples.h, host/gi/ais_edges.h): extra camera
+ * samples in pixels on geometric edges. Host-side only: kernels never see this bit
+ * (IgiFrame::prepare masks it out of TsFrame.igi_components). */
+#define TS_COMPONENT_EDGE 8u
+/* An edge sample's output, TS_EDGE_SAMPLE_FLOATS floats: the first diffuse surface of the
+ * sample's camera path, as the surface pass stores it (TS_IGI_SURF_*):
+ *   TS_EDGE_SAMPLE_ALBEDO     3 floats: albedo
+ *   TS_EDGE_SAMPLE_EMISSION   3 floats: emitted radiance (W/(sr·m²))
+ *   TS_EDGE_SAMPLE_THROUGHPUT 3 floats: the specular bounces' throughput
+ *   TS_EDGE_SAMPLE_NORMAL     3 floats: shading normal
+ *   TS_EDGE_SAMPLE_POSITION   3 floats: hit position (scene units)
+ *   TS_EDGE_SAMPLE_DISTANCE   distance along the camera path (scene units; +inf: escaped) */
+#define TS_EDGE_SAMPLE_FLOATS 16
+#define TS_EDGE_SAMPLE_ALBEDO 0
+#define TS_EDGE_SAMPLE_EMISSION 3
+#define TS_EDGE_SAMPLE_THROUGHPUT 6
+#define TS_EDGE_SAMPLE_NORMAL 9
+#define TS_EDGE_SAMPLE_POSITION 12
+#define TS_EDGE_SAMPLE_DISTANCE 15
+/* An item of the edge-sample kernel's list, TS_EDGE_ITEM_WORDS uints: the pixel
+ * (row-major index), the sample's index j >= 1 within the pixel and the pixel's number n
+ * of edge samples (its texture footprint shrinks to 1/(n + 1) of the pixel). */
+#define TS_EDGE_ITEM_WORDS 3
+#define TS_EDGE_ITEM_PIXEL 0
+#define TS_EDGE_ITEM_SAMPLE 1
+#define TS_EDGE_ITEM_COUNT 2
+
+#ifdef __cplusplus
+/* Compile-time checks of the layouts above (shared/layout_check.h). */
+#include "shared/layout_check.h"
+
+static_assert(tessera::layout_check::tiles({{TS_VPL_POSITION, 3}, {TS_VPL_NORMAL, 3}, {TS_VPL_FLUX, 3},
+                                            {TS_VPL_SET, 1}, {TS_VPL_PATH, 1}, {TS_VPL_POS_SCALE, 1}},
+                                           TS_VPL_FLOATS),
+              "layout_igi.h: VPL fields do not tile TS_VPL_FLOATS");
+static_assert(tessera::layout_check::tiles({{TS_IGI_SURF_E_SS, 3}, {TS_IGI_SURF_E_ID, 3}, {TS_IGI_SURF_ALBEDO, 3},
+                                            {TS_IGI_SURF_EMISSION, 3}, {TS_IGI_SURF_NORMAL, 3},
+                                            {TS_IGI_SURF_DISTANCE, 1}, {TS_IGI_SURF_THROUGHPUT, 3},
+                                            {TS_IGI_SURF_VISIBLE, 1}, {TS_IGI_SURF_POSITION, 3},
+                                            {TS_IGI_SURF_GEO_NORMAL, 3}, {TS_IGI_SURF_ORIGIN, 3},
+                                            {TS_IGI_SURF_POS_SCALE, 1}, {TS_IGI_SURF_PRIM, 1}},
+                                           TS_IGI_SURF_FLOATS),
+              "layout_igi.h: igi surface-pass fields do not tile TS_IGI_SURF_FLOATS");
+static_assert(tessera::layout_check::tiles({{TS_IGI_MEDIA_RADIANCE, 3}, {TS_IGI_MEDIA_TRANSMITTANCE, 3},
+                                            {TS_IGI_MEDIA_LIT, 1}, {TS_IGI_MEDIA_LENGTH, 1}},
+                                           TS_IGI_MEDIA_FLOATS),
+              "layout_igi.h: igi media-pass fields do not tile TS_IGI_MEDIA_FLOATS");
+static_assert(tessera::layout_check::tiles({{TS_AIS_ITEM_E_SS, 3}, {TS_AIS_ITEM_E_ID, 3}, {TS_AIS_ITEM_PM, 3}},
+                                           TS_AIS_ITEM_FLOATS),
+              "layout_igi.h: AIS item fields do not tile TS_AIS_ITEM_FLOATS");
+/* The AIS item is indexed by component bit index; these must be TS_COMPONENT_*'s bits. */
+static_assert(TS_AIS_ITEM_COMPONENT(0) == TS_AIS_ITEM_E_SS && TS_AIS_ITEM_COMPONENT(1) == TS_AIS_ITEM_E_ID &&
+                  TS_AIS_ITEM_COMPONENT(2) == TS_AIS_ITEM_PM && TS_COMPONENT_SS == 1u << 0 &&
+                  TS_COMPONENT_ID == 1u << 1 && TS_COMPONENT_PM == 1u << 2,
+              "layout_igi.h: TS_AIS_ITEM_COMPONENT(c) must start component c = the bit index of TS_COMPONENT_*");
+static_assert(tessera::layout_check::tiles({{TS_EDGE_SAMPLE_ALBEDO, 3}, {TS_EDGE_SAMPLE_EMISSION, 3},
+                                            {TS_EDGE_SAMPLE_THROUGHPUT, 3}, {TS_EDGE_SAMPLE_NORMAL, 3},
+                                            {TS_EDGE_SAMPLE_POSITION, 3}, {TS_EDGE_SAMPLE_DISTANCE, 1}},
+                                           TS_EDGE_SAMPLE_FLOATS),
+              "layout_igi.h: edge-sample fields do not tile TS_EDGE_SAMPLE_FLOATS");
+#endif /* __cplusplus */
+
+#endif /* TS_LAYOUT_IGI_H */
