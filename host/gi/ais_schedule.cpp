@@ -112,20 +112,25 @@ Value ss_guidance(const AisBaseBuffers& b, const WindowWalk& walk, const WindowB
     return {edge ? 1.0f : range, range};
 }
 
-Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const AisThresholds& t,
-                  const WindowWalk& walk, const WindowBits& wb, int min_acc, int x, int y) {
-    const size_t p = size_t(y) * b.geometry.width + x;
+// The coefficient of variation of v over p's accepted window positions, over `cov`,
+// clamped to 1 (0 where the mean is 0): g_var of ID and PM.
+float window_cov(const std::vector<float>& v, const WindowWalk& walk, const WindowBits& wb, size_t p, float cov) {
     double sum = 0.0, sum2 = 0.0;
     int count = 0;
     walk.for_positions(wb.accepted, p, [&](size_t q) {
-        sum += b.indirect[q];
-        sum2 += double(b.indirect[q]) * b.indirect[q];
+        sum += v[q];
+        sum2 += double(v[q]) * v[q];
         ++count;
     });
     const double mean = sum / count;
-    const float var = mean > 0.0
-        ? static_cast<float>(std::min(1.0, std::sqrt(std::max(0.0, sum2 / count - mean * mean)) / mean / t.id_cov))
-        : 0.0f;
+    return mean > 0.0 ? static_cast<float>(std::min(1.0, std::sqrt(std::max(0.0, sum2 / count - mean * mean)) / mean / cov))
+                      : 0.0f;
+}
+
+Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const AisThresholds& t,
+                  const WindowWalk& walk, const WindowBits& wb, int min_acc, int x, int y) {
+    const size_t p = size_t(y) * b.geometry.width + x;
+    const float var = window_cov(b.indirect, walk, wb, p, t.id_cov);
     const bool edge = unfilterable(wb, min_acc) || on_geometric_edge(b.geometry, s, wb, x, y);
     return {edge ? 1.0f : var, var};
 }
@@ -133,8 +138,8 @@ Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const
 // g_len looks only at the neighbours the filter rejects: a smooth change of the medium
 // length (a slanted wall) is no failure, as the box filter's mean of a linear ramp is its
 // centre value (docs/ais.md §3).
-Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const WindowWalk& walk,
-                  const WindowBits& wb, size_t p) {
+Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const AisThresholds& t,
+                  const WindowWalk& walk, const WindowBits& wb, size_t p) {
     const float lp = b.medium_length[p];
     float lo = INFINITY, hi = -INFINITY;
     walk.for_positions(wb.in_image, p, [&](size_t q) {
@@ -145,7 +150,8 @@ Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const
     walk.for_positions(wb.in_image & ~wb.accepted, p, [&](size_t q) {
         length_edge |= std::abs(b.medium_length[q] - lp) > s.depth_rel * lp;
     });
-    return {length_edge ? 1.0f : hi - lo, hi - lo};
+    const float grade = std::max(hi - lo, t.pm_cov > 0.0f && !b.media.empty() ? window_cov(b.media, walk, wb, p, t.pm_cov) : 0.0f);
+    return {length_edge ? 1.0f : grade, grade};
 }
 
 // For each own set (the pixel's position in its tile), the other sets ordered by the
@@ -235,7 +241,7 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
                     if (c != kAisPM && !std::isfinite(base.geometry.depth[p])) continue;  // nothing to shade
                     const Value v = c == kAisSS   ? ss_guidance(base, walk, wb, min_acc, p)
                                     : c == kAisID ? id_guidance(base, filter, t, walk, wb, min_acc, x, y)
-                                                  : pm_guidance(base, filter, walk, wb, p);
+                                                  : pm_guidance(base, filter, t, walk, wb, p);
                     out.g[c][p] = v.g;
                     out.grade[c][p] = v.grade;
                 }

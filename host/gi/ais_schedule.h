@@ -41,6 +41,10 @@ struct AisThresholds {
     /// steps (0.125 at 8) and neighbours march with different offsets, so a range of one
     /// or two steps is sampling noise.
     float pm_trigger = 0.3f;
+    /// PM: the coefficient of variation of the set estimates of L_pm over A(p) that
+    /// saturates g_var (where the interleaved media samples disagree: shafts, medium VPL
+    /// spikes, march noise); 0 turns g_var off (the seed's g_len and g_shaft alone).
+    float pm_cov = 0.0f;
     int min_accepted = 0;     ///< |A(p)| below this counts as an unfilterable edge; 0: ⌈N/2⌉
     /// A: a flagged pixel evaluates the sets its filter window misses until it holds this
     /// many distinct sets (own, accepted neighbours' and its own extra ones); 0: the edge
@@ -57,6 +61,7 @@ struct AisBaseBuffers {
     std::vector<float> indirect;      ///< ID: luminance of the pixel's set estimate of E_id
     std::vector<float> lit_fraction;  ///< PM: lit fraction of the march steps (empty: no medium)
     std::vector<float> medium_length; ///< PM: camera-segment length inside the medium
+    std::vector<float> media;         ///< PM: luminance of the pixel's set estimate of L_pm (W/(sr·m²))
 };
 
 /// Guidance per pixel and component (an empty map for a component not computed), all
@@ -86,11 +91,13 @@ struct AisGuidance {
 ///   ID: g = max(g_geo, g_var): g_geo = 1 where the filter cannot clean p or a 3×3 neighbour
 ///       lies across a depth or normal edge; g_var = CoV of E_id over A(p) / id_cov,
 ///       clamped to 1 (large in indirect shadows, corners, near VPL spikes);
-///   PM: g = max(g_len, g_shaft): g_len = 1 where a window pixel the filter rejects has a
-///       medium path length differing by more than the filter's relative depth threshold
-///       (a discontinuity; smooth change along a slanted surface is not flagged); g_shaft =
-///       range of the lit fraction over the window (volumetric shadow boundaries).
-/// grade is the signal part (visibility range, g_var, g_shaft); `missing` comes from the
+///   PM: g = max(g_len, g_shaft, g_var): g_len = 1 where a window pixel the filter rejects
+///       has a medium path length differing by more than the filter's relative depth
+///       threshold (a discontinuity; smooth change along a slanted surface is not flagged);
+///       g_shaft = range of the lit fraction over the window (volumetric shadow
+///       boundaries); g_var = CoV of L_pm over A(p) / pm_cov, clamped to 1 (0 when pm_cov
+///       is 0 or base.media is empty).
+/// grade is the signal part (visibility range, g_var, max(g_shaft, g_var)); `missing` comes from the
 /// filter's accept test alone. Rows are computed in parallel; each pixel's values depend
 /// on the inputs only, so the result is deterministic.
 AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySettings& filter,

@@ -67,6 +67,8 @@ const Parameter kParameters[] = {
      .min_exclusive = true, .doc = "ais: coefficient of variation of indirect light that saturates ID guidance"},
     {.option = "--ais-pm-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.pm_trigger), .min = 0, .max = 1,
      .doc = "ais: PM guidance trigger"},
+    {.option = "--ais-pm-cov", .value_name = "C", .field = TS_SETTING(igi.ais.pm_cov), .min = 0, .max = kNoMax,
+     .doc = "ais: coefficient of variation of in-scattered light that saturates PM guidance (0: off)"},
     {.option = "--ais-complete", .value_name = "N", .field = TS_SETTING(igi.ais.complete_sets), .min = 0, .max = 64,
      .unit = "sets", .doc = "ais: distinct sets a flagged edge pixel completes its window to (0: ⌈N/2⌉, N: all)"},
     {.option = "--ais-edge-samples", .value_name = "N", .field = TS_SETTING(igi.edges.samples), .min = 1, .max = 15,

@@ -107,6 +107,33 @@ TEST(AisGuidance, MediumFlagsLengthDiscontinuitiesAndShaftsNotSlopes) {
     EXPECT_NEAR(s.flagged[kAisPM], 2.0 / W, 1e-12);
 }
 
+TEST(AisGuidance, MediumVarianceFlagsWhereTheSetsDisagreeOnlyWhenAsked) {
+    // Lit everywhere, a smooth length: only the media estimates speak. Columns 0..5 hold
+    // one value in every set (CoV 0); from column 6 the sets alternate 0.1 and 0.3 along
+    // rows and columns (every 3×3 window there: mean 0.2 ± 0.1, a CoV near 0.5).
+    const std::array<bool, kAisComponents> all{true, true, true};
+    AisBaseBuffers b = flat_wall();
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            b.medium_length.push_back(1.0f);
+            b.lit_fraction.push_back(1.0f);
+            b.media.push_back(x < 6 ? 0.2f : ((x + y) % 2 ? 0.3f : 0.1f));
+        }
+    AisGuidance off = compute_guidance(b, kFilter, AisThresholds{}, all);
+    for (float v : off.g[kAisPM]) ASSERT_EQ(v, 0.0f) << "pm_cov 0: the seed's g_len and g_shaft alone";
+    AisThresholds t;
+    t.pm_cov = 0.5f;
+    const AisGuidance on = compute_guidance(b, kFilter, t, all);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const float g = on.g[kAisPM][y * W + x];
+            if (x < 5) ASSERT_EQ(g, 0.0f) << x << "," << y;       // every window uniform
+            if (x >= 7) ASSERT_GT(g, t.pm_trigger) << x << "," << y;  // every window mixed
+            ASSERT_EQ(on.grade[kAisPM][y * W + x], g) << "no length edge: g is the grade";
+            ASSERT_LE(g, 1.0f);
+        }
+}
+
 TEST(AisSchedule, AGradesFarthestSetsFirstAndAMaxSaturates) {
     AisGuidance g;
     g.g[kAisID].assign(W * H, 0.0f);
