@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "kernels/shared/layout_igi.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -69,6 +70,18 @@ void Backend::set_input(KernelInput in, const std::vector<float>& data) {
 void Backend::set_input(KernelInput in, const std::vector<uint32_t>& data) {
     if (!input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds floats");
     store_input(in, data);
+}
+
+void Backend::store_placeholder_inputs() {
+    for (int i = 0; i < kKernelInputCount; ++i) {
+        const KernelInput in = static_cast<KernelInput>(i);
+        if (input_info(in).is_uint)
+            store_input(in, std::vector<uint32_t>(1, 0u));
+        else
+            store_input(in, std::vector<float>(1, 0.0f));
+    }
+    store_input(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
+    store_input(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
 }
 
 void give_scene(std::unique_ptr<Backend>& backend, const BackendOptions& options, const SceneBuffers& scene,

@@ -148,6 +148,13 @@ protected:
     virtual void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) = 0;
     virtual void store_input(KernelInput in, const std::vector<float>& data) = 0;
     virtual void store_input(KernelInput in, const std::vector<uint32_t>& data) = 0;
+    /// Gives every input of TS_KERNEL_INPUTS a placeholder before any is set, alike on
+    /// every backend: one zero element of its type (OpenCL has no empty buffers), and for
+    /// the VPLs a valid empty VPL set table (one zero VPL, set starts {0, 0}). A kernel is
+    /// then always bound to a real buffer (element 0 reads 0), never a null pointer or a
+    /// NULL buffer; reading past element 0 of an input nobody set is the caller's error.
+    /// Derived constructors call it once their storage exists.
+    void store_placeholder_inputs();
 
     uint64_t sorted_batches_ = 0;  ///< counted by backends that sort batches (sorted_batch_count)
 

@@ -89,8 +89,7 @@ public:
     EmbreeBackend(const SceneBuffers& scene, bool packets)
         : buffers_(&scene), scene_(build_embree_scene(scene)), packets_(packets) {
         tracer_.scene = scene_;
-        store_input(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
-        store_input(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
+        store_placeholder_inputs();
     }
     ~EmbreeBackend() override { rtcReleaseScene(scene_); }
 

@@ -75,12 +75,7 @@ public:
             ctx_ = cl::Context(dev_.device);
             queue_ = cl::CommandQueue(ctx_, dev_.device);
             upload_scene(scene);
-            store(KernelInput::Vpls, std::vector<float>(TS_VPL_FLOATS, 0.0f));
-            store(KernelInput::VplSetStart, std::vector<uint32_t>(2, 0u));
-            for (KernelInput in : {KernelInput::IcGbuffer, KernelInput::IcNodes, KernelInput::IcRecords,
-                                   KernelInput::IcRecordSurfaces, KernelInput::IgiSurface, KernelInput::IgiMedia})
-                store(in, std::vector<float>());
-            for (KernelInput in : {KernelInput::IcRefs, KernelInput::IcVisibility}) store(in, std::vector<uint32_t>());
+            store_placeholder_inputs();
             no_items_ = upload("item list", std::vector<uint32_t>(1, 0u));
         } catch (const cl::Error& e) {
             throw RuntimeError("OpenCL setup on " + dev_.name + " failed: " + describe_cl_error(e) +

@@ -283,7 +283,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("scene", args->scene, "Scene file (.json)");
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
-    cmd->add_option("--method", args->method, "Rendering method: direct, pt, igi, ais, ais-max, ic or tic")
+    cmd->add_option("--method", args->method, "Rendering method: " + method_names())
         ->capture_default_str();
     cmd->add_option("--components", args->components, "igi/ais: components to compute, e.g. ss,id,pm (ais: also edge)")
         ->capture_default_str();

@@ -283,7 +283,7 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("scene", args->scene, "Scene file (.json)");
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
-    cmd->add_option("--method", args->method, "Starting method: direct, pt, igi, ais, ais-max, ic or tic (M/N switch)")
+    cmd->add_option("--method", args->method, "Starting method: " + method_names() + " (M/N switch)")
         ->capture_default_str();
     cmd->add_option("--components", args->components, "igi/ais: starting components (1/2/3/4 toggle)")
         ->capture_default_str();

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "integrators/method.h"
 #include "support/shell.h"
 
 namespace tessera::cli {
@@ -157,6 +158,11 @@ TEST(ParameterOptions, ReadmeUsageNamesExactlyTheRenderOptions) {
     for (const Parameter& p : render_parameters()) EXPECT_TRUE(help.count(p.option)) << p.option;
     for (const std::string& o : help) EXPECT_TRUE(usage.count(o)) << "README's usage lacks " << o;
     for (const std::string& o : usage) EXPECT_TRUE(help.count(o)) << "README's usage names " << o << ", not an option";
+    // --method's choices are the method table's rows, in its order, in the help and the usage.
+    std::string choices;
+    for (const MethodInfo& row : method_table()) choices += std::string(choices.empty() ? "" : "|") + row.name;
+    EXPECT_NE(readme.find("[--method " + choices + "]", b), std::string::npos) << "README's usage: [--method " << choices << "]";
+    EXPECT_NE(r.output.find("Rendering method: " + method_names()), std::string::npos) << r.output;
 }
 
 }  // namespace
