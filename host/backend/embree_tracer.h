@@ -76,17 +76,34 @@ inline RTCIntersectContext ts_packet_context(bool coherent) {
     return ctx;
 }
 
-/// Copies ray `ray` into lane i of an Embree packet of 16.
+/// The 16-ray packet of kernels/shared/igi_gather16.h (which documents the calls below):
+/// Embree's own layout, so the gather's vector loops write the rays straight into it.
+using TsRayLanes = RTCRay16;
+
+inline void ts_ray_lanes_init(TsRayLanes* r) {
+    for (int i = 0; i < 16; ++i) {
+        r->time[i] = 0.0f;
+        r->mask[i] = 0xffffffffu;
+        r->id[i] = static_cast<unsigned>(i);
+        r->flags[i] = 0;
+    }
+}
+
+inline void ts_ray_lanes_put(TsRayLanes* __restrict r, int i, const TsRay& ray) {
+    r->org_x[i] = ray.org.x;
+    r->org_y[i] = ray.org.y;
+    r->org_z[i] = ray.org.z;
+    r->dir_x[i] = ray.dir.x;
+    r->dir_y[i] = ray.dir.y;
+    r->dir_z[i] = ray.dir.z;
+    r->tnear[i] = ray.tmin;
+    r->tfar[i] = ray.tmax;
+}
+
+/// Copies ray `ray` into lane i of an Embree packet of 16, with the lane's other fields.
 inline void ts_packet_set(RTCRay16& r, int i, const TsRay& ray) {
-    r.org_x[i] = ray.org.x;
-    r.org_y[i] = ray.org.y;
-    r.org_z[i] = ray.org.z;
-    r.tnear[i] = ray.tmin;
-    r.dir_x[i] = ray.dir.x;
-    r.dir_y[i] = ray.dir.y;
-    r.dir_z[i] = ray.dir.z;
+    ts_ray_lanes_put(&r, i, ray);
     r.time[i] = 0.0f;
-    r.tfar[i] = ray.tmax;
     r.mask[i] = 0xffffffffu;
     r.id[i] = static_cast<unsigned>(i);
     r.flags[i] = 0;
@@ -156,30 +173,6 @@ inline void ts_trace_closest_lanes(const TsTracer* tr, const TsRay* rays, uint32
     int v[16];
     for (int i = 0; i < 16; ++i) v[i] = valid >> i & 1u ? -1 : 0;
     ts_trace_closest16(tr, rays, v, tr->coherent, hits);
-}
-
-/// The 16-ray packet of kernels/shared/igi_gather16.h (which documents the calls below):
-/// Embree's own layout, so the gather's vector loops write the rays straight into it.
-using TsRayLanes = RTCRay16;
-
-inline void ts_ray_lanes_init(TsRayLanes* r) {
-    for (int i = 0; i < 16; ++i) {
-        r->time[i] = 0.0f;
-        r->mask[i] = 0xffffffffu;
-        r->id[i] = static_cast<unsigned>(i);
-        r->flags[i] = 0;
-    }
-}
-
-inline void ts_ray_lanes_put(TsRayLanes* __restrict r, int i, const TsRay& ray) {
-    r->org_x[i] = ray.org.x;
-    r->org_y[i] = ray.org.y;
-    r->org_z[i] = ray.org.z;
-    r->dir_x[i] = ray.dir.x;
-    r->dir_y[i] = ray.dir.y;
-    r->dir_z[i] = ray.dir.z;
-    r->tnear[i] = ray.tmin;
-    r->tfar[i] = ray.tmax;
 }
 
 /// Lane i's ray; Embree changes only an occluded lane's tfar.

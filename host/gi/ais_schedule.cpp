@@ -150,7 +150,8 @@ Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const
     walk.for_positions(wb.in_image & ~wb.accepted, p, [&](size_t q) {
         length_edge |= std::abs(b.medium_length[q] - lp) > s.depth_rel * lp;
     });
-    const float grade = std::max(hi - lo, t.pm_cov > 0.0f && !b.media.empty() ? window_cov(b.media, walk, wb, p, t.pm_cov) : 0.0f);
+    const bool var = t.pm_cov > 0.0f && !b.media.empty();
+    const float grade = std::max(hi - lo, var ? window_cov(b.media, walk, wb, p, t.pm_cov) : 0.0f);
     return {length_edge ? 1.0f : grade, grade};
 }
 

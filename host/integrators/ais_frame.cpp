@@ -48,7 +48,7 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
     if (!media.empty()) {
         base.lit_fraction.resize(pixels);
         base.medium_length.resize(pixels);
-        base.media.resize(pixels);
+        if (settings_.ais.pm_cov > 0.0f) base.media.resize(pixels);  // read only by g_var
     }
     parallel_pixels(pixels, [&](size_t p) {
         const float* v = &surf[p * TS_IGI_SURF_FLOATS];
@@ -57,7 +57,8 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
         if (media.empty()) return;
         base.lit_fraction[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LIT];
         base.medium_length[p] = media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_LENGTH];
-        base.media[p] = ts::ts_luminance(ts::ts_f3_load(&media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_RADIANCE]));
+        if (!base.media.empty())
+            base.media[p] = ts::ts_luminance(ts::ts_f3_load(&media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_RADIANCE]));
     });
     // The G-buffer is lent to the guidance, not copied (9 MB at 512², 3 ms), and taken back.
     base.geometry = std::move(geometry_);
