@@ -35,33 +35,10 @@
 #include <filesystem>
 #include <string>
 
-#include "backend/backend.h"
 #include "render/accumulator.h"
-#include "render/settings.h"
-#include "scene/scene.h"
+#include "render/run_identity.h"
 
 namespace tessera {
-
-/// Everything that determines the image of a render, apart from the pass count.
-struct RunIdentity {
-    std::string scene_path;
-    uint64_t scene_file_hash = 0;
-    uint64_t scene_data_hash = 0;
-    std::string method;
-    uint32_t seed = 0;
-    uint32_t shadow_samples = 0;
-    uint32_t max_depth = 0;
-    uint32_t max_scatter = 0;
-    int32_t width = 0, height = 0;
-    std::string backend;
-
-    bool operator==(const RunIdentity&) const = default;
-};
-
-/// The identity of rendering `scene` (its `source` file is read and hashed; throws
-/// InputError naming it if it cannot be read) with `settings` at width × height.
-RunIdentity make_run_identity(const Scene& scene, const RenderSettings& settings, int width, int height,
-                              BackendKind backend);
 
 /// 64-bit FNV-1a of `size` bytes, continuing from `h` (the offset basis by default).
 uint64_t fnv1a64(const void* data, std::size_t size, uint64_t h = 0xcbf29ce484222325ull);
