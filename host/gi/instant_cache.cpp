@@ -79,17 +79,27 @@ uint32_t InstantCache::object_of(uint32_t triangle) const {
 
 LightPathSettings InstantCache::path_settings() const {
     LightPathSettings ls;
-    ls.inv_paths = 1.0f / static_cast<float>(settings_.paths);
+    ls.inv_paths = 1.0f / static_cast<float>(uint64_t(settings_.paths) * oversampling_);
     ls.medium_scattering = settings_.multiple_scattering;
     ls.seed = seed_;
     return ls;
 }
 
-void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block) {
-    paths_.assign(settings_.paths, LightPath{});
-    for (uint32_t j = 0; j < settings_.paths; ++j) paths_[j].index = uint64_t(block) * settings_.paths + j;
+// Path block `block` of K·paths candidates (K = 1: the paths themselves), kept for the
+// view when K > 1 (select_paths).
+void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block,
+                               const IcPathSelection& selection) {
+    oversampling_ = selection.view ? std::max(1u, selection.oversampling) : 1u;
+    const uint64_t n = uint64_t(settings_.paths) * oversampling_;
+    paths_.assign(n, LightPath{});
+    for (uint64_t j = 0; j < n; ++j) paths_[j].index = uint64_t(block) * n + j;
     stats_.light_path_rays += trace_light_paths(backend, scene, path_settings(), paths_);
     stats_.paths_retraced = paths_.size();
+    if (oversampling_ > 1) {
+        concat_vpls();
+        const std::vector<float> importance = vpl_view_importance(*selection.view, vpls_, selection.importance_clamp);
+        paths_ = select_paths(paths_, importance, oversampling_, light_path_seed_mix(seed_));
+    }
     concat_vpls();
 }
 
@@ -263,15 +273,15 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
 }
 
 void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame,
-                            const std::vector<float>& surf, float g_clamp, std::vector<float>& gbuffer,
-                            std::vector<float>& e_id) {
+                            const std::vector<float>& surf, float g_clamp, const IcPathSelection& selection,
+                            std::vector<float>& gbuffer, std::vector<float>& e_id) {
     stats_ = IcFrameStats{};
     auto t0 = Clock::now();
     if (!settings_.temporal || !have_previous_) {
         cache_ = IrradianceCache(settings_.error_bound);
         rows_.clear();
         pass_ = frame.pass, seed_ = frame.seed;
-        start_paths(backend, scene, frame.pass);
+        start_paths(backend, scene, frame.pass, selection);
     } else {
         if (frame.pass != pass_ || frame.seed != seed_)
             throw std::logic_error("tic: a temporal cache serves one pass and seed (pass " + std::to_string(pass_) +
@@ -341,7 +351,8 @@ void InstantCache::mark_in_view(const TsFrame& f) {
 std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const SceneBuffers& scene,
                                                    float g_clamp) const {
     std::vector<LightPath> paths(paths_.size());
-    for (size_t j = 0; j < paths.size(); ++j) paths[j].index = paths_[j].index;
+    for (size_t j = 0; j < paths.size(); ++j)
+        paths[j].index = paths_[j].index, paths[j].set = paths_[j].set, paths[j].weight = paths_[j].weight;
     trace_light_paths(backend, scene, path_settings(), paths);
     std::vector<float> vpls;
     for (const LightPath& p : paths) vpls.insert(vpls.end(), p.vpls.begin(), p.vpls.end());

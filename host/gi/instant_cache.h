@@ -30,6 +30,7 @@
 #include "backend/backend.h"
 #include "gi/irradiance_cache.h"
 #include "gi/light_paths.h"
+#include "gi/vpl_importance.h"
 #include "device/scene_buffers.h"
 #include "scene/scene.h"
 
@@ -47,6 +48,16 @@ struct IcSettings {
     /// grows the cache, and the per-frame update with it, without bound.
     uint32_t evict_after_frames = 30;
     bool multiple_scattering = true;   ///< light paths scatter in the medium (IgiSettings)
+};
+
+/// How the cache draws fresh light paths (docs/instant-caching.md §3): as they come, or
+/// kept for the view as igi keeps its VPLs (IgiSettings::vpl_importance).
+struct IcPathSelection {
+    /// K > 1 (with `view`): K·paths candidate paths, of which select_paths keeps paths'
+    /// worth on average; 1: the paths as drawn.
+    uint32_t oversampling = 1;
+    const ViewPoints* view = nullptr;  ///< the frame's view points (trace_view_points)
+    float importance_clamp = 0.0f;     ///< vpl_view_importance's g_clamp, scene units^-2
 };
 
 /// Counts and times of the last indirect() call (one pass), or summed over a frame's
@@ -94,15 +105,24 @@ public:
     /// (one cache per pass: IcPassCaches), or std::logic_error is thrown.
     /// `surf` is the igi surface pass's output for `frame` (TS_IGI_SURF_FLOATS per pixel,
     /// row-major): the surfaces records are made at and looked up for. `g_clamp` is the
-    /// igi geometry-term bound b. `gbuffer` is scratch (its contents are overwritten).
+    /// igi geometry-term bound b. `selection` says how fresh light paths are drawn (read
+    /// only when draws_paths()); a temporal cache keeps the kept paths and their weights.
+    /// `gbuffer` is scratch (its contents are overwritten).
     void indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, const std::vector<float>& surf,
-                  float g_clamp, std::vector<float>& gbuffer, std::vector<float>& e_id);
+                  float g_clamp, const IcPathSelection& selection, std::vector<float>& gbuffer,
+                  std::vector<float>& e_id);
+
+    /// Whether the next indirect() draws fresh light paths (every call but a temporal
+    /// cache's updates): only then is its IcPathSelection read.
+    bool draws_paths() const { return !settings_.temporal || !have_previous_; }
 
     /// The current records (same surfaces) with E and R recomputed from scratch on
     /// `scene`: fresh light paths (same indices), every shadow ray traced. The temporal
     /// update must equal this.
     std::vector<IcRecord> rebuilt_records(Backend& backend, const SceneBuffers& scene, float g_clamp) const;
 
+    /// The light paths the VPLs come from (the kept ones, with their weights).
+    const std::vector<LightPath>& paths() const { return paths_; }
     /// The VPLs the records gather from (TS_VPL_FLOATS each, in path order).
     const std::vector<float>& vpls() const { return vpls_; }
     const IrradianceCache& cache() const { return cache_; }
@@ -120,7 +140,7 @@ private:
     using Row = std::vector<int32_t>;
     struct Change;  // what differs from the previous frame (temporal_update.cpp)
 
-    void start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block);
+    void start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block, const IcPathSelection& selection);
     LightPathSettings path_settings() const;
     /// Probes records[which[k]] (their pixel_size set) into their `probe` field; returns rays.
     uint64_t probe(Backend& backend, std::vector<IcRecord>& records, const std::vector<uint32_t>& which) const;
@@ -153,6 +173,7 @@ private:
     std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL
     IcFrameStats stats_;
     uint32_t pass_ = 0, seed_ = 1;  // the path block and seed of the current light paths
+    uint32_t oversampling_ = 1;     // K of the current light paths: each candidate weighs 1/(K·paths)
     // The previous frame, for the temporal update.
     bool have_previous_ = false;
     uint32_t frame_count_ = 0;  // indirect() calls so far

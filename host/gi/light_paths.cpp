@@ -35,7 +35,7 @@ void store_vpl(LightPath& path, float3 position, float3 normal, float3 flux, flo
     float v[TS_VPL_FLOATS];
     ts::ts_f3_store(v + TS_VPL_POSITION, position);
     ts::ts_f3_store(v + TS_VPL_NORMAL, normal);
-    ts::ts_f3_store(v + TS_VPL_FLUX, flux);
+    ts::ts_f3_store(v + TS_VPL_FLUX, flux * path.weight);
     v[TS_VPL_SET] = static_cast<float>(path.set);
     std::memcpy(&v[TS_VPL_PATH], &index, 4);
     v[TS_VPL_POS_SCALE] = pos_scale;

@@ -27,6 +27,9 @@ struct LightPath {
     uint64_t index = 0;   ///< Halton point
     uint32_t set = 0;     ///< interleave set its VPLs belong to
     uint32_t light = 0;
+    /// Multiplies the flux of every VPL the path leaves: 1/p of a path kept for the view
+    /// with probability p (select_paths, gi/vpl_importance.h), 1 otherwise.
+    float weight = 1.0f;
     std::vector<float> vpls;
     std::vector<PathSegment> segments;
 };

@@ -31,6 +31,8 @@ constexpr double kFloor = 1.0;
 constexpr double kSteps = 64.0;
 // Seed of the keep decisions ("vpli"), apart from every other stream.
 constexpr uint32_t kKeepSeed = 0x76706c69u;
+// Seed of the instant cache's path decisions ("icpk"), apart from the VPL decisions.
+constexpr uint32_t kPathKeepSeed = 0x6963706bu;
 
 uint32_t path_of(const float* v) {
     uint32_t p;
@@ -164,6 +166,31 @@ uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& i
         out.insert(out.end(), v, v + TS_VPL_FLOATS);
         for (int c = 0; c < 3; ++c) out[at + TS_VPL_FLUX + c] = static_cast<float>(v[TS_VPL_FLUX + c] / pi);
         ++kept;
+    }
+    return kept;
+}
+
+std::vector<LightPath> select_paths(std::vector<LightPath>& candidates, const std::vector<float>& importance,
+                                    uint32_t oversampling, uint32_t seed_mix) {
+    std::vector<float> path_importance(candidates.size(), 0.0f);
+    for (size_t j = 0, i = 0; j < candidates.size(); ++j) {
+        double sum = 0.0;
+        for (size_t n = candidates[j].vpls.size() / TS_VPL_FLOATS; n > 0; --n) sum += importance.at(i++);
+        path_importance[j] = static_cast<float>(sum);
+    }
+    const std::vector<double> p =
+        keep_probabilities(path_importance, std::vector<bool>(candidates.size(), false), oversampling);
+    std::vector<LightPath> kept;
+    for (size_t j = 0; j < candidates.size(); ++j) {
+        ts::TsRng rng = ts::ts_rng_seed(kPathKeepSeed ^ seed_mix, static_cast<uint32_t>(candidates[j].index), 0u);
+        if (!(ts::ts_rng_next(&rng) < p[j])) continue;
+        LightPath path = std::move(candidates[j]);
+        // In float, as trace_light_paths applies a weight: a re-traced path (same scene)
+        // leaves the same bits.
+        path.weight = static_cast<float>(1.0 / p[j]);
+        for (size_t v = 0; v < path.vpls.size(); v += TS_VPL_FLOATS)
+            for (int c = 0; c < 3; ++c) path.vpls[v + TS_VPL_FLUX + c] *= path.weight;
+        kept.push_back(std::move(path));
     }
     return kept;
 }

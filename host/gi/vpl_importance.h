@@ -9,6 +9,7 @@
 
 #include "backend/backend.h"
 #include "device/scene_buffers.h"
+#include "gi/light_paths.h"
 #include "kernels/shared/frame.h"
 #include "kernels/shared/layout_igi.h"
 
@@ -56,5 +57,18 @@ std::vector<double> keep_probabilities(const std::vector<float>& importance, con
 /// Appends the kept VPLs to `out` and returns their count.
 uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& importance, size_t begin, size_t end,
                      uint32_t oversampling, uint32_t seed_mix, std::vector<float>& out);
+
+/// Path by path, for the instant cache (docs/instant-caching.md §3): keeps candidate path
+/// j of `candidates` with p_j = keep_probabilities of its importance (the sum of its VPLs'
+/// Φ_i, `importance` one float per VPL of the candidates in path order; no path counts as
+/// medium, so a path that lights no view point keeps p ≥ 1/(2K) by the floor), K =
+/// `oversampling`, and returns the kept paths in candidate order with weight 1/p_j and
+/// their VPLs' flux divided by p_j. A whole path is kept or dropped, so that the temporal
+/// cache can re-trace a kept path with its weight when moving geometry invalidates it:
+/// the weight is fixed when the path is drawn, and the estimate stays unbiased because
+/// the decision is the counter-based generator keyed by the path index and `seed_mix`
+/// alone. On average the kept paths number candidates / K.
+std::vector<LightPath> select_paths(std::vector<LightPath>& candidates, const std::vector<float>& importance,
+                                    uint32_t oversampling, uint32_t seed_mix);
 
 }  // namespace tessera

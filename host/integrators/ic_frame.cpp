@@ -18,7 +18,15 @@ void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const
     const auto tc = Clock::now();
     if (plan_.indirect) {
         InstantCache& cache = caches_->pass(frame.pass);
-        cache.indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, caches_->gbuffer(), raw_[kAisID]);
+        // Fresh paths are kept for the view as igi keeps its VPLs (docs/instant-caching.md §3).
+        IcPathSelection selection;
+        ViewPoints view;
+        if (settings_.vpl_importance > 1 && cache.draws_paths()) {
+            view = trace_view_points(backend_, scene_, frame, settings_.view_grid);
+            selection = {settings_.vpl_importance, &view, importance_clamp_};
+        }
+        cache.indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, selection, caches_->gbuffer(),
+                       raw_[kAisID]);
         frame_stats_ += cache.stats();
         released_ += caches_->after_pass(frame.pass) ? 1 : 0;
         ++passes_;

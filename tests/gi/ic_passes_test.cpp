@@ -50,9 +50,12 @@ TEST_P(IcPassesOn, TicFrameZeroIsIcForEverySpp) {
 TEST_P(IcPassesOn, EachPassKeepsItsOwnLightPathsAcrossFrames) {
     // Two frames of the animated Cornell box with tic at 2 spp: after the update, pass p's
     // cache gathers from exactly the VPLs ic draws for pass p on that frame, and passes 0
-    // and 1 gather from different VPLs.
+    // and 1 gather from different VPLs. With the paths as drawn (K = 1): paths kept for
+    // the view are kept for the view of the frame the cache was built on
+    // (KeepsThePathsItKeptForTheFirstView).
     const Scene rest = test::shipped_scene("cornell-box-animated.json");
     RenderSettings tic = small(Method::Tic, 2);
+    tic.igi.vpl_importance = 1;
     tic.ic.temporal = true;
     tic.ic_state = std::make_shared<IcPassCaches>(tic.ic, rest.objects);
     RenderStats stats;
@@ -63,7 +66,7 @@ TEST_P(IcPassesOn, EachPassKeepsItsOwnLightPathsAcrossFrames) {
         render_frame(*backend, scene, buffers, tic, &stats);
         if (f == 0) {
             // Frame 0 traces both passes' paths afresh; the stats sum over the passes.
-            EXPECT_EQ(stats.ic.paths_retraced, 2u * tic.ic.paths);
+            EXPECT_EQ(stats.ic.paths_retraced, 2u * tic.ic.paths);  // K = 1: the paths as drawn
             EXPECT_EQ(stats.ic.records, tic.ic_state->pass(0).cache().records().size() +
                                             tic.ic_state->pass(1).cache().records().size());
             EXPECT_NE(stats.detail.find("summed over 2 passes"), std::string::npos) << stats.detail;
@@ -79,10 +82,49 @@ TEST_P(IcPassesOn, EachPassKeepsItsOwnLightPathsAcrossFrames) {
     auto backend = make_backend({GetParam(), ""}, buffers, plan_effects(scene));
     for (uint32_t pass : {0u, 1u}) {
         RenderSettings ic = small(Method::Ic, pass + 1);  // ic's one cache holds its last pass
+        ic.igi.vpl_importance = 1;
         ic.ic_state = std::make_shared<IcPassCaches>(ic.ic, rest.objects);
         render_frame(*backend, scene, buffers, ic);
         EXPECT_EQ(ic.ic_state->pass(pass).vpls(), tic.ic_state->pass(pass).vpls()) << "pass " << pass;
     }
+}
+
+TEST_P(IcPassesOn, KeepsThePathsItKeptForTheFirstView) {
+    // At the default K = 4, a pass's cache keeps paths for the view it was built for
+    // (select_paths): 4·paths candidates, paths' worth kept, weights 1/p. Over an animation
+    // the temporal update re-traces kept paths with the same indices and weights, so
+    // its estimate stays unbiased and equal to the rebuild.
+    const Scene rest = test::shipped_scene("cornell-box-animated.json");
+    RenderSettings tic = small(Method::Tic, 1);
+    ASSERT_EQ(tic.igi.vpl_importance, 4u);
+    tic.ic.temporal = true;
+    tic.ic_state = std::make_shared<IcPassCaches>(tic.ic, rest.objects);
+    std::vector<std::pair<uint64_t, float>> first;
+    for (int f = 0; f < 3; ++f) {
+        const Scene scene = scene_at_frame(rest, f);
+        const SceneBuffers buffers = make_scene_buffers(scene);
+        auto backend = make_backend({GetParam(), ""}, buffers, plan_effects(scene));
+        RenderStats stats;
+        render_frame(*backend, scene, buffers, tic, &stats);
+        std::vector<std::pair<uint64_t, float>> now;
+        for (const LightPath& p : tic.ic_state->pass(0).paths()) now.emplace_back(p.index, p.weight);
+        if (f == 0) {
+            EXPECT_EQ(stats.ic.paths_retraced, 4u * tic.ic.paths) << "frame 0 traces every candidate";
+            first = now;
+            continue;
+        }
+        EXPECT_EQ(now, first) << "frame " << f << ": the same paths with the same weights";
+    }
+    // Kept: on average `paths` of the 4·paths candidates, each with weight 1/p ≥ 1.
+    EXPECT_GT(first.size(), tic.ic.paths / 2);
+    EXPECT_LT(first.size(), 2 * tic.ic.paths);
+    size_t weighted = 0;
+    for (const auto& [index, weight] : first) {
+        EXPECT_LT(index, 4u * tic.ic.paths) << "path block 0 of 4·paths candidates";
+        EXPECT_GE(weight, 1.0f);
+        weighted += weight > 1.0f;
+    }
+    EXPECT_GT(weighted, first.size() / 2) << "most kept paths had p < 1";
 }
 
 TEST(IcPasses, ReleasesCachesOverTheMemoryBudget) {

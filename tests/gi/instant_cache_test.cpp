@@ -55,6 +55,7 @@ TEST_P(InstantCacheOn, MatchesIgiWithTheSameVpls) {
     const Image reference = test::render_with(GetParam(), scene, igi);
     RenderSettings ic = small(Method::Ic, 64);
     ic.ic.paths = 256;
+    ic.igi.vpl_importance = 1;
     std::vector<double> error;
     for (float a : {0.05f, 0.3f, 1.0f}) {
         ic.ic.error_bound = a;
@@ -114,7 +115,7 @@ TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest, ui
             if (f == 0) continue;
             run.removed += c.stats().removed;
             run.retraced += c.stats().paths_retraced;
-            run.paths += s.ic.paths;
+            run.paths += c.paths().size();
             run.update_rays += c.stats().shadow_rays + c.stats().probe_rays;
             run.full_rays += records.size() * (c.vpls().size() / TS_VPL_FLOATS + TS_IC_PROBE_RAYS);
         }

@@ -138,6 +138,63 @@ TEST(SelectVpls, KeepsTheFluxInExpectation) {
     EXPECT_EQ(kept, again);
 }
 
+TEST(SelectPaths, KeepsTheFluxInExpectationWithTheirWeights) {
+    // 5000 candidate paths of 0-3 VPLs of flux 1, importance skewed: a path's importance is
+    // the sum of its VPLs'. A kept path carries weight 1/p on every VPL, so the kept flux
+    // estimates the candidates' with variance Σ m_j² (1 − p_j)/p_j (m_j its VPLs), and the
+    // kept count Σ p_j with variance Σ p_j(1 − p_j): 5σ bounds.
+    std::vector<LightPath> candidates(5000);
+    std::vector<float> importance, path_importance;
+    double total = 0.0;
+    for (uint32_t j = 0; j < candidates.size(); ++j) {
+        candidates[j].index = 1000 + j;
+        double sum = 0.0;
+        for (uint32_t v = 0; v < j % 4; ++v) {
+            add(candidates[j].vpls, vpl({0, 0, 0}, {0, 0, 1}, 1.0f, j));
+            importance.push_back(float((j * 7919u + v) % 100) * float((j * 104729u) % 13));
+            sum += importance.back();
+            total += 1.0;
+        }
+        path_importance.push_back(float(sum));
+    }
+    const uint32_t k = 4;
+    const std::vector<double> p = keep_probabilities(path_importance, std::vector<bool>(5000, false), k);
+    double var_flux = 0.0, var_count = 0.0, mean_count = 0.0;
+    for (uint32_t j = 0; j < p.size(); ++j) {
+        const double m = j % 4;
+        var_flux += m * m * (1.0 - p[j]) / p[j];
+        var_count += p[j] * (1.0 - p[j]);
+        mean_count += p[j];
+    }
+    std::vector<LightPath> copy = candidates;
+    const std::vector<LightPath> kept = select_paths(copy, importance, k, 0u);
+    double flux = 0.0;
+    int64_t last = -1;
+    for (const LightPath& path : kept) {
+        const uint32_t j = uint32_t(path.index - 1000);
+        EXPECT_GT(int64_t(path.index), last) << "kept paths stay in candidate order";
+        last = int64_t(path.index);
+        EXPECT_FLOAT_EQ(path.weight, float(1.0 / p[j]));
+        ASSERT_EQ(path.vpls.size(), candidates[j].vpls.size());
+        for (size_t v = 0; v < path.vpls.size(); v += TS_VPL_FLOATS) {
+            EXPECT_EQ(path.vpls[v + TS_VPL_FLUX], path.weight) << "flux 1 times the weight";
+            flux += path.vpls[v + TS_VPL_FLUX];
+        }
+    }
+    EXPECT_NEAR(flux, total, 5.0 * std::sqrt(var_flux));
+    EXPECT_NEAR(double(kept.size()), mean_count, 5.0 * std::sqrt(var_count));
+    // The same candidates and seed keep the same paths; another seed keeps others.
+    copy = candidates;
+    const std::vector<LightPath> again = select_paths(copy, importance, k, 0u);
+    ASSERT_EQ(again.size(), kept.size());
+    for (size_t i = 0; i < kept.size(); ++i) EXPECT_EQ(again[i].index, kept[i].index);
+    copy = candidates;
+    const std::vector<LightPath> other = select_paths(copy, importance, k, light_path_seed_mix(2));
+    size_t same = 0;
+    for (size_t i = 0; i < std::min(other.size(), kept.size()); ++i) same += other[i].index == kept[i].index;
+    EXPECT_LT(same, kept.size() / 2);
+}
+
 TEST(VplsForTheView, KeepASetsBudgetInItsSetAndRepeatExactly) {
     Scene s = test::cornell_box();
     SceneBuffers b = make_scene_buffers(s);
