@@ -50,7 +50,7 @@ struct IcSettings {
     bool multiple_scattering = true;   ///< light paths scatter in the medium (IgiSettings)
 };
 
-/// How the cache draws fresh light paths (docs/instant-caching.md §3): as they come, or
+/// How the cache draws fresh light paths (docs/instant-caching.md §2): as they come, or
 /// kept for the view as igi keeps its VPLs (IgiSettings::vpl_importance).
 struct IcPathSelection {
     /// K > 1 (with `view`): K·paths candidate paths, of which select_paths keeps paths'

@@ -40,19 +40,26 @@ uint32_t path_of(const float* v) {
     return p;
 }
 
-// τ with Σ min(1, a_i / τ) = target (0 < target < n): the sum falls as τ grows.
-double keep_threshold(const std::vector<double>& a, double target) {
+// τ with Σ w_i · min(1, a_i / τ) = target (0 < target < Σ w_i; w_i = 1 when `w` is
+// empty): the sum falls as τ grows.
+double keep_threshold(const std::vector<double>& a, double target, const std::vector<double>& w = {}) {
+    auto weight = [&](size_t i) { return w.empty() ? 1.0 : w[i]; };
     double lo = 0.0, hi = 0.0;
-    for (double x : a) hi += x;
-    hi /= target;  // Σ a_i / τ ≤ target here, and min(1, ·) only lowers the sum
+    for (size_t i = 0; i < a.size(); ++i) hi += weight(i) * a[i];
+    hi /= target;  // Σ w_i a_i / τ ≤ target here, and min(1, ·) only lowers the sum
     for (int it = 0; it < 100; ++it) {
         const double tau = 0.5 * (lo + hi);
         double s = 0.0;
-        for (double x : a) s += std::min(1.0, x / tau);
+        for (size_t i = 0; i < a.size(); ++i) s += weight(i) * std::min(1.0, a[i] / tau);
         (s > target ? lo : hi) = tau;
     }
     return hi;
 }
+
+// p rounded up to a multiple of 1/kSteps: the backends trace the view points with their
+// own rounding, and an importance that differs in its last bits must not change a
+// weight 1/p (or the image would differ between backends in every pixel it lights).
+double stepped(double p) { return std::min(1.0, std::ceil(p * kSteps) / kSteps); }
 
 }  // namespace
 
@@ -138,11 +145,30 @@ std::vector<double> keep_probabilities(const std::vector<float>& importance, con
     for (size_t i = 0; i < importance.size(); ++i)
         if (!medium[i]) a.push_back(importance[i] + kFloor * mean);
     const double tau = keep_threshold(a, surface / k);
-    // Rounded up to a multiple of 1/64: the backends trace the view points with their own
-    // rounding, and an importance that differs in its last bits must not change a VPL's
-    // weight 1/p (or the image would differ between backends in every pixel it lights).
     for (size_t i = 0, ai = 0; i < importance.size(); ++i)
-        if (!medium[i]) p[i] = std::min(1.0, std::ceil(a[ai++] / tau * kSteps) / kSteps);
+        if (!medium[i]) p[i] = stepped(a[ai++] / tau);
+    return p;
+}
+
+std::vector<double> path_keep_probabilities(const std::vector<float>& importance, const std::vector<uint32_t>& vpls,
+                                            uint32_t oversampling) {
+    const double k = std::max(1u, oversampling);
+    std::vector<double> p(importance.size(), 1.0 / k), a, w;
+    double total = 0.0, count = 0.0;
+    for (size_t j = 0; j < importance.size(); ++j) {
+        total += importance[j];
+        count += vpls[j];
+    }
+    if (!(total > 0.0) || k == 1.0) return p;
+    const double mean = total / count;  // per VPL
+    for (size_t j = 0; j < importance.size(); ++j)
+        if (vpls[j] > 0) {
+            a.push_back(importance[j] + kFloor * mean * vpls[j]);
+            w.push_back(vpls[j]);
+        }
+    const double tau = keep_threshold(a, count / k, w);
+    for (size_t j = 0, aj = 0; j < importance.size(); ++j)
+        if (vpls[j] > 0) p[j] = stepped(a[aj++] / tau);
     return p;
 }
 
@@ -173,13 +199,14 @@ uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& i
 std::vector<LightPath> select_paths(std::vector<LightPath>& candidates, const std::vector<float>& importance,
                                     uint32_t oversampling, uint32_t seed_mix) {
     std::vector<float> path_importance(candidates.size(), 0.0f);
+    std::vector<uint32_t> counts(candidates.size(), 0u);
     for (size_t j = 0, i = 0; j < candidates.size(); ++j) {
         double sum = 0.0;
-        for (size_t n = candidates[j].vpls.size() / TS_VPL_FLOATS; n > 0; --n) sum += importance.at(i++);
+        counts[j] = static_cast<uint32_t>(candidates[j].vpls.size() / TS_VPL_FLOATS);
+        for (uint32_t n = counts[j]; n > 0; --n) sum += importance.at(i++);
         path_importance[j] = static_cast<float>(sum);
     }
-    const std::vector<double> p =
-        keep_probabilities(path_importance, std::vector<bool>(candidates.size(), false), oversampling);
+    const std::vector<double> p = path_keep_probabilities(path_importance, counts, oversampling);
     std::vector<LightPath> kept;
     for (size_t j = 0; j < candidates.size(); ++j) {
         ts::TsRng rng = ts::ts_rng_seed(kPathKeepSeed ^ seed_mix, static_cast<uint32_t>(candidates[j].index), 0u);

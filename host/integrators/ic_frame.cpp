@@ -18,7 +18,7 @@ void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const
     const auto tc = Clock::now();
     if (plan_.indirect) {
         InstantCache& cache = caches_->pass(frame.pass);
-        // Fresh paths are kept for the view as igi keeps its VPLs (docs/instant-caching.md §3).
+        // Fresh paths are kept for the view as igi keeps its VPLs (docs/instant-caching.md §2).
         IcPathSelection selection;
         ViewPoints view;
         if (settings_.vpl_importance > 1 && cache.draws_paths()) {

@@ -138,9 +138,39 @@ TEST(SelectVpls, KeepsTheFluxInExpectation) {
     EXPECT_EQ(kept, again);
 }
 
+TEST(PathKeepProbabilities, MeetTheVplBudgetAndFavourImportance) {
+    // Paths of 1-4 VPLs, equal importance per VPL, every tenth path 50 times more.
+    const uint32_t k = 4;
+    std::vector<uint32_t> counts;
+    std::vector<float> importance;
+    double vpls = 0.0;
+    for (uint32_t j = 0; j < 400; ++j) {
+        counts.push_back(1 + j % 4);
+        importance.push_back((j % 10 == 0 ? 50.0f : 1.0f) * counts.back());
+        vpls += counts.back();
+    }
+    // The budget holds in VPLs (up to the 1/64 steps, which only round up); the important
+    // paths are kept more, and of equally important VPLs the longer path more (it carries
+    // more importance); no p is 0.
+    const std::vector<double> p = path_keep_probabilities(importance, counts, k);
+    double kept_vpls = 0.0;
+    for (uint32_t j = 0; j < p.size(); ++j) {
+        kept_vpls += p[j] * counts[j];
+        EXPECT_GT(p[j], 0.0);
+        if (j % 10 == 0) EXPECT_GT(p[j], p[j + 1]) << j;
+        const bool plain_pair = j + 1 < p.size() && j % 10 != 0 && (j + 1) % 10 != 0;
+        if (plain_pair && counts[j] < counts[j + 1]) EXPECT_LT(p[j], p[j + 1]) << j;
+    }
+    EXPECT_GE(kept_vpls, vpls / k - 1e-9);
+    EXPECT_LE(kept_vpls, vpls / k + vpls / 64.0);
+    // No importance anywhere, or paths without VPLs: the plain 1/K.
+    for (double q : path_keep_probabilities(std::vector<float>(400, 0.0f), counts, k)) EXPECT_EQ(q, 1.0 / k);
+    EXPECT_EQ(path_keep_probabilities({0.0f, 3.0f}, {0u, 2u}, k)[0], 1.0 / k);
+}
+
 TEST(SelectPaths, KeepsTheFluxInExpectationWithTheirWeights) {
     // 5000 candidate paths of 0-3 VPLs of flux 1, importance skewed: a path's importance is
-    // the sum of its VPLs'. A kept path carries weight 1/p on every VPL, so the kept flux
+    // the sum of its VPLs' (path_keep_probabilities). A kept path carries weight 1/p on every VPL, so the kept flux
     // estimates the candidates' with variance Σ m_j² (1 − p_j)/p_j (m_j its VPLs), and the
     // kept count Σ p_j with variance Σ p_j(1 − p_j): 5σ bounds.
     std::vector<LightPath> candidates(5000);
@@ -158,7 +188,9 @@ TEST(SelectPaths, KeepsTheFluxInExpectationWithTheirWeights) {
         path_importance.push_back(float(sum));
     }
     const uint32_t k = 4;
-    const std::vector<double> p = keep_probabilities(path_importance, std::vector<bool>(5000, false), k);
+    std::vector<uint32_t> counts;
+    for (uint32_t j = 0; j < candidates.size(); ++j) counts.push_back(j % 4);
+    const std::vector<double> p = path_keep_probabilities(path_importance, counts, k);
     double var_flux = 0.0, var_count = 0.0, mean_count = 0.0;
     for (uint32_t j = 0; j < p.size(); ++j) {
         const double m = j % 4;
