@@ -44,7 +44,7 @@ const Parameter kParameters[] = {
     {.option = "--vpl-paths", .value_name = "N", .field = TS_SETTING(igi.paths_per_set), .min = 1, .max = 65536,
      .unit = "paths", .doc = "igi: light paths per sample set"},
     {.option = "--vpl-importance", .value_name = "K", .field = TS_SETTING(igi.vpl_importance), .min = 1, .max = 64,
-     .unit = "x", .doc = "igi/ais: trace K× the light paths and keep a set's budget of VPLs by their importance for the view (1: off)"},
+     .unit = "x", .doc = "igi-family: trace K× the light paths and keep a budget of VPLs (ic/tic: whole paths) by their importance for the view (1: off)"},
     {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = kNoMax,
      .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables"},
     {.option = "--clamp-decay", .value_name = "A", .field = TS_SETTING(igi.clamp_decay), .min = 0, .max = 1,

@@ -190,7 +190,9 @@ TEST(ViewSession, BudgetLowersTheResolutionWhileMovingAndNotAtRest) {
         ASSERT_TRUE(r.moving && r.budget.applied);
         EXPECT_GE(r.budget.scale, 0.25) << f;  // never below the floor
         EXPECT_EQ(r.budget.width, static_cast<int>(std::lround(64 * r.budget.scale))) << f;
-        if (f == 0) EXPECT_EQ(r.budget.scale, 1.0);  // before a measurement: the sweep's time fits
+        if (f == 0) {
+            EXPECT_EQ(r.budget.scale, 1.0);  // before a measurement: the sweep's time fits
+        }
     }
     const FrameReport last = session.advance(0);  // the camera rests; this frame restarts at full size
     EXPECT_FALSE(last.budget.applied);
