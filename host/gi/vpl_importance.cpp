@@ -40,17 +40,15 @@ uint32_t path_of(const float* v) {
     return p;
 }
 
-// τ with Σ w_i · min(1, a_i / τ) = target (0 < target < Σ w_i; w_i = 1 when `w` is
-// empty): the sum falls as τ grows.
-double keep_threshold(const std::vector<double>& a, double target, const std::vector<double>& w = {}) {
-    auto weight = [&](size_t i) { return w.empty() ? 1.0 : w[i]; };
+// τ with Σ w_i · min(1, a_i / τ) = target (0 < target < Σ w_i): the sum falls as τ grows.
+double keep_threshold(const std::vector<double>& a, const std::vector<double>& w, double target) {
     double lo = 0.0, hi = 0.0;
-    for (size_t i = 0; i < a.size(); ++i) hi += weight(i) * a[i];
+    for (size_t i = 0; i < a.size(); ++i) hi += w[i] * a[i];
     hi /= target;  // Σ w_i a_i / τ ≤ target here, and min(1, ·) only lowers the sum
     for (int it = 0; it < 100; ++it) {
         const double tau = 0.5 * (lo + hi);
         double s = 0.0;
-        for (size_t i = 0; i < a.size(); ++i) s += weight(i) * std::min(1.0, a[i] / tau);
+        for (size_t i = 0; i < a.size(); ++i) s += w[i] * std::min(1.0, a[i] / tau);
         (s > target ? lo : hi) = tau;
     }
     return hi;
@@ -130,24 +128,13 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
 
 std::vector<double> keep_probabilities(const std::vector<float>& importance, const std::vector<bool>& medium,
                                        uint32_t oversampling) {
-    const double k = std::max(1u, oversampling);
-    size_t surface = 0;
-    double mean = 0.0;
+    // Each surface VPL a path of one VPL, each medium VPL one of none (1/K): the same
+    // thresholds, floor and steps.
+    std::vector<float> surface(importance.size(), 0.0f);
+    std::vector<uint32_t> counts(importance.size(), 0u);
     for (size_t i = 0; i < importance.size(); ++i)
-        if (!medium[i]) {
-            mean += importance[i];
-            ++surface;
-        }
-    std::vector<double> p(importance.size(), 1.0 / k);
-    if (surface == 0 || !(mean > 0.0) || k == 1.0) return p;
-    mean /= surface;
-    std::vector<double> a;
-    for (size_t i = 0; i < importance.size(); ++i)
-        if (!medium[i]) a.push_back(importance[i] + kFloor * mean);
-    const double tau = keep_threshold(a, surface / k);
-    for (size_t i = 0, ai = 0; i < importance.size(); ++i)
-        if (!medium[i]) p[i] = stepped(a[ai++] / tau);
-    return p;
+        if (!medium[i]) surface[i] = importance[i], counts[i] = 1u;
+    return path_keep_probabilities(surface, counts, oversampling);
 }
 
 std::vector<double> path_keep_probabilities(const std::vector<float>& importance, const std::vector<uint32_t>& vpls,
@@ -166,7 +153,7 @@ std::vector<double> path_keep_probabilities(const std::vector<float>& importance
             a.push_back(importance[j] + kFloor * mean * vpls[j]);
             w.push_back(vpls[j]);
         }
-    const double tau = keep_threshold(a, count / k, w);
+    const double tau = keep_threshold(a, w, count / k);
     for (size_t j = 0, aj = 0; j < importance.size(); ++j)
         if (vpls[j] > 0) p[j] = stepped(a[aj++] / tau);
     return p;
