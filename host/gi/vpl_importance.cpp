@@ -91,6 +91,49 @@ ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const 
     return out;
 }
 
+ViewPointHistory::CameraFloats ViewPointHistory::camera_of(const TsFrame& frame) {
+    CameraFloats c;
+    for (int a = 0; a < 3; ++a) {
+        c[a] = frame.cam_pos[a];
+        c[3 + a] = frame.cam_forward[a];
+        c[6 + a] = frame.cam_right[a];
+        c[9 + a] = frame.cam_up[a];
+    }
+    return c;
+}
+
+bool ViewPointHistory::near_traced(const CameraFloats& camera) const {
+    auto vec = [](const CameraFloats& c, int at) { return float3{c[at], c[at + 1], c[at + 2]}; };
+    const float moved = ts::length(vec(camera, 0) - vec(traced_camera_, 0));
+    const float cos_turn = std::cos(kTurnDegrees * 3.14159265f / 180.0f);
+    auto within = [&](int at) {
+        return ts::dot(ts::normalize(vec(camera, at)), ts::normalize(vec(traced_camera_, at))) >= cos_turn;
+    };
+    return moved <= kMove * mean_distance_ && within(3) && within(9);
+}
+
+const ViewPoints& ViewPointHistory::points_for(Backend& backend, const SceneBuffers& scene, const TsFrame& frame,
+                                               uint32_t grid) {
+    const CameraFloats camera = camera_of(frame);
+    const bool moving = have_last_ && camera != last_camera_;
+    const bool keep = moving && have_points_ && grid == grid_ && near_traced(camera);
+    last_camera_ = camera;
+    have_last_ = true;
+    if (keep) {
+        kept_ = true;
+        return points_;
+    }
+    points_ = trace_view_points(backend, scene, frame, grid);
+    traced_camera_ = camera, grid_ = grid, have_points_ = true;
+    double sum = 0.0;
+    for (size_t j = 0; j < points_.count(); ++j) {
+        const float3 d = ts::ts_f3_load(&points_.position[3 * j]) - ts::ts_f3_load(frame.cam_pos);
+        sum += ts::length(d);
+    }
+    mean_distance_ = points_.count() ? static_cast<float>(sum / points_.count()) : 0.0f;
+    return points_;
+}
+
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp) {
     const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
     std::vector<float> importance(nv, 0.0f);

@@ -4,6 +4,7 @@
 // docs/igi.md §3b. Host code shared by every backend: the view points are traced
 // through Backend::trace_closest, so all backends keep the same VPLs.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,44 @@ struct ViewPoints {
 /// same view, so the VPLs change only when the view or scene does). Rays that escape or
 /// first meet a mirror or dielectric leave no point.
 ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, uint32_t grid);
+
+/// The view points of a viewer's successive frames, with hysteresis (docs/igi.md §3b).
+/// While the camera moves, points traced for an earlier camera are kept until the camera
+/// has moved more than kMove of their mean distance or turned more than kTurnDegrees from
+/// where they were traced: the VPL selection, a function of the points, then stays the same
+/// over several frames instead of changing a little every frame, and the flicker a changed
+/// selection brings is paid once per few frames (its frame-to-frame noise adds in
+/// quadrature, so k frames of drift in one step cost √k of one frame's, not k). A frame
+/// whose camera is the previous frame's (at rest: the passes of an accumulation) gets points
+/// traced afresh, the same as trace_view_points gives `render`, so an accumulation at rest
+/// equals `render --spp N`. Stale points change only which VPLs are kept, never the
+/// estimate's expectation (a kept VPL carries 1/p whatever p was chosen from).
+class ViewPointHistory {
+public:
+    /// Translation, as a fraction of the points' mean distance from the camera, and turn of
+    /// the view direction or up vector, past which moving frames trace new points. The
+    /// fly-throughs of bench/flicker move 2% of the look distance and turn 1° a frame, so
+    /// these refresh the points every third to fifth frame.
+    static constexpr float kMove = 0.05f;
+    static constexpr float kTurnDegrees = 3.0f;
+
+    /// The view points for `frame` (trace_view_points with `grid`), kept or traced as above.
+    const ViewPoints& points_for(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, uint32_t grid);
+    /// Whether a points_for call since clear_kept() kept earlier points.
+    bool kept() const { return kept_; }
+    void clear_kept() { kept_ = false; }
+
+private:
+    using CameraFloats = std::array<float, 12>;
+    static CameraFloats camera_of(const TsFrame& frame);
+    bool near_traced(const CameraFloats& camera) const;
+
+    ViewPoints points_;
+    CameraFloats traced_camera_{}, last_camera_{};
+    float mean_distance_ = 0.0f;  // of the points from traced_camera_'s position
+    uint32_t grid_ = 0;
+    bool have_points_ = false, have_last_ = false, kept_ = false;
+};
 
 /// Each VPL's importance for the view, one float per VPL of `vpls` (TS_VPL_FLOATS each):
 /// its share of the irradiance at each view point, Φ_i = Σ_j c_ij / E_j, with

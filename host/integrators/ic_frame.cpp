@@ -22,7 +22,7 @@ void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const
         IcPathSelection selection;
         ViewPoints view;
         if (settings_.vpl_importance > 1 && cache.draws_paths()) {
-            view = trace_view_points(backend_, scene_, frame, settings_.view_grid);
+            view = view_points(frame);
             selection = {settings_.vpl_importance, &view, importance_clamp_};
         }
         cache.indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, selection, caches_->gbuffer(),

@@ -63,6 +63,11 @@ IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan
     march_far_ = 2.0f * std::sqrt(diag2);
 }
 
+ViewPoints IgiFrame::view_points(const TsFrame& frame) {
+    if (settings_.view_history) return settings_.view_history->points_for(backend_, scene_, frame, settings_.view_grid);
+    return trace_view_points(backend_, scene_, frame, settings_.view_grid);
+}
+
 float IgiFrame::g_clamp_for(uint32_t pass) const {
     if (!(settings_.clamp_decay > 0.0f)) return g_clamp_;
     // b ∝ 1/c², so c_p = c · (p + 1)^-a gives b_p = b · (p + 1)^(2a).
@@ -108,7 +113,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         vs.medium_scattering = settings_.multiple_scattering;
         ViewPoints view;
         if (settings_.vpl_importance > 1) {
-            view = trace_view_points(backend_, scene_, frame, settings_.view_grid);
+            view = view_points(frame);
             vs.importance_oversampling = settings_.vpl_importance;
             vs.view = &view;
             vs.importance_clamp = importance_clamp_;

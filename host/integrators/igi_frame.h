@@ -8,6 +8,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct IgiSettings {
     /// at 256² for ~4 ms (K = 8 gained 0.03 JOD more; 8² to 64² points measured alike).
     uint32_t vpl_importance = 4;
     uint32_t view_grid = 16;       ///< view points per image side for vpl_importance
+    /// The viewer's view points across its frames (ViewPointHistory: kept while the camera
+    /// moves a little, for temporal stability); null: traced for every pass, as `render`.
+    std::shared_ptr<ViewPointHistory> view_history;
     bool filter = true;            ///< the discontinuity buffer (off: raw interleaved image)
     /// Media: light paths scatter in the medium and leave medium VPLs, which surfaces and
     /// the ray march gather (multiple scattering, converging to `pt`; docs/igi.md §6);
@@ -160,6 +164,9 @@ protected:
                                 int channels, uint32_t frames);
 
     uint32_t effective_components() const;
+    /// The view points of the VPL selection for `frame` (settings_.view_history's, else
+    /// traced afresh).
+    ViewPoints view_points(const TsFrame& frame);
     /// Whether a frame computing `components` makes the interleaved VPL sets: for ID where
     /// interleaved_indirect(), and for PM's multiple scattering (the ray march gathers the
     /// sets' VPLs, docs/igi.md §6) in every igi-family method, ic and tic included.

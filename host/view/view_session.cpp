@@ -69,11 +69,15 @@ RenderSettings ViewSession::pass_settings() const {
 
 void ViewSession::restart() {
     integrator_.reset();
+    acc_kept_points_ = false;
     const RenderSettings s = pass_settings();
     IntegratorSettings is = integrator_settings(s);
     // The AIS guidance and sets AOVs can be shown at any time: keep their sums (AIS
     // reconstructs on the host anyway, so this costs no read-back).
     if (method_info(s.method).adaptive) is.igi.component_aovs = true;
+    // One history of view points across restarts: moving frames keep the VPL selection's
+    // points while the camera moves a little (docs/viewer.md, temporal stability).
+    is.igi.view_history = view_history_;
     integrator_ = make_integrator(*backend_, scene_, *buffers_, is);
     render_width_ = width_, render_height_ = height_;
     if (acc_budgeted_ && budget_) {  // fewer pixels while moving; the same field of view
@@ -190,8 +194,10 @@ FrameReport ViewSession::advance(double dt) {
     if (moved) {
         acc_budgeted_ = budget_ != nullptr;
         restart();
-    } else if (acc_budgeted_) {
-        acc_budgeted_ = false;  // at rest: start over with the full settings, as render has them
+    } else if (acc_budgeted_ || acc_kept_points_) {
+        // At rest: start over with the full settings and the camera's own view points, as
+        // render has them, so the accumulation equals `render --spp N`.
+        acc_budgeted_ = false;
         restart();
     }
     report.moving = moved;
@@ -199,7 +205,9 @@ FrameReport ViewSession::advance(double dt) {
     if (acc_->passes() < settings_.spp) {
         const auto t0 = std::chrono::steady_clock::now();
         frame_.pass = acc_->passes();
+        view_history_->clear_kept();
         integrator_->render_pass(frame_, pass_);
+        acc_kept_points_ = acc_kept_points_ || view_history_->kept();
         acc_->add(pass_);
         IntegratorStats stats;
         integrator_->report(stats);

@@ -22,6 +22,7 @@
 #include "backend/backend.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
+#include "gi/vpl_importance.h"
 #include "image/image_io.h"
 #include "integrators/integrator.h"
 #include "render/accumulator.h"
@@ -169,6 +170,12 @@ private:
     std::unique_ptr<SceneBuffers> buffers_;
     std::unique_ptr<Backend> backend_;
     std::unique_ptr<Integrator> integrator_;
+    /// The VPL selection's view points across frames (ViewPointHistory), given to every
+    /// integrator the session makes: moving frames restart the integrator, not this.
+    std::shared_ptr<ViewPointHistory> view_history_ = std::make_shared<ViewPointHistory>();
+    /// The accumulation has a pass rendered with kept (not the camera's own) view points:
+    /// at rest it starts over, as after a budgeted frame.
+    bool acc_kept_points_ = false;
     std::unique_ptr<Accumulator> acc_;
     TsFrame frame_{};
     std::vector<float> pass_;

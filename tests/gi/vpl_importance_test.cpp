@@ -253,5 +253,41 @@ TEST(VplsForTheView, KeepASetsBudgetInItsSetAndRepeatExactly) {
     }
 }
 
+TEST(ViewPointHistory, KeepsPointsWhileMovingALittleAndTracesThemAtRest) {
+    Scene s = test::cornell_box();
+    SceneBuffers b = make_scene_buffers(s);
+    auto em = make_backend({BackendKind::Embree, ""}, b, plan_effects(s));
+    auto frame_at = [&](glm::vec3 shift, glm::vec3 look_shift) {
+        Camera c = s.camera;
+        c.position += shift;
+        c.look_at += shift + look_shift;
+        return make_frame(c, 64, 64, 1, 1, b.light_count);
+    };
+    auto same = [](const ViewPoints& a, const ViewPoints& b) { return a.position == b.position && a.normal == b.normal; };
+    const float d = glm::length(s.camera.look_at - s.camera.position);
+    const TsFrame a = frame_at({0, 0, 0}, {0, 0, 0});
+    const TsFrame a_moved = frame_at({0.01f * d, 0, 0}, {0, 0, 0});  // 1%: within kMove of the points' distance
+    const TsFrame turned = frame_at({0, 0, 0}, {0.2f * d, 0, 0});     // ~11°: past kTurnDegrees
+    ViewPointHistory h;
+    auto points = [&](const TsFrame& f) {  // one frame: the viewer clears the flag before each pass
+        h.clear_kept();
+        return h.points_for(*em, b, f, 16);
+    };
+    const ViewPoints fresh_a = trace_view_points(*em, b, a, 16), fresh_moved = trace_view_points(*em, b, a_moved, 16);
+    ASSERT_FALSE(same(fresh_a, fresh_moved)) << "the moved camera sees other points";
+    EXPECT_TRUE(same(points(a), fresh_a));
+    EXPECT_FALSE(h.kept()) << "the first frame traces";
+    EXPECT_TRUE(same(points(a), fresh_a));
+    EXPECT_FALSE(h.kept()) << "at rest every pass traces, as render does";
+    EXPECT_TRUE(same(points(a_moved), fresh_a));
+    EXPECT_TRUE(h.kept()) << "moving a little keeps the points";
+    EXPECT_TRUE(same(points(a_moved), fresh_moved));
+    EXPECT_FALSE(h.kept()) << "coming to rest traces the camera's own points";
+    EXPECT_TRUE(same(points(turned), trace_view_points(*em, b, turned, 16)));
+    EXPECT_FALSE(h.kept()) << "a turn past the hysteresis traces";
+    EXPECT_TRUE(same(points(a), fresh_a));
+    EXPECT_FALSE(h.kept()) << "and so does the way back";
+}
+
 }  // namespace
 }  // namespace tessera

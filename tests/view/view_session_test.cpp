@@ -179,9 +179,12 @@ TEST(ViewSession, BudgetedMovingFramesThenFullSettingsAtRest) {
 TEST(ViewSession, BudgetLowersTheResolutionWhileMovingAndNotAtRest) {
     const Scene scene = cornell();
     ViewOptions o = options(Method::Igi, 2, 64);
-    o.target_fps = 1000.0;  // 1 ms
+    o.target_fps = 1e6;  // 1 µs: no machine meets it, so the controller goes to the floor
     o.min_scale = 0.25;
     o.pareto = {BudgetPoint{"igi", 8, 4, 1, 1e-6, 0.5}};  // a sweep time no frame here can match
+    // VPLs without view points: a moving frame is then the still render at its camera
+    // (with view points it may keep an earlier camera's: KeptViewPointsStartOverAtRest).
+    o.settings.igi.vpl_importance = 1;
     ViewSession session(scene, o);
     for (int f = 0; f < 4; ++f) {
         session.handle({InputEvent::Kind::Press, 'W'});
@@ -213,6 +216,28 @@ TEST(ViewSession, BudgetLowersTheResolutionWhileMovingAndNotAtRest) {
     session.advance(0);
     const Image rest = session.accumulation();
     const Image render = still(scene, session.camera(), o.settings, 2);
+    for (const char* c : {"R", "G", "B", "variance.R"}) EXPECT_EQ(rest.find(c)->data, render.find(c)->data) << c;
+}
+
+TEST(ViewSession, KeptViewPointsStartOverAtRest) {
+    // A small move keeps the VPL selection's view points of the camera at rest before it
+    // (ViewPointHistory), so the moving frame is not the still render at its own camera;
+    // at rest the accumulation starts over and is the still render bit for bit.
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 2, 32);
+    ASSERT_GT(o.settings.igi.vpl_importance, 1u);
+    ViewSession session(scene, o);
+    session.advance(0);
+    session.handle({InputEvent::Kind::Press, 'W'});
+    const FrameReport moved = session.advance(1.0 / 240);  // a short step: within the hysteresis
+    session.handle({InputEvent::Kind::Release, 'W'});
+    ASSERT_TRUE(moved.moving);
+    EXPECT_NE(session.accumulation().find("R")->data, still(scene, session.camera(), o.settings, 1).find("R")->data)
+        << "the moving frame kept the resting camera's view points";
+    session.advance(0);
+    session.advance(0);
+    EXPECT_EQ(session.passes(), 2u);
+    const Image rest = session.accumulation(), render = still(scene, session.camera(), o.settings, 2);
     for (const char* c : {"R", "G", "B", "variance.R"}) EXPECT_EQ(rest.find(c)->data, render.find(c)->data) << c;
 }
 
