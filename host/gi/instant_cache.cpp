@@ -350,9 +350,8 @@ void InstantCache::mark_in_view(const TsFrame& f) {
 
 std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const SceneBuffers& scene,
                                                    float g_clamp) const {
-    std::vector<LightPath> paths(paths_.size());
-    for (size_t j = 0; j < paths.size(); ++j)
-        paths[j].index = paths_[j].index, paths[j].set = paths_[j].set, paths[j].weight = paths_[j].weight;
+    std::vector<LightPath> paths;
+    for (const LightPath& p : paths_) paths.push_back(untraced(p));
     trace_light_paths(backend, scene, path_settings(), paths);
     std::vector<float> vpls;
     for (const LightPath& p : paths) vpls.insert(vpls.end(), p.vpls.begin(), p.vpls.end());

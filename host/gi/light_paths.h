@@ -34,6 +34,14 @@ struct LightPath {
     std::vector<PathSegment> segments;
 };
 
+/// `path` to be traced again (trace_light_paths): its index, set and weight, nothing it
+/// left. A re-traced path in an unchanged scene leaves the same VPLs bit for bit.
+inline LightPath untraced(const LightPath& path) {
+    LightPath p;
+    p.index = path.index, p.set = path.set, p.weight = path.weight;
+    return p;
+}
+
 struct LightPathSettings {
     /// Surface hits per path. Paths end by Russian roulette; this cap only bounds the
     /// work. IGI's customary 5 would drop the light of 6+ bounces (about ρ⁵ of the

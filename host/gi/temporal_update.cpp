@@ -231,11 +231,8 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     std::vector<uint32_t> redo;
     for (uint32_t p = 0; p < paths_.size(); ++p)
         if (path_invalid(paths_[p])) redo.push_back(p);
-    std::vector<LightPath> fresh(redo.size());
-    for (size_t i = 0; i < redo.size(); ++i) {
-        const LightPath& old_path = paths_[redo[i]];
-        fresh[i].index = old_path.index, fresh[i].set = old_path.set, fresh[i].weight = old_path.weight;
-    }
+    std::vector<LightPath> fresh;
+    for (uint32_t p : redo) fresh.push_back(untraced(paths_[p]));
     if (!fresh.empty()) stats_.light_path_rays += trace_light_paths(backend, scene, path_settings(), fresh);
     stats_.paths_retraced = redo.size();
 

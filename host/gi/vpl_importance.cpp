@@ -105,7 +105,7 @@ ViewPointHistory::CameraFloats ViewPointHistory::camera_of(const TsFrame& frame)
 bool ViewPointHistory::near_traced(const CameraFloats& camera) const {
     auto vec = [](const CameraFloats& c, int at) { return float3{c[at], c[at + 1], c[at + 2]}; };
     const float moved = ts::length(vec(camera, 0) - vec(traced_camera_, 0));
-    const float cos_turn = std::cos(kTurnDegrees * 3.14159265f / 180.0f);
+    const float cos_turn = std::cos(kTurnDegrees * TS_PI / 180.0f);
     auto within = [&](int at) {
         return ts::dot(ts::normalize(vec(camera, at)), ts::normalize(vec(traced_camera_, at))) >= cos_turn;
     };

@@ -157,9 +157,13 @@ TEST(PathKeepProbabilities, MeetTheVplBudgetAndFavourImportance) {
     for (uint32_t j = 0; j < p.size(); ++j) {
         kept_vpls += p[j] * counts[j];
         EXPECT_GT(p[j], 0.0);
-        if (j % 10 == 0) EXPECT_GT(p[j], p[j + 1]) << j;
+        if (j % 10 == 0) {
+            EXPECT_GT(p[j], p[j + 1]) << j;
+        }
         const bool plain_pair = j + 1 < p.size() && j % 10 != 0 && (j + 1) % 10 != 0;
-        if (plain_pair && counts[j] < counts[j + 1]) EXPECT_LT(p[j], p[j + 1]) << j;
+        if (plain_pair && counts[j] < counts[j + 1]) {
+            EXPECT_LT(p[j], p[j + 1]) << j;
+        }
     }
     EXPECT_GE(kept_vpls, vpls / k - 1e-9);
     EXPECT_LE(kept_vpls, vpls / k + vpls / 64.0);
