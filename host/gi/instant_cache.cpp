@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include <tbb/blocked_range.h>
@@ -306,6 +307,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     backend.set_input(KernelInput::IcRecords, flat.records);
     TsFrame interp_frame = frame;
     interp_frame.ic_error_bound = settings_.error_bound;
+    interp_frame.igi_g_clamp = settings_.clamp_compensation ? g_clamp : std::numeric_limits<float>::infinity();
     std::vector<float> interp;
     backend.launch(KernelId::IcInterpolate, interp_frame, interp);
     const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
@@ -322,7 +324,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
             cache_.lookup({x[0], x[1], x[2]}, {n[0], n[1], n[2]}, &e);
             ++stats_.fallback_pixels;
         }
-        for (int c = 0; c < 3; ++c) e_id[3 * p + c] = e[c];
+        for (int c = 0; c < 3; ++c) e_id[3 * p + c] = e[c] + in[TS_IC_INTERP_RESIDUAL + c];
     }
     stats_.records = cache_.records().size();
     stats_.interpolate_seconds = since(t0);

@@ -10,6 +10,7 @@
 #include "shared/compat.h"
 #include "shared/ic_gather.h"
 #include "shared/ic_lookup.h"
+#include "shared/ic_residual.h"
 #include "shared/frame.h"
 #include "shared/layout_ic.h"
 #include "shared/layout_igi.h"
@@ -18,12 +19,17 @@
 TS_NAMESPACE_BEGIN
 
 /* The interpolation kernel's pixel (px, py): the cache in sv's named inputs (ic_gbuffer,
- * ic_nodes, ic_refs, ic_records) with Ward's a = f->ic_error_bound; TS_IC_INTERP_FLOATS. */
+ * ic_nodes, ic_refs, ic_records) with Ward's a = f->ic_error_bound, and the clamp's
+ * residual for b = f->igi_g_clamp (shared/ic_residual.h; +inf: none); TS_IC_INTERP_FLOATS. */
 TS_INLINE void ts_ic_interpolate_kernel_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                               uint px, uint py, float* out) {
-    (void)tracer;
-    ts_ic_interpolate_pixel(sv->ic_gbuffer, sv->ic_nodes, sv->ic_refs, sv->ic_records, f->ic_error_bound,
-                            py * f->width + px, out);
+    uint p = py * f->width + px;
+    ts_ic_interpolate_pixel(sv->ic_gbuffer, sv->ic_nodes, sv->ic_refs, sv->ic_records, f->ic_error_bound, p, out);
+    TS_GLOBAL const float* g = sv->ic_gbuffer + (size_t)p * TS_IC_GBUF_FLOATS;
+    if (as_uint(g[TS_IC_GBUF_PRIM]) == TS_NO_HIT) return;
+    TsSurface x = ts_ic_record_surface(g);
+    float3 e = make_float3(out[TS_IC_INTERP_E], out[TS_IC_INTERP_E + 1], out[TS_IC_INTERP_E + 2]);
+    ts_f3_store(out + TS_IC_INTERP_RESIDUAL, ts_ic_clamp_residual(sv, tracer, f, &x, e, p));
 }
 
 /* Pair item i's shadow ray from record to VPL in *shadow; returns 0 when the clamped

@@ -51,10 +51,13 @@
 #define TS_IC_NODE_UNUSED 7
 /* Per-pixel output of the ic interpolation kernel, TS_IC_INTERP_FLOATS floats:
  * TS_IC_INTERP_E 3 floats: interpolated E (0 where no record is usable or the pixel has
- * no surface), TS_IC_INTERP_WEIGHT the weight sum Σ w. */
-#define TS_IC_INTERP_FLOATS 4
+ * no surface), TS_IC_INTERP_WEIGHT the weight sum Σ w, TS_IC_INTERP_RESIDUAL 3 floats:
+ * the pixel's estimate of what the geometry-term clamp removed from E (shared/ic_residual.h;
+ * 0 where none was asked for), also irradiance / π. */
+#define TS_IC_INTERP_FLOATS 7
 #define TS_IC_INTERP_E 0
 #define TS_IC_INTERP_WEIGHT 3
+#define TS_IC_INTERP_RESIDUAL 4
 /* The record-VPL pair kernel (shared/ic_gather.h), one item per pair to trace,
  * TS_IC_PAIR_WORDS uints: TS_IC_PAIR_RECORD the record (index into the IcRecordSurfaces
  * input), TS_IC_PAIR_VPL the VPL (index into the Vpls input). Its output,
@@ -105,7 +108,7 @@ static_assert(tessera::layout_check::tiles({{TS_IC_NODE_CENTRE, 3}, {TS_IC_NODE_
                                             {TS_IC_NODE_FIRST, 1}, {TS_IC_NODE_COUNT, 1}, {TS_IC_NODE_UNUSED, 1}},
                                            TS_IC_NODE_FLOATS),
               "layout_ic.h: ic octree node fields do not tile TS_IC_NODE_FLOATS");
-static_assert(tessera::layout_check::tiles({{TS_IC_INTERP_E, 3}, {TS_IC_INTERP_WEIGHT, 1}}, TS_IC_INTERP_FLOATS),
+static_assert(tessera::layout_check::tiles({{TS_IC_INTERP_E, 3}, {TS_IC_INTERP_WEIGHT, 1}, {TS_IC_INTERP_RESIDUAL, 3}}, TS_IC_INTERP_FLOATS),
               "layout_ic.h: ic interpolation fields do not tile TS_IC_INTERP_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_IC_PAIR_RECORD, 1}, {TS_IC_PAIR_VPL, 1}}, TS_IC_PAIR_WORDS),
               "layout_ic.h: ic pair item fields do not tile TS_IC_PAIR_WORDS");
