@@ -275,7 +275,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
 
 void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame,
                             const std::vector<float>& surf, float g_clamp, const IcPathSelection& selection,
-                            std::vector<float>& gbuffer, std::vector<float>& e_id) {
+                            std::vector<float>& gbuffer, std::vector<float>& e_id, std::vector<float>& residual) {
     stats_ = IcFrameStats{};
     auto t0 = Clock::now();
     if (!settings_.temporal || !have_previous_) {
@@ -312,6 +312,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     backend.launch(KernelId::IcInterpolate, interp_frame, interp);
     const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
     e_id.assign(3 * pixels, 0.0f);
+    residual.assign(3 * pixels, 0.0f);
     for (size_t p = 0; p < pixels; ++p) {
         const float* g = &gbuffer[p * TS_IC_GBUF_FLOATS];
         if (!has_surface(g)) continue;
@@ -324,7 +325,10 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
             cache_.lookup({x[0], x[1], x[2]}, {n[0], n[1], n[2]}, &e);
             ++stats_.fallback_pixels;
         }
-        for (int c = 0; c < 3; ++c) e_id[3 * p + c] = e[c] + in[TS_IC_INTERP_RESIDUAL + c];
+        for (int c = 0; c < 3; ++c) {
+            e_id[3 * p + c] = e[c];
+            residual[3 * p + c] = in[TS_IC_INTERP_RESIDUAL + c];
+        }
     }
     stats_.records = cache_.records().size();
     stats_.interpolate_seconds = since(t0);

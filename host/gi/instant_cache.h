@@ -112,10 +112,13 @@ public:
     /// row-major): the surfaces records are made at and looked up for. `g_clamp` is the
     /// igi geometry-term bound b. `selection` says how fresh light paths are drawn (read
     /// only when draws_paths()); a temporal cache keeps the kept paths and their weights.
-    /// `gbuffer` is scratch (its contents are overwritten).
+    /// `gbuffer` is scratch (its contents are overwritten). `residual` gets, 3 floats per
+    /// pixel, the estimate of what the clamp removed (irradiance / π, kernels/shared/
+    /// ic_residual.h; zeros with IcSettings::clamp_compensation off): E_id + residual is
+    /// the pixel's estimate; the residual alone is noisy per pixel, and a caller may filter it.
     void indirect(Backend& backend, const SceneBuffers& scene, const TsFrame& frame, const std::vector<float>& surf,
                   float g_clamp, const IcPathSelection& selection, std::vector<float>& gbuffer,
-                  std::vector<float>& e_id);
+                  std::vector<float>& e_id, std::vector<float>& residual);
 
     /// Whether the next indirect() draws fresh light paths (every call but a temporal
     /// cache's updates): only then is its IcPathSelection read.

@@ -25,8 +25,11 @@ void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const
             view = view_points(frame);
             selection = {settings_.vpl_importance, &view, importance_clamp_};
         }
-        cache.indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, selection, caches_->gbuffer(),
-                       raw_[kAisID]);
+        cache.indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, selection, caches_->gbuffer(), cached_,
+                       residual_);
+        std::vector<float>& id = raw_[kAisID];
+        id.resize(cached_.size());
+        for (size_t i = 0; i < id.size(); ++i) id[i] = cached_[i] + residual_[i];
         frame_stats_ += cache.stats();
         released_ += caches_->after_pass(frame.pass) ? 1 : 0;
         ++passes_;
@@ -35,10 +38,16 @@ void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const
 }
 
 void IcFrame::reconstruct_component(int c) {
-    if (c == kAisID)
+    if (c != kAisID) return IgiFrame::reconstruct_component(c);
+    if (!settings_.filter || residual_.size() != raw_[c].size()) {
         final_[c] = raw_[c];
-    else
-        IgiFrame::reconstruct_component(c);
+        return;
+    }
+    // The cache's E is smooth already; the residual is one ray a pixel, so it goes through
+    // the discontinuity filter as the interleaved components do (docs/instant-caching.md §9).
+    discontinuity_filter(geometry_, settings_.discontinuity, 3, residual_, filtered_);
+    final_[c].resize(cached_.size());
+    for (size_t i = 0; i < cached_.size(); ++i) final_[c][i] = cached_[i] + filtered_[i];
 }
 
 std::string IcFrame::describe() const {

@@ -1,7 +1,8 @@
 // Instant caching (ic) and temporal instant caching (tic) as an igi-family integrator:
 // the igi frame with its indirect component from an instant cache (gi/instant_cache.h),
-// one per pass (gi/ic_passes.h), instead of the interleaved VPL sets, unfiltered (the
-// cache's interpolation already smooths it). Direct light and media are igi's (the media
+// one per pass (gi/ic_passes.h), instead of the interleaved VPL sets: the cache's E
+// unfiltered (its interpolation already smooths it), plus the clamp's residual through the
+// discontinuity filter (one ray a pixel, docs/instant-caching.md §9). Direct light and media are igi's (the media
 // gather igi's VPL sets for multiple scattering, as in every igi-family method).
 #pragma once
 #include <memory>
@@ -36,6 +37,9 @@ protected:
 private:
     std::shared_ptr<IcPassCaches> caches_;
     IcFrameStats frame_stats_;  // summed over the passes rendered
+    // The last pass's ID parts (3 floats per pixel): the cache's E, the clamp's residual
+    // (raw_[kAisID] is their sum) and the residual filtered.
+    std::vector<float> cached_, residual_, filtered_;
     uint32_t passes_ = 0, released_ = 0;
 };
 
