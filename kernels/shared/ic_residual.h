@@ -68,8 +68,14 @@ TS_INLINE float3 ts_ic_clamp_residual(const TsSceneView* sv, const TsTracer* tra
     TsSurface at = *x;
     float3 e_at = e_x;
     for (int bounce = 0; bounce < TS_IC_RESIDUAL_BOUNCES; ++bounce) {
-        float u0 = ts_rng_next(&rng), u1 = ts_rng_next(&rng);
-        float3 u3 = make_float3(ts_rng_next(&rng), ts_rng_next(&rng), ts_rng_next(&rng));
+        /* One draw per statement: the order of a call's arguments is left open by C, and
+         * GCC and PoCL's clang take them in different orders. */
+        float u0 = ts_rng_next(&rng);
+        float u1 = ts_rng_next(&rng);
+        float ul = ts_rng_next(&rng);
+        float ul1 = ts_rng_next(&rng);
+        float ul2 = ts_rng_next(&rng);
+        float3 u3 = make_float3(ul, ul1, ul2);
         float3 w = ts_from_local(at.shading_normal, ts_sample_cosine_hemisphere(u0, u1));
         if (dot(w, at.geo_normal) <= 0.0f) break; /* as a VPL below the surface: G = 0 */
         TsRay ray;
