@@ -31,7 +31,7 @@ void parallel_rows(int height, F&& f) {
 }  // namespace
 
 std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySettings& s,
-                                 const std::vector<float>& radiance, float dark) {
+                                 const std::vector<float>& radiance, float dark, const std::vector<uint8_t>& emitter) {
     const size_t pixels = size_t(g.width) * g.height;
     std::vector<float> y(pixels);
     double sum = 0.0;
@@ -56,7 +56,8 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
                 const size_t q = size_t(qy) * g.width + qx;
                 const bool accepted = masks ? (g.accepted[p] >> ((kWindow[i][1] + 1) * 3 + kWindow[i][0] + 1)) & 1u
                                             : discontinuity_accepts(g, s, p, q);
-                if (accepted) continue;
+                const bool light_edge = !emitter.empty() && (emitter[p] != 0) != (emitter[q] != 0);
+                if (accepted && !light_edge) continue;
                 const float denominator = y[p] + y[q] + eps;
                 // A NaN or infinite luminance flags nothing (the comparison fails).
                 const float c = denominator > 0.0f ? std::fabs(y[p] - y[q]) / denominator : 0.0f;

@@ -38,11 +38,16 @@ struct EdgeSettings {
 
 /// Per pixel (row-major width × height) the largest contrast across its edges, in
 /// [0, 1]: over the 8 neighbours q (inside the image) that p's discontinuity test `s`
-/// rejects (normals, plane distance, escaped rays), |Y_p − Y_q| / (Y_p + Y_q + ε) with Y
-/// the luminance of `radiance` (TS_PASS_FLOATS per pixel, its TS_PASS_RADIANCE) and ε =
-/// `dark` × the frame's mean Y. 0 where every neighbour is on p's surface.
+/// rejects (normals, plane distance, escaped rays), or that differ from p in `emitter`,
+/// |Y_p − Y_q| / (Y_p + Y_q + ε) with Y the luminance of `radiance` (TS_PASS_FLOATS per
+/// pixel, its TS_PASS_RADIANCE) and ε = `dark` × the frame's mean Y. 0 where every
+/// neighbour is on p's surface. `emitter` (one byte a pixel, nonzero where the camera
+/// path ends on an emitter; empty: none) adds the edges of lights that lie in the plane of
+/// what holds them, which geometry does not show: a ceiling panel's edge, pixels a fraction
+/// of whose footprint is a light thousands of times brighter (docs/ais.md §9).
 std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySettings& s,
-                                 const std::vector<float>& radiance, float dark);
+                                 const std::vector<float>& radiance, float dark,
+                                 const std::vector<uint8_t>& emitter = {});
 
 /// Which pixels take extra samples, and the flat list of samples to trace.
 struct EdgeSchedule {

@@ -139,7 +139,14 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
     stats_.edge_seconds = 0;
     if (!(effective_components() & TS_COMPONENT_EDGE)) return;
     const auto t0 = Clock::now();
-    edge_guidance_ = edge_guidance(geometry_, settings_.discontinuity, out, settings_.edges.dark);
+    // Where each camera path ends on a light: a light's edge in its holder's plane.
+    const size_t pixels = surf_.size() / TS_IGI_SURF_FLOATS;
+    emitter_.assign(pixels, 0);
+    for (size_t p = 0; p < pixels; ++p) {
+        const float* le = &surf_[p * TS_IGI_SURF_FLOATS + TS_IGI_SURF_EMISSION];
+        emitter_[p] = le[0] + le[1] + le[2] > 0.0f;
+    }
+    edge_guidance_ = edge_guidance(geometry_, settings_.discontinuity, out, settings_.edges.dark, emitter_);
     edge_schedule_ = make_edge_schedule(edge_guidance_, settings_.edges, settings_.ais_mode);
     const auto t_kernel = Clock::now();
     backend_.launch_items(KernelId::EdgeSample, frame, edge_schedule_.items, edge_samples_);

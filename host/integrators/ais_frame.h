@@ -50,6 +50,7 @@ private:
     // edge guidance and each pixel's camera samples (1 + its edge samples).
     std::array<std::vector<double>, 8> guidance_sums_;
     std::vector<float> edge_guidance_;
+    std::vector<uint8_t> emitter_;  // per pixel: the camera path ends on a light (edge_guidance)
     EdgeSchedule edge_schedule_;
     // The edge samples' kernel output, kept across passes as IgiFrame keeps surf_ (Sibenik
     // 512²: 11 MB a pass, whose fresh allocation would be zero-filled and faulted in anew).

@@ -4,6 +4,7 @@
 #include "gi/ais_edges.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <tuple>
 
@@ -75,6 +76,26 @@ TEST(AisEdgeGuidance, NoContrastOrNoGeometricEdgeFlagsNothing) {
     // Contrast on one wall (a shadow edge): the light's edge, not coverage; SS's business.
     for (float g_value : edge_guidance(two_walls(2.0f), kFilter, pass_image(1.0f, 0.0f), 0.01f))
         EXPECT_EQ(g_value, 0.0f);
+}
+
+TEST(AisEdgeGuidance, ALightInItsHoldersPlaneIsAnEdge) {
+    // One plane (no geometric edge); the left half is a light 100 times brighter, as a
+    // ceiling panel set into the ceiling. Geometry alone sees no edge; the emitter mask
+    // flags the two columns beside the light's edge and nothing else.
+    const GeometryBuffer g = two_walls(2.0f);
+    const std::vector<float> img = pass_image(100.0f, 1.0f);
+    for (float g_value : edge_guidance(g, kFilter, img, 0.01f)) EXPECT_EQ(g_value, 0.0f);
+    std::vector<uint8_t> emitter(size_t(W) * H, 0);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < 4; ++x) emitter[size_t(y) * W + x] = 1;
+    const std::vector<float> guidance = edge_guidance(g, kFilter, img, 0.01f, emitter);
+    // ε = 0.01 · mean Y = 0.01 · 50.5; contrast 99 / (101 + ε).
+    const float expected = 99.0f / (101.0f + 0.505f);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            SCOPED_TRACE(testing::Message() << "pixel " << x << "," << y);
+            EXPECT_NEAR(guidance[size_t(y) * W + x], x == 3 || x == 4 ? expected : 0.0f, 1e-5f);
+        }
 }
 
 TEST(AisEdgeGuidance, EscapedRaysAreAnEdgeAndDarkDifferencesAreNot) {
