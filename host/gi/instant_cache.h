@@ -49,9 +49,9 @@ struct IcSettings {
     uint32_t evict_after_frames = 30;
     bool multiple_scattering = true;   ///< light paths scatter in the medium (IgiSettings)
     /// Add to each pixel an estimate of what the geometry-term clamp removed from its
-    /// indirect light (kernels/shared/ic_residual.h, docs/instant-caching.md §9): one ray
-    /// and one shadow ray a pixel and pass. Without it the clamp darkens corners (two-rooms
-    /// at 16 spp: 5% in a corner region, averaged over seeds).
+    /// indirect light (kernels/shared/ic_residual.h, docs/instant-caching.md §9): up to two
+    /// rays and two shadow rays a pixel and pass. Without it the clamp darkens corners
+    /// (two-rooms at 16 spp: 5% in a corner region, averaged over seeds).
     bool clamp_compensation = true;
 };
 

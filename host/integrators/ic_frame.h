@@ -2,8 +2,9 @@
 // the igi frame with its indirect component from an instant cache (gi/instant_cache.h),
 // one per pass (gi/ic_passes.h), instead of the interleaved VPL sets: the cache's E
 // unfiltered (its interpolation already smooths it), plus the clamp's residual through the
-// discontinuity filter (one ray a pixel, docs/instant-caching.md §9). Direct light and media are igi's (the media
-// gather igi's VPL sets for multiple scattering, as in every igi-family method).
+// discontinuity filter (one ray a pixel, docs/instant-caching.md §9). Direct light and
+// media are igi's (the media gather igi's VPL sets for multiple scattering, as in every
+// igi-family method).
 #pragma once
 #include <memory>
 #include <string>

@@ -10,7 +10,8 @@
  * an integral over the directions ω whose first hit y lies within d < 1/√b (G ≤ 1/d² > b
  * needs it). One cosine-distributed ray (pdf cosθx/π) gives ΔE/π ≈ L(y) · (1 − b/G)⁺, with
  * E_direct(y) from one light sample and E_indirect(y) read from the cache itself (the
- * clamped records of this pass; 0 where no record covers y). The light at y lost its own
+ * clamped records of this pass; the nearest E known where no record covers y, below). The
+ * light at y lost its own
  * residual too, so the estimate goes on from y the same way, up to TS_IC_RESIDUAL_BOUNCES
  * bounces. What this leaves out: bounces past that, the error of reading another point's E
  * where no record covers y, and the medium VPLs' clamp. */
@@ -72,10 +73,10 @@ TS_INLINE float3 ts_ic_clamp_residual(const TsSceneView* sv, const TsTracer* tra
          * GCC and PoCL's clang take them in different orders. */
         float u0 = ts_rng_next(&rng);
         float u1 = ts_rng_next(&rng);
-        float ul = ts_rng_next(&rng);
-        float ul1 = ts_rng_next(&rng);
-        float ul2 = ts_rng_next(&rng);
-        float3 u3 = make_float3(ul, ul1, ul2);
+        float light_select = ts_rng_next(&rng);
+        float light_u = ts_rng_next(&rng);
+        float light_v = ts_rng_next(&rng);
+        float3 u3 = make_float3(light_select, light_u, light_v);
         float3 w = ts_from_local(at.shading_normal, ts_sample_cosine_hemisphere(u0, u1));
         if (dot(w, at.geo_normal) <= 0.0f) break; /* as a VPL below the surface: G = 0 */
         TsRay ray;
