@@ -54,6 +54,19 @@ def compare(test, ref):
     return {"mean": float(test.mean() / ref.mean()), "worst_region": worst, "relmse": rel}
 
 
+def write_results(out, meta, rows, title, note, columns):
+    """Writes `rows` (dicts) to OUT's .json beside it (`meta` plus the rows) and to OUT as
+    Markdown: `title`, `note`, then one table row per row with `columns`, (header, key,
+    format spec) triples."""
+    out = Path(out)
+    out.with_suffix(".json").write_text(json.dumps({**meta, "rows": rows}, indent=1) + "\n")
+    lines = [f"# {title}", "", note, "", "| " + " | ".join(c[0] for c in columns) + " |",
+             "|" + "---|" * len(columns)]
+    for r in rows:
+        lines.append("| " + " | ".join(format(r[key], spec) for _, key, spec in columns) + " |")
+    out.write_text("\n".join(lines) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--tessera", default=str(ROOT / "build/tessera"))
@@ -83,20 +96,16 @@ def main():
                                      "spp": spp, "seed": seed, **compare(img, ref)}
                                 rows.append(r)
                                 print(json.dumps(r), flush=True)
-    out = Path(args.out)
-    out.with_suffix(".json").write_text(json.dumps({"machine": f"{platform.node()} {os.cpu_count()} cores",
-                                                    "size": args.size, "reference_spp": args.reference_spp,
-                                                    "rows": rows}, indent=1) + "\n")
-    lines = [f"# Instant caching against `pt`: mean and worst region ({args.size[0]}x{args.size[1]}, "
-             f"reference {args.reference_spp} spp Embree)", "",
-             "Written by `bench/ic_convergence.py`. mean = mean luminance / the reference's; worst = the "
-             f"{GRID[0]}x{GRID[1]} region furthest from 1; 16 spp: seeds 1, 2, 3 (each its own VPL sets).", "",
-             "| scene | method | binary | backend | spp | seed | mean | worst region | relMSE |",
-             "|---|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['scene']} | {r['method']} | {r['binary']} | {r['backend']} | {r['spp']} | {r['seed']} | "
-                     f"{r['mean']:.3f} | {r['worst_region']:.3f} | {r['relmse']:.4f} |")
-    out.write_text("\n".join(lines) + "\n")
+    columns = [("scene", "scene", ""), ("method", "method", ""), ("binary", "binary", ""), ("backend", "backend", ""),
+               ("spp", "spp", ""), ("seed", "seed", ""), ("mean", "mean", ".3f"), ("worst region", "worst_region", ".3f"),
+               ("relMSE", "relmse", ".4f")]
+    write_results(args.out, {"machine": f"{platform.node()} {os.cpu_count()} cores", "size": args.size,
+                             "reference_spp": args.reference_spp}, rows,
+                  f"Instant caching against `pt`: mean and worst region ({args.size[0]}x{args.size[1]}, "
+                  f"reference {args.reference_spp} spp Embree)",
+                  "Written by `bench/ic_convergence.py`. mean = mean luminance / the reference's; worst = the "
+                  f"{GRID[0]}x{GRID[1]} region furthest from 1; 16 spp: seeds 1, 2, 3 (each its own VPL sets).",
+                  columns)
     return 0
 
 

@@ -22,7 +22,7 @@ import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from ic_convergence import ROOT, compare, render  # noqa: E402
+from ic_convergence import ROOT, compare, render, write_results  # noqa: E402
 import numpy as np  # noqa: E402
 
 SCENES = {"two-rooms": ROOT / "tests/data/two-rooms/two-rooms.json",
@@ -61,22 +61,19 @@ def main():
                        "average_worst_region": average["worst_region"], "seeds": means}
                 rows.append(row)
                 print(json.dumps({k: v for k, v in row.items() if k != "seeds"}), flush=True)
-    out = Path(args.out)
-    meta = {"machine": f"{platform.node()} {os.cpu_count()} cores", "method": args.method, "spp": args.spp,
-            "seeds": args.seeds, "size": args.size, "reference_spp": args.reference_spp}
-    out.with_suffix(".json").write_text(json.dumps({**meta, "rows": rows}, indent=1) + "\n")
-    lines = [f"# `{args.method}` over seeds: VPL noise ({args.size[0]}x{args.size[1]}, {args.spp} spp, seeds 1-"
-             f"{args.seeds}, Embree, reference `pt` {args.reference_spp} spp)", "",
-             "Written by `bench/ic_seed_spread.py`. mean = image mean luminance / the reference's, over the "
-             "seeds; sd its standard deviation over the seeds (the VPL noise of one render); worst region = "
-             "the 4x3 region furthest from 1, median over the seeds; average's worst region: the same for the "
-             "seeds' average image, which keeps the bias (the clamp's) and 1/seeds of the variance.", "",
-             "| scene | binary | mean | sd | worst seed | median worst region | median relMSE | average's worst region |",
-             "|---|---|---|---|---|---|---|---|"]
-    for r in rows:
-        lines.append(f"| {r['scene']} | {r['binary']} | {r['mean']:.4f} | {r['sd']:.4f} | {r['worst_seed']:.3f} | "
-                     f"{r['median_worst_region']:.3f} | {r['median_relmse']:.4f} | {r['average_worst_region']:.3f} |")
-    out.write_text("\n".join(lines) + "\n")
+    columns = [("scene", "scene", ""), ("binary", "binary", ""), ("mean", "mean", ".4f"), ("sd", "sd", ".4f"),
+               ("worst seed", "worst_seed", ".3f"), ("median worst region", "median_worst_region", ".3f"),
+               ("median relMSE", "median_relmse", ".4f"), ("average's worst region", "average_worst_region", ".3f")]
+    write_results(args.out, {"machine": f"{platform.node()} {os.cpu_count()} cores", "method": args.method,
+                             "spp": args.spp, "seeds": args.seeds, "size": args.size,
+                             "reference_spp": args.reference_spp}, rows,
+                  f"`{args.method}` over seeds: VPL noise ({args.size[0]}x{args.size[1]}, {args.spp} spp, seeds 1-"
+                  f"{args.seeds}, Embree, reference `pt` {args.reference_spp} spp)",
+                  "Written by `bench/ic_seed_spread.py`. mean = image mean luminance / the reference's, over the "
+                  "seeds; sd its standard deviation over the seeds (the VPL noise of one render); worst region = "
+                  "the 4x3 region furthest from 1, median over the seeds; average's worst region: the same for the "
+                  "seeds' average image, which keeps the bias (the clamp's) and 1/seeds of the variance.",
+                  columns)
     return 0
 
 
