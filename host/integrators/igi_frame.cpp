@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "gi/clamp_screen.h"
 #include "integrators/settings.h"
 #include "kernels/shared/composite.h"
 #include "kernels/shared/frame.h"
@@ -160,6 +161,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         if (bits & (1u << c)) reconstruct_component(c);
         else final_[c] = raw_[c];  // not computed: zeros, which the filter would keep
     }
+    if (compensates_clamp() && (bits & TS_COMPONENT_ID)) compensate_clamp(frame, surf);
     composite(surf, out);
     finish(frame, out);
     if (settings_.component_aovs) add_to_sums();
@@ -187,6 +189,26 @@ void IgiFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     t0 = Clock::now();
     backend_.launch(KernelId::IgiResolve, frame, out);
     stats_.filter_seconds = since(t0);
+}
+
+bool IgiFrame::compensates_clamp() const {
+    return settings_.clamp_compensation && interleaved_indirect() && plan_.indirect && std::isfinite(g_clamp_);
+}
+
+void IgiFrame::compensate_clamp(const TsFrame& frame, const std::vector<float>& surf) {
+    ClampScreenInputs in;
+    in.g = &geometry_;
+    in.albedo = in.throughput = &surf;
+    in.stride = TS_IGI_SURF_FLOATS;
+    in.albedo_at = TS_IGI_SURF_ALBEDO;
+    in.throughput_at = TS_IGI_SURF_THROUGHPUT;
+    in.e_ss = &final_[kAisSS];
+    in.e_id = &final_[kAisID];
+    ts::TsMedium medium;
+    if (plan_.medium) medium = ts::ts_medium_load(scene_.medium.data());
+    clamp_screen_residual(frame, frame.igi_g_clamp, plan_.medium ? &medium : nullptr, in, clamp_residual_);
+    std::vector<float>& e_id = final_[kAisID];
+    for (size_t j = 0; j < e_id.size(); ++j) e_id[j] += clamp_residual_[j];
 }
 
 void IgiFrame::extract(int width, const std::vector<float>& surf, const std::vector<float>& media) {

@@ -39,6 +39,11 @@ struct IgiSettings {
     /// while every single frame keeps the clamp's low noise (docs/igi.md §4). 0: the same
     /// clamp in every pass.
     float clamp_decay = 0.25f;
+    /// Return the clamp's loss where interleaved VPLs make ID (igi, ais, ais-max): the
+    /// screen-space estimate of gi/clamp_screen.h, added to the reconstructed E_id
+    /// (docs/igi.md §4). It runs on the host, so with it igi reconstructs there on every
+    /// backend. false (`--no-clamp-compensation`): the clamped estimate alone.
+    bool clamp_compensation = true;
     /// VPLs for the view (gi/vpl_importance.h, docs/igi.md §3b): K > 1 traces K times the
     /// light paths and keeps, on average, paths_per_set paths' worth of VPLs per set, by
     /// their importance for view_grid² view points of the frame's camera. 1: off. K = 4
@@ -141,8 +146,10 @@ protected:
     /// sums): always for AIS and ic, whose schedule and cache are host code; for igi
     /// unless the backend resolves on the device and no component AOVs are wanted.
     virtual bool reconstructs_on_host() const {
-        return settings_.component_aovs || !backend_.resolves_on_device();
+        return settings_.component_aovs || compensates_clamp() || !backend_.resolves_on_device();
     }
+    /// Whether this frame adds the clamp's screen-space residual to E_id.
+    bool compensates_clamp() const;
     /// True when the indirect component comes from the interleaved VPL sets (igi, ais);
     /// false: the surface kernel skips ID and refine() supplies it (the sets are still
     /// made when the media need them, needs_vpl_sets).
@@ -184,6 +191,7 @@ protected:
     std::array<std::vector<double>, 6> component_sums_;
     std::array<std::vector<float>, kAisComponents> raw_, final_;
     std::vector<float> transmittance_;
+    std::vector<float> clamp_residual_;  ///< E_res of the last frame (compensate_clamp)
     // The surface and media kernels' outputs, kept across passes: a fresh 32 MB (512², 31
     // floats a pixel) each pass cost its zero fill and page faults, ~5 ms.
     std::vector<float> surf_, media_;
@@ -194,6 +202,8 @@ private:
     void resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out);
     void extract(int width, const std::vector<float>& surf, const std::vector<float>& media);
     void composite(const std::vector<float>& surf, std::vector<float>& out);
+    /// Adds the clamp's screen-space residual (gi/clamp_screen.h) to final_[kAisID].
+    void compensate_clamp(const TsFrame& frame, const std::vector<float>& surf);
 };
 
 }  // namespace tessera

@@ -79,8 +79,8 @@ const Parameter kParameters[] = {
      .unit = "paths", .doc = "ic/tic: light paths N_p (all records gather from all)"},
     {.option = "--ic-error", .value_name = "A", .field = TS_SETTING(ic.error_bound), .min = 0.001, .max = 2,
      .doc = "ic/tic: Ward's error bound a"},
-    {.option = "--no-clamp-compensation", .value_name = "", .field = TS_SETTING(ic.clamp_compensation), .negated = true,
-     .doc = "ic/tic: skip the estimate of the light the VPL clamp removed (up to two rays a pixel and pass)"},
+    {.option = "--no-clamp-compensation", .value_name = "", .field = TS_SETTING(igi.clamp_compensation), .negated = true,
+     .doc = "igi family: skip the estimate of the light the VPL clamp removed (igi/ais: from the screen; ic/tic: up to two rays a pixel and pass)"},
 };
 
 #undef TS_SETTING

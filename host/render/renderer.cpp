@@ -38,6 +38,8 @@ uint64_t render_fingerprint(const Scene& scene, const RenderSettings& settings, 
 IntegratorSettings integrator_settings(const RenderSettings& settings) {
     IntegratorSettings s = settings;
     s.igi.component_aovs = s.igi.component_aovs || settings.aovs;
+    // One switch for the clamp's compensation: igi's screen-space estimate and ic's rays.
+    s.ic.clamp_compensation = s.ic.clamp_compensation && s.igi.clamp_compensation;
     return s;
 }
 

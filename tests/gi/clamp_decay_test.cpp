@@ -68,6 +68,7 @@ TEST(ClampDecay, PassMeanRecoversTheClampedEnergy) {
     rs.igi.tile = 1;
     rs.igi.paths_per_set = 32;
     rs.igi.clamp_c = 0.0f;
+    rs.igi.clamp_compensation = false;  // the decay alone (the compensation: clamp_screen_test.cpp)
     const double open = image_sum(test::render_with(BackendKind::Embree, s, rs));
     rs.igi.clamp_c = 0.3f;
     rs.igi.clamp_decay = 0.0f;

@@ -65,6 +65,9 @@ IgiSettings settings_of(const ResolveCase& c, bool component_aovs) {
     is.components = c.components;
     is.multiple_scattering = c.multiple_scattering;
     is.component_aovs = component_aovs;
+    // The clamp's screen-space compensation runs on the host only and sends igi's frame
+    // there (IgiFrame::reconstructs_on_host): off, so the device resolve is what runs.
+    is.clamp_compensation = false;
     return is;
 }
 
@@ -205,6 +208,7 @@ TEST(IgiResolve, ComponentAovsBringTheComponentsBack) {
     const SceneBuffers b = make_scene_buffers(s);
     auto be = backend_of(s, b, BackendKind::OpenCL, true);
     RenderSettings rs = test::packet_test_settings(Method::Igi);
+    rs.igi.clamp_compensation = false;  // host-only: it would send every frame to the host
     rs.aovs = true;
     const Image with = render_frame(*be, s, b, rs);
     EXPECT_EQ(be->dispatch_count(KernelId::IgiResolve), 0u);
@@ -215,6 +219,9 @@ TEST(IgiResolve, ComponentAovsBringTheComponentsBack) {
     EXPECT_EQ(be->dispatch_count(KernelId::IgiResolve), rs.spp);
     EXPECT_EQ(without.find("SS_filtered.R"), nullptr);
     EXPECT_EQ(test::rel_mse(with, without), 0.0);
+    rs.igi.clamp_compensation = true;
+    render_frame(*be, s, b, rs);
+    EXPECT_EQ(be->dispatch_count(KernelId::IgiResolve), rs.spp) << "the compensation reconstructs on the host";
 }
 
 }  // namespace

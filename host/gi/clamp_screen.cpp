@@ -1,0 +1,114 @@
+#include "gi/clamp_screen.h"
+
+#include <cmath>
+#include <cstdint>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "kernels/shared/clamp_screen.h"
+
+namespace tessera {
+namespace {
+
+using ts::float3;
+
+bool seen_directly(const ClampScreenInputs& in, size_t p) {
+    const float* t = &(*in.throughput)[p * in.stride + in.throughput_at];
+    return std::isfinite(in.g->depth[p]) && t[0] == 1.0f && t[1] == 1.0f && t[2] == 1.0f;
+}
+
+// The gather's records (TS_CLAMP_SCREEN_FLOATS a pixel): position, normal, s_q = L_q · A_q
+// with L = ρ · (E_ss + E_id), and A_q; zero source where q is no diffuse surface seen
+// directly.
+void records(const TsFrame& frame, const ClampScreenInputs& in, std::vector<float>& rec) {
+    const GeometryBuffer& g = *in.g;
+    const size_t n = g.depth.size();
+    const float plane = ts::ts_clamp_screen_pixel_plane(&frame);
+    rec.assign(TS_CLAMP_SCREEN_FLOATS * n, 0.0f);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t p = r.begin(); p < r.end(); ++p) {
+            if (!seen_directly(in, p)) continue;
+            float* q = &rec[TS_CLAMP_SCREEN_FLOATS * p];
+            const float3 pos = ts::ts_f3_load(&g.position[3 * p]), nrm = ts::ts_f3_load(&g.normal[3 * p]);
+            const float area = ts::ts_clamp_screen_area(&frame, plane, pos, nrm);
+            const float3 e = ts::ts_f3_load(&(*in.e_ss)[3 * p]) + ts::ts_f3_load(&(*in.e_id)[3 * p]);
+            const float3 rho = ts::ts_f3_load(&(*in.albedo)[p * in.stride + in.albedo_at]);
+            ts::ts_f3_store(q + TS_CLAMP_SCREEN_POSITION, pos);
+            ts::ts_f3_store(q + TS_CLAMP_SCREEN_NORMAL, nrm);
+            ts::ts_f3_store(q + TS_CLAMP_SCREEN_SOURCE, rho * e * area);
+            q[TS_CLAMP_SCREEN_AREA] = area;
+        }
+    });
+}
+
+// E_res at pixel p = (x, y) from the records.
+float3 gather_pixel(const TsFrame& frame, float plane, float b, const ts::TsMedium* med, int w, int h,
+                    const std::vector<float>& rec, int x, int y) {
+    const float* q = &rec[TS_CLAMP_SCREEN_FLOATS * (size_t(y) * w + x)];
+    const float3 pos = ts::ts_f3_load(q + TS_CLAMP_SCREEN_POSITION);
+    const float r = ts::ts_clamp_screen_radius(plane, ts::ts_clamp_screen_depth(&frame, pos), b);
+    return ts::ts_clamp_screen_pixel(x, y, w, h, pos, ts::ts_f3_load(q + TS_CLAMP_SCREEN_NORMAL), r, b, med,
+                                     rec.data());
+}
+
+// E_res from `rec` into `residual`. The gather runs at every second pixel in x and y (the
+// even grid); a pixel off it takes the mean of the grid pixels next to it (2 or 4) that
+// its discontinuity test accepts (gi/discontinuity_filter.h: same surface), or gathers
+// itself where none does (edges). E_res varies over a surface at the scale of the clamp
+// radius, tens of pixels, so the mean of neighbours two pixels apart loses nothing visible,
+// and the gather, most of the cost, runs at about a quarter of the pixels.
+void gather(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampScreenInputs& in,
+            const std::vector<float>& rec, std::vector<float>& residual) {
+    const GeometryBuffer& g = *in.g;
+    const int w = g.width, h = g.height;
+    const float plane = ts::ts_clamp_screen_pixel_plane(&frame);
+    residual.assign(3 * size_t(w) * h, 0.0f);
+    std::vector<uint8_t> done(size_t(w) * h, 0);
+    tbb::parallel_for(tbb::blocked_range<int>(0, (h + 1) / 2, 2), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = 2 * rows.begin(); y < 2 * rows.end() && y < h; y += 2)
+            for (int x = 0; x < w; x += 2) {
+                const size_t p = size_t(y) * w + x;
+                if (!seen_directly(in, p)) continue;
+                ts::ts_f3_store(&residual[3 * p], gather_pixel(frame, plane, b, med, w, h, rec, x, y));
+                done[p] = 1;
+            }
+    });
+    const DiscontinuitySettings same_surface;
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            for (int x = (y % 2 == 0) ? 1 : 0; x < w; x += (y % 2 == 0) ? 2 : 1) {
+                const size_t p = size_t(y) * w + x;
+                if (!seen_directly(in, p)) continue;
+                float3 sum = ts::make_float3(0.0f, 0.0f, 0.0f);
+                int n = 0;
+                for (int dy = -(y % 2); dy <= y % 2; dy += 2)
+                    for (int dx = -(x % 2); dx <= x % 2; dx += 2) {
+                        const int qx = x + dx, qy = y + dy;
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+                        const size_t q = size_t(qy) * w + qx;
+                        if (!done[q] || !discontinuity_accepts(g, same_surface, p, q)) continue;
+                        sum += ts::ts_f3_load(&residual[3 * q]);
+                        ++n;
+                    }
+                ts::ts_f3_store(&residual[3 * p], n ? sum * (1.0f / static_cast<float>(n))
+                                                    : gather_pixel(frame, plane, b, med, w, h, rec, x, y));
+            }
+    });
+}
+
+}  // namespace
+
+void clamp_screen_residual(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampScreenInputs& in,
+                           std::vector<float>& residual) {
+    const size_t n = in.g->depth.size();
+    if (!(b > 0.0f) || !std::isfinite(b) || in.g->position.size() != 3 * n) {
+        residual.assign(3 * n, 0.0f);
+        return;
+    }
+    std::vector<float> rec;
+    records(frame, in, rec);
+    gather(frame, b, med, in, rec, residual);
+}
+
+}  // namespace tessera
