@@ -74,7 +74,6 @@ void gather(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampS
                 done[p] = 1;
             }
     });
-    const DiscontinuitySettings same_surface;
     tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = (y % 2 == 0) ? 1 : 0; x < w; x += (y % 2 == 0) ? 2 : 1) {
@@ -87,7 +86,7 @@ void gather(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampS
                         const int qx = x + dx, qy = y + dy;
                         if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
                         const size_t q = size_t(qy) * w + qx;
-                        if (!done[q] || !discontinuity_accepts(g, same_surface, p, q)) continue;
+                        if (!done[q] || !discontinuity_accepts(g, in.same_surface, p, q)) continue;
                         sum += ts::ts_f3_load(&residual[3 * q]);
                         ++n;
                     }

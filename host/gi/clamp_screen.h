@@ -26,6 +26,9 @@ struct ClampScreenInputs {
     int stride = 3, albedo_at = 0, throughput_at = 0;
     const std::vector<float>* e_ss = nullptr;
     const std::vector<float>* e_id = nullptr;
+    /// Which neighbours lie on a pixel's surface (the frame's discontinuity test): a pixel
+    /// off the half-resolution grid takes the mean of those grid neighbours' E_res.
+    DiscontinuitySettings same_surface;
 };
 
 /// E_res per pixel (3 floats, irradiance / π, W/m² / π) for clamp b (scene units⁻²; +inf

@@ -204,6 +204,7 @@ void IgiFrame::compensate_clamp(const TsFrame& frame, const std::vector<float>& 
     in.throughput_at = TS_IGI_SURF_THROUGHPUT;
     in.e_ss = &final_[kAisSS];
     in.e_id = &final_[kAisID];
+    in.same_surface = settings_.discontinuity;
     ts::TsMedium medium;
     if (plan_.medium) medium = ts::ts_medium_load(scene_.medium.data());
     clamp_screen_residual(frame, frame.igi_g_clamp, plan_.medium ? &medium : nullptr, in, clamp_residual_);

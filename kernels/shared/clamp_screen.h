@@ -134,15 +134,21 @@ TS_INLINE float3 ts_clamp_screen_pixel(int x, int y, int w, int h, float3 px, fl
     /* Rings start where a disc has the near square's area: π r0² = (2·NEAR + 1)². */
     const float side = 2.0f * TS_CLAMP_SCREEN_NEAR + 1.0f;
     float r0 = side * 0.5641896f; /* 1/sqrt(π) */
+    /* A ring's samples step by this turn, applied as a rotation: one sine and cosine a
+       ring, not a sample (they were 2% of an AIS frame). */
+    const float step_c = cos(6.2831853f / (float)TS_CLAMP_SCREEN_RING);
+    const float step_s = sin(6.2831853f / (float)TS_CLAMP_SCREEN_RING);
     for (int k = 0; r0 < r; ++k) {
         float r1 = fmin(r0 * TS_CLAMP_SCREEN_GROWTH, r);
         float rm = 0.5f * (r0 + r1);
         float weight = 3.14159265f * (r1 * r1 - r0 * r0) / (float)TS_CLAMP_SCREEN_RING;
         /* Each ring turned by the golden angle, so no two rings' samples line up. */
-        float phase = 2.3999632f * (float)k;
+        float c = cos(2.3999632f * (float)k), s = sin(2.3999632f * (float)k);
         for (int j = 0; j < TS_CLAMP_SCREEN_RING; ++j) {
-            float a = phase + 6.2831853f * (float)j / (float)TS_CLAMP_SCREEN_RING;
-            int qx = x + (int)floor(rm * cos(a) + 0.5f), qy = y + (int)floor(rm * sin(a) + 0.5f);
+            int qx = x + (int)floor(rm * c + 0.5f), qy = y + (int)floor(rm * s + 0.5f);
+            float c1 = c * step_c - s * step_s;
+            s = s * step_c + c * step_s;
+            c = c1;
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             ts_clamp_screen_add(&sum, px, nx, b, inv_b, med, rec + ((ulong)qy * w + qx) * TS_CLAMP_SCREEN_FLOATS,
                                 weight);
