@@ -47,14 +47,6 @@ TEST(ClampDecay, PassClampGrowsAsPassPowerWhereVplsAreFresh) {
     EXPECT_EQ(IgiFrame(*backend, buffers, plan, igi).prepare(f).igi_g_clamp, INFINITY) << "no clamp";
 }
 
-// Mean luminance-like sum of R, G and B over the image.
-double image_sum(const Image& img) {
-    double sum = 0.0;
-    for (const char* c : {"R", "G", "B"})
-        for (float v : img.find(c)->data) sum += v;
-    return sum;
-}
-
 TEST(ClampDecay, PassMeanRecoversTheClampedEnergy) {
     // A strong clamp (c = 0.3: b bounds G within 0.3 of the diagonal, about half the box)
     // darkens the Cornell box's indirect light in every pass; with the decay, the mean
@@ -69,12 +61,12 @@ TEST(ClampDecay, PassMeanRecoversTheClampedEnergy) {
     rs.igi.paths_per_set = 32;
     rs.igi.clamp_c = 0.0f;
     rs.igi.clamp_compensation = false;  // the decay alone (the compensation: clamp_screen_test.cpp)
-    const double open = image_sum(test::render_with(BackendKind::Embree, s, rs));
+    const double open = test::image_sum(test::render_with(BackendKind::Embree, s, rs));
     rs.igi.clamp_c = 0.3f;
     rs.igi.clamp_decay = 0.0f;
-    const double fixed = image_sum(test::render_with(BackendKind::Embree, s, rs)) / open;
+    const double fixed = test::image_sum(test::render_with(BackendKind::Embree, s, rs)) / open;
     rs.igi.clamp_decay = 0.5f;
-    const double decayed = image_sum(test::render_with(BackendKind::Embree, s, rs)) / open;
+    const double decayed = test::image_sum(test::render_with(BackendKind::Embree, s, rs)) / open;
     std::printf("  image sum against the unclamped one: fixed clamp %.4f, decaying %.4f\n", fixed, decayed);
     EXPECT_LT(fixed, 0.97) << "the clamp must cost visible energy here, or the test shows nothing";
     // The decay's mean clamp is c/sqrt(p + 1) averaged over 64 passes: about 1/4 of the

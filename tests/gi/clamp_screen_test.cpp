@@ -152,14 +152,6 @@ TEST(ClampScreen, PixelsSeenThroughAMirrorNeitherGetNorSend) {
     for (float v : res) ASSERT_EQ(v, 0.0f);
 }
 
-// Image sum of R, G and B.
-double image_sum(const Image& img) {
-    double sum = 0.0;
-    for (const char* ch : {"R", "G", "B"})
-        for (float v : img.find(ch)->data) sum += v;
-    return sum;
-}
-
 TEST(IgiClampCompensation, ReturnsMostOfWhatTheClampRemoved) {
     // The same seed draws the same VPLs with and without the clamp (c = 0), so their
     // difference is what the clamp removed from these VPLs, with no noise of its own.
@@ -173,12 +165,12 @@ TEST(IgiClampCompensation, ReturnsMostOfWhatTheClampRemoved) {
     rs.igi.clamp_decay = 0.0f;
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         rs.igi.clamp_c = 0.0f;
-        const double open = image_sum(test::render_with(kind, s, rs));
+        const double open = test::image_sum(test::render_with(kind, s, rs));
         rs.igi.clamp_c = 0.1f;
         rs.igi.clamp_compensation = false;
-        const double clamped = image_sum(test::render_with(kind, s, rs));
+        const double clamped = test::image_sum(test::render_with(kind, s, rs));
         rs.igi.clamp_compensation = true;
-        const double compensated = image_sum(test::render_with(kind, s, rs));
+        const double compensated = test::image_sum(test::render_with(kind, s, rs));
         const double returned = (compensated - clamped) / (open - clamped);
         std::printf("  %s: clamped %.4f, compensated %.4f of the unclamped image: %.2f of the loss returned\n",
                     kind == BackendKind::Embree ? "embree" : "opencl", clamped / open, compensated / open, returned);

@@ -33,6 +33,15 @@ inline Image render_with(BackendKind kind, const Scene& scene, const RenderSetti
     return render_frame(*backend, scene, buffers, settings);
 }
 
+/// Sum of R, G and B over the image (radiance × pixels): what a clamp removed or returned
+/// compares as a ratio of two sums.
+inline double image_sum(const Image& img) {
+    double sum = 0.0;
+    for (const char* c : {"R", "G", "B"})
+        for (float v : img.find(c)->data) sum += v;
+    return sum;
+}
+
 /// Mean over pixels of (a - b)² / (b² + 0.01), over R, G, B: the relative MSE of
 /// Rousselle et al. 2011 (the 0.01 keeps dark pixels from dominating).
 inline double rel_mse(const Image& a, const Image& b) {
