@@ -1,7 +1,8 @@
 /* Instant Global Illumination and Adaptive Interleaved Sampling on OpenCL devices
  * (shared/igi.h): the surface kernel (G-buffer, direct light of the pixel's sample set,
  * indirect light from the set's VPLs), the AIS extra kernel (further sets for scheduled
- * pixels), the resolve kernel (filter and composite without a read-back), and the media kernel (single-scattering ray march), dispatched only when the
+ * pixels), the resolve kernel (filter and composite without a read-back) with the clamp
+ * compensation's two kernels before it, and the media kernel (single-scattering ray march), dispatched only when the
  * scene has a medium and built with -DTS_HAS_MEDIUM only then. On CPU devices the host
  * launches the 16-ray packet variants of the surface and AIS kernels instead
  * (igi_packets.h: same images, faster traversal). */
@@ -26,6 +27,11 @@ TS_ITEM_KERNEL(edge_sample_pass, ts_edge_sample_item, TS_EDGE_SAMPLE_FLOATS)
 /* The frame's filter and composite where the kernels ran (GPU variant; shared/igi_resolve.h):
  * reads the surface and media kernels' outputs in place, writes the pass image. */
 TS_PIXEL_KERNEL(igi_resolve_pass, ts_igi_resolve_pixel, TS_PASS_FLOATS)
+
+/* The clamp's screen-space compensation before the resolve (shared/igi_clamp_screen.h):
+ * the pixels' records, then the gather at the even grid's pixels. */
+TS_PIXEL_KERNEL(igi_clamp_records_pass, ts_igi_clamp_records_pixel, TS_CLAMP_SCREEN_FLOATS)
+TS_PIXEL_KERNEL(igi_clamp_gather_pass, ts_igi_clamp_gather_pixel, TS_CLAMP_RESIDUAL_FLOATS)
 
 #ifdef TS_HAS_MEDIUM
 TS_PIXEL_KERNEL(igi_media_pass, ts_igi_media_pixel, TS_IGI_MEDIA_FLOATS)

@@ -31,6 +31,10 @@
     X(IgiMedia, "igi_media_pass", "igi.cl", TS_IGI_MEDIA_FLOATS, 0, ts_igi_media_pixel, "igi_media_packets",       \
       igi_media_packets)                                                                                          \
     X(IgiResolve, "igi_resolve_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_igi_resolve_pixel, nullptr, no_packets)     \
+    X(IgiClampRecords, "igi_clamp_records_pass", "igi.cl", TS_CLAMP_SCREEN_FLOATS, 0, ts_igi_clamp_records_pixel,  \
+      nullptr, no_packets)                                                                                        \
+    X(IgiClampGather, "igi_clamp_gather_pass", "igi.cl", TS_CLAMP_RESIDUAL_FLOATS, 0, ts_igi_clamp_gather_pixel,   \
+      nullptr, no_packets)                                                                                        \
     X(AisItem, "ais_extra_pass", "igi.cl", TS_AIS_ITEM_FLOATS, TS_AIS_ITEM_WORDS, ts_ais_extra_item,               \
       "ais_extra_packets", ais_item_packets)                                                                      \
     X(EdgeSample, "edge_sample_pass", "igi.cl", TS_EDGE_SAMPLE_FLOATS, TS_EDGE_ITEM_WORDS, ts_edge_sample_item,    \

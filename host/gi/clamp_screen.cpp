@@ -29,15 +29,11 @@ void records(const TsFrame& frame, const ClampScreenInputs& in, std::vector<floa
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t p = r.begin(); p < r.end(); ++p) {
             if (!seen_directly(in, p)) continue;
-            float* q = &rec[TS_CLAMP_SCREEN_FLOATS * p];
-            const float3 pos = ts::ts_f3_load(&g.position[3 * p]), nrm = ts::ts_f3_load(&g.normal[3 * p]);
-            const float area = ts::ts_clamp_screen_area(&frame, plane, pos, nrm);
             const float3 e = ts::ts_f3_load(&(*in.e_ss)[3 * p]) + ts::ts_f3_load(&(*in.e_id)[3 * p]);
-            const float3 rho = ts::ts_f3_load(&(*in.albedo)[p * in.stride + in.albedo_at]);
-            ts::ts_f3_store(q + TS_CLAMP_SCREEN_POSITION, pos);
-            ts::ts_f3_store(q + TS_CLAMP_SCREEN_NORMAL, nrm);
-            ts::ts_f3_store(q + TS_CLAMP_SCREEN_SOURCE, rho * e * area);
-            q[TS_CLAMP_SCREEN_AREA] = area;
+            ts::ts_clamp_screen_record(&frame, plane, ts::ts_f3_load(&g.position[3 * p]),
+                                       ts::ts_f3_load(&g.normal[3 * p]),
+                                       ts::ts_f3_load(&(*in.albedo)[p * in.stride + in.albedo_at]), e,
+                                       &rec[TS_CLAMP_SCREEN_FLOATS * p]);
         }
     });
 }

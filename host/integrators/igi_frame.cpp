@@ -87,6 +87,8 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     frame.igi_filter = settings_.filter ? 1u : 0u;
     frame.igi_filter_cos = settings_.discontinuity.normal_cos;
     frame.igi_filter_depth = settings_.discontinuity.depth_rel;
+    // Read by the device resolve only; the host's reconstruction asks compensates_clamp().
+    frame.igi_clamp_screen = compensates_clamp() && (frame.igi_components & TS_COMPONENT_ID) ? 1u : 0u;
     frame.igi_march_far = march_far_ + std::sqrt(frame.cam_pos[0] * frame.cam_pos[0] +
                                                  frame.cam_pos[1] * frame.cam_pos[1] +
                                                  frame.cam_pos[2] * frame.cam_pos[2]);
@@ -187,6 +189,10 @@ void IgiFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
         stats_.media_seconds = since(t0);
     }
     t0 = Clock::now();
+    if (frame.igi_clamp_screen) {
+        backend_.launch_into(KernelId::IgiClampRecords, frame, KernelInput::ClampRecords);
+        backend_.launch_into(KernelId::IgiClampGather, frame, KernelInput::ClampResidual);
+    }
     backend_.launch(KernelId::IgiResolve, frame, out);
     stats_.filter_seconds = since(t0);
 }

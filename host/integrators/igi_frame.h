@@ -41,8 +41,9 @@ struct IgiSettings {
     float clamp_decay = 0.25f;
     /// Return the clamp's loss where interleaved VPLs make ID (igi, ais, ais-max): the
     /// screen-space estimate of gi/clamp_screen.h, added to the reconstructed E_id
-    /// (docs/igi.md §4). It runs on the host, so with it igi reconstructs there on every
-    /// backend. false (`--no-clamp-compensation`): the clamped estimate alone.
+    /// (docs/igi.md §4). Where igi resolves on the device, so does the compensation
+    /// (KernelId::IgiClampRecords, IgiClampGather; the same bits). false
+    /// (`--no-clamp-compensation`): the clamped estimate alone.
     bool clamp_compensation = true;
     /// VPLs for the view (gi/vpl_importance.h, docs/igi.md §3b): K > 1 traces K times the
     /// light paths and keeps, on average, paths_per_set paths' worth of VPLs per set, by
@@ -125,7 +126,8 @@ public:
     ///   L = T · throughput · (Le + albedo · (Ẽ_ss + Ẽ_id)) + L̃_pm
     /// into TS_PASS_FLOATS per pixel (layout_pass.h). Fills frame's igi fields itself. Filter
     /// and composite run on the host, or, where reconstructs_on_host() is false, as
-    /// KernelId::IgiResolve where the kernels ran (same formula and sums, same image).
+    /// KernelId::IgiResolve where the kernels ran, after IgiClampRecords and IgiClampGather
+    /// when the frame compensates the clamp (same formula and sums, same image).
     void render_pass(const TsFrame& frame, std::vector<float>& out) override;
 
     /// Per-component AOVs summed over the frames rendered so far, divided by `frames`:
@@ -144,9 +146,10 @@ public:
 protected:
     /// Whether the components come to the host for reconstruction (raw_, final_, the AOV
     /// sums): always for AIS and ic, whose schedule and cache are host code; for igi
-    /// unless the backend resolves on the device and no component AOVs are wanted.
+    /// unless the backend resolves on the device and no component AOVs are wanted. The
+    /// device resolve compensates the clamp too (shared/igi_clamp_screen.h).
     virtual bool reconstructs_on_host() const {
-        return settings_.component_aovs || compensates_clamp() || !backend_.resolves_on_device();
+        return settings_.component_aovs || !backend_.resolves_on_device();
     }
     /// Whether this frame adds the clamp's screen-space residual to E_id.
     bool compensates_clamp() const;

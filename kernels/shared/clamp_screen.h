@@ -23,11 +23,15 @@
  * most of the loss is the surface across a corner, which the camera sees with x).
  *
  * Host code runs it per pixel over its copies of the components
- * (host/gi/clamp_screen.cpp); C and OpenCL C compatible (shared/compat.h). */
+ * (host/gi/clamp_screen.cpp); an igi frame resolved on the device runs it in kernels over
+ * the surface pass's output (shared/igi_clamp_screen.h), the same functions in the same
+ * order, so both give the same bits (no built-in whose rounding may differ: dot and
+ * length written out, no cos or sin). C and OpenCL C compatible (shared/compat.h). */
 #ifndef TS_CLAMP_SCREEN_H
 #define TS_CLAMP_SCREEN_H
 #include "shared/compat.h"
 #include "shared/frame.h"
+#include "shared/layout_igi.h"
 #include "shared/medium.h"
 
 TS_NAMESPACE_BEGIN
@@ -38,6 +42,9 @@ TS_NAMESPACE_BEGIN
  * share of a ring is about as wide as the ring (2π·1.25r/8 ≈ r against 0.5r deep). */
 #define TS_CLAMP_SCREEN_GROWTH 1.5f
 #define TS_CLAMP_SCREEN_RING 8
+#if TS_CLAMP_SCREEN_RING != 8
+#error "ts_clamp_screen_pixel's step turn is cos = sin = 1/sqrt(2), 2π/8"
+#endif
 /* Rings end at this radius (pixels) whatever the clamp radius: cost stays bounded where the
  * camera is far from a corner, whose loss is then a few pixels wide (ours). */
 #define TS_CLAMP_SCREEN_MAX_RADIUS 64.0f
@@ -45,19 +52,25 @@ TS_NAMESPACE_BEGIN
  * part is not where its position says (ours). */
 #define TS_CLAMP_SCREEN_MIN_COS 0.1f
 
+/* Dot product and length written out term by term, as shared/discontinuity.h's test:
+ * the OpenCL built-ins may round otherwise, and the device's estimate must equal the
+ * host's bit for bit (tests/kernels/igi_resolve_test.cpp). */
+TS_INLINE float ts_clamp_screen_dot(float3 a, float3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+TS_INLINE float ts_clamp_screen_length(float3 a) { return sqrt(ts_clamp_screen_dot(a, a)); }
+
 /* Area of the image plane at unit distance along the view axis per pixel (scene units²),
  * from the camera of shared/frame.h: (2|right| / width) · (2|up| / height). */
 TS_INLINE float ts_clamp_screen_pixel_plane(const TsFrame* f) {
     float3 right = make_float3(f->cam_right[0], f->cam_right[1], f->cam_right[2]);
     float3 up = make_float3(f->cam_up[0], f->cam_up[1], f->cam_up[2]);
-    return 4.0f * length(right) * length(up) / ((float)f->width * (float)f->height);
+    return 4.0f * ts_clamp_screen_length(right) * ts_clamp_screen_length(up) / ((float)f->width * (float)f->height);
 }
 
 /* Depth of world point p along the camera's view axis (scene units). */
 TS_INLINE float ts_clamp_screen_depth(const TsFrame* f, float3 p) {
     float3 o = make_float3(f->cam_pos[0], f->cam_pos[1], f->cam_pos[2]);
-    float3 fwd = normalize(make_float3(f->cam_forward[0], f->cam_forward[1], f->cam_forward[2]));
-    return dot(p - o, fwd);
+    float3 fwd = make_float3(f->cam_forward[0], f->cam_forward[1], f->cam_forward[2]);
+    return ts_clamp_screen_dot(p - o, fwd) / ts_clamp_screen_length(fwd);
 }
 
 /* World area (scene units²) of the surface patch that a pixel whose plane area is `plane`
@@ -67,10 +80,10 @@ TS_INLINE float ts_clamp_screen_depth(const TsFrame* f, float3 p) {
 TS_INLINE float ts_clamp_screen_area(const TsFrame* f, float plane, float3 p, float3 n) {
     float3 o = make_float3(f->cam_pos[0], f->cam_pos[1], f->cam_pos[2]);
     float3 v = p - o;
-    float d = length(v);
+    float d = ts_clamp_screen_length(v);
     float z = ts_clamp_screen_depth(f, p);
     if (!(d > 0.0f) || !(z > 0.0f)) return 0.0f;
-    float c = fmax(fabs(dot(n, v)) / d, TS_CLAMP_SCREEN_MIN_COS);
+    float c = fmax(fabs(ts_clamp_screen_dot(n, v)) / d, TS_CLAMP_SCREEN_MIN_COS);
     return plane * z * z * z / (d * c);
 }
 
@@ -83,15 +96,17 @@ TS_INLINE float ts_clamp_screen_radius(float plane, float z, float b) {
     return (r > 0.0f) ? fmin(r, TS_CLAMP_SCREEN_MAX_RADIUS) : 0.0f;
 }
 
-/* Per-pixel record the gather reads (TS_CLAMP_SCREEN_FLOATS floats a pixel, row-major,
- * one cache line's worth, so a sample costs one miss): world position, unit normal, the
- * source s_q = L_q · A_q (radiance times patch area; zero for a pixel that is no diffuse
- * surface seen directly) and the patch area A_q (ts_clamp_screen_area). */
-#define TS_CLAMP_SCREEN_FLOATS 10
-#define TS_CLAMP_SCREEN_POSITION 0
-#define TS_CLAMP_SCREEN_NORMAL 3
-#define TS_CLAMP_SCREEN_SOURCE 6
-#define TS_CLAMP_SCREEN_AREA 9
+/* Writes the record (TS_CLAMP_SCREEN_FLOATS, layout_igi.h) of a pixel that sees a diffuse
+ * surface directly at position p with unit normal n and albedo rho, whose reconstructed
+ * irradiance / π is e = E_ss + E_id; plane: ts_clamp_screen_pixel_plane. */
+TS_INLINE void ts_clamp_screen_record(const TsFrame* f, float plane, float3 p, float3 n, float3 rho, float3 e,
+                                      float* out) {
+    const float area = ts_clamp_screen_area(f, plane, p, n);
+    ts_f3_store(out + TS_CLAMP_SCREEN_POSITION, p);
+    ts_f3_store(out + TS_CLAMP_SCREEN_NORMAL, n);
+    ts_f3_store(out + TS_CLAMP_SCREEN_SOURCE, rho * e * area);
+    out[TS_CLAMP_SCREEN_AREA] = area;
+}
 
 /* Adds pixel q's share to *sum: `weight` pixels' worth of q's source times
  * max(0, G − b) · Tr between x (position px, unit normal nx) and q's point. G is that of
@@ -105,10 +120,10 @@ TS_INLINE void ts_clamp_screen_add(float3* sum, float3 px, float3 nx, float b, f
     float3 s = ts_f3_load(q + TS_CLAMP_SCREEN_SOURCE);
     if (!(s.x + s.y + s.z > 0.0f)) return;
     float3 d = ts_f3_load(q + TS_CLAMP_SCREEN_POSITION) - px;
-    float d2 = dot(d, d);
+    float d2 = ts_clamp_screen_dot(d, d);
     /* Beyond 1/sqrt(b), G ≤ 1/d² < b: nothing was clamped. */
     if (!(d2 > 0.0f) || !(d2 < inv_b)) return;
-    float cos_x = dot(nx, d), cos_y = -dot(ts_f3_load(q + TS_CLAMP_SCREEN_NORMAL), d);
+    float cos_x = ts_clamp_screen_dot(nx, d), cos_y = -ts_clamp_screen_dot(ts_f3_load(q + TS_CLAMP_SCREEN_NORMAL), d);
     if (!(cos_x > 0.0f) || !(cos_y > 0.0f)) return;
     float g = cos_x * cos_y / (d2 * (d2 + q[TS_CLAMP_SCREEN_AREA] * 0.31830989f));
     if (!(g > b)) return;
@@ -134,16 +149,22 @@ TS_INLINE float3 ts_clamp_screen_pixel(int x, int y, int w, int h, float3 px, fl
     /* Rings start where a disc has the near square's area: π r0² = (2·NEAR + 1)². */
     const float side = 2.0f * TS_CLAMP_SCREEN_NEAR + 1.0f;
     float r0 = side * 0.5641896f; /* 1/sqrt(π) */
-    /* A ring's samples step by this turn, applied as a rotation: one sine and cosine a
-       ring, not a sample (they were 2% of an AIS frame). */
-    const float step_c = cos(6.2831853f / (float)TS_CLAMP_SCREEN_RING);
-    const float step_s = sin(6.2831853f / (float)TS_CLAMP_SCREEN_RING);
-    for (int k = 0; r0 < r; ++k) {
+    /* A ring's samples step by the turn 2π/TS_CLAMP_SCREEN_RING (cos = sin = 1/sqrt(2)
+       for 8), applied as a rotation; each ring starts turned by the golden angle from the
+       last (cos, sin of 2.3999632), so no two rings' samples line up. Constants, not
+       cos/sin calls: those were 2% of an AIS frame, and the device's may round apart
+       from the host's. */
+    const float step_c = 0.70710678f, step_s = 0.70710678f;
+    const float golden_c = -0.73736886f, golden_s = 0.67549032f;
+    float ring_c = 1.0f, ring_s = 0.0f;
+    while (r0 < r) {
         float r1 = fmin(r0 * TS_CLAMP_SCREEN_GROWTH, r);
         float rm = 0.5f * (r0 + r1);
         float weight = 3.14159265f * (r1 * r1 - r0 * r0) / (float)TS_CLAMP_SCREEN_RING;
-        /* Each ring turned by the golden angle, so no two rings' samples line up. */
-        float c = cos(2.3999632f * (float)k), s = sin(2.3999632f * (float)k);
+        float c = ring_c, s = ring_s;
+        float ring_c1 = ring_c * golden_c - ring_s * golden_s;
+        ring_s = ring_s * golden_c + ring_c * golden_s;
+        ring_c = ring_c1;
         for (int j = 0; j < TS_CLAMP_SCREEN_RING; ++j) {
             int qx = x + (int)floor(rm * c + 0.5f), qy = y + (int)floor(rm * s + 0.5f);
             float c1 = c * step_c - s * step_s;

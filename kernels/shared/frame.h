@@ -54,22 +54,25 @@ typedef struct TsFrame {
                                      points, apart from igi_rotation: one shared shift would tie
                                      each step's distance to its light sample's position
                                      (shared/igi.h, ts_igi_march_t) */
+    unsigned int igi_clamp_screen; /* igi resolve: 1 = E_id gains the clamp's screen-space
+                                      compensation, TsSceneView.clamp_residual
+                                      (shared/igi_clamp_screen.h); 0 = none */
 } TsFrame;
 
 #ifdef __cplusplus
 /* Compile-time checks of the layouts above (shared/layout_check.h). */
 #include "shared/layout_check.h"
 
-/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 37 4-byte
+/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 38 4-byte
  * scalars with no padding, so its layout is the same in both languages. */
 static_assert(std::is_standard_layout_v<TsFrame> && std::is_trivially_copyable_v<TsFrame>,
               "frame.h: TsFrame must stay a plain struct");
-static_assert(sizeof(TsFrame) == 37 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
+static_assert(sizeof(TsFrame) == 38 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
                   offsetof(TsFrame, light_power) == 20 * 4 && offsetof(TsFrame, igi_components) == 28 * 4 &&
                   offsetof(TsFrame, ic_error_bound) == 29 * 4 && offsetof(TsFrame, pixel_cone) == 31 * 4 &&
                   offsetof(TsFrame, igi_filter_depth) == 34 * 4 && offsetof(TsFrame, igi_equiangular) == 35 * 4 &&
-                  offsetof(TsFrame, igi_march_rotation) == 36 * 4,
-              "frame.h: TsFrame is not 37 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
+                  offsetof(TsFrame, igi_march_rotation) == 36 * 4 && offsetof(TsFrame, igi_clamp_screen) == 37 * 4,
+              "frame.h: TsFrame is not 38 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
 #endif /* __cplusplus */
 
 #endif /* TS_FRAME_H */

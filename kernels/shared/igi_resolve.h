@@ -16,6 +16,7 @@
 #include "shared/composite.h"
 #include "shared/discontinuity.h"
 #include "shared/geometry.h"
+#include "shared/igi_clamp_screen.h"
 #include "shared/frame.h"
 #include "shared/layout_igi.h"
 #include "shared/layout_pass.h"
@@ -27,28 +28,24 @@ TS_NAMESPACE_BEGIN
  * frame->igi_components has PM) PM components over p's accepted window, composites
  *   L = Tr · β · (Le + ρ · (Ẽ_ss + Ẽ_id)) + L̃_pm
  * and writes TS_PASS_FLOATS (radiance W/(sr·m²), albedo, normal, depth) to out, as the
- * host's IgiFrame does. frame->igi_filter 0: no filtering (the window is p alone). */
+ * host's IgiFrame does. frame->igi_filter 0: no filtering (the window is p alone).
+ * frame->igi_clamp_screen 1: Ẽ_id gains the clamp's compensation E_res, from
+ * TsSceneView.clamp_residual (KernelId::IgiClampGather's output). */
 TS_INLINE void ts_igi_resolve_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* frame, uint x,
                                     uint y, float* out) {
     (void)tracer;
-    const int w = (int)frame->width, h = (int)frame->height;
     const int pm = (frame->igi_components & TS_COMPONENT_PM) != 0u;
     const size_t p = (size_t)y * frame->width + x;
     TS_GLOBAL const float* sp = sv->igi_surface + p * TS_IGI_SURF_FLOATS;
     const float zp = sp[TS_IGI_SURF_DISTANCE];
-    /* The window mask, then the means of E_ss and E_id (6 floats from TS_IGI_SURF_E_SS)
-     * and of the media radiance over it (shared/discontinuity.h, as the host's filter). */
-    const int n = frame->igi_filter ? (int)frame->igi_tile : 1;
-    const ulong bits = ts_discontinuity_mask((int)x, (int)y, w, h, n, sv->igi_surface + TS_IGI_SURF_DISTANCE,
-                                             sv->igi_surface + TS_IGI_SURF_NORMAL,
-                                             sv->igi_surface + TS_IGI_SURF_POSITION, TS_IGI_SURF_FLOATS,
-                                             TS_IGI_SURF_FLOATS, 1, frame->igi_filter_cos, frame->igi_filter_depth);
-    long offset[64];
-    for (int i = 0; i < n * n; ++i) offset[i] = ts_discontinuity_offset(n, w, i);
-    float e[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    ts_discontinuity_mean(sv->igi_surface + TS_IGI_SURF_E_SS, TS_IGI_SURF_FLOATS, 6, p, offset, bits, e);
-    if (pm)
-        ts_discontinuity_mean(sv->igi_media + TS_IGI_MEDIA_RADIANCE, TS_IGI_MEDIA_FLOATS, 3, p, offset, bits, e + 6);
+    /* The means of E_ss, E_id and the media radiance over the accepted window, then E_id
+     * plus the clamp's compensation where the frame asks for it (shared/igi_clamp_screen.h). */
+    float e[9];
+    ts_igi_filtered_means(sv, frame, x, y, pm, e);
+    if (frame->igi_clamp_screen) {
+        const float3 r = ts_igi_clamp_residual(sv, frame, x, y);
+        e[3] += r.x, e[4] += r.y, e[5] += r.z;
+    }
     float3 tr = pm ? ts_f3_load(sv->igi_media + p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_TRANSMITTANCE)
                    : make_float3(1.0f, 1.0f, 1.0f);
     float3 l = ts_igi_composite(tr, ts_f3_load(sp + TS_IGI_SURF_THROUGHPUT), ts_f3_load(sp + TS_IGI_SURF_EMISSION),

@@ -42,7 +42,11 @@
  *   IgiSurface       TS_IGI_SURF_FLOATS per pixel, KernelId::IgiSurface's output kept where
  *                    the kernels run (Backend::launch_into; KernelId::IgiResolve reads it)
  *   IgiMedia         TS_IGI_MEDIA_FLOATS per pixel, KernelId::IgiMedia's output kept
- *                    likewise; read only when the frame's components include TS_COMPONENT_PM */
+ *                    likewise; read only when the frame's components include TS_COMPONENT_PM
+ *   ClampRecords     TS_CLAMP_SCREEN_FLOATS per pixel, KernelId::IgiClampRecords's output
+ *                    kept likewise (layout_igi.h; KernelId::IgiClampGather reads it)
+ *   ClampResidual    TS_CLAMP_RESIDUAL_FLOATS per pixel, KernelId::IgiClampGather's output
+ *                    kept likewise; read only when TsFrame.igi_clamp_screen is 1 */
 #define TS_KERNEL_INPUTS(X)                                                  \
     X(Vpls, vpls, float, "VPL")                                              \
     X(VplSetStart, vpl_set_start, uint, "VPL set table")                     \
@@ -53,7 +57,9 @@
     X(IcRecordSurfaces, ic_record_surfaces, float, "ic record surfaces")     \
     X(IcVisibility, ic_visibility, uint, "ic visibility")                    \
     X(IgiSurface, igi_surface, float, "igi surface")                         \
-    X(IgiMedia, igi_media, float, "igi media")
+    X(IgiMedia, igi_media, float, "igi media")                               \
+    X(ClampRecords, clamp_records, float, "clamp records")                   \
+    X(ClampResidual, clamp_residual, float, "clamp residual")
 
 /* TsSceneView's pointer to one buffer (shared/geometry.h). */
 #define TS_VIEW_SCENE_FIELD(field, type, what) TS_GLOBAL const type* field;

@@ -127,8 +127,12 @@ TEST(AisGuidance, MediumVarianceFlagsWhereTheSetsDisagreeOnlyWhenAsked) {
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             const float g = on.g[kAisPM][y * W + x];
-            if (x < 5) ASSERT_EQ(g, 0.0f) << x << "," << y;       // every window uniform
-            if (x >= 7) ASSERT_GT(g, t.pm_trigger) << x << "," << y;  // every window mixed
+            if (x < 5) {
+                ASSERT_EQ(g, 0.0f) << x << "," << y;  // every window uniform
+            }
+            if (x >= 7) {
+                ASSERT_GT(g, t.pm_trigger) << x << "," << y;  // every window mixed
+            }
             ASSERT_EQ(on.grade[kAisPM][y * W + x], g) << "no length edge: g is the grade";
             ASSERT_LE(g, 1.0f);
         }
