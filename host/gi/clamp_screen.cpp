@@ -6,7 +6,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "backend/backend.h"
 #include "kernels/shared/clamp_screen.h"
 
 namespace tessera {
@@ -60,22 +59,14 @@ void gather(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampS
     const GeometryBuffer& g = *in.g;
     const int w = g.width, h = g.height;
     const float plane = ts::ts_clamp_screen_pixel_plane(&frame);
+    residual.assign(3 * size_t(w) * h, 0.0f);
     std::vector<uint8_t> done(size_t(w) * h, 0);
-    if (in.gather_on) {
-        TsFrame f = frame;
-        f.igi_g_clamp = b;
-        in.gather_on->set_input(KernelInput::ClampRecords, rec);
-        in.gather_on->launch(KernelId::IgiClampGather, f, residual);  // zeros off the grid
-    } else {
-        residual.assign(3 * size_t(w) * h, 0.0f);
-    }
     tbb::parallel_for(tbb::blocked_range<int>(0, (h + 1) / 2, 2), [&](const tbb::blocked_range<int>& rows) {
         for (int y = 2 * rows.begin(); y < 2 * rows.end() && y < h; y += 2)
             for (int x = 0; x < w; x += 2) {
                 const size_t p = size_t(y) * w + x;
                 if (!seen_directly(in, p)) continue;
-                if (!in.gather_on)
-                    ts::ts_f3_store(&residual[3 * p], gather_pixel(frame, plane, b, med, w, h, rec, x, y));
+                ts::ts_f3_store(&residual[3 * p], gather_pixel(frame, plane, b, med, w, h, rec, x, y));
                 done[p] = 1;
             }
     });

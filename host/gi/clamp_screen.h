@@ -11,8 +11,6 @@
 
 namespace tessera {
 
-class Backend;
-
 /// Inputs of one frame, per pixel, row-major (g.width × g.height):
 /// - `g`: the G-buffer (positions, unit normals, depth; +inf depth where the ray escaped);
 /// - `albedo`, `throughput`: 3 floats a pixel, as the igi surface kernel writes them
@@ -31,12 +29,6 @@ struct ClampScreenInputs {
     /// Which neighbours lie on a pixel's surface (the frame's discontinuity test): a pixel
     /// off the half-resolution grid takes the mean of those grid neighbours' E_res.
     DiscontinuitySettings same_surface;
-    /// Where set, the gather at the even grid's pixels, most of the cost, runs on this
-    /// backend as KernelId::IgiClampGather over the records set as its ClampRecords input
-    /// (the same function over the same records: the same bits, a medium's exp aside,
-    /// kernels/shared/igi_clamp_screen.h); null: on the host. For frames reconstructed on
-    /// the host where kernels run on a GPU (AIS; Backend::resolves_on_device).
-    Backend* gather_on = nullptr;
 };
 
 /// E_res per pixel (3 floats, irradiance / π, W/m² / π) for clamp b (scene units⁻²; +inf

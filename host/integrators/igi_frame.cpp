@@ -211,9 +211,6 @@ void IgiFrame::compensate_clamp(const TsFrame& frame, const std::vector<float>& 
     in.e_ss = &final_[kAisSS];
     in.e_id = &final_[kAisID];
     in.same_surface = settings_.discontinuity;
-    // Where kernels run on a GPU, the gather runs there (a bus round trip of 13 floats a
-    // pixel against most of the compensation's host time).
-    if (backend_.resolves_on_device()) in.gather_on = &backend_;
     ts::TsMedium medium;
     if (plan_.medium) medium = ts::ts_medium_load(scene_.medium.data());
     clamp_screen_residual(frame, frame.igi_g_clamp, plan_.medium ? &medium : nullptr, in, clamp_residual_);

@@ -81,18 +81,13 @@ TS_INLINE float3 ts_igi_clamp_gather_at(const TsSceneView* sv, const TsFrame* fr
                                  ts_f3_load(q + TS_CLAMP_SCREEN_NORMAL), r, b, m, sv->clamp_records);
 }
 
-/* Kernel IgiClampGather: E_res at the even grid's pixels seen directly, zero elsewhere.
- * It reads the records alone (a pixel not seen directly has a zero normal there), so the
- * host may write them too: AIS frames, reconstructed on the host, gather on the device
- * where the igi resolve would run there (host/gi/clamp_screen.cpp). */
+/* Kernel IgiClampGather: E_res at the even grid's pixels seen directly, zero elsewhere. */
 TS_INLINE void ts_igi_clamp_gather_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* frame,
                                          uint x, uint y, float* out) {
     (void)tracer;
     float3 r = make_float3(0.0f, 0.0f, 0.0f);
-    TS_GLOBAL const float* q = sv->clamp_records + ((size_t)y * frame->width + x) * TS_CLAMP_SCREEN_FLOATS;
-    const float3 n = ts_f3_load(q + TS_CLAMP_SCREEN_NORMAL);
-    if (((x | y) & 1u) == 0u && (n.x != 0.0f || n.y != 0.0f || n.z != 0.0f))
-        r = ts_igi_clamp_gather_at(sv, frame, x, y);
+    TS_GLOBAL const float* sp = sv->igi_surface + ((size_t)y * frame->width + x) * TS_IGI_SURF_FLOATS;
+    if (((x | y) & 1u) == 0u && ts_igi_clamp_seen(sp)) r = ts_igi_clamp_gather_at(sv, frame, x, y);
     ts_f3_store(out, r);
 }
 

@@ -124,7 +124,8 @@
  *                            times the patch area (zero for a pixel that is no diffuse
  *                            surface seen directly)
  *   TS_CLAMP_SCREEN_AREA     A_q, the pixel's patch area (scene units²)
- * Every field is zero for a pixel not seen directly (the normal marks the others). The gather's output, KernelId::IgiClampGather's: TS_CLAMP_RESIDUAL_FLOATS
+ * On a device (KernelId::IgiClampRecords) every field is zero for a pixel not seen
+ * directly. The gather's output, KernelId::IgiClampGather's: TS_CLAMP_RESIDUAL_FLOATS
  * floats a pixel, E_res (irradiance / π) at the pixels of the even grid, zero elsewhere. */
 #define TS_CLAMP_SCREEN_FLOATS 10
 #define TS_CLAMP_SCREEN_POSITION 0

@@ -7,12 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "backend/backend.h"
-#include "device/effect_plan.h"
 #include "device/frame.h"
-#include "device/scene_buffers.h"
 #include "gi/clamp_screen.h"
-#include "render/renderer.h"
 #include "scene/scene.h"
 #include "support/render_helpers.h"
 
@@ -185,33 +181,4 @@ TEST(IgiClampCompensation, ReturnsMostOfWhatTheClampRemoved) {
 }
 
 }  // namespace
-// AIS reconstructs on the host; where kernels run on a GPU (OpenCL's GPU variant, forced
-// here on the CPU device) its compensation gathers on the device (ClampScreenInputs::
-// gather_on): the same kernel function over the same records, so the same image as the
-// host's gather, bit for bit (no medium: no exp to round apart).
-TEST(IgiClampCompensation, AisGatherOnTheDeviceGivesTheHostsBits) {
-    const Scene s = test::cornell_box();
-    const SceneBuffers b = make_scene_buffers(s);
-    RenderSettings rs;
-    rs.method = Method::Ais;
-    rs.width = 48;
-    rs.height = 40;
-    rs.spp = 2;
-    auto backend = [&](bool gpu_variant) {
-        BackendOptions o{BackendKind::OpenCL, ""};
-        o.cl_gpu_variant = gpu_variant;
-        return make_backend(o, b, plan_effects(s));
-    };
-    auto device = backend(true), host = backend(false);
-    ASSERT_TRUE(device->resolves_on_device());
-    ASSERT_FALSE(host->resolves_on_device());
-    const Image on_device = render_frame(*device, s, b, rs), on_host = render_frame(*host, s, b, rs);
-    EXPECT_EQ(device->dispatch_count(KernelId::IgiClampGather), rs.spp);
-    EXPECT_EQ(host->dispatch_count(KernelId::IgiClampGather), 0u);
-    EXPECT_EQ(test::rel_mse(on_device, on_host), 0.0);
-    rs.igi.clamp_compensation = false;
-    const Image clamped = render_frame(*device, s, b, rs);
-    EXPECT_GT(test::image_sum(on_device), test::image_sum(clamped) * 1.001) << "the compensation must add light";
-}
-
 }  // namespace tessera

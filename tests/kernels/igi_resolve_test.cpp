@@ -168,11 +168,8 @@ TEST_P(IgiResolveCases, DeviceResolveEqualsHostReconstruction) {
     EXPECT_EQ(device->dispatch_count(KernelId::IgiResolve), 2u);
     EXPECT_EQ(host->dispatch_count(KernelId::IgiResolve), 0u);
     const uint64_t compensated = c.clamp_compensation && (c.components & TS_COMPONENT_ID) ? 2u : 0u;
-    EXPECT_EQ(device->dispatch_count(KernelId::IgiClampRecords), compensated);
-    EXPECT_EQ(host->dispatch_count(KernelId::IgiClampRecords), 0u);
-    // The host's reconstruction gathers on the GPU variant's device too (gi/clamp_screen.h).
     EXPECT_EQ(device->dispatch_count(KernelId::IgiClampGather), compensated);
-    EXPECT_EQ(host->dispatch_count(KernelId::IgiClampGather), compensated);
+    EXPECT_EQ(host->dispatch_count(KernelId::IgiClampGather), 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, IgiResolveCases, ::testing::ValuesIn(kCases),
@@ -261,12 +258,12 @@ TEST(IgiResolve, ComponentAovsBringTheComponentsBack) {
     const Image without = render_frame(*be, s, b, rs);
     EXPECT_EQ(be->dispatch_count(KernelId::IgiResolve), rs.spp);
     EXPECT_EQ(without.find("SS_filtered.R"), nullptr);
-    EXPECT_EQ(be->dispatch_count(KernelId::IgiClampRecords), rs.spp) << "the compensation runs on the device too";
+    EXPECT_EQ(be->dispatch_count(KernelId::IgiClampGather), rs.spp) << "the compensation runs on the device too";
     // The same image up to the transmittance's exp rounding (expect_same_or_exp_rounding).
     EXPECT_LT(test::rel_mse(with, without), 1e-10);
     rs.igi.clamp_compensation = false;
     const Image clamped = render_frame(*be, s, b, rs);
-    EXPECT_EQ(be->dispatch_count(KernelId::IgiClampRecords), rs.spp);
+    EXPECT_EQ(be->dispatch_count(KernelId::IgiClampGather), rs.spp);
     EXPECT_GT(test::image_sum(without), test::image_sum(clamped)) << "the compensation adds light";
 }
 
