@@ -13,9 +13,17 @@ namespace {
 
 using ts::float3;
 
-bool seen_directly(const ClampScreenInputs& in, size_t p) {
-    const float* t = &(*in.throughput)[p * in.stride + in.throughput_at];
-    return std::isfinite(in.g->depth[p]) && t[0] == 1.0f && t[1] == 1.0f && t[2] == 1.0f;
+// The host's copies as the shared fill's view (kernels/shared/clamp_screen.h).
+ts::TsClampScreenView view_of(const ClampScreenInputs& in) {
+    ts::TsClampScreenView v;
+    v.depth = in.g->depth.data();
+    v.normal = in.g->normal.data();
+    v.position = in.g->position.data();
+    v.throughput = in.throughput->data() + in.throughput_at;
+    v.depth_stride = 1;
+    v.normal_stride = v.position_stride = 3;
+    v.throughput_stride = in.stride;
+    return v;
 }
 
 // The gather's records (TS_CLAMP_SCREEN_FLOATS a pixel): position, normal, s_q = L_q · A_q
@@ -25,10 +33,11 @@ void records(const TsFrame& frame, const ClampScreenInputs& in, std::vector<floa
     const GeometryBuffer& g = *in.g;
     const size_t n = g.depth.size();
     const float plane = ts::ts_clamp_screen_pixel_plane(&frame);
+    const ts::TsClampScreenView v = view_of(in);
     rec.assign(TS_CLAMP_SCREEN_FLOATS * n, 0.0f);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t p = r.begin(); p < r.end(); ++p) {
-            if (!seen_directly(in, p)) continue;
+            if (!ts::ts_clamp_screen_seen(&v, p)) continue;
             const float3 e = ts::ts_f3_load(&(*in.e_ss)[3 * p]) + ts::ts_f3_load(&(*in.e_id)[3 * p]);
             ts::ts_clamp_screen_record(&frame, plane, ts::ts_f3_load(&g.position[3 * p]),
                                        ts::ts_f3_load(&g.normal[3 * p]),
@@ -48,46 +57,35 @@ float3 gather_pixel(const TsFrame& frame, float plane, float b, const ts::TsMedi
                                      rec.data());
 }
 
-// E_res from `rec` into `residual`. The gather runs at every second pixel in x and y (the
-// even grid); a pixel off it takes the mean of the grid pixels next to it (2 or 4) that
-// its discontinuity test accepts (gi/discontinuity_filter.h: same surface), or gathers
-// itself where none does (edges). E_res varies over a surface at the scale of the clamp
-// radius, tens of pixels, so the mean of neighbours two pixels apart loses nothing visible,
-// and the gather, most of the cost, runs at about a quarter of the pixels.
+// E_res from `rec` into `residual`: the gather at every second pixel in x and y (the even
+// grid), then every other pixel seen directly from its grid neighbours
+// (ts_clamp_screen_fill), or its own gather at an edge. The grid's pixels are only read
+// while the others are written, so both loops run in parallel.
 void gather(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampScreenInputs& in,
             const std::vector<float>& rec, std::vector<float>& residual) {
     const GeometryBuffer& g = *in.g;
     const int w = g.width, h = g.height;
     const float plane = ts::ts_clamp_screen_pixel_plane(&frame);
+    const ts::TsClampScreenView v = view_of(in);
     residual.assign(3 * size_t(w) * h, 0.0f);
-    std::vector<uint8_t> done(size_t(w) * h, 0);
     tbb::parallel_for(tbb::blocked_range<int>(0, (h + 1) / 2, 2), [&](const tbb::blocked_range<int>& rows) {
         for (int y = 2 * rows.begin(); y < 2 * rows.end() && y < h; y += 2)
             for (int x = 0; x < w; x += 2) {
                 const size_t p = size_t(y) * w + x;
-                if (!seen_directly(in, p)) continue;
+                if (!ts::ts_clamp_screen_seen(&v, p)) continue;
                 ts::ts_f3_store(&residual[3 * p], gather_pixel(frame, plane, b, med, w, h, rec, x, y));
-                done[p] = 1;
             }
     });
     tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = (y % 2 == 0) ? 1 : 0; x < w; x += (y % 2 == 0) ? 2 : 1) {
                 const size_t p = size_t(y) * w + x;
-                if (!seen_directly(in, p)) continue;
-                float3 sum = ts::make_float3(0.0f, 0.0f, 0.0f);
-                int n = 0;
-                for (int dy = -(y % 2); dy <= y % 2; dy += 2)
-                    for (int dx = -(x % 2); dx <= x % 2; dx += 2) {
-                        const int qx = x + dx, qy = y + dy;
-                        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-                        const size_t q = size_t(qy) * w + qx;
-                        if (!done[q] || !discontinuity_accepts(g, in.same_surface, p, q)) continue;
-                        sum += ts::ts_f3_load(&residual[3 * q]);
-                        ++n;
-                    }
-                ts::ts_f3_store(&residual[3 * p], n ? sum * (1.0f / static_cast<float>(n))
-                                                    : gather_pixel(frame, plane, b, med, w, h, rec, x, y));
+                if (!ts::ts_clamp_screen_seen(&v, p)) continue;
+                float3 e;
+                if (!ts::ts_clamp_screen_fill(&v, x, y, w, h, residual.data(), in.same_surface.normal_cos,
+                                              in.same_surface.depth_rel, &e))
+                    e = gather_pixel(frame, plane, b, med, w, h, rec, x, y);
+                ts::ts_f3_store(&residual[3 * p], e);
             }
     });
 }

@@ -30,6 +30,7 @@
 #ifndef TS_CLAMP_SCREEN_H
 #define TS_CLAMP_SCREEN_H
 #include "shared/compat.h"
+#include "shared/discontinuity.h"
 #include "shared/frame.h"
 #include "shared/layout_igi.h"
 #include "shared/medium.h"
@@ -178,6 +179,61 @@ TS_INLINE float3 ts_clamp_screen_pixel(int x, int y, int w, int h, float3 px, fl
         if (r1 >= r) break;
     }
     return sum * 0.31830989f; /* 1/π */
+}
+
+/* The per-pixel G-buffer fields the fill below reads, as strided arrays (element i of a
+ * field at field[i * stride]): the distance along the camera path (+inf where it escaped),
+ * the unit normal and position (3 floats) and the specular throughput (3 floats). The
+ * host's copies (gi/discontinuity_filter.h's GeometryBuffer, the surface pass's
+ * throughput) and the device's surface-pass output (stride TS_IGI_SURF_FLOATS) alike. */
+typedef struct TsClampScreenView {
+    TS_GLOBAL const float* depth;
+    TS_GLOBAL const float* normal;
+    TS_GLOBAL const float* position;
+    TS_GLOBAL const float* throughput;
+    int depth_stride, normal_stride, position_stride, throughput_stride;
+} TsClampScreenView;
+
+/* Whether pixel p sees a diffuse surface directly, the pixels that get and send E_res:
+ * finite distance and specular throughput exactly 1 (seen through a mirror, its screen
+ * neighbours are not its surface's). */
+TS_INLINE int ts_clamp_screen_seen(const TsClampScreenView* g, size_t p) {
+    TS_GLOBAL const float* t = g->throughput + p * g->throughput_stride;
+    return isfinite(g->depth[p * g->depth_stride]) && t[0] == 1.0f && t[1] == 1.0f && t[2] == 1.0f;
+}
+
+/* E_res of pixel (x, y), seen directly and off the even grid (x or y odd), from the even
+ * grid's values in `residual` (3 floats a pixel): the mean of the grid neighbours (2 or 4)
+ * seen directly that its discontinuity test (shared/discontinuity.h, normal threshold
+ * cos_min, plane distance depth_rel) accepts, in row order, into *out; returns 0 where
+ * none is (an edge: the pixel then gathers itself). E_res varies over a surface at the
+ * scale of the clamp radius, tens of pixels, so the mean of neighbours two pixels apart
+ * loses nothing visible, and the gather, most of the cost, runs at about a quarter of
+ * the pixels. */
+TS_INLINE int ts_clamp_screen_fill(const TsClampScreenView* g, int x, int y, int w, int h,
+                                   TS_GLOBAL const float* residual, float cos_min, float depth_rel, float3* out) {
+    const size_t p = (size_t)y * w + x;
+    const float zp = g->depth[p * g->depth_stride];
+    const float3 np = ts_f3_load(g->normal + p * g->normal_stride);
+    const float3 xp = ts_f3_load(g->position + p * g->position_stride);
+    const int ox = x % 2, oy = y % 2;
+    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
+    int n = 0;
+    for (int dy = -oy; dy <= oy; dy += 2)
+        for (int dx = -ox; dx <= ox; dx += 2) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+            const size_t q = (size_t)qy * w + qx;
+            if (!ts_clamp_screen_seen(g, q) ||
+                !ts_discontinuity_accepts(zp, np, xp, g->depth[q * g->depth_stride],
+                                          ts_f3_load(g->normal + q * g->normal_stride),
+                                          ts_f3_load(g->position + q * g->position_stride), 1, cos_min, depth_rel))
+                continue;
+            sum += ts_f3_load(residual + q * TS_CLAMP_RESIDUAL_FLOATS);
+            ++n;
+        }
+    if (n) *out = sum * (1.0f / (float)n);
+    return n;
 }
 
 TS_NAMESPACE_END

@@ -44,10 +44,15 @@ TS_INLINE void ts_igi_filtered_means(const TsSceneView* sv, const TsFrame* frame
         ts_discontinuity_mean(sv->igi_media + TS_IGI_MEDIA_RADIANCE, TS_IGI_MEDIA_FLOATS, 3, p, offset, bits, e + 6);
 }
 
-/* Whether surface-pass entry sp sees a diffuse surface directly (host: seen_directly). */
-TS_INLINE int ts_igi_clamp_seen(TS_GLOBAL const float* sp) {
-    return isfinite(sp[TS_IGI_SURF_DISTANCE]) && sp[TS_IGI_SURF_THROUGHPUT] == 1.0f &&
-           sp[TS_IGI_SURF_THROUGHPUT + 1] == 1.0f && sp[TS_IGI_SURF_THROUGHPUT + 2] == 1.0f;
+/* The surface pass's output as the fill's view (shared/clamp_screen.h). */
+TS_INLINE TsClampScreenView ts_igi_clamp_view(const TsSceneView* sv) {
+    TsClampScreenView g;
+    g.depth = sv->igi_surface + TS_IGI_SURF_DISTANCE;
+    g.normal = sv->igi_surface + TS_IGI_SURF_NORMAL;
+    g.position = sv->igi_surface + TS_IGI_SURF_POSITION;
+    g.throughput = sv->igi_surface + TS_IGI_SURF_THROUGHPUT;
+    g.depth_stride = g.normal_stride = g.position_stride = g.throughput_stride = TS_IGI_SURF_FLOATS;
+    return g;
 }
 
 /* Kernel IgiClampRecords: pixel (x, y)'s record, all zeros where it is not seen directly. */
@@ -55,8 +60,9 @@ TS_INLINE void ts_igi_clamp_records_pixel(const TsSceneView* sv, const TsTracer*
                                           uint x, uint y, float* out) {
     (void)tracer;
     for (int i = 0; i < TS_CLAMP_SCREEN_FLOATS; ++i) out[i] = 0.0f;
+    const TsClampScreenView g = ts_igi_clamp_view(sv);
+    if (!ts_clamp_screen_seen(&g, (size_t)y * frame->width + x)) return;
     TS_GLOBAL const float* sp = sv->igi_surface + ((size_t)y * frame->width + x) * TS_IGI_SURF_FLOATS;
-    if (!ts_igi_clamp_seen(sp)) return;
     float e[9];
     ts_igi_filtered_means(sv, frame, x, y, 0, e);
     const float3 sum = make_float3(e[0], e[1], e[2]) + make_float3(e[3], e[4], e[5]);
@@ -86,39 +92,24 @@ TS_INLINE void ts_igi_clamp_gather_pixel(const TsSceneView* sv, const TsTracer* 
                                          uint x, uint y, float* out) {
     (void)tracer;
     float3 r = make_float3(0.0f, 0.0f, 0.0f);
-    TS_GLOBAL const float* sp = sv->igi_surface + ((size_t)y * frame->width + x) * TS_IGI_SURF_FLOATS;
-    if (((x | y) & 1u) == 0u && ts_igi_clamp_seen(sp)) r = ts_igi_clamp_gather_at(sv, frame, x, y);
+    const TsClampScreenView g = ts_igi_clamp_view(sv);
+    if (((x | y) & 1u) == 0u && ts_clamp_screen_seen(&g, (size_t)y * frame->width + x))
+        r = ts_igi_clamp_gather_at(sv, frame, x, y);
     ts_f3_store(out, r);
 }
 
-/* E_res at pixel (x, y) from the gather's output (host: the second loop of gather): the
- * grid's own value; off the grid, the mean of the grid neighbours (2 or 4) seen directly
- * that its discontinuity test accepts, in row order, or its own gather where none is. */
+/* E_res at pixel (x, y) from the gather's output (host: gather's second loop): the grid's
+ * own value; off the grid, ts_clamp_screen_fill, or its own gather at an edge. */
 TS_INLINE float3 ts_igi_clamp_residual(const TsSceneView* sv, const TsFrame* frame, uint x, uint y) {
-    const int w = (int)frame->width, h = (int)frame->height;
     const size_t p = (size_t)y * frame->width + x;
-    TS_GLOBAL const float* sp = sv->igi_surface + p * TS_IGI_SURF_FLOATS;
-    if (!ts_igi_clamp_seen(sp)) return make_float3(0.0f, 0.0f, 0.0f);
+    const TsClampScreenView g = ts_igi_clamp_view(sv);
+    if (!ts_clamp_screen_seen(&g, p)) return make_float3(0.0f, 0.0f, 0.0f);
     if (((x | y) & 1u) == 0u) return ts_f3_load(sv->clamp_residual + p * TS_CLAMP_RESIDUAL_FLOATS);
-    const int ox = (int)(x % 2u), oy = (int)(y % 2u);
-    float3 sum = make_float3(0.0f, 0.0f, 0.0f);
-    int n = 0;
-    for (int dy = -oy; dy <= oy; dy += 2)
-        for (int dx = -ox; dx <= ox; dx += 2) {
-            const int qx = (int)x + dx, qy = (int)y + dy;
-            if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-            const size_t q = (size_t)qy * w + qx;
-            TS_GLOBAL const float* sq = sv->igi_surface + q * TS_IGI_SURF_FLOATS;
-            if (!ts_igi_clamp_seen(sq) ||
-                !ts_discontinuity_accepts(sp[TS_IGI_SURF_DISTANCE], ts_f3_load(sp + TS_IGI_SURF_NORMAL),
-                                          ts_f3_load(sp + TS_IGI_SURF_POSITION), sq[TS_IGI_SURF_DISTANCE],
-                                          ts_f3_load(sq + TS_IGI_SURF_NORMAL), ts_f3_load(sq + TS_IGI_SURF_POSITION),
-                                          1, frame->igi_filter_cos, frame->igi_filter_depth))
-                continue;
-            sum += ts_f3_load(sv->clamp_residual + q * TS_CLAMP_RESIDUAL_FLOATS);
-            ++n;
-        }
-    return n ? sum * (1.0f / (float)n) : ts_igi_clamp_gather_at(sv, frame, x, y);
+    float3 r;
+    if (ts_clamp_screen_fill(&g, (int)x, (int)y, (int)frame->width, (int)frame->height, sv->clamp_residual,
+                             frame->igi_filter_cos, frame->igi_filter_depth, &r))
+        return r;
+    return ts_igi_clamp_gather_at(sv, frame, x, y);
 }
 
 TS_NAMESPACE_END
