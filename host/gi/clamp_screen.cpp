@@ -1,7 +1,6 @@
 #include "gi/clamp_screen.h"
 
 #include <cmath>
-#include <cstdint>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
