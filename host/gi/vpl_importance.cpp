@@ -202,6 +202,20 @@ std::vector<double> path_keep_probabilities(const std::vector<float>& importance
     return p;
 }
 
+std::vector<bool> systematic_sample(const std::vector<double>& p, double u) {
+    std::vector<bool> keep(p.size(), false);
+    // Unit j owns [C_{j-1}, C_j) of the cumulative sum; it is kept when one of the points
+    // u, u + 1, u + 2, ... falls there: ceil(C_j - u) > ceil(C_{j-1} - u).
+    double c = 0.0, before = std::ceil(-u);
+    for (size_t j = 0; j < p.size(); ++j) {
+        c += p[j];
+        const double after = std::ceil(c - u);
+        keep[j] = after > before;
+        before = after;
+    }
+    return keep;
+}
+
 uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& importance, size_t begin, size_t end,
                      uint32_t oversampling, uint32_t seed_mix, std::vector<float>& out) {
     std::vector<bool> medium;
@@ -237,10 +251,12 @@ std::vector<LightPath> select_paths(std::vector<LightPath>& candidates, const st
         path_importance[j] = static_cast<float>(sum);
     }
     const std::vector<double> p = path_keep_probabilities(path_importance, counts, oversampling);
+    const uint32_t first = candidates.empty() ? 0u : static_cast<uint32_t>(candidates[0].index);
+    ts::TsRng rng = ts::ts_rng_seed(kPathKeepSeed ^ seed_mix, first, 1u);
+    const std::vector<bool> keep = systematic_sample(p, ts::ts_rng_next(&rng));
     std::vector<LightPath> kept;
     for (size_t j = 0; j < candidates.size(); ++j) {
-        ts::TsRng rng = ts::ts_rng_seed(kPathKeepSeed ^ seed_mix, static_cast<uint32_t>(candidates[j].index), 0u);
-        if (!(ts::ts_rng_next(&rng) < p[j])) continue;
+        if (!keep[j]) continue;
         LightPath path = std::move(candidates[j]);
         // In float, as trace_light_paths applies a weight: a re-traced path (same scene)
         // leaves the same bits.
