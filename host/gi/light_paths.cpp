@@ -1,6 +1,7 @@
 #include "gi/light_paths.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "gi/halton.h"
@@ -66,6 +67,33 @@ uint32_t medium_vertex(const ts::TsMedium& med, const LightPathSettings& setting
     return what;
 }
 
+// The ray light of the segment *ray up to the surface at hit_t (+inf: it escapes): its
+// stretch inside the medium, of flux α · inv_paths times the path's weight (docs/igi.md
+// §6). A stretch without end (a medium filling space) is cut at 20 mean free paths of the
+// thinnest channel, past which it keeps e^-20 of its light.
+void store_vrl(LightPath& path, const ts::TsMedium& med, const ts::TsRay& ray, float hit_t, float3 alpha,
+               float inv_paths) {
+    float t0 = 0.0f, t1 = hit_t;
+    if (!ts::ts_medium_clip(&med, ray.org, ray.dir, &t0, &t1)) return;
+    const float len = ts::length(ray.dir);
+    float length = (t1 - t0) * len;
+    if (!std::isfinite(length)) {
+        const float thinnest = std::min({med.sigma_t.x, med.sigma_t.y, med.sigma_t.z});
+        if (!(thinnest > 0.0f)) return;
+        length = 20.0f / thinnest;
+    }
+    if (!(length > 0.0f)) return;
+    const auto index = static_cast<uint32_t>(path.index);
+    float v[TS_VRL_FLOATS];
+    ts::ts_f3_store(v + TS_VRL_START, ray.org + ray.dir * t0);
+    ts::ts_f3_store(v + TS_VRL_DIR, ray.dir / len);
+    ts::ts_f3_store(v + TS_VRL_FLUX, alpha * (inv_paths * path.weight));
+    v[TS_VRL_SET] = static_cast<float>(path.set);
+    std::memcpy(&v[TS_VRL_PATH], &index, 4);
+    v[TS_VRL_LENGTH] = length;
+    path.vrls.insert(path.vrls.end(), v, v + TS_VRL_FLOATS);
+}
+
 PathSegment segment_of(const ts::TsRay& r, const ts::TsHit& hit) {
     return PathSegment{{r.org.x, r.org.y, r.org.z}, {r.dir.x, r.dir.y, r.dir.z}, hit.t, hit.prim};
 }
@@ -84,6 +112,7 @@ uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const Li
     std::vector<InFlight> live;
     for (LightPath& p : paths) {
         p.vpls.clear();
+        p.vrls.clear();
         p.segments.clear();
         p.light = 0;
         InFlight f{&p, {}, {}};
@@ -102,6 +131,9 @@ uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const Li
             const ts::TsHit hit = load_hit(&hits[TS_HIT_FLOATS * i]);
             int attenuated = 0;
             if (settings.medium_scattering && med.present) {
+                if (settings.ray_lights)
+                    store_vrl(*p.path, med, p.ray, hit.prim == TS_NO_HIT ? ts::TS_INF : hit.t, p.alpha,
+                              settings.inv_paths);
                 const uint32_t m = medium_vertex(med, settings, scramble, bounce, hit, p);
                 if (m & TS_LIGHT_PATH_MEDIUM) {
                     if (m & TS_LIGHT_PATH_CONTINUES) alive.push_back(p);

@@ -31,6 +31,9 @@ struct LightPath {
     /// with probability p (select_paths, gi/vpl_importance.h), 1 otherwise.
     float weight = 1.0f;
     std::vector<float> vpls;
+    /// Ray lights (TS_VRL_FLOATS each, layout_igi.h, in path order), with
+    /// LightPathSettings::ray_lights: one per segment that crosses the medium.
+    std::vector<float> vrls;
     std::vector<PathSegment> segments;
 };
 
@@ -57,6 +60,11 @@ struct LightPathSettings {
     /// Paths scatter in the scene's medium and leave medium VPLs there (multiple
     /// scattering, ts_light_path_medium); false: segments only attenuate (single scattering).
     bool medium_scattering = false;
+    /// With medium_scattering: also a virtual ray light for every segment's stretch inside
+    /// the medium (LightPath::vrls; Novák et al. 2012), of flux the path's throughput
+    /// entering it: what the ray march of `--ray-lights` gathers instead of the medium
+    /// VPLs, which surfaces still gather (docs/igi.md §6).
+    bool ray_lights = false;
 };
 
 /// What a render's --seed changes in the light paths' Halton scrambling and the VPL

@@ -1,8 +1,11 @@
 #include "gi/vpl_generator.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "gi/light_paths.h"
+#include "kernels/shared/layout_igi.h"
+#include "kernels/shared/rng.h"
 
 namespace tessera {
 
@@ -18,6 +21,33 @@ void keep_for_view(const VplSettings& settings, uint32_t oversampling, VplList& 
                                               oversampling, light_path_seed_mix(settings.seed), kept);
     list.vpls.swap(kept);
     list.set_start.swap(start);
+}
+
+// Keeps 1/K of each set's ray lights, their flux times K: one systematic sample
+// (systematic_sample) over the set's candidates in path order, its offset keyed by the
+// seed and the set's first path. Ray lights light the medium, which the view points do not
+// see, so each is as likely as the next (as keep_probabilities treats medium VPLs).
+void keep_ray_lights(const VplSettings& settings, uint32_t oversampling, VplList& list) {
+    std::vector<float> kept;
+    std::vector<uint32_t> start(settings.sets + 1, 0u);
+    const double p = 1.0 / oversampling;
+    for (uint32_t k = 0; k < settings.sets; ++k) {
+        const uint32_t begin = list.vrl_set_start[k], end = list.vrl_set_start[k + 1];
+        uint32_t first = 0;
+        if (end > begin) std::memcpy(&first, &list.vrls[size_t(TS_VRL_FLOATS) * begin + TS_VRL_PATH], 4);
+        ts::TsRng rng = ts::ts_rng_seed(0x76726c6bu ^ light_path_seed_mix(settings.seed), first, k);
+        const std::vector<bool> keep = systematic_sample(std::vector<double>(end - begin, p), ts::ts_rng_next(&rng));
+        for (uint32_t i = begin; i < end; ++i) {
+            if (!keep[i - begin]) continue;
+            const float* v = &list.vrls[size_t(TS_VRL_FLOATS) * i];
+            const size_t at = kept.size();
+            kept.insert(kept.end(), v, v + TS_VRL_FLOATS);
+            for (int c = 0; c < 3; ++c) kept[at + TS_VRL_FLUX + c] = static_cast<float>(v[TS_VRL_FLUX + c] / p);
+        }
+        start[k + 1] = static_cast<uint32_t>(kept.size() / TS_VRL_FLOATS);
+    }
+    list.vrls.swap(kept);
+    list.vrl_set_start.swap(start);
 }
 
 }  // namespace
@@ -41,16 +71,25 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
     ls.halton_seed = settings.halton_seed;
     ls.seed = settings.seed;
     ls.medium_scattering = settings.medium_scattering;
+    ls.ray_lights = settings.ray_lights;
     ls.inv_paths = 1.0f / static_cast<float>(per_set);
     out.rays = trace_light_paths(backend, scene, ls, paths);
-    // Paths are in set order, so concatenating them sorts the VPLs by set.
+    // Paths are in set order, so concatenating them sorts the VPLs and ray lights by set.
+    out.vrl_set_start.assign(settings.sets + 1, 0u);
     for (const LightPath& p : paths) {
         out.set_start[p.set + 1] += static_cast<uint32_t>(p.vpls.size() / TS_VPL_FLOATS);
         out.vpls.insert(out.vpls.end(), p.vpls.begin(), p.vpls.end());
+        out.vrl_set_start[p.set + 1] += static_cast<uint32_t>(p.vrls.size() / TS_VRL_FLOATS);
+        out.vrls.insert(out.vrls.end(), p.vrls.begin(), p.vrls.end());
     }
-    for (uint32_t k = 0; k < settings.sets; ++k) out.set_start[k + 1] += out.set_start[k];
+    for (uint32_t k = 0; k < settings.sets; ++k) {
+        out.set_start[k + 1] += out.set_start[k];
+        out.vrl_set_start[k + 1] += out.vrl_set_start[k];
+    }
     if (oversampling > 1) keep_for_view(settings, oversampling, out);
+    if (oversampling > 1 && !out.vrls.empty()) keep_ray_lights(settings, oversampling, out);
     if (out.vpls.empty()) out.vpls.assign(TS_VPL_FLOATS, 0.0f);  // device buffers cannot be empty
+    if (out.vrls.empty()) out.vrls.assign(TS_VRL_FLOATS, 0.0f);
     return out;
 }
 

@@ -27,6 +27,7 @@ struct VplSettings {
     uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
     uint32_t seed = 1;                 ///< the render's --seed (LightPathSettings::seed)
     bool medium_scattering = false;    ///< LightPathSettings::medium_scattering
+    bool ray_lights = false;           ///< LightPathSettings::ray_lights (VplList::vrls)
     /// VPLs for the view (gi/vpl_importance.h): K > 1 traces K·paths_per_set candidate
     /// paths per set and keeps, on average, paths_per_set paths' worth of VPLs, chosen by
     /// their importance for `view` (unbiased: kept VPLs carry 1/p). 1: every VPL of
@@ -43,6 +44,11 @@ struct VplSettings {
 struct VplList {
     std::vector<float> vpls;          ///< TS_VPL_FLOATS per VPL, sorted by set
     std::vector<uint32_t> set_start;  ///< sets + 1 offsets into vpls (in VPLs)
+    /// Ray lights (TS_VRL_FLOATS each, layout_igi.h) with VplSettings::ray_lights, sorted by
+    /// set; with importance_oversampling K each set keeps 1/K of its candidates' ray lights
+    /// (one systematic sample, so exactly its share to within one), their flux times K.
+    std::vector<float> vrls;
+    std::vector<uint32_t> vrl_set_start;  ///< sets + 1 offsets into vrls (in ray lights)
     uint64_t rays = 0;                ///< light-path rays traced
     size_t count() const { return set_start.empty() ? 0 : set_start.back(); }
 };

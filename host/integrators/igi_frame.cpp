@@ -82,7 +82,9 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     frame.igi_g_clamp = g_clamp_for(frame.pass);
     // The kernels see the light-transport components only; edges are host scheduling.
     frame.igi_components = effective_components() & ~TS_COMPONENT_EDGE;
-    frame.igi_media_vpls = settings_.multiple_scattering ? 1u : 0u;
+    frame.igi_media_vpls = !settings_.multiple_scattering ? TS_MEDIA_VPLS_NONE
+                           : settings_.ray_lights         ? TS_MEDIA_VPLS_RAYS
+                                                          : TS_MEDIA_VPLS_POINTS;
     frame.igi_equiangular = settings_.equiangular ? 1u : 0u;
     frame.igi_filter = settings_.filter ? 1u : 0u;
     frame.igi_filter_cos = settings_.discontinuity.normal_cos;
@@ -114,6 +116,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         vs.frame = frame.pass;
         vs.seed = frame.seed;
         vs.medium_scattering = settings_.multiple_scattering;
+        vs.ray_lights = settings_.multiple_scattering && settings_.ray_lights;
         ViewPoints view;
         if (settings_.vpl_importance > 1) {
             view = view_points(frame);
@@ -128,6 +131,14 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     }
     backend_.set_input(KernelInput::Vpls, vpls.vpls);
     backend_.set_input(KernelInput::VplSetStart, vpls.set_start);
+    if (frame.igi_media_vpls == TS_MEDIA_VPLS_RAYS) {
+        if (vpls.vrls.empty()) {
+            vpls.vrls.assign(TS_VRL_FLOATS, 0.0f);
+            vpls.vrl_set_start.assign(sets + 1, 0u);
+        }
+        backend_.set_input(KernelInput::Vrls, vpls.vrls);
+        backend_.set_input(KernelInput::VrlSetStart, vpls.vrl_set_start);
+    }
     stats_.vpls = vpls.count();
     stats_.vpl_rays = vpls.rays;
     stats_.vpl_seconds = since(t0);

@@ -61,6 +61,11 @@ struct IgiSettings {
     /// false: single scattering from the lights only (converging to `pt --max-scatter 1`).
     /// Uses the ID component's VPLs.
     bool multiple_scattering = true;
+    /// Media, with multiple_scattering: the ray march gathers virtual ray lights, one per
+    /// light-path segment inside the medium, instead of the medium VPLs (Novák et al.
+    /// 2012; docs/igi.md §6), with no clamp: a ray light spreads a point VPL's 1/d² spike
+    /// along its segment. Surfaces still gather the medium VPLs. `--ray-lights`.
+    bool ray_lights = false;
     /// Media: the ray march's light samples and VPL links at equiangular distances toward
     /// each light sample or VPL (Kulla and Fajardo 2012), the light samples combined by MIS
     /// with the phase samples at the march's points (docs/igi.md §6); false

@@ -55,6 +55,8 @@ const Parameter kParameters[] = {
      .doc = "igi: skip the discontinuity filter"},
     {.option = "--single-scattering", .value_name = "", .field = TS_SETTING(igi.multiple_scattering), .negated = true,
      .doc = "igi family: media: single scattering from the lights only (default: also VPLs at scattering events in the medium)"},
+    {.option = "--ray-lights", .value_name = "", .field = TS_SETTING(igi.ray_lights),
+     .doc = "igi family: media: the ray march gathers a virtual ray light per light-path segment in the medium, unclamped, instead of the medium VPLs"},
     {.option = "--uniform-march", .value_name = "", .field = TS_SETTING(igi.equiangular), .negated = true,
      .doc = "igi family: media: light samples and VPLs gathered at the ray march's stratified points (default: at equiangular distances toward each)"},
     {.option = "--no-mipmaps", .value_name = "", .field = TS_SETTING(texture_filter), .negated = true,

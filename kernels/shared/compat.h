@@ -122,6 +122,8 @@ using std::sin;
 using std::sqrt;
 using std::tan;
 using std::atan2;
+using std::asinh;
+using std::sinh;
 using std::pow;
 using std::isfinite;
 inline float clamp(float x, float lo, float hi) { return fmin(fmax(x, lo), hi); }

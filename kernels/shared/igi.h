@@ -355,6 +355,7 @@ typedef struct TsIgiMarch {
     uint lit;
     int active;
     int equiangular;
+    uint key; /* the pixel and set, (py·width + px)·64 + k: keys the ray lights' numbers */
 } TsIgiMarch;
 
 /* Traces pixel (px, py)'s camera ray and clips its segment to the medium. An escaping
@@ -367,7 +368,8 @@ TS_INLINE TsIgiMarch ts_igi_march_begin(const TsTracer* tracer, const TsFrame* f
     m.ray = ts_igi_camera_ray(f, px, py, &rng);
     /* The phase samples of set k come from their own stream, so each set's estimate is
      * independent of which other sets a pixel evaluates. */
-    m.prng = ts_rng_seed(f->seed ^ 0x5bd1e995u, (py * f->width + px) * 64u + k, f->pass);
+    m.key = (py * f->width + px) * 64u + k;
+    m.prng = ts_rng_seed(f->seed ^ 0x5bd1e995u, m.key, f->pass);
     m.L = make_float3(0.0f, 0.0f, 0.0f);
     m.lit = 0u;
     TsHit hit = ts_trace_closest(tracer, m.ray);
@@ -524,6 +526,8 @@ TS_INLINE void ts_igi_march_vpl_share(const TsSceneView* sv, const TsFrame* f, u
  * directly (ts_igi_march_vpls_add). */
 TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const TsIgiMarch* m, float t,
                                     TS_GLOBAL const float* vpl, TsRay* shadow, float* w, float3* tint) {
+    /* With ray lights the march takes the medium's light from them (ts_igi_march_vrl_link). */
+    if (f->igi_media_vpls == TS_MEDIA_VPLS_RAYS && ts_vpl_in_medium(vpl)) return 0;
     float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
     float b = ts_vpl_in_medium(vpl) ? f->igi_g_clamp * TS_VPL_MEDIUM_CLAMP_SCALE : f->igi_g_clamp;
     *tint = make_float3(1.0f, 1.0f, 1.0f);
@@ -543,6 +547,88 @@ TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const
     *shadow = ts_vpl_shadow_ray(x, vpl);
     *w = fmin(e * ts_hg_phase(dot(m->ray.dir, wi), med->g) / dist2, b);
     return 1;
+}
+
+/* The ray march of a pixel gathers 1/TS_IGI_MEDIA_VRL_THINNING of its set's ray lights,
+ * as it gathers a share of the VPLs (TS_IGI_MEDIA_VPL_THINNING). A set has 4-5× as many
+ * ray lights as medium VPLs (every segment in the medium leaves one, not only those
+ * where the path scatters), and a ray light's link is bounded, so a thinner share costs
+ * little noise: measured in docs/igi.md §6. */
+#ifndef TS_IGI_MEDIA_VRL_THINNING
+#define TS_IGI_MEDIA_VRL_THINNING 8u
+#endif
+
+/* The share of set k's ray lights that step i gathers: indices *first, *first + *stride,
+ * ... below sv->vrl_set_start[k + 1]; the link carries the stride in its tint
+ * (ts_igi_march_vrl_link). The S steps take S consecutive residues modulo the stride from
+ * an offset drawn per set and pass, so that every ray light is gathered with probability
+ * exactly S/stride whatever the set's count: with a fixed offset the first residues would
+ * be taken more often than the last whenever the count is not a multiple of the stride
+ * (+4% of the medium's light on the foggy Cornell box with the offset k). */
+TS_INLINE void ts_igi_march_vrl_share(const TsSceneView* sv, const TsFrame* f, uint k, uint i, uint* first,
+                                      uint* stride) {
+    *stride = TS_IGI_MEDIA_VRL_THINNING * f->igi_steps;
+    TsRng r = ts_rng_seed(f->seed ^ 0x76726c6fu, k, f->pass);
+    *first = sv->vrl_set_start[k] + (i + ts_rng_next_uint(&r) % *stride) % *stride;
+}
+
+/* The uniform number that places ray light j's point for march m (its pixel and set) in
+ * this pass: counter-based, so the order of the links does not matter (the packet march
+ * of shared/igi_march16.h draws it for 16 lanes at once). */
+TS_INLINE float ts_igi_vrl_u(const TsFrame* f, const TsIgiMarch* m, uint j) {
+    TsRng r = ts_rng_seed(f->seed ^ 0x76726c73u ^ ts_pcg_hash(j), m->key, f->pass);
+    return ts_rng_next(&r);
+}
+
+/* Ray light `vrl`'s link (layout_igi.h TS_VRL_*; docs/igi.md §6) from the camera segment
+ * of march m at the step whose own distance is t; u places the point on the ray light
+ * (ts_igi_vrl_u). A ray light of flux Φ along a segment y(τ), τ in [0, ℓ], sends a point
+ * x of the camera segment Φ ∫ σs Tr(τ) f_p(ω, y→x) Tr(y, x) V / |x − y|² dτ, which a
+ * point VPL (one τ drawn along the light path) estimates with a 1/d² spike. Here both
+ * points are drawn toward each other (Novák et al. 2012, §5): x along the camera segment
+ * with density ∝ 1/D(t) toward the ray light's line (ts_line_sampler) from the step's
+ * stratified offset, then τ by equiangular sampling toward x, so 1/d² cancels against
+ * the densities: w = e · phase(dir, ω_i) / (d² · pdf(τ)) = e · phase · Δθ / D, e the
+ * ray light's phase value toward x, with no clamp; *tint = σs·Tr(τ) (the ray light's
+ * scattering at τ) times the camera side's σs · T(t0, t) · step / eq as an equiangular
+ * VPL link's (eq = pdf(t)·(t1 − t0)), times the share's `stride` (ts_igi_march_vrl_share). With `--uniform-march` (!m->equiangular) x is the
+ * step's own point and the camera side is left to the step's end, as for the VPLs.
+ * Returns 0 when there is nothing to trace; else the shadow ray from x to y. */
+TS_INLINE int ts_igi_march_vrl_link(const TsMedium* med, const TsIgiMarch* m, float t, float u, float stride,
+                                    TS_GLOBAL const float* vrl, TsRay* shadow, float* w, float3* tint) {
+    float len = m->t1 - m->t0, vlen = vrl[TS_VRL_LENGTH];
+    if (!(len > 0.0f) || !(vlen > 0.0f)) return 0;
+    float3 start = ts_f3_load(vrl + TS_VRL_START), omega = ts_f3_load(vrl + TS_VRL_DIR);
+    float3 camera = make_float3(1.0f, 1.0f, 1.0f);
+    if (m->equiangular) {
+        /* As a point light's (ts_igi_march_toward): only a ray light whose line passes
+         * within TS_IGI_EQUIANGULAR_REACH steps of the camera ray's draws its distance;
+         * farther ones light the segment smoothly and keep the step's own point, eq = 1. */
+        float eq = 1.0f;
+        TsLineSampler ls = ts_line_setup(m->ray.org, m->ray.dir, m->t0, m->t1, start, omega);
+        if (ls.h < TS_IGI_EQUIANGULAR_REACH * m->step) {
+            ls = ts_line_bounds(ls, m->t0, m->t1);
+            t = ts_line_sample(&ls, m->t0, m->t1, (t - m->t0) / len);
+            eq = ts_line_pdf(&ls, t) * len;
+            if (!(eq > 0.0f && eq < TS_INF)) return 0;
+        }
+        camera = med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0))) * (m->step / eq);
+    }
+    float3 x = m->ray.org + m->ray.dir * t;
+    TsEquiangular e = ts_equiangular_angles(ts_equiangular_setup(start, omega, vlen, x, 0.0f), 0.0f, vlen);
+    float tau = ts_equiangular_sample(&e, 0.0f, vlen, u);
+    float pv = ts_equiangular_pdf(&e, tau);
+    if (!(pv > 0.0f && pv < TS_INF)) return 0;
+    float3 y = start + omega * tau;
+    float3 d = y - x;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0.0f)) return 0;
+    float3 wi = d / sqrt(dist2);
+    float ev = ts_hg_phase(dot(omega, -wi), med->g);
+    *shadow = ts_shadow_ray(x, y, make_float3(0.0f, 0.0f, 0.0f), 0.0f);
+    *w = ev * ts_hg_phase(dot(m->ray.dir, wi), med->g) / (dist2 * pv);
+    *tint = camera * med->sigma_s * ts_exp3(med->sigma_t * (-tau)) * stride;
+    return *w > 0.0f && *w < TS_INF;
 }
 
 /* Adds a visible VPL link (ts_igi_march_vpl_link) to *sum: C · Tr · w · tint. */
@@ -576,7 +662,22 @@ TS_INLINE float3 ts_igi_media_vpls(const TsSceneView* sv, const TsTracer* tracer
         if (ts_igi_march_vpl_link(f, med, m, t, vpl, &shadow, &w, &tint) && !ts_trace_occluded(tracer, shadow))
             ts_igi_march_vpl_add(&sum, vpl, med, shadow, w, tint);
     }
-    return sum * (float)stride;
+    sum = sum * (float)stride;
+    if (f->igi_media_vpls == TS_MEDIA_VPLS_RAYS) {
+        float3 rays = make_float3(0.0f, 0.0f, 0.0f);
+        ts_igi_march_vrl_share(sv, f, k, i, &first, &stride);
+        for (uint j = first; j < sv->vrl_set_start[k + 1u]; j += stride) {
+            TS_GLOBAL const float* vrl = sv->vrls + j * TS_VRL_FLOATS;
+            TsRay shadow;
+            float w;
+            float3 tint;
+            if (ts_igi_march_vrl_link(med, m, t, ts_igi_vrl_u(f, m, j), (float)stride, vrl, &shadow, &w, &tint) &&
+                !ts_trace_occluded(tracer, shadow))
+                ts_igi_march_vpl_add(&rays, vrl, med, shadow, w, tint);
+        }
+        sum += rays;
+    }
+    return sum;
 }
 
 /* Ends step i at distance t: adds its in-scattered light `in`, attenuated back to the

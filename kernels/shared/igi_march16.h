@@ -26,7 +26,7 @@ TS_NAMESPACE_BEGIN
 typedef struct TsMarchStep {
     float t[TS_PACKET_LANES], w[TS_PACKET_LANES];
     float3 x[TS_PACKET_LANES], light[TS_PACKET_LANES], radiance[TS_PACKET_LANES], vpl_sum[TS_PACKET_LANES],
-        tint[TS_PACKET_LANES];
+        vrl_sum[TS_PACKET_LANES], tint[TS_PACKET_LANES];
     TsRay shadow[TS_PACKET_LANES];
 } TsMarchStep;
 
@@ -68,8 +68,27 @@ TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer
             for (int l = 0; l < TS_PACKET_LANES; ++l)
                 if (seen >> l & 1u) ts_igi_march_vpl_add(&s->vpl_sum[l], vpl, med, s->shadow[l], s->w[l], s->tint[l]);
         }
+        for (int l = 0; l < TS_PACKET_LANES; ++l) s->vpl_sum[l] = s->vpl_sum[l] * (float)stride;
+        if (f->igi_media_vpls == TS_MEDIA_VPLS_RAYS) {
+            for (int l = 0; l < TS_PACKET_LANES; ++l) s->vrl_sum[l] = make_float3(0.0f, 0.0f, 0.0f);
+            ts_igi_march_vrl_share(sv, f, k, i, &first, &stride);
+            for (uint j = first; j < sv->vrl_set_start[k + 1u]; j += stride) {
+                TS_GLOBAL const float* vrl = sv->vrls + j * TS_VRL_FLOATS;
+                valid = 0u;
+                for (int l = 0; l < TS_PACKET_LANES; ++l)
+                    if ((in >> l & 1u) && ts_igi_march_vrl_link(med, &m[l], s->t[l], ts_igi_vrl_u(f, &m[l], j),
+                                                                (float)stride, vrl, &s->shadow[l], &s->w[l],
+                                                                &s->tint[l]))
+                        valid |= 1u << l;
+                seen = ts_march16_visible(tracer, s, valid);
+                for (int l = 0; l < TS_PACKET_LANES; ++l)
+                    if (seen >> l & 1u)
+                        ts_igi_march_vpl_add(&s->vrl_sum[l], vrl, med, s->shadow[l], s->w[l], s->tint[l]);
+            }
+            for (int l = 0; l < TS_PACKET_LANES; ++l) s->vpl_sum[l] += s->vrl_sum[l];
+        }
         for (int l = 0; l < TS_PACKET_LANES; ++l)
-            if (in >> l & 1u) ts_igi_march_vpls_add(&m[l], s->vpl_sum[l] * (float)stride, &s->light[l]);
+            if (in >> l & 1u) ts_igi_march_vpls_add(&m[l], s->vpl_sum[l], &s->light[l]);
     }
     for (int l = 0; l < TS_PACKET_LANES; ++l)
         if (in >> l & 1u) ts_igi_march_step_end(&m[l], med, s->t[l], s->light[l]);

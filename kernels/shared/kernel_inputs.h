@@ -31,6 +31,9 @@
  * launches (Backend::set_input), null or a placeholder where a launch does not use them:
  *   Vpls             TS_VPL_FLOATS per VPL, sorted by sample set (layout_igi.h)
  *   VplSetStart      sample set k's VPLs are [start[k], start[k+1])
+ *   Vrls             TS_VRL_FLOATS per ray light, sorted by sample set (layout_igi.h);
+ *                    read only when TsFrame.igi_media_vpls is TS_MEDIA_VPLS_RAYS
+ *   VrlSetStart      sample set k's ray lights are [start[k], start[k+1]), likewise
  *   IcGbuffer        TS_IC_GBUF_FLOATS per pixel (ic_gbuffer_from_surface, gi/instant_cache.h)
  *   IcNodes          TS_IC_NODE_FLOATS per octree node, root first
  *   IcRefs           the octree nodes' record lists, concatenated
@@ -50,6 +53,8 @@
 #define TS_KERNEL_INPUTS(X)                                                  \
     X(Vpls, vpls, float, "VPL")                                              \
     X(VplSetStart, vpl_set_start, uint, "VPL set table")                     \
+    X(Vrls, vrls, float, "ray light")                                        \
+    X(VrlSetStart, vrl_set_start, uint, "ray light set table")               \
     X(IcGbuffer, ic_gbuffer, float, "ic G-buffer")                           \
     X(IcNodes, ic_nodes, float, "ic octree")                                 \
     X(IcRefs, ic_refs, uint, "ic record lists")                              \

@@ -26,6 +26,32 @@
 #define TS_VPL_PATH 10
 #define TS_VPL_POS_SCALE 11
 
+/* Virtual ray lights (host/gi/light_paths.cpp; docs/igi.md §6): one per light-path
+ * segment inside the medium, TS_VRL_FLOATS floats each, sorted by sample set, for the ray
+ * march of `--ray-lights` (TsFrame.igi_media_vpls = TS_MEDIA_VPLS_RAYS):
+ *   TS_VRL_START  3 floats: where the segment enters the medium
+ *   TS_VRL_DIR    3 floats: its unit direction (the light's propagation direction)
+ *   TS_VRL_FLUX   3 floats: the path throughput entering it, divided by the paths per
+ *                 set, times the keep weight (flux; the medium's σs·Tr along the ray
+ *                 light weighs each of its points, shared/igi.h)
+ *   TS_VRL_SET    set index
+ *   TS_VRL_PATH   path index (uint bits)
+ *   TS_VRL_LENGTH its length in the medium (scene units, > 0)
+ * The same offsets as a VPL's, so the gather sums take either (ts_vpl_gather_term).
+ * vrl_set_start[k] .. vrl_set_start[k+1] are set k's ray lights. */
+#define TS_VRL_FLOATS 12
+#define TS_VRL_START 0
+#define TS_VRL_DIR 3
+#define TS_VRL_FLUX 6
+#define TS_VRL_SET 9
+#define TS_VRL_PATH 10
+#define TS_VRL_LENGTH 11
+
+/* TsFrame.igi_media_vpls: what the ray march gathers besides the lights. */
+#define TS_MEDIA_VPLS_NONE 0u   /* single scattering */
+#define TS_MEDIA_VPLS_POINTS 1u /* every VPL of the set, medium VPLs as points */
+#define TS_MEDIA_VPLS_RAYS 2u   /* surface VPLs, and ray lights instead of medium VPLs */
+
 /* Per-pixel output of the igi surface kernel: TS_IGI_SURF_FLOATS floats:
  *   TS_IGI_SURF_E_SS       3 floats: E_ss, direct (area-light) irradiance / π
  *   TS_IGI_SURF_E_ID       3 floats: E_id, indirect (VPL) irradiance / π (both the
@@ -138,6 +164,9 @@
 /* Compile-time checks of the layouts above (shared/layout_check.h). */
 #include "shared/layout_check.h"
 
+static_assert(TS_VRL_FLOATS == TS_VPL_FLOATS && TS_VRL_FLUX == TS_VPL_FLUX && TS_VRL_SET == TS_VPL_SET &&
+                  TS_VRL_PATH == TS_VPL_PATH,
+              "layout_igi.h: ray lights share the VPLs' flux, set and path offsets");
 static_assert(tessera::layout_check::tiles({{TS_VPL_POSITION, 3}, {TS_VPL_NORMAL, 3}, {TS_VPL_FLUX, 3},
                                             {TS_VPL_SET, 1}, {TS_VPL_PATH, 1}, {TS_VPL_POS_SCALE, 1}},
                                            TS_VPL_FLOATS),

@@ -128,6 +128,66 @@ TS_INLINE float ts_equiangular_pdf(const TsEquiangular* e, float t) {
     return e->D / ((e->theta_b - e->theta_a) * (e->D * e->D + x * x));
 }
 
+/* Distance sampling along a segment [a, b] of a ray (org, unit dir) toward a line (a
+ * virtual ray light: p + s·w, w unit), with density ∝ 1/D(t), D(t) the distance from the
+ * ray's point at t to the line (Novák, Nowrouzezahrai, Dachsbacher and Jarosz 2012,
+ * "Virtual ray lights for rendering scenes with participating media", §5). The light a
+ * ray light sends to a point falls as 1/d² over its length, which integrates to
+ * (angle it spans)/D(t); sampling t ∝ 1/D(t) cancels that, so the pair's estimate stays
+ * bounded up to a logarithm where the two lines pass close, where a point light's 1/d²
+ * would not. With h the lines' closest distance, at ray parameter tc, and a = sin of the
+ * angle between them, D(t)² = h² + a²(t − tc)², and
+ *   t = tc + (h/a) sinh(A),  A uniform in [asinh(a(a' − tc)/h), asinh(a(b − tc)/h)],
+ *   pdf(t) = a / ((A_b − A_a) · D(t))   (per scene unit).
+ * h is floored at 1e-5 of the extent (as ts_equiangular_setup floors D); nearly parallel
+ * lines (a < 1e-4) fall back to the uniform density 1/(b − a). */
+typedef struct TsLineSampler {
+    float tc, h, a, A0, A1;
+    int uniform;
+} TsLineSampler;
+
+/* The sampler's geometry (tc, h, a) for the segment [ta, tb] of the ray (org, unit dir)
+ * toward the line (p, unit w); the bounds come apart (ts_line_bounds), so a caller can look
+ * at h before paying for the inverse hyperbolic functions. */
+TS_INLINE TsLineSampler ts_line_setup(float3 org, float3 dir, float ta, float tb, float3 p, float3 w) {
+    TsLineSampler ls;
+    float3 r = org - p;
+    float b = dot(dir, w), c = dot(dir, r), e = dot(w, r);
+    float s2 = fmax(1.0f - b * b, 0.0f);
+    ls.a = sqrt(s2);
+    ls.uniform = !(ls.a >= 1e-4f);
+    ls.tc = ls.uniform ? 0.0f : (b * e - c) / s2;
+    float sc = e + ls.tc * b;
+    float3 gap = r + dir * ls.tc - w * sc;
+    ls.h = fmax(length(gap), 1e-5f * fmax(fmax(fabs(ta), fabs(tb)), fabs(ls.tc)) + 1e-30f);
+    ls.A0 = ls.A1 = 0.0f;
+    return ls;
+}
+
+TS_INLINE TsLineSampler ts_line_bounds(TsLineSampler ls, float ta, float tb) {
+    ls.A0 = ls.uniform ? ta : asinh(ls.a * (ta - ls.tc) / ls.h);
+    ls.A1 = ls.uniform ? tb : asinh(ls.a * (tb - ls.tc) / ls.h);
+    return ls;
+}
+
+TS_INLINE TsLineSampler ts_line_sampler(float3 org, float3 dir, float ta, float tb, float3 p, float3 w) {
+    return ts_line_bounds(ts_line_setup(org, dir, ta, tb, p, w), ta, tb);
+}
+
+/* The distance for uniform u in [0, 1), clamped to [ta, tb] against rounding of sinh. */
+TS_INLINE float ts_line_sample(const TsLineSampler* ls, float ta, float tb, float u) {
+    float A = ls->A0 + u * (ls->A1 - ls->A0);
+    float t = ls->uniform ? A : ls->tc + ls->h / ls->a * sinh(A);
+    return fmin(fmax(t, ta), tb);
+}
+
+/* The density of ts_line_sample at t (per scene unit). */
+TS_INLINE float ts_line_pdf(const TsLineSampler* ls, float t) {
+    if (ls->uniform) return 1.0f / (ls->A1 - ls->A0);
+    float x = ls->a * (t - ls->tc);
+    return ls->a / ((ls->A1 - ls->A0) * sqrt(ls->h * ls->h + x * x));
+}
+
 /* Transmittance along a shadow ray over its (tmin, tmax); 1 where the medium is compiled
  * out (OpenCL builds without TS_HAS_MEDIUM; every C++ build has it, and a scene without a
  * medium gives 1 through ts_medium_clip). */

@@ -37,7 +37,10 @@ std::vector<uint32_t> mixed_items() {
     return list;
 }
 
-std::vector<float> items_of(BackendKind kind, bool packets, bool multiple_scattering) {
+// What the march gathers besides the lights (TsFrame.igi_media_vpls).
+enum class Media { Single, PointVpls, RayLights };
+
+std::vector<float> items_of(BackendKind kind, bool packets, Media media) {
     const Scene s =
         load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-fog.json", make_data_path(std::nullopt));
     const SceneBuffers b = make_scene_buffers(s);
@@ -51,7 +54,8 @@ std::vector<float> items_of(BackendKind kind, bool packets, bool multiple_scatte
     }
     IgiSettings is;
     is.paths_per_set = 8;
-    is.multiple_scattering = multiple_scattering;
+    is.multiple_scattering = media != Media::Single;
+    is.ray_lights = media == Media::RayLights;
     AisFrame igi(*be, b, plan_effects(s), is);
     TsFrame f = make_frame(s.camera, kSize, kSize, is.set_shadow_samples, 1, b.light_count);
     f.light_power = b.light_power;
@@ -62,12 +66,11 @@ std::vector<float> items_of(BackendKind kind, bool packets, bool multiple_scatte
     return items;
 }
 
-class MediaPackets : public ::testing::TestWithParam<std::tuple<BackendKind, bool>> {};
+class MediaPackets : public ::testing::TestWithParam<std::tuple<BackendKind, Media>> {};
 
 TEST_P(MediaPackets, MixedSetItemsEqualOneRayAtATimeBitForBit) {
-    const auto [kind, multiple_scattering] = GetParam();
-    const std::vector<float> single = items_of(kind, false, multiple_scattering),
-                             packets = items_of(kind, true, multiple_scattering);
+    const auto [kind, media] = GetParam();
+    const std::vector<float> single = items_of(kind, false, media), packets = items_of(kind, true, media);
     ASSERT_EQ(single.size(), 37u * TS_AIS_ITEM_FLOATS);
     ASSERT_EQ(packets.size(), single.size());
     EXPECT_EQ(std::memcmp(single.data(), packets.data(), single.size() * sizeof(float)), 0);
@@ -88,10 +91,11 @@ TEST_P(MediaPackets, MixedSetItemsEqualOneRayAtATimeBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(Backends, MediaPackets,
                          ::testing::Combine(::testing::Values(BackendKind::Embree, BackendKind::OpenCL),
-                                            ::testing::Bool()),
+                                            ::testing::Values(Media::Single, Media::PointVpls, Media::RayLights)),
                          [](const auto& info) {
+                             const Media m = std::get<1>(info.param);
                              return std::string(std::get<0>(info.param) == BackendKind::Embree ? "Embree" : "OpenCL") +
-                                    (std::get<1>(info.param) ? "_Multiple" : "_Single");
+                                    (m == Media::Single ? "_Single" : m == Media::PointVpls ? "_Multiple" : "_RayLights");
                          });
 
 }  // namespace

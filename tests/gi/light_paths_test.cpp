@@ -2,6 +2,7 @@
 // another seed independent ones, and the default seed keeps the project's sequence. End to
 // end, every method renders the same bits for the same seed and another image for another
 // seed, and the VPL methods' VPL sets change with it (igi's, ic's and tic's).
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <vector>
@@ -13,6 +14,9 @@
 #include "gi/ic_passes.h"
 #include "gi/light_paths.h"
 #include "gi/vpl_generator.h"
+#include "gi/vpl_importance.h"
+#include "device/frame.h"
+#include "kernels/shared/medium.h"
 #include "render/renderer.h"
 #include "support/render_helpers.h"
 
@@ -73,6 +77,100 @@ TEST(LightPaths, EveryMethodRendersItsSeed) {
         }
         EXPECT_GT(diff / double(n), 1e-3) << method_name(m) << ": the VPLs must change with the seed";
     }
+}
+
+TEST(LightPaths, RayLightsFollowTheSegmentsInTheMediumAndChangeNoVpl) {
+    // With ray lights (docs/igi.md §6) every light-path segment that crosses the medium
+    // leaves one: it starts on the segment where the segment enters the medium, along its
+    // direction, as long as the stretch inside, of flux the path's throughput entering it
+    // times 1/paths (the first: the light's Le·π/p_A). The paths' random decisions are
+    // unchanged, so the VPLs are the same bits as without ray lights.
+    const Scene fog = test::shipped_scene("cornell-box-fog.json");
+    const SceneBuffers buffers = make_scene_buffers(fog);
+    auto backend = make_backend({BackendKind::Embree, ""}, buffers, plan_effects(fog));
+    const ts::TsMedium med = ts::ts_medium_load(buffers.medium.data());
+    ASSERT_TRUE(med.present);
+    auto trace = [&](bool ray_lights) {
+        std::vector<LightPath> paths(64);
+        for (uint32_t j = 0; j < paths.size(); ++j) paths[j].index = j;
+        LightPathSettings ls;
+        ls.medium_scattering = true;
+        ls.ray_lights = ray_lights;
+        ls.inv_paths = 1.0f / 64.0f;
+        trace_light_paths(*backend, buffers, ls, paths);
+        return paths;
+    };
+    const std::vector<LightPath> plain = trace(false), with = trace(true);
+    size_t rays = 0, crossing = 0;
+    for (size_t j = 0; j < with.size(); ++j) {
+        EXPECT_TRUE(plain[j].vrls.empty());
+        EXPECT_EQ(with[j].vpls, plain[j].vpls) << "path " << j;
+        ASSERT_EQ(with[j].segments.size(), plain[j].segments.size());
+        // One ray light per segment that crosses the medium box, in order.
+        size_t r = 0;
+        for (const PathSegment& seg : with[j].segments) {
+            const ts::float3 org = ts::make_float3(seg.org[0], seg.org[1], seg.org[2]),
+                             dir = ts::make_float3(seg.dir[0], seg.dir[1], seg.dir[2]);
+            float t0 = 0.0f, t1 = seg.prim == TS_NO_HIT && !std::isfinite(seg.t) ? ts::TS_INF : seg.t;
+            if (!ts::ts_medium_clip(&med, org, dir, &t0, &t1)) continue;
+            ++crossing;
+            ASSERT_LT(r, with[j].vrls.size() / TS_VRL_FLOATS) << "path " << j;
+            const float* v = &with[j].vrls[r * TS_VRL_FLOATS];
+            const ts::float3 start = ts::ts_f3_load(v + TS_VRL_START), u = ts::ts_f3_load(v + TS_VRL_DIR);
+            const float len = ts::length(dir);
+            // A segment cut short by a scattering event is the ray light's whole segment up
+            // to the surface, so its length is at least the stretch to the event.
+            EXPECT_NEAR(ts::length(start - (org + dir * t0)), 0.0f, 1e-4f * (1.0f + ts::length(org)));
+            EXPECT_NEAR(ts::dot(u, dir / len), 1.0f, 1e-5f);
+            EXPECT_GE(v[TS_VRL_LENGTH] * (1.0f + 1e-5f), (t1 - t0) * len);
+            ++r;
+        }
+        rays += with[j].vrls.size() / TS_VRL_FLOATS;
+        if (!with[j].vrls.empty()) {
+            EXPECT_EQ(with[j].vrls.size() / TS_VRL_FLOATS, r) << "path " << j;
+            // The first ray light carries the light's weight; it is positive and finite.
+            for (int c = 0; c < 3; ++c) EXPECT_TRUE(with[j].vrls[TS_VRL_FLUX + c] > 0.0f);
+        }
+    }
+    EXPECT_GT(rays, 64u) << "the fog fills the box: every path crosses it";
+    EXPECT_EQ(rays, crossing);
+}
+
+TEST(LightPaths, EachSetKeepsItsShareOfRayLights) {
+    // generate_vpls with K = 4 candidates keeps a quarter of each set's ray lights (one
+    // systematic sample: the count to within one), their flux times four.
+    const Scene fog = test::shipped_scene("cornell-box-fog.json");
+    const SceneBuffers buffers = make_scene_buffers(fog);
+    auto backend = make_backend({BackendKind::Embree, ""}, buffers, plan_effects(fog));
+    const TsFrame frame = make_frame(fog.camera, 32, 32, 1, 1, buffers.light_count);
+    const ViewPoints view = trace_view_points(*backend, buffers, frame, 8);
+    VplSettings vs;
+    vs.sets = 4;
+    vs.paths_per_set = 16;
+    vs.medium_scattering = vs.ray_lights = true;
+    VplSettings all = vs;
+    vs.importance_oversampling = 4;
+    vs.view = &view;
+    const VplList kept = generate_vpls(*backend, buffers, vs);
+    // The same candidates with K = 1: 64 paths a set, each ray light weighing 1/64.
+    all.paths_per_set = 64;
+    const VplList every = generate_vpls(*backend, buffers, all);
+    ASSERT_EQ(kept.vrl_set_start.size(), 5u);
+    for (uint32_t k = 0; k < 4; ++k) {
+        const double candidates = every.vrl_set_start[k + 1] - every.vrl_set_start[k],
+                     n = kept.vrl_set_start[k + 1] - kept.vrl_set_start[k];
+        EXPECT_NEAR(n, candidates / 4.0, 1.0) << "set " << k;
+    }
+    // A kept ray light is a candidate's with four times its flux.
+    const float* v = &kept.vrls[0];
+    bool found = false;
+    for (size_t i = 0; i + TS_VRL_FLOATS <= every.vrls.size(); i += TS_VRL_FLOATS) {
+        const float* c = &every.vrls[i];
+        if (std::memcmp(c + TS_VRL_START, v + TS_VRL_START, 3 * sizeof(float)) != 0) continue;
+        found = true;
+        EXPECT_NEAR(v[TS_VRL_FLUX + 1], 4.0f * c[TS_VRL_FLUX + 1], 1e-6f * v[TS_VRL_FLUX + 1]);
+    }
+    EXPECT_TRUE(found);
 }
 
 }  // namespace

@@ -237,7 +237,9 @@ TEST(SelectPaths, KeepsTheFluxInExpectationWithTheirWeights) {
     int differ = 0;
     for (size_t j = 0; j < candidates.size(); ++j) {
         differ += in_kept[j] != in_other[j];
-        if (p[j] == 1.0) EXPECT_TRUE(in_kept[j] && in_other[j]) << "path " << j;
+        if (p[j] == 1.0) {
+            EXPECT_TRUE(in_kept[j] && in_other[j]) << "path " << j;
+        }
     }
     EXPECT_GT(differ, 10);
 }
