@@ -117,7 +117,9 @@ std::vector<double> path_keep_probabilities(const std::vector<float>& importance
 /// C. With u uniform each unit is kept with probability exactly p[j], as independent
 /// decisions would keep it, but the number kept is floor(Σp) or ceil(Σp) and any run of
 /// consecutive units keeps its share to within one: the selection adds no count noise
-/// to the estimate. Returns one flag per unit.
+/// to the estimate. Returns one flag per unit. Each decision depends on every earlier p,
+/// so it suits units whose p does not move (the ray lights' uniform 1/K,
+/// gi/vpl_generator.h), not the paths kept for the view (select_paths).
 std::vector<bool> systematic_sample(const std::vector<double>& p, double u);
 
 /// Path by path, for the instant cache (docs/instant-caching.md §2): keeps candidate path
@@ -126,15 +128,9 @@ std::vector<bool> systematic_sample(const std::vector<double>& p, double u);
 /// `oversampling`, and returns the kept paths in candidate order with weight 1/p_j and
 /// their VPLs' flux multiplied by it. A whole path is kept or dropped, so that the
 /// temporal cache can re-trace a kept path with its weight when moving geometry
-/// invalidates it: the weight is fixed when the path is drawn. The decisions are one
-/// systematic sample in candidate order (systematic_sample), its offset the counter-based
-/// generator keyed by the first candidate's index and `seed_mix`: each path is kept with
-/// exactly p_j, so the estimate stays unbiased, and the kept count is Σ p_j to within one.
-/// The candidates' Halton order spreads them over the lights and directions, so the
-/// sample keeps that spread too. On two-rooms (128×96, 16 spp, 30 seeds) the image mean
-/// spread 1.28% over seeds against 1.42% with independent decisions, and the Cornell
-/// box's median worst 4×3 region went 1.021 → 1.013. On average the kept paths leave 1/K
-/// of the candidates' VPLs.
+/// invalidates it: the weight is fixed when the path is drawn, and the estimate stays
+/// unbiased because the decision is the counter-based generator keyed by the path index
+/// and `seed_mix` alone. On average the kept paths leave 1/K of the candidates' VPLs.
 std::vector<LightPath> select_paths(std::vector<LightPath>& candidates, const std::vector<float>& importance,
                                     uint32_t oversampling, uint32_t seed_mix);
 

@@ -175,9 +175,8 @@ TEST(PathKeepProbabilities, MeetTheVplBudgetAndFavourImportance) {
 TEST(SelectPaths, KeepsTheFluxInExpectationWithTheirWeights) {
     // 5000 candidate paths of 0-3 VPLs of flux 1, importance skewed: a path's importance is
     // the sum of its VPLs' (path_keep_probabilities). A kept path carries weight 1/p on every VPL, so the kept flux
-    // estimates the candidates' with at most the variance of independent decisions,
-    // Σ m_j² (1 − p_j)/p_j (m_j its VPLs): a 5σ bound. The selection is systematic
-    // (systematic_sample), so the kept count is Σ p_j rounded down or up.
+    // estimates the candidates' with variance Σ m_j² (1 − p_j)/p_j (m_j its VPLs), and the
+    // kept count Σ p_j with variance Σ p_j(1 − p_j): 5σ bounds.
     std::vector<LightPath> candidates(5000);
     std::vector<float> importance, path_importance;
     double total = 0.0;
@@ -219,8 +218,7 @@ TEST(SelectPaths, KeepsTheFluxInExpectationWithTheirWeights) {
         }
     }
     EXPECT_NEAR(flux, total, 5.0 * std::sqrt(var_flux));
-    EXPECT_NEAR(double(kept.size()), mean_count, 1.0);
-    (void)var_count;
+    EXPECT_NEAR(double(kept.size()), mean_count, 5.0 * std::sqrt(var_count));
     // The same candidates and seed keep the same paths; another seed keeps others.
     copy = candidates;
     const std::vector<LightPath> again = select_paths(copy, importance, k, 0u);
@@ -228,20 +226,9 @@ TEST(SelectPaths, KeepsTheFluxInExpectationWithTheirWeights) {
     for (size_t i = 0; i < kept.size(); ++i) EXPECT_EQ(again[i].index, kept[i].index);
     copy = candidates;
     const std::vector<LightPath> other = select_paths(copy, importance, k, light_path_seed_mix(2));
-    // One offset decides every path, so two seeds' selections differ in about 2δN paths
-    // for offsets δ apart (Σ 2 p_j (1 − p_j) on average over the offsets, but one pair can
-    // be close): they must differ, and not in the paths of p = 1.
-    std::vector<bool> in_kept(candidates.size(), false), in_other(candidates.size(), false);
-    for (const LightPath& path : kept) in_kept[path.index - 1000] = true;
-    for (const LightPath& path : other) in_other[path.index - 1000] = true;
-    int differ = 0;
-    for (size_t j = 0; j < candidates.size(); ++j) {
-        differ += in_kept[j] != in_other[j];
-        if (p[j] == 1.0) {
-            EXPECT_TRUE(in_kept[j] && in_other[j]) << "path " << j;
-        }
-    }
-    EXPECT_GT(differ, 10);
+    size_t same = 0;
+    for (size_t i = 0; i < std::min(other.size(), kept.size()); ++i) same += other[i].index == kept[i].index;
+    EXPECT_LT(same, kept.size() / 2);
 }
 
 TEST(SystematicSample, KeepsEachUnitWithItsProbabilityAndTheSumWithinOne) {
