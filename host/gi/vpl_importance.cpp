@@ -138,34 +138,48 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
     std::vector<float> importance(nv, 0.0f);
     if (np == 0 || nv == 0) return importance;
-    // c_ij in point-major rows. The medium's HG parameter is not needed: medium VPLs get 0.
-    std::vector<float> c(np * nv, 0.0f);
+    // The surface VPLs packed, with their flux's luminance (medium VPLs get 0, and the
+    // medium's HG parameter is not needed): the loop over them then has no branch.
+    std::vector<uint32_t> surface;
+    std::vector<float> packed, lum;
+    for (size_t i = 0; i < nv; ++i) {
+        const float* v = &vpls[TS_VPL_FLOATS * i];
+        if (ts::ts_vpl_in_medium(v)) continue;
+        surface.push_back(static_cast<uint32_t>(i));
+        packed.insert(packed.end(), v, v + TS_VPL_FLOATS);
+        lum.push_back(ts::ts_luminance(ts::ts_f3_load(v + TS_VPL_FLUX)));
+    }
+    const size_t ns = surface.size();
+    if (ns == 0) return importance;
+    // c_ij in point-major rows, and each point's E_j = Σ_i c_ij in double in VPL order.
+    std::vector<float> c(np * ns);
+    std::vector<double> e(np, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 16), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t j = r.begin(); j < r.end(); ++j) {
             const float3 x = ts::ts_f3_load(&points.position[3 * j]), n = ts::ts_f3_load(&points.normal[3 * j]),
                          ng = ts::ts_f3_load(&points.geo_normal[3 * j]);
-            float* row = c.data() + j * nv;
-            for (size_t i = 0; i < nv; ++i) {
-                const float* v = &vpls[TS_VPL_FLOATS * i];
-                if (ts::ts_vpl_in_medium(v)) continue;
-                row[i] = ts::ts_luminance(ts::ts_f3_load(v + TS_VPL_FLUX)) *
-                         ts::ts_vpl_geometry_term_of(x, n, ng, v, g_clamp, 0.0f, 0);
-            }
+            float* row = c.data() + j * ns;
+            for (size_t i = 0; i < ns; ++i)
+                row[i] = lum[i] * ts::ts_vpl_geometry_term_of(x, n, ng, &packed[TS_VPL_FLOATS * i], g_clamp, 0.0f, 0);
+            double sum = 0.0;
+            for (size_t i = 0; i < ns; ++i) sum += row[i];
+            e[j] = sum;
         }
     });
-    std::vector<double> e(np, 0.0);
     double mean = 0.0;
-    for (size_t j = 0; j < np; ++j) {
-        for (size_t i = 0; i < nv; ++i) e[j] += c[j * nv + i];
-        mean += e[j] / np;
-    }
+    for (size_t j = 0; j < np; ++j) mean += e[j] / np;
     if (!(mean > 0.0)) return importance;
-    std::vector<double> sum(nv, 0.0);
-    for (size_t j = 0; j < np; ++j) {
-        const double w = 1.0 / std::max(e[j], 1e-3 * mean);
-        for (size_t i = 0; i < nv; ++i) sum[i] += c[j * nv + i] * w;
-    }
-    for (size_t i = 0; i < nv; ++i) importance[i] = static_cast<float>(sum[i]);
+    std::vector<double> w(np);
+    for (size_t j = 0; j < np; ++j) w[j] = 1.0 / std::max(e[j], 1e-3 * mean);
+    // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPL ranges in parallel.
+    std::vector<double> sum(ns, 0.0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t j = 0; j < np; ++j) {
+            const float* row = c.data() + j * ns;
+            for (size_t i = r.begin(); i < r.end(); ++i) sum[i] += row[i] * w[j];
+        }
+    });
+    for (size_t i = 0; i < ns; ++i) importance[surface[i]] = static_cast<float>(sum[i]);
     return importance;
 }
 
