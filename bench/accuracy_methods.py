@@ -12,8 +12,9 @@ of the seed thesis); `converges_to_reference` is False for a method whose limit 
 pt reference (its error floors). Adding a method (igi, ais, ais-max, ic, tic) is one entry;
 `method` is the `--method` it renders with where the entry's name is a variant (ais-old:
 ais with the defaults before the clamp decay; ais-uniform: before VPLs for the view;
-ais-noedge: without edge samples; ais-nocomp: without the clamp compensation; so one
-sweep shows old against new).
+ais-noedge: without edge samples; ais-nocomp: without the clamp compensation;
+ais-pointvpl: the march's medium VPLs instead of ray lights; so one sweep shows old against
+new).
 """
 from dataclasses import dataclass, field
 
@@ -63,6 +64,12 @@ METHODS = {
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
         method="ais", extra_args=("--no-clamp-compensation",),
         note="ais without the clamp's screen-space compensation (docs/igi.md section 4): the clamped estimate alone"),
+    "ais-pointvpl": Method(
+        "ais-pointvpl", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
+        {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
+        method="ais", extra_args=("--point-medium-vpls",),
+        note="ais whose ray march gathers the medium VPLs (clamped) instead of virtual ray lights (docs/igi.md "
+             "section 6); the same images without a medium"),
     "ais-uniform": Method(
         "ais-uniform", {"spp": [1, 2, 4, 8], "tile": [3, 5, 8], "vpl-paths": [8, 32], "shadow-samples": [1, 4]},
         {"spp": 1, "tile": 3, "vpl-paths": 32, "shadow-samples": 4},
