@@ -553,7 +553,8 @@ TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const
  * as it gathers a share of the VPLs (TS_IGI_MEDIA_VPL_THINNING). A set has 4-5× as many
  * ray lights as medium VPLs (every segment in the medium leaves one, not only those
  * where the path scatters), and a ray light's link is bounded, so a thinner share costs
- * little noise: measured in docs/igi.md §6. */
+ * little noise. 8 (ours, not swept): a pixel then traces about as many ray-light links
+ * as it traced medium-VPL links, and the frame costs 1.12-1.27× (docs/igi.md §6). */
 #ifndef TS_IGI_MEDIA_VRL_THINNING
 #define TS_IGI_MEDIA_VRL_THINNING 8u
 #endif
