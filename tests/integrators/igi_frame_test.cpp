@@ -328,6 +328,38 @@ TEST(IgiMedia, RayLightsAndPointVplsEstimateTheSameMedium) {
     }
 }
 
+TEST(IgiMedia, TheMarchsShareOfLightsDoesNotDependOnItsSteps) {
+    // Each step of the march gathers its share of the set's VPLs (and ray lights), so that
+    // a pixel gathers 1/T of the list (ts_igi_march_share_offset). Whatever the steps'
+    // number, the share must weigh what it gathers as what it is: PM's mean with 3, 8 and
+    // 72 steps within 4%. When the share's offset was the set index, a set of fewer VPLs
+    // than 2 × steps was gathered almost whole and weighted as if half: full-rate IGI's
+    // 72 steps read PM +40%. Foggy Cornell box, 32², 32 passes, medium VPLs and ray
+    // lights, Embree. The noise: at 16 passes the 72-step mean spread 1.4% over seeds
+    // 1-4 (one frame's offsets are shared by a set's pixels), so at 32 passes the
+    // difference of two means has ~1% standard deviation and 4% is ~4σ.
+    const Scene fog = test::shipped_scene("cornell-box-fog.json");
+    for (bool ray_lights : {false, true}) {
+        auto pm = [&](uint32_t steps) {
+            RenderSettings rs;
+            rs.method = Method::Igi;
+            rs.width = rs.height = 32;
+            rs.spp = 32;
+            rs.aovs = true;
+            rs.igi.march_steps = steps;
+            rs.igi.ray_lights = ray_lights;
+            return test::channel_mean(test::render_with(BackendKind::Embree, fog, rs), "PM.G");
+        };
+        const double eight = pm(8);
+        for (uint32_t steps : {3u, 72u}) {
+            const double other = pm(steps);
+            std::printf("  %s: PM.G %u steps %.5g, 8 steps %.5g (%.2f%%)\n", ray_lights ? "ray lights" : "medium VPLs",
+                        steps, other, eight, 100.0 * (other / eight - 1.0));
+            EXPECT_NEAR(other, eight, 0.04 * eight) << steps << " steps";
+        }
+    }
+}
+
 TEST(IgiMedia, EveryIgiFamilyMethodScattersMoreThanOnce) {
     // The media component of igi, ais, ais-max, ic and tic is one ray march gathering the
     // same interleaved VPL sets (multiple scattering, docs/igi.md §6), whatever makes the
