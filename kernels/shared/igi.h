@@ -571,9 +571,9 @@ TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const
  * as it gathers a share of the VPLs (TS_IGI_MEDIA_VPL_THINNING). A set has 4-5× as many
  * ray lights as medium VPLs (every segment in the medium leaves one, not only those
  * where the path scatters), and a ray light's link is bounded, so a thinner share costs
- * little noise. 8 (ours): one AIS frame on the five fog scenes scored alike at shares of
- * 1/2, 1/4 and 1/8 (within the seeds' spread) and worse at 1/16, and 1/8 costs 1.12-1.27×
- * the medium VPLs' frame against ~2× at 1/2 (bench/results/ray_lights_thinning.md). */
+ * little noise. 8 (ours): one AIS frame on the five fog scenes scored within a few
+ * tenths of a point at shares of 1/2, 1/4 and 1/8 and worse at 1/16, and 1/8 costs
+ * 1.08-1.31× the medium VPLs' frame against ~2.7× at 1/2 (bench/results/ray_lights_thinning.md). */
 #ifndef TS_IGI_MEDIA_VRL_THINNING
 #define TS_IGI_MEDIA_VRL_THINNING 8u
 #endif
