@@ -67,16 +67,11 @@ TEST(Medium, FreeFlightDistancesAreExponential) {
     EXPECT_FALSE(r.reject) << "chi2 " << r.statistic << " dof " << r.dof << " z " << r.z;
 }
 
-TEST(Medium, EquiangularDistancesFollowTheirPdf) {
-    // ts_equiangular_sample against ts_equiangular_pdf: fifty bins whose expected counts
-    // are the pdf integrated over each bin (Simpson, 64 panels), so a sampler and a pdf
-    // that disagree (a lost D, a wrong angle range) fail. A point 0.3 off the ray, its
-    // projection inside the segment [0.5, 6]: a sharp peak, the case the method is for.
-    const ts::float3 org = make_float3(0, 0, 0), dir = make_float3(0, 0, 1), p = make_float3(0.3f, 0, 2);
-    const float a = 0.5f, b = 6.0f;
-    ts::TsEquiangular e = ts::ts_equiangular_angles(ts::ts_equiangular_setup(org, dir, b, p, 0.0f), a, b);
-    EXPECT_NEAR(e.delta, 2.0f, 1e-6f);
-    EXPECT_NEAR(e.D, 0.3f, 1e-6f);
+// A distance sampler on [a, b] against its pdf: fifty bins whose expected counts are the
+// pdf integrated over each bin (Simpson, 64 panels), 200,000 samples from `seed`, so a
+// sampler and a pdf that disagree fail the chi-square test; the pdf must integrate to one.
+template <class Sample, class Pdf>
+void expect_samples_follow_pdf(Sample sample, Pdf pdf, float a, float b, unsigned seed) {
     const int bins = 50, n = 200000;
     std::vector<double> observed(bins, 0.0), expected(bins, 0.0);
     const double width = (b - a) / bins;
@@ -88,16 +83,16 @@ TEST(Medium, EquiangularDistancesFollowTheirPdf) {
         for (int j = 0; j <= panels; ++j) {
             const double t = a + k * width + j * h;
             const double c = (j == 0 || j == panels) ? 1.0 : (j % 2 ? 4.0 : 2.0);
-            s += c * ts::ts_equiangular_pdf(&e, float(t));
+            s += c * pdf(float(t));
         }
         expected[k] = s * h / 3.0 * n;
         total += expected[k];
     }
     EXPECT_NEAR(total / n, 1.0, 1e-4) << "the pdf integrates to one over [a, b]";
-    std::mt19937 rng(21);
+    std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (int i = 0; i < n; ++i) {
-        float t = ts::ts_equiangular_sample(&e, a, b, u(rng));
+        const float t = sample(u(rng));
         ASSERT_TRUE(t >= a && t <= b) << t;
         observed[std::min(bins - 1, int((t - a) / width))] += 1.0;
     }
@@ -105,11 +100,23 @@ TEST(Medium, EquiangularDistancesFollowTheirPdf) {
     EXPECT_FALSE(r.reject) << "chi2 " << r.statistic << " dof " << r.dof << " z " << r.z;
 }
 
+TEST(Medium, EquiangularDistancesFollowTheirPdf) {
+    // ts_equiangular_sample against ts_equiangular_pdf (expect_samples_follow_pdf): a lost
+    // D or a wrong angle range fails. A point 0.3 off the ray, its
+    // projection inside the segment [0.5, 6]: a sharp peak, the case the method is for.
+    const ts::float3 org = make_float3(0, 0, 0), dir = make_float3(0, 0, 1), p = make_float3(0.3f, 0, 2);
+    const float a = 0.5f, b = 6.0f;
+    ts::TsEquiangular e = ts::ts_equiangular_angles(ts::ts_equiangular_setup(org, dir, b, p, 0.0f), a, b);
+    EXPECT_NEAR(e.delta, 2.0f, 1e-6f);
+    EXPECT_NEAR(e.D, 0.3f, 1e-6f);
+    expect_samples_follow_pdf([&](float v) { return ts::ts_equiangular_sample(&e, a, b, v); },
+                              [&](float t) { return ts::ts_equiangular_pdf(&e, t); }, a, b, 21);
+}
+
 TEST(Medium, LineDistancesFollowTheirPdf) {
-    // ts_line_sample against ts_line_pdf (the camera side of a ray light's link): fifty
-    // bins whose expected counts are the pdf integrated over each bin (Simpson), for a
-    // line passing 0.2 from the ray at t = 2.5 at 60°, a sharp 1/D(t) peak, and for a
-    // nearly parallel line (the uniform fallback).
+    // ts_line_sample against ts_line_pdf (the camera side of a ray light's link;
+    // expect_samples_follow_pdf), for a line passing 0.2 from the ray at t = 2.5 at 60°, a
+    // sharp 1/D(t) peak, and for a nearly parallel line (the uniform fallback).
     const ts::float3 org = make_float3(0, 0, 0), dir = make_float3(0, 0, 1);
     const float a = 0.5f, b = 6.0f;
     struct Line {
@@ -125,32 +132,8 @@ TEST(Medium, LineDistancesFollowTheirPdf) {
             EXPECT_NEAR(ls.h, line.h, 1e-5f);
             EXPECT_NEAR(ls.a, s60, 1e-6f);
         }
-        const int bins = 50, n = 200000;
-        std::vector<double> observed(bins, 0.0), expected(bins, 0.0);
-        const double width = (b - a) / bins;
-        double total = 0.0;
-        for (int k = 0; k < bins; ++k) {
-            const int panels = 64;
-            const double h = width / panels;
-            double s = 0.0;
-            for (int j = 0; j <= panels; ++j) {
-                const double t = a + k * width + j * h;
-                const double c = (j == 0 || j == panels) ? 1.0 : (j % 2 ? 4.0 : 2.0);
-                s += c * ts::ts_line_pdf(&ls, float(t));
-            }
-            expected[k] = s * h / 3.0 * n;
-            total += expected[k];
-        }
-        EXPECT_NEAR(total / n, 1.0, 1e-4) << "the pdf integrates to one over [a, b]";
-        std::mt19937 rng(23);
-        std::uniform_real_distribution<float> u(0.0f, 1.0f);
-        for (int i = 0; i < n; ++i) {
-            const float t = ts::ts_line_sample(&ls, a, b, u(rng));
-            ASSERT_TRUE(t >= a && t <= b) << t;
-            observed[std::min(bins - 1, int((t - a) / width))] += 1.0;
-        }
-        auto r = test::chi_square(observed, expected);
-        EXPECT_FALSE(r.reject) << "chi2 " << r.statistic << " dof " << r.dof << " z " << r.z;
+        expect_samples_follow_pdf([&](float v) { return ts::ts_line_sample(&ls, a, b, v); },
+                                  [&](float t) { return ts::ts_line_pdf(&ls, t); }, a, b, 23);
     }
     // Lines that cross (h = 0) keep finite samples and densities (the rounding floor).
     ts::TsLineSampler cross = ts::ts_line_sampler(org, dir, a, b, make_float3(0, 0, 3), make_float3(1, 0, 0));
