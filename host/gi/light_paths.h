@@ -62,7 +62,7 @@ struct LightPathSettings {
     bool medium_scattering = false;
     /// With medium_scattering: also a virtual ray light for every segment's stretch inside
     /// the medium (LightPath::vrls; Novák et al. 2012), of flux the path's throughput
-    /// entering it: what the ray march of `--ray-lights` gathers instead of the medium
+    /// entering it: what the ray march gathers by default (IgiSettings::ray_lights) instead of the medium
     /// VPLs, which surfaces still gather (docs/igi.md §6).
     bool ray_lights = false;
 };

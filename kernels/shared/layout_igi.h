@@ -28,7 +28,7 @@
 
 /* Virtual ray lights (host/gi/light_paths.cpp; docs/igi.md §6): one per light-path
  * segment inside the medium, TS_VRL_FLOATS floats each, sorted by sample set, for the ray
- * march of `--ray-lights` (TsFrame.igi_media_vpls = TS_MEDIA_VPLS_RAYS):
+ * march by default (TsFrame.igi_media_vpls = TS_MEDIA_VPLS_RAYS; `--point-medium-vpls`: none):
  *   TS_VRL_START  3 floats: where the segment enters the medium
  *   TS_VRL_DIR    3 floats: its unit direction (the light's propagation direction)
  *   TS_VRL_FLUX   3 floats: the path throughput entering it, divided by the paths per

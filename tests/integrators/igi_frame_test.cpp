@@ -266,6 +266,28 @@ TEST(IgiMedia, EquiangularMarchHasLessErrorInOneFrame) {
     EXPECT_LT(10.0 * eq, uniform);
 }
 
+// One igi render of the foggy Cornell box at 32² with the component AOVs, `spp` passes.
+RenderSettings fog_igi(uint32_t spp) {
+    RenderSettings rs;
+    rs.method = Method::Igi;
+    rs.width = rs.height = 32;
+    rs.spp = spp;
+    rs.aovs = true;
+    return rs;
+}
+
+// Each PM channel's mean of `a` within `tol` (relative) of `b`'s, printed with the modes'
+// names and the backend.
+void expect_pm_means_near(const Image& a, const Image& b, const char* name_a, const char* name_b, BackendKind kind,
+                          double tol) {
+    for (const char* c : {"PM.R", "PM.G", "PM.B"}) {
+        const double x = test::channel_mean(a, c), y = test::channel_mean(b, c);
+        std::printf("  %s %s: %s %.5g, %s %.5g (%.2f%%)\n", kind == BackendKind::Embree ? "Embree" : "OpenCL", c, name_a,
+                    x, name_b, y, 100.0 * (x / y - 1.0));
+        EXPECT_NEAR(x, y, tol * y) << c;
+    }
+}
+
 TEST(IgiMedia, EquiangularAndUniformMarchesAgreeWithMultipleScattering) {
     // Both march modes estimate the same in-scattered light, VPL links included: the foggy
     // Cornell box's PM component, 32^2, 16 passes, each channel's mean within 3% (measured
@@ -274,39 +296,26 @@ TEST(IgiMedia, EquiangularAndUniformMarchesAgreeWithMultipleScattering) {
     // equiangular density is off by the segment's length (several times).
     const Scene fog = test::shipped_scene("cornell-box-fog.json");
     auto pm = [&](BackendKind kind, bool equiangular) {
-        RenderSettings rs;
-        rs.method = Method::Igi;
-        rs.width = rs.height = 32;
-        rs.spp = 16;
-        rs.aovs = true;
+        RenderSettings rs = fog_igi(16);
         rs.igi.equiangular = equiangular;
         return test::render_with(kind, fog, rs);
     };
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         const Image eq = pm(kind, true), uniform = pm(kind, false);
         ASSERT_TRUE(test::all_finite(eq));
-        for (const char* c : {"PM.R", "PM.G", "PM.B"}) {
-            const double a = test::channel_mean(eq, c), b = test::channel_mean(uniform, c);
-            std::printf("  %s %s: equiangular %.5g, uniform %.5g (%.2f%%)\n",
-                        kind == BackendKind::Embree ? "Embree" : "OpenCL", c, a, b, 100.0 * (a / b - 1.0));
-            EXPECT_NEAR(a, b, 0.03 * b) << c;
-        }
+        expect_pm_means_near(eq, uniform, "equiangular", "uniform", kind, 0.03);
     }
 }
 
 TEST(IgiMedia, RayLightsAndPointVplsEstimateTheSameMedium) {
-    // The march's multiple scattering from ray lights (`--ray-lights`) or from the medium
-    // VPLs: two estimators of the same light (docs/igi.md §6). Foggy Cornell box, 32², 32
+    // The march's multiple scattering from ray lights (the default) or from the medium
+    // VPLs (`--point-medium-vpls`): two estimators of the same light (docs/igi.md §6). Foggy Cornell box, 32², 32
     // passes, unclamped so that neither loses light to the clamp: each PM channel's mean
     // within 3% (measured 0.3-1.0% apart; +4% before the ray lights' share took a random
     // offset per set). Both backends, and the backends' ray-light images agree to 1e-4.
     const Scene fog = test::shipped_scene("cornell-box-fog.json");
     auto render = [&](BackendKind kind, bool ray_lights) {
-        RenderSettings rs;
-        rs.method = Method::Igi;
-        rs.width = rs.height = 32;
-        rs.spp = 32;
-        rs.aovs = true;
+        RenderSettings rs = fog_igi(32);
         rs.igi.clamp_c = 0.0f;
         rs.igi.ray_lights = ray_lights;
         return test::render_with(kind, fog, rs);
@@ -315,12 +324,7 @@ TEST(IgiMedia, RayLightsAndPointVplsEstimateTheSameMedium) {
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         const Image rays = kind == BackendKind::Embree ? embree : render(kind, true), points = render(kind, false);
         ASSERT_TRUE(test::all_finite(rays));
-        for (const char* c : {"PM.R", "PM.G", "PM.B"}) {
-            const double a = test::channel_mean(rays, c), b = test::channel_mean(points, c);
-            std::printf("  %s %s: ray lights %.5g, point VPLs %.5g (%.2f%%)\n",
-                        kind == BackendKind::Embree ? "Embree" : "OpenCL", c, a, b, 100.0 * (a / b - 1.0));
-            EXPECT_NEAR(a, b, 0.03 * b) << c;
-        }
+        expect_pm_means_near(rays, points, "ray lights", "point VPLs", kind, 0.03);
         if (kind == BackendKind::OpenCL) {
             EXPECT_NEAR(test::channel_mean(rays, "PM.G"), test::channel_mean(embree, "PM.G"),
                         1e-4 * test::channel_mean(embree, "PM.G"));
@@ -341,11 +345,7 @@ TEST(IgiMedia, TheMarchsShareOfLightsDoesNotDependOnItsSteps) {
     const Scene fog = test::shipped_scene("cornell-box-fog.json");
     for (bool ray_lights : {false, true}) {
         auto pm = [&](uint32_t steps) {
-            RenderSettings rs;
-            rs.method = Method::Igi;
-            rs.width = rs.height = 32;
-            rs.spp = 32;
-            rs.aovs = true;
+            RenderSettings rs = fog_igi(32);
             rs.igi.march_steps = steps;
             rs.igi.ray_lights = ray_lights;
             return test::channel_mean(test::render_with(BackendKind::Embree, fog, rs), "PM.G");
