@@ -12,6 +12,7 @@
 #include "shared/igi.h"
 #include "shared/igi_resolve.h"
 #include "shared/edge_samples.h"
+#include "shared/light_path_trace.h"
 #include "igi_packets.h"
 
 TS_PIXEL_KERNEL(igi_surface_pass, ts_igi_surface_pixel, TS_IGI_SURF_FLOATS)
@@ -23,6 +24,10 @@ TS_ITEM_KERNEL(ais_extra_pass, ts_ais_extra_item, TS_AIS_ITEM_FLOATS)
 /* AIS edge samples: item i (pixel, sample j) traces the pixel's j-th extra camera sample
  * to its first diffuse surface (shared/edge_samples.h). */
 TS_ITEM_KERNEL(edge_sample_pass, ts_edge_sample_item, TS_EDGE_SAMPLE_FLOATS)
+
+/* Light paths: item i (Halton point, set, weight) traces one path through all its
+ * segments and writes its VPLs and ray lights (shared/light_path_trace.h). */
+TS_ITEM_KERNEL(light_paths_pass, ts_light_path_item, TS_LP_FLOATS)
 
 /* The frame's filter and composite where the kernels ran (GPU variant; shared/igi_resolve.h):
  * reads the surface and media kernels' outputs in place, writes the pass image. */

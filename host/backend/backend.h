@@ -45,6 +45,11 @@ struct BackendOptions {
     /// the two on a GPU). Same hits and images either way. TESSERA_CL_GPU=1 / 0 sets it
     /// per run.
     std::optional<bool> cl_gpu_variant;
+    /// OpenCL: trace the VPLs' light paths in KernelId::LightPaths, a path per work item
+    /// (Backend::traces_light_paths_in_kernel). Unset: where the GPU variant runs. The
+    /// VPLs equal the host's batched tracing up to the device libm's last-place rounding.
+    /// TESSERA_CL_LIGHT_PATHS=1 / 0 sets it per run.
+    std::optional<bool> cl_light_path_kernel;
     /// OpenCL packets: trace Incoherent batches of trace_closest/trace_occluded in
     /// coherent_ray_order (host/backend/ray_order.h) and return results in the caller's
     /// order. Same results either way; false measures the unsorted packets.
@@ -90,6 +95,13 @@ public:
     /// a bus transfer of 31 floats per pixel each frame; false where kernels run in host
     /// memory (Embree, OpenCL on CPUs), whose host filter is as fast.
     virtual bool resolves_on_device() const { return false; }
+
+    /// Whether light paths are best traced by KernelId::LightPaths, a path per work item
+    /// through all its segments, instead of a launch and a read-back per bounce
+    /// (trace_light_paths, gi/light_paths.h): true where the device's launches cost more
+    /// than its rays (OpenCL's GPU variant); false on the CPU backends, whose batched
+    /// bounces are as fast and whose VPLs then stay the host's bit for bit.
+    virtual bool traces_light_paths_in_kernel() const { return false; }
 
     /// Replaces the scene the backend traces and shades, e.g. the next frame of an
     /// animation: a new BVH (built from `scene`) and new scene buffers. What does not

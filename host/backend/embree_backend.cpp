@@ -34,6 +34,7 @@
 // has medium.present = 0, so results equal the OpenCL builds without them.
 #include "kernels/shared/direct.h"
 #include "kernels/shared/edge_samples.h"
+#include "kernels/shared/light_path_trace.h"
 #include "kernels/shared/ic.h"
 #include "kernels/shared/igi.h"
 #include "kernels/shared/igi_resolve.h"

@@ -68,6 +68,7 @@ public:
           packets_(o.cl_packets && o.cl_gpu_variant != true && cl_device_prefers_packets(dev_)),
           sort_incoherent_(o.cl_sort_incoherent),
           gpu_variant_(o.cl_gpu_variant.value_or(cl_device_prefers_short_stack(dev_))),
+          light_path_kernel_(o.cl_light_path_kernel.value_or(gpu_variant_)),
           launch_ms_(o.cl_launch_ms >= 0.0 ? o.cl_launch_ms : dev_.type == "CPU" ? 0.0 : kDefaultGpuLaunchMs),
           tile_groups_(o.cl_tile_groups) {
         if (const char* f = std::getenv("TESSERA_CL_FAIL_LAUNCH"); f && *f) fail_launch_ = std::atoi(f);
@@ -135,6 +136,7 @@ protected:
 
 public:
     bool resolves_on_device() const override { return gpu_variant_; }
+    bool traces_light_paths_in_kernel() const override { return light_path_kernel_; }
 
     // Closest hits go as packets whatever the order hint: since the packet traversal
     // keeps its lane masks as vectors (kernels/bvh_packet.h) it beats per-ray traversal
@@ -417,6 +419,7 @@ private:
     RayKeyGrid key_grid_;   // sorted_trace's origin grid: the scene's bounding box (upload_scene)
     RaySortBuffers sort_buffers_;  // sorted_trace's, kept between batches
     bool gpu_variant_;     // per-ray kernels built with -DTS_GPU_TRAVERSAL (GPU devices, or forced)
+    bool light_path_kernel_;  // BackendOptions::cl_light_path_kernel
     double launch_ms_;     // launch budget, ms (0: whole launches)
     uint32_t tile_groups_; // fixed tile size in work-groups (tests; 0: by budget)
     int fail_launch_ = 0;  // TESSERA_CL_FAIL_LAUNCH test hook: error code to inject

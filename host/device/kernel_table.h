@@ -12,6 +12,7 @@
 #include "kernels/shared/kernel_inputs.h"
 #include "kernels/shared/layout_ic.h"
 #include "kernels/shared/layout_igi.h"
+#include "kernels/shared/layout_light_path.h"
 #include "kernels/shared/layout_pass.h"
 
 /* X(id, OpenCL kernel name, program file under kernels/, output floats per work item,
@@ -39,6 +40,8 @@
       "ais_extra_packets", ais_item_packets)                                                                      \
     X(EdgeSample, "edge_sample_pass", "igi.cl", TS_EDGE_SAMPLE_FLOATS, TS_EDGE_ITEM_WORDS, ts_edge_sample_item,    \
       nullptr, no_packets)                                                                                        \
+    X(LightPaths, "light_paths_pass", "igi.cl", TS_LP_FLOATS, TS_LP_ITEM_WORDS, ts_light_path_item, nullptr,       \
+      no_packets)                                                                                                 \
     X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel, nullptr,   \
       no_packets)                                                                                                 \
     X(IcPair, "ic_pair_pass", "ic.cl", TS_IC_PAIR_FLOATS, TS_IC_PAIR_WORDS, ts_ic_pair_item, "ic_pair_packets",    \

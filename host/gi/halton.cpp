@@ -4,6 +4,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "kernels/shared/halton.h"
+
 namespace tessera {
 namespace {
 
@@ -16,30 +18,25 @@ std::vector<uint32_t> first_primes(int n) {
 
 }  // namespace
 
-ScrambledHalton::ScrambledHalton(int dims, uint32_t seed) : bases_(first_primes(dims)) {
+ScrambledHalton::ScrambledHalton(int dims, uint32_t seed) {
+    const std::vector<uint32_t> bases = first_primes(dims);
+    table_.push_back(static_cast<uint32_t>(dims));
+    table_.insert(table_.end(), bases.begin(), bases.end());
+    table_.resize(1 + 2 * size_t(dims));
     std::mt19937 rng(seed);
-    for (uint32_t b : bases_) {
+    for (int d = 0; d < dims; ++d) {
+        const uint32_t b = bases[d];
         std::vector<uint32_t> perm(b);
         for (uint32_t i = 0; i < b; ++i) perm[i] = i;
         std::shuffle(perm.begin(), perm.end(), rng);
-        perms_.push_back(std::move(perm));
+        table_[1 + dims + d] = static_cast<uint32_t>(table_.size());
+        table_.insert(table_.end(), perm.begin(), perm.end());
     }
 }
 
-double ScrambledHalton::sample(uint64_t index, int dim) const {
+float ScrambledHalton::sample(uint64_t index, int dim) const {
     if (dim < 0 || dim >= dims()) throw std::out_of_range("ScrambledHalton: dimension out of range");
-    const uint32_t b = bases_[dim];
-    const std::vector<uint32_t>& perm = perms_[dim];
-    const double inv = 1.0 / b;
-    double f = inv, r = 0.0;
-    // Every digit position is permuted, the (infinitely many) leading zeros of the index
-    // too; positions beyond double precision add nothing, so 64 / log2(b) digits suffice.
-    while (f > 1e-17) {
-        r += perm[index % b] * f;
-        index /= b;
-        f *= inv;
-    }
-    return std::min(r, 0.99999999999999989);
+    return ts::ts_halton_sample(table_.data(), index, static_cast<uint32_t>(dim));
 }
 
 }  // namespace tessera

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include "gi/halton.h"
+#include "kernels/shared/layout_light_path.h"
 #include "kernels/shared/light_path.h"
 #include "kernels/shared/rng.h"
 #include "device/ray_records.h"
@@ -15,152 +17,161 @@ namespace {
 
 using ts::float3;
 
-// A path in flight: its throughput weight α and the ray it traces next.
+// A path in flight: what it left so far, and its state (shared/light_path.h).
 struct InFlight {
     LightPath* path;
-    float3 alpha;
-    ts::TsRay ray;
+    ts::TsLightPathState state;
 };
 
-// Starts a path at a light (shared/light_path.h); Halton dimensions 0-4.
-bool start_path(const ts::TsSceneView& sv, const ScrambledHalton& h, InFlight& p) {
-    auto u = [&](int d) { return static_cast<float>(h.sample(p.path->index, d)); };
-    p.path->light = ts::ts_select_light(sv.light_cdf, sv.light_count, u(0));
-    return ts::ts_light_path_start(&sv, u(0), u(1), u(2), u(3), u(4), &p.alpha, &p.ray) != 0;
+ts::TsLightPathState initial_state(const LightPath& p) {
+    ts::TsLightPathState st{};
+    st.index = p.index;
+    st.set = p.set;
+    st.weight = p.weight;
+    return st;
 }
 
-// A VPL at `position`; `normal` is a surface VPL's normal or a medium VPL's propagation
-// direction, `pos_scale` the surface's (-1 marks a medium VPL; layout_igi.h).
-void store_vpl(LightPath& path, float3 position, float3 normal, float3 flux, float pos_scale) {
-    const auto index = static_cast<uint32_t>(path.index);
-    float v[TS_VPL_FLOATS];
-    ts::ts_f3_store(v + TS_VPL_POSITION, position);
-    ts::ts_f3_store(v + TS_VPL_NORMAL, normal);
-    ts::ts_f3_store(v + TS_VPL_FLUX, flux * path.weight);
-    v[TS_VPL_SET] = static_cast<float>(path.set);
-    std::memcpy(&v[TS_VPL_PATH], &index, 4);
-    v[TS_VPL_POS_SCALE] = pos_scale;
-    path.vpls.insert(path.vpls.end(), v, v + TS_VPL_FLOATS);
+void append(std::vector<float>& records, const float* record, int floats) {
+    records.insert(records.end(), record, record + floats);
 }
 
-// Multiple scattering: the free-flight decision on the segment that ends at `hit`
-// (ts_light_path_medium). Its five numbers come from the counter-based generator keyed
-// by path and bounce, not the Halton point, whose dimensions stay those of the surface
-// vertices (images without a medium, or with single scattering, keep their VPLs).
-// Returns what ts_light_path_medium returns; on an event records the segment up to it.
-uint32_t medium_vertex(const ts::TsMedium& med, const LightPathSettings& settings, uint32_t scramble, uint32_t bounce,
-                       const ts::TsHit& hit, InFlight& p) {
-    ts::TsRng rng = ts::ts_rng_seed(scramble ^ 0x6d656469u, static_cast<uint32_t>(p.path->index), bounce);
-    float u[5];
-    for (float& x : u) x = ts::ts_rng_next(&rng);
-    const ts::TsRay before = p.ray;
-    float t_event;
-    float3 pos, flux;
-    const float hit_t = hit.prim == TS_NO_HIT ? ts::TS_INF : hit.t;
-    const uint32_t what =
-        ts::ts_light_path_medium(&med, hit_t, u, settings.inv_paths, &p.alpha, &p.ray, &t_event, &pos, &flux);
-    if (what & TS_LIGHT_PATH_MEDIUM) {
-        p.path->segments.push_back(PathSegment{{before.org.x, before.org.y, before.org.z},
-                                               {before.dir.x, before.dir.y, before.dir.z}, t_event, TS_NO_HIT});
-        store_vpl(*p.path, pos, ts::normalize(before.dir), flux, -1.0f);
+// The Halton points of a scramble, built once per thread for its last scramble: the table
+// (a shuffle per dimension, ~100k digits at 64 bounces) is the same for every frame.
+const ScrambledHalton& halton_for(int dims, uint32_t scramble) {
+    thread_local std::unique_ptr<ScrambledHalton> cached;
+    thread_local uint32_t cached_scramble = 0;
+    if (!cached || cached->dims() != dims || cached_scramble != scramble) {
+        cached = std::make_unique<ScrambledHalton>(dims, scramble);
+        cached_scramble = scramble;
     }
-    return what;
+    return *cached;
 }
 
-// The ray light of the segment *ray up to the surface at hit_t (+inf: it escapes): its
-// stretch inside the medium, of flux α · inv_paths times the path's weight (docs/igi.md
-// §6). A stretch without end (a medium filling space) is cut at 20 mean free paths of the
-// thinnest channel, past which it keeps e^-20 of its light.
-void store_vrl(LightPath& path, const ts::TsMedium& med, const ts::TsRay& ray, float hit_t, float3 alpha,
-               float inv_paths) {
-    float t0 = 0.0f, t1 = hit_t;
-    if (!ts::ts_medium_clip(&med, ray.org, ray.dir, &t0, &t1)) return;
-    const float len = ts::length(ray.dir);
-    float length = (t1 - t0) * len;
-    if (!std::isfinite(length)) {
-        const float thinnest = std::min({med.sigma_t.x, med.sigma_t.y, med.sigma_t.z});
-        if (!(thinnest > 0.0f)) return;
-        length = 20.0f / thinnest;
+// The light-path table (layout_light_path.h) for `settings`, with `halton`'s digits.
+std::vector<uint32_t> light_path_table(const LightPathSettings& settings, uint32_t scramble, uint32_t max_bounces,
+                                       const ScrambledHalton& halton) {
+    std::vector<uint32_t> t(TS_LPT_HALTON);
+    t[TS_LPT_SCRAMBLE] = scramble;
+    t[TS_LPT_MAX_BOUNCES] = max_bounces;
+    t[TS_LPT_FLAGS] = (settings.medium_scattering ? TS_LPT_MEDIUM_SCATTERING : 0u) |
+                      (settings.ray_lights ? TS_LPT_RAY_LIGHTS : 0u);
+    std::memcpy(&t[TS_LPT_INV_PATHS], &settings.inv_paths, 4);
+    t.insert(t.end(), halton.table().begin(), halton.table().end());
+    return t;
+}
+
+uint32_t scramble_of(const LightPathSettings& settings) {
+    // The Halton digits and the medium events' generator share one scramble of the seed.
+    return settings.halton_seed ^ light_path_seed_mix(settings.seed);
+}
+
+void clear(LightPath& p) {
+    p.vpls.clear();
+    p.vrls.clear();
+    p.segments.clear();
+    p.light = 0;
+}
+
+// Every bounce of every path batched through Backend::trace_closest, each segment through
+// ts_light_path_segment.
+uint64_t trace_batched(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
+                       std::vector<LightPath>& paths) {
+    const ts::TsSceneView sv = make_scene_view(scene);
+    const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
+    const uint32_t scramble = scramble_of(settings);
+    const ScrambledHalton& halton = halton_for(5 + 3 * static_cast<int>(settings.max_bounces), scramble);
+    const std::vector<uint32_t> table = light_path_table(settings, scramble, settings.max_bounces, halton);
+    const ts::TsLightPathParams lp = ts::ts_light_path_params(table.data());
+    std::vector<InFlight> live;
+    for (LightPath& p : paths) {
+        clear(p);
+        InFlight f{&p, initial_state(p)};
+        if (scene.light_count > 0 && ts::ts_light_path_begin(&sv, halton.table().data(), &f.state, &p.light))
+            live.push_back(f);
     }
-    if (!(length > 0.0f)) return;
-    const auto index = static_cast<uint32_t>(path.index);
-    float v[TS_VRL_FLOATS];
-    ts::ts_f3_store(v + TS_VRL_START, ray.org + ray.dir * t0);
-    ts::ts_f3_store(v + TS_VRL_DIR, ray.dir / len);
-    ts::ts_f3_store(v + TS_VRL_FLUX, alpha * (inv_paths * path.weight));
-    v[TS_VRL_SET] = static_cast<float>(path.set);
-    std::memcpy(&v[TS_VRL_PATH], &index, 4);
-    v[TS_VRL_LENGTH] = length;
-    path.vrls.insert(path.vrls.end(), v, v + TS_VRL_FLOATS);
-}
-
-PathSegment segment_of(const ts::TsRay& r, const ts::TsHit& hit) {
-    return PathSegment{{r.org.x, r.org.y, r.org.z}, {r.dir.x, r.dir.y, r.dir.z}, hit.t, hit.prim};
+    uint64_t traced = 0;
+    std::vector<float> rays, hits;
+    for (uint32_t bounce = 0; bounce < settings.max_bounces && !live.empty(); ++bounce) {
+        rays.assign(TS_RAY_FLOATS * live.size(), 0.0f);
+        for (size_t i = 0; i < live.size(); ++i) store_ray(live[i].state.ray, &rays[TS_RAY_FLOATS * i]);
+        backend.trace_closest(rays, hits);
+        traced += live.size();
+        std::vector<InFlight> alive;
+        for (InFlight& p : live) {
+            const ts::TsRay before = p.state.ray;
+            const ts::TsHit hit = load_hit(&hits[TS_HIT_FLOATS * (&p - live.data())]);
+            ts::TsLightPathEvent ev;
+            const uint32_t what =
+                ts::ts_light_path_segment(&sv, &med, halton.table().data(), &lp, bounce, hit, &p.state, &ev);
+            if (settings.segments)
+                p.path->segments.push_back(PathSegment{{before.org.x, before.org.y, before.org.z},
+                                                       {before.dir.x, before.dir.y, before.dir.z}, ev.seg_t,
+                                                       ev.seg_prim});
+            if (what & TS_LIGHT_PATH_VRL) append(p.path->vrls, ev.vrl, TS_VRL_FLOATS);
+            if (what & TS_LIGHT_PATH_VPL) append(p.path->vpls, ev.vpl, TS_VPL_FLOATS);
+            if (what & TS_LIGHT_PATH_CONTINUES) alive.push_back(p);
+        }
+        live.swap(alive);
+    }
+    return traced;
 }
 
 }  // namespace
 
 uint32_t light_path_seed_mix(uint32_t seed) { return ts::ts_pcg_hash(seed) ^ ts::ts_pcg_hash(1u); }
 
-uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
-                           std::vector<LightPath>& paths) {
-    const ts::TsSceneView sv = make_scene_view(scene);
-    const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
-    // The Halton digits and the medium events' generator share one scramble of the seed.
-    const uint32_t scramble = settings.halton_seed ^ light_path_seed_mix(settings.seed);
-    const ScrambledHalton halton(5 + 3 * static_cast<int>(settings.max_bounces), scramble);
-    std::vector<InFlight> live;
-    for (LightPath& p : paths) {
-        p.vpls.clear();
-        p.vrls.clear();
-        p.segments.clear();
-        p.light = 0;
-        InFlight f{&p, {}, {}};
-        if (scene.light_count > 0 && start_path(sv, halton, f)) live.push_back(f);
+uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
+                                     std::vector<LightPath>& paths) {
+    const uint32_t scramble = scramble_of(settings);
+    const uint32_t bounces = std::min<uint32_t>(settings.max_bounces, TS_LP_MAX_BOUNCES);
+    const ScrambledHalton& halton = halton_for(5 + 3 * static_cast<int>(bounces), scramble);
+    // The kernel's table holds only the dimensions of the segments it traces; a path that
+    // needs more overflows (max_bounces > TS_LP_MAX_BOUNCES) and is traced here.
+    std::vector<uint32_t> table = light_path_table(settings, scramble, settings.max_bounces, halton);
+    backend.set_input(KernelInput::LightPathTable, table);
+    std::vector<uint32_t> items(TS_LP_ITEM_WORDS * paths.size());
+    for (size_t i = 0; i < paths.size(); ++i) {
+        uint32_t* it = &items[TS_LP_ITEM_WORDS * i];
+        it[TS_LP_ITEM_INDEX_LO] = static_cast<uint32_t>(paths[i].index);
+        it[TS_LP_ITEM_INDEX_HI] = static_cast<uint32_t>(paths[i].index >> 32);
+        it[TS_LP_ITEM_SET] = paths[i].set;
+        std::memcpy(&it[TS_LP_ITEM_WEIGHT], &paths[i].weight, 4);
     }
+    std::vector<float> out;
+    TsFrame frame{};
+    frame.light_count = scene.light_count;  // the kernels' TsSceneView takes it from the frame
+    backend.launch_items(KernelId::LightPaths, frame, items, out);
     uint64_t traced = 0;
-    std::vector<float> rays, hits;
-    for (uint32_t bounce = 0; bounce < settings.max_bounces && !live.empty(); ++bounce) {
-        rays.assign(TS_RAY_FLOATS * live.size(), 0.0f);
-        for (size_t i = 0; i < live.size(); ++i) store_ray(live[i].ray, &rays[TS_RAY_FLOATS * i]);
-        backend.trace_closest(rays, hits);
-        traced += live.size();
-        std::vector<InFlight> alive;
-        for (size_t i = 0; i < live.size(); ++i) {
-            InFlight p = live[i];
-            const ts::TsHit hit = load_hit(&hits[TS_HIT_FLOATS * i]);
-            int attenuated = 0;
-            if (settings.medium_scattering && med.present) {
-                if (settings.ray_lights)
-                    store_vrl(*p.path, med, p.ray, hit.prim == TS_NO_HIT ? ts::TS_INF : hit.t, p.alpha,
-                              settings.inv_paths);
-                const uint32_t m = medium_vertex(med, settings, scramble, bounce, hit, p);
-                if (m & TS_LIGHT_PATH_MEDIUM) {
-                    if (m & TS_LIGHT_PATH_CONTINUES) alive.push_back(p);
-                    continue;
-                }
-                if (!(m & TS_LIGHT_PATH_CONTINUES)) {  // lost in an unbounded medium
-                    p.path->segments.push_back(segment_of(p.ray, hit));
-                    continue;
-                }
-                attenuated = 1;
-            }
-            p.path->segments.push_back(segment_of(p.ray, hit));
-            if (hit.prim == TS_NO_HIT) continue;
-            // This bounce's Halton dimensions: 2 for the direction, 1 for roulette/Fresnel.
-            const int dim = 5 + 3 * static_cast<int>(bounce);
-            auto u = [&](int d) { return static_cast<float>(halton.sample(p.path->index, dim + d)); };
-            ts::TsSurface s;
-            float3 flux;
-            const uint32_t what = ts::ts_light_path_vertex(&sv, &med, hit, ts::make_float3(u(0), u(1), u(2)),
-                                                           settings.inv_paths, attenuated, &p.alpha, &p.ray, &s,
-                                                           &flux);
-            if (what & TS_LIGHT_PATH_VPL) store_vpl(*p.path, s.position, s.shading_normal, flux, s.pos_scale);
-            if (what & TS_LIGHT_PATH_CONTINUES) alive.push_back(p);
+    std::vector<LightPath> again;
+    std::vector<size_t> again_at;
+    for (size_t i = 0; i < paths.size(); ++i) {
+        LightPath& p = paths[i];
+        clear(p);
+        const float* o = &out[TS_LP_FLOATS * i];
+        if (o[TS_LP_STATUS] != 0.0f) {
+            again.push_back(untraced(p));
+            again_at.push_back(i);
+            continue;
         }
-        live.swap(alive);
+        p.light = static_cast<uint32_t>(o[TS_LP_LIGHT]);
+        traced += static_cast<uint64_t>(o[TS_LP_RAYS]);
+        p.vpls.assign(o + TS_LP_VPL, o + TS_LP_VPL + TS_VPL_FLOATS * static_cast<size_t>(o[TS_LP_VPLS]));
+        p.vrls.assign(o + TS_LP_VRL, o + TS_LP_VRL + TS_VRL_FLOATS * static_cast<size_t>(o[TS_LP_VRLS]));
+    }
+    if (!again.empty()) {
+        LightPathSettings host = settings;
+        host.segments = false;
+        traced += trace_batched(backend, scene, host, again);
+        for (size_t j = 0; j < again.size(); ++j) paths[again_at[j]] = std::move(again[j]);
     }
     return traced;
+}
+
+uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
+                           std::vector<LightPath>& paths) {
+    if (!settings.segments && backend.traces_light_paths_in_kernel() && !paths.empty())
+        return trace_light_paths_in_kernel(backend, scene, settings, paths);
+    return trace_batched(backend, scene, settings, paths);
 }
 
 }  // namespace tessera

@@ -65,6 +65,10 @@ struct LightPathSettings {
     /// entering it: what the ray march gathers by default (IgiSettings::ray_lights) instead of the medium
     /// VPLs, which surfaces still gather (docs/igi.md §6).
     bool ray_lights = false;
+    /// Record each path's segments (LightPath::segments: what the temporal cache re-tests).
+    /// false lets a backend that traces light paths in a kernel
+    /// (Backend::traces_light_paths_in_kernel) do so; the VPLs are the same either way.
+    bool segments = true;
 };
 
 /// What a render's --seed changes in the light paths' Halton scrambling and the VPL
@@ -87,7 +91,18 @@ uint32_t light_path_seed_mix(uint32_t seed);
 /// single-scattering model of shared/igi.h), or with settings.medium_scattering samples a
 /// free-flight distance and may scatter in the medium, leaving a medium VPL (layout_igi.h). Halton dimensions: 0 light, 1-2 point,
 /// 3-4 direction, then per bounce 2 for the direction and 1 for roulette/Fresnel.
+/// Without settings.segments, on a backend whose traces_light_paths_in_kernel() is true,
+/// the paths go to trace_light_paths_in_kernel instead.
 uint64_t trace_light_paths(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
                            std::vector<LightPath>& paths);
+
+/// The same paths traced by KernelId::LightPaths (kernels/shared/light_path_trace.h) on
+/// any backend: one work item per path through all its segments, the same per-segment
+/// code as trace_light_paths, so the same VPLs and ray lights (bit for bit where the
+/// device rounds as the host does; rays traced alike). Records no segments. A path that
+/// overflows the kernel's slots (layout_light_path.h) is traced again as
+/// trace_light_paths does. Returns the number of rays of the paths kept.
+uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
+                                     std::vector<LightPath>& paths);
 
 }  // namespace tessera

@@ -73,6 +73,7 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
     ls.medium_scattering = settings.medium_scattering;
     ls.ray_lights = settings.ray_lights;
     ls.inv_paths = 1.0f / static_cast<float>(per_set);
+    ls.segments = false;  // VPLs only: a GPU traces the paths in one kernel
     out.rays = trace_light_paths(backend, scene, ls, paths);
     // Paths are in set order, so concatenating them sorts the VPLs and ray lights by set.
     out.vrl_set_start.assign(settings.sets + 1, 0u);

@@ -49,7 +49,9 @@
  *   ClampRecords     TS_CLAMP_SCREEN_FLOATS per pixel, KernelId::IgiClampRecords's output
  *                    kept likewise (layout_igi.h; KernelId::IgiClampGather reads it)
  *   ClampResidual    TS_CLAMP_RESIDUAL_FLOATS per pixel, KernelId::IgiClampGather's output
- *                    kept likewise; read only when TsFrame.igi_clamp_screen is 1 */
+ *                    kept likewise; read only when TsFrame.igi_clamp_screen is 1
+ *   LightPathTable   the light-path kernel's parameters and Halton digits
+ *                    (layout_light_path.h; KernelId::LightPaths) */
 #define TS_KERNEL_INPUTS(X)                                                  \
     X(Vpls, vpls, float, "VPL")                                              \
     X(VplSetStart, vpl_set_start, uint, "VPL set table")                     \
@@ -64,7 +66,8 @@
     X(IgiSurface, igi_surface, float, "igi surface")                         \
     X(IgiMedia, igi_media, float, "igi media")                               \
     X(ClampRecords, clamp_records, float, "clamp records")                   \
-    X(ClampResidual, clamp_residual, float, "clamp residual")
+    X(ClampResidual, clamp_residual, float, "clamp residual")               \
+    X(LightPathTable, light_path_table, uint, "light path table")
 
 /* TsSceneView's pointer to one buffer (shared/geometry.h). */
 #define TS_VIEW_SCENE_FIELD(field, type, what) TS_GLOBAL const type* field;

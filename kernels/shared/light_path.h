@@ -19,10 +19,13 @@
 #include "shared/bsdf.h"
 #include "shared/compat.h"
 #include "shared/geometry.h"
+#include "shared/halton.h"
+#include "shared/layout_light_path.h"
 #include "shared/layout_rays.h"
 #include "shared/layout_scene.h"
 #include "shared/material.h"
 #include "shared/medium.h"
+#include "shared/rng.h"
 #include "shared/sampling.h"
 
 TS_NAMESPACE_BEGIN
@@ -118,6 +121,145 @@ TS_INLINE uint ts_light_path_vertex(const TsSceneView* sv, const TsMedium* med, 
     ray->tmin = 0.0f;
     ray->tmax = TS_INF;
     return TS_LIGHT_PATH_VPL | TS_LIGHT_PATH_CONTINUES;
+}
+
+/* ---------------------------------------------------------------- one path, segment by segment
+ * What the host's batched tracer (host/gi/light_paths.cpp) and the light-path kernel
+ * (shared/light_path_trace.h) both run per path, so that they leave the same VPLs: they
+ * differ only in where the rays are traced. */
+
+/* A frame's light-path parameters (the light-path table's header, layout_light_path.h). */
+typedef struct TsLightPathParams {
+    uint scramble;     /* the Halton digits' and the medium events' scramble */
+    uint max_bounces;  /* segments per path */
+    uint flags;        /* TS_LPT_MEDIUM_SCATTERING | TS_LPT_RAY_LIGHTS */
+    float inv_paths;   /* 1 / (paths per set) */
+} TsLightPathParams;
+
+TS_INLINE TsLightPathParams ts_light_path_params(TS_GLOBAL const uint* table) {
+    TsLightPathParams p;
+    p.scramble = table[TS_LPT_SCRAMBLE];
+    p.max_bounces = table[TS_LPT_MAX_BOUNCES];
+    p.flags = table[TS_LPT_FLAGS];
+    p.inv_paths = as_float(table[TS_LPT_INV_PATHS]);
+    return p;
+}
+
+/* A path in flight: its Halton point, set and weight (1/p of a path kept with probability
+ * p), its throughput weight α and the ray it traces next. */
+typedef struct TsLightPathState {
+    ulong index;
+    uint set;
+    float weight;
+    float3 alpha;
+    TsRay ray;
+} TsLightPathState;
+
+/* Bit of ts_light_path_segment's result: the segment left a ray light (ev->vrl). */
+#define TS_LIGHT_PATH_VRL 8u
+
+/* What one traced segment left: VPL and ray-light records (layout_igi.h), and the segment
+ * as the temporal cache records it: the ray traced, up to seg_t on triangle seg_prim
+ * (TS_NO_HIT for a medium event or an escape). */
+typedef struct TsLightPathEvent {
+    float vpl[TS_VPL_FLOATS];
+    float vrl[TS_VRL_FLOATS];
+    float seg_t;
+    uint seg_prim;
+} TsLightPathEvent;
+
+/* A VPL record at `position`; `normal` is a surface VPL's normal or a medium VPL's
+ * propagation direction, `pos_scale` the surface's (-1 marks a medium VPL). */
+TS_INLINE void ts_light_path_store_vpl(const TsLightPathState* st, float3 position, float3 normal, float3 flux,
+                                       float pos_scale, float* v) {
+    ts_f3_store(v + TS_VPL_POSITION, position);
+    ts_f3_store(v + TS_VPL_NORMAL, normal);
+    ts_f3_store(v + TS_VPL_FLUX, flux * st->weight);
+    v[TS_VPL_SET] = (float)st->set;
+    v[TS_VPL_PATH] = as_float((uint)st->index);
+    v[TS_VPL_POS_SCALE] = pos_scale;
+}
+
+/* The ray light of segment `ray` up to the surface at hit_t (+inf: it escapes): its
+ * stretch inside the medium, of flux α · inv_paths times the path's weight (docs/igi.md
+ * §6). A stretch without end (a medium filling space) is cut at 20 mean free paths of the
+ * thinnest channel, past which it keeps e^-20 of its light. Returns 0 where the segment
+ * misses the medium. */
+TS_INLINE int ts_light_path_store_vrl(const TsMedium* med, const TsLightPathState* st, float hit_t, float inv_paths,
+                                      float* v) {
+    float t0 = 0.0f, t1 = hit_t;
+    if (!ts_medium_clip(med, st->ray.org, st->ray.dir, &t0, &t1)) return 0;
+    float len = length(st->ray.dir);
+    float stretch = (t1 - t0) * len;
+    if (!isfinite(stretch)) {
+        float thinnest = fmin(fmin(med->sigma_t.x, med->sigma_t.y), med->sigma_t.z);
+        if (!(thinnest > 0.0f)) return 0;
+        stretch = 20.0f / thinnest;
+    }
+    if (!(stretch > 0.0f)) return 0;
+    ts_f3_store(v + TS_VRL_START, st->ray.org + st->ray.dir * t0);
+    ts_f3_store(v + TS_VRL_DIR, st->ray.dir / len);
+    ts_f3_store(v + TS_VRL_FLUX, st->alpha * (inv_paths * st->weight));
+    v[TS_VRL_SET] = (float)st->set;
+    v[TS_VRL_PATH] = as_float((uint)st->index);
+    v[TS_VRL_LENGTH] = stretch;
+    return 1;
+}
+
+/* Starts path st->index at a light (Halton dimensions 0-4 of `halton`, shared/halton.h):
+ * sets st->alpha, st->ray and *light (the emissive triangle picked). Returns 0 when the
+ * point has zero pdf. Requires light_count > 0. */
+TS_INLINE int ts_light_path_begin(const TsSceneView* sv, TS_GLOBAL const uint* halton, TsLightPathState* st,
+                                  uint* light) {
+    float u[5];
+    for (uint d = 0u; d < 5u; ++d) u[d] = ts_halton_sample(halton, st->index, d);
+    *light = ts_select_light(sv->light_cdf, sv->light_count, u[0]);
+    return ts_light_path_start(sv, u[0], u[1], u[2], u[3], u[4], &st->alpha, &st->ray);
+}
+
+/* Segment `bounce` of a path: st->ray has been traced to `hit`. With multiple scattering
+ * (lp->flags) the segment first leaves its ray light (TS_LPT_RAY_LIGHTS) and takes the
+ * free-flight decision (ts_light_path_medium; its five numbers from the counter-based
+ * generator keyed by path and bounce, not the Halton point, whose dimensions stay the
+ * surface vertices': images without a medium, or with single scattering, keep their VPLs);
+ * then the surface vertex (ts_light_path_vertex; Halton dimensions 5 + 3·bounce .. + 2).
+ * Fills *ev, updates *st, and returns TS_LIGHT_PATH_* bits: _VRL, _VPL (ev->vrl, ev->vpl
+ * hold them), _MEDIUM, _CONTINUES. */
+TS_INLINE uint ts_light_path_segment(const TsSceneView* sv, const TsMedium* med, TS_GLOBAL const uint* halton,
+                                     const TsLightPathParams* lp, uint bounce, TsHit hit, TsLightPathState* st,
+                                     TsLightPathEvent* ev) {
+    uint what = 0u;
+    ev->seg_t = hit.t;
+    ev->seg_prim = hit.prim;
+    int attenuated = 0;
+    if ((lp->flags & TS_LPT_MEDIUM_SCATTERING) && med->present) {
+        float hit_t = hit.prim == TS_NO_HIT ? TS_INF : hit.t;
+        if ((lp->flags & TS_LPT_RAY_LIGHTS) && ts_light_path_store_vrl(med, st, hit_t, lp->inv_paths, ev->vrl))
+            what |= TS_LIGHT_PATH_VRL;
+        TsRng rng = ts_rng_seed(lp->scramble ^ 0x6d656469u, (uint)st->index, bounce);
+        float u[5];
+        for (int j = 0; j < 5; ++j) u[j] = ts_rng_next(&rng);
+        float3 dir = st->ray.dir, pos, flux;
+        float t_event;
+        uint m = ts_light_path_medium(med, hit_t, u, lp->inv_paths, &st->alpha, &st->ray, &t_event, &pos, &flux);
+        if (m & TS_LIGHT_PATH_MEDIUM) {
+            ev->seg_t = t_event;
+            ev->seg_prim = TS_NO_HIT;
+            ts_light_path_store_vpl(st, pos, normalize(dir), flux, -1.0f, ev->vpl);
+            return what | m;
+        }
+        if (!(m & TS_LIGHT_PATH_CONTINUES)) return what;  /* lost in an unbounded medium */
+        attenuated = 1;
+    }
+    if (hit.prim == TS_NO_HIT) return what;
+    uint dim = 5u + 3u * bounce;
+    float3 u = make_float3(ts_halton_sample(halton, st->index, dim), ts_halton_sample(halton, st->index, dim + 1u),
+                           ts_halton_sample(halton, st->index, dim + 2u));
+    TsSurface s;
+    float3 flux;
+    uint v = ts_light_path_vertex(sv, med, hit, u, lp->inv_paths, attenuated, &st->alpha, &st->ray, &s, &flux);
+    if (v & TS_LIGHT_PATH_VPL) ts_light_path_store_vpl(st, s.position, s.shading_normal, flux, s.pos_scale, ev->vpl);
+    return what | v;
 }
 
 TS_NAMESPACE_END

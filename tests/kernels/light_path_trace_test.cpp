@@ -1,0 +1,185 @@
+// The light-path kernel (kernels/shared/light_path_trace.h, trace_light_paths_in_kernel):
+// one work item per path through all its segments leaves the VPLs and ray lights of the
+// host's batched tracer (trace_light_paths), which runs the same per-segment code. On
+// Embree both are the same C++ code over the same hits: bit for bit. On OpenCL (PoCL) the
+// kernel is OpenCL C, whose libm (sin, cos, exp) may round otherwise in the last place:
+// equal counts and records within float rounding. Paths past the kernel's slots are traced
+// again on the host. The Halton table reproduces the digits of the project's figures.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "backend/backend.h"
+#include "device/effect_plan.h"
+#include "device/scene_buffers.h"
+#include "gi/halton.h"
+#include "gi/light_paths.h"
+#include "kernels/shared/halton.h"
+#include "kernels/shared/layout_light_path.h"
+#include "support/render_helpers.h"
+#include "support/test_scenes.h"
+
+namespace tessera {
+namespace {
+
+// Paths 0..count−1 of 3 sets, path j weighted 1 + (j mod 3)/2 (the weights of paths kept
+// for the view reach the records).
+std::vector<LightPath> fresh_paths(uint32_t count) {
+    std::vector<LightPath> paths(count);
+    for (uint32_t j = 0; j < count; ++j) {
+        paths[j].index = 1000u + j;
+        paths[j].set = j % 3;
+        paths[j].weight = 1.0f + 0.5f * float(j % 3);
+    }
+    return paths;
+}
+
+LightPathSettings media_settings(bool medium) {
+    LightPathSettings ls;
+    ls.medium_scattering = medium;
+    ls.ray_lights = medium;
+    ls.inv_paths = 1.0f / 64.0f;
+    ls.segments = false;
+    return ls;
+}
+
+// Records equal field by field: bits for the set and path fields, within `rel` of the
+// value's magnitude (and 1e-6 absolutely) for the floats.
+void expect_records_near(const std::vector<float>& a, const std::vector<float>& b, float rel, const char* what,
+                         size_t path) {
+    ASSERT_EQ(a.size(), b.size()) << what << " of path " << path;
+    for (size_t i = 0; i < a.size(); ++i) {
+        const int field = int(i % TS_VPL_FLOATS);
+        if (field == TS_VPL_PATH || field == TS_VPL_SET) {
+            EXPECT_EQ(std::memcmp(&a[i], &b[i], 4), 0) << what << " of path " << path << ", field " << field;
+            continue;
+        }
+        EXPECT_NEAR(a[i], b[i], rel * std::fabs(b[i]) + 1e-6f) << what << " of path " << path << ", field " << field;
+    }
+}
+
+struct Traced {
+    std::vector<LightPath> paths;
+    uint64_t rays = 0;
+};
+
+Traced trace(Backend& backend, const SceneBuffers& buffers, const LightPathSettings& ls, bool in_kernel,
+             uint32_t count) {
+    Traced t{fresh_paths(count), 0};
+    t.rays = in_kernel ? trace_light_paths_in_kernel(backend, buffers, ls, t.paths)
+                       : trace_light_paths(backend, buffers, ls, t.paths);
+    return t;
+}
+
+// The kernel's paths against the host's on Embree (bits) and on OpenCL (rounding).
+void expect_kernel_matches_host(const Scene& scene, bool medium) {
+    const SceneBuffers buffers = make_scene_buffers(scene);
+    const EffectPlan plan = plan_effects(scene);
+    auto embree = make_backend({BackendKind::Embree, ""}, buffers, plan);
+    ASSERT_FALSE(embree->traces_light_paths_in_kernel()) << "the CPU backends keep the host's VPLs";
+    const LightPathSettings ls = media_settings(medium);
+    const Traced host = trace(*embree, buffers, ls, false, 256);
+    const Traced kernel = trace(*embree, buffers, ls, true, 256);
+    size_t vpls = 0, vrls = 0;
+    for (size_t j = 0; j < host.paths.size(); ++j) {
+        EXPECT_EQ(kernel.paths[j].vpls, host.paths[j].vpls) << "path " << j;
+        EXPECT_EQ(kernel.paths[j].vrls, host.paths[j].vrls) << "path " << j;
+        EXPECT_EQ(kernel.paths[j].light, host.paths[j].light) << "path " << j;
+        vpls += host.paths[j].vpls.size() / TS_VPL_FLOATS;
+        vrls += host.paths[j].vrls.size() / TS_VRL_FLOATS;
+    }
+    EXPECT_EQ(kernel.rays, host.rays);
+    EXPECT_GT(vpls, 256u) << "paths bounce";
+    if (medium) {
+        EXPECT_GT(vrls, 256u) << "paths cross the fog";
+    }
+
+    BackendOptions o{BackendKind::OpenCL, ""};
+    o.cl_gpu_variant = true;  // the variant a GPU runs, which traces its light paths in the kernel
+    auto cl = make_backend(o, buffers, plan);
+    ASSERT_TRUE(cl->traces_light_paths_in_kernel());
+    const Traced device = trace(*cl, buffers, ls, false, 256);
+    EXPECT_EQ(device.rays, host.rays);
+    for (size_t j = 0; j < host.paths.size(); ++j) {
+        expect_records_near(device.paths[j].vpls, host.paths[j].vpls, 1e-4f, "VPLs", j);
+        expect_records_near(device.paths[j].vrls, host.paths[j].vrls, 1e-4f, "ray lights", j);
+    }
+}
+
+TEST(LightPathKernel, LeavesTheHostsVplsInTheCornellBox) { expect_kernel_matches_host(test::cornell_box(), false); }
+
+TEST(LightPathKernel, LeavesTheHostsVplsAndRayLightsInFog) {
+    expect_kernel_matches_host(test::shipped_scene("cornell-box-fog.json"), true);
+}
+
+TEST(LightPathKernel, MirrorsAndGlassScatterAsOnTheHost) {
+    // A grey box with a mirror over half its floor and a glass slab's two faces: specular
+    // bounces leave no VPL but use the vertex's Halton numbers (the Fresnel choice) as on
+    // the host.
+    Scene s = test::closed_box({0, 0, 0}, {1, 1, 1}, glm::vec3(0.7f), glm::vec3(5.0f), 0.2f);
+    const uint32_t mirror = test::add_material(s, glm::vec3(0.0f)), glass = test::add_material(s, glm::vec3(0.0f));
+    s.materials[mirror].illum = 3;
+    s.materials[mirror].specular = glm::vec3(0.9f);
+    s.materials[glass].illum = 7;
+    s.materials[glass].ior = 1.5f;
+    test::add_quad(s, {0.0f, 0.01f, 0.0f}, {0, 0, 1.0f}, {0.5f, 0, 0}, mirror);  // faces +y
+    test::add_quad(s, {0.3f, 0.4f, 0.3f}, {0.4f, 0, 0}, {0, 0, 0.4f}, glass);    // faces -y
+    test::add_quad(s, {0.3f, 0.2f, 0.3f}, {0, 0, 0.4f}, {0.4f, 0, 0}, glass);    // faces +y
+    expect_kernel_matches_host(s, false);
+}
+
+TEST(LightPathKernel, PathsPastItsSlotsAreTracedAgainOnTheHost) {
+    // A white furnace (albedo 1: roulette never ends a path) runs the paths that miss the
+    // light's back to max_bounces, past TS_LP_MAX_VPLS: the host traces those again, so
+    // the VPLs are still the host's.
+    const Scene s = test::closed_box({0, 0, 0}, {1, 1, 1}, glm::vec3(1.0f), glm::vec3(1.0f), 0.2f);
+    const SceneBuffers buffers = make_scene_buffers(s);
+    auto embree = make_backend({BackendKind::Embree, ""}, buffers, plan_effects(s));
+    LightPathSettings ls = media_settings(false);
+    ls.max_bounces = TS_LP_MAX_VPLS + 8;
+    const Traced host = trace(*embree, buffers, ls, false, 32), kernel = trace(*embree, buffers, ls, true, 32);
+    size_t long_paths = 0;
+    for (size_t j = 0; j < host.paths.size(); ++j) {
+        long_paths += host.paths[j].vpls.size() == size_t(ls.max_bounces) * TS_VPL_FLOATS;
+        EXPECT_EQ(kernel.paths[j].vpls, host.paths[j].vpls) << "path " << j;
+    }
+    EXPECT_GT(long_paths, 4u) << "paths outlive the kernel's slots";
+    EXPECT_EQ(kernel.rays, host.rays);
+}
+
+// The scrambled radical inverse as the project computed it before the table (the digits
+// of every figure in bench/results): a reference for ts_halton_sample.
+double reference_halton(uint64_t index, uint32_t base, const uint32_t* perm) {
+    const double inv = 1.0 / base;
+    double f = inv, r = 0.0;
+    while (f > 1e-17) {
+        r += perm[index % base] * f;
+        index /= base;
+        f *= inv;
+    }
+    return std::min(r, 0.99999999999999989);
+}
+
+TEST(LightPathKernel, HaltonTableKeepsTheDigits) {
+    const ScrambledHalton h(40, 0x7e55e7au);
+    const std::vector<uint32_t>& t = h.table();
+    ASSERT_EQ(t[TS_HALTON_DIMS], 40u);
+    EXPECT_EQ(t[TS_HALTON_BASES + 0], 2u);
+    EXPECT_EQ(t[TS_HALTON_BASES + 39], 173u);  // the 40th prime
+    for (int d = 0; d < 40; ++d) {
+        const uint32_t b = t[TS_HALTON_BASES + d];
+        const uint32_t* perm = &t[t[TS_HALTON_BASES + 40 + d]];
+        std::vector<bool> seen(b, false);
+        for (uint32_t j = 0; j < b; ++j) seen[perm[j]] = true;
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), true), int(b)) << "a permutation of the digits, dim " << d;
+        for (uint64_t i : {0ull, 1ull, 7ull, 1234ull, 987654321ull, (1ull << 40) + 3})
+            EXPECT_EQ(h.sample(i, d), static_cast<float>(reference_halton(i, b, perm))) << "dim " << d << " point " << i;
+    }
+    EXPECT_THROW((void)h.sample(0, 40), std::out_of_range);
+}
+
+}  // namespace
+}  // namespace tessera
