@@ -26,8 +26,10 @@ TS_ITEM_KERNEL(ais_extra_pass, ts_ais_extra_item, TS_AIS_ITEM_FLOATS)
 TS_ITEM_KERNEL(edge_sample_pass, ts_edge_sample_item, TS_EDGE_SAMPLE_FLOATS)
 
 /* Light paths: item i (Halton point, set, weight) traces one path through all its
- * segments and writes its VPLs and ray lights (shared/light_path_trace.h). */
+ * segments and writes its VPLs, and with the media variant its ray lights
+ * (shared/light_path_trace.h). */
 TS_ITEM_KERNEL(light_paths_pass, ts_light_path_item, TS_LP_FLOATS)
+TS_ITEM_KERNEL(light_paths_media_pass, ts_light_path_media_item, TS_LP_MEDIA_FLOATS)
 
 /* The frame's filter and composite where the kernels ran (GPU variant; shared/igi_resolve.h):
  * reads the surface and media kernels' outputs in place, writes the pass image. */

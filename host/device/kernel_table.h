@@ -42,6 +42,8 @@
       nullptr, no_packets)                                                                                        \
     X(LightPaths, "light_paths_pass", "igi.cl", TS_LP_FLOATS, TS_LP_ITEM_WORDS, ts_light_path_item, nullptr,       \
       no_packets)                                                                                                 \
+    X(LightPathsMedia, "light_paths_media_pass", "igi.cl", TS_LP_MEDIA_FLOATS, TS_LP_ITEM_WORDS,                   \
+      ts_light_path_media_item, nullptr, no_packets)                                                              \
     X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel, nullptr,   \
       no_packets)                                                                                                 \
     X(IcPair, "ic_pair_pass", "ic.cl", TS_IC_PAIR_FLOATS, TS_IC_PAIR_WORDS, ts_ic_pair_item, "ic_pair_packets",    \

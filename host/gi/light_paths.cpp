@@ -140,14 +140,18 @@ uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene
     std::vector<float> out;
     TsFrame frame{};
     frame.light_count = scene.light_count;  // the kernels' TsSceneView takes it from the frame
-    backend.launch_items(KernelId::LightPaths, frame, items, out);
+    // Ray-light slots only where paths leave ray lights: a third less to read back without.
+    const bool ray_lights = settings.medium_scattering && settings.ray_lights && scene.medium[TS_MEDIUM_PRESENT] != 0.0f;
+    const KernelId k = ray_lights ? KernelId::LightPathsMedia : KernelId::LightPaths;
+    const size_t stride = static_cast<size_t>(kernel_info(k).out_floats);
+    backend.launch_items(k, frame, items, out);
     uint64_t traced = 0;
     std::vector<LightPath> again;
     std::vector<size_t> again_at;
     for (size_t i = 0; i < paths.size(); ++i) {
         LightPath& p = paths[i];
         clear(p);
-        const float* o = &out[TS_LP_FLOATS * i];
+        const float* o = &out[stride * i];
         if (o[TS_LP_STATUS] != 0.0f) {
             again.push_back(untraced(p));
             again_at.push_back(i);

@@ -1,6 +1,7 @@
 #include "gi/vpl_generator.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 
 #include "gi/light_paths.h"
@@ -74,7 +75,11 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
     ls.ray_lights = settings.ray_lights;
     ls.inv_paths = 1.0f / static_cast<float>(per_set);
     ls.segments = false;  // VPLs only: a GPU traces the paths in one kernel
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
     out.rays = trace_light_paths(backend, scene, ls, paths);
+    const auto t1 = Clock::now();
+    out.trace_seconds = std::chrono::duration<double>(t1 - t0).count();
     // Paths are in set order, so concatenating them sorts the VPLs and ray lights by set.
     out.vrl_set_start.assign(settings.sets + 1, 0u);
     for (const LightPath& p : paths) {
@@ -89,6 +94,7 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
     }
     if (oversampling > 1) keep_for_view(settings, oversampling, out);
     if (oversampling > 1 && !out.vrls.empty()) keep_ray_lights(settings, oversampling, out);
+    out.select_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
     if (out.vpls.empty()) out.vpls.assign(TS_VPL_FLOATS, 0.0f);  // device buffers cannot be empty
     if (out.vrls.empty()) out.vrls.assign(TS_VRL_FLOATS, 0.0f);
     return out;

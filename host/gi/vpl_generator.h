@@ -50,6 +50,9 @@ struct VplList {
     std::vector<float> vrls;
     std::vector<uint32_t> vrl_set_start;  ///< sets + 1 offsets into vrls (in ray lights)
     uint64_t rays = 0;                ///< light-path rays traced
+    /// Wall time of the light paths (trace_light_paths) and of the selection for the view
+    /// (importance, keep decisions, ray lights' share), seconds: the stage-time table's parts.
+    double trace_seconds = 0, select_seconds = 0;
     size_t count() const { return set_start.empty() ? 0 : set_start.back(); }
 };
 

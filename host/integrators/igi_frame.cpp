@@ -108,6 +108,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     const uint32_t sets = settings_.tile * settings_.tile;
     const TsFrame frame = prepare(unprepared);
     auto t0 = Clock::now();
+    stats_.view_seconds = stats_.paths_seconds = stats_.select_seconds = 0.0;
     VplList vpls;
     if (needs_vpl_sets(frame.igi_components)) {
         VplSettings vs;
@@ -119,12 +120,16 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         vs.ray_lights = settings_.multiple_scattering && settings_.ray_lights;
         ViewPoints view;
         if (settings_.vpl_importance > 1) {
+            const auto tv = Clock::now();
             view = view_points(frame);
+            stats_.view_seconds = since(tv);
             vs.importance_oversampling = settings_.vpl_importance;
             vs.view = &view;
             vs.importance_clamp = importance_clamp_;
         }
         vpls = generate_vpls(backend_, scene_, vs);
+        stats_.paths_seconds = vpls.trace_seconds;
+        stats_.select_seconds = vpls.select_seconds;
     } else {  // nothing reflects: no light paths, no VPLs (the kernels see empty sets)
         vpls.set_start.assign(sets + 1, 0u);
         vpls.vpls.assign(TS_VPL_FLOATS, 0.0f);
@@ -289,14 +294,16 @@ void IgiFrame::add_to_sums() {
 }
 
 std::string IgiFrame::describe() const {
-    char buf[360], view[64] = "";
+    char buf[420], view[64] = "";
     if (settings_.vpl_importance > 1)
         std::snprintf(view, sizeof view, ", kept for the view from %ux", settings_.vpl_importance);
     std::snprintf(buf, sizeof buf,
                   "igi: tile %ux%u, %zu VPLs from %u paths per set%s (%llu light-path rays), G clamp %.4g, "
-                  "last frame: VPLs %.1f ms, surface %.1f ms, media %.1f ms%s, filter+composite %.1f ms",
+                  "last frame: VPLs %.1f ms (view points %.1f, paths %.1f, selection %.1f), surface %.1f ms, "
+                  "media %.1f ms%s, filter+composite %.1f ms",
                   settings_.tile, settings_.tile, stats_.vpls, settings_.paths_per_set, view,
                   static_cast<unsigned long long>(stats_.vpl_rays), g_clamp_, 1e3 * stats_.vpl_seconds,
+                  1e3 * stats_.view_seconds, 1e3 * stats_.paths_seconds, 1e3 * stats_.select_seconds,
                   1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
                   1e3 * stats_.filter_seconds);
     return buf;

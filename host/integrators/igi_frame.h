@@ -93,6 +93,9 @@ struct IgiSettings {
 /// Timings and counts of the last frame, for the log and the benchmark.
 struct IgiFrameStats {
     double vpl_seconds = 0, surface_seconds = 0, media_seconds = 0, filter_seconds = 0;
+    /// The VPL stage's parts: the view points (their camera rays), the light paths, the
+    /// selection for the view, and the rest (the sets' concatenation and their upload).
+    double view_seconds = 0, paths_seconds = 0, select_seconds = 0;
     size_t vpls = 0;
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)

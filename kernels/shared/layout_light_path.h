@@ -13,7 +13,8 @@
 #define TS_LP_ITEM_SET 2
 #define TS_LP_ITEM_WEIGHT 3
 
-/* A path's output, TS_LP_FLOATS floats:
+/* A path's output, TS_LP_FLOATS floats (KernelId::LightPaths), or TS_LP_MEDIA_FLOATS with
+ * ray-light slots (KernelId::LightPathsMedia, for paths that leave ray lights):
  *   TS_LP_STATUS  TS_LP_OVERFLOW when the path needed more than the slots or bounces below
  *                 (its VPLs are then incomplete: the host traces it again), else 0
  *   TS_LP_LIGHT   the emissive triangle it started on (SceneBuffers::lights order)
@@ -24,7 +25,8 @@
  * Slots: 32 VPLs, 16 ray lights, 48 segments. Paths end by roulette at q = min(1, ρ's
  * luminance), so a path of 33 diffuse vertices has survived q^32: 4e-5 of the paths at q =
  * 0.73 (the Cornell box's white; 1,152 paths a frame: one re-traced path in 20 frames),
- * while the read-back stays 2.3 KB a path. Ray lights are one per segment inside a medium. */
+ * while the read-back stays 1.6 KB a path (2.3 KB with ray lights, one per segment inside
+ * a medium). */
 #define TS_LP_MAX_VPLS 32
 #define TS_LP_MAX_VRLS 16
 #define TS_LP_MAX_BOUNCES 48
@@ -34,8 +36,9 @@
 #define TS_LP_VPLS 3
 #define TS_LP_VRLS 4
 #define TS_LP_VPL 5
-#define TS_LP_VRL (TS_LP_VPL + TS_LP_MAX_VPLS * TS_VPL_FLOATS)
-#define TS_LP_FLOATS (TS_LP_VRL + TS_LP_MAX_VRLS * TS_VRL_FLOATS)
+#define TS_LP_FLOATS (TS_LP_VPL + TS_LP_MAX_VPLS * TS_VPL_FLOATS)
+#define TS_LP_VRL TS_LP_FLOATS
+#define TS_LP_MEDIA_FLOATS (TS_LP_VRL + TS_LP_MAX_VRLS * TS_VRL_FLOATS)
 #define TS_LP_OVERFLOW 1u
 
 /* The light-path table (uint words): TS_LPT_SCRAMBLE the Halton digits' and medium

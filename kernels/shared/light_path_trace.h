@@ -3,7 +3,7 @@
  * (host/gi/light_paths.cpp) sends each bounce of every path through the backend and back.
  * Both run ts_light_path_segment (shared/light_path.h) per segment, so a path leaves the
  * same VPLs either way; on a GPU the kernel spares the frame a launch and a read-back per
- * bounce (docs/ray-batches.md §6). Uses the tracer interface of shared/direct.h. */
+ * bounce (docs/ray-batches.md §5, "Light paths in one kernel"). Uses the tracer interface of shared/direct.h. */
 #ifndef TS_LIGHT_PATH_TRACE_H
 #define TS_LIGHT_PATH_TRACE_H
 #include "shared/compat.h"
@@ -20,13 +20,11 @@ TS_INLINE void ts_light_path_copy(const float* src, int n, float* dst) {
 }
 
 /* Item i of sv->items (TS_LP_ITEM_WORDS: Halton point, set, weight) traced with the
- * parameters and Halton table of sv->light_path_table (layout_light_path.h): writes
- * TS_LP_FLOATS to out, its VPLs and ray lights in path order. A path that needs more than
- * TS_LP_MAX_VPLS VPLs, TS_LP_MAX_VRLS ray lights or TS_LP_MAX_BOUNCES segments stops with
- * TS_LP_OVERFLOW; the caller traces it again on the host. */
-TS_INLINE void ts_light_path_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
-                                  float* out) {
-    (void)f;
+ * parameters and Halton table of sv->light_path_table (layout_light_path.h): writes its
+ * header and its VPLs and up to `max_vrls` ray lights, in path order, to out. A path that
+ * needs more than TS_LP_MAX_VPLS VPLs, max_vrls ray lights or TS_LP_MAX_BOUNCES segments
+ * stops with TS_LP_OVERFLOW; the caller traces it again on the host. */
+TS_INLINE void ts_light_path_trace(const TsSceneView* sv, const TsTracer* tracer, uint i, uint max_vrls, float* out) {
     TS_GLOBAL const uint* item = sv->items + TS_LP_ITEM_WORDS * i;
     TS_GLOBAL const uint* table = sv->light_path_table;
     TsLightPathParams lp = ts_light_path_params(table);
@@ -47,7 +45,7 @@ TS_INLINE void ts_light_path_item(const TsSceneView* sv, const TsTracer* tracer,
             ++rays;
             TsLightPathEvent ev;
             uint what = ts_light_path_segment(sv, &med, halton, &lp, bounce, hit, &st, &ev);
-            if (((what & TS_LIGHT_PATH_VRL) && vrls == TS_LP_MAX_VRLS) ||
+            if (((what & TS_LIGHT_PATH_VRL) && vrls == max_vrls) ||
                 ((what & TS_LIGHT_PATH_VPL) && vpls == TS_LP_MAX_VPLS)) {
                 status = TS_LP_OVERFLOW;
                 break;
@@ -62,6 +60,20 @@ TS_INLINE void ts_light_path_item(const TsSceneView* sv, const TsTracer* tracer,
     out[TS_LP_RAYS] = (float)rays;
     out[TS_LP_VPLS] = (float)vpls;
     out[TS_LP_VRLS] = (float)vrls;
+}
+
+/* KernelId::LightPaths: TS_LP_FLOATS, no ray-light slots (a path that leaves one overflows). */
+TS_INLINE void ts_light_path_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                  float* out) {
+    (void)f;
+    ts_light_path_trace(sv, tracer, i, 0u, out);
+}
+
+/* KernelId::LightPathsMedia: TS_LP_MEDIA_FLOATS, with TS_LP_MAX_VRLS ray-light slots. */
+TS_INLINE void ts_light_path_media_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                        float* out) {
+    (void)f;
+    ts_light_path_trace(sv, tracer, i, TS_LP_MAX_VRLS, out);
 }
 
 TS_NAMESPACE_END

@@ -163,7 +163,10 @@ TEST(OpenCLGpuVariant, RingSizeMustBeAPowerOfTwo) {
 }
 
 // Images: igi, ais and ais-max with fog (surface, media and AIS item kernels) equal the
-// per-ray CPU variant's bit for bit: the same shading source over the same hits. Both
+// per-ray CPU variant's bit for bit: the same shading source over the same hits. On a GPU
+// the variant resolves igi on the device, whose exp rounds the clamp compensation's
+// transmittance otherwise than the host's (the H200 differed in the last bits): there,
+// within rounding (relMSE 1e-10; a different image is ~1e-3). Both
 // trace their light paths on the host here (the light-path kernel's VPLs differ in the
 // last place of PoCL's libm: GpuVariantVplsFromTheKernel).
 class OpenCLGpuVariantImages : public ::testing::TestWithParam<Method> {};
@@ -174,7 +177,11 @@ TEST_P(OpenCLGpuVariantImages, EqualPerRayImagesBitForBit) {
     SceneBuffers buffers = make_scene_buffers(scene);
     const RenderSettings rs = test::packet_test_settings(GetParam());
     auto full = opencl(buffers, scene, false), gpu = opencl(buffers, scene, true);
-    test::expect_images_identical(render_frame(*full, scene, buffers, rs), render_frame(*gpu, scene, buffers, rs));
+    const Image a = render_frame(*full, scene, buffers, rs), b = render_frame(*gpu, scene, buffers, rs);
+    if (cl_device_prefers_short_stack(select_cl_device("")))
+        EXPECT_LT(test::rel_mse(b, a), 1e-10);
+    else
+        test::expect_images_identical(a, b);
 }
 
 // The GPU variant as a GPU runs it, its VPLs from the light-path kernel: the image within
@@ -189,8 +196,9 @@ TEST_P(OpenCLGpuVariantImages, GpuVariantVplsFromTheKernel) {
     auto host = opencl(buffers, scene, true, false), kernel = opencl(buffers, scene, true, std::nullopt);
     ASSERT_TRUE(kernel->traces_light_paths_in_kernel()) << "the GPU variant's default";
     const Image a = render_frame(*host, scene, buffers, rs), b = render_frame(*kernel, scene, buffers, rs);
-    EXPECT_GT(kernel->dispatch_count(KernelId::LightPaths), 0u);
-    EXPECT_EQ(host->dispatch_count(KernelId::LightPaths), 0u);
+    // The fog's paths leave ray lights: the variant with their slots.
+    EXPECT_GT(kernel->dispatch_count(KernelId::LightPathsMedia), 0u);
+    EXPECT_EQ(host->dispatch_count(KernelId::LightPathsMedia) + host->dispatch_count(KernelId::LightPaths), 0u);
     EXPECT_LT(test::rel_mse(b, a), 1e-10);
 }
 

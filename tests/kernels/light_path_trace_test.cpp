@@ -92,6 +92,9 @@ void expect_kernel_matches_host(const Scene& scene, bool medium) {
         vrls += host.paths[j].vrls.size() / TS_VRL_FLOATS;
     }
     EXPECT_EQ(kernel.rays, host.rays);
+    // Ray-light slots only where paths leave ray lights.
+    EXPECT_EQ(embree->dispatch_count(KernelId::LightPathsMedia), medium ? 1u : 0u);
+    EXPECT_EQ(embree->dispatch_count(KernelId::LightPaths), medium ? 0u : 1u);
     EXPECT_GT(vpls, 256u) << "paths bounce";
     if (medium) {
         EXPECT_GT(vrls, 256u) << "paths cross the fog";
