@@ -35,6 +35,9 @@ TS_ITEM_KERNEL(light_paths_media_pass, ts_light_path_media_item, TS_LP_MEDIA_FLO
  * reads the surface and media kernels' outputs in place, writes the pass image. */
 TS_PIXEL_KERNEL(igi_resolve_pass, ts_igi_resolve_pixel, TS_PASS_FLOATS)
 
+/* An AIS frame's edge samples merged into its resolved pass image (shared/igi_resolve.h). */
+TS_PIXEL_KERNEL(ais_edge_merge_pass, ts_ais_edge_merge_pixel, TS_PASS_FLOATS)
+
 /* The clamp's screen-space compensation before the resolve (shared/igi_clamp_screen.h):
  * the pixels' records, then the gather at the even grid's pixels. */
 TS_PIXEL_KERNEL(igi_clamp_records_pass, ts_igi_clamp_records_pixel, TS_CLAMP_SCREEN_FLOATS)

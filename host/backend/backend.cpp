@@ -48,7 +48,22 @@ void Backend::launch_into(KernelId k, const TsFrame& frame, KernelInput in) {
     if (info.item_words != 0) throw std::logic_error(std::string(info.name) + " is an item kernel (launch_items)");
     if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
     ++dispatches_[static_cast<int>(k)];
-    run_kernel_into(k, frame, size_t(frame.width) * frame.height, in);
+    run_kernel_into(k, frame, size_t(frame.width) * frame.height, {}, in);
+}
+
+void Backend::launch_items_into(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items, KernelInput in) {
+    const KernelInfo& info = kernel_info(k);
+    if (info.item_words == 0) throw std::logic_error(std::string(info.name) + " is a pixel kernel (launch_into)");
+    if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
+    const size_t count = items.size() / static_cast<size_t>(info.item_words);
+    if (count == 0) return store_input(in, std::vector<float>(1, 0.0f));
+    ++dispatches_[static_cast<int>(k)];
+    run_kernel_into(k, frame, count, items, in);
+}
+
+void Backend::read_input(KernelInput in, std::vector<float>& out) {
+    if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
+    fetch_input(in, out);
 }
 
 void Backend::launch_items(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items,

@@ -89,6 +89,17 @@ public:
     /// never read back). Throws std::logic_error for an item kernel or a uint input.
     void launch_into(KernelId k, const TsFrame& frame, KernelInput in);
 
+    /// Launches item kernel `k` over `items` as launch_items() does, but keeps its output
+    /// (out_floats per item, in list order) where the kernels run, as float input `in`.
+    /// An empty list stores the input's placeholder (one zero). Throws std::logic_error for
+    /// a pixel kernel or a uint input.
+    void launch_items_into(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items, KernelInput in);
+
+    /// Reads float input `in` back from where the kernels run (as set or kept by
+    /// launch_into / launch_items_into), resizing `out` to its length. Throws
+    /// std::logic_error for a uint input.
+    void read_input(KernelInput in, std::vector<float>& out);
+
     /// Whether an igi frame is best resolved (filtered and composited) where the kernels
     /// run, by KernelId::IgiResolve over inputs kept by launch_into, instead of on the
     /// host: true for OpenCL's GPU variant, where reading the kernels' outputs back costs
@@ -156,8 +167,12 @@ protected:
     /// sized to count × out_floats.
     virtual void run_kernel(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
                      std::vector<float>& out) = 0;
-    /// Runs pixel kernel `k` over `count` pixels into float input `in`.
-    virtual void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) = 0;
+    /// Runs kernel `k` over `count` work items (pixels, or items of `items`) into float
+    /// input `in`.
+    virtual void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
+                                 KernelInput in) = 0;
+    /// Copies float input `in` into `out` (resized).
+    virtual void fetch_input(KernelInput in, std::vector<float>& out) = 0;
     virtual void store_input(KernelInput in, const std::vector<float>& data) = 0;
     virtual void store_input(KernelInput in, const std::vector<uint32_t>& data) = 0;
     /// Gives every input of TS_KERNEL_INPUTS a placeholder before any is set, alike on

@@ -117,11 +117,13 @@ protected:
         uint_inputs_[static_cast<int>(in)] = data;
     }
 
-    void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) override {
+    void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
+                         KernelInput in) override {
         std::vector<float> out(count * static_cast<size_t>(kernel_info(k).out_floats));
-        run_kernel(k, frame, count, {}, out);
+        run_kernel(k, frame, count, items, out);
         float_inputs_[static_cast<int>(in)] = std::move(out);
     }
+    void fetch_input(KernelInput in, std::vector<float>& out) override { out = float_inputs_[static_cast<int>(in)]; }
 
     void run_kernel(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
                     std::vector<float>& out) override {

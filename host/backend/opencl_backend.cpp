@@ -124,14 +124,24 @@ protected:
 
     // The output stays in input `in`'s device buffer (no read-back); the input's own
     // argument slot gets a placeholder, so no buffer is both read and written by one launch.
-    void run_kernel_into(KernelId id, const TsFrame& frame, size_t count, KernelInput in) override {
+    void run_kernel_into(KernelId id, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
+                         KernelInput in) override {
         const int i = static_cast<int>(in);
         run([&] {
-            reserve(inputs_[i], input_bytes_[i], input_info(in).name,
-                    count * static_cast<size_t>(kernel_info(id).out_floats) * sizeof(float));
+            if (!items.empty()) write(items_, items_bytes_, "item list", items);
+            const size_t bytes = count * static_cast<size_t>(kernel_info(id).out_floats) * sizeof(float);
+            reserve(inputs_[i], input_bytes_[i], input_info(in).name, bytes);
+            input_size_[i] = bytes;
             // finish: the stage's time and any failure belong to this kernel.
-            launch_kernel(id, frame, count, no_items_, inputs_[i], i, [&] { queue_.finish(); });
+            launch_kernel(id, frame, count, items.empty() ? no_items_ : items_, inputs_[i], i,
+                          [&] { queue_.finish(); });
         });
+    }
+
+    void fetch_input(KernelInput in, std::vector<float>& out) override {
+        const int i = static_cast<int>(in);
+        out.resize(input_size_[i] / sizeof(float));
+        run([&] { queue_.enqueueReadBuffer(inputs_[i], CL_TRUE, 0, input_size_[i], out.data()); });
     }
 
 public:
@@ -184,7 +194,10 @@ private:
     template <class T>
     void store(KernelInput in, const std::vector<T>& data) {
         const int i = static_cast<int>(in);
-        write(inputs_[i], input_bytes_[i], input_info(in).name, data.empty() ? std::vector<T>(1, T(0)) : data);
+        static const std::vector<T> one(1, T(0));
+        const std::vector<T>& v = data.empty() ? one : data;
+        write(inputs_[i], input_bytes_[i], input_info(in).name, v);
+        input_size_[i] = v.size() * sizeof(T);
     }
 
     // Writes `v` into the persistent buffer `buf` of `capacity` bytes, first replacing it
@@ -429,6 +442,7 @@ private:
     std::array<cl::Buffer, kSceneBufferCount> scene_;  // TS_SCENE_BUFFERS order (TS_KERNEL_ARGS)
     std::array<cl::Buffer, kKernelInputCount> inputs_;  // KernelInput order (TS_KERNEL_ARGS)
     std::array<size_t, kKernelInputCount> input_bytes_{};  // their capacities
+    std::array<size_t, kKernelInputCount> input_size_{};   // the bytes last written or kept
     cl::Buffer no_items_;                               // bound for pixel kernels
     cl::Buffer items_, rays_;                           // item lists, ray batches (persistent)
     size_t out_bytes_ = 0, items_bytes_ = 0, rays_bytes_ = 0;

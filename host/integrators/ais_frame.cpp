@@ -29,17 +29,41 @@ void parallel_pixels(size_t pixels, F&& f) {
 
 }  // namespace
 
+std::vector<uint32_t> ais_pixel_items(const std::vector<uint32_t>& list, size_t pixels) {
+    const size_t items = list.size() / TS_AIS_ITEM_WORDS;
+    std::vector<uint32_t> t(pixels + 1 + TS_AIS_ENTRY_WORDS * items, 0u);
+    for (size_t i = 0; i < items; ++i) ++t[list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL] + 1];
+    for (size_t p = 0; p < pixels; ++p) t[p + 1] += t[p];
+    std::vector<uint32_t> next(t.begin(), t.begin() + pixels);
+    // List order: grouped by set in increasing order, so each pixel's entries come out in
+    // increasing set order, the order the host's merge adds them in.
+    for (size_t i = 0; i < items; ++i) {
+        const uint32_t p = list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL];
+        uint32_t* e = &t[pixels + 1 + TS_AIS_ENTRY_WORDS * size_t(next[p]++)];
+        e[TS_AIS_ENTRY_ITEM] = static_cast<uint32_t>(i);
+        e[TS_AIS_ENTRY_CODE] = list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE];
+    }
+    return t;
+}
+
+std::vector<uint32_t> edge_pixel_samples(const EdgeSchedule& schedule) {
+    std::vector<uint32_t> code(schedule.samples.size(), 0u);
+    for (size_t i = 0, n = schedule.items.size() / TS_EDGE_ITEM_WORDS; i < n; ++i) {
+        const uint32_t* it = &schedule.items[TS_EDGE_ITEM_WORDS * i];
+        if (it[TS_EDGE_ITEM_SAMPLE] == 1)
+            code[it[TS_EDGE_ITEM_PIXEL]] = static_cast<uint32_t>(i) << TS_EDGE_PIXEL_FIRST_SHIFT | it[TS_EDGE_ITEM_COUNT];
+    }
+    return code;
+}
+
 void AisFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
     const auto t0 = Clock::now();
     add_sets(frame, surf, media);
     stats_.ais_seconds = since(t0);
 }
 
-// AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
-// raw component becomes the mean over all the sets it evaluated (summed in double: own
-// set first, then the extra sets in increasing order), its base estimate kept for the
-// neighbours' reconstruction.
-void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
+// Guidance from the base pass and the schedule: the extra sets' item list.
+std::vector<uint32_t> AisFrame::schedule_sets(const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = raw_[kAisSS].size() / 3;
     const auto t_schedule = Clock::now();
     AisBaseBuffers base;
@@ -83,6 +107,16 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
         list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
     }
     stats_.ais_schedule_seconds = since(t_schedule);
+    return list;
+}
+
+// AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
+// raw component becomes the mean over all the sets it evaluated (summed in double: own
+// set first, then the extra sets in increasing order), its base estimate kept for the
+// neighbours' reconstruction.
+void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
+    const size_t pixels = raw_[kAisSS].size() / 3;
+    const std::vector<uint32_t> list = schedule_sets(surf, media);
     const auto t_kernel = Clock::now();
     std::vector<float> items;
     backend_.launch_items(KernelId::AisItem, frame, list, items);
@@ -131,14 +165,7 @@ void AisFrame::reconstruct_component(int c) {
         IgiFrame::reconstruct_component(c);
 }
 
-void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
-    edge_guidance_.clear();
-    edge_schedule_ = EdgeSchedule{};
-    stats_.edge_samples = 0;
-    stats_.edge_flagged = 0;
-    stats_.edge_seconds = 0;
-    if (!(effective_components() & TS_COMPONENT_EDGE)) return;
-    const auto t0 = Clock::now();
+void AisFrame::schedule_edges(const std::vector<float>& out) {
     // Where each camera path ends on a light: a light's edge in its holder's plane.
     const size_t pixels = surf_.size() / TS_IGI_SURF_FLOATS;
     emitter_.assign(pixels, 0);
@@ -148,16 +175,88 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
     }
     edge_guidance_ = edge_guidance(geometry_, settings_.discontinuity, out, settings_.edges.dark, emitter_);
     edge_schedule_ = make_edge_schedule(edge_guidance_, settings_.edges, settings_.ais_mode);
+    stats_.edge_samples = edge_schedule_.items.size() / TS_EDGE_ITEM_WORDS;
+    stats_.edge_flagged = edge_schedule_.flagged;
+}
+
+void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
+    edge_guidance_.clear();
+    edge_schedule_ = EdgeSchedule{};
+    stats_.edge_samples = 0;
+    stats_.edge_flagged = 0;
+    stats_.edge_seconds = 0;
+    if (!(effective_components() & TS_COMPONENT_EDGE)) return;
+    const auto t0 = Clock::now();
+    schedule_edges(out);
     const auto t_kernel = Clock::now();
     backend_.launch_items(KernelId::EdgeSample, frame, edge_schedule_.items, edge_samples_);
     const auto t_merge = Clock::now();
     merge_edge_samples(geometry_, settings_.discontinuity, edge_schedule_, edge_samples_,
                        {&final_[kAisSS], &final_[kAisID], &final_[kAisPM], &transmittance_}, out);
-    stats_.edge_samples = edge_schedule_.items.size() / TS_EDGE_ITEM_WORDS;
-    stats_.edge_flagged = edge_schedule_.flagged;
     stats_.edge_seconds = since(t0);
     stats_.edge_schedule_seconds = std::chrono::duration<double>(t_kernel - t0).count();
     stats_.edge_kernel_seconds = std::chrono::duration<double>(t_merge - t_kernel).count();
+}
+
+void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) {
+    // The base pass's outputs stay on the device for the resolve; the host's guidance reads
+    // its copies.
+    auto t0 = Clock::now();
+    backend_.launch_into(KernelId::IgiSurface, surface_frame, KernelInput::IgiSurface);
+    backend_.read_input(KernelInput::IgiSurface, surf_);
+    stats_.surface_seconds = since(t0);
+    stats_.media_seconds = 0.0;
+    media_.clear();
+    if (frame.igi_components & TS_COMPONENT_PM) {
+        t0 = Clock::now();
+        backend_.launch_into(KernelId::IgiMedia, frame, KernelInput::IgiMedia);
+        backend_.read_input(KernelInput::IgiMedia, media_);
+        stats_.media_seconds = since(t0);
+    }
+    t0 = Clock::now();
+    extract(static_cast<int>(frame.width), surf_, media_);
+    if (settings_.filter) discontinuity_precompute(geometry_, settings_.discontinuity);
+    const auto t_ais = Clock::now();
+    const std::vector<uint32_t> list = schedule_sets(surf_, media_);
+    const auto t_kernel = Clock::now();
+    backend_.launch_items_into(KernelId::AisItem, frame, list, KernelInput::AisItems);
+    backend_.set_input(KernelInput::AisPixelItems, ais_pixel_items(list, surf_.size() / TS_IGI_SURF_FLOATS));
+    stats_.ais_kernel_seconds = since(t_kernel);
+    stats_.ais_merge_seconds = 0.0;  // in the resolve
+    stats_.ais_seconds = since(t_ais);
+    t0 += Clock::now() - t_ais;
+    TsFrame ais = frame;
+    ais.igi_ais = 1u;
+    if (ais.igi_clamp_screen) {
+        backend_.launch_into(KernelId::IgiClampRecords, ais, KernelInput::ClampRecords);
+        backend_.launch_into(KernelId::IgiClampGather, ais, KernelInput::ClampResidual);
+    }
+    edge_guidance_.clear();
+    edge_schedule_ = EdgeSchedule{};
+    stats_.edge_samples = 0;
+    stats_.edge_flagged = stats_.edge_seconds = stats_.edge_schedule_seconds = stats_.edge_kernel_seconds = 0.0;
+    if (!(effective_components() & TS_COMPONENT_EDGE)) {
+        backend_.launch(KernelId::IgiResolve, ais, out);
+    } else {
+        backend_.launch_into(KernelId::IgiResolve, ais, KernelInput::IgiPass);
+        backend_.read_input(KernelInput::IgiPass, out);
+        edges_on_device(frame, ais, out);
+    }
+    stats_.filter_seconds = since(t0);
+}
+
+void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out) {
+    const auto t0 = Clock::now();
+    schedule_edges(out);
+    const auto t_kernel = Clock::now();
+    if (!edge_schedule_.items.empty()) {
+        backend_.launch_items_into(KernelId::EdgeSample, frame, edge_schedule_.items, KernelInput::EdgeSamples);
+        backend_.set_input(KernelInput::EdgePixelSamples, edge_pixel_samples(edge_schedule_));
+        backend_.launch(KernelId::AisEdgeMerge, ais, out);
+    }
+    stats_.edge_seconds = since(t0);
+    stats_.edge_schedule_seconds = std::chrono::duration<double>(t_kernel - t0).count();
+    stats_.edge_kernel_seconds = since(t_kernel);
 }
 
 void AisFrame::add_to_sums() {

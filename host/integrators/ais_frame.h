@@ -11,6 +11,13 @@
 
 namespace tessera {
 
+/// The device frame's items per pixel (named input AisPixelItems, layout_igi.h TS_AIS_ENTRY_*)
+/// from the AIS item list `list` (TS_AIS_ITEM_WORDS per item) of a `pixels`-pixel frame.
+std::vector<uint32_t> ais_pixel_items(const std::vector<uint32_t>& list, size_t pixels);
+
+/// Each pixel's first edge sample and count (named input EdgePixelSamples, TS_EDGE_PIXEL_*).
+std::vector<uint32_t> edge_pixel_samples(const EdgeSchedule& schedule);
+
 /// The `ais` / `ais-max` integrator; settings.ais_mode picks the mode.
 class AisFrame final : public IgiFrame {
 public:
@@ -29,8 +36,17 @@ public:
     const EdgeSchedule& edge_schedule() const { return edge_schedule_; }
 
 protected:
-    /// The schedule (AIS) and the cache (ic) are host code: components always come back.
-    bool reconstructs_on_host() const override { return true; }
+    /// As igi: on the device where the backend resolves there (the GPU variant) and no
+    /// component AOVs are wanted. The schedule stays host code either way.
+    bool reconstructs_on_host() const override {
+        return settings_.component_aovs || !backend_.resolves_on_device();
+    }
+    /// The device's AIS frame: the surface and media kernels' outputs read back for the
+    /// host's guidance and schedule; the extra sets, their merge, the reconstruction, the
+    /// clamp's compensation, the composite and the edge samples' merge where the kernels
+    /// ran (shared/ais_resolve.h, KernelId::AisEdgeMerge): the host's image, bit for bit
+    /// where the device has fp64 and rounds exp as the host does.
+    void resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) override;
     void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) override;
     void reconstruct_component(int c) override;
     /// Edge samples (TS_COMPONENT_EDGE): guidance from the pass image and the G-buffer,
@@ -40,6 +56,13 @@ protected:
 
 private:
     void add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media);
+    /// Guidance and schedule from the base pass (guidance_, schedule_, stats): the extra
+    /// sets' item list (TS_AIS_ITEM_WORDS per item).
+    std::vector<uint32_t> schedule_sets(const std::vector<float>& surf, const std::vector<float>& media);
+    /// Edge guidance and schedule from the pass image `out` (edge_guidance_, edge_schedule_).
+    void schedule_edges(const std::vector<float>& out);
+    /// The device frame's edge samples, merged into `out` where the kernels ran.
+    void edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out);
 
     // Each pixel's own-set estimate and the sum over the sets it evaluated.
     std::array<std::vector<float>, kAisComponents> base_;

@@ -211,10 +211,13 @@ protected:
     std::vector<float> surf_, media_;
     GeometryBuffer geometry_;
 
-private:
-    /// The kernels' outputs stay where they ran; IgiResolve filters and composites there.
-    void resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out);
+    /// The kernels' outputs stay where they ran; IgiResolve filters and composites there
+    /// (AisFrame: its schedule's extra sets and edge samples too).
+    virtual void resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out);
+    /// raw_, transmittance_ and geometry_ from the surface and media kernels' outputs.
     void extract(int width, const std::vector<float>& surf, const std::vector<float>& media);
+
+private:
     void composite(const std::vector<float>& surf, std::vector<float>& out);
     /// Adds the clamp's screen-space residual (gi/clamp_screen.h) to final_[kAisID].
     void compensate_clamp(const TsFrame& frame, const std::vector<float>& surf);

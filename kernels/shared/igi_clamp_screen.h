@@ -15,6 +15,7 @@
  * documented in shared/direct.h for the kernel-table signature only: no ray is traced. */
 #ifndef TS_IGI_CLAMP_SCREEN_H
 #define TS_IGI_CLAMP_SCREEN_H
+#include "shared/ais_resolve.h"
 #include "shared/clamp_screen.h"
 #include "shared/compat.h"
 #include "shared/discontinuity.h"
@@ -27,7 +28,8 @@ TS_NAMESPACE_BEGIN
 
 /* The means over pixel (x, y)'s accepted discontinuity window (shared/discontinuity.h, as
  * the host's filter): e[0..2] E_ss, e[3..5] E_id and, when pm, e[6..8] the media
- * radiance; frame->igi_filter 0: the pixel's own values. */
+ * radiance; frame->igi_filter 0: the pixel's own values. An AIS frame (frame->igi_ais)
+ * takes a component's value from ts_ais_mean where the pixel evaluated extra sets of it. */
 TS_INLINE void ts_igi_filtered_means(const TsSceneView* sv, const TsFrame* frame, uint x, uint y, int pm, float* e) {
     const int w = (int)frame->width, h = (int)frame->height;
     const size_t p = (size_t)y * frame->width + x;
@@ -42,6 +44,12 @@ TS_INLINE void ts_igi_filtered_means(const TsSceneView* sv, const TsFrame* frame
     ts_discontinuity_mean(sv->igi_surface + TS_IGI_SURF_E_SS, TS_IGI_SURF_FLOATS, 6, p, offset, bits, e);
     if (pm)
         ts_discontinuity_mean(sv->igi_media + TS_IGI_MEDIA_RADIANCE, TS_IGI_MEDIA_FLOATS, 3, p, offset, bits, e + 6);
+    if (frame->igi_ais)
+        for (int c = 0; c < (pm ? 3 : 2); ++c) {
+            float a[3];
+            if (ts_ais_mean(sv, frame, x, y, c, n, bits, offset, a))
+                for (int j = 0; j < 3; ++j) e[3 * c + j] = a[j];
+        }
 }
 
 /* The surface pass's output as the fill's view (shared/clamp_screen.h). */

@@ -59,5 +59,61 @@ TS_INLINE void ts_igi_resolve_pixel(const TsSceneView* sv, const TsTracer* trace
     out[TS_PASS_DEPTH] = zp;
 }
 
+/* Per-pixel kernel AisEdgeMerge: the AIS frame's edge samples merged where the kernels ran
+ * (host: merge_edge_samples, host/gi/ais_edges.h). Copies pixel p's resolved pass image
+ * (TsSceneView.igi_pass, TS_PASS_FLOATS); where the schedule gave p edge samples
+ * (TsSceneView.edge_pixel_samples: first sample << 4 | count), its radiance becomes the mean
+ * of its own and its samples' (TsSceneView.edge_samples), each shaded as the composite with
+ * its own throughput, emission and albedo and the reconstructed components of the pixel it
+ * lies on (ts_edge_sample_match): E_ss, E_id plus the clamp's E_res, L_pm, and the camera
+ * segment's transmittance. Sums in double in sample order. */
+TS_INLINE void ts_ais_edge_merge_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* frame, uint x,
+                                       uint y, float* out) {
+    (void)tracer;
+    const size_t p = (size_t)y * frame->width + x;
+    TS_GLOBAL const float* base = sv->igi_pass + p * TS_PASS_FLOATS;
+    for (int c = 0; c < TS_PASS_FLOATS; ++c) out[c] = base[c];
+    const uint code = sv->edge_pixel_samples[p];
+    const uint n = code & TS_EDGE_PIXEL_COUNT_MASK;
+    if (n == 0u) return;
+    const int pm = (frame->igi_components & TS_COMPONENT_PM) != 0u;
+    TsAisSum sum;
+    for (int j = 0; j < 3; ++j) {
+        sum.s[j] = 0;
+#ifndef TS_HAS_DOUBLE
+        sum.c[j] = 0.0f;
+#endif
+    }
+    ts_ais_sum_add(&sum, base + TS_PASS_RADIANCE);
+    for (uint j = 0u; j < n; ++j) {
+        TS_GLOBAL const float* g = sv->edge_samples + (size_t)((code >> TS_EDGE_PIXEL_FIRST_SHIFT) + j) * TS_EDGE_SAMPLE_FLOATS;
+        float e[TS_EDGE_SAMPLE_FLOATS];
+        for (int k = 0; k < TS_EDGE_SAMPLE_FLOATS; ++k) e[k] = g[k];
+        const size_t q = ts_edge_sample_match(sv, frame, (int)x, (int)y, e);
+        const uint qx = (uint)(q % frame->width), qy = (uint)(q / frame->width);
+        float m[9];
+        ts_igi_filtered_means(sv, frame, qx, qy, pm, m);
+        if (frame->igi_clamp_screen) {
+            const float3 r = ts_igi_clamp_residual(sv, frame, qx, qy);
+            m[3] += r.x, m[4] += r.y, m[5] += r.z;
+        }
+        if (!pm) m[6] = m[7] = m[8] = 0.0f;
+        const float3 tr = pm ? ts_f3_load(sv->igi_media + q * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_TRANSMITTANCE)
+                             : make_float3(1.0f, 1.0f, 1.0f);
+        const float3 l = ts_igi_composite(
+            tr, make_float3(e[TS_EDGE_SAMPLE_THROUGHPUT], e[TS_EDGE_SAMPLE_THROUGHPUT + 1], e[TS_EDGE_SAMPLE_THROUGHPUT + 2]),
+            make_float3(e[TS_EDGE_SAMPLE_EMISSION], e[TS_EDGE_SAMPLE_EMISSION + 1], e[TS_EDGE_SAMPLE_EMISSION + 2]),
+            make_float3(e[TS_EDGE_SAMPLE_ALBEDO], e[TS_EDGE_SAMPLE_ALBEDO + 1], e[TS_EDGE_SAMPLE_ALBEDO + 2]),
+            make_float3(m[0], m[1], m[2]), make_float3(m[3], m[4], m[5]), make_float3(m[6], m[7], m[8]));
+        const float v[3] = {l.x, l.y, l.z};
+#ifdef TS_HAS_DOUBLE
+        for (int k = 0; k < 3; ++k) sum.s[k] += (double)v[k];
+#else
+        for (int k = 0; k < 3; ++k) ts_sum_compensated_add(&sum.s[k], &sum.c[k], v[k]);
+#endif
+    }
+    ts_ais_sum_mean(&sum, (int)n + 1, out + TS_PASS_RADIANCE);
+}
+
 TS_NAMESPACE_END
 #endif /* TS_IGI_RESOLVE_H */

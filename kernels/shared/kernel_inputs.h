@@ -51,7 +51,16 @@
  *   ClampResidual    TS_CLAMP_RESIDUAL_FLOATS per pixel, KernelId::IgiClampGather's output
  *                    kept likewise; read only when TsFrame.igi_clamp_screen is 1
  *   LightPathTable   the light-path kernel's parameters and Halton digits
- *                    (layout_light_path.h; KernelId::LightPaths) */
+ *                    (layout_light_path.h; KernelId::LightPaths)
+ *   AisItems         TS_AIS_ITEM_FLOATS per item of the frame's AIS list, KernelId::AisItem's
+ *                    output kept where the kernels run (Backend::launch_items_into)
+ *   AisPixelItems    each pixel's items of that list (layout_igi.h, TS_AIS_ENTRY_*); read
+ *                    when TsFrame.igi_ais is 1 (shared/ais_resolve.h)
+ *   IgiPass          TS_PASS_FLOATS per pixel, KernelId::IgiResolve's output kept
+ *                    (KernelId::AisEdgeMerge reads it)
+ *   EdgeSamples      TS_EDGE_SAMPLE_FLOATS per item of the frame's edge list,
+ *                    KernelId::EdgeSample's output kept
+ *   EdgePixelSamples each pixel's edge samples (layout_igi.h, TS_EDGE_PIXEL_*) */
 #define TS_KERNEL_INPUTS(X)                                                  \
     X(Vpls, vpls, float, "VPL")                                              \
     X(VplSetStart, vpl_set_start, uint, "VPL set table")                     \
@@ -67,7 +76,12 @@
     X(IgiMedia, igi_media, float, "igi media")                               \
     X(ClampRecords, clamp_records, float, "clamp records")                   \
     X(ClampResidual, clamp_residual, float, "clamp residual")               \
-    X(LightPathTable, light_path_table, uint, "light path table")
+    X(LightPathTable, light_path_table, uint, "light path table")            \
+    X(AisItems, ais_items, float, "AIS items")                               \
+    X(AisPixelItems, ais_pixel_items, uint, "AIS pixel items")               \
+    X(IgiPass, igi_pass, float, "igi pass")                                  \
+    X(EdgeSamples, edge_samples, float, "edge samples")                      \
+    X(EdgePixelSamples, edge_pixel_samples, uint, "edge pixel samples")
 
 /* TsSceneView's pointer to one buffer (shared/geometry.h). */
 #define TS_VIEW_SCENE_FIELD(field, type, what) TS_GLOBAL const type* field;

@@ -112,6 +112,19 @@
 #define TS_AIS_ITEM_WORDS 2
 #define TS_AIS_ITEM_PIXEL 0
 #define TS_AIS_ITEM_CODE 1
+/* The AIS schedule's items per pixel (named input AisPixelItems, shared/ais_resolve.h), for
+ * a frame of P pixels: words 0..P are offsets (in entries) into the entries that follow
+ * from word P + 1, pixel p's being [offset[p], offset[p+1]), in increasing set order; an
+ * entry is TS_AIS_ENTRY_WORDS uints: the item's index in the frame's AIS list and its code
+ * (TS_AIS_ITEM_CODE's). */
+#define TS_AIS_ENTRY_WORDS 2
+#define TS_AIS_ENTRY_ITEM 0
+#define TS_AIS_ENTRY_CODE 1
+/* Edge samples per pixel (named input EdgePixelSamples): one uint a pixel, the index of
+ * its first sample in the frame's edge list << TS_EDGE_PIXEL_FIRST_SHIFT | its count
+ * (0: none; at most 15). */
+#define TS_EDGE_PIXEL_FIRST_SHIFT 4
+#define TS_EDGE_PIXEL_COUNT_MASK 15u
 /* Components (TsFrame.igi_components). */
 #define TS_COMPONENT_SS 1u
 #define TS_COMPONENT_ID 2u
