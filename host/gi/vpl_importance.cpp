@@ -1,6 +1,7 @@
 #include "gi/vpl_importance.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -134,6 +135,23 @@ const ViewPoints& ViewPointHistory::points_for(Backend& backend, const SceneBuff
     return points_;
 }
 
+namespace {
+
+// One VPL's c_ij = luminance · G'_ij over the view points (pts: x, n, ng, one array per
+// coordinate), into row.
+void vpl_row(const std::array<std::vector<float>, 9>& pts, const float* vpl, float lum, float g_clamp, float* row) {
+    const size_t np = pts[0].size();
+    const float *x0 = pts[0].data(), *x1 = pts[1].data(), *x2 = pts[2].data();
+    const float *n0 = pts[3].data(), *n1 = pts[4].data(), *n2 = pts[5].data();
+    const float *g0 = pts[6].data(), *g1 = pts[7].data(), *g2 = pts[8].data();
+    for (size_t j = 0; j < np; ++j)
+        row[j] = lum * ts::ts_vpl_geometry_term_of(ts::make_float3(x0[j], x1[j], x2[j]),
+                                                   ts::make_float3(n0[j], n1[j], n2[j]),
+                                                   ts::make_float3(g0[j], g1[j], g2[j]), vpl, g_clamp, 0.0f, 0);
+}
+
+}  // namespace
+
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp) {
     const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
     std::vector<float> importance(nv, 0.0f);
@@ -151,19 +169,26 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     }
     const size_t ns = surface.size();
     if (ns == 0) return importance;
-    // c_ij in point-major rows, and each point's E_j = Σ_i c_ij in double in VPL order.
-    std::vector<float> c(np * ns);
+    // c_ij in VPL-major rows: a VPL's terms over the points, whose arrays (one per
+    // coordinate) are contiguous, so the row runs in SIMD. The sums keep their order (E_j
+    // over the VPLs in VPL order, Φ_i over the points in point order), so the bits are
+    // those of the point-major loop this replaced.
+    std::array<std::vector<float>, 9> pts;  // x, n, ng: one array per coordinate
+    for (int k = 0; k < 9; ++k) {
+        const std::vector<float>& src = k < 3 ? points.position : k < 6 ? points.normal : points.geo_normal;
+        pts[k].resize(np);
+        for (size_t j = 0; j < np; ++j) pts[k][j] = src[3 * j + k % 3];
+    }
+    std::vector<float> c(ns * np);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 16), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i)
+            vpl_row(pts, &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, c.data() + i * np);
+    });
     std::vector<double> e(np, 0.0);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 16), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t j = r.begin(); j < r.end(); ++j) {
-            const float3 x = ts::ts_f3_load(&points.position[3 * j]), n = ts::ts_f3_load(&points.normal[3 * j]),
-                         ng = ts::ts_f3_load(&points.geo_normal[3 * j]);
-            float* row = c.data() + j * ns;
-            for (size_t i = 0; i < ns; ++i)
-                row[i] = lum[i] * ts::ts_vpl_geometry_term_of(x, n, ng, &packed[TS_VPL_FLOATS * i], g_clamp, 0.0f, 0);
-            double sum = 0.0;
-            for (size_t i = 0; i < ns; ++i) sum += row[i];
-            e[j] = sum;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = 0; i < ns; ++i) {
+            const float* row = c.data() + i * np;
+            for (size_t j = r.begin(); j < r.end(); ++j) e[j] += row[j];
         }
     });
     double mean = 0.0;
@@ -171,12 +196,14 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     if (!(mean > 0.0)) return importance;
     std::vector<double> w(np);
     for (size_t j = 0; j < np; ++j) w[j] = 1.0 / std::max(e[j], 1e-3 * mean);
-    // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPL ranges in parallel.
+    // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPLs in parallel.
     std::vector<double> sum(ns, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t j = 0; j < np; ++j) {
-            const float* row = c.data() + j * ns;
-            for (size_t i = r.begin(); i < r.end(); ++i) sum[i] += row[i] * w[j];
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            const float* row = c.data() + i * np;
+            double s = 0.0;
+            for (size_t j = 0; j < np; ++j) s += row[j] * w[j];
+            sum[i] = s;
         }
     });
     for (size_t i = 0; i < ns; ++i) importance[surface[i]] = static_cast<float>(sum[i]);

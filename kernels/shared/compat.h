@@ -41,6 +41,8 @@ static inline void ts_f3_store(float* p, float3 v) { p[0] = v.x; p[1] = v.y; p[2
 /* Trailing zero bits of x != 0 (OpenCL 1.2 has clz but not ctz) and set bits of x. */
 static inline int ts_ctz64(ulong x) { return (int)(63ul - clz(x & (0ul - x))); }
 static inline int ts_popcount64(ulong x) { return (int)popcount(x); }
+/* min(a, b) for a bound b that is never NaN (a clamp): fmin's value whenever b is not NaN. */
+static inline float ts_min_bound(float a, float b) { return fmin(a, b); }
 /* TS_HAS_DOUBLE: `double` may be used (always in C++; in OpenCL 1.2 only where the device
  * has cl_khr_fp64). Code using it keeps a float form for the other devices, which
  * -DTS_NO_DOUBLE selects on any device (tests run the float forms on PoCL that way). */
@@ -133,6 +135,10 @@ inline float mix(float a, float b, float t) { return a + (b - a) * t; }
 /* Trailing zero bits of x != 0 and set bits of x, as the OpenCL side's. */
 inline int ts_ctz64(ulong x) { return std::countr_zero(x); }
 inline int ts_popcount64(ulong x) { return std::popcount(x); }
+/* min(a, b) for a bound b that is never NaN (a clamp): fmin's value whenever b is not NaN
+ * (a NaN a gives b, as fmin does), written as a select, which GCC vectorises where it
+ * cannot vectorise fmin (host/gi/vpl_importance.cpp). */
+inline float ts_min_bound(float a, float b) { return a < b ? a : b; }
 inline uint as_uint(float f) { return std::bit_cast<uint>(f); }
 inline int as_int(float f) { return std::bit_cast<int>(f); }
 inline float as_float(uint u) { return std::bit_cast<float>(u); }

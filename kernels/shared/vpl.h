@@ -72,7 +72,7 @@ TS_INLINE float ts_vpl_geometry_term_of(float3 x, float3 n, float3 ng, TS_GLOBAL
     float3 w = d * (1.0f / sqrt(dist2));
     float cos_x = dot(n, w), cos_v = ts_vpl_emission_factor_of(vpl, -w, g, medium);
     int faces = (dist2 > 0.0f) & (cos_x > 0.0f) & (cos_v > 0.0f) & (dot(ng, w) > 0.0f);
-    return faces ? fmin(cos_x * cos_v / dist2, medium ? b * TS_VPL_MEDIUM_CLAMP_SCALE : b) : 0.0f;
+    return faces ? ts_min_bound(cos_x * cos_v / dist2, medium ? b * TS_VPL_MEDIUM_CLAMP_SCALE : b) : 0.0f;
 }
 
 TS_INLINE float ts_vpl_geometry_term(float3 x, float3 n, float3 ng, TS_GLOBAL const float* vpl, float b, float g) {

@@ -72,7 +72,9 @@ TEST_P(AisDeviceFrame, EqualsTheHostFrame) {
     EXPECT_GT(device->dispatch_count(KernelId::IgiResolve), 0u);
     EXPECT_EQ(host->dispatch_count(KernelId::IgiResolve), 0u);
     EXPECT_EQ(host->dispatch_count(KernelId::AisEdgeMerge), 0u);
-    if (c.components & TS_COMPONENT_EDGE) EXPECT_GT(device->dispatch_count(KernelId::AisEdgeMerge), 0u);
+    if (c.components & TS_COMPONENT_EDGE) {
+        EXPECT_GT(device->dispatch_count(KernelId::AisEdgeMerge), 0u);
+    }
     EXPECT_EQ(device->dispatch_count(KernelId::AisItem), host->dispatch_count(KernelId::AisItem));
     if (!plan_effects(scene).medium) {
         test::expect_images_identical(a, b);
