@@ -81,7 +81,8 @@ struct IgiSettings {
     /// Bring the components to the host every frame, for the per-component AOVs
     /// (add_aov_channels) and the viewer's AOV display. false lets igi resolve its frame
     /// where the kernels ran (Backend::resolves_on_device: OpenCL's GPU variant), reading
-    /// back only the pass image; AIS and ic always reconstruct on the host.
+    /// back only the pass image (AIS: also its base pass for the host's schedule); ic
+    /// always reconstructs on the host.
     bool component_aovs = false;
     /// Adaptive Interleaved Sampling (AisFrame, ais_schedule.h): the mode and thresholds.
     AisMode ais_mode = AisMode::A;
@@ -156,9 +157,9 @@ public:
 
 protected:
     /// Whether the components come to the host for reconstruction (raw_, final_, the AOV
-    /// sums): always for AIS and ic, whose schedule and cache are host code; for igi
-    /// unless the backend resolves on the device and no component AOVs are wanted. The
-    /// device resolve compensates the clamp too (shared/igi_clamp_screen.h).
+    /// sums): always for ic, whose cache is host code; for igi and AIS unless the backend
+    /// resolves on the device and no component AOVs are wanted. The device resolve
+    /// compensates the clamp too (shared/igi_clamp_screen.h).
     virtual bool reconstructs_on_host() const {
         return settings_.component_aovs || !backend_.resolves_on_device();
     }
