@@ -11,7 +11,7 @@ namespace tessera {
 /// Whiten 1997): dimension d applies one fixed permutation of {0..b-1}, drawn from
 /// `seed`, to every digit. The permutation removes the correlation between high
 /// dimensions of the plain Halton sequence; being fixed, it keeps the sequence
-/// deterministic. Values lie in [0, 1). The digits are kernels/shared/halton.h's table,
+/// deterministic. Values lie in [0, 1] (floats: 1.0f within 2^-25 of 1). The digits are kernels/shared/halton.h's table,
 /// which the light-path kernel reads as the host does (the same numbers, bit for bit).
 class ScrambledHalton {
 public:

@@ -35,16 +35,22 @@ void append(std::vector<float>& records, const float* record, int floats) {
     records.insert(records.end(), record, record + floats);
 }
 
-// The Halton points of a scramble, built once per thread for its last scramble: the table
-// (a shuffle per dimension, ~100k digits at 64 bounces) is the same for every frame.
-const ScrambledHalton& halton_for(int dims, uint32_t scramble) {
-    thread_local std::unique_ptr<ScrambledHalton> cached;
-    thread_local uint32_t cached_scramble = 0;
-    if (!cached || cached->dims() != dims || cached_scramble != scramble) {
-        cached = std::make_unique<ScrambledHalton>(dims, scramble);
-        cached_scramble = scramble;
-    }
-    return *cached;
+// The Halton points of a scramble and dimension count, built once per thread and kept (the
+// table, a shuffle per dimension, ~100k digits at 64 bounces, is the same every frame): a
+// few entries, as a frame may ask for two tables (the kernel's and, for paths that
+// overflow its slots, the host's).
+std::shared_ptr<const ScrambledHalton> halton_for(int dims, uint32_t scramble) {
+    struct Entry {
+        int dims;
+        uint32_t scramble;
+        std::shared_ptr<const ScrambledHalton> halton;
+    };
+    thread_local std::vector<Entry> cache;
+    for (const Entry& e : cache)
+        if (e.dims == dims && e.scramble == scramble) return e.halton;
+    if (cache.size() == 4) cache.erase(cache.begin());
+    cache.push_back({dims, scramble, std::make_shared<const ScrambledHalton>(dims, scramble)});
+    return cache.back().halton;
 }
 
 // The light-path table (layout_light_path.h) for `settings`, with `halton`'s digits.
@@ -79,7 +85,9 @@ uint64_t trace_batched(Backend& backend, const SceneBuffers& scene, const LightP
     const ts::TsSceneView sv = make_scene_view(scene);
     const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
     const uint32_t scramble = scramble_of(settings);
-    const ScrambledHalton& halton = halton_for(5 + 3 * static_cast<int>(settings.max_bounces), scramble);
+    const std::shared_ptr<const ScrambledHalton> owner =
+        halton_for(5 + 3 * static_cast<int>(settings.max_bounces), scramble);
+    const ScrambledHalton& halton = *owner;
     const std::vector<uint32_t> table = light_path_table(settings, scramble, settings.max_bounces, halton);
     const ts::TsLightPathParams lp = ts::ts_light_path_params(table.data());
     std::vector<InFlight> live;
@@ -124,10 +132,10 @@ uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene
                                      std::vector<LightPath>& paths) {
     const uint32_t scramble = scramble_of(settings);
     const uint32_t bounces = std::min<uint32_t>(settings.max_bounces, TS_LP_MAX_BOUNCES);
-    const ScrambledHalton& halton = halton_for(5 + 3 * static_cast<int>(bounces), scramble);
     // The kernel's table holds only the dimensions of the segments it traces; a path that
     // needs more overflows (max_bounces > TS_LP_MAX_BOUNCES) and is traced here.
-    std::vector<uint32_t> table = light_path_table(settings, scramble, settings.max_bounces, halton);
+    const std::vector<uint32_t> table =
+        light_path_table(settings, scramble, settings.max_bounces, *halton_for(5 + 3 * static_cast<int>(bounces), scramble));
     backend.set_input(KernelInput::LightPathTable, table);
     std::vector<uint32_t> items(TS_LP_ITEM_WORDS * paths.size());
     for (size_t i = 0; i < paths.size(); ++i) {

@@ -67,7 +67,8 @@ struct LightPathSettings {
     bool ray_lights = false;
     /// Record each path's segments (LightPath::segments: what the temporal cache re-tests).
     /// false lets a backend that traces light paths in a kernel
-    /// (Backend::traces_light_paths_in_kernel) do so; the VPLs are the same either way.
+    /// (Backend::traces_light_paths_in_kernel) do so; the VPLs are the same either way, up
+    /// to the last place of a GPU's sin, cos and exp.
     bool segments = true;
 };
 

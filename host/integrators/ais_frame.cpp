@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -48,7 +50,12 @@ std::vector<uint32_t> ais_pixel_items(const std::vector<uint32_t>& list, size_t 
 
 std::vector<uint32_t> edge_pixel_samples(const EdgeSchedule& schedule) {
     std::vector<uint32_t> code(schedule.samples.size(), 0u);
-    for (size_t i = 0, n = schedule.items.size() / TS_EDGE_ITEM_WORDS; i < n; ++i) {
+    const size_t n = schedule.items.size() / TS_EDGE_ITEM_WORDS;
+    // 15 samples a pixel at most: the first index keeps 28 bits, 268M samples (18M pixels
+    // all flagged, far past any frame's).
+    if (n >> (32 - TS_EDGE_PIXEL_FIRST_SHIFT))
+        throw std::length_error("edge_pixel_samples: " + std::to_string(n) + " edge samples do not fit the pixel codes");
+    for (size_t i = 0; i < n; ++i) {
         const uint32_t* it = &schedule.items[TS_EDGE_ITEM_WORDS * i];
         if (it[TS_EDGE_ITEM_SAMPLE] == 1)
             code[it[TS_EDGE_ITEM_PIXEL]] = static_cast<uint32_t>(i) << TS_EDGE_PIXEL_FIRST_SHIFT | it[TS_EDGE_ITEM_COUNT];

@@ -102,7 +102,8 @@ struct IgiFrameStats {
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
     double ais_seconds = 0;  ///< guidance, schedule and the extra sets (AIS only)
     /// Its parts (AIS only): guidance and schedule on the host, the extra sets' kernel
-    /// launch with its read-back, and the host's merge of the extra sets into the pixels.
+    /// launch with its read-back (on the device: with the items' upload), and the host's
+    /// merge of the extra sets into the pixels (0 on the device, which merges in the resolve).
     double ais_schedule_seconds = 0, ais_kernel_seconds = 0, ais_merge_seconds = 0;
     double cache_seconds = 0;  ///< the instant cache's indirect component (ic/tic only)
     size_t ais_items = 0;    ///< extra (pixel, set) evaluations (AIS only)
@@ -130,7 +131,8 @@ public:
     TsFrame prepare(TsFrame frame) const;
 
     /// A component of the last frame before filtering, 3 floats per pixel (AIS: each
-    /// refined pixel's mean over its sets).
+    /// refined pixel's mean over its sets; a frame resolved on the device leaves its own
+    /// sets' estimates here, the merge being the device's).
     const std::vector<float>& component(AisComponent c) const { return raw_[c]; }
 
     /// Renders frame.pass: VPLs from path block `frame.pass`, the surface kernel, the media

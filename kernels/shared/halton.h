@@ -17,11 +17,13 @@ TS_NAMESPACE_BEGIN
 #define TS_HALTON_DIMS 0
 #define TS_HALTON_BASES 1
 
-/* Component `dim` (< h[0]) of point `index`, in [0, 1). Every digit position is permuted,
- * the leading zeros of the index too; positions past double precision add nothing, so the
- * sum stops below 1e-17. In double (the host's numbers bit for bit: the product and the
- * sum are separate statements, never contracted); devices without fp64 sum in float to
- * 1e-8, within a float's rounding of the double value. */
+/* Component `dim` (< h[0]) of point `index`, in [0, 1]: the radical inverse lies in [0, 1)
+ * and is rounded to float, which gives 1.0f within 2^-25 of 1 (as the host's double-to-float
+ * cast always did: the project's sequence). Every digit position is permuted, the leading
+ * zeros of the index too; positions past double precision add nothing, so the sum stops
+ * below 1e-17. In double (the host's numbers bit for bit: the product and the sum are
+ * separate statements, never contracted); devices without fp64 sum in float to 1e-8,
+ * within a float's rounding of the double value. */
 TS_INLINE float ts_halton_sample(TS_GLOBAL const uint* h, ulong index, uint dim) {
     uint dims = h[TS_HALTON_DIMS];
     uint b = h[TS_HALTON_BASES + dim];
@@ -34,7 +36,8 @@ TS_INLINE float ts_halton_sample(TS_GLOBAL const uint* h, ulong index, uint dim)
         index /= b;
         f *= inv;
     }
-    return (float)fmin(r, 0.99999999999999989);
+    double top = 0.99999999999999989; /* the largest double below 1 */
+    return (float)(r < top ? r : top);
 #else
     float inv = 1.0f / (float)b, f = inv, r = 0.0f;
     while (f > 1e-8f) {
@@ -43,7 +46,7 @@ TS_INLINE float ts_halton_sample(TS_GLOBAL const uint* h, ulong index, uint dim)
         index /= b;
         f *= inv;
     }
-    return fmin(r, 0x1.fffffep-1f);
+    return r < 1.0f ? r : 1.0f;
 #endif
 }
 

@@ -1,7 +1,8 @@
 /* Light paths of instant radiosity (Keller 1997): emission at a light and scattering at
  * each surface hit, leaving the VPLs the igi kernels (shared/igi.h) and the instant
  * cache gather from. The host traces them (host/gi/light_paths.cpp: rays batched
- * through the backend, one Halton point per path fixing every random decision); the
+ * through the backend, one Halton point per path fixing every random decision), or, on a
+ * GPU, the light-path kernel does, a path per work item (shared/light_path_trace.h); the
  * transport is here, next to the camera paths', so there is one material switch
  * (ts_specular_bounce) for all paths. docs/igi.md §3 is our reading.
  *

@@ -149,19 +149,20 @@ std::string moving_path() {
     return "{\"cameras\": [" + cams + "]}";
 }
 
-// A target no frame can meet (1 ms): the budget goes to its floor scale, --times says the
-// scale and setting of every frame, the frames are written at the window's size, and one
-// line says the target is out of reach with the rate reached.
+// A target no frame can meet (1 ms for a 64x64 AIS frame at the floor scale; a 16x16 one
+// came within 1 ms once the VPL stage got faster): the budget goes to its floor scale,
+// --times says the scale and setting of every frame, the frames are written at the
+// window's size, and one line says the target is out of reach with the rate reached.
 TEST_F(ViewCli, TargetOutOfReachIsSaidOnceWithTheRate) {
     const fs::path path = write("path.json", moving_path());
-    const CliResult r = run_tessera("view --headless --backend embree --method ais --width 32 --height 32 "
+    const CliResult r = run_tessera("view --headless --backend embree --method ais --width 128 --height 128 "
                                     "--target-fps 1000 --min-scale 0.5 --camera-path " + path.string() + " --times " +
                                     (dir_ / "times.json").string() + " --frame-images " + (dir_ / "frames").string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const size_t line = r.output.find("--target-fps 1000 is out of reach: ");
     ASSERT_NE(line, std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("out of reach", r.output.find('\n', line)), std::string::npos) << "said once: " << r.output;
-    EXPECT_NE(r.output.find("at the cheapest choice (scale 0.50, 16x16, tile ", line), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("at the cheapest choice (scale 0.50, 64x64, tile ", line), std::string::npos) << r.output;
     std::ifstream in(dir_ / "times.json");
     const nlohmann::json j = nlohmann::json::parse(in);
     EXPECT_EQ(j["target_fps"].get<double>(), 1000.0);
@@ -171,13 +172,13 @@ TEST_F(ViewCli, TargetOutOfReachIsSaidOnceWithTheRate) {
         const double scale = b["scale"].get<double>();
         EXPECT_GE(scale, 0.5);
         EXPECT_LE(scale, 1.0);
-        EXPECT_EQ(b["width"].get<int>(), static_cast<int>(std::lround(32 * scale)));
+        EXPECT_EQ(b["width"].get<int>(), static_cast<int>(std::lround(128 * scale)));
         EXPECT_GE(b["tile"].get<int>(), 1);
     }
     EXPECT_TRUE(j["frames"][5]["budget"]["out_of_reach"].get<bool>());
     const Image last = tessera::read_exr(tessera::frame_output_path(dir_ / "frames/frame.exr", 5));
-    EXPECT_EQ(last.width, 32);
-    EXPECT_EQ(last.height, 32);
+    EXPECT_EQ(last.width, 128);
+    EXPECT_EQ(last.height, 128);
 }
 
 TEST_F(ViewCli, BadOptionsGiveOneClearMessage) {

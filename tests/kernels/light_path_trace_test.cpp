@@ -1,7 +1,9 @@
 // The light-path kernel (kernels/shared/light_path_trace.h, trace_light_paths_in_kernel):
 // one work item per path through all its segments leaves the VPLs and ray lights of the
 // host's batched tracer (trace_light_paths), which runs the same per-segment code. On
-// Embree both are the same C++ code over the same hits: bit for bit. On OpenCL (PoCL) the
+// Embree both are the same C++ code over the same hits: bit for bit (the kernel runs under
+// Embree's flush-to-zero, the host's loop does not: a subnormal intermediate would differ,
+// none occurs in these scenes). On OpenCL (PoCL) the
 // kernel is OpenCL C, whose libm (sin, cos, exp) may round otherwise in the last place:
 // equal counts and records within float rounding. Paths past the kernel's slots are traced
 // again on the host. The Halton table reproduces the digits of the project's figures.
