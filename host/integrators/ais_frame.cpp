@@ -69,10 +69,9 @@ void AisFrame::refine(const TsFrame& frame, const std::vector<float>& surf, cons
     stats_.ais_seconds = since(t0);
 }
 
-// Guidance from the base pass and the schedule: the extra sets' item list.
-std::vector<uint32_t> AisFrame::schedule_sets(const std::vector<float>& surf, const std::vector<float>& media) {
-    const size_t pixels = raw_[kAisSS].size() / 3;
-    const auto t_schedule = Clock::now();
+// The guidance's inputs from the surface and media kernels' outputs.
+AisBaseBuffers AisFrame::base_of(const std::vector<float>& surf, const std::vector<float>& media) const {
+    const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
     AisBaseBuffers base;
     base.visibility.resize(pixels);
     base.indirect.resize(pixels);
@@ -91,11 +90,52 @@ std::vector<uint32_t> AisFrame::schedule_sets(const std::vector<float>& surf, co
         if (!base.media.empty())
             base.media[p] = ts::ts_luminance(ts::ts_f3_load(&media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_RADIANCE]));
     });
+    return base;
+}
+
+// The guidance's inputs from a device frame's guide_ (TS_AIS_GUIDE_FLOATS a pixel): the
+// values base_of and IgiFrame::extract take from the whole outputs. geometry_ is filled in
+// place (its arrays kept across frames, as extract keeps them).
+AisBaseBuffers AisFrame::base_of_guide(int width, bool media) {
+    const size_t pixels = guide_.size() / TS_AIS_GUIDE_FLOATS;
+    AisBaseBuffers base;
+    GeometryBuffer& g = geometry_;
+    g.width = width;
+    g.height = static_cast<int>(pixels / static_cast<size_t>(width));
+    g.normal.resize(3 * pixels);
+    g.position.resize(3 * pixels);
+    g.depth.resize(pixels);
+    base.visibility.resize(pixels);
+    base.indirect.resize(pixels);
+    if (media) {
+        base.lit_fraction.resize(pixels);
+        base.medium_length.resize(pixels);
+        if (settings_.ais.pm_cov > 0.0f) base.media.resize(pixels);  // read only by g_var
+    }
+    parallel_pixels(pixels, [&](size_t p) {
+        const float* v = &guide_[p * TS_AIS_GUIDE_FLOATS];
+        for (int j = 0; j < 3; ++j) {
+            g.normal[3 * p + j] = v[TS_AIS_GUIDE_NORMAL + j];
+            g.position[3 * p + j] = v[TS_AIS_GUIDE_POSITION + j];
+        }
+        g.depth[p] = v[TS_AIS_GUIDE_DISTANCE];
+        base.visibility[p] = v[TS_AIS_GUIDE_VISIBLE];
+        base.indirect[p] = v[TS_AIS_GUIDE_INDIRECT];
+        if (!media) return;
+        base.lit_fraction[p] = v[TS_AIS_GUIDE_LIT];
+        base.medium_length[p] = v[TS_AIS_GUIDE_LENGTH];
+        if (!base.media.empty()) base.media[p] = v[TS_AIS_GUIDE_MEDIA];
+    });
+    return base;
+}
+
+// Guidance from the base pass and the schedule: the extra sets' item list.
+std::vector<uint32_t> AisFrame::schedule_sets(AisBaseBuffers base) {
     // The G-buffer is lent to the guidance, not copied (9 MB at 512², 3 ms), and taken back.
     base.geometry = std::move(geometry_);
     const uint32_t bits = effective_components();
     const std::array<bool, kAisComponents> enabled = {(bits & TS_COMPONENT_SS) != 0, (bits & TS_COMPONENT_ID) != 0,
-                                                      (bits & TS_COMPONENT_PM) != 0 && !media.empty()};
+                                                      (bits & TS_COMPONENT_PM) != 0 && !base.lit_fraction.empty()};
     // The set-to-set CoV that VPL noise alone gives falls as 1/√paths: id_cov is stated
     // for kIdCovPaths paths per set and scaled to this frame's.
     AisThresholds t = settings_.ais;
@@ -113,7 +153,6 @@ std::vector<uint32_t> AisFrame::schedule_sets(const std::vector<float>& surf, co
         list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL] = schedule_.item_pixels[i];
         list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
     }
-    stats_.ais_schedule_seconds = since(t_schedule);
     return list;
 }
 
@@ -123,7 +162,9 @@ std::vector<uint32_t> AisFrame::schedule_sets(const std::vector<float>& surf, co
 // neighbours' reconstruction.
 void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
     const size_t pixels = raw_[kAisSS].size() / 3;
-    const std::vector<uint32_t> list = schedule_sets(surf, media);
+    const auto t_schedule = Clock::now();
+    const std::vector<uint32_t> list = schedule_sets(base_of(surf, media));
+    stats_.ais_schedule_seconds = since(t_schedule);
     const auto t_kernel = Clock::now();
     std::vector<float> items;
     backend_.launch_items(KernelId::AisItem, frame, list, items);
@@ -173,13 +214,6 @@ void AisFrame::reconstruct_component(int c) {
 }
 
 void AisFrame::schedule_edges(const std::vector<float>& out) {
-    // Where each camera path ends on a light: a light's edge in its holder's plane.
-    const size_t pixels = surf_.size() / TS_IGI_SURF_FLOATS;
-    emitter_.assign(pixels, 0);
-    for (size_t p = 0; p < pixels; ++p) {
-        const float* le = &surf_[p * TS_IGI_SURF_FLOATS + TS_IGI_SURF_EMISSION];
-        emitter_[p] = le[0] + le[1] + le[2] > 0.0f;
-    }
     edge_guidance_ = edge_guidance(geometry_, settings_.discontinuity, out, settings_.edges.dark, emitter_);
     edge_schedule_ = make_edge_schedule(edge_guidance_, settings_.edges, settings_.ais_mode);
     stats_.edge_samples = edge_schedule_.items.size() / TS_EDGE_ITEM_WORDS;
@@ -194,6 +228,13 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
     stats_.edge_seconds = 0;
     if (!(effective_components() & TS_COMPONENT_EDGE)) return;
     const auto t0 = Clock::now();
+    // Where each camera path ends on a light: a light's edge in its holder's plane.
+    const size_t pixels = surf_.size() / TS_IGI_SURF_FLOATS;
+    emitter_.assign(pixels, 0);
+    for (size_t p = 0; p < pixels; ++p) {
+        const float* le = &surf_[p * TS_IGI_SURF_FLOATS + TS_IGI_SURF_EMISSION];
+        emitter_[p] = le[0] + le[1] + le[2] > 0.0f;
+    }
     schedule_edges(out);
     const auto t_kernel = Clock::now();
     backend_.launch_items(KernelId::EdgeSample, frame, edge_schedule_.items, edge_samples_);
@@ -207,31 +248,32 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
 
 void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) {
     // The base pass's outputs stay on the device for the resolve; the host's guidance reads
-    // its copies.
+    // TS_AIS_GUIDE_FLOATS a pixel of them (13 of their 39 floats).
     auto t0 = Clock::now();
     backend_.launch_into(KernelId::IgiSurface, surface_frame, KernelInput::IgiSurface);
-    backend_.read_input(KernelInput::IgiSurface, surf_);
     stats_.surface_seconds = since(t0);
     stats_.media_seconds = 0.0;
-    media_.clear();
-    if (frame.igi_components & TS_COMPONENT_PM) {
+    const bool media = frame.igi_components & TS_COMPONENT_PM;
+    if (media) {
         t0 = Clock::now();
         backend_.launch_into(KernelId::IgiMedia, frame, KernelInput::IgiMedia);
-        backend_.read_input(KernelInput::IgiMedia, media_);
         stats_.media_seconds = since(t0);
     }
     t0 = Clock::now();
-    extract(static_cast<int>(frame.width), surf_, media_);
-    if (settings_.filter) discontinuity_precompute(geometry_, settings_.discontinuity);
+    backend_.launch(KernelId::AisGuideInputs, frame, guide_);
+    stats_.surface_seconds += since(t0);  // the read-back the host path counts there
     const auto t_ais = Clock::now();
-    const std::vector<uint32_t> list = schedule_sets(surf_, media_);
+    AisBaseBuffers base = base_of_guide(static_cast<int>(frame.width), media);
+    if (settings_.filter) discontinuity_precompute(geometry_, settings_.discontinuity);
+    const std::vector<uint32_t> list = schedule_sets(std::move(base));
+    stats_.ais_schedule_seconds = since(t_ais);
     const auto t_kernel = Clock::now();
     backend_.launch_items_into(KernelId::AisItem, frame, list, KernelInput::AisItems);
-    backend_.set_input(KernelInput::AisPixelItems, ais_pixel_items(list, surf_.size() / TS_IGI_SURF_FLOATS));
+    backend_.set_input(KernelInput::AisPixelItems, ais_pixel_items(list, geometry_.depth.size()));
     stats_.ais_kernel_seconds = since(t_kernel);
     stats_.ais_merge_seconds = 0.0;  // in the resolve
     stats_.ais_seconds = since(t_ais);
-    t0 += Clock::now() - t_ais;
+    t0 = Clock::now();
     TsFrame ais = frame;
     ais.igi_ais = 1u;
     if (ais.igi_clamp_screen) {
@@ -254,6 +296,9 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
 
 void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out) {
     const auto t0 = Clock::now();
+    const size_t pixels = guide_.size() / TS_AIS_GUIDE_FLOATS;
+    emitter_.resize(pixels);
+    for (size_t p = 0; p < pixels; ++p) emitter_[p] = guide_[p * TS_AIS_GUIDE_FLOATS + TS_AIS_GUIDE_EMITTER] > 0.0f;
     schedule_edges(out);
     const auto t_kernel = Clock::now();
     if (!edge_schedule_.items.empty()) {

@@ -56,10 +56,17 @@ protected:
 
 private:
     void add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media);
-    /// Guidance and schedule from the base pass (guidance_, schedule_, stats): the extra
-    /// sets' item list (TS_AIS_ITEM_WORDS per item).
-    std::vector<uint32_t> schedule_sets(const std::vector<float>& surf, const std::vector<float>& media);
-    /// Edge guidance and schedule from the pass image `out` (edge_guidance_, edge_schedule_).
+    /// The guidance's inputs from the surface and media kernels' outputs (host frames).
+    AisBaseBuffers base_of(const std::vector<float>& surf, const std::vector<float>& media) const;
+    /// The same from a device frame's guide_ (with `media`: the frame computes PM), and
+    /// geometry_ as IgiFrame::extract fills it.
+    AisBaseBuffers base_of_guide(int width, bool media);
+    /// Guidance and schedule from the base pass's `base` (guidance_, schedule_, stats),
+    /// which lends geometry_ for the time: the extra sets' item list (TS_AIS_ITEM_WORDS
+    /// per item).
+    std::vector<uint32_t> schedule_sets(AisBaseBuffers base);
+    /// Edge guidance and schedule from the pass image `out` and emitter_ (edge_guidance_,
+    /// edge_schedule_).
     void schedule_edges(const std::vector<float>& out);
     /// The device frame's edge samples, merged into `out` where the kernels ran.
     void edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out);
@@ -78,6 +85,7 @@ private:
     // The edge samples' kernel output, kept across passes as IgiFrame keeps surf_ (Sibenik
     // 512²: 11 MB a pass, whose fresh allocation would be zero-filled and faulted in anew).
     std::vector<float> edge_samples_;
+    std::vector<float> guide_;  ///< a device frame's TS_AIS_GUIDE_FLOATS a pixel (resolve_on_device)
 };
 
 }  // namespace tessera

@@ -131,8 +131,8 @@ public:
     TsFrame prepare(TsFrame frame) const;
 
     /// A component of the last frame before filtering, 3 floats per pixel (AIS: each
-    /// refined pixel's mean over its sets; a frame resolved on the device leaves its own
-    /// sets' estimates here, the merge being the device's).
+    /// refined pixel's mean over its sets). An AIS frame resolved on the device leaves
+    /// none here (its components stay on the device).
     const std::vector<float>& component(AisComponent c) const { return raw_[c]; }
 
     /// Renders frame.pass: VPLs from path block `frame.pass`, the surface kernel, the media

@@ -100,6 +100,31 @@ TS_INLINE int ts_ais_mean(const TsSceneView* sv, const TsFrame* f, uint x, uint 
     return 1;
 }
 
+/* Per-pixel kernel AisGuideInputs: what the host's guidance reads of pixel (x, y)'s base
+ * pass (TS_AIS_GUIDE_*, layout_igi.h), the same values the host takes from the whole
+ * outputs (luminances by ts_luminance, as the host computes them). */
+TS_INLINE void ts_ais_guide_inputs_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint x,
+                                         uint y, float* out) {
+    (void)tracer;
+    const size_t p = (size_t)y * f->width + x;
+    TS_GLOBAL const float* s = sv->igi_surface + p * TS_IGI_SURF_FLOATS;
+    for (int j = 0; j < 3; ++j) {
+        out[TS_AIS_GUIDE_NORMAL + j] = s[TS_IGI_SURF_NORMAL + j];
+        out[TS_AIS_GUIDE_POSITION + j] = s[TS_IGI_SURF_POSITION + j];
+    }
+    out[TS_AIS_GUIDE_DISTANCE] = s[TS_IGI_SURF_DISTANCE];
+    out[TS_AIS_GUIDE_VISIBLE] = s[TS_IGI_SURF_VISIBLE];
+    out[TS_AIS_GUIDE_INDIRECT] = ts_luminance(ts_f3_load(s + TS_IGI_SURF_E_ID));
+    out[TS_AIS_GUIDE_EMITTER] = s[TS_IGI_SURF_EMISSION] + s[TS_IGI_SURF_EMISSION + 1] + s[TS_IGI_SURF_EMISSION + 2] > 0.0f
+                                    ? 1.0f : 0.0f;
+    out[TS_AIS_GUIDE_LIT] = out[TS_AIS_GUIDE_LENGTH] = out[TS_AIS_GUIDE_MEDIA] = 0.0f;
+    if (!(f->igi_components & TS_COMPONENT_PM)) return;
+    TS_GLOBAL const float* m = sv->igi_media + p * TS_IGI_MEDIA_FLOATS;
+    out[TS_AIS_GUIDE_LIT] = m[TS_IGI_MEDIA_LIT];
+    out[TS_AIS_GUIDE_LENGTH] = m[TS_IGI_MEDIA_LENGTH];
+    out[TS_AIS_GUIDE_MEDIA] = ts_luminance(ts_f3_load(m + TS_IGI_MEDIA_RADIANCE));
+}
+
 /* The window pixel whose surface the edge sample `sample` (TS_EDGE_SAMPLE_FLOATS) lies on,
  * for pixel (x, y) (host: edge_sample_match, host/gi/ais_edges.h): among p's 3×3
  * neighbours (p first, then the 4 sides, then the corners) those whose discontinuity test

@@ -125,6 +125,28 @@
  * (0: none; at most 15). */
 #define TS_EDGE_PIXEL_FIRST_SHIFT 4
 #define TS_EDGE_PIXEL_COUNT_MASK 15u
+/* What the host's AIS guidance and edge guidance read of a device frame's base pass
+ * (KernelId::AisGuideInputs, shared/ais_resolve.h), TS_AIS_GUIDE_FLOATS a pixel, instead of
+ * the surface and media passes' whole outputs:
+ *   TS_AIS_GUIDE_NORMAL    3 floats: shading normal (TS_IGI_SURF_NORMAL)
+ *   TS_AIS_GUIDE_POSITION  3 floats: position (TS_IGI_SURF_POSITION)
+ *   TS_AIS_GUIDE_DISTANCE  distance along the camera path (TS_IGI_SURF_DISTANCE)
+ *   TS_AIS_GUIDE_VISIBLE   TS_IGI_SURF_VISIBLE
+ *   TS_AIS_GUIDE_INDIRECT  luminance of E_id (TS_IGI_SURF_E_ID)
+ *   TS_AIS_GUIDE_EMITTER   1 where the camera path ends on an emitter (the sum of
+ *                          TS_IGI_SURF_EMISSION is positive), else 0
+ *   TS_AIS_GUIDE_LIT, TS_AIS_GUIDE_LENGTH  TS_IGI_MEDIA_LIT, TS_IGI_MEDIA_LENGTH (0 without PM)
+ *   TS_AIS_GUIDE_MEDIA     luminance of the media radiance (0 without PM) */
+#define TS_AIS_GUIDE_FLOATS 13
+#define TS_AIS_GUIDE_NORMAL 0
+#define TS_AIS_GUIDE_POSITION 3
+#define TS_AIS_GUIDE_DISTANCE 6
+#define TS_AIS_GUIDE_VISIBLE 7
+#define TS_AIS_GUIDE_INDIRECT 8
+#define TS_AIS_GUIDE_EMITTER 9
+#define TS_AIS_GUIDE_LIT 10
+#define TS_AIS_GUIDE_LENGTH 11
+#define TS_AIS_GUIDE_MEDIA 12
 /* Components (TsFrame.igi_components). */
 #define TS_COMPONENT_SS 1u
 #define TS_COMPONENT_ID 2u

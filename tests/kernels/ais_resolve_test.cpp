@@ -1,5 +1,6 @@
 // The AIS frame reconstructed where the kernels ran (kernels/shared/ais_resolve.h,
-// AisFrame::resolve_on_device: the extra sets' merge, the reconstruction, the clamp's
+// AisFrame::resolve_on_device: the guidance's inputs read back compactly, the extra sets'
+// merge, the reconstruction, the clamp's
 // compensation, the composite and the edge samples' merge on the device) against the
 // host's (AisFrame's refine, reconstruct_component, compensate_clamp, composite, finish).
 // The OpenCL GPU variant runs the device path, its full-stack per-ray variant the host's,
@@ -70,6 +71,7 @@ TEST_P(AisDeviceFrame, EqualsTheHostFrame) {
     // The device path ran (the extra sets kept there and, with edges, merged there), and
     // the host's did not.
     EXPECT_GT(device->dispatch_count(KernelId::IgiResolve), 0u);
+    EXPECT_GT(device->dispatch_count(KernelId::AisGuideInputs), 0u);  // the guidance's 13 floats a pixel
     EXPECT_EQ(host->dispatch_count(KernelId::IgiResolve), 0u);
     EXPECT_EQ(host->dispatch_count(KernelId::AisEdgeMerge), 0u);
     if (c.components & TS_COMPONENT_EDGE) {
