@@ -33,15 +33,29 @@ typedef struct TsAisSum {
 #endif
 } TsAisSum;
 
-TS_INLINE void ts_ais_sum_add(TsAisSum* a, TS_GLOBAL const float* v) {
+TS_INLINE TsAisSum ts_ais_sum_zero(void) {
+    TsAisSum a;
+    for (int j = 0; j < 3; ++j) {
+        a.s[j] = 0;
+#ifndef TS_HAS_DOUBLE
+        a.c[j] = 0.0f;
+#endif
+    }
+    return a;
+}
+
+TS_INLINE void ts_ais_sum_add3(TsAisSum* a, float3 v) {
+    const float x[3] = {v.x, v.y, v.z};
     for (int j = 0; j < 3; ++j) {
 #ifdef TS_HAS_DOUBLE
-        a->s[j] += (double)v[j];
+        a->s[j] += (double)x[j];
 #else
-        ts_sum_compensated_add(&a->s[j], &a->c[j], v[j]);
+        ts_sum_compensated_add(&a->s[j], &a->c[j], x[j]);
 #endif
     }
 }
+
+TS_INLINE void ts_ais_sum_add(TsAisSum* a, TS_GLOBAL const float* v) { ts_ais_sum_add3(a, ts_f3_load(v)); }
 
 TS_INLINE void ts_ais_sum_mean(const TsAisSum* a, int count, float* out) {
     for (int j = 0; j < 3; ++j) {
@@ -69,13 +83,7 @@ TS_INLINE int ts_ais_mean(const TsSceneView* sv, const TsFrame* f, uint x, uint 
     const uint begin = table[p], end = table[p + 1u];
     const uint tile = f->igi_tile;
     ulong mask = (ulong)1 << ts_igi_set(x, y, tile);
-    TsAisSum sum;
-    for (int j = 0; j < 3; ++j) {
-        sum.s[j] = 0;
-#ifndef TS_HAS_DOUBLE
-        sum.c[j] = 0.0f;
-#endif
-    }
+    TsAisSum sum = ts_ais_sum_zero();
     ts_ais_sum_add(&sum, ts_ais_base(sv, c, p));
     for (uint k = begin; k < end; ++k) {
         TS_GLOBAL const uint* entry = table + pixels + 1u + TS_AIS_ENTRY_WORDS * (size_t)k;

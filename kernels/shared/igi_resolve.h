@@ -77,13 +77,7 @@ TS_INLINE void ts_ais_edge_merge_pixel(const TsSceneView* sv, const TsTracer* tr
     const uint n = code & TS_EDGE_PIXEL_COUNT_MASK;
     if (n == 0u) return;
     const int pm = (frame->igi_components & TS_COMPONENT_PM) != 0u;
-    TsAisSum sum;
-    for (int j = 0; j < 3; ++j) {
-        sum.s[j] = 0;
-#ifndef TS_HAS_DOUBLE
-        sum.c[j] = 0.0f;
-#endif
-    }
+    TsAisSum sum = ts_ais_sum_zero();
     ts_ais_sum_add(&sum, base + TS_PASS_RADIANCE);
     for (uint j = 0u; j < n; ++j) {
         TS_GLOBAL const float* g = sv->edge_samples + (size_t)((code >> TS_EDGE_PIXEL_FIRST_SHIFT) + j) * TS_EDGE_SAMPLE_FLOATS;
@@ -105,12 +99,7 @@ TS_INLINE void ts_ais_edge_merge_pixel(const TsSceneView* sv, const TsTracer* tr
             make_float3(e[TS_EDGE_SAMPLE_EMISSION], e[TS_EDGE_SAMPLE_EMISSION + 1], e[TS_EDGE_SAMPLE_EMISSION + 2]),
             make_float3(e[TS_EDGE_SAMPLE_ALBEDO], e[TS_EDGE_SAMPLE_ALBEDO + 1], e[TS_EDGE_SAMPLE_ALBEDO + 2]),
             make_float3(m[0], m[1], m[2]), make_float3(m[3], m[4], m[5]), make_float3(m[6], m[7], m[8]));
-        const float v[3] = {l.x, l.y, l.z};
-#ifdef TS_HAS_DOUBLE
-        for (int k = 0; k < 3; ++k) sum.s[k] += (double)v[k];
-#else
-        for (int k = 0; k < 3; ++k) ts_sum_compensated_add(&sum.s[k], &sum.c[k], v[k]);
-#endif
+        ts_ais_sum_add3(&sum, l);
     }
     ts_ais_sum_mean(&sum, (int)n + 1, out + TS_PASS_RADIANCE);
 }
