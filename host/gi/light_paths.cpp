@@ -1,6 +1,7 @@
 #include "gi/light_paths.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -53,22 +54,21 @@ std::shared_ptr<const ScrambledHalton> halton_for(int dims, uint32_t scramble) {
     return cache.back().halton;
 }
 
-// The light-path table (layout_light_path.h) for `settings`, with `halton`'s digits.
-std::vector<uint32_t> light_path_table(const LightPathSettings& settings, uint32_t scramble, uint32_t max_bounces,
-                                       const ScrambledHalton& halton) {
-    std::vector<uint32_t> t(TS_LPT_HALTON);
-    t[TS_LPT_SCRAMBLE] = scramble;
-    t[TS_LPT_MAX_BOUNCES] = max_bounces;
-    t[TS_LPT_FLAGS] = (settings.medium_scattering ? TS_LPT_MEDIUM_SCATTERING : 0u) |
-                      (settings.ray_lights ? TS_LPT_RAY_LIGHTS : 0u);
-    std::memcpy(&t[TS_LPT_INV_PATHS], &settings.inv_paths, 4);
-    t.insert(t.end(), halton.table().begin(), halton.table().end());
-    return t;
-}
-
 uint32_t scramble_of(const LightPathSettings& settings) {
     // The Halton digits and the medium events' generator share one scramble of the seed.
     return settings.halton_seed ^ light_path_seed_mix(settings.seed);
+}
+
+// The light-path table's header (layout_light_path.h) for `settings`: what
+// ts_light_path_params reads.
+std::array<uint32_t, TS_LPT_HALTON> light_path_header(const LightPathSettings& settings) {
+    std::array<uint32_t, TS_LPT_HALTON> h{};
+    h[TS_LPT_SCRAMBLE] = scramble_of(settings);
+    h[TS_LPT_MAX_BOUNCES] = settings.max_bounces;
+    h[TS_LPT_FLAGS] = (settings.medium_scattering ? TS_LPT_MEDIUM_SCATTERING : 0u) |
+                      (settings.ray_lights ? TS_LPT_RAY_LIGHTS : 0u);
+    std::memcpy(&h[TS_LPT_INV_PATHS], &settings.inv_paths, 4);
+    return h;
 }
 
 void clear(LightPath& p) {
@@ -88,8 +88,7 @@ uint64_t trace_batched(Backend& backend, const SceneBuffers& scene, const LightP
     const std::shared_ptr<const ScrambledHalton> owner =
         halton_for(5 + 3 * static_cast<int>(settings.max_bounces), scramble);
     const ScrambledHalton& halton = *owner;
-    const std::vector<uint32_t> table = light_path_table(settings, scramble, settings.max_bounces, halton);
-    const ts::TsLightPathParams lp = ts::ts_light_path_params(table.data());
+    const ts::TsLightPathParams lp = ts::ts_light_path_params(light_path_header(settings).data());
     std::vector<InFlight> live;
     for (LightPath& p : paths) {
         clear(p);
@@ -134,8 +133,10 @@ uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene
     const uint32_t bounces = std::min<uint32_t>(settings.max_bounces, TS_LP_MAX_BOUNCES);
     // The kernel's table holds only the dimensions of the segments it traces; a path that
     // needs more overflows (max_bounces > TS_LP_MAX_BOUNCES) and is traced here.
-    const std::vector<uint32_t> table =
-        light_path_table(settings, scramble, settings.max_bounces, *halton_for(5 + 3 * static_cast<int>(bounces), scramble));
+    const std::array<uint32_t, TS_LPT_HALTON> header = light_path_header(settings);
+    std::vector<uint32_t> table(header.begin(), header.end());
+    const std::shared_ptr<const ScrambledHalton> halton = halton_for(5 + 3 * static_cast<int>(bounces), scramble);
+    table.insert(table.end(), halton->table().begin(), halton->table().end());
     backend.set_input(KernelInput::LightPathTable, table);
     std::vector<uint32_t> items(TS_LP_ITEM_WORDS * paths.size());
     for (size_t i = 0; i < paths.size(); ++i) {
