@@ -35,8 +35,10 @@ TS_ITEM_KERNEL(light_paths_media_pass, ts_light_path_media_item, TS_LP_MEDIA_FLO
  * reads the surface and media kernels' outputs in place, writes the pass image. */
 TS_PIXEL_KERNEL(igi_resolve_pass, ts_igi_resolve_pixel, TS_PASS_FLOATS)
 
-/* What the host's AIS guidance reads of a device frame's base pass (shared/ais_resolve.h). */
-TS_PIXEL_KERNEL(ais_guide_inputs_pass, ts_ais_guide_inputs_pixel, TS_AIS_GUIDE_FLOATS)
+/* Each pixel's AIS set masks from the base pass (shared/ais_guidance.h). */
+TS_PIXEL_KERNEL(ais_schedule_pass, ts_ais_schedule_pixel, TS_AIS_MASK_FLOATS)
+/* Each pixel's edge-sample count from the resolved pass (shared/ais_resolve.h). */
+TS_PIXEL_KERNEL(edge_schedule_pass, ts_edge_schedule_pixel, 1)
 
 /* An AIS frame's edge samples merged into its resolved pass image (shared/igi_resolve.h). */
 TS_PIXEL_KERNEL(ais_edge_merge_pass, ts_ais_edge_merge_pixel, TS_PASS_FLOATS)

@@ -9,6 +9,7 @@
 
 #include "kernels/shared/composite.h"
 #include "kernels/shared/discontinuity.h"
+#include "kernels/shared/edge_guidance.h"
 #include "kernels/shared/layout_igi.h"
 #include "kernels/shared/layout_pass.h"
 #include "kernels/shared/sampling.h"
@@ -16,8 +17,7 @@
 namespace tessera {
 namespace {
 
-// p's 3×3 window: itself, the 4 sides, then the corners (the order ties are broken in).
-constexpr int kWindow[9][2] = {{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}, {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+constexpr const auto& kWindow = ts::ts_edge_window;
 
 ts::float3 f3(const std::vector<float>& v, size_t p) { return ts::ts_f3_load(&v[3 * p]); }
 
@@ -30,16 +30,19 @@ void parallel_rows(int height, F&& f) {
 
 }  // namespace
 
+float edge_epsilon(const std::vector<float>& radiance, float dark) {
+    const size_t pixels = radiance.size() / TS_PASS_FLOATS;
+    double sum = 0.0;
+    for (size_t p = 0; p < pixels; ++p) sum += ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
+    return dark * static_cast<float>(sum / std::max<size_t>(1, pixels));
+}
+
 std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySettings& s,
                                  const std::vector<float>& radiance, float dark, const std::vector<uint8_t>& emitter) {
     const size_t pixels = size_t(g.width) * g.height;
     std::vector<float> y(pixels);
-    double sum = 0.0;
-    for (size_t p = 0; p < pixels; ++p) {
-        y[p] = ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
-        sum += y[p];
-    }
-    const float eps = dark * static_cast<float>(sum / std::max<size_t>(1, pixels));
+    for (size_t p = 0; p < pixels; ++p) y[p] = ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
+    const float eps = edge_epsilon(radiance, dark);
     // With tile 3 the filter's window is this 3×3 window, and the frame's precomputed masks
     // (discontinuity_precompute) hold the test's answers: bit (dy + 1)·3 + (dx + 1). The
     // test per pair took 6 ms of a 256² frame; the masks give the same bits.
@@ -58,10 +61,7 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
                                             : discontinuity_accepts(g, s, p, q);
                 const bool light_edge = !emitter.empty() && (emitter[p] != 0) != (emitter[q] != 0);
                 if (accepted && !light_edge) continue;
-                const float denominator = y[p] + y[q] + eps;
-                // A NaN or infinite luminance flags nothing (the comparison fails).
-                const float c = denominator > 0.0f ? std::fabs(y[p] - y[q]) / denominator : 0.0f;
-                if (c > best) best = std::min(c, 1.0f);
+                best = ts::ts_edge_max(best, ts::ts_edge_contrast(y[p], y[q], eps));
             }
             out[p] = best;
         }
@@ -73,20 +73,22 @@ EdgeSchedule make_edge_schedule(const std::vector<float>& guidance, const EdgeSe
     EdgeSchedule s;
     s.samples.assign(guidance.size(), 0);
     const uint32_t most = std::clamp<uint32_t>(e.samples, 1u, 15u);
+    for (size_t p = 0; p < guidance.size(); ++p)
+        s.samples[p] = static_cast<uint8_t>(
+            ts::ts_edge_sample_count(guidance[p], e.trigger, e.full, most, mode == AisMode::AMax));
+    edge_schedule_items(s);
+    return s;
+}
+
+void edge_schedule_items(EdgeSchedule& s) {
+    s.items.clear();
     size_t flagged = 0;
-    for (size_t p = 0; p < guidance.size(); ++p) {
-        if (!(guidance[p] > e.trigger)) continue;
-        ++flagged;
-        uint32_t n = most;
-        if (mode == AisMode::A && e.full > e.trigger) {
-            const float a = std::clamp((guidance[p] - e.trigger) / (e.full - e.trigger), 0.0f, 1.0f);
-            n = std::clamp(static_cast<uint32_t>(std::ceil(a * static_cast<float>(most))), 1u, most);
-        }
-        s.samples[p] = static_cast<uint8_t>(n);
+    for (size_t p = 0; p < s.samples.size(); ++p) {
+        const uint32_t n = s.samples[p];
+        flagged += n > 0;
         for (uint32_t j = 1; j <= n; ++j) s.items.insert(s.items.end(), {static_cast<uint32_t>(p), j, n});
     }
-    s.flagged = guidance.empty() ? 0.0 : double(flagged) / double(guidance.size());
-    return s;
+    s.flagged = s.samples.empty() ? 0.0 : double(flagged) / double(s.samples.size());
 }
 
 size_t edge_sample_match(const GeometryBuffer& g, const DiscontinuitySettings& s, int x, int y, const float* sample) {

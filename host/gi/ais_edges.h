@@ -49,6 +49,10 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
                                  const std::vector<float>& radiance, float dark,
                                  const std::vector<uint8_t>& emitter = {});
 
+/// ε of the edge contrast: `dark` × the mean luminance of `radiance` (TS_PASS_FLOATS per
+/// pixel, its TS_PASS_RADIANCE), summed in double in pixel order.
+float edge_epsilon(const std::vector<float>& radiance, float dark);
+
 /// Which pixels take extra samples, and the flat list of samples to trace.
 struct EdgeSchedule {
     /// Per pixel: extra samples taken (0 unless flagged).
@@ -62,6 +66,10 @@ struct EdgeSchedule {
 /// Flags pixels with guidance > trigger. A-MAX: each takes `samples`; A: ⌈samples · a⌉,
 /// a = (g − trigger) / (full − trigger) clamped to [0, 1] (at least one sample).
 EdgeSchedule make_edge_schedule(const std::vector<float>& guidance, const EdgeSettings& e, AisMode mode);
+
+/// Fills s.items and s.flagged from s.samples (make_edge_schedule's, or a device's
+/// KernelId::EdgeSchedule counts).
+void edge_schedule_items(EdgeSchedule& s);
 
 /// The reconstructed components the samples are shaded with, 3 floats per pixel each:
 /// E_ss, E_id (irradiance / π), L_pm (W/(sr·m²)) and the camera segment's transmittance.

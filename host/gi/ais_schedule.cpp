@@ -8,159 +8,42 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "gi/ais_edges.h"
+#include "kernels/shared/ais_guidance.h"
+#include "kernels/shared/layout_igi.h"
+
 namespace tessera {
 namespace {
 
-// p's filter window as bit sets over window positions i = (dy − lo)·n + (dx − lo).
-struct WindowBits {
-    uint64_t in_image = 0;  ///< the position lies in the image
-    uint64_t accepted = 0;  ///< ... and p accepts it (p itself included)
-};
-
-// Constants of the window walks of one frame: the pixel offset of each window position,
-// and the set each position holds for a pixel of each own set (an n×n window holds each
-// set once, where depends only on the pixel's own set). Saves the walks a division and a
-// modulo by n per position.
-struct WindowWalk {
-    int lo, hi;    // the window's offsets on each axis
-    uint64_t all;  // every window position
-    std::array<ptrdiff_t, 64> offset;
-    std::vector<std::array<uint8_t, 64>> set_at;  // [own set][position]
-
-    WindowWalk(int n, int width) : set_at(size_t(n) * n) {
-        discontinuity_window(n, &lo, &hi);
-        all = n * n == 64 ? ~0ull : (1ull << (n * n)) - 1;
-        offset = discontinuity_window_offsets(n, width);
-        for (int own = 0; own < n * n; ++own)  // a pixel of set `own` with its window in x, y >= 0
-            for (int i = 0; i < n * n; ++i)
-                set_at[own][i] =
-                    static_cast<uint8_t>(interleave_set(own % n + n + lo + i % n, own / n + n + lo + i / n, n));
-    }
-
-    // Calls f(q) for each window position of `bits` around pixel p (pixel index q).
-    template <class F>
-    void for_positions(uint64_t bits, size_t p, F&& f) const {
-        for (; bits; bits &= bits - 1) f(p + offset[std::countr_zero(bits)]);
-    }
-
-    // The sets held by the window positions in `bits` of a pixel of set `own`.
-    uint64_t sets_of(uint64_t bits, int own) const {
-        uint64_t sets = 0;
-        for (; bits; bits &= bits - 1) sets |= 1ull << set_at[own][std::countr_zero(bits)];
-        return sets;
-    }
-};
-
-WindowBits window_bits(const GeometryBuffer& g, const DiscontinuitySettings& s, const WindowWalk& walk, int x,
-                       int y) {
-    WindowBits b;
-    if (x + walk.lo >= 0 && y + walk.lo >= 0 && x + walk.hi < g.width && y + walk.hi < g.height) {
-        b.in_image = walk.all;
-    } else {
-        int i = 0;
-        for (int dy = walk.lo; dy <= walk.hi; ++dy)
-            for (int dx = walk.lo; dx <= walk.hi; ++dx, ++i) {
-                const int qx = x + dx, qy = y + dy;
-                if (qx >= 0 && qy >= 0 && qx < g.width && qy < g.height) b.in_image |= 1ull << i;
-            }
-    }
-    b.accepted = discontinuity_window_mask(g, s, x, y);
-    return b;
-}
-
-// Whether the filter cannot clean p: it accepts fewer than `min_acc` neighbours because
-// it rejects some inside the image (a window clipped by the image border is not an edge).
-bool unfilterable(const WindowBits& b, int min_acc) {
-    return std::popcount(b.accepted) < min_acc && b.accepted != b.in_image;
-}
-
-bool on_geometric_edge(const GeometryBuffer& g, const DiscontinuitySettings& s, const WindowBits& wb, int x,
-                       int y) {
-    int lo, hi;
-    discontinuity_window(s.tile, &lo, &hi);
-    if (lo <= -1 && hi >= 1) {  // the 3×3 neighbourhood lies in the window: read its bits
-        const int n = s.tile;
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                const uint64_t bit = 1ull << ((dy - lo) * n + (dx - lo));
-                if ((wb.in_image & bit) && !(wb.accepted & bit)) return true;
-            }
-        return false;
-    }
-    const size_t p = size_t(y) * g.width + x;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            const int qx = x + dx, qy = y + dy;
-            if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
-            if (!discontinuity_accepts(g, s, p, size_t(qy) * g.width + qx)) return true;
-        }
-    return false;
-}
-
-struct Value {
-    float g, grade;
-};
-
-Value ss_guidance(const AisBaseBuffers& b, const WindowWalk& walk, const WindowBits& wb, int min_acc, size_t p) {
-    float lo = INFINITY, hi = -INFINITY;
-    walk.for_positions(wb.accepted, p, [&](size_t q) {
-        lo = std::min(lo, b.visibility[q]);
-        hi = std::max(hi, b.visibility[q]);
-    });
-    const float v = b.visibility[p], range = hi - lo;
-    const bool edge = v > 0.0f && v < 1.0f && unfilterable(wb, min_acc);
-    return {edge ? 1.0f : range, range};
-}
-
-// The coefficient of variation of v over p's accepted window positions, over `cov`,
-// clamped to 1 (0 where the mean is 0): g_var of ID and PM.
-float window_cov(const std::vector<float>& v, const WindowWalk& walk, const WindowBits& wb, size_t p, float cov) {
-    double sum = 0.0, sum2 = 0.0;
-    int count = 0;
-    walk.for_positions(wb.accepted, p, [&](size_t q) {
-        sum += v[q];
-        sum2 += double(v[q]) * v[q];
-        ++count;
-    });
-    const double mean = sum / count;
-    return mean > 0.0 ? static_cast<float>(std::min(1.0, std::sqrt(std::max(0.0, sum2 / count - mean * mean)) / mean / cov))
-                      : 0.0f;
-}
-
-Value id_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const AisThresholds& t,
-                  const WindowWalk& walk, const WindowBits& wb, int min_acc, int x, int y) {
-    const size_t p = size_t(y) * b.geometry.width + x;
-    const float var = window_cov(b.indirect, walk, wb, p, t.id_cov);
-    const bool edge = unfilterable(wb, min_acc) || on_geometric_edge(b.geometry, s, wb, x, y);
-    return {edge ? 1.0f : var, var};
-}
-
-// g_len looks only at the neighbours the filter rejects: a smooth change of the medium
-// length (a slanted wall) is no failure, as the box filter's mean of a linear ramp is its
-// centre value (docs/ais.md §3).
-Value pm_guidance(const AisBaseBuffers& b, const DiscontinuitySettings& s, const AisThresholds& t,
-                  const WindowWalk& walk, const WindowBits& wb, size_t p) {
-    const float lp = b.medium_length[p];
-    float lo = INFINITY, hi = -INFINITY;
-    walk.for_positions(wb.in_image, p, [&](size_t q) {
-        lo = std::min(lo, b.lit_fraction[q]);
-        hi = std::max(hi, b.lit_fraction[q]);
-    });
-    bool length_edge = false;
-    walk.for_positions(wb.in_image & ~wb.accepted, p, [&](size_t q) {
-        length_edge |= std::abs(b.medium_length[q] - lp) > s.depth_rel * lp;
-    });
-    const bool var = t.pm_cov > 0.0f && !b.media.empty();
-    const float grade = std::max(hi - lo, var ? window_cov(b.media, walk, wb, p, t.pm_cov) : 0.0f);
-    return {length_edge ? 1.0f : grade, grade};
+// The shared guidance's view of the host's base buffers (one float a pixel, luminances
+// already taken; geometry as GeometryBuffer keeps it).
+ts::TsAisGuideView guide_view(const AisBaseBuffers& b, const DiscontinuitySettings& s) {
+    ts::TsAisGuideView v{};
+    const GeometryBuffer& g = b.geometry;
+    v.depth = g.depth.data();
+    v.normal = g.normal.data();
+    v.position = g.position.empty() ? nullptr : g.position.data();
+    v.visibility = b.visibility.data();
+    v.indirect = b.indirect.data();
+    v.lit = b.lit_fraction.empty() ? nullptr : b.lit_fraction.data();
+    v.length = b.medium_length.empty() ? nullptr : b.medium_length.data();
+    v.media = b.media.empty() ? nullptr : b.media.data();
+    v.depth_stride = v.surf_stride = v.media_stride = 1;
+    v.vec_stride = 3;
+    v.indirect_rgb = v.media_rgb = 0;
+    v.width = g.width, v.height = g.height, v.tile = s.tile;
+    v.cos_min = s.normal_cos, v.depth_rel = s.depth_rel;
+    return v;
 }
 
 // For each own set (the pixel's position in its tile), the other sets ordered by the
-// distance of the window position that holds them, farthest first (ties: lower set).
-std::vector<std::vector<int>> far_first_orders(int tile) {
+// distance of the window position that holds them, farthest first (ties: lower set):
+// n² rows of n² − 1 sets, as TS_AIS_TABLE_ORDER holds them.
+std::vector<uint32_t> far_first_orders(int tile) {
     int lo, hi;
     discontinuity_window(tile, &lo, &hi);
-    std::vector<std::vector<int>> orders(size_t(tile) * tile);
+    const int sets = tile * tile;
+    std::vector<uint32_t> orders(size_t(sets) * (sets - 1));
     for (int py = 0; py < tile; ++py)
         for (int px = 0; px < tile; ++px) {
             std::vector<std::pair<int, int>> by_distance;  // (−distance², set)
@@ -170,7 +53,8 @@ std::vector<std::vector<int>> far_first_orders(int tile) {
                         by_distance.push_back({-(dx * dx + dy * dy),
                                                interleave_set(px + dx + tile, py + dy + tile, tile)});
             std::sort(by_distance.begin(), by_distance.end());
-            for (const auto& [d, set] : by_distance) orders[interleave_set(px, py, tile)].push_back(set);
+            const size_t row = size_t(interleave_set(px, py, tile)) * (sets - 1);
+            for (size_t r = 0; r < by_distance.size(); ++r) orders[row + r] = uint32_t(by_distance[r].second);
         }
     return orders;
 }
@@ -179,35 +63,18 @@ std::vector<std::vector<int>> far_first_orders(int tile) {
 // (docs/ais.md §3; default ⌈N/2⌉ of N = `sets`).
 int min_accepted(const AisThresholds& t, int sets) { return t.min_accepted > 0 ? t.min_accepted : (sets + 1) / 2; }
 
-// A's grade: the signal's strength above its trigger, in [0, 1].
-float grade_of(const AisGuidance& g, int c, size_t p, float trigger) {
-    const auto& signal = g.grade[c].empty() ? g.g[c] : g.grade[c];
-    return std::clamp((signal[p] - trigger) / (1.0f - trigger), 0.0f, 1.0f);
-}
-
-// A's sets for a flagged pixel p with own set `own`: missing sets until p holds `complete`
-// distinct sets, then ⌈grade·(N−1)⌉ more, both in `order` (farthest window position first).
-uint64_t a_mask(const AisGuidance& g, size_t p, int own, int complete, float grade,
-                const std::vector<int>& order, int sets) {
-    uint64_t mask = 1ull << own;
-    const uint64_t held = g.held.empty() ? mask : g.held[p] | mask;
-    if (!g.missing.empty()) {
-        int need = complete - std::popcount(held);
-        for (int k : order) {
-            if (need <= 0) break;
-            if (!(g.missing[p] >> k & 1)) continue;
-            mask |= 1ull << k;
-            --need;
-        }
-    }
-    int more = static_cast<int>(std::ceil(grade * (sets - 1)));
-    for (int k : order) {
-        if (more <= 0) break;
-        if (mask >> k & 1) continue;
-        mask |= 1ull << k;
-        --more;
-    }
-    return mask;
+ts::TsAisParams params_of(const AisThresholds& t, AisMode mode, int tile) {
+    const int sets = tile * tile;
+    ts::TsAisParams p{};
+    p.trigger[kAisSS] = t.ss_trigger;
+    p.trigger[kAisID] = t.id_trigger;
+    p.trigger[kAisPM] = t.pm_trigger;
+    p.id_cov = t.id_cov;
+    p.pm_cov = t.pm_cov;
+    p.min_accepted = min_accepted(t, sets);
+    p.complete = t.complete_sets > 0 ? t.complete_sets : p.min_accepted;
+    p.amax = mode == AisMode::AMax;
+    return p;
 }
 
 }  // namespace
@@ -215,8 +82,6 @@ uint64_t a_mask(const AisGuidance& g, size_t p, int own, int complete, float gra
 AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySettings& filter,
                              const AisThresholds& t, const std::array<bool, kAisComponents>& enabled) {
     const int w = base.geometry.width, h = base.geometry.height;
-    const int sets = filter.tile * filter.tile;
-    const int min_acc = min_accepted(t, sets);
     AisGuidance out;
     bool any = false;
     for (int c = 0; c < kAisComponents; ++c) {
@@ -228,21 +93,20 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
     if (!any) return out;
     out.missing.assign(size_t(w) * h, 0);
     out.held.assign(size_t(w) * h, 0);
-    const WindowWalk walk(filter.tile, w);
+    const ts::TsAisGuideView view = guide_view(base, filter);
+    const ts::TsAisParams params = params_of(t, AisMode::A, filter.tile);
+    const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(filter.tile, w);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < w; ++x) {
                 const size_t p = size_t(y) * w + x;
-                const WindowBits wb = window_bits(base.geometry, filter, walk, x, y);
-                const int own = interleave_set(x, y, filter.tile);
-                out.missing[p] = walk.sets_of(wb.in_image & ~wb.accepted, own);
-                out.held[p] = walk.sets_of(wb.accepted, own);
+                const uint64_t in_image = ts::ts_ais_in_image(x, y, w, h, filter.tile);
+                const uint64_t accepted = discontinuity_window_mask(base.geometry, filter, x, y);
+                ts::ts_ais_window_sets(in_image, accepted, x, y, filter.tile, &out.missing[p], &out.held[p]);
                 for (int c = 0; c < kAisComponents; ++c) {
                     if (out.g[c].empty()) continue;
-                    if (c != kAisPM && !std::isfinite(base.geometry.depth[p])) continue;  // nothing to shade
-                    const Value v = c == kAisSS   ? ss_guidance(base, walk, wb, min_acc, p)
-                                    : c == kAisID ? id_guidance(base, filter, t, walk, wb, min_acc, x, y)
-                                                  : pm_guidance(base, filter, t, walk, wb, p);
+                    const ts::TsAisValue v =
+                        ts::ts_ais_guidance(&view, &params, offset.data(), c, in_image, accepted, x, y);
                     out.g[c][p] = v.g;
                     out.grade[c][p] = v.grade;
                 }
@@ -254,11 +118,9 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
 AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, AisMode mode, int width,
                           int height, int tile) {
     const int sets = tile * tile;
-    const int complete = t.complete_sets > 0 ? t.complete_sets : min_accepted(t, sets);
     const size_t pixels = size_t(width) * height;
-    const uint64_t all = sets == 64 ? ~0ull : (1ull << sets) - 1;
-    const float trigger[kAisComponents] = {t.ss_trigger, t.id_trigger, t.pm_trigger};
-    const std::vector<std::vector<int>> orders = far_first_orders(tile);
+    const ts::TsAisParams params = params_of(t, mode, tile);
+    const std::vector<uint32_t> orders = far_first_orders(tile);
     AisSchedule s;
     for (int c = 0; c < kAisComponents; ++c) {
         if (guidance.g[c].empty()) continue;
@@ -271,24 +133,31 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
                 for (int x = 0; x < width; ++x) {
                     const size_t p = size_t(y) * width + x;
                     const int own = interleave_set(x, y, tile);
-                    uint64_t mask = 1ull << own;
-                    if (guidance.g[c][p] > trigger[c]) {
-                        ++flagged_in_row[y];
-                        if (mode == AisMode::AMax) {
-                            mask = all;
-                        } else {
-                            mask = a_mask(guidance, p, own, complete, grade_of(guidance, c, p, trigger[c]),
-                                          orders[own], sets);
-                        }
-                    }
-                    s.masks[c][p] = mask;
-                    s.sets[c][p] = static_cast<uint8_t>(std::popcount(mask));
+                    // A guidance without grades grades by g; without window sets, p holds
+                    // only its own set and misses none.
+                    const ts::TsAisValue v = {guidance.g[c][p], guidance.grade[c].empty() ? guidance.g[c][p]
+                                                                                          : guidance.grade[c][p]};
+                    flagged_in_row[y] += v.g > params.trigger[c];
+                    const uint64_t held = guidance.held.empty() ? 0 : guidance.held[p];
+                    const uint64_t missing = guidance.missing.empty() ? 0 : guidance.missing[p];
+                    s.masks[c][p] = ts::ts_ais_set_mask(v, params.trigger[c], &params, own, sets, held, missing,
+                                                        &orders[size_t(own) * (sets - 1)]);
+                    s.sets[c][p] = static_cast<uint8_t>(std::popcount(s.masks[c][p]));
                 }
         });
         size_t flagged = 0;
         for (uint32_t f : flagged_in_row) flagged += f;
         s.flagged[c] = pixels ? double(flagged) / pixels : 0.0;
     }
+    schedule_items(s, width, height, tile);
+    return s;
+}
+
+void schedule_items(AisSchedule& s, int width, int height, int tile) {
+    s.item_pixels.clear();
+    s.item_sets.clear();
+    s.item_components.clear();
+    const int sets = tile * tile;
     // Items grouped by set, then by tile and pixel, over the pixels that have extra sets at
     // all. Within a set, items run tile by tile (kItemTile² pixels, rows of tiles, scanline
     // inside a tile), so the 16 consecutive items a packet backend traces together lie
@@ -318,7 +187,26 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
             s.item_sets.push_back(static_cast<uint8_t>(k));
             s.item_components.push_back(bits);
         }
-    return s;
+}
+
+std::vector<uint32_t> ais_schedule_table(const AisThresholds& t, AisMode mode, int tile, uint32_t components,
+                                         const EdgeSettings& e, float edge_epsilon) {
+    const ts::TsAisParams p = params_of(t, mode, tile);
+    std::vector<uint32_t> table(TS_AIS_TABLE_ORDER, 0u);
+    for (int c = 0; c < kAisComponents; ++c) table[TS_AIS_TABLE_TRIGGER + c] = std::bit_cast<uint32_t>(p.trigger[c]);
+    table[TS_AIS_TABLE_ID_COV] = std::bit_cast<uint32_t>(p.id_cov);
+    table[TS_AIS_TABLE_PM_COV] = std::bit_cast<uint32_t>(p.pm_cov);
+    table[TS_AIS_TABLE_MIN_ACCEPTED] = uint32_t(p.min_accepted);
+    table[TS_AIS_TABLE_COMPLETE] = uint32_t(p.complete);
+    table[TS_AIS_TABLE_MODE] = uint32_t(p.amax);
+    table[TS_AIS_TABLE_COMPONENTS] = components;
+    table[TS_AIS_TABLE_EDGE_TRIGGER] = std::bit_cast<uint32_t>(e.trigger);
+    table[TS_AIS_TABLE_EDGE_FULL] = std::bit_cast<uint32_t>(e.full);
+    table[TS_AIS_TABLE_EDGE_SAMPLES] = std::clamp<uint32_t>(e.samples, 1u, 15u);
+    table[TS_AIS_TABLE_EDGE_EPSILON] = std::bit_cast<uint32_t>(edge_epsilon);
+    const std::vector<uint32_t> orders = far_first_orders(tile);
+    table.insert(table.end(), orders.begin(), orders.end());
+    return table;
 }
 
 }  // namespace tessera

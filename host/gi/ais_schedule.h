@@ -147,4 +147,18 @@ inline int interleave_set(int x, int y, int n) {
 AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, AisMode mode, int width,
                           int height, int tile);
 
+/// Fills s.item_pixels, item_sets and item_components from s.masks (the per-pixel part of
+/// make_schedule, or a device's AisSchedule kernel): the order make_schedule documents.
+void schedule_items(AisSchedule& s, int width, int height, int tile);
+
+struct EdgeSettings;
+
+/// The named input AisScheduleTable (layout_igi.h TS_AIS_TABLE_*) for the device's
+/// KernelId::AisSchedule and KernelId::EdgeSchedule: `t` as make_schedule reads it (N_min
+/// and the completed set count resolved), `mode`, the far-first set orders of tile edge
+/// `tile`, the TS_COMPONENT_* bits `components` guided, the edge settings `e` and the
+/// edge contrast's ε `edge_epsilon` (W/(sr·m²); edge_epsilon in gi/ais_edges.h).
+std::vector<uint32_t> ais_schedule_table(const AisThresholds& t, AisMode mode, int tile, uint32_t components,
+                                         const EdgeSettings& e, float edge_epsilon);
+
 }  // namespace tessera

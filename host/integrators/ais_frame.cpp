@@ -1,6 +1,7 @@
 #include "integrators/ais_frame.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -93,40 +94,12 @@ AisBaseBuffers AisFrame::base_of(const std::vector<float>& surf, const std::vect
     return base;
 }
 
-// The guidance's inputs from a device frame's guide_ (TS_AIS_GUIDE_FLOATS a pixel): the
-// values base_of and IgiFrame::extract take from the whole outputs. geometry_ is filled in
-// place (its arrays kept across frames, as extract keeps them).
-AisBaseBuffers AisFrame::base_of_guide(int width, bool media) {
-    const size_t pixels = guide_.size() / TS_AIS_GUIDE_FLOATS;
-    AisBaseBuffers base;
-    GeometryBuffer& g = geometry_;
-    g.width = width;
-    g.height = static_cast<int>(pixels / static_cast<size_t>(width));
-    g.normal.resize(3 * pixels);
-    g.position.resize(3 * pixels);
-    g.depth.resize(pixels);
-    base.visibility.resize(pixels);
-    base.indirect.resize(pixels);
-    if (media) {
-        base.lit_fraction.resize(pixels);
-        base.medium_length.resize(pixels);
-        if (settings_.ais.pm_cov > 0.0f) base.media.resize(pixels);  // read only by g_var
-    }
-    parallel_pixels(pixels, [&](size_t p) {
-        const float* v = &guide_[p * TS_AIS_GUIDE_FLOATS];
-        for (int j = 0; j < 3; ++j) {
-            g.normal[3 * p + j] = v[TS_AIS_GUIDE_NORMAL + j];
-            g.position[3 * p + j] = v[TS_AIS_GUIDE_POSITION + j];
-        }
-        g.depth[p] = v[TS_AIS_GUIDE_DISTANCE];
-        base.visibility[p] = v[TS_AIS_GUIDE_VISIBLE];
-        base.indirect[p] = v[TS_AIS_GUIDE_INDIRECT];
-        if (!media) return;
-        base.lit_fraction[p] = v[TS_AIS_GUIDE_LIT];
-        base.medium_length[p] = v[TS_AIS_GUIDE_LENGTH];
-        if (!base.media.empty()) base.media[p] = v[TS_AIS_GUIDE_MEDIA];
-    });
-    return base;
+AisThresholds AisFrame::thresholds() const {
+    // The set-to-set CoV that VPL noise alone gives falls as 1/√paths: id_cov is stated
+    // for kIdCovPaths paths per set and scaled to this frame's.
+    AisThresholds t = settings_.ais;
+    t.id_cov *= std::sqrt(float(AisThresholds::kIdCovPaths) / float(std::max(1u, settings_.paths_per_set)));
+    return t;
 }
 
 // Guidance from the base pass and the schedule: the extra sets' item list.
@@ -136,14 +109,15 @@ std::vector<uint32_t> AisFrame::schedule_sets(AisBaseBuffers base) {
     const uint32_t bits = effective_components();
     const std::array<bool, kAisComponents> enabled = {(bits & TS_COMPONENT_SS) != 0, (bits & TS_COMPONENT_ID) != 0,
                                                       (bits & TS_COMPONENT_PM) != 0 && !base.lit_fraction.empty()};
-    // The set-to-set CoV that VPL noise alone gives falls as 1/√paths: id_cov is stated
-    // for kIdCovPaths paths per set and scaled to this frame's.
-    AisThresholds t = settings_.ais;
-    t.id_cov *= std::sqrt(float(AisThresholds::kIdCovPaths) / float(std::max(1u, settings_.paths_per_set)));
+    const AisThresholds t = thresholds();
     guidance_ = compute_guidance(base, settings_.discontinuity, t, enabled);
     geometry_ = std::move(base.geometry);
     schedule_ = make_schedule(guidance_, t, settings_.ais_mode, geometry_.width, geometry_.height,
                               static_cast<int>(settings_.tile));
+    return item_list();
+}
+
+std::vector<uint32_t> AisFrame::item_list() {
     stats_.flagged = schedule_.flagged;
     stats_.ais_items = schedule_.item_pixels.size();
     static_assert(1u << kAisSS == TS_COMPONENT_SS && 1u << kAisID == TS_COMPONENT_ID &&
@@ -154,6 +128,45 @@ std::vector<uint32_t> AisFrame::schedule_sets(AisBaseBuffers base) {
         list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
     }
     return list;
+}
+
+// The device's schedule: KernelId::AisSchedule's masks (TS_AIS_MASK_FLOATS a pixel, in
+// masks_) for the `guided` TS_COMPONENT_* bits, as make_schedule leaves them, then the
+// host's item list. No guidance maps: they are an AOV, which the host path draws.
+std::vector<uint32_t> AisFrame::schedule_from_masks(uint32_t guided, int width, int height) {
+    guidance_ = AisGuidance{};
+    schedule_ = AisSchedule{};
+    const size_t pixels = size_t(width) * height;
+    std::array<std::vector<uint32_t>, kAisComponents> flagged_in_row;
+    for (int c = 0; c < kAisComponents; ++c) {
+        if (!(guided & (1u << c))) continue;
+        schedule_.masks[c].resize(pixels);
+        schedule_.sets[c].resize(pixels);
+        flagged_in_row[c].assign(size_t(height), 0u);
+    }
+    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            for (int x = 0; x < width; ++x) {
+                const size_t p = size_t(y) * width + x;
+                const float* m = &masks_[p * TS_AIS_MASK_FLOATS];
+                const uint32_t flags = std::bit_cast<uint32_t>(m[TS_AIS_MASK_FLAGS]);
+                for (int c = 0; c < kAisComponents; ++c) {
+                    if (schedule_.masks[c].empty()) continue;
+                    const uint64_t mask = uint64_t(std::bit_cast<uint32_t>(m[TS_AIS_MASK_SETS(c) + 1])) << 32 |
+                                          std::bit_cast<uint32_t>(m[TS_AIS_MASK_SETS(c)]);
+                    schedule_.masks[c][p] = mask;
+                    schedule_.sets[c][p] = static_cast<uint8_t>(std::popcount(mask));
+                    flagged_in_row[c][y] += (flags >> c) & 1u;
+                }
+            }
+    });
+    for (int c = 0; c < kAisComponents; ++c) {
+        size_t flagged = 0;
+        for (uint32_t f : flagged_in_row[c]) flagged += f;
+        schedule_.flagged[c] = pixels ? double(flagged) / pixels : 0.0;
+    }
+    schedule_items(schedule_, width, height, static_cast<int>(settings_.tile));
+    return item_list();
 }
 
 // AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
@@ -247,8 +260,8 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
 }
 
 void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) {
-    // The base pass's outputs stay on the device for the resolve; the host's guidance reads
-    // TS_AIS_GUIDE_FLOATS a pixel of them (13 of their 39 floats).
+    // The base pass's outputs stay on the device; the schedule kernel reads them and the
+    // host reads TS_AIS_MASK_FLOATS a pixel of set masks back.
     auto t0 = Clock::now();
     backend_.launch_into(KernelId::IgiSurface, surface_frame, KernelInput::IgiSurface);
     stats_.surface_seconds = since(t0);
@@ -259,17 +272,25 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
         backend_.launch_into(KernelId::IgiMedia, frame, KernelInput::IgiMedia);
         stats_.media_seconds = since(t0);
     }
-    t0 = Clock::now();
-    backend_.launch(KernelId::AisGuideInputs, frame, guide_);
-    stats_.surface_seconds += since(t0);  // the read-back the host path counts there
     const auto t_ais = Clock::now();
-    AisBaseBuffers base = base_of_guide(static_cast<int>(frame.width), media);
-    if (settings_.filter) discontinuity_precompute(geometry_, settings_.discontinuity);
-    const std::vector<uint32_t> list = schedule_sets(std::move(base));
+    const uint32_t bits = effective_components();
+    const uint32_t guided = bits & (TS_COMPONENT_SS | TS_COMPONENT_ID | (media ? TS_COMPONENT_PM : 0u));
+    schedule_table_ = ais_schedule_table(thresholds(), settings_.ais_mode, static_cast<int>(settings_.tile), guided,
+                                         settings_.edges, 0.0f);
+    std::vector<uint32_t> list;
+    if (guided) {
+        backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
+        backend_.launch(KernelId::AisSchedule, frame, masks_);
+        list = schedule_from_masks(guided, static_cast<int>(frame.width), static_cast<int>(frame.height));
+    } else {
+        guidance_ = AisGuidance{};
+        schedule_ = AisSchedule{};
+        list = item_list();
+    }
     stats_.ais_schedule_seconds = since(t_ais);
     const auto t_kernel = Clock::now();
     backend_.launch_items_into(KernelId::AisItem, frame, list, KernelInput::AisItems);
-    backend_.set_input(KernelInput::AisPixelItems, ais_pixel_items(list, geometry_.depth.size()));
+    backend_.set_input(KernelInput::AisPixelItems, ais_pixel_items(list, size_t(frame.width) * frame.height));
     stats_.ais_kernel_seconds = since(t_kernel);
     stats_.ais_merge_seconds = 0.0;  // in the resolve
     stats_.ais_seconds = since(t_ais);
@@ -284,7 +305,7 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     edge_schedule_ = EdgeSchedule{};
     stats_.edge_samples = 0;
     stats_.edge_flagged = stats_.edge_seconds = stats_.edge_schedule_seconds = stats_.edge_kernel_seconds = 0.0;
-    if (!(effective_components() & TS_COMPONENT_EDGE)) {
+    if (!(bits & TS_COMPONENT_EDGE)) {
         backend_.launch(KernelId::IgiResolve, ais, out);
     } else {
         backend_.launch_into(KernelId::IgiResolve, ais, KernelInput::IgiPass);
@@ -296,10 +317,17 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
 
 void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out) {
     const auto t0 = Clock::now();
-    const size_t pixels = guide_.size() / TS_AIS_GUIDE_FLOATS;
-    emitter_.resize(pixels);
-    for (size_t p = 0; p < pixels; ++p) emitter_[p] = guide_[p * TS_AIS_GUIDE_FLOATS + TS_AIS_GUIDE_EMITTER] > 0.0f;
-    schedule_edges(out);
+    // The edge schedule from the resolved pass where it lies: its ε is the frame's mean
+    // luminance, which the host reads from the image it displays.
+    const float eps = edge_epsilon(out, settings_.edges.dark);
+    schedule_table_[TS_AIS_TABLE_EDGE_EPSILON] = std::bit_cast<uint32_t>(eps);
+    backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
+    backend_.launch(KernelId::EdgeSchedule, ais, edge_counts_);
+    edge_schedule_.samples.resize(edge_counts_.size());
+    for (size_t p = 0; p < edge_counts_.size(); ++p) edge_schedule_.samples[p] = static_cast<uint8_t>(edge_counts_[p]);
+    edge_schedule_items(edge_schedule_);
+    stats_.edge_samples = edge_schedule_.items.size() / TS_EDGE_ITEM_WORDS;
+    stats_.edge_flagged = edge_schedule_.flagged;
     const auto t_kernel = Clock::now();
     if (!edge_schedule_.items.empty()) {
         backend_.launch_items_into(KernelId::EdgeSample, frame, edge_schedule_.items, KernelInput::EdgeSamples);

@@ -37,15 +37,18 @@ public:
 
 protected:
     /// As igi: on the device where the backend resolves there (the GPU variant) and no
-    /// component AOVs are wanted. The schedule stays host code either way.
+    /// component AOVs are wanted. Which passes run, the thresholds and the item lists stay
+    /// host decisions either way.
     bool reconstructs_on_host() const override {
         return settings_.component_aovs || !backend_.resolves_on_device();
     }
-    /// The device's AIS frame: the surface and media kernels' outputs read back for the
-    /// host's guidance and schedule; the extra sets, their merge, the reconstruction, the
-    /// clamp's compensation, the composite and the edge samples' merge where the kernels
-    /// ran (shared/ais_resolve.h, KernelId::AisEdgeMerge): the host's image, bit for bit
-    /// where the device has fp64 and rounds exp as the host does.
+    /// The device's AIS frame: the set masks (KernelId::AisSchedule) and edge-sample counts
+    /// (KernelId::EdgeSchedule) computed where the kernels ran and read back for the
+    /// host's item lists (the host's masks and counts, bit for bit); the extra sets, their
+    /// merge, the reconstruction, the clamp's compensation, the composite and the edge
+    /// samples' merge where the kernels ran (shared/ais_resolve.h, KernelId::AisEdgeMerge):
+    /// the host's image, bit for bit where the device has fp64 and rounds exp as the host
+    /// does.
     void resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) override;
     void refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) override;
     void reconstruct_component(int c) override;
@@ -58,13 +61,17 @@ private:
     void add_sets(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media);
     /// The guidance's inputs from the surface and media kernels' outputs (host frames).
     AisBaseBuffers base_of(const std::vector<float>& surf, const std::vector<float>& media) const;
-    /// The same from a device frame's guide_ (with `media`: the frame computes PM), and
-    /// geometry_ as IgiFrame::extract fills it.
-    AisBaseBuffers base_of_guide(int width, bool media);
+    /// settings_.ais with id_cov scaled to the frame's paths per set.
+    AisThresholds thresholds() const;
     /// Guidance and schedule from the base pass's `base` (guidance_, schedule_, stats),
     /// which lends geometry_ for the time: the extra sets' item list (TS_AIS_ITEM_WORDS
     /// per item).
     std::vector<uint32_t> schedule_sets(AisBaseBuffers base);
+    /// schedule_'s item list (TS_AIS_ITEM_WORDS per item); sets the flagged and item stats.
+    std::vector<uint32_t> item_list();
+    /// schedule_ from a device frame's KernelId::AisSchedule output (masks_) for the
+    /// `guided` TS_COMPONENT_* bits; returns its item list.
+    std::vector<uint32_t> schedule_from_masks(uint32_t guided, int width, int height);
     /// Edge guidance and schedule from the pass image `out` and emitter_ (edge_guidance_,
     /// edge_schedule_).
     void schedule_edges(const std::vector<float>& out);
@@ -85,7 +92,11 @@ private:
     // The edge samples' kernel output, kept across passes as IgiFrame keeps surf_ (Sibenik
     // 512²: 11 MB a pass, whose fresh allocation would be zero-filled and faulted in anew).
     std::vector<float> edge_samples_;
-    std::vector<float> guide_;  ///< a device frame's TS_AIS_GUIDE_FLOATS a pixel (resolve_on_device)
+    // A device frame's schedule: the AisScheduleTable input, KernelId::AisSchedule's
+    // TS_AIS_MASK_FLOATS a pixel and KernelId::EdgeSchedule's count a pixel.
+    std::vector<uint32_t> schedule_table_;
+    std::vector<float> masks_;
+    std::vector<float> edge_counts_;
 };
 
 }  // namespace tessera

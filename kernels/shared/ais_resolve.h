@@ -8,11 +8,14 @@
  * it sends, per pixel, which items are its own (ais_pixel_items, edge_pixel_samples). */
 #ifndef TS_AIS_RESOLVE_H
 #define TS_AIS_RESOLVE_H
+#include "shared/ais_guidance.h"
 #include "shared/compat.h"
 #include "shared/discontinuity.h"
+#include "shared/edge_guidance.h"
 #include "shared/frame.h"
 #include "shared/geometry.h"
 #include "shared/layout_igi.h"
+#include "shared/layout_pass.h"
 #include "shared/sampling.h"
 
 TS_NAMESPACE_BEGIN
@@ -108,29 +111,88 @@ TS_INLINE int ts_ais_mean(const TsSceneView* sv, const TsFrame* f, uint x, uint 
     return 1;
 }
 
-/* Per-pixel kernel AisGuideInputs: what the host's guidance reads of pixel (x, y)'s base
- * pass (TS_AIS_GUIDE_*, layout_igi.h), the same values the host takes from the whole
- * outputs (luminances by ts_luminance, as the host computes them). */
-TS_INLINE void ts_ais_guide_inputs_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint x,
-                                         uint y, float* out) {
+/* Per-pixel kernel AisSchedule: pixel (x, y)'s set masks and flags (TS_AIS_MASK_*) from the
+ * base pass's outputs where the kernels ran (TsSceneView.igi_surface, igi_media) and the
+ * parameters (ais_schedule_table): the host's make_schedule(compute_guidance(...)) masks. */
+TS_INLINE void ts_ais_schedule_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint x, uint y,
+                                     float* out) {
     (void)tracer;
-    const size_t p = (size_t)y * f->width + x;
-    TS_GLOBAL const float* s = sv->igi_surface + p * TS_IGI_SURF_FLOATS;
-    for (int j = 0; j < 3; ++j) {
-        out[TS_AIS_GUIDE_NORMAL + j] = s[TS_IGI_SURF_NORMAL + j];
-        out[TS_AIS_GUIDE_POSITION + j] = s[TS_IGI_SURF_POSITION + j];
+    TS_GLOBAL const uint* table = sv->ais_schedule_table;
+    const TsAisParams t = ts_ais_params(table);
+    const uint components = table[TS_AIS_TABLE_COMPONENTS];
+    const int n = (int)f->igi_tile, sets = n * n, w = (int)f->width, h = (int)f->height;
+    const int own = (int)ts_igi_set(x, y, (uint)n);
+    TsAisGuideView v;
+    v.depth = sv->igi_surface + TS_IGI_SURF_DISTANCE;
+    v.normal = sv->igi_surface + TS_IGI_SURF_NORMAL;
+    v.position = sv->igi_surface + TS_IGI_SURF_POSITION;
+    v.visibility = sv->igi_surface + TS_IGI_SURF_VISIBLE;
+    v.indirect = sv->igi_surface + TS_IGI_SURF_E_ID;
+    v.depth_stride = v.vec_stride = v.surf_stride = TS_IGI_SURF_FLOATS;
+    v.indirect_rgb = 1;
+    const int media = (components & TS_COMPONENT_PM) != 0;
+    v.lit = media ? sv->igi_media + TS_IGI_MEDIA_LIT : 0;
+    v.length = media ? sv->igi_media + TS_IGI_MEDIA_LENGTH : 0;
+    v.media = media ? sv->igi_media + TS_IGI_MEDIA_RADIANCE : 0;
+    v.media_stride = TS_IGI_MEDIA_FLOATS;
+    v.media_rgb = 1;
+    v.width = w, v.height = h, v.tile = n;
+    v.cos_min = f->igi_filter_cos, v.depth_rel = f->igi_filter_depth;
+    long offset[64];
+    for (int i = 0; i < sets; ++i) offset[i] = ts_discontinuity_offset(n, w, i);
+    const ulong in_image = ts_ais_in_image((int)x, (int)y, w, h, n);
+    const ulong accepted = ts_discontinuity_mask((int)x, (int)y, w, h, n, v.depth, v.normal, v.position,
+                                                 TS_IGI_SURF_FLOATS, TS_IGI_SURF_FLOATS, 1, v.cos_min, v.depth_rel);
+    ulong missing, held;
+    ts_ais_window_sets(in_image, accepted, (int)x, (int)y, n, &missing, &held);
+    TS_GLOBAL const uint* order = table + TS_AIS_TABLE_ORDER + (size_t)own * (size_t)(sets - 1);
+    uint flags = 0u;
+    for (int c = 0; c < 3; ++c) {
+        ulong mask = (ulong)1 << own;
+        if (components & (1u << c)) {
+            const TsAisValue g = ts_ais_guidance(&v, &t, offset, c, in_image, accepted, (int)x, (int)y);
+            if (g.g > t.trigger[c]) flags |= 1u << c;
+            mask = ts_ais_set_mask(g, t.trigger[c], &t, own, sets, held, missing, order);
+        }
+        out[TS_AIS_MASK_SETS(c)] = as_float((uint)(mask & 0xffffffffu));
+        out[TS_AIS_MASK_SETS(c) + 1] = as_float((uint)(mask >> 32));
     }
-    out[TS_AIS_GUIDE_DISTANCE] = s[TS_IGI_SURF_DISTANCE];
-    out[TS_AIS_GUIDE_VISIBLE] = s[TS_IGI_SURF_VISIBLE];
-    out[TS_AIS_GUIDE_INDIRECT] = ts_luminance(ts_f3_load(s + TS_IGI_SURF_E_ID));
-    out[TS_AIS_GUIDE_EMITTER] = s[TS_IGI_SURF_EMISSION] + s[TS_IGI_SURF_EMISSION + 1] + s[TS_IGI_SURF_EMISSION + 2] > 0.0f
-                                    ? 1.0f : 0.0f;
-    out[TS_AIS_GUIDE_LIT] = out[TS_AIS_GUIDE_LENGTH] = out[TS_AIS_GUIDE_MEDIA] = 0.0f;
-    if (!(f->igi_components & TS_COMPONENT_PM)) return;
-    TS_GLOBAL const float* m = sv->igi_media + p * TS_IGI_MEDIA_FLOATS;
-    out[TS_AIS_GUIDE_LIT] = m[TS_IGI_MEDIA_LIT];
-    out[TS_AIS_GUIDE_LENGTH] = m[TS_IGI_MEDIA_LENGTH];
-    out[TS_AIS_GUIDE_MEDIA] = ts_luminance(ts_f3_load(m + TS_IGI_MEDIA_RADIANCE));
+    out[TS_AIS_MASK_FLAGS] = as_float(flags);
+}
+
+/* Per-pixel kernel EdgeSchedule: pixel (x, y)'s edge samples (one float, a count 0..15)
+ * from the resolved pass (TsSceneView.igi_pass), the base pass's G-buffer and emission
+ * (igi_surface) and the edge settings and ε (ais_schedule_table): the host's
+ * make_edge_schedule(edge_guidance(...)) count, bit for bit. */
+TS_INLINE void ts_edge_schedule_pixel(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint x, uint y,
+                                      float* out) {
+    (void)tracer;
+    TS_GLOBAL const uint* table = sv->ais_schedule_table;
+    const int w = (int)f->width, h = (int)f->height;
+    const size_t p = (size_t)y * (size_t)w + x;
+    TS_GLOBAL const float* sp = sv->igi_surface + p * TS_IGI_SURF_FLOATS;
+    const float yp = ts_luminance(ts_f3_load(sv->igi_pass + p * TS_PASS_FLOATS + TS_PASS_RADIANCE));
+    const float eps = as_float(table[TS_AIS_TABLE_EDGE_EPSILON]);
+    const int emitter = sp[TS_IGI_SURF_EMISSION] + sp[TS_IGI_SURF_EMISSION + 1] + sp[TS_IGI_SURF_EMISSION + 2] > 0.0f;
+    float best = 0.0f;
+    for (int i = 1; i < 9; ++i) {
+        const int qx = (int)x + ts_edge_window[i][0], qy = (int)y + ts_edge_window[i][1];
+        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+        const size_t q = (size_t)qy * (size_t)w + (size_t)qx;
+        TS_GLOBAL const float* sq = sv->igi_surface + q * TS_IGI_SURF_FLOATS;
+        const int accepted = ts_discontinuity_accepts(
+            sp[TS_IGI_SURF_DISTANCE], ts_f3_load(sp + TS_IGI_SURF_NORMAL), ts_f3_load(sp + TS_IGI_SURF_POSITION),
+            sq[TS_IGI_SURF_DISTANCE], ts_f3_load(sq + TS_IGI_SURF_NORMAL), ts_f3_load(sq + TS_IGI_SURF_POSITION), 1,
+            f->igi_filter_cos, f->igi_filter_depth);
+        const int emitter_q =
+            sq[TS_IGI_SURF_EMISSION] + sq[TS_IGI_SURF_EMISSION + 1] + sq[TS_IGI_SURF_EMISSION + 2] > 0.0f;
+        if (accepted && emitter == emitter_q) continue;
+        const float yq = ts_luminance(ts_f3_load(sv->igi_pass + q * TS_PASS_FLOATS + TS_PASS_RADIANCE));
+        best = ts_edge_max(best, ts_edge_contrast(yp, yq, eps));
+    }
+    out[0] = (float)ts_edge_sample_count(best, as_float(table[TS_AIS_TABLE_EDGE_TRIGGER]),
+                                         as_float(table[TS_AIS_TABLE_EDGE_FULL]), table[TS_AIS_TABLE_EDGE_SAMPLES],
+                                         (int)table[TS_AIS_TABLE_MODE]);
 }
 
 /* The window pixel whose surface the edge sample `sample` (TS_EDGE_SAMPLE_FLOATS) lies on,

@@ -120,6 +120,7 @@ using std::exp;
 using std::log;
 using std::fabs;
 using std::floor;
+using std::ceil;
 using std::sin;
 using std::sqrt;
 using std::tan;

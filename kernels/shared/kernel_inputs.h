@@ -60,7 +60,9 @@
  *                    (KernelId::AisEdgeMerge reads it)
  *   EdgeSamples      TS_EDGE_SAMPLE_FLOATS per item of the frame's edge list,
  *                    KernelId::EdgeSample's output kept
- *   EdgePixelSamples each pixel's edge samples (layout_igi.h, TS_EDGE_PIXEL_*) */
+ *   EdgePixelSamples each pixel's edge samples (layout_igi.h, TS_EDGE_PIXEL_*)
+ *   AisScheduleTable the AIS schedule's parameters and set orders (layout_igi.h,
+ *                    TS_AIS_TABLE_*; KernelId::AisSchedule and EdgeSchedule read it) */
 #define TS_KERNEL_INPUTS(X)                                                  \
     X(Vpls, vpls, float, "VPL")                                              \
     X(VplSetStart, vpl_set_start, uint, "VPL set table")                     \
@@ -81,7 +83,8 @@
     X(AisPixelItems, ais_pixel_items, uint, "AIS pixel items")               \
     X(IgiPass, igi_pass, float, "igi pass")                                  \
     X(EdgeSamples, edge_samples, float, "edge samples")                      \
-    X(EdgePixelSamples, edge_pixel_samples, uint, "edge pixel samples")
+    X(EdgePixelSamples, edge_pixel_samples, uint, "edge pixel samples")     \
+    X(AisScheduleTable, ais_schedule_table, uint, "AIS schedule table")
 
 /* TsSceneView's pointer to one buffer (shared/geometry.h). */
 #define TS_VIEW_SCENE_FIELD(field, type, what) TS_GLOBAL const type* field;

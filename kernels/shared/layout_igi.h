@@ -125,28 +125,41 @@
  * (0: none; at most 15). */
 #define TS_EDGE_PIXEL_FIRST_SHIFT 4
 #define TS_EDGE_PIXEL_COUNT_MASK 15u
-/* What the host's AIS guidance and edge guidance read of a device frame's base pass
- * (KernelId::AisGuideInputs, shared/ais_resolve.h), TS_AIS_GUIDE_FLOATS a pixel, instead of
- * the surface and media passes' whole outputs:
- *   TS_AIS_GUIDE_NORMAL    3 floats: shading normal (TS_IGI_SURF_NORMAL)
- *   TS_AIS_GUIDE_POSITION  3 floats: position (TS_IGI_SURF_POSITION)
- *   TS_AIS_GUIDE_DISTANCE  distance along the camera path (TS_IGI_SURF_DISTANCE)
- *   TS_AIS_GUIDE_VISIBLE   TS_IGI_SURF_VISIBLE
- *   TS_AIS_GUIDE_INDIRECT  luminance of E_id (TS_IGI_SURF_E_ID)
- *   TS_AIS_GUIDE_EMITTER   1 where the camera path ends on an emitter (the sum of
- *                          TS_IGI_SURF_EMISSION is positive), else 0
- *   TS_AIS_GUIDE_LIT, TS_AIS_GUIDE_LENGTH  TS_IGI_MEDIA_LIT, TS_IGI_MEDIA_LENGTH (0 without PM)
- *   TS_AIS_GUIDE_MEDIA     luminance of the media radiance (0 without PM) */
-#define TS_AIS_GUIDE_FLOATS 13
-#define TS_AIS_GUIDE_NORMAL 0
-#define TS_AIS_GUIDE_POSITION 3
-#define TS_AIS_GUIDE_DISTANCE 6
-#define TS_AIS_GUIDE_VISIBLE 7
-#define TS_AIS_GUIDE_INDIRECT 8
-#define TS_AIS_GUIDE_EMITTER 9
-#define TS_AIS_GUIDE_LIT 10
-#define TS_AIS_GUIDE_LENGTH 11
-#define TS_AIS_GUIDE_MEDIA 12
+/* The AIS schedule's parameters (named input AisScheduleTable, shared/ais_guidance.h; the
+ * host builds it with ais_schedule_table, host/gi/ais_schedule.h), uints, floats as their
+ * bits (as_uint):
+ *   TS_AIS_TABLE_TRIGGER + c   component c's (0 SS, 1 ID, 2 PM) trigger (float)
+ *   TS_AIS_TABLE_ID_COV        the CoV that saturates ID's g_var (float, scaled to the paths)
+ *   TS_AIS_TABLE_PM_COV        the same for PM (float; 0: no g_var)
+ *   TS_AIS_TABLE_MIN_ACCEPTED  N_min, the accepted-neighbour count of a cleanable pixel
+ *   TS_AIS_TABLE_COMPLETE      A: the distinct sets a flagged pixel completes to
+ *   TS_AIS_TABLE_MODE          0 A, 1 A-MAX
+ *   TS_AIS_TABLE_COMPONENTS    TS_COMPONENT_* bits of the components guided
+ *   TS_AIS_TABLE_EDGE_TRIGGER, TS_AIS_TABLE_EDGE_FULL  edge contrast trigger, full (floats)
+ *   TS_AIS_TABLE_EDGE_SAMPLES  edge samples a flagged pixel takes at most (1..15)
+ *   TS_AIS_TABLE_EDGE_EPSILON  ε of the edge contrast (float, W/(sr·m²))
+ *   TS_AIS_TABLE_ORDER         n² rows of n² − 1 sets: row k, the sets other than k in the
+ *                              order a pixel of own set k takes them (far-first) */
+#define TS_AIS_TABLE_TRIGGER 0
+#define TS_AIS_TABLE_ID_COV 3
+#define TS_AIS_TABLE_PM_COV 4
+#define TS_AIS_TABLE_MIN_ACCEPTED 5
+#define TS_AIS_TABLE_COMPLETE 6
+#define TS_AIS_TABLE_MODE 7
+#define TS_AIS_TABLE_COMPONENTS 8
+#define TS_AIS_TABLE_EDGE_TRIGGER 9
+#define TS_AIS_TABLE_EDGE_FULL 10
+#define TS_AIS_TABLE_EDGE_SAMPLES 11
+#define TS_AIS_TABLE_EDGE_EPSILON 12
+#define TS_AIS_TABLE_ORDER 16
+/* The AIS schedule of a pixel (KernelId::AisSchedule, shared/ais_resolve.h),
+ * TS_AIS_MASK_FLOATS floats, each a uint's bits (as_float): TS_AIS_MASK_SETS(c) and the
+ * next the low and high 32 bits of component c's set mask (bit k: the pixel evaluates set
+ * k, its own included), TS_AIS_MASK_FLAGS the TS_COMPONENT_* bits of the components that
+ * flag it. KernelId::EdgeSchedule writes one float a pixel: its edge-sample count. */
+#define TS_AIS_MASK_FLOATS 7
+#define TS_AIS_MASK_SETS(c) (2 * (c))
+#define TS_AIS_MASK_FLAGS 6
 /* Components (TsFrame.igi_components). */
 #define TS_COMPONENT_SS 1u
 #define TS_COMPONENT_ID 2u

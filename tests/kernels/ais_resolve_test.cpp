@@ -1,7 +1,6 @@
 // The AIS frame reconstructed where the kernels ran (kernels/shared/ais_resolve.h,
-// AisFrame::resolve_on_device: the guidance's inputs read back compactly, the extra sets'
-// merge, the reconstruction, the clamp's
-// compensation, the composite and the edge samples' merge on the device) against the
+// AisFrame::resolve_on_device: the set masks and edge-sample counts computed there, the
+// extra sets' merge, the reconstruction, the clamp's compensation, the composite and the edge samples' merge on the device) against the
 // host's (AisFrame's refine, reconstruct_component, compensate_clamp, composite, finish).
 // The OpenCL GPU variant runs the device path, its full-stack per-ray variant the host's,
 // over the same hits (tests/backend/opencl_gpu_variant_test.cpp); both trace their light
@@ -71,7 +70,9 @@ TEST_P(AisDeviceFrame, EqualsTheHostFrame) {
     // The device path ran (the extra sets kept there and, with edges, merged there), and
     // the host's did not.
     EXPECT_GT(device->dispatch_count(KernelId::IgiResolve), 0u);
-    EXPECT_GT(device->dispatch_count(KernelId::AisGuideInputs), 0u);  // the guidance's 13 floats a pixel
+    EXPECT_GT(device->dispatch_count(KernelId::AisSchedule), 0u);  // the set masks, not the G-buffer
+    EXPECT_EQ(host->dispatch_count(KernelId::AisSchedule), 0u);
+    EXPECT_EQ(device->dispatch_count(KernelId::EdgeSchedule), c.components & TS_COMPONENT_EDGE ? 2u : 0u);
     EXPECT_EQ(host->dispatch_count(KernelId::IgiResolve), 0u);
     EXPECT_EQ(host->dispatch_count(KernelId::AisEdgeMerge), 0u);
     if (c.components & TS_COMPONENT_EDGE) {

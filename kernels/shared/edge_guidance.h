@@ -1,0 +1,42 @@
+/* Edge guidance and each pixel's edge-sample count (docs/ais.md §9): the per-pixel math of
+ * the host's edge_guidance and make_edge_schedule (host/gi/ais_edges.cpp), written once so
+ * the device's KernelId::EdgeSchedule (shared/ais_resolve.h) gives the host's counts bit
+ * for bit. The caller finds which neighbours lie across an edge (its discontinuity test,
+ * or the emitter flags differ); the contrast and the count are here. */
+#ifndef TS_EDGE_GUIDANCE_H
+#define TS_EDGE_GUIDANCE_H
+#include "shared/compat.h"
+
+TS_NAMESPACE_BEGIN
+
+/* p's 3×3 window: itself, the 4 sides, then the corners (the order ties are broken in). */
+TS_CONSTANT_TABLE int ts_edge_window[9][2] = {{0, 0},  {-1, 0}, {1, 0},  {0, -1}, {0, 1},
+                                              {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+
+/* The contrast across the edge between luminances yp and yq (Michelson's with ε `eps`,
+ * in [0, 1]); 0 where the denominator is not positive. */
+TS_INLINE float ts_edge_contrast(float yp, float yq, float eps) {
+    const float denominator = yp + yq + eps;
+    return denominator > 0.0f ? fabs(yp - yq) / denominator : 0.0f;
+}
+
+/* Folds one neighbour's contrast into the pixel's running maximum `best`, clamped to 1. A
+ * NaN or infinite luminance flags nothing (the comparison fails). */
+TS_INLINE float ts_edge_max(float best, float contrast) {
+    return contrast > best ? (1.0f < contrast ? 1.0f : contrast) : best;
+}
+
+/* Edge samples of a pixel of guidance g (0: not flagged): A-MAX `most`; A ⌈most · a⌉,
+ * a = (g − trigger) / (full − trigger) clamped to [0, 1], at least 1 (where full >
+ * trigger; else `most`). */
+TS_INLINE uint ts_edge_sample_count(float g, float trigger, float full, uint most, int amax) {
+    if (!(g > trigger)) return 0u;
+    if (amax || !(full > trigger)) return most;
+    float a = (g - trigger) / (full - trigger);
+    a = a < 0.0f ? 0.0f : (1.0f < a ? 1.0f : a);
+    const uint n = (uint)ceil(a * (float)most);
+    return n < 1u ? 1u : (most < n ? most : n);
+}
+
+TS_NAMESPACE_END
+#endif /* TS_EDGE_GUIDANCE_H */
