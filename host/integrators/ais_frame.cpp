@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "gi/ais_items.h"
 #include "gi/ais_reconstruct.h"
 #include "kernels/shared/frame.h"
 #include "kernels/shared/layout_igi.h"
@@ -31,38 +32,6 @@ void parallel_pixels(size_t pixels, F&& f) {
 }
 
 }  // namespace
-
-std::vector<uint32_t> ais_pixel_items(const std::vector<uint32_t>& list, size_t pixels) {
-    const size_t items = list.size() / TS_AIS_ITEM_WORDS;
-    std::vector<uint32_t> t(pixels + 1 + TS_AIS_ENTRY_WORDS * items, 0u);
-    for (size_t i = 0; i < items; ++i) ++t[list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL] + 1];
-    for (size_t p = 0; p < pixels; ++p) t[p + 1] += t[p];
-    std::vector<uint32_t> next(t.begin(), t.begin() + pixels);
-    // List order: grouped by set in increasing order, so each pixel's entries come out in
-    // increasing set order, the order the host's merge adds them in.
-    for (size_t i = 0; i < items; ++i) {
-        const uint32_t p = list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL];
-        uint32_t* e = &t[pixels + 1 + TS_AIS_ENTRY_WORDS * size_t(next[p]++)];
-        e[TS_AIS_ENTRY_ITEM] = static_cast<uint32_t>(i);
-        e[TS_AIS_ENTRY_CODE] = list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE];
-    }
-    return t;
-}
-
-std::vector<uint32_t> edge_pixel_samples(const EdgeSchedule& schedule) {
-    std::vector<uint32_t> code(schedule.samples.size(), 0u);
-    const size_t n = schedule.items.size() / TS_EDGE_ITEM_WORDS;
-    // 15 samples a pixel at most: the first index keeps 28 bits, 268M samples (18M pixels
-    // all flagged, far past any frame's).
-    if (n >> (32 - TS_EDGE_PIXEL_FIRST_SHIFT))
-        throw std::length_error("edge_pixel_samples: " + std::to_string(n) + " edge samples do not fit the pixel codes");
-    for (size_t i = 0; i < n; ++i) {
-        const uint32_t* it = &schedule.items[TS_EDGE_ITEM_WORDS * i];
-        if (it[TS_EDGE_ITEM_SAMPLE] == 1)
-            code[it[TS_EDGE_ITEM_PIXEL]] = static_cast<uint32_t>(i) << TS_EDGE_PIXEL_FIRST_SHIFT | it[TS_EDGE_ITEM_COUNT];
-    }
-    return code;
-}
 
 void AisFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const std::vector<float>& media) {
     const auto t0 = Clock::now();
@@ -122,51 +91,7 @@ std::vector<uint32_t> AisFrame::item_list() {
     stats_.ais_items = schedule_.item_pixels.size();
     static_assert(1u << kAisSS == TS_COMPONENT_SS && 1u << kAisID == TS_COMPONENT_ID &&
                   1u << kAisPM == TS_COMPONENT_PM, "AIS component bits are the kernels' TS_COMPONENT_* bits");
-    std::vector<uint32_t> list(TS_AIS_ITEM_WORDS * schedule_.item_pixels.size());
-    for (size_t i = 0; i < schedule_.item_pixels.size(); ++i) {
-        list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL] = schedule_.item_pixels[i];
-        list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE] = schedule_.item_sets[i] | uint32_t(schedule_.item_components[i]) << 8;
-    }
-    return list;
-}
-
-// The device's schedule: KernelId::AisSchedule's masks (TS_AIS_MASK_FLOATS a pixel, in
-// masks_) for the `guided` TS_COMPONENT_* bits, as make_schedule leaves them, then the
-// host's item list. No guidance maps: they are an AOV, which the host path draws.
-std::vector<uint32_t> AisFrame::schedule_from_masks(uint32_t guided, int width, int height) {
-    guidance_ = AisGuidance{};
-    schedule_ = AisSchedule{};
-    const size_t pixels = size_t(width) * height;
-    std::array<std::vector<uint32_t>, kAisComponents> flagged_in_row;
-    for (int c = 0; c < kAisComponents; ++c) {
-        if (!(guided & (1u << c))) continue;
-        schedule_.masks[c].resize(pixels);
-        schedule_.sets[c].resize(pixels);
-        flagged_in_row[c].assign(size_t(height), 0u);
-    }
-    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int x = 0; x < width; ++x) {
-                const size_t p = size_t(y) * width + x;
-                const float* m = &masks_[p * TS_AIS_MASK_FLOATS];
-                const uint32_t flags = std::bit_cast<uint32_t>(m[TS_AIS_MASK_FLAGS]);
-                for (int c = 0; c < kAisComponents; ++c) {
-                    if (schedule_.masks[c].empty()) continue;
-                    const uint64_t mask = uint64_t(std::bit_cast<uint32_t>(m[TS_AIS_MASK_SETS(c) + 1])) << 32 |
-                                          std::bit_cast<uint32_t>(m[TS_AIS_MASK_SETS(c)]);
-                    schedule_.masks[c][p] = mask;
-                    schedule_.sets[c][p] = static_cast<uint8_t>(std::popcount(mask));
-                    flagged_in_row[c][y] += (flags >> c) & 1u;
-                }
-            }
-    });
-    for (int c = 0; c < kAisComponents; ++c) {
-        size_t flagged = 0;
-        for (uint32_t f : flagged_in_row[c]) flagged += f;
-        schedule_.flagged[c] = pixels ? double(flagged) / pixels : 0.0;
-    }
-    schedule_items(schedule_, width, height, static_cast<int>(settings_.tile));
-    return item_list();
+    return ais_item_list(schedule_);
 }
 
 // AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
@@ -277,20 +202,25 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     const uint32_t guided = bits & (TS_COMPONENT_SS | TS_COMPONENT_ID | (media ? TS_COMPONENT_PM : 0u));
     schedule_table_ = ais_schedule_table(thresholds(), settings_.ais_mode, static_cast<int>(settings_.tile), guided,
                                          settings_.edges, 0.0f);
-    std::vector<uint32_t> list;
+    // No host schedule: the kernel's masks become the item tables directly (the guidance
+    // and set-count maps are AOVs, which the host path draws).
+    guidance_ = AisGuidance{};
+    schedule_ = AisSchedule{};
+    device_items_.list.clear();
+    device_items_.pixel_items.assign(size_t(frame.width) * frame.height + 1, 0u);
+    device_items_.flagged = {};
     if (guided) {
         backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
         backend_.launch(KernelId::AisSchedule, frame, masks_);
-        list = schedule_from_masks(guided, static_cast<int>(frame.width), static_cast<int>(frame.height));
-    } else {
-        guidance_ = AisGuidance{};
-        schedule_ = AisSchedule{};
-        list = item_list();
+        ais_item_tables(masks_, static_cast<int>(frame.width), static_cast<int>(frame.height),
+                        static_cast<int>(settings_.tile), device_items_);
     }
+    stats_.flagged = device_items_.flagged;
+    stats_.ais_items = device_items_.list.size() / TS_AIS_ITEM_WORDS;
     stats_.ais_schedule_seconds = since(t_ais);
     const auto t_kernel = Clock::now();
-    backend_.launch_items_into(KernelId::AisItem, frame, list, KernelInput::AisItems);
-    backend_.set_input(KernelInput::AisPixelItems, ais_pixel_items(list, size_t(frame.width) * frame.height));
+    backend_.launch_items_into(KernelId::AisItem, frame, device_items_.list, KernelInput::AisItems);
+    backend_.set_input(KernelInput::AisPixelItems, device_items_.pixel_items);
     stats_.ais_kernel_seconds = since(t_kernel);
     stats_.ais_merge_seconds = 0.0;  // in the resolve
     stats_.ais_seconds = since(t_ais);
@@ -323,15 +253,13 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
     schedule_table_[TS_AIS_TABLE_EDGE_EPSILON] = std::bit_cast<uint32_t>(eps);
     backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
     backend_.launch(KernelId::EdgeSchedule, ais, edge_counts_);
-    edge_schedule_.samples.resize(edge_counts_.size());
-    for (size_t p = 0; p < edge_counts_.size(); ++p) edge_schedule_.samples[p] = static_cast<uint8_t>(edge_counts_[p]);
-    edge_schedule_items(edge_schedule_);
-    stats_.edge_samples = edge_schedule_.items.size() / TS_EDGE_ITEM_WORDS;
-    stats_.edge_flagged = edge_schedule_.flagged;
+    edge_item_tables(edge_counts_, static_cast<int>(frame.width), device_edges_);
+    stats_.edge_samples = device_edges_.items.size() / TS_EDGE_ITEM_WORDS;
+    stats_.edge_flagged = device_edges_.flagged;
     const auto t_kernel = Clock::now();
-    if (!edge_schedule_.items.empty()) {
-        backend_.launch_items_into(KernelId::EdgeSample, frame, edge_schedule_.items, KernelInput::EdgeSamples);
-        backend_.set_input(KernelInput::EdgePixelSamples, edge_pixel_samples(edge_schedule_));
+    if (!device_edges_.items.empty()) {
+        backend_.launch_items_into(KernelId::EdgeSample, frame, device_edges_.items, KernelInput::EdgeSamples);
+        backend_.set_input(KernelInput::EdgePixelSamples, device_edges_.pixel_samples);
         backend_.launch(KernelId::AisEdgeMerge, ais, out);
     }
     stats_.edge_seconds = since(t0);

@@ -6,17 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "gi/ais_items.h"
 #include "gi/ais_schedule.h"
 #include "integrators/igi_frame.h"
 
 namespace tessera {
-
-/// The device frame's items per pixel (named input AisPixelItems, layout_igi.h TS_AIS_ENTRY_*)
-/// from the AIS item list `list` (TS_AIS_ITEM_WORDS per item) of a `pixels`-pixel frame.
-std::vector<uint32_t> ais_pixel_items(const std::vector<uint32_t>& list, size_t pixels);
-
-/// Each pixel's first edge sample and count (named input EdgePixelSamples, TS_EDGE_PIXEL_*).
-std::vector<uint32_t> edge_pixel_samples(const EdgeSchedule& schedule);
 
 /// The `ais` / `ais-max` integrator; settings.ais_mode picks the mode.
 class AisFrame final : public IgiFrame {
@@ -30,9 +24,10 @@ public:
     /// IgiFrame's line and the last frame's flagged fractions, extra sets and time.
     std::string describe() const override;
 
-    /// The last frame's schedule.
+    /// The last frame's schedule (empty where the kernels scheduled it: resolve_on_device).
     const AisSchedule& schedule() const { return schedule_; }
-    /// The last frame's edge samples per pixel (empty without TS_COMPONENT_EDGE).
+    /// The last frame's edge samples per pixel (empty without TS_COMPONENT_EDGE, and where
+    /// the kernels scheduled them).
     const EdgeSchedule& edge_schedule() const { return edge_schedule_; }
 
 protected:
@@ -69,9 +64,6 @@ private:
     std::vector<uint32_t> schedule_sets(AisBaseBuffers base);
     /// schedule_'s item list (TS_AIS_ITEM_WORDS per item); sets the flagged and item stats.
     std::vector<uint32_t> item_list();
-    /// schedule_ from a device frame's KernelId::AisSchedule output (masks_) for the
-    /// `guided` TS_COMPONENT_* bits; returns its item list.
-    std::vector<uint32_t> schedule_from_masks(uint32_t guided, int width, int height);
     /// Edge guidance and schedule from the pass image `out` and emitter_ (edge_guidance_,
     /// edge_schedule_).
     void schedule_edges(const std::vector<float>& out);
@@ -97,6 +89,8 @@ private:
     std::vector<uint32_t> schedule_table_;
     std::vector<float> masks_;
     std::vector<float> edge_counts_;
+    AisItemTables device_items_;   // the item tables from masks_ (gi/ais_items.h)
+    EdgeItemTables device_edges_;  // ... and from edge_counts_
 };
 
 }  // namespace tessera

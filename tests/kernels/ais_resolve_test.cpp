@@ -105,32 +105,5 @@ INSTANTIATE_TEST_SUITE_P(
                       DeviceCase{"FogAMax", "cornell-box-fog.json", Method::AisMax, 3, true, kAll}),
     [](const auto& info) { return std::string(info.param.name); });
 
-// The items of each pixel, as the device reads them: offsets over the pixels, then each
-// pixel's entries in increasing set order (the list's order), with the item's index and code.
-TEST(AisPixelItems, ListEachPixelsItemsInSetOrder) {
-    // Pixels 0..3; items grouped by set as make_schedule lists them: set 1 (pixels 2, 0),
-    // set 4 (pixel 2), set 7 (pixels 0, 2).
-    const std::vector<uint32_t> list = {2, 1 | 2u << 8, 0, 1 | 1u << 8, 2, 4 | 7u << 8, 0, 7 | 2u << 8, 2, 7 | 4u << 8};
-    const std::vector<uint32_t> t = ais_pixel_items(list, 4);
-    ASSERT_EQ(t.size(), 5u + TS_AIS_ENTRY_WORDS * 5u);
-    EXPECT_EQ(std::vector<uint32_t>(t.begin(), t.begin() + 5), (std::vector<uint32_t>{0, 2, 2, 5, 5}));
-    auto entry = [&](uint32_t k, int w) { return t[5 + TS_AIS_ENTRY_WORDS * k + w]; };
-    // Pixel 0: items 1 (set 1) and 3 (set 7); pixel 2: items 0, 2, 4 (sets 1, 4, 7).
-    const uint32_t items[5] = {1, 3, 0, 2, 4};
-    for (uint32_t k = 0; k < 5; ++k) {
-        EXPECT_EQ(entry(k, TS_AIS_ENTRY_ITEM), items[k]) << k;
-        EXPECT_EQ(entry(k, TS_AIS_ENTRY_CODE), list[2 * items[k] + 1]) << k;
-    }
-}
-
-TEST(AisPixelItems, EdgeSamplesCodeFirstAndCount) {
-    EdgeSchedule s;
-    s.samples = {0, 2, 0, 1};
-    s.items = {1, 1, 2, 1, 2, 2, 3, 1, 1};
-    const std::vector<uint32_t> code = edge_pixel_samples(s);
-    EXPECT_EQ(code, (std::vector<uint32_t>{0u, 0u << TS_EDGE_PIXEL_FIRST_SHIFT | 2u, 0u,
-                                           2u << TS_EDGE_PIXEL_FIRST_SHIFT | 1u}));
-}
-
 }  // namespace
 }  // namespace tessera
