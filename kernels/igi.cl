@@ -37,6 +37,8 @@ TS_PIXEL_KERNEL(igi_resolve_pass, ts_igi_resolve_pixel, TS_PASS_FLOATS)
 
 /* Each pixel's AIS set masks from the base pass (shared/ais_guidance.h). */
 TS_PIXEL_KERNEL(ais_schedule_pass, ts_ais_schedule_pixel, TS_AIS_MASK_FLOATS)
+/* The resolved pass's luminance summed per row, for the edge contrast's ε (shared/ais_resolve.h). */
+TS_ITEM_KERNEL(edge_row_sums_pass, ts_edge_row_sum_item, TS_EDGE_ROW_FLOATS)
 /* Each pixel's edge-sample count from the resolved pass (shared/ais_resolve.h). */
 TS_PIXEL_KERNEL(edge_schedule_pass, ts_edge_schedule_pixel, 1)
 

@@ -34,6 +34,8 @@
     X(IgiResolve, "igi_resolve_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_igi_resolve_pixel, nullptr, no_packets)     \
     X(AisSchedule, "ais_schedule_pass", "igi.cl", TS_AIS_MASK_FLOATS, 0, ts_ais_schedule_pixel, nullptr,         \
       no_packets)                                                                                                 \
+    X(EdgeRowSums, "edge_row_sums_pass", "igi.cl", TS_EDGE_ROW_FLOATS, 1, ts_edge_row_sum_item, nullptr,          \
+      no_packets)                                                                                                 \
     X(EdgeSchedule, "edge_schedule_pass", "igi.cl", 1, 0, ts_edge_schedule_pixel, nullptr, no_packets)            \
     X(AisEdgeMerge, "ais_edge_merge_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_ais_edge_merge_pixel, nullptr,         \
       no_packets)                                                                                                 \

@@ -1,6 +1,7 @@
 #include "gi/ais_edges.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -30,10 +31,27 @@ void parallel_rows(int height, F&& f) {
 
 }  // namespace
 
-float edge_epsilon(const std::vector<float>& radiance, float dark) {
-    const size_t pixels = radiance.size() / TS_PASS_FLOATS;
+float edge_epsilon(const std::vector<float>& radiance, int width, float dark) {
+    const size_t pixels = radiance.size() / TS_PASS_FLOATS, height = width > 0 ? pixels / size_t(width) : 0;
+    std::vector<double> rows(height);
+    parallel_rows(static_cast<int>(height), [&](int y) {
+        rows[y] = ts::ts_edge_row_luminance(radiance.data(), static_cast<uint32_t>(width), static_cast<uint32_t>(y));
+    });
     double sum = 0.0;
-    for (size_t p = 0; p < pixels; ++p) sum += ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
+    for (double r : rows) sum += r;
+    return dark * static_cast<float>(sum / std::max<size_t>(1, pixels));
+}
+
+float edge_epsilon_of_rows(const std::vector<float>& rows, size_t pixels, float dark) {
+    double sum = 0.0;
+    for (size_t i = 0; i + TS_EDGE_ROW_FLOATS <= rows.size(); i += TS_EDGE_ROW_FLOATS) {
+        const float* r = &rows[i];
+        if (r[TS_EDGE_ROW_HAS_DOUBLE] > 0.0f)
+            sum += std::bit_cast<double>(uint64_t(std::bit_cast<uint32_t>(r[TS_EDGE_ROW_DOUBLE + 1])) << 32 |
+                                         std::bit_cast<uint32_t>(r[TS_EDGE_ROW_DOUBLE]));
+        else
+            sum += r[TS_EDGE_ROW_FLOAT];
+    }
     return dark * static_cast<float>(sum / std::max<size_t>(1, pixels));
 }
 
@@ -42,7 +60,7 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
     const size_t pixels = size_t(g.width) * g.height;
     std::vector<float> y(pixels);
     for (size_t p = 0; p < pixels; ++p) y[p] = ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
-    const float eps = edge_epsilon(radiance, dark);
+    const float eps = edge_epsilon(radiance, g.width, dark);
     // With tile 3 the filter's window is this 3×3 window, and the frame's precomputed masks
     // (discontinuity_precompute) hold the test's answers: bit (dy + 1)·3 + (dx + 1). The
     // test per pair took 6 ms of a 256² frame; the masks give the same bits.

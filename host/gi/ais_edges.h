@@ -50,8 +50,15 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
                                  const std::vector<uint8_t>& emitter = {});
 
 /// ε of the edge contrast: `dark` × the mean luminance of `radiance` (TS_PASS_FLOATS per
-/// pixel, its TS_PASS_RADIANCE), summed in double in pixel order.
-float edge_epsilon(const std::vector<float>& radiance, float dark);
+/// pixel, its TS_PASS_RADIANCE; an image `width` pixels wide): each row summed in double in
+/// pixel order (ts_edge_row_luminance, shared with the device's KernelId::EdgeRowSums),
+/// the rows' sums in row order.
+float edge_epsilon(const std::vector<float>& radiance, int width, float dark);
+
+/// The same ε from KernelId::EdgeRowSums's output over every row of a `pixels`-pixel
+/// frame (TS_EDGE_ROW_FLOATS a row, in row order): edge_epsilon's bits where the device
+/// summed in double.
+float edge_epsilon_of_rows(const std::vector<float>& rows, size_t pixels, float dark);
 
 /// Which pixels take extra samples, and the flat list of samples to trace.
 struct EdgeSchedule {

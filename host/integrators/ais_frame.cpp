@@ -209,9 +209,12 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     device_items_.list.clear();
     device_items_.pixel_items.assign(size_t(frame.width) * frame.height + 1, 0u);
     device_items_.flagged = {};
+    stats_.ais_schedule_kernel_seconds = 0.0;
     if (guided) {
         backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
+        const auto t_masks = Clock::now();
         backend_.launch(KernelId::AisSchedule, frame, masks_);
+        stats_.ais_schedule_kernel_seconds = since(t_masks);
         ais_item_tables(masks_, static_cast<int>(frame.width), static_cast<int>(frame.height),
                         static_cast<int>(settings_.tile), device_items_);
     }
@@ -235,11 +238,11 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     edge_schedule_ = EdgeSchedule{};
     stats_.edge_samples = 0;
     stats_.edge_flagged = stats_.edge_seconds = stats_.edge_schedule_seconds = stats_.edge_kernel_seconds = 0.0;
+    stats_.edge_schedule_kernel_seconds = 0.0;
     if (!(bits & TS_COMPONENT_EDGE)) {
         backend_.launch(KernelId::IgiResolve, ais, out);
     } else {
         backend_.launch_into(KernelId::IgiResolve, ais, KernelInput::IgiPass);
-        backend_.read_input(KernelInput::IgiPass, out);
         edges_on_device(frame, ais, out);
     }
     stats_.filter_seconds = since(t0);
@@ -247,12 +250,20 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
 
 void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out) {
     const auto t0 = Clock::now();
-    // The edge schedule from the resolved pass where it lies: its ε is the frame's mean
-    // luminance, which the host reads from the image it displays.
-    const float eps = edge_epsilon(out, settings_.edges.dark);
+    // The edge schedule from the resolved pass where it lies (IgiPass): its ε from the
+    // rows' luminance sums, the counts from the schedule kernel; the image is read back
+    // once, merged or not.
+    if (row_items_.size() != frame.height) {
+        row_items_.resize(frame.height);
+        for (uint32_t y = 0; y < frame.height; ++y) row_items_[y] = y;
+    }
+    backend_.launch_items(KernelId::EdgeRowSums, ais, row_items_, row_sums_);
+    const float eps = edge_epsilon_of_rows(row_sums_, size_t(frame.width) * frame.height, settings_.edges.dark);
     schedule_table_[TS_AIS_TABLE_EDGE_EPSILON] = std::bit_cast<uint32_t>(eps);
     backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
+    const auto t_counts = Clock::now();
     backend_.launch(KernelId::EdgeSchedule, ais, edge_counts_);
+    stats_.edge_schedule_kernel_seconds = since(t_counts);
     edge_item_tables(edge_counts_, static_cast<int>(frame.width), device_edges_);
     stats_.edge_samples = device_edges_.items.size() / TS_EDGE_ITEM_WORDS;
     stats_.edge_flagged = device_edges_.flagged;
@@ -261,6 +272,8 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
         backend_.launch_items_into(KernelId::EdgeSample, frame, device_edges_.items, KernelInput::EdgeSamples);
         backend_.set_input(KernelInput::EdgePixelSamples, device_edges_.pixel_samples);
         backend_.launch(KernelId::AisEdgeMerge, ais, out);
+    } else {
+        backend_.read_input(KernelInput::IgiPass, out);
     }
     stats_.edge_seconds = since(t0);
     stats_.edge_schedule_seconds = std::chrono::duration<double>(t_kernel - t0).count();
@@ -296,7 +309,13 @@ std::string AisFrame::describe() const {
                   1e3 * stats_.ais_seconds, 1e3 * stats_.ais_schedule_seconds, 1e3 * stats_.ais_kernel_seconds,
                   1e3 * stats_.ais_merge_seconds, 100 * stats_.edge_flagged, stats_.edge_samples,
                   1e3 * stats_.edge_seconds, 1e3 * stats_.edge_schedule_seconds, 1e3 * stats_.edge_kernel_seconds);
-    return IgiFrame::describe() + buf;
+    std::string line = IgiFrame::describe() + buf;
+    if (stats_.ais_schedule_kernel_seconds > 0.0 || stats_.edge_schedule_kernel_seconds > 0.0) {
+        std::snprintf(buf, sizeof buf, "; of the schedules, their kernels with read-backs %.1f and %.1f ms",
+                      1e3 * stats_.ais_schedule_kernel_seconds, 1e3 * stats_.edge_schedule_kernel_seconds);
+        line += buf;
+    }
+    return line;
 }
 
 void AisFrame::add_aov_channels(Image& image, uint32_t frames) const {

@@ -67,7 +67,8 @@ private:
     /// Edge guidance and schedule from the pass image `out` and emitter_ (edge_guidance_,
     /// edge_schedule_).
     void schedule_edges(const std::vector<float>& out);
-    /// The device frame's edge samples, merged into `out` where the kernels ran.
+    /// The device frame's edge samples, merged where the kernels ran into the resolved
+    /// pass (IgiPass), read back into `out`.
     void edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out);
 
     // Each pixel's own-set estimate and the sum over the sets it evaluated.
@@ -89,6 +90,8 @@ private:
     std::vector<uint32_t> schedule_table_;
     std::vector<float> masks_;
     std::vector<float> edge_counts_;
+    std::vector<uint32_t> row_items_;  // 0..height-1: KernelId::EdgeRowSums's items
+    std::vector<float> row_sums_;      // ... and its output
     AisItemTables device_items_;   // the item tables from masks_ (gi/ais_items.h)
     EdgeItemTables device_edges_;  // ... and from edge_counts_
 };

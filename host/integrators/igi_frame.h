@@ -105,6 +105,9 @@ struct IgiFrameStats {
     /// launch with its read-back (on the device: with the items' upload), and the host's
     /// merge of the extra sets into the pixels (0 on the device, which merges in the resolve).
     double ais_schedule_seconds = 0, ais_kernel_seconds = 0, ais_merge_seconds = 0;
+    /// Of ais_schedule_seconds and edge_schedule_seconds, a device frame's schedule kernels
+    /// with their read-backs (the rest: the host's item tables; 0 on the host path).
+    double ais_schedule_kernel_seconds = 0, edge_schedule_kernel_seconds = 0;
     double cache_seconds = 0;  ///< the instant cache's indirect component (ic/tic only)
     size_t ais_items = 0;    ///< extra (pixel, set) evaluations (AIS only)
     size_t edge_samples = 0; ///< extra camera samples on edges (AIS only)

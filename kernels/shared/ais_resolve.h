@@ -195,6 +195,27 @@ TS_INLINE void ts_edge_schedule_pixel(const TsSceneView* sv, const TsTracer* tra
                                          (int)table[TS_AIS_TABLE_MODE]);
 }
 
+/* Item kernel EdgeRowSums: item i (sv->items[i]) is a row of the resolved pass
+ * (TsSceneView.igi_pass); writes its luminance sum (ts_edge_row_luminance) as
+ * TS_EDGE_ROW_FLOATS (layout_igi.h), from which the host takes the edge contrast's ε
+ * (edge_epsilon_of_rows, host/gi/ais_edges.h) without reading the image back. */
+TS_INLINE void ts_edge_row_sum_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                    float* out) {
+    (void)tracer;
+    const uint y = sv->items[i];
+    out[TS_EDGE_ROW_DOUBLE] = out[TS_EDGE_ROW_DOUBLE + 1] = out[TS_EDGE_ROW_FLOAT] = 0.0f;
+#ifdef TS_HAS_DOUBLE
+    uint lo, hi;
+    ts_double_words(ts_edge_row_luminance(sv->igi_pass, f->width, y), &lo, &hi);
+    out[TS_EDGE_ROW_DOUBLE] = as_float(lo);
+    out[TS_EDGE_ROW_DOUBLE + 1] = as_float(hi);
+    out[TS_EDGE_ROW_HAS_DOUBLE] = 1.0f;
+#else
+    out[TS_EDGE_ROW_FLOAT] = ts_edge_row_luminance(sv->igi_pass, f->width, y);
+    out[TS_EDGE_ROW_HAS_DOUBLE] = 0.0f;
+#endif
+}
+
 /* The window pixel whose surface the edge sample `sample` (TS_EDGE_SAMPLE_FLOATS) lies on,
  * for pixel (x, y) (host: edge_sample_match, host/gi/ais_edges.h): among p's 3×3
  * neighbours (p first, then the 4 sides, then the corners) those whose discontinuity test

@@ -50,6 +50,14 @@ static inline float ts_min_bound(float a, float b) { return fmin(a, b); }
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define TS_HAS_DOUBLE 1
 #endif
+#ifdef TS_HAS_DOUBLE
+/* A double's low and high 32 bits (for a kernel output of floats that carries a double). */
+static inline void ts_double_words(double d, uint* lo, uint* hi) {
+    const uint2 b = as_uint2(d);
+    *lo = b.x;
+    *hi = b.y;
+}
+#endif
 
 #else
 /* ---------------------------------------------------------------- C++ */
@@ -144,6 +152,11 @@ inline uint as_uint(float f) { return std::bit_cast<uint>(f); }
 inline int as_int(float f) { return std::bit_cast<int>(f); }
 inline float as_float(uint u) { return std::bit_cast<float>(u); }
 inline float as_float(int i) { return std::bit_cast<float>(i); }
+inline void ts_double_words(double d, uint* lo, uint* hi) {
+    const uint64_t b = std::bit_cast<uint64_t>(d);
+    *lo = static_cast<uint>(b);
+    *hi = static_cast<uint>(b >> 32);
+}
 inline float3 ts_f3_load(const float* p) { return {p[0], p[1], p[2]}; }
 inline void ts_f3_store(float* p, float3 v) { p[0] = v.x, p[1] = v.y, p[2] = v.z; }
 

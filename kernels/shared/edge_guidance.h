@@ -6,6 +6,8 @@
 #ifndef TS_EDGE_GUIDANCE_H
 #define TS_EDGE_GUIDANCE_H
 #include "shared/compat.h"
+#include "shared/layout_pass.h"
+#include "shared/sampling.h"
 
 TS_NAMESPACE_BEGIN
 
@@ -37,6 +39,27 @@ TS_INLINE uint ts_edge_sample_count(float g, float trigger, float full, uint mos
     const uint n = (uint)ceil(a * (float)most);
     return n < 1u ? 1u : (most < n ? most : n);
 }
+
+/* The luminance of row y's radiance in a pass image `width` pixels wide (TS_PASS_FLOATS a
+ * pixel, TS_PASS_RADIANCE), summed in pixel order: in double where the device has it
+ * (host: edge_epsilon sums the rows' sums in row order, so host and device agree bit for
+ * bit), else in compensated float. */
+#ifdef TS_HAS_DOUBLE
+TS_INLINE double ts_edge_row_luminance(TS_GLOBAL const float* pass, uint width, uint y) {
+    double sum = 0.0;
+    for (uint x = 0; x < width; ++x)
+        sum += ts_luminance(ts_f3_load(pass + ((size_t)y * width + x) * TS_PASS_FLOATS + TS_PASS_RADIANCE));
+    return sum;
+}
+#else
+TS_INLINE float ts_edge_row_luminance(TS_GLOBAL const float* pass, uint width, uint y) {
+    float sum = 0.0f, c = 0.0f;
+    for (uint x = 0; x < width; ++x)
+        ts_sum_compensated_add(&sum, &c,
+                               ts_luminance(ts_f3_load(pass + ((size_t)y * width + x) * TS_PASS_FLOATS + TS_PASS_RADIANCE)));
+    return sum + c;
+}
+#endif
 
 TS_NAMESPACE_END
 #endif /* TS_EDGE_GUIDANCE_H */

@@ -25,6 +25,7 @@
 #include "kernels/shared/layout_pass.h"
 #include "kernels/shared/sampling.h"
 #include "support/render_helpers.h"
+#include "support/scoped_env.h"
 
 namespace tessera {
 namespace {
@@ -234,7 +235,7 @@ TEST_P(EdgeScheduleKernel, EqualsTheHostSchedule) {
     backend->set_input(KernelInput::IgiSurface, pass.surf);
     backend->set_input(KernelInput::IgiPass, pass.pass);
     backend->set_input(KernelInput::AisScheduleTable,
-                       ais_schedule_table(AisThresholds{}, c.mode, c.tile, 0u, e, edge_epsilon(pass.pass, e.dark)));
+                       ais_schedule_table(AisThresholds{}, c.mode, c.tile, 0u, e, edge_epsilon(pass.pass, kWidth, e.dark)));
     std::vector<float> counts;
     backend->launch(KernelId::EdgeSchedule, frame_of(c.tile, 0u), counts);
     ASSERT_EQ(counts.size(), host.samples.size());
@@ -252,6 +253,33 @@ TEST_P(EdgeScheduleKernel, EqualsTheHostSchedule) {
         for (uint8_t n : host.samples) graded |= n > 0 && n < e.samples;
         EXPECT_TRUE(graded);
     }
+}
+
+// The edge contrast's ε from the device's row sums (KernelId::EdgeRowSums) is the host's
+// edge_epsilon bit for bit where the device sums in double; the float form (TS_NO_DOUBLE)
+// within its rounding.
+TEST(EdgeRowSumsKernel, GiveTheHostsEpsilon) {
+    const BasePass pass = synthetic_pass(5);
+    const float eps = edge_epsilon(pass.pass, kWidth, 0.01f);
+    EXPECT_GT(eps, 0.0f);
+    std::vector<uint32_t> rows(kHeight);
+    for (int y = 0; y < kHeight; ++y) rows[y] = uint32_t(y);
+    const Scene scene = test::cornell_box();
+    SceneBuffers buffers = make_scene_buffers(scene);
+    for (BackendKind kind : {BackendKind::OpenCL, BackendKind::Embree}) {
+        auto backend = backend_of(kind, buffers, scene);
+        backend->set_input(KernelInput::IgiPass, pass.pass);
+        std::vector<float> sums;
+        backend->launch_items(KernelId::EdgeRowSums, frame_of(3, 0u), rows, sums);
+        EXPECT_EQ(edge_epsilon_of_rows(sums, size_t(kWidth) * kHeight, 0.01f), eps);
+    }
+    test::ScopedEnv options("TESSERA_CL_OPTIONS", "-DTS_NO_DOUBLE");
+    auto backend = backend_of(BackendKind::OpenCL, buffers, scene);
+    backend->set_input(KernelInput::IgiPass, pass.pass);
+    std::vector<float> sums;
+    backend->launch_items(KernelId::EdgeRowSums, frame_of(3, 0u), rows, sums);
+    EXPECT_EQ(sums[TS_EDGE_ROW_HAS_DOUBLE], 0.0f);  // the float form ran
+    EXPECT_NEAR(edge_epsilon_of_rows(sums, size_t(kWidth) * kHeight, 0.01f), eps, 1e-6f * eps);
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, EdgeScheduleKernel,
