@@ -97,12 +97,17 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
     const ts::TsAisParams params = params_of(t, AisMode::A, filter.tile);
     const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(filter.tile, w);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int x = 0; x < w; ++x) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            const int sy = ts::ts_ais_window_origin(y, filter.tile);
+            int sx = ts::ts_ais_window_origin(0, filter.tile);  // advanced with x (no division per pixel)
+            for (int x = 0; x < w; ++x, sx = sx + 1 == filter.tile ? 0 : sx + 1) {
                 const size_t p = size_t(y) * w + x;
                 const uint64_t in_image = ts::ts_ais_in_image(x, y, w, h, filter.tile);
                 const uint64_t accepted = discontinuity_window_mask(base.geometry, filter, x, y);
-                ts::ts_ais_window_sets(in_image, accepted, x, y, filter.tile, &out.missing[p], &out.held[p]);
+                uint64_t missing, held;
+                ts::ts_ais_window_sets(in_image, accepted, sx, sy, filter.tile, &missing, &held);
+                out.missing[p] = missing;
+                out.held[p] = held;
                 for (int c = 0; c < kAisComponents; ++c) {
                     if (out.g[c].empty()) continue;
                     const ts::TsAisValue v =
@@ -111,6 +116,7 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
                     out.grade[c][p] = v.grade;
                 }
             }
+        }
     });
     return out;
 }

@@ -68,22 +68,25 @@ TS_INLINE ulong ts_ais_in_image(int x, int y, int w, int h, int n) {
     return bits;
 }
 
-/* The interleave sets held by pixel (x, y)'s window positions: *missing those in the image
- * that p's test rejects, *held those it accepts. The sets are walked with the positions
- * (no division per position). */
-TS_INLINE void ts_ais_window_sets(ulong in_image, ulong accepted, int x, int y, int n, ulong* missing, ulong* held) {
+/* The set column and row held by the first position (lo, lo) of pixel (x, y)'s window,
+ * tile edge n (x + lo >= -n). */
+TS_INLINE int ts_ais_window_origin(int v, int n) {
     int lo, hi;
     ts_discontinuity_window(n, &lo, &hi);
-    const int sx0 = ((x + lo) % n + n) % n;
-    int sy = ((y + lo) % n + n) % n;
-    ulong rejected = in_image & ~accepted, m = 0, h = 0;
-    for (int r = 0, i = 0; r < n; ++r) {
-        for (int c = 0, sx = sx0; c < n; ++c, ++i) {
-            const ulong set = (ulong)1 << (sx + n * sy);
-            if ((rejected >> i) & 1ul) m |= set;
-            if ((accepted >> i) & 1ul) h |= set;
-            sx = sx + 1 == n ? 0 : sx + 1;
-        }
+    return (v + lo + n) % n;
+}
+
+/* The interleave sets held by a pixel's window positions, its window's first position
+ * holding set column sx and row sy (ts_ais_window_origin): *missing those in the image
+ * that p's test rejects, *held those it accepts. A window row's positions hold one row of
+ * sets rotated by sx, so each row's bits rotate into place (no division per position). */
+TS_INLINE void ts_ais_window_sets(ulong in_image, ulong accepted, int sx, int sy, int n, ulong* missing, ulong* held) {
+    const ulong row = ((ulong)1 << n) - (ulong)1, rejected = in_image & ~accepted;
+    ulong m = 0, h = 0;
+    for (int r = 0; r < n; ++r) {
+        const ulong a = (accepted >> (r * n)) & row, b = (rejected >> (r * n)) & row;
+        h |= (((a << sx) | (a >> (n - sx))) & row) << (n * sy);
+        m |= (((b << sx) | (b >> (n - sx))) & row) << (n * sy);
         sy = sy + 1 == n ? 0 : sy + 1;
     }
     *missing = m;

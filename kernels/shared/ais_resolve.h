@@ -144,7 +144,8 @@ TS_INLINE void ts_ais_schedule_pixel(const TsSceneView* sv, const TsTracer* trac
     const ulong accepted = ts_discontinuity_mask((int)x, (int)y, w, h, n, v.depth, v.normal, v.position,
                                                  TS_IGI_SURF_FLOATS, TS_IGI_SURF_FLOATS, 1, v.cos_min, v.depth_rel);
     ulong missing, held;
-    ts_ais_window_sets(in_image, accepted, (int)x, (int)y, n, &missing, &held);
+    ts_ais_window_sets(in_image, accepted, ts_ais_window_origin((int)x, n), ts_ais_window_origin((int)y, n), n,
+                       &missing, &held);
     TS_GLOBAL const uint* order = table + TS_AIS_TABLE_ORDER + (size_t)own * (size_t)(sets - 1);
     uint flags = 0u;
     for (int c = 0; c < 3; ++c) {
