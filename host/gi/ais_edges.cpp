@@ -4,6 +4,8 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -33,6 +35,9 @@ void parallel_rows(int height, F&& f) {
 
 float edge_epsilon(const std::vector<float>& radiance, int width, float dark) {
     const size_t pixels = radiance.size() / TS_PASS_FLOATS, height = width > 0 ? pixels / size_t(width) : 0;
+    if (width <= 0 || height * size_t(width) != pixels || pixels * TS_PASS_FLOATS != radiance.size())
+        throw std::invalid_argument("edge_epsilon: " + std::to_string(radiance.size()) + " floats are not rows of " +
+                                    std::to_string(width) + " pixels");
     std::vector<double> rows(height);
     parallel_rows(static_cast<int>(height), [&](int y) {
         rows[y] = ts::ts_edge_row_luminance(radiance.data(), static_cast<uint32_t>(width), static_cast<uint32_t>(y));

@@ -52,7 +52,10 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
 /// ε of the edge contrast: `dark` × the mean luminance of `radiance` (TS_PASS_FLOATS per
 /// pixel, its TS_PASS_RADIANCE; an image `width` pixels wide): each row summed in double in
 /// pixel order (ts_edge_row_luminance, shared with the device's KernelId::EdgeRowSums),
-/// the rows' sums in row order.
+/// the rows' sums in row order. (Until 2026-11 one double sum ran over all pixels: the two
+/// can differ in a last bit on rows of very different magnitudes, and so, rarely, a
+/// contrast at its trigger.) Throws std::invalid_argument unless `radiance` holds whole
+/// rows of `width` pixels.
 float edge_epsilon(const std::vector<float>& radiance, int width, float dark);
 
 /// The same ε from KernelId::EdgeRowSums's output over every row of a `pixels`-pixel

@@ -147,7 +147,7 @@ AisSchedule make_schedule(const AisGuidance& guidance, const AisThresholds& t, A
                     const uint64_t held = guidance.held.empty() ? 0 : guidance.held[p];
                     const uint64_t missing = guidance.missing.empty() ? 0 : guidance.missing[p];
                     s.masks[c][p] = ts::ts_ais_set_mask(v, params.trigger[c], &params, own, sets, held, missing,
-                                                        &orders[size_t(own) * (sets - 1)]);
+                                                        orders.data() + size_t(own) * (sets - 1));
                     s.sets[c][p] = static_cast<uint8_t>(std::popcount(s.masks[c][p]));
                 }
         });

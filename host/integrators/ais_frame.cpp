@@ -206,11 +206,12 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     // and set-count maps are AOVs, which the host path draws).
     guidance_ = AisGuidance{};
     schedule_ = AisSchedule{};
-    device_items_.list.clear();
-    device_items_.pixel_items.assign(size_t(frame.width) * frame.height + 1, 0u);
-    device_items_.flagged = {};
     stats_.ais_schedule_kernel_seconds = 0.0;
-    if (guided) {
+    if (!guided) {  // no component to refine: no items, each pixel's range empty
+        device_items_.list.clear();
+        device_items_.pixel_items.assign(size_t(frame.width) * frame.height + 1, 0u);
+        device_items_.flagged = {};
+    } else {
         backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
         const auto t_masks = Clock::now();
         backend_.launch(KernelId::AisSchedule, frame, masks_);

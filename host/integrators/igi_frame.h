@@ -81,7 +81,7 @@ struct IgiSettings {
     /// Bring the components to the host every frame, for the per-component AOVs
     /// (add_aov_channels) and the viewer's AOV display. false lets igi resolve its frame
     /// where the kernels ran (Backend::resolves_on_device: OpenCL's GPU variant), reading
-    /// back only the pass image (AIS: also its base pass for the host's schedule); ic
+    /// back only the pass image (AIS: also each pixel's set masks and edge-sample count); ic
     /// always reconstructs on the host.
     bool component_aovs = false;
     /// Adaptive Interleaved Sampling (AisFrame, ais_schedule.h): the mode and thresholds.
@@ -101,7 +101,8 @@ struct IgiFrameStats {
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
     double ais_seconds = 0;  ///< guidance, schedule and the extra sets (AIS only)
-    /// Its parts (AIS only): guidance and schedule on the host, the extra sets' kernel
+    /// Its parts (AIS only): guidance and schedule (a device frame's: their kernels and
+    /// the host's item tables), the extra sets' kernel
     /// launch with its read-back (on the device: with the items' upload), and the host's
     /// merge of the extra sets into the pixels (0 on the device, which merges in the resolve).
     double ais_schedule_seconds = 0, ais_kernel_seconds = 0, ais_merge_seconds = 0;

@@ -4,8 +4,11 @@
  * step for step and sum for sum as the host runs them, over the surface and media passes'
  * outputs (TsSceneView.igi_surface, igi_media), the extra sets' output (ais_items) and the
  * edge samples' (edge_samples), so that the device's image is the host's bit for bit where
- * the device has fp64 (else the sums are compensated float). The schedule stays the host's:
- * it sends, per pixel, which items are its own (ais_pixel_items, edge_pixel_samples). */
+ * the device has fp64 (else the sums are compensated float). The schedule kernels are here
+ * too (AisSchedule, EdgeRowSums, EdgeSchedule: the host's per-pixel code of
+ * shared/ais_guidance.h and edge_guidance.h); the host lays their masks and counts out as
+ * item lists and sends, per pixel, which items are its own (ais_pixel_items,
+ * edge_pixel_samples). */
 #ifndef TS_AIS_RESOLVE_H
 #define TS_AIS_RESOLVE_H
 #include "shared/ais_guidance.h"

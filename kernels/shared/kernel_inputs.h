@@ -43,9 +43,11 @@
  *   IcVisibility     record–VPL visibility rows, bit masks of TS_IC_VISIBLE_WORDS(VPLs of
  *                    the Vpls input) uints each (layout_ic.h; KernelId::IcGather)
  *   IgiSurface       TS_IGI_SURF_FLOATS per pixel, KernelId::IgiSurface's output kept where
- *                    the kernels run (Backend::launch_into; KernelId::IgiResolve reads it)
+ *                    the kernels run (Backend::launch_into; KernelId::IgiResolve, AisSchedule
+ *                    and EdgeSchedule read it)
  *   IgiMedia         TS_IGI_MEDIA_FLOATS per pixel, KernelId::IgiMedia's output kept
  *                    likewise; read only when the frame's components include TS_COMPONENT_PM
+ *                    (KernelId::IgiResolve, AisSchedule)
  *   ClampRecords     TS_CLAMP_SCREEN_FLOATS per pixel, KernelId::IgiClampRecords's output
  *                    kept likewise (layout_igi.h; KernelId::IgiClampGather reads it)
  *   ClampResidual    TS_CLAMP_RESIDUAL_FLOATS per pixel, KernelId::IgiClampGather's output
@@ -57,7 +59,7 @@
  *   AisPixelItems    each pixel's items of that list (layout_igi.h, TS_AIS_ENTRY_*); read
  *                    when TsFrame.igi_ais is 1 (shared/ais_resolve.h)
  *   IgiPass          TS_PASS_FLOATS per pixel, KernelId::IgiResolve's output kept
- *                    (KernelId::AisEdgeMerge reads it)
+ *                    (KernelId::EdgeRowSums, EdgeSchedule and AisEdgeMerge read it)
  *   EdgeSamples      TS_EDGE_SAMPLE_FLOATS per item of the frame's edge list,
  *                    KernelId::EdgeSample's output kept
  *   EdgePixelSamples each pixel's edge samples (layout_igi.h, TS_EDGE_PIXEL_*)

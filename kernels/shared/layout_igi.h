@@ -152,11 +152,6 @@
 #define TS_AIS_TABLE_EDGE_SAMPLES 11
 #define TS_AIS_TABLE_EDGE_EPSILON 12
 #define TS_AIS_TABLE_ORDER 16
-/* The AIS schedule of a pixel (KernelId::AisSchedule, shared/ais_resolve.h),
- * TS_AIS_MASK_FLOATS floats, each a uint's bits (as_float): TS_AIS_MASK_SETS(c) and the
- * next the low and high 32 bits of component c's set mask (bit k: the pixel evaluates set
- * k, its own included), TS_AIS_MASK_FLAGS the TS_COMPONENT_* bits of the components that
- * flag it. KernelId::EdgeSchedule writes one float a pixel: its edge-sample count. */
 /* An edge row sum (KernelId::EdgeRowSums, item = row index), TS_EDGE_ROW_FLOATS floats:
  * TS_EDGE_ROW_DOUBLE and the next the low and high 32 bits of the row's luminance sum as a
  * double, TS_EDGE_ROW_HAS_DOUBLE 1 where the device summed in double (else 0, and
@@ -165,6 +160,11 @@
 #define TS_EDGE_ROW_DOUBLE 0
 #define TS_EDGE_ROW_HAS_DOUBLE 2
 #define TS_EDGE_ROW_FLOAT 3
+/* The AIS schedule of a pixel (KernelId::AisSchedule, shared/ais_resolve.h),
+ * TS_AIS_MASK_FLOATS floats, each a uint's bits (as_float): TS_AIS_MASK_SETS(c) and the
+ * next the low and high 32 bits of component c's set mask (bit k: the pixel evaluates set
+ * k, its own included), TS_AIS_MASK_FLAGS the TS_COMPONENT_* bits of the components that
+ * flag it. KernelId::EdgeSchedule writes one float a pixel: its edge-sample count. */
 #define TS_AIS_MASK_FLOATS 7
 #define TS_AIS_MASK_SETS(c) (2 * (c))
 #define TS_AIS_MASK_FLAGS 6

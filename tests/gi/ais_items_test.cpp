@@ -43,7 +43,7 @@ TEST(AisPixelItems, EdgeSamplesCodeFirstAndCount) {
 
 // Random masks as AisSchedule's kernel writes them (own set always in, flagged pixels with
 // extra sets per component) against make_schedule's item order and ais_pixel_items.
-void expect_tables_equal(int width, int height, int tile, uint32_t seed) {
+void expect_tables_equal(int width, int height, int tile, uint32_t seed, uint32_t flag_one_in = 4) {
     std::mt19937 rng(seed);
     const size_t pixels = size_t(width) * height;
     const int sets = tile * tile;
@@ -57,7 +57,7 @@ void expect_tables_equal(int width, int height, int tile, uint32_t seed) {
             uint32_t flags = 0;
             for (int c = 0; c < kAisComponents; ++c) {
                 uint64_t mask = 1ull << interleave_set(x, y, tile);
-                if (rng() % 4 == 0) {  // flagged: some extra sets
+                if (flag_one_in && rng() % flag_one_in == 0) {  // flagged: some extra sets
                     flags |= 1u << c;
                     ++flagged[c];
                     mask |= (uint64_t(rng()) << 32 | rng()) & (sets == 64 ? ~0ull : (1ull << sets) - 1);
@@ -69,7 +69,7 @@ void expect_tables_equal(int width, int height, int tile, uint32_t seed) {
             masks[p * TS_AIS_MASK_FLOATS + TS_AIS_MASK_FLAGS] = std::bit_cast<float>(flags);
         }
     schedule_items(s, width, height, tile);
-    ASSERT_GT(s.item_pixels.size(), 0u);
+    EXPECT_EQ(s.item_pixels.empty(), tile == 1 || flag_one_in == 0);
     const std::vector<uint32_t> list = ais_item_list(s);
     AisItemTables t;
     t.list.assign(3, 7u);  // stale contents from an earlier frame
@@ -84,6 +84,9 @@ TEST(AisItemTables, EqualTheHostScheduleTables) {
     expect_tables_equal(64, 48, 4, 2);    // whole tiles
     expect_tables_equal(21, 40, 8, 3);    // 64 sets
     expect_tables_equal(5, 3, 2, 4);      // smaller than one tile
+    expect_tables_equal(7, 40, 3, 5);     // a column of tiles narrower than one
+    expect_tables_equal(20, 20, 1, 6);    // one set: flags, no items
+    expect_tables_equal(33, 17, 3, 7, 0); // nothing flagged: no items, empty ranges
 }
 
 TEST(EdgeItemTables, EqualTheHostScheduleTables) {

@@ -1,6 +1,7 @@
 // Adaptive Interleaved Sampling end to end.
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,15 @@ namespace {
 
 const char* name(BackendKind k) { return k == BackendKind::Embree ? "embree" : "opencl"; }
 
+// These tests read the host path's schedule and components. On a GPU the OpenCL backend
+// would run the GPU variant, which schedules and reconstructs on the device and leaves the
+// host's schedule empty (that path: tests/kernels/ais_resolve_test.cpp, ais_guidance_test.cpp).
+std::unique_ptr<Backend> host_path_backend(BackendKind kind, SceneBuffers& b, const Scene& s) {
+    BackendOptions o{kind, ""};
+    o.cl_gpu_variant = false;
+    return make_backend(o, b, plan_effects(s));
+}
+
 TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
     // Thresholds below 0 flag every pixel, and A-MAX then gives each all N sets: every
     // component must equal the non-interleaved estimate, the mean over all N sets of the
@@ -22,7 +32,7 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
     Scene s = test::cornell_box();
     SceneBuffers b = make_scene_buffers(s);
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
-        auto be = make_backend({kind, ""}, b, plan_effects(s));
+        auto be = host_path_backend(kind, b, s);
         IgiSettings is;
         is.ais_mode = AisMode::AMax;
         is.ais.ss_trigger = is.ais.id_trigger = is.ais.pm_trigger = -1.0f;
@@ -66,15 +76,15 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
 }
 
 TEST(Ais, SchedulesAgreeAcrossBackends) {
-    // The schedule is host code over each backend's base pass; the base passes differ
-    // only by traversal rounding, so the schedules agree on >= 99.9% of pixels.
+    // The host path's schedule over each backend's base pass; the base passes differ only
+    // by traversal rounding, so the schedules agree on >= 99.9% of pixels.
     Scene s = test::cornell_box();
     SceneBuffers b = make_scene_buffers(s);
     std::array<AisSchedule, 2> sched;
     std::array<EdgeSchedule, 2> edges;
     int i = 0;
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
-        auto be = make_backend({kind, ""}, b, plan_effects(s));
+        auto be = host_path_backend(kind, b, s);
         IgiSettings is;
         AisFrame igi(*be, b, plan_effects(s), is);
         TsFrame f = make_frame(s.camera, 96, 96, is.set_shadow_samples, 1, b.light_count);
