@@ -72,9 +72,12 @@ void ViewSession::restart() {
     acc_kept_points_ = false;
     const RenderSettings s = pass_settings();
     IntegratorSettings is = integrator_settings(s);
-    // The AIS guidance and sets AOVs can be shown at any time: keep their sums (AIS
-    // reconstructs on the host anyway, so this costs no read-back).
-    if (method_info(s.method).adaptive) is.igi.component_aovs = true;
+    // The AIS guidance and sets AOVs need the host's schedule and its sums. Where AIS
+    // reconstructs on the host anyway they are kept at no cost, so any AOV shows at once;
+    // a backend that schedules and resolves on the device (a GPU) keeps the frame there
+    // while they are not shown, and cycle_aov restarts the accumulation into or out of them.
+    if (method_info(s.method).adaptive && (!backend_->resolves_on_device() || schedule_aov(aov_)))
+        is.igi.component_aovs = true;
     // One history of view points across restarts: moving frames keep the VPL selection's
     // points while the camera moves a little (docs/viewer.md, temporal stability).
     is.igi.view_history = view_history_;
@@ -161,12 +164,20 @@ bool ViewSession::aov_available(Aov aov) const {
     }
 }
 
+bool ViewSession::schedule_aov(Aov aov) {
+    return aov >= Aov::GuidanceSS && aov <= Aov::SetsPM;
+}
+
 void ViewSession::cycle_aov(int step) {
     const int n = static_cast<int>(Aov::Error) + 1;
     int a = static_cast<int>(aov_);
     do a = (a + step + n) % n;
     while (!aov_available(static_cast<Aov>(a)));
-    aov_ = static_cast<Aov>(a);
+    const Aov next = static_cast<Aov>(a);
+    if (backend_->resolves_on_device() && method_info(settings_.method).adaptive &&
+        schedule_aov(next) != schedule_aov(aov_))
+        dirty_ = true;  // the schedule's sums start (or stop) with the next accumulation
+    aov_ = next;
 }
 
 FrameReport ViewSession::advance(double dt) {

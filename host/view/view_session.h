@@ -147,6 +147,9 @@ private:
     void toggle_component(uint32_t bit);
     void cycle_aov(int step);
     bool aov_available(Aov aov) const;
+    /// Whether `aov` shows the AIS schedule (guidance, sets), whose sums only the host
+    /// path keeps (IgiSettings::component_aovs).
+    static bool schedule_aov(Aov aov);
     RenderSettings pass_settings() const;
     Image aov_image() const;
     Image to_window(Image image) const;

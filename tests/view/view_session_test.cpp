@@ -333,5 +333,42 @@ TEST(ViewSession, AovKeyCyclesThroughWhatTheMethodProduces) {
     EXPECT_EQ(seen, expected);
 }
 
+// Where AIS is scheduled and resolved on the device (the GPU variant, here on PoCL) the
+// viewer keeps the frame there while the radiance shows (no schedule sums on the host),
+// the host path's image bit for bit. A guidance AOV restarts the accumulation on the
+// host's schedule, whose sums it then shows.
+TEST(ViewSession, AisOnTheDeviceRestartsForItsGuidanceAov) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Ais, 4);
+    o.backend = {BackendKind::OpenCL, ""};
+    o.backend.cl_packets = false;
+    o.backend.cl_light_path_kernel = false;
+    o.backend.cl_gpu_variant = true;
+    ViewSession device(scene, o);
+    o.backend.cl_gpu_variant = false;
+    ViewSession host(scene, o);
+    device.advance(0);
+    host.advance(0);
+    test::expect_images_identical(device.accumulation(), host.accumulation());
+    for (int i = 0; i < 4; ++i) {  // albedo, normal, depth, guidance.SS
+        device.handle({InputEvent::Kind::Press, 'V'});
+        device.handle({InputEvent::Kind::Release, 'V'});
+    }
+    bool shown = false;
+    for (const std::string& line : device.hud_lines(0)) shown |= line.find("AOV guidance.SS") != std::string::npos;
+    ASSERT_TRUE(shown);
+    std::vector<uint8_t> rgba;
+    device.display(rgba);  // the pass ran on the device: no schedule sums to show yet
+    EXPECT_TRUE(std::all_of(rgba.begin(), rgba.end(), [](uint8_t v) { return v == 255; }));
+    const FrameReport r = device.advance(0);  // the restart: the host's schedule from here on
+    EXPECT_TRUE(r.moving);
+    EXPECT_EQ(r.passes, 1u);
+    device.display(rgba);
+    size_t dark = 0;  // the guidance, scaled by its maximum: 0 in full light and umbra
+    for (size_t p = 0; p < rgba.size() / 4; ++p) dark += rgba[4 * p] < 128;
+    EXPECT_GT(dark, rgba.size() / 8);
+    EXPECT_LT(dark, rgba.size() / 4);  // and some penumbra
+}
+
 }  // namespace
 }  // namespace tessera::view
