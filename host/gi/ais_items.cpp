@@ -63,38 +63,6 @@ std::vector<uint32_t> ais_item_list(const AisSchedule& s) {
     return list;
 }
 
-std::vector<uint32_t> ais_pixel_items(const std::vector<uint32_t>& list, size_t pixels) {
-    const size_t items = list.size() / TS_AIS_ITEM_WORDS;
-    std::vector<uint32_t> t(pixels + 1 + TS_AIS_ENTRY_WORDS * items, 0u);
-    for (size_t i = 0; i < items; ++i) ++t[list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL] + 1];
-    for (size_t p = 0; p < pixels; ++p) t[p + 1] += t[p];
-    std::vector<uint32_t> next(t.begin(), t.begin() + pixels);
-    // List order: grouped by set in increasing order, so each pixel's entries come out in
-    // increasing set order, the order the host's merge adds them in.
-    for (size_t i = 0; i < items; ++i) {
-        const uint32_t p = list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL];
-        uint32_t* e = &t[pixels + 1 + TS_AIS_ENTRY_WORDS * size_t(next[p]++)];
-        e[TS_AIS_ENTRY_ITEM] = static_cast<uint32_t>(i);
-        e[TS_AIS_ENTRY_CODE] = list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE];
-    }
-    return t;
-}
-
-std::vector<uint32_t> edge_pixel_samples(const EdgeSchedule& schedule) {
-    std::vector<uint32_t> code(schedule.samples.size(), 0u);
-    const size_t n = schedule.items.size() / TS_EDGE_ITEM_WORDS;
-    // 15 samples a pixel at most: the first index keeps 28 bits, 268M samples (18M pixels
-    // all flagged, far past any frame's).
-    if (n >> (32 - TS_EDGE_PIXEL_FIRST_SHIFT))
-        throw std::length_error("edge_pixel_samples: " + std::to_string(n) + " edge samples do not fit the pixel codes");
-    for (size_t i = 0; i < n; ++i) {
-        const uint32_t* it = &schedule.items[TS_EDGE_ITEM_WORDS * i];
-        if (it[TS_EDGE_ITEM_SAMPLE] == 1)
-            code[it[TS_EDGE_ITEM_PIXEL]] = static_cast<uint32_t>(i) << TS_EDGE_PIXEL_FIRST_SHIFT | it[TS_EDGE_ITEM_COUNT];
-    }
-    return code;
-}
-
 // Three passes: counts per (tile, set) and per row, their prefix sums (the list's order is
 // set, then tile, then pixel; the pixel table's is row-major), then each tile writes its
 // items and each pixel's entries where the sums put them. Every count is an integer, so
