@@ -61,6 +61,24 @@ void Backend::launch_items_into(KernelId k, const TsFrame& frame, const std::vec
     run_kernel_into(k, frame, count, items, in);
 }
 
+void Backend::launch_count(KernelId k, const TsFrame& frame, size_t count, std::vector<float>& out) {
+    const KernelInfo& info = kernel_info(k);
+    if (info.item_words == 0) throw std::logic_error(std::string(info.name) + " is a pixel kernel (launch)");
+    out.resize(count * static_cast<size_t>(info.out_floats));
+    if (count == 0) return;
+    ++dispatches_[static_cast<int>(k)];
+    run_kernel(k, frame, count, {}, out);
+}
+
+void Backend::launch_count_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) {
+    const KernelInfo& info = kernel_info(k);
+    if (info.item_words == 0) throw std::logic_error(std::string(info.name) + " is a pixel kernel (launch_into)");
+    if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
+    if (count == 0) return store_input(in, std::vector<float>(1, 0.0f));
+    ++dispatches_[static_cast<int>(k)];
+    run_kernel_into(k, frame, count, {}, in);
+}
+
 void Backend::read_input(KernelInput in, std::vector<float>& out) {
     if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
     fetch_input(in, out);

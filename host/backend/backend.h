@@ -95,6 +95,18 @@ public:
     /// a pixel kernel or a uint input.
     void launch_items_into(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items, KernelInput in);
 
+    /// Launches item kernel `k` over work items 0..count−1 without a list, as
+    /// launch_count_into does, into `out` (resized to out_floats per item; no launch for
+    /// count 0). Throws std::logic_error for a pixel kernel.
+    void launch_count(KernelId k, const TsFrame& frame, size_t count, std::vector<float>& out);
+
+    /// Launches item kernel `k` over work items 0..count−1 without a list (a kernel that
+    /// reads no item list but derives its work from its index, e.g. KernelId::AisCompactItem),
+    /// keeping its output (out_floats per item) where the kernels run as float input `in`.
+    /// count 0 stores the placeholder. Throws std::logic_error for a pixel kernel or a
+    /// uint input.
+    void launch_count_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in);
+
     /// Reads float input `in` back from where the kernels run (as set or kept by
     /// launch_into / launch_items_into), resizing `out` to its length. Throws
     /// std::logic_error for a uint input.

@@ -45,6 +45,14 @@
       nullptr, no_packets)                                                                                        \
     X(AisItem, "ais_extra_pass", "igi.cl", TS_AIS_ITEM_FLOATS, TS_AIS_ITEM_WORDS, ts_ais_extra_item,               \
       "ais_extra_packets", ais_item_packets)                                                                      \
+    X(AisTileSets, "ais_tile_sets_pass", "igi.cl", TS_AIS_TILE_SET_FLOATS, 1, ts_ais_tile_sets_item, nullptr,     \
+      no_packets)                                                                                                 \
+    X(AisCompactItem, "ais_compact_pass", "igi.cl", TS_AIS_ITEM_FLOATS, 1, ts_ais_compact_item, nullptr,           \
+      no_packets)                                                                                                 \
+    X(EdgeTileCounts, "edge_tile_counts_pass", "igi.cl", TS_EDGE_TILE_FLOATS, 1, ts_edge_tile_counts_item,         \
+      nullptr, no_packets)                                                                                        \
+    X(EdgeCompactSample, "edge_compact_pass", "igi.cl", TS_EDGE_SAMPLE_FLOATS, 1, ts_edge_compact_sample_item,     \
+      nullptr, no_packets)                                                                                        \
     X(EdgeSample, "edge_sample_pass", "igi.cl", TS_EDGE_SAMPLE_FLOATS, TS_EDGE_ITEM_WORDS, ts_edge_sample_item,    \
       nullptr, no_packets)                                                                                        \
     X(LightPaths, "light_paths_pass", "igi.cl", TS_LP_FLOATS, TS_LP_ITEM_WORDS, ts_light_path_item, nullptr,       \

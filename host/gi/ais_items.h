@@ -1,50 +1,51 @@
-// The item tables an AIS frame sends its kernels: the extra sets' list (KernelId::AisItem)
-// and each pixel's items (named input AisPixelItems), the edge samples' list
-// (KernelId::EdgeSample) and each pixel's samples (EdgePixelSamples). The host path sends
-// its AisSchedule's list (ais_item_list) and EdgeSchedule's items; a device frame builds
-// the tables straight from the schedule kernels' per-pixel output (KernelId::AisSchedule,
-// EdgeSchedule), over tiles and rows in parallel, into buffers kept across frames
-// (tests/gi/ais_items_test.cpp checks them against serial layouts of the host's lists).
+// The item tables an AIS frame sends its kernels. The host path sends its AisSchedule's
+// list (ais_item_list; KernelId::AisItem) and EdgeSchedule's items (KernelId::EdgeSample).
+// A device frame lists nothing: its kernels count, per 16 × 16 pixel tile, the pixels that
+// evaluate each extra set and the edge samples (KernelId::AisTileSets, EdgeTileCounts), the
+// host reads the counts back and uploads their prefix sums (ais_item_offsets,
+// edge_tile_offsets), and the extra sets' and edge samples' kernels find their pixels from
+// those (kernels/shared/ais_compact.h; docs/ray-batches.md §5).
 #pragma once
 #include <array>
 #include <cstdint>
 #include <vector>
 
-#include "gi/ais_edges.h"
 #include "gi/ais_schedule.h"
+#include "kernels/shared/layout_igi.h"
 
 namespace tessera {
+
+static_assert(kItemTile == TS_AIS_TILE, "the device's compact tables keep the host list's order");
 
 /// s's item list, TS_AIS_ITEM_WORDS per item (layout_igi.h), in s's item order.
 std::vector<uint32_t> ais_item_list(const AisSchedule& s);
 
-/// A device frame's AIS tables.
-struct AisItemTables {
-    std::vector<uint32_t> list;         ///< ais_item_list's
-    /// Each pixel's items (named input AisPixelItems, layout_igi.h TS_AIS_ENTRY_*): words
-    /// 0..P offsets, then each pixel's entries (item index, code) in increasing set order.
-    std::vector<uint32_t> pixel_items;
+/// T, the TS_AIS_TILE² pixel tiles of a width × height frame (rows of tiles).
+size_t ais_tile_count(uint32_t width, uint32_t height);
+
+/// A device frame's extra-set offsets (named input AisItemOffsets, layout_igi.h).
+struct AisItemOffsets {
+    std::vector<uint32_t> offsets;                 ///< n²·T + 1 words; the last: the item count
     std::array<double, kAisComponents> flagged{};  ///< fraction of pixels each component flags
+    size_t items() const { return offsets.empty() ? 0 : offsets.back(); }
 };
 
-/// From `masks` (TS_AIS_MASK_FLOATS per pixel of a width × height frame, tile edge `tile`:
-/// KernelId::AisSchedule's output) the tables of the schedule with those masks:
-/// ais_item_list's list (schedule_items' order) and each pixel's entries, reusing out's
-/// capacity. Throws std::length_error past 2^32 entries.
-void ais_item_tables(const std::vector<float>& masks, int width, int height, int tile, AisItemTables& out);
+/// From `tile_sets` (TS_AIS_TILE_SET_FLOATS per work item j = k·T + t, k < n², t < `tiles`:
+/// KernelId::AisTileSets's output) the counts' exclusive prefix sums in j order and the
+/// flagged fractions over `pixels`, reusing out's capacity. Throws std::length_error past
+/// 2^32 items.
+void ais_item_offsets(const std::vector<float>& tile_sets, size_t tiles, size_t pixels, AisItemOffsets& out);
 
-/// A device frame's edge tables.
-struct EdgeItemTables {
-    std::vector<uint32_t> items;          ///< EdgeSchedule::items of edge_schedule_items
-    /// Each pixel's first sample << TS_EDGE_PIXEL_FIRST_SHIFT | its count (named input
-    /// EdgePixelSamples; 0: none).
-    std::vector<uint32_t> pixel_samples;
-    double flagged = 0;                   ///< fraction of pixels with samples
+/// A device frame's edge-sample offsets (named input EdgeTileOffsets, layout_igi.h).
+struct EdgeTileOffsets {
+    std::vector<uint32_t> offsets;  ///< T + 1 words; the last: the sample count
+    double flagged = 0;             ///< fraction of pixels with samples
+    size_t samples() const { return offsets.empty() ? 0 : offsets.back(); }
 };
 
-/// From `counts` (one float a pixel of a `width`-pixel-wide frame: KernelId::EdgeSchedule's
-/// output) the tables of those counts (edge_schedule_items' items), reusing out's capacity.
-/// Throws std::length_error past 2^28 samples (the pixel codes' first-index bits).
-void edge_item_tables(const std::vector<float>& counts, int width, EdgeItemTables& out);
+/// From `tile_counts` (TS_EDGE_TILE_FLOATS a tile: KernelId::EdgeTileCounts's output) the
+/// samples' exclusive prefix sums and the flagged fraction over `pixels`, reusing out's
+/// capacity. Throws std::length_error past 2^32 samples.
+void edge_tile_offsets(const std::vector<float>& tile_counts, size_t pixels, EdgeTileOffsets& out);
 
 }  // namespace tessera

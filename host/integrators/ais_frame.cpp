@@ -185,8 +185,8 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
 }
 
 void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) {
-    // The base pass's outputs stay on the device; the schedule kernel reads them and the
-    // host reads TS_AIS_MASK_FLOATS a pixel of set masks back.
+    // The base pass's outputs stay on the device, and so do the schedule kernels' masks
+    // and counts: the host reads a few counts a tile back.
     auto t0 = Clock::now();
     backend_.launch_into(KernelId::IgiSurface, surface_frame, KernelInput::IgiSurface);
     stats_.surface_seconds = since(t0);
@@ -202,29 +202,27 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     const uint32_t guided = bits & (TS_COMPONENT_SS | TS_COMPONENT_ID | (media ? TS_COMPONENT_PM : 0u));
     schedule_table_ = ais_schedule_table(thresholds(), settings_.ais_mode, static_cast<int>(settings_.tile), guided,
                                          settings_.edges, 0.0f);
-    // No host schedule: the kernel's masks become the item tables directly (the guidance
-    // and set-count maps are AOVs, which the host path draws).
+    // No host schedule: the masks stay on the device, the host reads each (set, tile)'s
+    // count and uploads their prefix sums (gi/ais_items.h; the guidance and set-count maps
+    // are AOVs, which the host path draws). Unguided components keep their own set, so
+    // with none guided every count is 0.
     guidance_ = AisGuidance{};
     schedule_ = AisSchedule{};
-    stats_.ais_schedule_kernel_seconds = 0.0;
-    if (!guided) {  // no component to refine: no items, each pixel's range empty
-        device_items_.list.clear();
-        device_items_.pixel_items.assign(size_t(frame.width) * frame.height + 1, 0u);
-        device_items_.flagged = {};
-    } else {
-        backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
-        const auto t_masks = Clock::now();
-        backend_.launch(KernelId::AisSchedule, frame, masks_);
-        stats_.ais_schedule_kernel_seconds = since(t_masks);
-        ais_item_tables(masks_, static_cast<int>(frame.width), static_cast<int>(frame.height),
-                        static_cast<int>(settings_.tile), device_items_);
-    }
-    stats_.flagged = device_items_.flagged;
-    stats_.ais_items = device_items_.list.size() / TS_AIS_ITEM_WORDS;
+    backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
+    const auto t_masks = Clock::now();
+    backend_.launch_into(KernelId::AisSchedule, frame, KernelInput::AisMasks);
+    const size_t tiles = ais_tile_count(frame.width, frame.height), pixels = size_t(frame.width) * frame.height;
+    backend_.launch_count_into(KernelId::AisTileSets, frame, size_t(settings_.tile) * settings_.tile * tiles,
+                               KernelInput::AisTileSets);
+    backend_.read_input(KernelInput::AisTileSets, tile_sets_);
+    stats_.ais_schedule_kernel_seconds = since(t_masks);
+    ais_item_offsets(tile_sets_, tiles, pixels, item_offsets_);
+    backend_.set_input(KernelInput::AisItemOffsets, item_offsets_.offsets);
+    stats_.flagged = item_offsets_.flagged;
+    stats_.ais_items = item_offsets_.items();
     stats_.ais_schedule_seconds = since(t_ais);
     const auto t_kernel = Clock::now();
-    backend_.launch_items_into(KernelId::AisItem, frame, device_items_.list, KernelInput::AisItems);
-    backend_.set_input(KernelInput::AisPixelItems, device_items_.pixel_items);
+    backend_.launch_count_into(KernelId::AisCompactItem, frame, item_offsets_.items(), KernelInput::AisItems);
     stats_.ais_kernel_seconds = since(t_kernel);
     stats_.ais_merge_seconds = 0.0;  // in the resolve
     stats_.ais_seconds = since(t_ais);
@@ -263,15 +261,17 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
     schedule_table_[TS_AIS_TABLE_EDGE_EPSILON] = std::bit_cast<uint32_t>(eps);
     backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
     const auto t_counts = Clock::now();
-    backend_.launch(KernelId::EdgeSchedule, ais, edge_counts_);
+    backend_.launch_into(KernelId::EdgeSchedule, ais, KernelInput::EdgeCounts);
+    backend_.launch_count(KernelId::EdgeTileCounts, ais, ais_tile_count(frame.width, frame.height), edge_tiles_);
     stats_.edge_schedule_kernel_seconds = since(t_counts);
-    edge_item_tables(edge_counts_, static_cast<int>(frame.width), device_edges_);
-    stats_.edge_samples = device_edges_.items.size() / TS_EDGE_ITEM_WORDS;
-    stats_.edge_flagged = device_edges_.flagged;
+    edge_tile_offsets(edge_tiles_, size_t(frame.width) * frame.height, edge_offsets_);
+    stats_.edge_samples = edge_offsets_.samples();
+    stats_.edge_flagged = edge_offsets_.flagged;
     const auto t_kernel = Clock::now();
-    if (!device_edges_.items.empty()) {
-        backend_.launch_items_into(KernelId::EdgeSample, frame, device_edges_.items, KernelInput::EdgeSamples);
-        backend_.set_input(KernelInput::EdgePixelSamples, device_edges_.pixel_samples);
+    if (edge_offsets_.samples() > 0) {
+        backend_.set_input(KernelInput::EdgeTileOffsets, edge_offsets_.offsets);
+        backend_.launch_count_into(KernelId::EdgeCompactSample, frame, edge_offsets_.samples(),
+                                   KernelInput::EdgeSamples);
         backend_.launch(KernelId::AisEdgeMerge, ais, out);
     } else {
         backend_.read_input(KernelInput::IgiPass, out);

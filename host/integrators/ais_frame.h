@@ -38,8 +38,10 @@ protected:
         return settings_.component_aovs || !backend_.resolves_on_device();
     }
     /// The device's AIS frame: the set masks (KernelId::AisSchedule) and edge-sample counts
-    /// (KernelId::EdgeSchedule) computed where the kernels ran and read back for the
-    /// host's item lists (the host's masks and counts, bit for bit); the extra sets, their
+    /// (KernelId::EdgeSchedule) computed and kept where the kernels ran (the host's masks
+    /// and counts, bit for bit), per-tile counts read back and their prefix sums sent
+    /// (gi/ais_items.h), the extra sets and edge samples over exactly their items
+    /// (kernels/shared/ais_compact.h, in the host list's order); the extra sets, their
     /// merge, the reconstruction, the clamp's compensation, the composite and the edge
     /// samples' merge where the kernels ran (shared/ais_resolve.h, KernelId::AisEdgeMerge):
     /// the host's image, bit for bit where the device has fp64 and rounds exp as the host
@@ -85,15 +87,15 @@ private:
     // The edge samples' kernel output, kept across passes as IgiFrame keeps surf_ (Sibenik
     // 512²: 11 MB a pass, whose fresh allocation would be zero-filled and faulted in anew).
     std::vector<float> edge_samples_;
-    // A device frame's schedule: the AisScheduleTable input, KernelId::AisSchedule's
-    // TS_AIS_MASK_FLOATS a pixel and KernelId::EdgeSchedule's count a pixel.
+    // A device frame's schedule: the AisScheduleTable input, KernelId::AisTileSets's
+    // output read back and its offsets, KernelId::EdgeTileCounts's and its offsets.
     std::vector<uint32_t> schedule_table_;
-    std::vector<float> masks_;
-    std::vector<float> edge_counts_;
+    std::vector<float> tile_sets_;
+    AisItemOffsets item_offsets_;
     std::vector<uint32_t> row_items_;  // 0..height-1: KernelId::EdgeRowSums's items
     std::vector<float> row_sums_;      // ... and its output
-    AisItemTables device_items_;   // the item tables from masks_ (gi/ais_items.h)
-    EdgeItemTables device_edges_;  // ... and from edge_counts_
+    std::vector<float> edge_tiles_;
+    EdgeTileOffsets edge_offsets_;
 };
 
 }  // namespace tessera

@@ -6,11 +6,11 @@
  * edge samples' (edge_samples), so that the device's image is the host's bit for bit where
  * the device has fp64 (else the sums are compensated float). The schedule kernels are here
  * too (AisSchedule, EdgeRowSums, EdgeSchedule: the host's per-pixel code of
- * shared/ais_guidance.h and edge_guidance.h); the host lays their masks and counts out as
- * item lists and sends, per pixel, which items are its own (ais_pixel_items,
- * edge_pixel_samples). */
+ * shared/ais_guidance.h and edge_guidance.h); their masks and counts stay where the kernels
+ * ran, and the items are found from them and the tiles' prefix sums (shared/ais_compact.h). */
 #ifndef TS_AIS_RESOLVE_H
 #define TS_AIS_RESOLVE_H
+#include "shared/ais_compact.h"
 #include "shared/ais_guidance.h"
 #include "shared/compat.h"
 #include "shared/discontinuity.h"
@@ -79,24 +79,22 @@ TS_INLINE void ts_ais_sum_mean(const TsAisSum* a, int count, float* out) {
  * neighbour in its filter window that holds it, if the filter accepts it (`accepted`, the
  * window's bits as ts_discontinuity_mask gives them for window edge n, `offset` their pixel
  * offsets), over the number of terms. Writes out (3 floats) and returns 1; returns 0 where
- * the pixel evaluated its own set only (the filter's value stands). Layout of
- * sv->ais_pixel_items: TS_AIS_PIXEL_ITEMS. */
+ * the pixel evaluated its own set only (the filter's value stands). The pixel's sets are
+ * its masks (sv->ais_masks), its items found by ts_ais_compact_index. */
 TS_INLINE int ts_ais_mean(const TsSceneView* sv, const TsFrame* f, uint x, uint y, int c, int n, ulong accepted,
                           const long* offset, float* out) {
     const size_t p = (size_t)y * f->width + x;
-    const size_t pixels = (size_t)f->width * f->height;
-    TS_GLOBAL const uint* table = sv->ais_pixel_items;
-    const uint begin = table[p], end = table[p + 1u];
     const uint tile = f->igi_tile;
-    ulong mask = (ulong)1 << ts_igi_set(x, y, tile);
+    TS_GLOBAL const float* m = sv->ais_masks + p * TS_AIS_MASK_FLOATS;
+    const ulong own = (ulong)1 << ts_igi_set(x, y, tile);
+    const ulong sets = (ulong)as_uint(m[TS_AIS_MASK_SETS(c)]) | (ulong)as_uint(m[TS_AIS_MASK_SETS(c) + 1]) << 32;
+    ulong mask = own;
     TsAisSum sum = ts_ais_sum_zero();
     ts_ais_sum_add(&sum, ts_ais_base(sv, c, p));
-    for (uint k = begin; k < end; ++k) {
-        TS_GLOBAL const uint* entry = table + pixels + 1u + TS_AIS_ENTRY_WORDS * (size_t)k;
-        const uint code = entry[TS_AIS_ENTRY_CODE];
-        if (!((code >> 8) & (1u << c))) continue;
-        mask |= (ulong)1 << (code & 0xffu);
-        ts_ais_sum_add(&sum, sv->ais_items + (size_t)entry[TS_AIS_ENTRY_ITEM] * TS_AIS_ITEM_FLOATS +
+    for (ulong e = sets & ~own; e; e &= e - 1ul) {
+        const uint k = (uint)ts_ctz64(e);
+        mask |= (ulong)1 << k;
+        ts_ais_sum_add(&sum, sv->ais_items + (size_t)ts_ais_compact_index(sv, f, x, y, k) * TS_AIS_ITEM_FLOATS +
                                  TS_AIS_ITEM_COMPONENT(c));
     }
     int count = ts_popcount64(mask);

@@ -63,5 +63,14 @@ TS_INLINE void ts_edge_sample_item(const TsSceneView* sv, const TsTracer* tracer
     ts_edge_sample(sv, tracer, f, p % f->width, p / f->width, j, n, out);
 }
 
+/* KernelId::EdgeCompactSample's work item i of a device frame: sample i of the tables kept
+ * where the kernels run (ts_edge_compact_decode, shared/ais_compact.h). */
+TS_INLINE void ts_edge_compact_sample_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                           float* out) {
+    uint p, j, n;
+    ts_edge_compact_decode(sv, f, i, &p, &j, &n);
+    ts_edge_sample(sv, tracer, f, p % f->width, p / f->width, j, n, out);
+}
+
 TS_NAMESPACE_END
 #endif /* TS_EDGE_SAMPLES_H */

@@ -59,7 +59,7 @@ typedef struct TsFrame {
                                       (shared/igi_clamp_screen.h); 0 = none */
     unsigned int igi_ais;          /* igi resolve: 1 = an AIS frame: a pixel's components with
                                       extra sets combine them (TsSceneView.ais_items,
-                                      ais_pixel_items; shared/ais_resolve.h); 0 = igi */
+                                      ais_masks and the compact tables; shared/ais_resolve.h); 0 = igi */
 } TsFrame;
 
 #ifdef __cplusplus

@@ -25,6 +25,7 @@
  */
 #ifndef TS_IGI_H
 #define TS_IGI_H
+#include "shared/ais_compact.h"
 #include "shared/bsdf.h"
 #include "shared/compat.h"
 #include "shared/direct.h"
@@ -814,6 +815,15 @@ TS_INLINE void ts_ais_extra_item(const TsSceneView* sv, const TsTracer* tracer, 
                                  float* out) {
     uint px, py, k, mask;
     ts_ais_item_decode(sv, f, i, &px, &py, &k, &mask);
+    ts_ais_item(sv, tracer, f, px, py, k, mask, out);
+}
+
+/* KernelId::AisCompactItem's work item i of a device frame: item i of the tables kept where
+ * the kernels run (ts_ais_compact_decode, shared/ais_compact.h) through ts_ais_item. */
+TS_INLINE void ts_ais_compact_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                   float* out) {
+    uint px, py, k, mask;
+    ts_ais_compact_decode(sv, f, i, &px, &py, &k, &mask);
     ts_ais_item(sv, tracer, f, px, py, k, mask, out);
 }
 

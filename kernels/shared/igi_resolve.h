@@ -62,7 +62,7 @@ TS_INLINE void ts_igi_resolve_pixel(const TsSceneView* sv, const TsTracer* trace
 /* Per-pixel kernel AisEdgeMerge: the AIS frame's edge samples merged where the kernels ran
  * (host: merge_edge_samples, host/gi/ais_edges.h). Copies pixel p's resolved pass image
  * (TsSceneView.igi_pass, TS_PASS_FLOATS); where the schedule gave p edge samples
- * (TsSceneView.edge_pixel_samples: first sample << 4 | count), its radiance becomes the mean
+ * (TsSceneView.edge_counts; its first in edge_samples ts_edge_compact_first), its radiance becomes the mean
  * of its own and its samples' (TsSceneView.edge_samples), each shaded as the composite with
  * its own throughput, emission and albedo and the reconstructed components of the pixel it
  * lies on (ts_edge_sample_match): E_ss, E_id plus the clamp's E_res, L_pm, and the camera
@@ -73,14 +73,14 @@ TS_INLINE void ts_ais_edge_merge_pixel(const TsSceneView* sv, const TsTracer* tr
     const size_t p = (size_t)y * frame->width + x;
     TS_GLOBAL const float* base = sv->igi_pass + p * TS_PASS_FLOATS;
     for (int c = 0; c < TS_PASS_FLOATS; ++c) out[c] = base[c];
-    const uint code = sv->edge_pixel_samples[p];
-    const uint n = code & TS_EDGE_PIXEL_COUNT_MASK;
+    const uint n = ts_edge_count_at(sv, frame, x, y);
     if (n == 0u) return;
+    const uint first = ts_edge_compact_first(sv, frame, x, y);
     const int pm = (frame->igi_components & TS_COMPONENT_PM) != 0u;
     TsAisSum sum = ts_ais_sum_zero();
     ts_ais_sum_add(&sum, base + TS_PASS_RADIANCE);
     for (uint j = 0u; j < n; ++j) {
-        TS_GLOBAL const float* g = sv->edge_samples + (size_t)((code >> TS_EDGE_PIXEL_FIRST_SHIFT) + j) * TS_EDGE_SAMPLE_FLOATS;
+        TS_GLOBAL const float* g = sv->edge_samples + (size_t)(first + j) * TS_EDGE_SAMPLE_FLOATS;
         float e[TS_EDGE_SAMPLE_FLOATS];
         for (int k = 0; k < TS_EDGE_SAMPLE_FLOATS; ++k) e[k] = g[k];
         const size_t q = ts_edge_sample_match(sv, frame, (int)x, (int)y, e);

@@ -56,13 +56,20 @@
  *                    (layout_light_path.h; KernelId::LightPaths)
  *   AisItems         TS_AIS_ITEM_FLOATS per item of the frame's AIS list, KernelId::AisItem's
  *                    output kept where the kernels run (Backend::launch_items_into)
- *   AisPixelItems    each pixel's items of that list (layout_igi.h, TS_AIS_ENTRY_*); read
- *                    when TsFrame.igi_ais is 1 (shared/ais_resolve.h)
+ *   AisMasks         TS_AIS_MASK_FLOATS per pixel, KernelId::AisSchedule's output kept
+ *                    (KernelId::AisTileSets, AisItem on a device frame, IgiResolve read it)
+ *   AisTileSets      TS_AIS_TILE_SET_FLOATS per (set, tile), KernelId::AisTileSets's output
+ *                    kept (layout_igi.h; shared/ais_compact.h)
+ *   AisItemOffsets   their counts' exclusive prefix sums, n²·T + 1 (layout_igi.h); with
+ *                    AisMasks and AisTileSets read when TsFrame.igi_ais is 1
  *   IgiPass          TS_PASS_FLOATS per pixel, KernelId::IgiResolve's output kept
  *                    (KernelId::EdgeRowSums, EdgeSchedule and AisEdgeMerge read it)
  *   EdgeSamples      TS_EDGE_SAMPLE_FLOATS per item of the frame's edge list,
  *                    KernelId::EdgeSample's output kept
- *   EdgePixelSamples each pixel's edge samples (layout_igi.h, TS_EDGE_PIXEL_*)
+ *   EdgeCounts       one float a pixel, KernelId::EdgeSchedule's output kept (its edge
+ *                    samples)
+ *   EdgeTileOffsets  the tiles' edge samples' exclusive prefix sums, T + 1 (layout_igi.h;
+ *                    KernelId::EdgeSample and AisEdgeMerge read them with EdgeCounts)
  *   AisScheduleTable the AIS schedule's parameters and set orders (layout_igi.h,
  *                    TS_AIS_TABLE_*; KernelId::AisSchedule and EdgeSchedule read it) */
 #define TS_KERNEL_INPUTS(X)                                                  \
@@ -82,10 +89,13 @@
     X(ClampResidual, clamp_residual, float, "clamp residual")               \
     X(LightPathTable, light_path_table, uint, "light path table")            \
     X(AisItems, ais_items, float, "AIS items")                               \
-    X(AisPixelItems, ais_pixel_items, uint, "AIS pixel items")               \
+    X(AisMasks, ais_masks, float, "AIS set masks")                           \
+    X(AisTileSets, ais_tile_sets, float, "AIS tile sets")                    \
+    X(AisItemOffsets, ais_item_offsets, uint, "AIS item offsets")            \
     X(IgiPass, igi_pass, float, "igi pass")                                  \
     X(EdgeSamples, edge_samples, float, "edge samples")                      \
-    X(EdgePixelSamples, edge_pixel_samples, uint, "edge pixel samples")     \
+    X(EdgeCounts, edge_counts, float, "edge counts")                         \
+    X(EdgeTileOffsets, edge_tile_offsets, uint, "edge tile offsets")         \
     X(AisScheduleTable, ais_schedule_table, uint, "AIS schedule table")
 
 /* TsSceneView's pointer to one buffer (shared/geometry.h). */

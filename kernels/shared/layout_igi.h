@@ -112,19 +112,28 @@
 #define TS_AIS_ITEM_WORDS 2
 #define TS_AIS_ITEM_PIXEL 0
 #define TS_AIS_ITEM_CODE 1
-/* The AIS schedule's items per pixel (named input AisPixelItems, shared/ais_resolve.h), for
- * a frame of P pixels: words 0..P are offsets (in entries) into the entries that follow
- * from word P + 1, pixel p's being [offset[p], offset[p+1]), in increasing set order; an
- * entry is TS_AIS_ENTRY_WORDS uints: the item's index in the frame's AIS list and its code
- * (TS_AIS_ITEM_CODE's). */
-#define TS_AIS_ENTRY_WORDS 2
-#define TS_AIS_ENTRY_ITEM 0
-#define TS_AIS_ENTRY_CODE 1
-/* Edge samples per pixel (named input EdgePixelSamples): one uint a pixel, the index of
- * its first sample in the frame's edge list << TS_EDGE_PIXEL_FIRST_SHIFT | its count
- * (0: none; at most 15). */
-#define TS_EDGE_PIXEL_FIRST_SHIFT 4
-#define TS_EDGE_PIXEL_COUNT_MASK 15u
+/* A device AIS frame's compact tables (shared/ais_compact.h). The frame is cut into
+ * TS_AIS_TILE × TS_AIS_TILE pixel tiles, T of them in rows of tiles (the host list's tiles,
+ * kItemTile of host/gi/ais_schedule.h). Work item j = k·T + t of KernelId::AisTileSets (set
+ * k, tile t; named input AisTileSets) writes TS_AIS_TILE_SET_FLOATS floats:
+ *   TS_AIS_TILE_SET_BITS    TS_AIS_TILE_SET_WORDS uints (as_float bits): bit b marks the
+ *                           tile's pixel b (row-major in the tile) evaluating set k beyond
+ *                           its own
+ *   TS_AIS_TILE_SET_COUNT   their number
+ *   TS_AIS_TILE_SET_FLAGS+c the tile's pixels component c flags (the same for every k).
+ * Named input AisItemOffsets: n²·T + 1 uints, the exclusive prefix sums of the counts in
+ * j order (the last: the frame's item count). KernelId::EdgeTileCounts writes
+ * TS_EDGE_TILE_FLOATS a tile: its edge samples and the pixels that take any; named input
+ * EdgeTileOffsets: T + 1 uints, the samples' exclusive prefix sums. */
+#define TS_AIS_TILE 16u
+#define TS_AIS_TILE_SET_WORDS 8
+#define TS_AIS_TILE_SET_BITS 0
+#define TS_AIS_TILE_SET_COUNT 8
+#define TS_AIS_TILE_SET_FLAGS 9
+#define TS_AIS_TILE_SET_FLOATS 12
+#define TS_EDGE_TILE_FLOATS 2
+#define TS_EDGE_TILE_SAMPLES 0
+#define TS_EDGE_TILE_FLAGGED 1
 /* The AIS schedule's parameters (named input AisScheduleTable, shared/ais_guidance.h; the
  * host builds it with ais_schedule_table, host/gi/ais_schedule.h), uints, floats as their
  * bits (as_uint):

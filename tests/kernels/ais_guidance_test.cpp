@@ -1,25 +1,31 @@
 // The AIS schedule computed where the kernels run (KernelId::AisSchedule and EdgeSchedule,
 // kernels/shared/ais_guidance.h, edge_guidance.h, ais_resolve.h) against the host's
 // reference (compute_guidance, make_schedule, edge_guidance, make_edge_schedule): set masks,
-// flags, item lists and edge-sample counts bit for bit, on PoCL (OpenCL C) and on Embree
+// flags, item lists and edge-sample counts bit for bit, and a device frame's compact tables
+// (AisTileSets, EdgeTileCounts, shared/ais_compact.h) decoded into the host's lists, on PoCL (OpenCL C) and on Embree
 // (the shared code as C++ over the device's strided buffers). The inputs are synthetic
 // G-buffers with every case the guidance branches on: planes meeting at creases and depth
 // steps, escaped rays, penumbrae, VPL spikes, medium shafts and length steps, emitters.
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "backend/backend.h"
+#include "backend/embree_tracer.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
 #include "gi/ais_edges.h"
+#include "gi/ais_items.h"
 #include "gi/ais_schedule.h"
+#include "kernels/shared/ais_compact.h"
 #include "kernels/shared/frame.h"
 #include "kernels/shared/layout_igi.h"
 #include "kernels/shared/layout_pass.h"
@@ -120,6 +126,62 @@ std::unique_ptr<Backend> backend_of(BackendKind kind, SceneBuffers& buffers, con
     return make_backend(o, buffers, plan_effects(scene));
 }
 
+// A device frame's extra sets (shared/ais_compact.h): the tile sets counted where the kernels
+// run, their prefix sums on the host, then every item decoded from them is the host list's
+// item at the same place, and each pixel's item for each of its sets is found there.
+void expect_compact_items(Backend& backend, const TsFrame& f, const std::vector<float>& masks,
+                          const AisSchedule& host, const std::array<double, kAisComponents>& flagged) {
+    backend.launch_into(KernelId::AisSchedule, f, KernelInput::AisMasks);
+    const size_t tiles = ais_tile_count(f.width, f.height), pixels = size_t(f.width) * f.height;
+    backend.launch_count_into(KernelId::AisTileSets, f, size_t(f.igi_tile) * f.igi_tile * tiles,
+                              KernelInput::AisTileSets);
+    std::vector<float> tile_sets;
+    backend.read_input(KernelInput::AisTileSets, tile_sets);
+    AisItemOffsets offsets;
+    ais_item_offsets(tile_sets, tiles, pixels, offsets);
+    ASSERT_EQ(offsets.items(), host.item_pixels.size());
+    for (int c = 0; c < kAisComponents; ++c) EXPECT_EQ(offsets.flagged[c], flagged[c]) << "component " << c;
+    ts::TsSceneView sv{};
+    sv.ais_masks = masks.data();
+    sv.ais_tile_sets = tile_sets.data();
+    sv.ais_item_offsets = offsets.offsets.data();
+    for (uint32_t i = 0; i < offsets.items(); ++i) {
+        uint32_t x, y, k, mask;
+        ts::ts_ais_compact_decode(&sv, &f, i, &x, &y, &k, &mask);
+        ASSERT_EQ(y * f.width + x, host.item_pixels[i]) << "item " << i;
+        ASSERT_EQ(k, host.item_sets[i]) << "item " << i;
+        ASSERT_EQ(mask, host.item_components[i]) << "item " << i;
+        ASSERT_EQ(ts::ts_ais_compact_index(&sv, &f, x, y, k), i);
+    }
+}
+
+// A device frame's edge samples likewise: the host's (pixel, sample, count) items, tile by
+// tile, each pixel's samples consecutive from ts_edge_compact_first.
+void expect_compact_edges(Backend& backend, const TsFrame& f, const std::vector<float>& counts,
+                          const EdgeSchedule& host) {
+    backend.set_input(KernelInput::EdgeCounts, counts);
+    std::vector<float> tile_counts;
+    backend.launch_count(KernelId::EdgeTileCounts, f, ais_tile_count(f.width, f.height), tile_counts);
+    EdgeTileOffsets offsets;
+    edge_tile_offsets(tile_counts, size_t(f.width) * f.height, offsets);
+    ASSERT_EQ(offsets.samples(), host.items.size() / TS_EDGE_ITEM_WORDS);
+    EXPECT_EQ(offsets.flagged, host.flagged);
+    ts::TsSceneView sv{};
+    sv.edge_counts = counts.data();
+    sv.edge_tile_offsets = offsets.offsets.data();
+    std::set<std::array<uint32_t, 3>> decoded, listed;
+    for (uint32_t i = 0; i < offsets.samples(); ++i) {
+        uint32_t p, j, n;
+        ts::ts_edge_compact_decode(&sv, &f, i, &p, &j, &n);
+        ASSERT_EQ(ts::ts_edge_compact_first(&sv, &f, p % f.width, p / f.width) + j - 1, i) << "sample " << i;
+        decoded.insert({p, j, n});
+    }
+    for (size_t i = 0; i < host.items.size(); i += TS_EDGE_ITEM_WORDS)
+        listed.insert({host.items[i + TS_EDGE_ITEM_PIXEL], host.items[i + TS_EDGE_ITEM_SAMPLE],
+                       host.items[i + TS_EDGE_ITEM_COUNT]});
+    EXPECT_EQ(decoded, listed);
+}
+
 struct ScheduleCase {
     const char* name;
     BackendKind backend;
@@ -199,6 +261,9 @@ TEST_P(AisScheduleKernel, EqualsTheHostSchedule) {
     EXPECT_EQ(device.item_pixels, host.item_pixels);
     EXPECT_EQ(device.item_sets, host.item_sets);
     EXPECT_EQ(device.item_components, host.item_components);
+    std::array<double, kAisComponents> fraction{};
+    for (int k = 0; k < kAisComponents; ++k) fraction[k] = double(flagged[k]) / double(size_t(kWidth) * kHeight);
+    expect_compact_items(*backend, frame_of(c.tile, c.components), out, host, fraction);
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -259,6 +324,7 @@ TEST_P(EdgeScheduleKernel, EqualsTheHostSchedule) {
     EXPECT_EQ(device.samples, host.samples);
     EXPECT_EQ(device.items, host.items);
     EXPECT_EQ(device.flagged, host.flagged);
+    expect_compact_edges(*backend, frame_of(c.tile, 0u), counts, host);
     // Flagged and unflagged pixels, and graded counts between 1 and the most under A.
     EXPECT_GT(host.flagged, 0.0);
     EXPECT_LT(host.flagged, 1.0);
