@@ -6,16 +6,15 @@
 namespace tessera {
 namespace {
 
-// Exclusive prefix sums of the counts at `stride` floats apart from `first` (n
-// of them) into `offsets` (one more entry: the total). The counts are integers
-// below 2^24, exact as floats.
-void prefix(const std::vector<float>& v, size_t n, size_t stride, size_t first, const char* what,
-            std::vector<uint32_t>& offsets) {
+// Exclusive prefix sums of count(0..n-1) into `offsets` (one more entry: the total). The
+// counts are the kernels' integers below 2^24, exact as floats.
+template <class Count>
+void prefix(size_t n, Count count, const char* what, std::vector<uint32_t>& offsets) {
     offsets.resize(n + 1);
     uint64_t sum = 0;
     for (size_t i = 0; i < n; ++i) {
         offsets[i] = static_cast<uint32_t>(sum);
-        sum += static_cast<uint64_t>(v[i * stride + first]);
+        sum += static_cast<uint64_t>(count(i));
     }
     if (sum > UINT32_MAX) throw std::length_error(std::string(what) + ": " + std::to_string(sum) + " entries");
     offsets[n] = static_cast<uint32_t>(sum);
@@ -36,21 +35,24 @@ size_t ais_tile_count(uint32_t width, uint32_t height) {
     return size_t((width + TS_AIS_TILE - 1) / TS_AIS_TILE) * ((height + TS_AIS_TILE - 1) / TS_AIS_TILE);
 }
 
-void ais_item_offsets(const std::vector<float>& tile_sets, size_t tiles, size_t pixels, AisItemOffsets& out) {
-    const size_t runs = tile_sets.size() / TS_AIS_TILE_SET_FLOATS;
-    prefix(tile_sets, runs, TS_AIS_TILE_SET_FLOATS, TS_AIS_TILE_SET_COUNT, "AIS items", out.offsets);
-    // Every set's runs carry the tile's flags; set 0's are read.
+void ais_item_offsets(const std::vector<float>& tile_sets, size_t sets, size_t tiles, size_t pixels,
+                      AisItemOffsets& out) {
+    auto at = [&](size_t k, size_t t) { return &tile_sets[(t * sets + k) * TS_AIS_TILE_SET_FLOATS]; };
+    // The list's order is set-major (j = k·T + t); the kernel's output is tile-major.
+    prefix(sets * tiles, [&](size_t j) { return at(j / tiles, j % tiles)[TS_AIS_TILE_SET_COUNT]; }, "AIS items",
+           out.offsets);
+    // Every set's entry carries the tile's flags; set 0's are read.
     for (int c = 0; c < kAisComponents; ++c) {
         double flagged = 0.0;
-        for (size_t t = 0; t < tiles && t < runs; ++t)
-            flagged += tile_sets[t * TS_AIS_TILE_SET_FLOATS + TS_AIS_TILE_SET_FLAGS + c];
+        for (size_t t = 0; t < tiles; ++t) flagged += at(0, t)[TS_AIS_TILE_SET_FLAGS + c];
         out.flagged[c] = pixels ? flagged / double(pixels) : 0.0;
     }
 }
 
 void edge_tile_offsets(const std::vector<float>& tile_counts, size_t pixels, EdgeTileOffsets& out) {
     const size_t tiles = tile_counts.size() / TS_EDGE_TILE_FLOATS;
-    prefix(tile_counts, tiles, TS_EDGE_TILE_FLOATS, TS_EDGE_TILE_SAMPLES, "edge samples", out.offsets);
+    prefix(tiles, [&](size_t t) { return tile_counts[t * TS_EDGE_TILE_FLOATS + TS_EDGE_TILE_SAMPLES]; },
+           "edge samples", out.offsets);
     double flagged = 0.0;
     for (size_t t = 0; t < tiles; ++t) flagged += tile_counts[t * TS_EDGE_TILE_FLOATS + TS_EDGE_TILE_FLAGGED];
     out.flagged = pixels ? flagged / double(pixels) : 0.0;

@@ -30,11 +30,12 @@ struct AisItemOffsets {
     size_t items() const { return offsets.empty() ? 0 : offsets.back(); }
 };
 
-/// From `tile_sets` (TS_AIS_TILE_SET_FLOATS per work item j = k·T + t, k < n², t < `tiles`:
-/// KernelId::AisTileSets's output) the counts' exclusive prefix sums in j order and the
-/// flagged fractions over `pixels`, reusing out's capacity. Throws std::length_error past
-/// 2^32 items.
-void ais_item_offsets(const std::vector<float>& tile_sets, size_t tiles, size_t pixels, AisItemOffsets& out);
+/// From `tile_sets` (TS_AIS_TILE_SET_FLOATS per work item t·sets + k, k < `sets` = n²,
+/// t < `tiles`: KernelId::AisTileSets's output) the counts' exclusive prefix sums in the
+/// item list's order, j = k·T + t, and the flagged fractions over `pixels`, reusing out's
+/// capacity. Throws std::length_error past 2^32 items.
+void ais_item_offsets(const std::vector<float>& tile_sets, size_t sets, size_t tiles, size_t pixels,
+                      AisItemOffsets& out);
 
 /// A device frame's edge-sample offsets (named input EdgeTileOffsets, layout_igi.h).
 struct EdgeTileOffsets {

@@ -216,7 +216,7 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
                                KernelInput::AisTileSets);
     backend_.read_input(KernelInput::AisTileSets, tile_sets_);
     stats_.ais_schedule_kernel_seconds = since(t_masks);
-    ais_item_offsets(tile_sets_, tiles, pixels, item_offsets_);
+    ais_item_offsets(tile_sets_, size_t(settings_.tile) * settings_.tile, tiles, pixels, item_offsets_);
     backend_.set_input(KernelInput::AisItemOffsets, item_offsets_.offsets);
     stats_.flagged = item_offsets_.flagged;
     stats_.ais_items = item_offsets_.items();

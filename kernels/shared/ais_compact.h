@@ -55,13 +55,20 @@ TS_INLINE ulong ts_ais_extra_sets(TS_GLOBAL const float* m, uint x, uint y, uint
     return all & ~((ulong)1 << ts_igi_set(x, y, tile));
 }
 
-/* Work item j = k·T + t of KernelId::AisTileSets (layout_igi.h,
- * TS_AIS_TILE_SET_*): which pixels of tile t evaluate set k beyond their own,
- * their number, and the tile's pixels each component flags. */
+/* The entry of set k and tile t in AisTileSets: tile-major, so that the n² work items of a
+ * tile, neighbours in a launch, read the same pixels' masks (on a GPU one load serves
+ * them, where set-major neighbours would read n² tiles apart). */
+TS_INLINE size_t ts_ais_tile_set_entry(const TsFrame* f, uint k, uint t) {
+    return ((size_t)t * (f->igi_tile * f->igi_tile) + k) * TS_AIS_TILE_SET_FLOATS;
+}
+
+/* Work item j = t·n² + k of KernelId::AisTileSets (layout_igi.h, TS_AIS_TILE_SET_*): which
+ * pixels of tile t evaluate set k beyond their own, their number, and the tile's pixels
+ * each component flags. */
 TS_INLINE void ts_ais_tile_sets_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint j,
                                      float* out) {
     (void)tracer;
-    const uint tiles = ts_ais_tile_count(f), t = j % tiles, k = j / tiles, tx = ts_ais_tiles_x(f);
+    const uint sets = f->igi_tile * f->igi_tile, t = j / sets, k = j % sets, tx = ts_ais_tiles_x(f);
     const uint x0 = (t % tx) * TS_AIS_TILE, y0 = (t / tx) * TS_AIS_TILE;
     uint bits[TS_AIS_TILE_SET_WORDS], flags[3] = {0u, 0u, 0u}, count = 0u;
     for (int w = 0; w < TS_AIS_TILE_SET_WORDS; ++w) bits[w] = 0u;
@@ -118,9 +125,9 @@ TS_INLINE void ts_ais_compact_decode(const TsSceneView* sv, const TsFrame* f, ui
                                      uint* mask) {
     const uint tiles = ts_ais_tile_count(f), runs = f->igi_tile * f->igi_tile * tiles;
     const uint j = ts_ais_run_of(sv->ais_item_offsets, runs, i), t = j % tiles, tx = ts_ais_tiles_x(f);
-    const uint b = ts_ais_nth_bit(sv->ais_tile_sets + (size_t)j * TS_AIS_TILE_SET_FLOATS + TS_AIS_TILE_SET_BITS,
-                                  i - sv->ais_item_offsets[j]);
     *k = j / tiles;
+    const uint b = ts_ais_nth_bit(sv->ais_tile_sets + ts_ais_tile_set_entry(f, *k, t) + TS_AIS_TILE_SET_BITS,
+                                  i - sv->ais_item_offsets[j]);
     *px = (t % tx) * TS_AIS_TILE + b % TS_AIS_TILE;
     *py = (t / tx) * TS_AIS_TILE + b / TS_AIS_TILE;
     *mask = ts_ais_set_components(sv->ais_masks + ((size_t)*py * f->width + *px) * TS_AIS_MASK_FLOATS, *k);
@@ -133,7 +140,7 @@ TS_INLINE uint ts_ais_compact_index(const TsSceneView* sv, const TsFrame* f, uin
     const uint tiles = ts_ais_tile_count(f), tx = ts_ais_tiles_x(f);
     const uint t = (y / TS_AIS_TILE) * tx + x / TS_AIS_TILE, j = k * tiles + t;
     const uint b = (y % TS_AIS_TILE) * TS_AIS_TILE + x % TS_AIS_TILE;
-    TS_GLOBAL const float* words = sv->ais_tile_sets + (size_t)j * TS_AIS_TILE_SET_FLOATS + TS_AIS_TILE_SET_BITS;
+    TS_GLOBAL const float* words = sv->ais_tile_sets + ts_ais_tile_set_entry(f, k, t) + TS_AIS_TILE_SET_BITS;
     uint before = 0u;
     for (uint w = 0u; w < b >> 5; ++w) before += (uint)ts_popcount64((ulong)as_uint(words[w]));
     if (b & 31u) before += (uint)ts_popcount64((ulong)(as_uint(words[b >> 5]) & ((1u << (b & 31u)) - 1u)));

@@ -114,7 +114,7 @@
 #define TS_AIS_ITEM_CODE 1
 /* A device AIS frame's compact tables (shared/ais_compact.h). The frame is cut into
  * TS_AIS_TILE × TS_AIS_TILE pixel tiles, T of them in rows of tiles (the host list's tiles,
- * kItemTile of host/gi/ais_schedule.h). Work item j = k·T + t of KernelId::AisTileSets (set
+ * kItemTile of host/gi/ais_schedule.h). Work item t·n² + k of KernelId::AisTileSets (set
  * k, tile t; named input AisTileSets) writes TS_AIS_TILE_SET_FLOATS floats:
  *   TS_AIS_TILE_SET_BITS    TS_AIS_TILE_SET_WORDS uints (as_float bits): bit b marks the
  *                           tile's pixel b (row-major in the tile) evaluating set k beyond
@@ -122,9 +122,10 @@
  *   TS_AIS_TILE_SET_COUNT   their number
  *   TS_AIS_TILE_SET_FLAGS+c the tile's pixels component c flags (the same for every k).
  * Named input AisItemOffsets: n²·T + 1 uints, the exclusive prefix sums of the counts in
- * j order (the last: the frame's item count). KernelId::EdgeTileCounts writes
- * TS_EDGE_TILE_FLOATS a tile: its edge samples and the pixels that take any; named input
- * EdgeTileOffsets: T + 1 uints, the samples' exclusive prefix sums. */
+ * the item list's order, j = k·T + t (set-major; the last: the frame's item count).
+ * KernelId::EdgeTileCounts writes TS_EDGE_TILE_FLOATS a tile: its edge samples and the
+ * pixels that take any; named input EdgeTileOffsets: T + 1 uints, the samples' exclusive
+ * prefix sums. */
 #define TS_AIS_TILE 16u
 #define TS_AIS_TILE_SET_WORDS 8
 #define TS_AIS_TILE_SET_BITS 0

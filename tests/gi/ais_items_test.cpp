@@ -13,18 +13,20 @@
 namespace tessera {
 namespace {
 
-TEST(AisItemOffsets, PrefixSumsInSetThenTileOrderAndSetZerosFlags) {
-    // Two sets of three tiles: j = k·3 + t.
-    const float counts[6] = {2, 0, 5, 1, 3, 0}, flags[3][3] = {{4, 1, 0}, {0, 0, 2}, {1, 1, 1}};
+TEST(AisItemOffsets, PrefixSumsInSetThenTileOrderFromTileMajorCounts) {
+    // Two sets of three tiles; counts[k][t] stored tile-major (t·2 + k) as the kernel writes
+    // them, summed set-major (k·3 + t) as the list runs.
+    const float counts[2][3] = {{2, 0, 5}, {1, 3, 0}}, flags[3][3] = {{4, 1, 0}, {0, 0, 2}, {1, 1, 1}};
     std::vector<float> tile_sets(6 * TS_AIS_TILE_SET_FLOATS, 0.0f);
-    for (int j = 0; j < 6; ++j) {
-        tile_sets[j * TS_AIS_TILE_SET_FLOATS + TS_AIS_TILE_SET_COUNT] = counts[j];
-        // Later sets' runs carry the same flags; garbage there must not count.
-        for (int c = 0; c < 3; ++c)
-            tile_sets[j * TS_AIS_TILE_SET_FLOATS + TS_AIS_TILE_SET_FLAGS + c] = j < 3 ? flags[j][c] : 99.0f;
-    }
+    for (int t = 0; t < 3; ++t)
+        for (int k = 0; k < 2; ++k) {
+            float* e = &tile_sets[(t * 2 + k) * TS_AIS_TILE_SET_FLOATS];
+            e[TS_AIS_TILE_SET_COUNT] = counts[k][t];
+            // Set 1's entries carry the same flags in a frame; garbage there must not count.
+            for (int c = 0; c < 3; ++c) e[TS_AIS_TILE_SET_FLAGS + c] = k == 0 ? flags[t][c] : 99.0f;
+        }
     AisItemOffsets out;
-    ais_item_offsets(tile_sets, 3, 20, out);
+    ais_item_offsets(tile_sets, 2, 3, 20, out);
     EXPECT_EQ(out.offsets, (std::vector<uint32_t>{0, 2, 2, 7, 8, 11, 11}));
     EXPECT_EQ(out.items(), 11u);
     EXPECT_DOUBLE_EQ(out.flagged[0], 5.0 / 20);
@@ -37,7 +39,7 @@ TEST(AisItemOffsets, RefusePastTheUint32Range) {
     tile_sets[TS_AIS_TILE_SET_COUNT] = 4e9f;
     tile_sets[TS_AIS_TILE_SET_FLOATS + TS_AIS_TILE_SET_COUNT] = 4e9f;
     AisItemOffsets out;
-    EXPECT_THROW(ais_item_offsets(tile_sets, 2, 1, out), std::length_error);
+    EXPECT_THROW(ais_item_offsets(tile_sets, 1, 2, 1, out), std::length_error);
 }
 
 TEST(EdgeTileOffsets, PrefixSumsOverTilesAndFlaggedFraction) {

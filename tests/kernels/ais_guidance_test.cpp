@@ -138,7 +138,7 @@ void expect_compact_items(Backend& backend, const TsFrame& f, const std::vector<
     std::vector<float> tile_sets;
     backend.read_input(KernelInput::AisTileSets, tile_sets);
     AisItemOffsets offsets;
-    ais_item_offsets(tile_sets, tiles, pixels, offsets);
+    ais_item_offsets(tile_sets, size_t(f.igi_tile) * f.igi_tile, tiles, pixels, offsets);
     ASSERT_EQ(offsets.items(), host.item_pixels.size());
     for (int c = 0; c < kAisComponents; ++c) EXPECT_EQ(offsets.flagged[c], flagged[c]) << "component " << c;
     ts::TsSceneView sv{};
