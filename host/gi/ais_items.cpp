@@ -37,11 +37,14 @@ size_t ais_tile_count(uint32_t width, uint32_t height) {
 
 void ais_item_offsets(const std::vector<float>& tile_sets, size_t sets, size_t tiles, size_t pixels,
                       AisItemOffsets& out) {
+    if (tile_sets.size() != sets * tiles * TS_AIS_TILE_SET_FLOATS)
+        throw std::logic_error("ais_item_offsets: " + std::to_string(tile_sets.size()) + " floats for " +
+                               std::to_string(sets) + " sets of " + std::to_string(tiles) + " tiles");
     auto at = [&](size_t k, size_t t) { return &tile_sets[(t * sets + k) * TS_AIS_TILE_SET_FLOATS]; };
     // The list's order is set-major (j = k·T + t); the kernel's output is tile-major.
     prefix(sets * tiles, [&](size_t j) { return at(j / tiles, j % tiles)[TS_AIS_TILE_SET_COUNT]; }, "AIS items",
            out.offsets);
-    // Every set's entry carries the tile's flags; set 0's are read.
+    // Set 0's entries carry the tile's flags.
     for (int c = 0; c < kAisComponents; ++c) {
         double flagged = 0.0;
         for (size_t t = 0; t < tiles; ++t) flagged += at(0, t)[TS_AIS_TILE_SET_FLAGS + c];

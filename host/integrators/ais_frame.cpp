@@ -186,7 +186,7 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
 
 void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) {
     // The base pass's outputs stay on the device, and so do the schedule kernels' masks
-    // and counts: the host reads a few counts a tile back.
+    // and counts: the host reads per-tile counts back (gi/ais_items.h).
     auto t0 = Clock::now();
     backend_.launch_into(KernelId::IgiSurface, surface_frame, KernelInput::IgiSurface);
     stats_.surface_seconds = since(t0);
@@ -212,11 +212,11 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     const auto t_masks = Clock::now();
     backend_.launch_into(KernelId::AisSchedule, frame, KernelInput::AisMasks);
     const size_t tiles = ais_tile_count(frame.width, frame.height), pixels = size_t(frame.width) * frame.height;
-    backend_.launch_count_into(KernelId::AisTileSets, frame, size_t(settings_.tile) * settings_.tile * tiles,
-                               KernelInput::AisTileSets);
+    const size_t sets = size_t(frame.igi_tile) * frame.igi_tile;
+    backend_.launch_count_into(KernelId::AisTileSets, frame, sets * tiles, KernelInput::AisTileSets);
     backend_.read_input(KernelInput::AisTileSets, tile_sets_);
     stats_.ais_schedule_kernel_seconds = since(t_masks);
-    ais_item_offsets(tile_sets_, size_t(settings_.tile) * settings_.tile, tiles, pixels, item_offsets_);
+    ais_item_offsets(tile_sets_, sets, tiles, pixels, item_offsets_);
     backend_.set_input(KernelInput::AisItemOffsets, item_offsets_.offsets);
     stats_.flagged = item_offsets_.flagged;
     stats_.ais_items = item_offsets_.items();

@@ -101,13 +101,13 @@ struct IgiFrameStats {
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
     double ais_seconds = 0;  ///< guidance, schedule and the extra sets (AIS only)
-    /// Its parts (AIS only): guidance and schedule (a device frame's: their kernels and
-    /// the host's item tables), the extra sets' kernel
-    /// launch with its read-back (on the device: with the items' upload), and the host's
-    /// merge of the extra sets into the pixels (0 on the device, which merges in the resolve).
+    /// Its parts (AIS only): guidance and schedule (a device frame's: their kernels, the
+    /// per-tile counts' read-back and the prefix sums' upload), the extra sets' kernel
+    /// launch with its read-back (on the device: kept there), and the host's merge of the
+    /// extra sets into the pixels (0 on the device, which merges in the resolve).
     double ais_schedule_seconds = 0, ais_kernel_seconds = 0, ais_merge_seconds = 0;
     /// Of ais_schedule_seconds and edge_schedule_seconds, a device frame's schedule kernels
-    /// with their read-backs (the rest: the host's item tables; 0 on the host path).
+    /// with their read-backs (the rest: the host's prefix sums; 0 on the host path).
     double ais_schedule_kernel_seconds = 0, edge_schedule_kernel_seconds = 0;
     double cache_seconds = 0;  ///< the instant cache's indirect component (ic/tic only)
     size_t ais_items = 0;    ///< extra (pixel, set) evaluations (AIS only)

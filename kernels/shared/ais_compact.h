@@ -6,8 +6,9 @@
  * masks (TsSceneView.ais_masks, KernelId::AisSchedule's output) and edge-sample
  * counts (edge_counts, EdgeSchedule's) where they were computed and lists
  * nothing: per TS_AIS_TILE² pixel tile the kernels below count what the tile
- * holds, the host reads those counts back (a few floats a tile, not the 8
- * floats a pixel of the masks and counts) and uploads their exclusive prefix
+ * holds, the host reads those counts back (12 floats per set and tile and 2 a
+ * tile: at tile 3 about 0.4 floats a pixel, not the 8 a pixel of the masks and
+ * counts) and uploads their exclusive prefix
  * sums (ais_item_offsets, edge_tile_offsets), and then work item i of the extra
  * sets' and edge samples' kernels finds its own pixel from the sums and the
  * tile's bits (ts_ais_compact_decode, ts_edge_compact_decode): no item list is
@@ -63,27 +64,33 @@ TS_INLINE size_t ts_ais_tile_set_entry(const TsFrame* f, uint k, uint t) {
 }
 
 /* Work item j = t·n² + k of KernelId::AisTileSets (layout_igi.h, TS_AIS_TILE_SET_*): which
- * pixels of tile t evaluate set k beyond their own, their number, and the tile's pixels
- * each component flags. */
+ * pixels of tile t evaluate set k beyond their own, their number, and (set 0's item only)
+ * the tile's pixels each component flags. */
 TS_INLINE void ts_ais_tile_sets_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint j,
                                      float* out) {
     (void)tracer;
     const uint sets = f->igi_tile * f->igi_tile, t = j / sets, k = j % sets, tx = ts_ais_tiles_x(f);
     const uint x0 = (t % tx) * TS_AIS_TILE, y0 = (t / tx) * TS_AIS_TILE;
-    uint bits[TS_AIS_TILE_SET_WORDS], flags[3] = {0u, 0u, 0u}, count = 0u;
-    for (int w = 0; w < TS_AIS_TILE_SET_WORDS; ++w) bits[w] = 0u;
-    for (uint b = 0u; b < TS_AIS_TILE * TS_AIS_TILE; ++b) {
-        const uint x = x0 + b % TS_AIS_TILE, y = y0 + b / TS_AIS_TILE;
-        if (x >= f->width || y >= f->height) continue;
-        TS_GLOBAL const float* m = sv->ais_masks + ((size_t)y * f->width + x) * TS_AIS_MASK_FLOATS;
-        if ((ts_ais_extra_sets(m, x, y, f->igi_tile) >> k) & 1ul) {
-            bits[b >> 5] |= 1u << (b & 31u);
-            ++count;
+    /* One scalar word at a time: a private array indexed at run time would live in a GPU's
+     * local memory. */
+    uint flags[3] = {0u, 0u, 0u}, count = 0u;
+    for (int w = 0; w < TS_AIS_TILE_SET_WORDS; ++w) {
+        uint word = 0u;
+        for (uint bit = 0u; bit < 32u; ++bit) {
+            const uint b = 32u * (uint)w + bit, x = x0 + b % TS_AIS_TILE, y = y0 + b / TS_AIS_TILE;
+            if (x >= f->width || y >= f->height) continue;
+            TS_GLOBAL const float* m = sv->ais_masks + ((size_t)y * f->width + x) * TS_AIS_MASK_FLOATS;
+            if ((ts_ais_extra_sets(m, x, y, f->igi_tile) >> k) & 1ul) {
+                word |= 1u << bit;
+                ++count;
+            }
+            if (k == 0u) {
+                const uint flagged = as_uint(m[TS_AIS_MASK_FLAGS]);
+                for (int c = 0; c < 3; ++c) flags[c] += (flagged >> c) & 1u;
+            }
         }
-        const uint flagged = as_uint(m[TS_AIS_MASK_FLAGS]);
-        for (int c = 0; c < 3; ++c) flags[c] += (flagged >> c) & 1u;
+        out[TS_AIS_TILE_SET_BITS + w] = as_float(word);
     }
-    for (int w = 0; w < TS_AIS_TILE_SET_WORDS; ++w) out[TS_AIS_TILE_SET_BITS + w] = as_float(bits[w]);
     out[TS_AIS_TILE_SET_COUNT] = (float)count;
     for (int c = 0; c < 3; ++c) out[TS_AIS_TILE_SET_FLAGS + c] = (float)flags[c];
 }

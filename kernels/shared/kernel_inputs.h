@@ -54,22 +54,23 @@
  *                    kept likewise; read only when TsFrame.igi_clamp_screen is 1
  *   LightPathTable   the light-path kernel's parameters and Halton digits
  *                    (layout_light_path.h; KernelId::LightPaths)
- *   AisItems         TS_AIS_ITEM_FLOATS per item of the frame's AIS list, KernelId::AisItem's
- *                    output kept where the kernels run (Backend::launch_items_into)
+ *   AisItems         TS_AIS_ITEM_FLOATS per item of the frame's AIS list, a device frame's
+ *                    KernelId::AisCompactItem output kept where the kernels run
+ *                    (Backend::launch_count_into)
  *   AisMasks         TS_AIS_MASK_FLOATS per pixel, KernelId::AisSchedule's output kept
- *                    (KernelId::AisTileSets, AisItem on a device frame, IgiResolve read it)
+ *                    (KernelId::AisTileSets, AisCompactItem and IgiResolve read it)
  *   AisTileSets      TS_AIS_TILE_SET_FLOATS per (set, tile), KernelId::AisTileSets's output
  *                    kept (layout_igi.h; shared/ais_compact.h)
  *   AisItemOffsets   their counts' exclusive prefix sums, n²·T + 1 (layout_igi.h); with
  *                    AisMasks and AisTileSets read when TsFrame.igi_ais is 1
  *   IgiPass          TS_PASS_FLOATS per pixel, KernelId::IgiResolve's output kept
  *                    (KernelId::EdgeRowSums, EdgeSchedule and AisEdgeMerge read it)
- *   EdgeSamples      TS_EDGE_SAMPLE_FLOATS per item of the frame's edge list,
- *                    KernelId::EdgeSample's output kept
+ *   EdgeSamples      TS_EDGE_SAMPLE_FLOATS per edge sample of the frame,
+ *                    KernelId::EdgeCompactSample's output kept
  *   EdgeCounts       one float a pixel, KernelId::EdgeSchedule's output kept (its edge
  *                    samples)
  *   EdgeTileOffsets  the tiles' edge samples' exclusive prefix sums, T + 1 (layout_igi.h;
- *                    KernelId::EdgeSample and AisEdgeMerge read them with EdgeCounts)
+ *                    KernelId::EdgeCompactSample and AisEdgeMerge read them with EdgeCounts)
  *   AisScheduleTable the AIS schedule's parameters and set orders (layout_igi.h,
  *                    TS_AIS_TABLE_*; KernelId::AisSchedule and EdgeSchedule read it) */
 #define TS_KERNEL_INPUTS(X)                                                  \

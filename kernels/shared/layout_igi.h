@@ -120,7 +120,8 @@
  *                           tile's pixel b (row-major in the tile) evaluating set k beyond
  *                           its own
  *   TS_AIS_TILE_SET_COUNT   their number
- *   TS_AIS_TILE_SET_FLAGS+c the tile's pixels component c flags (the same for every k).
+ *   TS_AIS_TILE_SET_FLAGS+c the tile's pixels component c flags (set 0's items; 0 in
+ *                           the others).
  * Named input AisItemOffsets: n²·T + 1 uints, the exclusive prefix sums of the counts in
  * the item list's order, j = k·T + t (set-major; the last: the frame's item count).
  * KernelId::EdgeTileCounts writes TS_EDGE_TILE_FLOATS a tile: its edge samples and the

@@ -22,7 +22,7 @@ TEST(AisItemOffsets, PrefixSumsInSetThenTileOrderFromTileMajorCounts) {
         for (int k = 0; k < 2; ++k) {
             float* e = &tile_sets[(t * 2 + k) * TS_AIS_TILE_SET_FLOATS];
             e[TS_AIS_TILE_SET_COUNT] = counts[k][t];
-            // Set 1's entries carry the same flags in a frame; garbage there must not count.
+            // Only set 0's entries carry flags; anything in set 1's must not count.
             for (int c = 0; c < 3; ++c) e[TS_AIS_TILE_SET_FLAGS + c] = k == 0 ? flags[t][c] : 99.0f;
         }
     AisItemOffsets out;
@@ -40,6 +40,11 @@ TEST(AisItemOffsets, RefusePastTheUint32Range) {
     tile_sets[TS_AIS_TILE_SET_FLOATS + TS_AIS_TILE_SET_COUNT] = 4e9f;
     AisItemOffsets out;
     EXPECT_THROW(ais_item_offsets(tile_sets, 1, 2, 1, out), std::length_error);
+}
+
+TEST(AisItemOffsets, RefuseOutputOfAnotherShape) {
+    AisItemOffsets out;
+    EXPECT_THROW(ais_item_offsets(std::vector<float>(5 * TS_AIS_TILE_SET_FLOATS), 2, 3, 1, out), std::logic_error);
 }
 
 TEST(EdgeTileOffsets, PrefixSumsOverTilesAndFlaggedFraction) {

@@ -226,8 +226,8 @@ TEST_P(AisScheduleKernel, EqualsTheHostSchedule) {
     size_t flagged[kAisComponents] = {0, 0, 0};
     for (int k = 0; k < kAisComponents; ++k) {
         if (!enabled[k]) {
-            // A component not guided keeps each pixel's own set and flags nothing (the item
-            // tables OR all three masks: gi/ais_items.h).
+            // A component not guided keeps each pixel's own set and flags nothing (a pixel's
+            // extra sets OR all three masks: ts_ais_extra_sets, shared/ais_compact.h).
             EXPECT_TRUE(host.masks[k].empty());
             for (int y = 0; y < kHeight; ++y)
                 for (int x = 0; x < kWidth; ++x) {

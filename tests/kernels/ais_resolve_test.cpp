@@ -43,6 +43,7 @@ struct DeviceCase {
     uint32_t tile;
     bool filter;
     uint32_t components;
+    uint32_t width = 41, height = 33;  // not a multiple of any tile: windows cross the borders
 };
 
 void PrintTo(const DeviceCase& c, std::ostream* os) { *os << c.name; }
@@ -57,8 +58,8 @@ TEST_P(AisDeviceFrame, EqualsTheHostFrame) {
     SceneBuffers buffers = make_scene_buffers(scene);
     RenderSettings rs;
     rs.method = c.method;
-    rs.width = 41;  // not a multiple of any tile: windows cross the borders
-    rs.height = 33;
+    rs.width = c.width;
+    rs.height = c.height;
     rs.spp = 2;
     rs.igi.tile = c.tile;
     rs.igi.paths_per_set = 8;
@@ -108,7 +109,13 @@ INSTANTIATE_TEST_SUITE_P(
                                  TS_COMPONENT_SS | TS_COMPONENT_ID},
                       DeviceCase{"IdOnly", "cornell-box.json", Method::AisMax, 3, true, TS_COMPONENT_ID | TS_COMPONENT_EDGE},
                       DeviceCase{"Fog", "cornell-box-fog.json", Method::Ais, 3, true, kAll},
-                      DeviceCase{"FogAMax", "cornell-box-fog.json", Method::AisMax, 3, true, kAll}),
+                      DeviceCase{"FogAMax", "cornell-box-fog.json", Method::AisMax, 3, true, kAll},
+                      // 64 sets (masks past bit 31), one set (no extra items), edges alone
+                      // (no component guided), and a frame smaller than one 16×16 tile.
+                      DeviceCase{"Tile8AMax", "cornell-box.json", Method::AisMax, 8, true, kAll},
+                      DeviceCase{"Tile1", "cornell-box.json", Method::Ais, 1, true, kAll},
+                      DeviceCase{"EdgesOnly", "cornell-box.json", Method::Ais, 3, true, TS_COMPONENT_EDGE},
+                      DeviceCase{"SmallTile8", "cornell-box.json", Method::AisMax, 8, true, kAll, 7, 9}),
     [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
