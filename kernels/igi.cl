@@ -26,12 +26,12 @@ TS_ITEM_KERNEL(ais_extra_pass, ts_ais_extra_item, TS_AIS_ITEM_FLOATS)
 TS_ITEM_KERNEL(edge_sample_pass, ts_edge_sample_item, TS_EDGE_SAMPLE_FLOATS)
 
 /* A device frame's compact tables (shared/ais_compact.h): per (set, tile) the pixels that
- * evaluate the set beyond their own, per tile its edge samples; then the extra sets and
+ * evaluate the set beyond their own, per tile row its edge samples; then the extra sets and
  * edge samples over exactly their items, each finding its pixel from the tables. Launched
  * without an item list (Backend::launch_count_into). */
 TS_ITEM_KERNEL(ais_tile_sets_pass, ts_ais_tile_sets_item, TS_AIS_TILE_SET_FLOATS)
 TS_ITEM_KERNEL(ais_compact_pass, ts_ais_compact_item, TS_AIS_ITEM_FLOATS)
-TS_ITEM_KERNEL(edge_tile_counts_pass, ts_edge_tile_counts_item, TS_EDGE_TILE_FLOATS)
+TS_ITEM_KERNEL(edge_segment_counts_pass, ts_edge_segment_counts_item, TS_EDGE_SEGMENT_FLOATS)
 TS_ITEM_KERNEL(edge_compact_pass, ts_edge_compact_sample_item, TS_EDGE_SAMPLE_FLOATS)
 
 /* Light paths: item i (Halton point, set, weight) traces one path through all its

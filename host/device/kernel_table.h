@@ -49,7 +49,7 @@
       no_packets)                                                                                                 \
     X(AisCompactItem, "ais_compact_pass", "igi.cl", TS_AIS_ITEM_FLOATS, 1, ts_ais_compact_item, nullptr,           \
       no_packets)                                                                                                 \
-    X(EdgeTileCounts, "edge_tile_counts_pass", "igi.cl", TS_EDGE_TILE_FLOATS, 1, ts_edge_tile_counts_item,         \
+    X(EdgeSegmentCounts, "edge_segment_counts_pass", "igi.cl", TS_EDGE_SEGMENT_FLOATS, 1, ts_edge_segment_counts_item,         \
       nullptr, no_packets)                                                                                        \
     X(EdgeCompactSample, "edge_compact_pass", "igi.cl", TS_EDGE_SAMPLE_FLOATS, 1, ts_edge_compact_sample_item,     \
       nullptr, no_packets)                                                                                        \

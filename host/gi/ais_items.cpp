@@ -52,12 +52,12 @@ void ais_item_offsets(const std::vector<float>& tile_sets, size_t sets, size_t t
     }
 }
 
-void edge_tile_offsets(const std::vector<float>& tile_counts, size_t pixels, EdgeTileOffsets& out) {
-    const size_t tiles = tile_counts.size() / TS_EDGE_TILE_FLOATS;
-    prefix(tiles, [&](size_t t) { return tile_counts[t * TS_EDGE_TILE_FLOATS + TS_EDGE_TILE_SAMPLES]; },
+void edge_segment_offsets(const std::vector<float>& segment_counts, size_t pixels, EdgeSegmentOffsets& out) {
+    const size_t segments = segment_counts.size() / TS_EDGE_SEGMENT_FLOATS;
+    prefix(segments, [&](size_t s) { return segment_counts[s * TS_EDGE_SEGMENT_FLOATS + TS_EDGE_SEGMENT_SAMPLES]; },
            "edge samples", out.offsets);
     double flagged = 0.0;
-    for (size_t t = 0; t < tiles; ++t) flagged += tile_counts[t * TS_EDGE_TILE_FLOATS + TS_EDGE_TILE_FLAGGED];
+    for (size_t s = 0; s < segments; ++s) flagged += segment_counts[s * TS_EDGE_SEGMENT_FLOATS + TS_EDGE_SEGMENT_FLAGGED];
     out.flagged = pixels ? flagged / double(pixels) : 0.0;
 }
 

@@ -1,9 +1,9 @@
 // The item tables an AIS frame sends its kernels. The host path sends its AisSchedule's
 // list (ais_item_list; KernelId::AisItem) and EdgeSchedule's items (KernelId::EdgeSample).
 // A device frame lists nothing: its kernels count, per 16 × 16 pixel tile, the pixels that
-// evaluate each extra set and the edge samples (KernelId::AisTileSets, EdgeTileCounts), the
+// evaluate each extra set and the edge samples (KernelId::AisTileSets, EdgeSegmentCounts), the
 // host reads the counts back and uploads their prefix sums (ais_item_offsets,
-// edge_tile_offsets), and the extra sets' and edge samples' kernels find their pixels from
+// edge_segment_offsets), and the extra sets' and edge samples' kernels find their pixels from
 // those (kernels/shared/ais_compact.h; docs/ray-batches.md §5).
 #pragma once
 #include <array>
@@ -37,16 +37,17 @@ struct AisItemOffsets {
 void ais_item_offsets(const std::vector<float>& tile_sets, size_t sets, size_t tiles, size_t pixels,
                       AisItemOffsets& out);
 
-/// A device frame's edge-sample offsets (named input EdgeTileOffsets, layout_igi.h).
-struct EdgeTileOffsets {
-    std::vector<uint32_t> offsets;  ///< T + 1 words; the last: the sample count
+/// A device frame's edge-sample offsets (named input EdgeSegmentOffsets, layout_igi.h).
+struct EdgeSegmentOffsets {
+    std::vector<uint32_t> offsets;  ///< T·TS_AIS_TILE + 1 words; the last: the sample count
     double flagged = 0;             ///< fraction of pixels with samples
     size_t samples() const { return offsets.empty() ? 0 : offsets.back(); }
 };
 
-/// From `tile_counts` (TS_EDGE_TILE_FLOATS a tile: KernelId::EdgeTileCounts's output) the
-/// samples' exclusive prefix sums and the flagged fraction over `pixels`, reusing out's
-/// capacity. Throws std::length_error past 2^32 samples.
-void edge_tile_offsets(const std::vector<float>& tile_counts, size_t pixels, EdgeTileOffsets& out);
+/// From `segment_counts` (TS_EDGE_SEGMENT_FLOATS per segment, a tile's row:
+/// KernelId::EdgeSegmentCounts's output) the samples' exclusive prefix sums and the
+/// flagged fraction over `pixels`, reusing out's capacity. Throws std::length_error past
+/// 2^32 samples.
+void edge_segment_offsets(const std::vector<float>& segment_counts, size_t pixels, EdgeSegmentOffsets& out);
 
 }  // namespace tessera

@@ -262,14 +262,15 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
     backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
     const auto t_counts = Clock::now();
     backend_.launch_into(KernelId::EdgeSchedule, ais, KernelInput::EdgeCounts);
-    backend_.launch_count(KernelId::EdgeTileCounts, ais, ais_tile_count(frame.width, frame.height), edge_tiles_);
+    backend_.launch_count(KernelId::EdgeSegmentCounts, ais, ais_tile_count(frame.width, frame.height) * TS_AIS_TILE,
+                          edge_segments_);
     stats_.edge_schedule_kernel_seconds = since(t_counts);
-    edge_tile_offsets(edge_tiles_, size_t(frame.width) * frame.height, edge_offsets_);
+    edge_segment_offsets(edge_segments_, size_t(frame.width) * frame.height, edge_offsets_);
     stats_.edge_samples = edge_offsets_.samples();
     stats_.edge_flagged = edge_offsets_.flagged;
     const auto t_kernel = Clock::now();
     if (edge_offsets_.samples() > 0) {
-        backend_.set_input(KernelInput::EdgeTileOffsets, edge_offsets_.offsets);
+        backend_.set_input(KernelInput::EdgeSegmentOffsets, edge_offsets_.offsets);
         backend_.launch_count_into(KernelId::EdgeCompactSample, frame, edge_offsets_.samples(),
                                    KernelInput::EdgeSamples);
         backend_.launch(KernelId::AisEdgeMerge, ais, out);

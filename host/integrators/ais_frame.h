@@ -88,14 +88,14 @@ private:
     // 512²: 11 MB a pass, whose fresh allocation would be zero-filled and faulted in anew).
     std::vector<float> edge_samples_;
     // A device frame's schedule: the AisScheduleTable input, KernelId::AisTileSets's
-    // output read back and its offsets, KernelId::EdgeTileCounts's and its offsets.
+    // output read back and its offsets, KernelId::EdgeSegmentCounts's and its offsets.
     std::vector<uint32_t> schedule_table_;
     std::vector<float> tile_sets_;
     AisItemOffsets item_offsets_;
     std::vector<uint32_t> row_items_;  // 0..height-1: KernelId::EdgeRowSums's items
     std::vector<float> row_sums_;      // ... and its output
-    std::vector<float> edge_tiles_;
-    EdgeTileOffsets edge_offsets_;
+    std::vector<float> edge_segments_;
+    EdgeSegmentOffsets edge_offsets_;
 };
 
 }  // namespace tessera

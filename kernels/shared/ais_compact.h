@@ -5,13 +5,13 @@
  * (host/gi/ais_schedule.h, ais_edges.h). A device frame keeps each pixel's set
  * masks (TsSceneView.ais_masks, KernelId::AisSchedule's output) and edge-sample
  * counts (edge_counts, EdgeSchedule's) where they were computed and lists
- * nothing: per TS_AIS_TILE² pixel tile the kernels below count what the tile
- * holds, the host reads those counts back (12 floats per set and tile and 2 a
- * tile: at tile 3 about 0.4 floats a pixel, not the 8 a pixel of the masks and
- * counts) and uploads their exclusive prefix
- * sums (ais_item_offsets, edge_tile_offsets), and then work item i of the extra
+ * nothing: per TS_AIS_TILE² pixel tile (and, for the edges, per tile row) the
+ * kernels below count what it holds, the host reads those counts back (12 floats
+ * per set and tile and 2 per tile row: at tile 3 about 0.5 floats a pixel, not the
+ * 8 a pixel of the masks and counts) and uploads their exclusive prefix
+ * sums (ais_item_offsets, edge_segment_offsets), and then work item i of the extra
  * sets' and edge samples' kernels finds its own pixel from the sums and the
- * tile's bits (ts_ais_compact_decode, ts_edge_compact_decode): no item list is
+ * tile's bits or the segment's counts (ts_ais_compact_decode, ts_edge_compact_decode): no item list is
  * read back, built or uploaded, and every work item has work. The resolve finds
  * a pixel's items the same way (ts_ais_compact_index, ts_edge_compact_first).
  *
@@ -160,52 +160,58 @@ TS_INLINE uint ts_edge_count_at(const TsSceneView* sv, const TsFrame* f, uint x,
     return (uint)sv->edge_counts[(size_t)y * f->width + x];
 }
 
-/* Work item t of KernelId::EdgeTileCounts (TS_EDGE_TILE_*): tile t's edge
- * samples and the pixels that take any. */
-TS_INLINE void ts_edge_tile_counts_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint t,
-                                        float* out) {
-    (void)tracer;
-    const uint tx = ts_ais_tiles_x(f), x0 = (t % tx) * TS_AIS_TILE, y0 = (t / tx) * TS_AIS_TILE;
-    uint samples = 0u, flagged = 0u;
-    for (uint y = y0; y < y0 + TS_AIS_TILE && y < f->height; ++y)
-        for (uint x = x0; x < x0 + TS_AIS_TILE && x < f->width; ++x) {
-            const uint n = ts_edge_count_at(sv, f, x, y);
-            samples += n;
-            flagged += n > 0u;
-        }
-    out[TS_EDGE_TILE_SAMPLES] = (float)samples;
-    out[TS_EDGE_TILE_FLAGGED] = (float)flagged;
+/* S, the frame's edge segments: each tile's rows, TS_AIS_TILE pixels or fewer at the right
+ * border, segment s = t·TS_AIS_TILE + r row r of tile t (rows past the bottom border are
+ * empty): a sample's or pixel's walk over the counts stays within one segment. */
+TS_INLINE uint ts_edge_segment_count(const TsFrame* f) { return ts_ais_tile_count(f) * TS_AIS_TILE; }
+
+/* Segment s's first pixel (x0, y) and its pixel count (0 below the frame). */
+TS_INLINE uint ts_edge_segment(const TsFrame* f, uint s, uint* x0, uint* y) {
+    const uint t = s / TS_AIS_TILE, tx = ts_ais_tiles_x(f);
+    *x0 = (t % tx) * TS_AIS_TILE;
+    *y = (t / tx) * TS_AIS_TILE + s % TS_AIS_TILE;
+    const uint w = f->width - *x0;
+    return *y < f->height ? (w < TS_AIS_TILE ? w : TS_AIS_TILE) : 0u;
 }
 
-/* Edge sample i of a device frame (i < edge_tile_offsets' last word): its pixel
+/* Work item s of KernelId::EdgeSegmentCounts (TS_EDGE_SEGMENT_*): segment s's edge samples
+ * and the pixels that take any. */
+TS_INLINE void ts_edge_segment_counts_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint s,
+                                           float* out) {
+    (void)tracer;
+    uint x0, y, samples = 0u, flagged = 0u;
+    const uint w = ts_edge_segment(f, s, &x0, &y);
+    for (uint x = x0; x < x0 + w; ++x) {
+        const uint n = ts_edge_count_at(sv, f, x, y);
+        samples += n;
+        flagged += n > 0u;
+    }
+    out[TS_EDGE_SEGMENT_SAMPLES] = (float)samples;
+    out[TS_EDGE_SEGMENT_FLAGGED] = (float)flagged;
+}
+
+/* Edge sample i of a device frame (i < edge_segment_offsets' last word): its pixel
  * (row-major index), its index j ≥ 1 and the pixel's count n. */
 TS_INLINE void ts_edge_compact_decode(const TsSceneView* sv, const TsFrame* f, uint i, uint* p, uint* j, uint* n) {
-    const uint t = ts_ais_run_of(sv->edge_tile_offsets, ts_ais_tile_count(f), i), tx = ts_ais_tiles_x(f);
-    const uint x0 = (t % tx) * TS_AIS_TILE, y0 = (t / tx) * TS_AIS_TILE;
-    uint r = i - sv->edge_tile_offsets[t];
+    const uint s = ts_ais_run_of(sv->edge_segment_offsets, ts_edge_segment_count(f), i);
+    uint x0, y, r = i - sv->edge_segment_offsets[s];
+    const uint w = ts_edge_segment(f, s, &x0, &y);
     *p = 0u, *j = 0u, *n = 0u;
-    for (uint y = y0; y < y0 + TS_AIS_TILE && y < f->height; ++y)
-        for (uint x = x0; x < x0 + TS_AIS_TILE && x < f->width; ++x) {
-            const uint c = ts_edge_count_at(sv, f, x, y);
-            if (r < c) {
-                *p = y * f->width + x, *j = r + 1u, *n = c;
-                return;
-            }
-            r -= c;
+    for (uint x = x0; x < x0 + w; ++x) {
+        const uint c = ts_edge_count_at(sv, f, x, y);
+        if (r < c) {
+            *p = y * f->width + x, *j = r + 1u, *n = c;
+            return;
         }
+        r -= c;
+    }
 }
 
-/* The index of pixel (x, y)'s first edge sample in a device frame's edge
- * samples. */
+/* The index of pixel (x, y)'s first edge sample in a device frame's edge samples. */
 TS_INLINE uint ts_edge_compact_first(const TsSceneView* sv, const TsFrame* f, uint x, uint y) {
-    const uint tx = ts_ais_tiles_x(f), t = (y / TS_AIS_TILE) * tx + x / TS_AIS_TILE;
-    const uint x0 = (x / TS_AIS_TILE) * TS_AIS_TILE, y0 = (y / TS_AIS_TILE) * TS_AIS_TILE;
-    uint first = sv->edge_tile_offsets[t];
-    for (uint qy = y0; qy <= y; ++qy)
-        for (uint qx = x0; qx < x0 + TS_AIS_TILE && qx < f->width; ++qx) {
-            if (qy == y && qx == x) return first;
-            first += ts_edge_count_at(sv, f, qx, qy);
-        }
+    const uint t = (y / TS_AIS_TILE) * ts_ais_tiles_x(f) + x / TS_AIS_TILE;
+    uint first = sv->edge_segment_offsets[t * TS_AIS_TILE + y % TS_AIS_TILE];
+    for (uint q = (x / TS_AIS_TILE) * TS_AIS_TILE; q < x; ++q) first += ts_edge_count_at(sv, f, q, y);
     return first;
 }
 

@@ -69,7 +69,7 @@
  *                    KernelId::EdgeCompactSample's output kept
  *   EdgeCounts       one float a pixel, KernelId::EdgeSchedule's output kept (its edge
  *                    samples)
- *   EdgeTileOffsets  the tiles' edge samples' exclusive prefix sums, T + 1 (layout_igi.h;
+ *   EdgeSegmentOffsets  the tiles' edge samples' exclusive prefix sums, T + 1 (layout_igi.h;
  *                    KernelId::EdgeCompactSample and AisEdgeMerge read them with EdgeCounts)
  *   AisScheduleTable the AIS schedule's parameters and set orders (layout_igi.h,
  *                    TS_AIS_TABLE_*; KernelId::AisSchedule and EdgeSchedule read it) */
@@ -96,7 +96,7 @@
     X(IgiPass, igi_pass, float, "igi pass")                                  \
     X(EdgeSamples, edge_samples, float, "edge samples")                      \
     X(EdgeCounts, edge_counts, float, "edge counts")                         \
-    X(EdgeTileOffsets, edge_tile_offsets, uint, "edge tile offsets")         \
+    X(EdgeSegmentOffsets, edge_segment_offsets, uint, "edge tile offsets")         \
     X(AisScheduleTable, ais_schedule_table, uint, "AIS schedule table")
 
 /* TsSceneView's pointer to one buffer (shared/geometry.h). */

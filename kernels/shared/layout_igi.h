@@ -124,18 +124,19 @@
  *                           the others).
  * Named input AisItemOffsets: n²·T + 1 uints, the exclusive prefix sums of the counts in
  * the item list's order, j = k·T + t (set-major; the last: the frame's item count).
- * KernelId::EdgeTileCounts writes TS_EDGE_TILE_FLOATS a tile: its edge samples and the
- * pixels that take any; named input EdgeTileOffsets: T + 1 uints, the samples' exclusive
- * prefix sums. */
+ * KernelId::EdgeSegmentCounts writes TS_EDGE_SEGMENT_FLOATS per segment, a tile's row of
+ * TS_AIS_TILE pixels (segment t·TS_AIS_TILE + r: row r of tile t; ts_edge_segment): its
+ * edge samples and the pixels that take any; named input EdgeSegmentOffsets: S + 1 uints,
+ * S = T·TS_AIS_TILE, the samples' exclusive prefix sums. */
 #define TS_AIS_TILE 16u
 #define TS_AIS_TILE_SET_WORDS 8
 #define TS_AIS_TILE_SET_BITS 0
 #define TS_AIS_TILE_SET_COUNT 8
 #define TS_AIS_TILE_SET_FLAGS 9
 #define TS_AIS_TILE_SET_FLOATS 12
-#define TS_EDGE_TILE_FLOATS 2
-#define TS_EDGE_TILE_SAMPLES 0
-#define TS_EDGE_TILE_FLAGGED 1
+#define TS_EDGE_SEGMENT_FLOATS 2
+#define TS_EDGE_SEGMENT_SAMPLES 0
+#define TS_EDGE_SEGMENT_FLAGGED 1
 /* The AIS schedule's parameters (named input AisScheduleTable, shared/ais_guidance.h; the
  * host builds it with ais_schedule_table, host/gi/ais_schedule.h), uints, floats as their
  * bits (as_uint):

@@ -1,7 +1,8 @@
 // Backend::launch_count and launch_count_into (host/backend/backend.h): item kernels over
 // work items 0..count-1 without a list, on both backends. Count 0 launches nothing (and
 // keeps a placeholder input), a pixel kernel or a uint input is refused, and a launch over
-// tiles gives the kernel's per-tile output (KernelId::EdgeTileCounts over known counts).
+// a tile's rows gives the kernel's per-row output (KernelId::EdgeSegmentCounts over known
+// counts).
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -25,41 +26,42 @@ TEST_P(LaunchCount, CountsTilesWithoutAListAndRefusesWhatItCannotRun) {
     SceneBuffers buffers = make_scene_buffers(scene);
     auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
     TsFrame f{};
-    f.width = 20;  // 2 × 2 tiles of 16, three of them partial
+    f.width = 20;  // 2 × 2 tiles of 16, three of them partial: 64 segments, 18 of them empty
     f.height = 18;
     f.igi_tile = 3;
-    // Pixel (x, y) takes (x + y) % 3 samples: per tile, the sums over its pixels.
+    // Pixel (x, y) takes (x + y) % 3 samples: per segment (row y % 16 of tile t), the sums
+    // over its pixels.
     std::vector<float> counts(size_t(f.width) * f.height);
-    uint32_t expected[4][2] = {};
+    uint32_t expected[64][2] = {};
     for (uint32_t y = 0; y < f.height; ++y)
         for (uint32_t x = 0; x < f.width; ++x) {
-            const uint32_t n = (x + y) % 3, t = (y / 16) * 2 + x / 16;
+            const uint32_t n = (x + y) % 3, s = ((y / 16) * 2 + x / 16) * 16 + y % 16;
             counts[size_t(y) * f.width + x] = float(n);
-            expected[t][0] += n;
-            expected[t][1] += n > 0;
+            expected[s][0] += n;
+            expected[s][1] += n > 0;
         }
     backend->set_input(KernelInput::EdgeCounts, counts);
     std::vector<float> out;
-    backend->launch_count(KernelId::EdgeTileCounts, f, 4, out);
-    ASSERT_EQ(out.size(), 4u * TS_EDGE_TILE_FLOATS);
-    for (int t = 0; t < 4; ++t) {
-        EXPECT_EQ(out[t * TS_EDGE_TILE_FLOATS + TS_EDGE_TILE_SAMPLES], float(expected[t][0])) << t;
-        EXPECT_EQ(out[t * TS_EDGE_TILE_FLOATS + TS_EDGE_TILE_FLAGGED], float(expected[t][1])) << t;
+    backend->launch_count(KernelId::EdgeSegmentCounts, f, 64, out);
+    ASSERT_EQ(out.size(), 64u * TS_EDGE_SEGMENT_FLOATS);
+    for (int s = 0; s < 64; ++s) {
+        EXPECT_EQ(out[s * TS_EDGE_SEGMENT_FLOATS + TS_EDGE_SEGMENT_SAMPLES], float(expected[s][0])) << s;
+        EXPECT_EQ(out[s * TS_EDGE_SEGMENT_FLOATS + TS_EDGE_SEGMENT_FLAGGED], float(expected[s][1])) << s;
     }
-    EXPECT_EQ(backend->dispatch_count(KernelId::EdgeTileCounts), 1u);
+    EXPECT_EQ(backend->dispatch_count(KernelId::EdgeSegmentCounts), 1u);
 
-    backend->launch_count(KernelId::EdgeTileCounts, f, 0, out);
+    backend->launch_count(KernelId::EdgeSegmentCounts, f, 0, out);
     EXPECT_TRUE(out.empty());
     backend->launch_count_into(KernelId::EdgeCompactSample, f, 0, KernelInput::EdgeSamples);
     std::vector<float> kept;
     backend->read_input(KernelInput::EdgeSamples, kept);
     EXPECT_EQ(kept, std::vector<float>(1, 0.0f));  // the placeholder
-    EXPECT_EQ(backend->dispatch_count(KernelId::EdgeTileCounts), 1u);
+    EXPECT_EQ(backend->dispatch_count(KernelId::EdgeSegmentCounts), 1u);
     EXPECT_EQ(backend->dispatch_count(KernelId::EdgeCompactSample), 0u);
 
     EXPECT_THROW(backend->launch_count(KernelId::EdgeSchedule, f, 4, out), std::logic_error);
     EXPECT_THROW(backend->launch_count_into(KernelId::EdgeSchedule, f, 4, KernelInput::EdgeCounts), std::logic_error);
-    EXPECT_THROW(backend->launch_count_into(KernelId::EdgeTileCounts, f, 4, KernelInput::EdgeTileOffsets),
+    EXPECT_THROW(backend->launch_count_into(KernelId::EdgeSegmentCounts, f, 4, KernelInput::EdgeSegmentOffsets),
                  std::logic_error);
 }
 

@@ -1,6 +1,6 @@
 // A device AIS frame's host part (host/gi/ais_items.h): the tile counts' prefix
 // sums in the list's order and the flagged fractions, from kernel outputs laid
-// out as KernelId::AisTileSets and EdgeTileCounts write them (layout_igi.h).
+// out as KernelId::AisTileSets and EdgeSegmentCounts write them (layout_igi.h).
 // The kernels' own counts and the items decoded from these sums:
 // tests/kernels/ais_guidance_test.cpp.
 #include "gi/ais_items.h"
@@ -47,10 +47,10 @@ TEST(AisItemOffsets, RefuseOutputOfAnotherShape) {
     EXPECT_THROW(ais_item_offsets(std::vector<float>(5 * TS_AIS_TILE_SET_FLOATS), 2, 3, 1, out), std::logic_error);
 }
 
-TEST(EdgeTileOffsets, PrefixSumsOverTilesAndFlaggedFraction) {
+TEST(EdgeSegmentOffsets, PrefixSumsOverSegmentsAndFlaggedFraction) {
     const std::vector<float> tiles = {3, 2, 0, 0, 7, 4};
-    EdgeTileOffsets out;
-    edge_tile_offsets(tiles, 12, out);
+    EdgeSegmentOffsets out;
+    edge_segment_offsets(tiles, 12, out);
     EXPECT_EQ(out.offsets, (std::vector<uint32_t>{0, 3, 3, 10}));
     EXPECT_EQ(out.samples(), 10u);
     EXPECT_DOUBLE_EQ(out.flagged, 6.0 / 12);

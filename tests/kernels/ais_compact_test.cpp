@@ -95,13 +95,14 @@ void expect_edges_equal(const Shape& s, std::mt19937& rng, int one_in) {
     f.width = uint32_t(s.width), f.height = uint32_t(s.height), f.igi_tile = 3;
     ts::TsSceneView sv{};
     sv.edge_counts = counts.data();
-    const size_t tiles = ais_tile_count(f.width, f.height);
-    std::vector<float> tile_counts(tiles * TS_EDGE_TILE_FLOATS);
-    for (uint32_t t = 0; t < tiles; ++t)
-        ts::ts_edge_tile_counts_item(&sv, nullptr, &f, t, &tile_counts[size_t(t) * TS_EDGE_TILE_FLOATS]);
-    EdgeTileOffsets offsets;
-    edge_tile_offsets(tile_counts, counts.size(), offsets);
-    sv.edge_tile_offsets = offsets.offsets.data();
+    const size_t segments = ais_tile_count(f.width, f.height) * TS_AIS_TILE;
+    ASSERT_EQ(segments, ts::ts_edge_segment_count(&f));
+    std::vector<float> segment_counts(segments * TS_EDGE_SEGMENT_FLOATS);
+    for (uint32_t s = 0; s < segments; ++s)
+        ts::ts_edge_segment_counts_item(&sv, nullptr, &f, s, &segment_counts[size_t(s) * TS_EDGE_SEGMENT_FLOATS]);
+    EdgeSegmentOffsets offsets;
+    edge_segment_offsets(segment_counts, counts.size(), offsets);
+    sv.edge_segment_offsets = offsets.offsets.data();
     ASSERT_EQ(offsets.samples(), host.items.size() / TS_EDGE_ITEM_WORDS);
     std::set<std::array<uint32_t, 3>> decoded, listed;
     for (uint32_t i = 0; i < offsets.samples(); ++i) {
@@ -114,6 +115,7 @@ void expect_edges_equal(const Shape& s, std::mt19937& rng, int one_in) {
         listed.insert({host.items[i + TS_EDGE_ITEM_PIXEL], host.items[i + TS_EDGE_ITEM_SAMPLE],
                        host.items[i + TS_EDGE_ITEM_COUNT]});
     EXPECT_EQ(decoded, listed);
+    EXPECT_EQ(offsets.flagged, host.flagged);
 }
 
 const Shape kShapes[] = {{37, 29}, {64, 48}, {21, 40}, {5, 3}, {7, 40}, {16, 16}, {17, 17}, {100, 3}, {1, 1}};

@@ -2,7 +2,7 @@
 // kernels/shared/ais_guidance.h, edge_guidance.h, ais_resolve.h) against the host's
 // reference (compute_guidance, make_schedule, edge_guidance, make_edge_schedule): set masks,
 // flags, item lists and edge-sample counts bit for bit, and a device frame's compact tables
-// (AisTileSets, EdgeTileCounts, shared/ais_compact.h) decoded into the host's lists, on PoCL (OpenCL C) and on Embree
+// (AisTileSets, EdgeSegmentCounts, shared/ais_compact.h) decoded into the host's lists, on PoCL (OpenCL C) and on Embree
 // (the shared code as C++ over the device's strided buffers). The inputs are synthetic
 // G-buffers with every case the guidance branches on: planes meeting at creases and depth
 // steps, escaped rays, penumbrae, VPL spikes, medium shafts and length steps, emitters.
@@ -160,15 +160,16 @@ void expect_compact_items(Backend& backend, const TsFrame& f, const std::vector<
 void expect_compact_edges(Backend& backend, const TsFrame& f, const std::vector<float>& counts,
                           const EdgeSchedule& host) {
     backend.set_input(KernelInput::EdgeCounts, counts);
-    std::vector<float> tile_counts;
-    backend.launch_count(KernelId::EdgeTileCounts, f, ais_tile_count(f.width, f.height), tile_counts);
-    EdgeTileOffsets offsets;
-    edge_tile_offsets(tile_counts, size_t(f.width) * f.height, offsets);
+    std::vector<float> segment_counts;
+    backend.launch_count(KernelId::EdgeSegmentCounts, f, ais_tile_count(f.width, f.height) * TS_AIS_TILE,
+                         segment_counts);
+    EdgeSegmentOffsets offsets;
+    edge_segment_offsets(segment_counts, size_t(f.width) * f.height, offsets);
     ASSERT_EQ(offsets.samples(), host.items.size() / TS_EDGE_ITEM_WORDS);
     EXPECT_EQ(offsets.flagged, host.flagged);
     ts::TsSceneView sv{};
     sv.edge_counts = counts.data();
-    sv.edge_tile_offsets = offsets.offsets.data();
+    sv.edge_segment_offsets = offsets.offsets.data();
     std::set<std::array<uint32_t, 3>> decoded, listed;
     for (uint32_t i = 0; i < offsets.samples(); ++i) {
         uint32_t p, j, n;
