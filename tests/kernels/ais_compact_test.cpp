@@ -10,7 +10,6 @@
 #include <bit>
 #include <cstdint>
 #include <random>
-#include <set>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -20,6 +19,7 @@
 #include "gi/ais_items.h"
 #include "gi/ais_schedule.h"
 #include "kernels/shared/ais_compact.h"
+#include "support/ais_compact_checks.h"
 
 namespace tessera {
 namespace {
@@ -70,17 +70,7 @@ void expect_items_equal(const Shape& s, int tile, std::mt19937& rng, int one_in)
         ts::ts_ais_tile_sets_item(&sv, nullptr, &f, j, &tile_sets[size_t(j) * TS_AIS_TILE_SET_FLOATS]);
     AisItemOffsets offsets;
     ais_item_offsets(tile_sets, sets, tiles, size_t(s.width) * s.height, offsets);
-    sv.ais_tile_sets = tile_sets.data();
-    sv.ais_item_offsets = offsets.offsets.data();
-    ASSERT_EQ(offsets.items(), host.item_pixels.size());
-    for (uint32_t i = 0; i < offsets.items(); ++i) {
-        uint32_t x, y, k, mask;
-        ts::ts_ais_compact_decode(&sv, &f, i, &x, &y, &k, &mask);
-        ASSERT_EQ(y * f.width + x, host.item_pixels[i]) << "item " << i;
-        ASSERT_EQ(k, host.item_sets[i]) << "item " << i;
-        ASSERT_EQ(mask, host.item_components[i]) << "item " << i;
-        ASSERT_EQ(ts::ts_ais_compact_index(&sv, &f, x, y, k), i) << "item " << i;
-    }
+    test::expect_items_decode_as(f, masks, tile_sets, offsets, host);
 }
 
 void expect_edges_equal(const Shape& s, std::mt19937& rng, int one_in) {
@@ -102,20 +92,7 @@ void expect_edges_equal(const Shape& s, std::mt19937& rng, int one_in) {
         ts::ts_edge_segment_counts_item(&sv, nullptr, &f, s, &segment_counts[size_t(s) * TS_EDGE_SEGMENT_FLOATS]);
     EdgeSegmentOffsets offsets;
     edge_segment_offsets(segment_counts, counts.size(), offsets);
-    sv.edge_segment_offsets = offsets.offsets.data();
-    ASSERT_EQ(offsets.samples(), host.items.size() / TS_EDGE_ITEM_WORDS);
-    std::set<std::array<uint32_t, 3>> decoded, listed;
-    for (uint32_t i = 0; i < offsets.samples(); ++i) {
-        uint32_t p, j, n;
-        ts::ts_edge_compact_decode(&sv, &f, i, &p, &j, &n);
-        ASSERT_EQ(ts::ts_edge_compact_first(&sv, &f, p % f.width, p / f.width) + j - 1, i) << "sample " << i;
-        decoded.insert({p, j, n});
-    }
-    for (size_t i = 0; i < host.items.size(); i += TS_EDGE_ITEM_WORDS)
-        listed.insert({host.items[i + TS_EDGE_ITEM_PIXEL], host.items[i + TS_EDGE_ITEM_SAMPLE],
-                       host.items[i + TS_EDGE_ITEM_COUNT]});
-    EXPECT_EQ(decoded, listed);
-    EXPECT_EQ(offsets.flagged, host.flagged);
+    test::expect_edges_decode_as(f, counts, offsets, host);
 }
 
 const Shape kShapes[] = {{37, 29}, {64, 48}, {21, 40}, {5, 3}, {7, 40}, {16, 16}, {17, 17}, {100, 3}, {1, 1}};

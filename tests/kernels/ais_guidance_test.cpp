@@ -12,24 +12,22 @@
 #include <cstdint>
 #include <memory>
 #include <random>
-#include <set>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "backend/backend.h"
-#include "backend/embree_tracer.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
 #include "gi/ais_edges.h"
 #include "gi/ais_items.h"
 #include "gi/ais_schedule.h"
-#include "kernels/shared/ais_compact.h"
 #include "kernels/shared/frame.h"
 #include "kernels/shared/layout_igi.h"
 #include "kernels/shared/layout_pass.h"
 #include "kernels/shared/sampling.h"
+#include "support/ais_compact_checks.h"
 #include "support/render_helpers.h"
 #include "support/scoped_env.h"
 
@@ -139,20 +137,8 @@ void expect_compact_items(Backend& backend, const TsFrame& f, const std::vector<
     backend.read_input(KernelInput::AisTileSets, tile_sets);
     AisItemOffsets offsets;
     ais_item_offsets(tile_sets, size_t(f.igi_tile) * f.igi_tile, tiles, pixels, offsets);
-    ASSERT_EQ(offsets.items(), host.item_pixels.size());
     for (int c = 0; c < kAisComponents; ++c) EXPECT_EQ(offsets.flagged[c], flagged[c]) << "component " << c;
-    ts::TsSceneView sv{};
-    sv.ais_masks = masks.data();
-    sv.ais_tile_sets = tile_sets.data();
-    sv.ais_item_offsets = offsets.offsets.data();
-    for (uint32_t i = 0; i < offsets.items(); ++i) {
-        uint32_t x, y, k, mask;
-        ts::ts_ais_compact_decode(&sv, &f, i, &x, &y, &k, &mask);
-        ASSERT_EQ(y * f.width + x, host.item_pixels[i]) << "item " << i;
-        ASSERT_EQ(k, host.item_sets[i]) << "item " << i;
-        ASSERT_EQ(mask, host.item_components[i]) << "item " << i;
-        ASSERT_EQ(ts::ts_ais_compact_index(&sv, &f, x, y, k), i);
-    }
+    test::expect_items_decode_as(f, masks, tile_sets, offsets, host);
 }
 
 // A device frame's edge samples likewise: the host's (pixel, sample, count) items, tile by
@@ -165,22 +151,7 @@ void expect_compact_edges(Backend& backend, const TsFrame& f, const std::vector<
                          segment_counts);
     EdgeSegmentOffsets offsets;
     edge_segment_offsets(segment_counts, size_t(f.width) * f.height, offsets);
-    ASSERT_EQ(offsets.samples(), host.items.size() / TS_EDGE_ITEM_WORDS);
-    EXPECT_EQ(offsets.flagged, host.flagged);
-    ts::TsSceneView sv{};
-    sv.edge_counts = counts.data();
-    sv.edge_segment_offsets = offsets.offsets.data();
-    std::set<std::array<uint32_t, 3>> decoded, listed;
-    for (uint32_t i = 0; i < offsets.samples(); ++i) {
-        uint32_t p, j, n;
-        ts::ts_edge_compact_decode(&sv, &f, i, &p, &j, &n);
-        ASSERT_EQ(ts::ts_edge_compact_first(&sv, &f, p % f.width, p / f.width) + j - 1, i) << "sample " << i;
-        decoded.insert({p, j, n});
-    }
-    for (size_t i = 0; i < host.items.size(); i += TS_EDGE_ITEM_WORDS)
-        listed.insert({host.items[i + TS_EDGE_ITEM_PIXEL], host.items[i + TS_EDGE_ITEM_SAMPLE],
-                       host.items[i + TS_EDGE_ITEM_COUNT]});
-    EXPECT_EQ(decoded, listed);
+    test::expect_edges_decode_as(f, counts, offsets, host);
 }
 
 struct ScheduleCase {
