@@ -1,10 +1,10 @@
 // The item tables an AIS frame sends its kernels. The host path sends its AisSchedule's
 // list (ais_item_list; KernelId::AisItem) and EdgeSchedule's items (KernelId::EdgeSample).
-// A device frame lists nothing: its kernels count, per 16 × 16 pixel tile, the pixels that
-// evaluate each extra set and the edge samples (KernelId::AisTileSets, EdgeSegmentCounts), the
-// host reads the counts back and uploads their prefix sums (ais_item_offsets,
-// edge_segment_offsets), and the extra sets' and edge samples' kernels find their pixels from
-// those (kernels/shared/ais_compact.h; docs/ray-batches.md §5).
+// A device frame lists nothing: its kernels count the pixels of each 16 × 16 tile that
+// evaluate each extra set (KernelId::AisTileSets) and the edge samples of each tile row
+// (EdgeSegmentCounts), the host reads the counts back and uploads their prefix sums
+// (ais_item_offsets, edge_segment_offsets), and the extra sets' and edge samples' kernels
+// find their pixels from those (kernels/shared/ais_compact.h; docs/ray-batches.md §5).
 #pragma once
 #include <array>
 #include <cstdint>
