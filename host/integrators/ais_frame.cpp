@@ -252,11 +252,7 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
     // The edge schedule from the resolved pass where it lies (IgiPass): its ε from the
     // rows' luminance sums, the counts from the schedule kernel; the image is read back
     // once, merged or not.
-    if (row_items_.size() != frame.height) {
-        row_items_.resize(frame.height);
-        for (uint32_t y = 0; y < frame.height; ++y) row_items_[y] = y;
-    }
-    backend_.launch_items(KernelId::EdgeRowSums, ais, row_items_, row_sums_);
+    backend_.launch_count(KernelId::EdgeRowSums, ais, frame.height, row_sums_);
     const float eps = edge_epsilon_of_rows(row_sums_, size_t(frame.width) * frame.height, settings_.edges.dark);
     schedule_table_[TS_AIS_TABLE_EDGE_EPSILON] = std::bit_cast<uint32_t>(eps);
     backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);

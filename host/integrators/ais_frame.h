@@ -92,8 +92,7 @@ private:
     std::vector<uint32_t> schedule_table_;
     std::vector<float> tile_sets_;
     AisItemOffsets item_offsets_;
-    std::vector<uint32_t> row_items_;  // 0..height-1: KernelId::EdgeRowSums's items
-    std::vector<float> row_sums_;      // ... and its output
+    std::vector<float> row_sums_;  // KernelId::EdgeRowSums's output, one item a row
     std::vector<float> edge_segments_;
     EdgeSegmentOffsets edge_offsets_;
 };

@@ -39,20 +39,23 @@ TS_INLINE uint ts_ais_tile_count(const TsFrame* f) {
     return ts_ais_tiles_x(f) * ((f->height + TS_AIS_TILE - 1u) / TS_AIS_TILE);
 }
 
-/* The TS_COMPONENT_* bits of the components whose masks (m: a pixel's
- * TS_AIS_MASK_FLOATS) hold set k. */
+/* Component c's set mask of a pixel (m: its TS_AIS_MASK_FLOATS): bit k, set k evaluated. */
+TS_INLINE ulong ts_ais_component_mask(TS_GLOBAL const float* m, int c) {
+    return (ulong)as_uint(m[TS_AIS_MASK_SETS(c)]) | (ulong)as_uint(m[TS_AIS_MASK_SETS(c) + 1]) << 32;
+}
+
+/* The TS_COMPONENT_* bits of the components whose masks hold set k. */
 TS_INLINE uint ts_ais_set_components(TS_GLOBAL const float* m, uint k) {
     uint bits = 0u;
     for (int c = 0; c < 3; ++c)
-        if ((as_uint(m[TS_AIS_MASK_SETS(c) + (int)(k >> 5)]) >> (k & 31u)) & 1u) bits |= 1u << c;
+        if ((ts_ais_component_mask(m, c) >> k) & 1ul) bits |= 1u << c;
     return bits;
 }
 
 /* Pixel (x, y)'s sets beyond its own over all components. */
 TS_INLINE ulong ts_ais_extra_sets(TS_GLOBAL const float* m, uint x, uint y, uint tile) {
     ulong all = 0ul;
-    for (int c = 0; c < 3; ++c)
-        all |= (ulong)as_uint(m[TS_AIS_MASK_SETS(c)]) | (ulong)as_uint(m[TS_AIS_MASK_SETS(c) + 1]) << 32;
+    for (int c = 0; c < 3; ++c) all |= ts_ais_component_mask(m, c);
     return all & ~((ulong)1 << ts_igi_set(x, y, tile));
 }
 

@@ -87,7 +87,7 @@ TS_INLINE int ts_ais_mean(const TsSceneView* sv, const TsFrame* f, uint x, uint 
     const uint tile = f->igi_tile;
     TS_GLOBAL const float* m = sv->ais_masks + p * TS_AIS_MASK_FLOATS;
     const ulong own = (ulong)1 << ts_igi_set(x, y, tile);
-    const ulong sets = (ulong)as_uint(m[TS_AIS_MASK_SETS(c)]) | (ulong)as_uint(m[TS_AIS_MASK_SETS(c) + 1]) << 32;
+    const ulong sets = ts_ais_component_mask(m, c);
     ulong mask = own;
     TsAisSum sum = ts_ais_sum_zero();
     ts_ais_sum_add(&sum, ts_ais_base(sv, c, p));
@@ -197,14 +197,14 @@ TS_INLINE void ts_edge_schedule_pixel(const TsSceneView* sv, const TsTracer* tra
                                          (int)table[TS_AIS_TABLE_MODE]);
 }
 
-/* Item kernel EdgeRowSums: item i (sv->items[i]) is a row of the resolved pass
+/* Item kernel EdgeRowSums, launched without a list: item i is row i of the resolved pass
  * (TsSceneView.igi_pass); writes its luminance sum (ts_edge_row_luminance) as
  * TS_EDGE_ROW_FLOATS (layout_igi.h), from which the host takes the edge contrast's ε
  * (edge_epsilon_of_rows, host/gi/ais_edges.h) without reading the image back. */
 TS_INLINE void ts_edge_row_sum_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
                                     float* out) {
     (void)tracer;
-    const uint y = sv->items[i];
+    const uint y = i;
     out[TS_EDGE_ROW_DOUBLE] = out[TS_EDGE_ROW_DOUBLE + 1] = out[TS_EDGE_ROW_FLOAT] = 0.0f;
 #ifdef TS_HAS_DOUBLE
     uint lo, hi;
