@@ -150,8 +150,8 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
         const fs::path png = png_beside(exr);
         write_exr(outputs.add(exr), img);
         write_png(outputs.add(png), img, a.exposure);
-        std::fprintf(stderr, "tessera: frame %d: %.2f s (%u spp in %.2f s, the rest set-up)\n", frame, seconds,
-                     stats.passes, stats.seconds);
+        std::fprintf(stderr, "tessera: frame %d: %.1f ms (%u spp in %.1f ms, the rest set-up)\n", frame, 1e3 * seconds,
+                     stats.passes, 1e3 * stats.seconds);
         if (!stats.detail.empty()) std::fprintf(stderr, "  %s\n", stats.detail.c_str());
         written += exr.string() + "\n" + png.string() + "\n";
         frame_now = frame + 1;

@@ -117,8 +117,10 @@ uint64_t InstantCache::probe(Backend& backend, std::vector<IcRecord>& records,
     for (size_t k = 0; k < which.size(); ++k)
         reach[k] = 2.0f * settings_.error_bound * settings_.max_radius_px * records[which[k]].pixel_size;
     uint64_t rays = 0;
+    const auto t0 = Clock::now();
     const std::vector<float> d = ic_probe_distances(backend, records, which, reach, &rays);
     for (size_t k = 0; k < which.size(); ++k) records[which[k]].probe = d[k];
+    times_.probe += since(t0);
     return rays;
 }
 
@@ -152,6 +154,7 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
     static_assert(kIcVisible == int32_t(TS_IC_PAIR_VISIBLE) && kIcFacing == int32_t(TS_IC_PAIR_FACING),
                   "row entries are the pair kernel's codes");
     if (pairs.empty()) return 0;
+    const auto t0 = Clock::now();
     ic_set_record_inputs(backend, cache_.records(), vpls);
     uint64_t traced = 0;
     std::vector<uint32_t> items, hits;
@@ -164,7 +167,9 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
                 items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_VPL] = pairs[begin + i].vpl;
             }
         });
+        const auto tk = Clock::now();
         ic_trace_pairs(backend, g_clamp, items, hits);
+        times_.pair_kernel += since(tk);
         traced += n - static_cast<size_t>(std::count(hits.begin(), hits.end(), TS_IC_PAIR_FACING));
         // Pairs are distinct, so every item writes its own row entry.
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
@@ -177,6 +182,7 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
             }
         });
     }
+    times_.pairs += since(t0);
     return traced;
 }
 
@@ -187,6 +193,7 @@ std::vector<float> InstantCache::gather(Backend& backend, const std::vector<floa
                                         const std::vector<uint32_t>& which, float g_clamp) const {
     std::vector<float> harmonic(which.size());
     if (which.empty()) return harmonic;
+    const auto t0 = Clock::now();
     ic_set_record_inputs(backend, records, vpls);
     const size_t nv = vpl_count(vpls), words = TS_IC_VISIBLE_WORDS(nv);
     const size_t per_launch = std::max<size_t>(1, kGatherBatch / std::max<size_t>(words, 1));
@@ -203,13 +210,16 @@ std::vector<float> InstantCache::gather(Backend& backend, const std::vector<floa
                 ic_pack_visible(rows[which[begin + k]].data(), nv, visibility.data() + k * words);
             }
         });
+        const auto tk = Clock::now();
         ic_gather(backend, g_clamp, items, visibility, out);
+        times_.gather_kernel += since(tk);
         for (size_t k = 0; k < n; ++k) {
             const float* o = &out[TS_IC_GATHER_FLOATS * k];
             records[which[begin + k]].e = {o[TS_IC_GATHER_E], o[TS_IC_GATHER_E + 1], o[TS_IC_GATHER_E + 2]};
             harmonic[begin + k] = o[TS_IC_GATHER_HARMONIC];
         }
     }
+    times_.gather += since(t0);
     return harmonic;
 }
 
@@ -229,6 +239,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
                 const uint32_t p = y * frame.width + x;
                 if (has_surface(&gbuffer[size_t(p) * TS_IC_GBUF_FLOATS])) candidates.push_back(p);
             }
+        const auto t_cover = Clock::now();
         const IcCacheBuffers& b = cache_.buffers();
         std::vector<uint8_t> covered(candidates.size(), 0);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
@@ -239,6 +250,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
                                                ts::ts_f3_load(g + TS_IC_GBUF_NORMAL), settings_.error_bound);
             }
         });
+        stats_.coverage_seconds += since(t_cover);
         const size_t first = cache_.records().size();
         const size_t fresh_count = std::count(covered.begin(), covered.end(), uint8_t(0));
         check_pairs(first + fresh_count, nv);
@@ -277,6 +289,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
                             const std::vector<float>& surf, float g_clamp, const IcPathSelection& selection,
                             std::vector<float>& gbuffer, std::vector<float>& e_id, std::vector<float>& residual) {
     stats_ = IcFrameStats{};
+    times_ = StageTimes{};
     auto t0 = Clock::now();
     if (!settings_.temporal || !have_previous_) {
         cache_ = IrradianceCache(settings_.error_bound);
@@ -295,7 +308,9 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     t0 = Clock::now();
     ic_gbuffer_from_surface(surf, gbuffer);
     const SceneBounds bounds = scene_bounds(scene);
+    const auto t_octree = Clock::now();
     cache_.rebuild(bounds.lo, bounds.hi);
+    stats_.octree_seconds = since(t_octree);
     place(backend, gbuffer, frame, g_clamp);
     stats_.place_seconds = since(t0);
 
@@ -332,6 +347,9 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     }
     stats_.records = cache_.records().size();
     stats_.interpolate_seconds = since(t0);
+    stats_.pair_seconds = times_.pairs, stats_.pair_kernel_seconds = times_.pair_kernel;
+    stats_.probe_seconds = times_.probe;
+    stats_.gather_seconds = times_.gather, stats_.gather_kernel_seconds = times_.gather_kernel;
     if (settings_.temporal) {
         mark_in_view(frame);
         snapshot(scene, g_clamp);
@@ -383,20 +401,26 @@ IcFrameStats& IcFrameStats::operator+=(const IcFrameStats& o) {
     fallback_pixels += o.fallback_pixels;
     update_seconds += o.update_seconds, place_seconds += o.place_seconds;
     interpolate_seconds += o.interpolate_seconds;
+    pair_seconds += o.pair_seconds, pair_kernel_seconds += o.pair_kernel_seconds, probe_seconds += o.probe_seconds;
+    gather_seconds += o.gather_seconds, gather_kernel_seconds += o.gather_kernel_seconds;
+    octree_seconds += o.octree_seconds, coverage_seconds += o.coverage_seconds;
     return *this;
 }
 
 std::string describe_ic(const IcSettings& settings, const IcFrameStats& s, uint32_t passes) {
-    char buf[480], over[48] = "";
+    char buf[640], over[48] = "";
     if (passes > 1) std::snprintf(over, sizeof over, " summed over %u passes", passes);
     std::snprintf(buf, sizeof buf,
                   "%s: a %.2f, %u paths%s: %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed), %zu paths re-traced, "
-                  "rays: %llu light-path + %llu shadow + %llu probe, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms",
+                  "rays: %llu light-path + %llu shadow + %llu probe, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms; of update and placement: shadow rays %.1f ms "
+                  "(kernel %.1f), probes %.1f, gathers %.1f (kernel %.1f), octree %.1f, coverage %.1f",
                   settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, over, s.vpls, s.records,
                   s.created, s.removed, s.resummed, s.paths_retraced,
                   static_cast<unsigned long long>(s.light_path_rays), static_cast<unsigned long long>(s.shadow_rays),
                   static_cast<unsigned long long>(s.probe_rays),
-                  1e3 * s.update_seconds, 1e3 * s.place_seconds, 1e3 * s.interpolate_seconds);
+                  1e3 * s.update_seconds, 1e3 * s.place_seconds, 1e3 * s.interpolate_seconds, 1e3 * s.pair_seconds,
+                  1e3 * s.pair_kernel_seconds, 1e3 * s.probe_seconds, 1e3 * s.gather_seconds,
+                  1e3 * s.gather_kernel_seconds, 1e3 * s.octree_seconds, 1e3 * s.coverage_seconds);
     return buf;
 }
 

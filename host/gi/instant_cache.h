@@ -76,6 +76,14 @@ struct IcFrameStats {
     uint64_t probe_rays = 0;       ///< the new records' hemisphere probes (gi/ic_probe.h)
     size_t fallback_pixels = 0;    ///< pixels the kernel found uncovered (rounding), shaded on the host
     double update_seconds = 0, place_seconds = 0, interpolate_seconds = 0;
+    /// Of update and placement: the record–VPL shadow rays (the pair lists, the pair
+    /// kernel and the rows' write-back), of it the kernel's launch with its transfers; the
+    /// new records' probes; the gathers (visibility packed, the gather kernel), of it the
+    /// kernel's launch. What a GPU still leaves to the host is the difference.
+    double pair_seconds = 0, pair_kernel_seconds = 0, probe_seconds = 0, gather_seconds = 0,
+           gather_kernel_seconds = 0;
+    /// Of placement: the octree's rebuild, and the coverage tests of its four levels.
+    double octree_seconds = 0, coverage_seconds = 0;
     uint64_t indirect_rays() const { return light_path_rays + shadow_rays + probe_rays; }
     IcFrameStats& operator+=(const IcFrameStats& o);
 };
@@ -180,6 +188,11 @@ private:
     std::vector<float> vpls_;
     std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL
     IcFrameStats stats_;
+    // The stage times of the const helpers (trace_pairs, probe, gather), copied into stats_.
+    struct StageTimes {
+        double pairs = 0, pair_kernel = 0, probe = 0, gather = 0, gather_kernel = 0;
+    };
+    mutable StageTimes times_;
     uint32_t pass_ = 0, seed_ = 1;  // the path block and seed of the current light paths
     uint32_t oversampling_ = 1;     // K of the current light paths: each candidate weighs 1/(K·paths)
     // The previous frame, for the temporal update.

@@ -5,8 +5,9 @@
 // Concurrency: lookups only read the flat buffers, so any number may run at once (the
 // host's coverage test runs them over TBB, the kernels over work-items); insertions are
 // made by one thread between lookup phases (a placement level, a dispatch) and the flat
-// buffers are re-made before the next phase. This keeps placement deterministic: the
-// same G-buffer gives the same records on every backend and every run.
+// buffers are re-made before the next phase; a rebuild builds subtrees over TBB, each
+// node's records in record order. This keeps placement deterministic: the same G-buffer
+// gives the same records on every backend and every run.
 #pragma once
 #include <array>
 #include <cmath>
@@ -87,13 +88,25 @@ private:
         glm::vec3 centre;
         float half;
         uint32_t first_child = 0;  // 0: leaf
-        std::vector<uint32_t> refs;
     };
-    void insert_into(uint32_t node, uint32_t record, glm::vec3 lo, glm::vec3 hi, float r, int depth);
+    // A record stored at a node; a node's records are its refs in the order added (record
+    // order), gathered per node when the flat buffers are made.
+    struct Ref {
+        uint32_t node, record;
+    };
+    struct Tree {
+        std::vector<Node> nodes;
+        std::vector<Ref> refs;
+    };
+    // Stores `record` in the subtree of `node` (at `depth`) of `tree`: the serial build's
+    // recursion, also run on one subtree's own tree by the parallel rebuild.
+    void insert_record(Tree& tree, uint32_t node, uint32_t record, int depth) const;
+    template <class Down>
+    void route(Tree& tree, uint32_t node, uint32_t record, int depth, Down&& down) const;
 
     float a_;
     std::vector<IcRecord> records_;
-    std::vector<Node> nodes_;
+    Tree tree_;
     IcCacheBuffers flat_;
     bool dirty_ = true;
 };

@@ -136,5 +136,48 @@ TEST(IcOctree, LookupEqualsBruteForceOverAllRecords) {
     }
 }
 
+// The rebuild builds the octree's top levels serially and the subtrees below them in
+// parallel (irradiance_cache.cpp); the incremental inserts build it serially. With the
+// same root, every node holds the same records in the same order, so every lookup must
+// give the same bits: a different order of summation would differ in the last bits.
+TEST(IcOctree, ParallelRebuildGivesTheInsertionsLookupsBitForBit) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const float a = 0.3f;
+    IrradianceCache inserted(a), rebuilt(a);
+    // Spheres inside [0, 1]³ (positions in [0.1, 0.9], a·R ≤ 0.03), so the rebuild's root,
+    // which grows around the spheres, is the inserted cache's root.
+    inserted.rebuild({0, 0, 0}, {1, 1, 1});
+    std::vector<IcRecord> all;
+    for (int i = 0; i < 6000; ++i) {
+        const int plane = i % 3;  // a floor, a wall and scattered points: uneven subtrees
+        glm::vec3 x(0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng));
+        if (plane == 0) x.y = 0.1f;
+        if (plane == 1) x.z = 0.9f;
+        const glm::vec3 n = plane == 1 ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+        const IcRecord r = record_at(x, n, 0.002f * std::pow(50.0f, u(rng)), glm::vec3(u(rng), u(rng), u(rng)));
+        inserted.insert(r);
+        rebuilt.records().push_back(r);
+    }
+    rebuilt.rebuild({0, 0, 0}, {1, 1, 1});
+    EXPECT_EQ(rebuilt.buffers().refs.size(), inserted.buffers().refs.size());
+    EXPECT_EQ(rebuilt.buffers().nodes.size(), inserted.buffers().nodes.size());
+    int served = 0;
+    for (int q = 0; q < 20000; ++q) {
+        const int plane = q % 3;
+        glm::vec3 x(0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng), 0.1f + 0.8f * u(rng));
+        if (plane == 0) x.y = 0.1f;
+        if (plane == 1) x.z = 0.9f;
+        const glm::vec3 n = plane == 1 ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+        glm::vec3 e_inserted, e_rebuilt;
+        const float w_inserted = inserted.lookup(x, n, &e_inserted);
+        const float w_rebuilt = rebuilt.lookup(x, n, &e_rebuilt);
+        ASSERT_EQ(w_rebuilt, w_inserted) << "query " << q;
+        ASSERT_EQ(e_rebuilt, e_inserted) << "query " << q;
+        served += w_inserted > 0.0f;
+    }
+    EXPECT_GT(served, 8000);  // the floor's and the wall's queries sum several records each
+}
+
 }  // namespace
 }  // namespace tessera
