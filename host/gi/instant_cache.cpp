@@ -223,33 +223,71 @@ std::vector<float> InstantCache::gather(Backend& backend, const std::vector<floa
     return harmonic;
 }
 
+// Whether each pixel of the G-buffer with a surface is covered by a record of `cache`
+// (ts_ic_covered; 0 for the others), one byte a pixel.
+std::vector<uint8_t> InstantCache::covered_pixels(IrradianceCache& cache, const std::vector<float>& gbuffer) const {
+    const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
+    std::vector<uint8_t> covered(pixels, 0);
+    if (cache.records().empty()) return covered;
+    const IcCacheBuffers& b = cache.buffers();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 1024), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t p = r.begin(); p < r.end(); ++p) {
+            const float* g = &gbuffer[p * TS_IC_GBUF_FLOATS];
+            if (has_surface(g))
+                covered[p] = ts::ts_ic_covered(b.nodes.data(), b.refs.data(), b.records.data(),
+                                               ts::ts_f3_load(g + TS_IC_GBUF_POSITION),
+                                               ts::ts_f3_load(g + TS_IC_GBUF_NORMAL), settings_.error_bound);
+        }
+    });
+    return covered;
+}
+
 // Coarse-to-fine placement (docs/instant-caching.md §7): on pixel grids of stride 8, 4, 2, 1,
 // every grid pixel no record covers gets one; each level's records are gathered and
 // inserted before the next level's coverage test, so a level never duplicates a coarser
 // one's work and the result does not depend on thread timing.
+//
+// A pixel is covered when one record is usable there (ts_ic_covered), so coverage by the
+// records kept from earlier frames (tic) is tested once, on the finest grid (the coarser
+// grids' pixels are among its pixels), and each level then tests only the pixels they
+// leave against this frame's new records, in a tree of their own. The same pixels get
+// records as with every level tested against the whole cache; the whole cache's flat
+// buffers are then made once a frame, not once a level (Sibenik's TIC: 720k nodes).
 void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame,
-                         float g_clamp) {
+                         float g_clamp, const SceneBounds& bounds) {
     const float footprint = 2.0f * std::sqrt(frame.cam_up[0] * frame.cam_up[0] + frame.cam_up[1] * frame.cam_up[1] +
                                              frame.cam_up[2] * frame.cam_up[2]) / static_cast<float>(frame.height);
     const size_t nv = vpl_count(vpls_);
+    auto t_cover = Clock::now();
+    const std::vector<uint8_t> covered_before = covered_pixels(cache_, gbuffer);
+    // This frame's records, where the cache held some before (else the cache itself).
+    const bool kept = !cache_.records().empty();
+    IrradianceCache fresh_tree(settings_.error_bound);
+    if (kept) fresh_tree.rebuild(bounds.lo, bounds.hi);
+    IrradianceCache& fresh_cover = kept ? fresh_tree : cache_;
+    stats_.coverage_seconds += since(t_cover);
     for (const uint32_t stride : {8u, 4u, 2u, 1u}) {
         std::vector<uint32_t> candidates;
         for (uint32_t y = 0; y < frame.height; y += stride)
             for (uint32_t x = 0; x < frame.width; x += stride) {
                 const uint32_t p = y * frame.width + x;
-                if (has_surface(&gbuffer[size_t(p) * TS_IC_GBUF_FLOATS])) candidates.push_back(p);
+                if (has_surface(&gbuffer[size_t(p) * TS_IC_GBUF_FLOATS]) && !covered_before[p]) candidates.push_back(p);
             }
-        const auto t_cover = Clock::now();
-        const IcCacheBuffers& b = cache_.buffers();
+        t_cover = Clock::now();
         std::vector<uint8_t> covered(candidates.size(), 0);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                const float* g = &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS];
-                covered[i] = ts::ts_ic_covered(b.nodes.data(), b.refs.data(), b.records.data(),
-                                               ts::ts_f3_load(g + TS_IC_GBUF_POSITION),
-                                               ts::ts_f3_load(g + TS_IC_GBUF_NORMAL), settings_.error_bound);
-            }
-        });
+        if (!fresh_cover.records().empty()) {
+            const IcCacheBuffers& b = fresh_cover.buffers();
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256),
+                              [&](const tbb::blocked_range<size_t>& r) {
+                                  for (size_t i = r.begin(); i < r.end(); ++i) {
+                                      const float* g = &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS];
+                                      covered[i] = ts::ts_ic_covered(b.nodes.data(), b.refs.data(), b.records.data(),
+                                                                     ts::ts_f3_load(g + TS_IC_GBUF_POSITION),
+                                                                     ts::ts_f3_load(g + TS_IC_GBUF_NORMAL),
+                                                                     settings_.error_bound);
+                                  }
+                              });
+        }
         stats_.coverage_seconds += since(t_cover);
         const size_t first = cache_.records().size();
         const size_t fresh_count = std::count(covered.begin(), covered.end(), uint8_t(0));
@@ -280,6 +318,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         for (size_t i = 0; i < fresh.size(); ++i) {
             fresh[i].radius = radius_of(fresh[i], harmonic[i]);
             cache_.insert(fresh[i]);
+            if (kept) fresh_tree.insert(fresh[i]);
         }
         stats_.created += fresh.size();
     }
@@ -311,7 +350,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     const auto t_octree = Clock::now();
     cache_.rebuild(bounds.lo, bounds.hi);
     stats_.octree_seconds = since(t_octree);
-    place(backend, gbuffer, frame, g_clamp);
+    place(backend, gbuffer, frame, g_clamp, bounds);
     stats_.place_seconds = since(t0);
 
     t0 = Clock::now();

@@ -164,7 +164,9 @@ private:
     /// (docs/instant-caching.md §4).
     float radius_of(const IcRecord& r, float harmonic_mean) const;
     void concat_vpls();
-    void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp);
+    void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp,
+               const SceneBounds& bounds);
+    std::vector<uint8_t> covered_pixels(IrradianceCache& cache, const std::vector<float>& gbuffer) const;
     static std::vector<Pair> vpl_major_pairs(const std::vector<uint32_t>& records, size_t nv);
     uint64_t trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
                          float g_clamp, std::vector<std::vector<int32_t>>& rows) const;

@@ -1,6 +1,8 @@
 // Instant caching end to end: ic against igi with the same VPLs, the temporal update
 // against a rebuild over an animation with moves, light and material changes, and a
 // change-free frame that traces no indirect rays. On both backends.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
@@ -99,6 +101,18 @@ TEST_P(InstantCacheOn, ClampCompensationReturnsWhatTheClampRemoved) {
     }
 }
 
+// Placement gives a pixel a record only where no record is usable (instant_cache.cpp): a
+// record is usable at its own point, so no two records of a cache lie at one point. A
+// coverage test that missed the kept records or a coarser level's new ones would make
+// records again at their pixels (the grids are nested, and a static surface keeps its
+// points from frame to frame).
+void expect_distinct_points(const std::vector<IcRecord>& records, int frame) {
+    std::vector<std::array<float, 3>> points;
+    for (const IcRecord& r : records) points.push_back({r.position().x, r.position().y, r.position().z});
+    std::sort(points.begin(), points.end());
+    EXPECT_EQ(std::adjacent_find(points.begin(), points.end()), points.end()) << "two records at one point, frame " << frame;
+}
+
 struct TemporalRun {
     size_t removed = 0, retraced = 0, paths = 0;
     uint64_t update_rays = 0, full_rays = 0;
@@ -127,6 +141,7 @@ TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest, ui
             const auto& records = c.cache().records();
             EXPECT_EQ(rebuilt.size(), records.size());
             EXPECT_GT(records.size(), 10u);
+            expect_distinct_points(records, f);
             // The interpolation kernel covers what the host's placement covered (a few
             // pixels may round differently at a record's edge; a kernel that found nothing
             // would leave all of them to the host fallback).
