@@ -1,10 +1,12 @@
 #include "gi/irradiance_cache.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "kernels/shared/ic_gather.h"
@@ -152,17 +154,32 @@ const IcCacheBuffers& IrradianceCache::buffers() {
         std::vector<uint32_t> at(first.begin(), first.end() - 1);
         for (const Ref& ref : tree_.refs) flat_.refs[at[ref.node]++] = ref.record;
     }
-    flat_.nodes.assign(std::max<size_t>(1, nodes.size()) * TS_IC_NODE_FLOATS, 0.0f);
-    for (size_t i = 0; i < nodes.size(); ++i) {
-        float* n = &flat_.nodes[i * TS_IC_NODE_FLOATS];
-        const Node& src = nodes[i];
-        n[TS_IC_NODE_CENTRE] = src.centre.x, n[TS_IC_NODE_CENTRE + 1] = src.centre.y;
-        n[TS_IC_NODE_CENTRE + 2] = src.centre.z, n[TS_IC_NODE_HALF] = src.half;
-        const uint32_t count = first[i + 1] - first[i];
-        std::memcpy(&n[TS_IC_NODE_CHILD], &src.first_child, 4);
-        std::memcpy(&n[TS_IC_NODE_FIRST], &first[i], 4);
-        std::memcpy(&n[TS_IC_NODE_COUNT], &count, 4);
-    }
+    // Nodes with neither records nor children are left out (layout_ic.h): the others keep
+    // their order, so a node's children stay consecutive in octant order.
+    std::vector<uint32_t> index(nodes.size() + 1, 0u);
+    for (size_t i = 0; i < nodes.size(); ++i)
+        index[i + 1] = index[i] + uint32_t(i == 0 || nodes[i].first_child != 0 || first[i + 1] > first[i]);
+    flat_.nodes.assign(std::max<size_t>(1, index.back()) * TS_IC_NODE_FLOATS, 0.0f);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 4096), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i < range.end(); ++i) {
+            if (index[i + 1] == index[i]) continue;
+            float* n = &flat_.nodes[size_t(index[i]) * TS_IC_NODE_FLOATS];
+            const Node& src = nodes[i];
+            n[TS_IC_NODE_CENTRE] = src.centre.x, n[TS_IC_NODE_CENTRE + 1] = src.centre.y;
+            n[TS_IC_NODE_CENTRE + 2] = src.centre.z, n[TS_IC_NODE_HALF] = src.half;
+            const uint32_t count = first[i + 1] - first[i];
+            uint32_t child = 0, mask = 0;
+            if (src.first_child != 0) {
+                for (uint32_t o = 0; o < 8; ++o)
+                    if (index[src.first_child + o + 1] > index[src.first_child + o]) mask |= 1u << o;
+                if (mask != 0) child = index[src.first_child + std::countr_zero(mask)];  // its first kept child
+            }
+            std::memcpy(&n[TS_IC_NODE_CHILD], &child, 4);
+            std::memcpy(&n[TS_IC_NODE_FIRST], &first[i], 4);
+            std::memcpy(&n[TS_IC_NODE_COUNT], &count, 4);
+            std::memcpy(&n[TS_IC_NODE_MASK], &mask, 4);
+        }
+    });
     if (flat_.refs.empty()) flat_.refs.push_back(0);  // device buffers cannot be empty
     flat_.records.assign(std::max<size_t>(1, records_.size()) * TS_IC_RECORD_FLOATS, 0.0f);
     for (size_t i = 0; i < records_.size(); ++i) {

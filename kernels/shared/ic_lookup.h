@@ -47,6 +47,18 @@ TS_INLINE float ts_ic_weight(TS_GLOBAL const float* record, float3 x, float3 n, 
     return 1.0f / fmax(eps, 1e-4f * a) - 1.0f / a;
 }
 
+/* The child of `node` (TS_IC_NODE_FLOATS) that contains x, or -1 where it has none there
+ * (a leaf, or an octant left out because it held nothing: layout_ic.h). */
+TS_INLINE int ts_ic_child(TS_GLOBAL const float* N, float3 x) {
+    uint child = as_uint(N[TS_IC_NODE_CHILD]);
+    if (child == 0u) return -1;
+    TS_GLOBAL const float* c = N + TS_IC_NODE_CENTRE;
+    uint octant = (x.x >= c[0] ? 1u : 0u) + (x.y >= c[1] ? 2u : 0u) + (x.z >= c[2] ? 4u : 0u);
+    uint mask = as_uint(N[TS_IC_NODE_MASK]);
+    if (!((mask >> octant) & 1u)) return -1;
+    return (int)(child + (uint)ts_popcount64((ulong)(mask & ((1u << octant) - 1u))));
+}
+
 /* Interpolated E at (x, n) from the octree: writes Σ w_i E_i / Σ w_i to *e (0 when no
  * record is usable) and returns Σ w_i. Sums run in the walk's order (root first, each
  * node's records in reference order), the same on every backend. */
@@ -66,11 +78,9 @@ TS_INLINE float ts_ic_interpolate(TS_GLOBAL const float* nodes, TS_GLOBAL const 
                 wsum += w;
             }
         }
-        uint child = as_uint(N[TS_IC_NODE_CHILD]);
-        if (child == 0u) break;
-        TS_GLOBAL const float* c = N + TS_IC_NODE_CENTRE;
-        uint octant = (x.x >= c[0] ? 1u : 0u) + (x.y >= c[1] ? 2u : 0u) + (x.z >= c[2] ? 4u : 0u);
-        node = child + octant;
+        int next = ts_ic_child(N, x);
+        if (next < 0) break;
+        node = (uint)next;
     }
     *e = wsum > 0.0f ? sum / wsum : sum;
     return wsum;
@@ -89,11 +99,9 @@ TS_INLINE int ts_ic_covered(TS_GLOBAL const float* nodes, TS_GLOBAL const uint* 
         uint first = as_uint(N[TS_IC_NODE_FIRST]), count = as_uint(N[TS_IC_NODE_COUNT]);
         for (uint r = first; r < first + count; ++r)
             if (ts_ic_weight(records + (size_t)refs[r] * TS_IC_RECORD_FLOATS, x, n, a) > 0.0f) return 1;
-        uint child = as_uint(N[TS_IC_NODE_CHILD]);
-        if (child == 0u) break;
-        TS_GLOBAL const float* c = N + TS_IC_NODE_CENTRE;
-        uint octant = (x.x >= c[0] ? 1u : 0u) + (x.y >= c[1] ? 2u : 0u) + (x.z >= c[2] ? 4u : 0u);
-        node = child + octant;
+        int next = ts_ic_child(N, x);
+        if (next < 0) break;
+        node = (uint)next;
     }
     return 0;
 }

@@ -36,19 +36,21 @@
 /* An octree node, TS_IC_NODE_FLOATS floats:
  *   TS_IC_NODE_CENTRE 3 floats: centre
  *   TS_IC_NODE_HALF   half edge (scene units)
- *   TS_IC_NODE_CHILD  index of the first of its 8 children (uint bits, stored
- *                     consecutively in octant order x + 2y + 4z; 0 = leaf, as the root
- *                     is node 0)
+ *   TS_IC_NODE_CHILD  index of its first child (uint bits; 0 = leaf, as the root is
+ *                     node 0). The children it has are stored consecutively in octant
+ *                     order x + 2y + 4z; an octant whose child would hold no record and
+ *                     no child is left out (three in four on Sibenik's cache)
  *   TS_IC_NODE_FIRST  first entry of its record list in the reference array (uint bits)
  *   TS_IC_NODE_COUNT  number of records (uint bits)
- *   TS_IC_NODE_UNUSED 1 float */
+ *   TS_IC_NODE_MASK   which octants have a child: bit o for octant o (uint bits); child
+ *                     of octant o = CHILD + the bits below o */
 #define TS_IC_NODE_FLOATS 8
 #define TS_IC_NODE_CENTRE 0
 #define TS_IC_NODE_HALF 3
 #define TS_IC_NODE_CHILD 4
 #define TS_IC_NODE_FIRST 5
 #define TS_IC_NODE_COUNT 6
-#define TS_IC_NODE_UNUSED 7
+#define TS_IC_NODE_MASK 7
 /* Per-pixel output of the ic interpolation kernel, TS_IC_INTERP_FLOATS floats:
  * TS_IC_INTERP_E 3 floats: interpolated E (0 where no record is usable or the pixel has
  * no surface), TS_IC_INTERP_WEIGHT the weight sum Σ w, TS_IC_INTERP_RESIDUAL 3 floats:
@@ -105,7 +107,7 @@ static_assert(tessera::layout_check::tiles({{TS_IC_RECORD_POSITION, 3}, {TS_IC_R
                                            TS_IC_RECORD_FLOATS),
               "layout_ic.h: ic record fields do not tile TS_IC_RECORD_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_IC_NODE_CENTRE, 3}, {TS_IC_NODE_HALF, 1}, {TS_IC_NODE_CHILD, 1},
-                                            {TS_IC_NODE_FIRST, 1}, {TS_IC_NODE_COUNT, 1}, {TS_IC_NODE_UNUSED, 1}},
+                                            {TS_IC_NODE_FIRST, 1}, {TS_IC_NODE_COUNT, 1}, {TS_IC_NODE_MASK, 1}},
                                            TS_IC_NODE_FLOATS),
               "layout_ic.h: ic octree node fields do not tile TS_IC_NODE_FLOATS");
 static_assert(tessera::layout_check::tiles({{TS_IC_INTERP_E, 3}, {TS_IC_INTERP_WEIGHT, 1}, {TS_IC_INTERP_RESIDUAL, 3}}, TS_IC_INTERP_FLOATS),
