@@ -26,6 +26,7 @@
 #include "integrators/igi_frame.h"
 #include "device/frame.h"
 #include "scene/loader.h"
+#include "util/heap.h"
 
 using namespace tessera;
 namespace fs = std::filesystem;
@@ -54,6 +55,7 @@ IgiSettings full_rate(IgiSettings s) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    tessera::keep_frame_memory();
     CLI::App app{"Tessera AIS vs A-MAX vs IGI frame rates (Tables 5.1/5.2 layout)"};
     std::vector<std::string> scenes = bench::standard_scenes();
     std::string out_dir = "bench/results", device;

@@ -25,6 +25,7 @@
 #include "render/renderer.h"
 #include "device/scene_buffers.h"
 #include "scene/loader.h"
+#include "util/heap.h"
 
 using namespace tessera;
 namespace fs = std::filesystem;
@@ -93,6 +94,7 @@ metrics::RgbImage rgb(const Image& img) { return metrics::rgb_for_metrics(img, "
 }  // namespace
 
 int main(int argc, char** argv) {
+    tessera::keep_frame_memory();
     CLI::App app{"Tessera instant caching over animations: igi, ais, ic, tic per frame, both backends"};
     std::vector<std::string> scenes = {std::string(TESSERA_SCENES_DIR) + "/cornell-box-animated.json",
                                        std::string(TESSERA_SCENES_DIR) + "/sibenik-animated.json"};

@@ -19,6 +19,7 @@
 #include "integrators/igi_frame.h"
 #include "device/frame.h"
 #include "scene/loader.h"
+#include "util/heap.h"
 
 using namespace tessera;
 namespace fs = std::filesystem;
@@ -42,6 +43,7 @@ Row measure(const Scene& scene, const SceneBuffers& b, BackendKind kind, const s
 }  // namespace
 
 int main(int argc, char** argv) {
+    tessera::keep_frame_memory();
     CLI::App app{"Tessera IGI frame time (both backends)"};
     std::vector<std::string> scenes = bench::standard_scenes();
     std::string out_dir = "bench/results", device;

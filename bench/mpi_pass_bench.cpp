@@ -15,6 +15,7 @@
 #include "render/accumulator.h"
 #include "render/cluster.h"
 #include "render/pass_exchange.h"
+#include "util/heap.h"
 
 using namespace tessera;
 
@@ -38,6 +39,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    tessera::keep_frame_memory();
     CLI::App app{"Per-pass cost of a distributed render's collection on rank 0 (run under mpirun -n 2)"};
     int width = 512, height = 512;
     uint32_t passes = 41;

@@ -15,11 +15,13 @@
 #include "bench/machine.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
+#include "util/heap.h"
 
 using namespace tessera;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
+    tessera::keep_frame_memory();
     CLI::App app{"Tessera path-tracing throughput (pt, both backends)"};
     std::vector<std::string> scenes = {std::string(TESSERA_SCENES_DIR) + "/cornell-box.json",
                                        std::string(TESSERA_SCENES_DIR) + "/sibenik.json"};

@@ -57,6 +57,7 @@
 #include "device/scene_view.h"
 #include "scene/loader.h"
 #include "util/morton.h"
+#include "util/heap.h"
 
 using namespace tessera;
 namespace fs = std::filesystem;
@@ -170,6 +171,7 @@ std::vector<RaySet> make_rays(const Scene& scene, const SceneBuffers& b, Backend
 }  // namespace
 
 int main(int argc, char** argv) {
+    tessera::keep_frame_memory();
     CLI::App app{"Tessera ray-throughput and frame-time benchmark"};
     std::string scene_path = std::string(TESSERA_SCENES_DIR) + "/sibenik.json", out_dir = "bench/results";
     std::string device;

@@ -12,6 +12,7 @@
 #include "cli/commands.h"
 #include "render/cluster.h"
 #include "util/error.h"
+#include "util/heap.h"
 
 namespace {
 
@@ -38,6 +39,7 @@ int fail(const std::string& message, int code) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    tessera::keep_frame_memory();
     CLI::App app{"Tessera: interactive global illumination on OpenCL devices and Embree"};
     app.require_subcommand(1);
     tessera::cli::add_render_command(app);
