@@ -33,7 +33,8 @@ constexpr int kSplitDepth = 2;
 // each subtree in its own node pool over TBB, appended in the frontier's order. Each node
 // gets the records of the serial build in the same order, so every lookup sums the same
 // records in the same order and gives the same bits; only the nodes' numbering differs.
-// Sibenik's 45k records: 24 ms serially on the 2-core guest (bench/results/ic_rebuild.md).
+// Sibenik's tic cache, 45k records on the 2-core guest: 24 ms serially, 8 ms so
+// (bench/results/tic_host_work.md).
 void IrradianceCache::rebuild(glm::vec3 lo, glm::vec3 hi) {
     for (const IcRecord& r : records_) {
         lo = glm::min(lo, r.position() - glm::vec3(a_ * r.radius));

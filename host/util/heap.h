@@ -13,7 +13,7 @@ namespace tessera {
 /// moves with the order of frees), and up to 512 MiB of free heap top stays mapped. Why:
 /// glibc's defaults turned one allocation pattern change into page faults, 85k -> 188k over
 /// an 8-frame animated Cornell box AIS render on PoCL (2-core guest), 0.17 -> 0.20 s a
-/// frame; with these settings 53k and 0.175 s (bench/results/ic_rebuild.md). Call first
+/// frame; with these settings 53k and 0.175 s (bench/results/tic_host_work.md). Call first
 /// in main(); the CLI and every bench/ binary do, so that their timings agree. No effect
 /// outside glibc.
 inline void keep_frame_memory() {
