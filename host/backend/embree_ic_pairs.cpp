@@ -19,8 +19,8 @@ void ic_pair_packets(const ts::TsSceneView& sv, const ts::TsTracer& tracer, cons
         bool one_vpl = true;
         for (size_t i = 0; i < n; ++i) {
             valid[i] = ts::ts_ic_pair_ray(&sv, &frame, static_cast<uint32_t>(first + i), &rays[i]) ? -1 : 0;
-            one_vpl = one_vpl && sv.items[TS_IC_PAIR_WORDS * (first + i) + TS_IC_PAIR_VPL] ==
-                                     sv.items[TS_IC_PAIR_WORDS * first + TS_IC_PAIR_VPL];
+            one_vpl = one_vpl && ts::ts_ic_pair_vpl(&sv, &frame, static_cast<uint32_t>(first + i)) ==
+                                     ts::ts_ic_pair_vpl(&sv, &frame, static_cast<uint32_t>(first));
         }
         if (std::any_of(valid, valid + n, [](int v) { return v != 0; }))
             ts::ts_trace_closest16(&tracer, rays, valid, one_vpl, hits);

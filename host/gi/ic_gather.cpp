@@ -42,6 +42,17 @@ void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>
     if (!out.empty()) std::memcpy(hits.data(), out.data(), out.size() * sizeof(float));
 }
 
+void ic_trace_pair_grid(Backend& backend, float g_clamp, uint32_t records, uint32_t first, size_t count,
+                        std::vector<uint32_t>& hits) {
+    TsFrame f = gather_frame(g_clamp);
+    f.ic_pair_grid = records;
+    f.ic_pair_first = first;
+    std::vector<float> out;
+    backend.launch_count(KernelId::IcPair, f, count, out);
+    hits.resize(out.size());
+    if (!out.empty()) std::memcpy(hits.data(), out.data(), out.size() * sizeof(float));
+}
+
 void ic_gather(Backend& backend, float g_clamp, const std::vector<uint32_t>& items,
                const std::vector<uint32_t>& visibility, std::vector<float>& out) {
     backend.set_input(KernelInput::IcVisibility, visibility);

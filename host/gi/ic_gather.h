@@ -26,6 +26,13 @@ void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records
 void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>& items,
                     std::vector<uint32_t>& hits);
 
+/// One launch of the pair kernel over pairs first .. first + count - 1 of the grid of
+/// `records` records (the IcPairRecords input, set by the caller) and every VPL: pair g is
+/// (record g mod records, VPL g / records), so 16 consecutive pairs share a VPL as the
+/// item list's VPL-major order does, without the list. `hits` as ic_trace_pairs.
+void ic_trace_pair_grid(Backend& backend, float g_clamp, uint32_t records, uint32_t first, size_t count,
+                        std::vector<uint32_t>& hits);
+
 /// Packs the visibility `row` of `count` VPLs (the host's int32 per pair, kIcVisible where
 /// unoccluded; instant_cache.h) into the gather kernel's bit mask: TS_IC_VISIBLE_WORDS(count)
 /// uints at `mask` (layout_ic.h).

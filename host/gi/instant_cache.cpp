@@ -133,19 +133,6 @@ float InstantCache::radius_of(const IcRecord& r, float harmonic_mean) const {
                             settings_.max_radius_px);
 }
 
-// Every pair of the records in `records` and VPLs 0 .. nv-1, VPL by VPL and the records in
-// the given order: placement gives its records in Morton order of their grid cells, so 16
-// consecutive pairs are a 4×4 block of records and one VPL, rays that end at one point
-// and trace as a coherent packet (docs/instant-caching.md §7). Pairs are independent, so
-// the order changes no result.
-std::vector<InstantCache::Pair> InstantCache::vpl_major_pairs(const std::vector<uint32_t>& records, size_t nv) {
-    std::vector<Pair> pairs;
-    pairs.reserve(records.size() * nv);
-    for (uint32_t j = 0; j < nv; ++j)
-        for (uint32_t r : records) pairs.push_back({r, j});
-    return pairs;
-}
-
 // Traces the shadow ray of every pair whose geometry term is positive (the pair kernel)
 // and writes each pair's visibility into rows[record][vpl] (kIcFacing for the others).
 // Returns rays traced.
@@ -175,10 +162,47 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 const Pair& p = pairs[begin + i];
-                const uint32_t hit = hits[i];
-                rows[p.record][p.vpl] = hit == TS_IC_PAIR_FACING || hit == TS_IC_PAIR_VISIBLE
-                                            ? static_cast<int32_t>(hit)
-                                            : static_cast<int32_t>(object_of(hit));
+                rows[p.record][p.vpl] = row_code(hits[i]);
+            }
+        });
+    }
+    times_.pairs += since(t0);
+    return traced;
+}
+
+// A row entry from the pair kernel's hit: the codes as they are, a triangle as its object.
+int32_t InstantCache::row_code(uint32_t hit) const {
+    return hit == TS_IC_PAIR_FACING || hit == TS_IC_PAIR_VISIBLE ? static_cast<int32_t>(hit)
+                                                                 : static_cast<int32_t>(object_of(hit));
+}
+
+// trace_pairs for every pair of `records` and VPLs 0 .. nv-1, VPL by VPL and the records
+// in the given order, as a grid the kernel reads without a list (ic_trace_pair_grid):
+// placement gives its records in Morton order of their grid cells, so 16 consecutive
+// pairs are a 4×4 block of records and one VPL, rays that end at one point and trace as a
+// coherent packet (docs/instant-caching.md §7). Pairs are independent, so the order
+// changes no result.
+uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float>& vpls,
+                                       const std::vector<uint32_t>& records, float g_clamp,
+                                       std::vector<Row>& rows) const {
+    const size_t n = records.size(), total = n * vpl_count(vpls);
+    if (total == 0) return 0;
+    const auto t0 = Clock::now();
+    ic_set_record_inputs(backend, cache_.records(), vpls);
+    backend.set_input(KernelInput::IcPairRecords, records);
+    uint64_t traced = 0;
+    std::vector<uint32_t> hits;
+    for (size_t begin = 0; begin < total; begin += kPairBatch) {
+        const size_t count = std::min(kPairBatch, total - begin);
+        const auto tk = Clock::now();
+        ic_trace_pair_grid(backend, g_clamp, static_cast<uint32_t>(n), static_cast<uint32_t>(begin), count, hits);
+        times_.pair_kernel += since(tk);
+        traced += count - static_cast<size_t>(std::count(hits.begin(), hits.end(), TS_IC_PAIR_FACING));
+        // Pairs are distinct, so every pair writes its own row entry.
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const size_t g = begin + i;
+                rows[records[g % n]][g / n] = row_code(hits[i]);
             }
         });
     }
@@ -308,7 +332,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         std::sort(blocked.begin(), blocked.end());
         std::vector<uint32_t> order(blocked.size());
         for (size_t i = 0; i < order.size(); ++i) order[i] = blocked[i].second;
-        stats_.shadow_rays += trace_pairs(backend, vpls_, vpl_major_pairs(order, nv), g_clamp, rows_);
+        stats_.shadow_rays += trace_pair_grid(backend, vpls_, order, g_clamp, rows_);
         std::vector<uint32_t> which(cache_.records().size() - first);
         for (size_t i = 0; i < which.size(); ++i) which[i] = static_cast<uint32_t>(first + i);
         stats_.probe_rays += probe(backend, cache_.records(), which);
@@ -423,7 +447,7 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
     std::vector<Row> rows(records.size(), Row(nv, kIcFacing));
     std::vector<uint32_t> order(records.size());
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    trace_pairs(backend, vpls, vpl_major_pairs(order, nv), g_clamp, rows);
+    trace_pair_grid(backend, vpls, order, g_clamp, rows);
     std::vector<IcRecord> out(records);
     std::vector<uint32_t> all(out.size());
     for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;

@@ -167,9 +167,11 @@ private:
     void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp,
                const SceneBounds& bounds);
     std::vector<uint8_t> covered_pixels(IrradianceCache& cache, const std::vector<float>& gbuffer) const;
-    static std::vector<Pair> vpl_major_pairs(const std::vector<uint32_t>& records, size_t nv);
     uint64_t trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
                          float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
+    uint64_t trace_pair_grid(Backend& backend, const std::vector<float>& vpls, const std::vector<uint32_t>& records,
+                             float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
+    int32_t row_code(uint32_t hit) const;
     std::vector<float> gather(Backend& backend, const std::vector<float>& vpls, const std::vector<Row>& rows,
                               std::vector<IcRecord>& records, const std::vector<uint32_t>& which, float g_clamp) const;
     void update(Backend& backend, const SceneBuffers& scene, float g_clamp);

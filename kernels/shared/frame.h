@@ -60,23 +60,27 @@ typedef struct TsFrame {
     unsigned int igi_ais;          /* igi resolve: 1 = an AIS frame: a pixel's components with
                                       extra sets combine them (TsSceneView.ais_items,
                                       ais_masks and the compact tables; shared/ais_resolve.h); 0 = igi */
+    unsigned int ic_pair_grid;     /* ic pair kernel: 0 = its pairs from the item list; n > 0 =
+                                      the grid of the IcPairRecords input's n records and every
+                                      VPL, pair g = (record g mod n, VPL g / n) (shared/ic.h) */
+    unsigned int ic_pair_first;    /* ic pair grid: the launch's first pair g */
 } TsFrame;
 
 #ifdef __cplusplus
 /* Compile-time checks of the layouts above (shared/layout_check.h). */
 #include "shared/layout_check.h"
 
-/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 39 4-byte
+/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 41 4-byte
  * scalars with no padding, so its layout is the same in both languages. */
 static_assert(std::is_standard_layout_v<TsFrame> && std::is_trivially_copyable_v<TsFrame>,
               "frame.h: TsFrame must stay a plain struct");
-static_assert(sizeof(TsFrame) == 39 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
+static_assert(sizeof(TsFrame) == 41 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
                   offsetof(TsFrame, light_power) == 20 * 4 && offsetof(TsFrame, igi_components) == 28 * 4 &&
                   offsetof(TsFrame, ic_error_bound) == 29 * 4 && offsetof(TsFrame, pixel_cone) == 31 * 4 &&
                   offsetof(TsFrame, igi_filter_depth) == 34 * 4 && offsetof(TsFrame, igi_equiangular) == 35 * 4 &&
                   offsetof(TsFrame, igi_march_rotation) == 36 * 4 && offsetof(TsFrame, igi_clamp_screen) == 37 * 4 &&
-                  offsetof(TsFrame, igi_ais) == 38 * 4,
-              "frame.h: TsFrame is not 39 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
+                  offsetof(TsFrame, igi_ais) == 38 * 4 && offsetof(TsFrame, ic_pair_first) == 40 * 4,
+              "frame.h: TsFrame is not 41 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
 #endif /* __cplusplus */
 
 #endif /* TS_FRAME_H */

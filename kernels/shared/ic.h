@@ -32,12 +32,27 @@ TS_INLINE void ts_ic_interpolate_kernel_pixel(const TsSceneView* sv, const TsTra
     ts_f3_store(out + TS_IC_INTERP_RESIDUAL, ts_ic_clamp_residual(sv, tracer, f, &x, e, p));
 }
 
-/* Pair item i's shadow ray from record to VPL in *shadow; returns 0 when the clamped
+/* Pair i's VPL (index into the Vpls input): from the item list, or in a pair grid
+ * (f->ic_pair_grid = n > 0 records) VPL (f->ic_pair_first + i) / n. */
+TS_INLINE uint ts_ic_pair_vpl(const TsSceneView* sv, const TsFrame* f, uint i) {
+    if (f->ic_pair_grid == 0u) return sv->items[(size_t)TS_IC_PAIR_WORDS * i + TS_IC_PAIR_VPL];
+    return (f->ic_pair_first + i) / f->ic_pair_grid;
+}
+
+/* Pair i's record (index into the IcRecordSurfaces input): from the item list, or in a
+ * pair grid the IcPairRecords input's entry (f->ic_pair_first + i) mod n. The grid spares
+ * the host the list (8 bytes a pair) for placement's every record × every VPL. */
+TS_INLINE uint ts_ic_pair_record(const TsSceneView* sv, const TsFrame* f, uint i) {
+    if (f->ic_pair_grid == 0u) return sv->items[(size_t)TS_IC_PAIR_WORDS * i + TS_IC_PAIR_RECORD];
+    return sv->ic_pair_records[(f->ic_pair_first + i) % f->ic_pair_grid];
+}
+
+/* Pair i's shadow ray from record to VPL in *shadow; returns 0 when the clamped
  * geometry term (f->igi_g_clamp) is 0 and no ray is needed. */
 TS_INLINE int ts_ic_pair_ray(const TsSceneView* sv, const TsFrame* f, uint i, TsRay* shadow) {
-    TS_GLOBAL const uint* item = sv->items + (size_t)TS_IC_PAIR_WORDS * i;
-    TsSurface s = ts_ic_record_surface(sv->ic_record_surfaces + (size_t)TS_IC_GBUF_FLOATS * item[TS_IC_PAIR_RECORD]);
-    return ts_vpl_geometry(&s, sv->vpls + (size_t)TS_VPL_FLOATS * item[TS_IC_PAIR_VPL], f->igi_g_clamp,
+    TsSurface s = ts_ic_record_surface(sv->ic_record_surfaces +
+                                       (size_t)TS_IC_GBUF_FLOATS * ts_ic_pair_record(sv, f, i));
+    return ts_vpl_geometry(&s, sv->vpls + (size_t)TS_VPL_FLOATS * ts_ic_pair_vpl(sv, f, i), f->igi_g_clamp,
                            sv->medium[TS_MEDIUM_G], shadow) > 0.0f;
 }
 

@@ -42,6 +42,8 @@
  *                    (KernelId::IcPair and IcGather; their VPLs are the Vpls input, one set)
  *   IcVisibility     record–VPL visibility rows, bit masks of TS_IC_VISIBLE_WORDS(VPLs of
  *                    the Vpls input) uints each (layout_ic.h; KernelId::IcGather)
+ *   IcPairRecords    the records (IcRecordSurfaces indices) of a pair grid, in the order
+ *                    its pairs take them (KernelId::IcPair with TsFrame.ic_pair_grid > 0)
  *   IgiSurface       TS_IGI_SURF_FLOATS per pixel, KernelId::IgiSurface's output kept where
  *                    the kernels run (Backend::launch_into; KernelId::IgiResolve, AisSchedule
  *                    and EdgeSchedule read it)
@@ -84,6 +86,7 @@
     X(IcRecords, ic_records, float, "ic records")                            \
     X(IcRecordSurfaces, ic_record_surfaces, float, "ic record surfaces")     \
     X(IcVisibility, ic_visibility, uint, "ic visibility")                    \
+    X(IcPairRecords, ic_pair_records, uint, "ic pair records")               \
     X(IgiSurface, igi_surface, float, "igi surface")                         \
     X(IgiMedia, igi_media, float, "igi media")                               \
     X(ClampRecords, clamp_records, float, "clamp records")                   \

@@ -2,6 +2,7 @@
 // backends, given the same records, VPLs and visibility rows (one frame of the animated
 // Cornell box, the cache built on Embree): the per-pair shadow-ray results and the record
 // sums must agree.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -84,6 +85,38 @@ TEST(IcGatherKernels, OpenClAndEmbreeAgreeOnPairsAndSumsOfAnAnimatedFrame) {
             << "record " << k / TS_IC_GATHER_FLOATS << " output " << k % TS_IC_GATHER_FLOATS;
     }
     EXPECT_GT(lit, records.size() / 2);
+}
+
+// Placement's pairs as a grid (TsFrame.ic_pair_grid: pair g = record g mod n, VPL g / n)
+// must give what the same pairs give from an item list, on both backends and in launches
+// that start mid-grid (ic_pair_first), with 16-pair packets that straddle two VPLs.
+TEST(IcGatherKernels, PairGridEqualsTheItemList) {
+    const test::IcTestFrame frame;
+    auto opencl = make_backend({BackendKind::OpenCL, ""}, frame.buffers, frame.plan);
+    const size_t nv = frame.vpl_count();
+    std::vector<uint32_t> records;  // every third record, last first: not 0 .. n-1
+    for (size_t i = frame.records().size(); i-- > 0;)
+        if (i % 3 == 0) records.push_back(static_cast<uint32_t>(i));
+    const size_t n = records.size();
+    ASSERT_GT(n, 10u);
+    ASSERT_NE(n % 16, 0u);
+    std::vector<uint32_t> items;
+    for (uint32_t j = 0; j < nv; ++j)
+        for (const uint32_t r : records) items.insert(items.end(), {r, j});
+    const float b = 0.5f;
+    for (Backend* backend : {frame.embree.get(), opencl.get()}) {
+        ic_set_record_inputs(*backend, frame.records(), frame.vpls());
+        std::vector<uint32_t> listed, grid, part;
+        ic_trace_pairs(*backend, b, items, listed);
+        backend->set_input(KernelInput::IcPairRecords, records);
+        const size_t split = n * nv / 3 + 5;  // mid-row, mid-packet
+        ic_trace_pair_grid(*backend, b, static_cast<uint32_t>(n), 0u, split, grid);
+        ic_trace_pair_grid(*backend, b, static_cast<uint32_t>(n), static_cast<uint32_t>(split), n * nv - split, part);
+        grid.insert(grid.end(), part.begin(), part.end());
+        ASSERT_EQ(grid.size(), listed.size());
+        EXPECT_EQ(grid, listed) << backend->description();
+        EXPECT_GT(std::count(listed.begin(), listed.end(), TS_IC_PAIR_VISIBLE), 0);
+    }
 }
 
 TEST(IcGatherKernels, PackVisibleSetsOneBitPerUnoccludedPair) {
