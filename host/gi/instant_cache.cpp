@@ -247,23 +247,22 @@ std::vector<float> InstantCache::gather(Backend& backend, const std::vector<floa
     return harmonic;
 }
 
-// Whether each pixel of the G-buffer with a surface is covered by a record of `cache`
-// (ts_ic_covered; 0 for the others), one byte a pixel.
-std::vector<uint8_t> InstantCache::covered_pixels(IrradianceCache& cache, const std::vector<float>& gbuffer) const {
-    const size_t pixels = gbuffer.size() / TS_IC_GBUF_FLOATS;
-    std::vector<uint8_t> covered(pixels, 0);
-    if (cache.records().empty()) return covered;
+// Whether a record of `cache` is usable at each of `pixels` (G-buffer indices of pixels
+// with a surface; ts_ic_covered), one byte each.
+std::vector<uint8_t> InstantCache::covered(IrradianceCache& cache, const std::vector<float>& gbuffer,
+                                           const std::vector<uint32_t>& pixels) const {
+    std::vector<uint8_t> out(pixels.size(), 0);
+    if (cache.records().empty()) return out;
     const IcCacheBuffers& b = cache.buffers();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 1024), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t p = r.begin(); p < r.end(); ++p) {
-            const float* g = &gbuffer[p * TS_IC_GBUF_FLOATS];
-            if (has_surface(g))
-                covered[p] = ts::ts_ic_covered(b.nodes.data(), b.refs.data(), b.records.data(),
-                                               ts::ts_f3_load(g + TS_IC_GBUF_POSITION),
-                                               ts::ts_f3_load(g + TS_IC_GBUF_NORMAL), settings_.error_bound);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            const float* g = &gbuffer[size_t(pixels[i]) * TS_IC_GBUF_FLOATS];
+            out[i] = ts::ts_ic_covered(b.nodes.data(), b.refs.data(), b.records.data(),
+                                       ts::ts_f3_load(g + TS_IC_GBUF_POSITION), ts::ts_f3_load(g + TS_IC_GBUF_NORMAL),
+                                       settings_.error_bound);
         }
     });
-    return covered;
+    return out;
 }
 
 // Coarse-to-fine placement (docs/instant-caching.md §7): on pixel grids of stride 8, 4, 2, 1,
@@ -283,7 +282,14 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
                                              frame.cam_up[2] * frame.cam_up[2]) / static_cast<float>(frame.height);
     const size_t nv = vpl_count(vpls_);
     auto t_cover = Clock::now();
-    const std::vector<uint8_t> covered_before = covered_pixels(cache_, gbuffer);
+    std::vector<uint32_t> seen;  // the pixels with a surface
+    for (uint32_t p = 0; p < frame.width * frame.height; ++p)
+        if (has_surface(&gbuffer[size_t(p) * TS_IC_GBUF_FLOATS])) seen.push_back(p);
+    std::vector<uint8_t> covered_before(size_t(frame.width) * frame.height, 0);
+    {
+        const std::vector<uint8_t> c = covered(cache_, gbuffer, seen);
+        for (size_t i = 0; i < seen.size(); ++i) covered_before[seen[i]] = c[i];
+    }
     // This frame's records, where the cache held some before (else the cache itself).
     const bool kept = !cache_.records().empty();
     IrradianceCache fresh_tree(settings_.error_bound);
@@ -298,27 +304,14 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
                 if (has_surface(&gbuffer[size_t(p) * TS_IC_GBUF_FLOATS]) && !covered_before[p]) candidates.push_back(p);
             }
         t_cover = Clock::now();
-        std::vector<uint8_t> covered(candidates.size(), 0);
-        if (!fresh_cover.records().empty()) {
-            const IcCacheBuffers& b = fresh_cover.buffers();
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, candidates.size(), 256),
-                              [&](const tbb::blocked_range<size_t>& r) {
-                                  for (size_t i = r.begin(); i < r.end(); ++i) {
-                                      const float* g = &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS];
-                                      covered[i] = ts::ts_ic_covered(b.nodes.data(), b.refs.data(), b.records.data(),
-                                                                     ts::ts_f3_load(g + TS_IC_GBUF_POSITION),
-                                                                     ts::ts_f3_load(g + TS_IC_GBUF_NORMAL),
-                                                                     settings_.error_bound);
-                                  }
-                              });
-        }
+        const std::vector<uint8_t> covered_now = covered(fresh_cover, gbuffer, candidates);
         stats_.coverage_seconds += since(t_cover);
         const size_t first = cache_.records().size();
-        const size_t fresh_count = std::count(covered.begin(), covered.end(), uint8_t(0));
+        const size_t fresh_count = std::count(covered_now.begin(), covered_now.end(), uint8_t(0));
         check_pairs(first + fresh_count, nv);
         std::vector<std::pair<uint32_t, uint32_t>> blocked;  // (Morton code of the grid cell, record)
         for (size_t i = 0; i < candidates.size(); ++i) {
-            if (covered[i]) continue;
+            if (covered_now[i]) continue;
             IcRecord rec;
             std::memcpy(rec.surface.data(), &gbuffer[size_t(candidates[i]) * TS_IC_GBUF_FLOATS],
                         sizeof(float) * TS_IC_GBUF_FLOATS);

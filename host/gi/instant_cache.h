@@ -166,7 +166,8 @@ private:
     void concat_vpls();
     void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp,
                const SceneBounds& bounds);
-    std::vector<uint8_t> covered_pixels(IrradianceCache& cache, const std::vector<float>& gbuffer) const;
+    std::vector<uint8_t> covered(IrradianceCache& cache, const std::vector<float>& gbuffer,
+                                 const std::vector<uint32_t>& pixels) const;
     uint64_t trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
                          float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
     uint64_t trace_pair_grid(Backend& backend, const std::vector<float>& vpls, const std::vector<uint32_t>& records,
