@@ -13,6 +13,13 @@ TsFrame gather_frame(float g_clamp) {
     return f;
 }
 
+// The pair kernel's output as hit codes (uint bits, one per pair).
+void hits_of(const std::vector<float>& out, std::vector<uint32_t>& hits) {
+    static_assert(TS_IC_PAIR_FLOATS == 1 && TS_IC_PAIR_HIT == 0, "one hit code per pair");
+    hits.resize(out.size());
+    if (!out.empty()) std::memcpy(hits.data(), out.data(), out.size() * sizeof(float));
+}
+
 }  // namespace
 
 void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records, const std::vector<float>& vpls) {
@@ -37,9 +44,7 @@ void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask) {
 void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>& items, std::vector<uint32_t>& hits) {
     std::vector<float> out;
     backend.launch_items(KernelId::IcPair, gather_frame(g_clamp), items, out);
-    static_assert(TS_IC_PAIR_FLOATS == 1 && TS_IC_PAIR_HIT == 0, "one hit code per pair");
-    hits.resize(out.size());
-    if (!out.empty()) std::memcpy(hits.data(), out.data(), out.size() * sizeof(float));
+    hits_of(out, hits);
 }
 
 void ic_trace_pair_grid(Backend& backend, float g_clamp, uint32_t records, uint32_t first, size_t count,
@@ -49,8 +54,7 @@ void ic_trace_pair_grid(Backend& backend, float g_clamp, uint32_t records, uint3
     f.ic_pair_first = first;
     std::vector<float> out;
     backend.launch_count(KernelId::IcPair, f, count, out);
-    hits.resize(out.size());
-    if (!out.empty()) std::memcpy(hits.data(), out.data(), out.size() * sizeof(float));
+    hits_of(out, hits);
 }
 
 void ic_gather(Backend& backend, float g_clamp, const std::vector<uint32_t>& items,

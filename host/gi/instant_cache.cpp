@@ -133,47 +133,58 @@ float InstantCache::radius_of(const IcRecord& r, float harmonic_mean) const {
                             settings_.max_radius_px);
 }
 
-// Traces the shadow ray of every pair whose geometry term is positive (the pair kernel)
-// and writes each pair's visibility into rows[record][vpl] (kIcFacing for the others).
-// Returns rays traced.
-uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
-                                   float g_clamp, std::vector<Row>& rows) const {
-    static_assert(kIcVisible == int32_t(TS_IC_PAIR_VISIBLE) && kIcFacing == int32_t(TS_IC_PAIR_FACING),
-                  "row entries are the pair kernel's codes");
-    if (pairs.empty()) return 0;
-    const auto t0 = Clock::now();
-    ic_set_record_inputs(backend, cache_.records(), vpls);
+// Launches the pair kernel over pairs 0 .. total-1, at most kPairBatch at a time
+// (`launch(begin, count, hits)`), and hands each pair's hit to `write(pair, hit)` in
+// parallel (pairs are distinct, so each writes its own row entry). Returns rays traced.
+template <class Launch, class Write>
+uint64_t InstantCache::trace_in_batches(size_t total, Launch&& launch, Write&& write) const {
     uint64_t traced = 0;
-    std::vector<uint32_t> items, hits;
-    for (size_t begin = 0; begin < pairs.size(); begin += kPairBatch) {
-        const size_t n = std::min(kPairBatch, pairs.size() - begin);
-        items.resize(TS_IC_PAIR_WORDS * n);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_RECORD] = pairs[begin + i].record;
-                items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_VPL] = pairs[begin + i].vpl;
-            }
-        });
-        const auto tk = Clock::now();
-        ic_trace_pairs(backend, g_clamp, items, hits);
-        times_.pair_kernel += since(tk);
-        traced += n - static_cast<size_t>(std::count(hits.begin(), hits.end(), TS_IC_PAIR_FACING));
-        // Pairs are distinct, so every item writes its own row entry.
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                const Pair& p = pairs[begin + i];
-                rows[p.record][p.vpl] = row_code(hits[i]);
-            }
+    std::vector<uint32_t> hits;
+    for (size_t begin = 0; begin < total; begin += kPairBatch) {
+        const size_t count = std::min(kPairBatch, total - begin);
+        launch(begin, count, hits);
+        traced += count - static_cast<size_t>(std::count(hits.begin(), hits.end(), TS_IC_PAIR_FACING));
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) write(begin + i, hits[i]);
         });
     }
-    times_.pairs += since(t0);
     return traced;
 }
 
 // A row entry from the pair kernel's hit: the codes as they are, a triangle as its object.
 int32_t InstantCache::row_code(uint32_t hit) const {
+    static_assert(kIcVisible == int32_t(TS_IC_PAIR_VISIBLE) && kIcFacing == int32_t(TS_IC_PAIR_FACING),
+                  "row entries are the pair kernel's codes");
     return hit == TS_IC_PAIR_FACING || hit == TS_IC_PAIR_VISIBLE ? static_cast<int32_t>(hit)
                                                                  : static_cast<int32_t>(object_of(hit));
+}
+
+// Traces the shadow ray of every pair whose geometry term is positive (the pair kernel)
+// and writes each pair's visibility into rows[record][vpl] (kIcFacing for the others).
+// Returns rays traced.
+uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
+                                   float g_clamp, std::vector<Row>& rows) const {
+    if (pairs.empty()) return 0;
+    const auto t0 = Clock::now();
+    ic_set_record_inputs(backend, cache_.records(), vpls);
+    std::vector<uint32_t> items;
+    const uint64_t traced = trace_in_batches(
+        pairs.size(),
+        [&](size_t begin, size_t n, std::vector<uint32_t>& hits) {
+            items.resize(TS_IC_PAIR_WORDS * n);
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+                for (size_t i = r.begin(); i < r.end(); ++i) {
+                    items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_RECORD] = pairs[begin + i].record;
+                    items[TS_IC_PAIR_WORDS * i + TS_IC_PAIR_VPL] = pairs[begin + i].vpl;
+                }
+            });
+            const auto tk = Clock::now();
+            ic_trace_pairs(backend, g_clamp, items, hits);
+            times_.pair_kernel += since(tk);
+        },
+        [&](size_t g, uint32_t hit) { rows[pairs[g].record][pairs[g].vpl] = row_code(hit); });
+    times_.pairs += since(t0);
+    return traced;
 }
 
 // trace_pairs for every pair of `records` and VPLs 0 .. nv-1, VPL by VPL and the records
@@ -190,22 +201,14 @@ uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float
     const auto t0 = Clock::now();
     ic_set_record_inputs(backend, cache_.records(), vpls);
     backend.set_input(KernelInput::IcPairRecords, records);
-    uint64_t traced = 0;
-    std::vector<uint32_t> hits;
-    for (size_t begin = 0; begin < total; begin += kPairBatch) {
-        const size_t count = std::min(kPairBatch, total - begin);
-        const auto tk = Clock::now();
-        ic_trace_pair_grid(backend, g_clamp, static_cast<uint32_t>(n), static_cast<uint32_t>(begin), count, hits);
-        times_.pair_kernel += since(tk);
-        traced += count - static_cast<size_t>(std::count(hits.begin(), hits.end(), TS_IC_PAIR_FACING));
-        // Pairs are distinct, so every pair writes its own row entry.
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                const size_t g = begin + i;
-                rows[records[g % n]][g / n] = row_code(hits[i]);
-            }
-        });
-    }
+    const uint64_t traced = trace_in_batches(
+        total,
+        [&](size_t begin, size_t count, std::vector<uint32_t>& hits) {
+            const auto tk = Clock::now();
+            ic_trace_pair_grid(backend, g_clamp, static_cast<uint32_t>(n), static_cast<uint32_t>(begin), count, hits);
+            times_.pair_kernel += since(tk);
+        },
+        [&](size_t g, uint32_t hit) { rows[records[g % n]][g / n] = row_code(hit); });
     times_.pairs += since(t0);
     return traced;
 }

@@ -172,6 +172,8 @@ private:
                          float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
     uint64_t trace_pair_grid(Backend& backend, const std::vector<float>& vpls, const std::vector<uint32_t>& records,
                              float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
+    template <class Launch, class Write>
+    uint64_t trace_in_batches(size_t total, Launch&& launch, Write&& write) const;
     int32_t row_code(uint32_t hit) const;
     std::vector<float> gather(Backend& backend, const std::vector<float>& vpls, const std::vector<Row>& rows,
                               std::vector<IcRecord>& records, const std::vector<uint32_t>& which, float g_clamp) const;
