@@ -1,5 +1,6 @@
 #include "backend/backend.h"
 
+#include <chrono>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -34,21 +35,31 @@ BackendKind parse_backend_kind(const std::string& s) {
     throw InputError("--backend " + s + ": expected opencl or embree");
 }
 
+template <class F>
+void Backend::dispatch_timed(KernelId k, size_t count, F&& run) {
+    const int i = static_cast<int>(k);
+    wall_seconds_[i] = 0.0;
+    if (count == 0) return forget_launch(k);
+    ++dispatches_[i];
+    const auto t0 = std::chrono::steady_clock::now();
+    run();
+    wall_seconds_[i] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 void Backend::launch(KernelId k, const TsFrame& frame, std::vector<float>& out) {
     const KernelInfo& info = kernel_info(k);
     if (info.item_words != 0) throw std::logic_error(std::string(info.name) + " is an item kernel (launch_items)");
     const size_t pixels = size_t(frame.width) * frame.height;
     out.resize(pixels * static_cast<size_t>(info.out_floats));
-    ++dispatches_[static_cast<int>(k)];
-    run_kernel(k, frame, pixels, {}, out);
+    dispatch_timed(k, pixels, [&] { run_kernel(k, frame, pixels, {}, out); });
 }
 
 void Backend::launch_into(KernelId k, const TsFrame& frame, KernelInput in) {
     const KernelInfo& info = kernel_info(k);
     if (info.item_words != 0) throw std::logic_error(std::string(info.name) + " is an item kernel (launch_items)");
     if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
-    ++dispatches_[static_cast<int>(k)];
-    run_kernel_into(k, frame, size_t(frame.width) * frame.height, {}, in);
+    const size_t pixels = size_t(frame.width) * frame.height;
+    dispatch_timed(k, pixels, [&] { run_kernel_into(k, frame, pixels, {}, in); });
 }
 
 void Backend::launch_items_into(KernelId k, const TsFrame& frame, const std::vector<uint32_t>& items, KernelInput in) {
@@ -56,27 +67,23 @@ void Backend::launch_items_into(KernelId k, const TsFrame& frame, const std::vec
     if (info.item_words == 0) throw std::logic_error(std::string(info.name) + " is a pixel kernel (launch_into)");
     if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
     const size_t count = items.size() / static_cast<size_t>(info.item_words);
-    if (count == 0) return store_input(in, std::vector<float>(1, 0.0f));
-    ++dispatches_[static_cast<int>(k)];
-    run_kernel_into(k, frame, count, items, in);
+    if (count == 0) store_input(in, std::vector<float>(1, 0.0f));
+    dispatch_timed(k, count, [&] { run_kernel_into(k, frame, count, items, in); });
 }
 
 void Backend::launch_count(KernelId k, const TsFrame& frame, size_t count, std::vector<float>& out) {
     const KernelInfo& info = kernel_info(k);
     if (info.item_words == 0) throw std::logic_error(std::string(info.name) + " is a pixel kernel (launch)");
     out.resize(count * static_cast<size_t>(info.out_floats));
-    if (count == 0) return;
-    ++dispatches_[static_cast<int>(k)];
-    run_kernel(k, frame, count, {}, out);
+    dispatch_timed(k, count, [&] { run_kernel(k, frame, count, {}, out); });
 }
 
 void Backend::launch_count_into(KernelId k, const TsFrame& frame, size_t count, KernelInput in) {
     const KernelInfo& info = kernel_info(k);
     if (info.item_words == 0) throw std::logic_error(std::string(info.name) + " is a pixel kernel (launch_into)");
     if (input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds uints");
-    if (count == 0) return store_input(in, std::vector<float>(1, 0.0f));
-    ++dispatches_[static_cast<int>(k)];
-    run_kernel_into(k, frame, count, {}, in);
+    if (count == 0) store_input(in, std::vector<float>(1, 0.0f));
+    dispatch_timed(k, count, [&] { run_kernel_into(k, frame, count, {}, in); });
 }
 
 void Backend::read_input(KernelInput in, std::vector<float>& out) {
@@ -90,9 +97,7 @@ void Backend::launch_items(KernelId k, const TsFrame& frame, const std::vector<u
     if (info.item_words == 0) throw std::logic_error(std::string(info.name) + " is a pixel kernel (launch)");
     const size_t count = items.size() / static_cast<size_t>(info.item_words);
     out.resize(count * static_cast<size_t>(info.out_floats));
-    if (count == 0) return;
-    ++dispatches_[static_cast<int>(k)];
-    run_kernel(k, frame, count, items, out);
+    dispatch_timed(k, count, [&] { run_kernel(k, frame, count, items, out); });
 }
 
 void Backend::set_input(KernelInput in, const std::vector<float>& data) {

@@ -137,6 +137,14 @@ public:
     /// may be freed once this returns. Throws what make_backend throws for `scene`.
     virtual void set_scene(const SceneBuffers& scene, const EffectPlan& plan) = 0;
 
+    /// Seconds the last launch of kernel `k` took where it ran, 0 when the last call for
+    /// `k` launched nothing (an empty list, count 0) or there was none: on OpenCL the
+    /// device's own timestamps, summed over the launch's tiles (waiting for the launch if
+    /// it is still running); on Embree its wall time. Launches into inputs (launch_into,
+    /// launch_items_into, launch_count_into) queue without a host wait on OpenCL, so the
+    /// wall time around one is not its time: stage timers ask this instead.
+    double kernel_seconds(KernelId k) { return last_launch_seconds(k); }
+
     /// How many times kernel `k` was launched on this backend.
     uint64_t dispatch_count(KernelId k) const { return dispatches_[static_cast<int>(k)]; }
 
@@ -183,6 +191,11 @@ protected:
     /// input `in`.
     virtual void run_kernel_into(KernelId k, const TsFrame& frame, size_t count, const std::vector<uint32_t>& items,
                                  KernelInput in) = 0;
+    /// kernel_seconds: here the wall time of the last run_kernel / run_kernel_into call for
+    /// `k` (what a backend that runs kernels before returning measures).
+    virtual double last_launch_seconds(KernelId k) { return wall_seconds_[static_cast<int>(k)]; }
+    /// Called when a launch call for `k` launches nothing: kernel_seconds(k) is then 0.
+    virtual void forget_launch(KernelId k) { (void)k; }
     /// Copies float input `in` into `out` (resized).
     virtual void fetch_input(KernelInput in, std::vector<float>& out) = 0;
     virtual void store_input(KernelInput in, const std::vector<float>& data) = 0;
@@ -198,7 +211,13 @@ protected:
     uint64_t sorted_batches_ = 0;  ///< counted by backends that sort batches (sorted_batch_count)
 
 private:
+    // Counts and times a launch of `k` that calls `run`; forgets k's last launch when
+    // `count` is 0 (nothing launches).
+    template <class F>
+    void dispatch_timed(KernelId k, size_t count, F&& run);
+
     uint64_t dispatches_[kKernelCount] = {};
+    double wall_seconds_[kKernelCount] = {};
 };
 
 /// Creates a backend for `scene`. The OpenCL backend builds its BVH with Embree's

@@ -74,7 +74,9 @@ public:
         if (const char* f = std::getenv("TESSERA_CL_FAIL_LAUNCH"); f && *f) fail_launch_ = std::atoi(f);
         try {
             ctx_ = cl::Context(dev_.device);
-            queue_ = cl::CommandQueue(ctx_, dev_.device);
+            // Profiling: the tiles' device times size the tiles that follow, and give the
+            // stages their times, without a host wait after each launch (opencl/launch.h).
+            queue_ = cl::CommandQueue(ctx_, dev_.device, CL_QUEUE_PROFILING_ENABLE);
             upload_scene(scene);
             store_placeholder_inputs();
             no_items_ = upload("item list", std::vector<uint32_t>(1, 0u));
@@ -118,6 +120,7 @@ protected:
             cl::Buffer& buf = output_buffer(out.size() * sizeof(float));
             launch_kernel(id, frame, count, items.empty() ? no_items_ : items_, buf, -1, [&] {
                 queue_.enqueueReadBuffer(buf, CL_TRUE, 0, out.size() * sizeof(float), out.data());
+                in_flight_.clear();  // the in-order queue has run everything up to the read
             });
         });
     }
@@ -132,17 +135,40 @@ protected:
             const size_t bytes = count * static_cast<size_t>(kernel_info(id).out_floats) * sizeof(float);
             reserve(inputs_[i], input_bytes_[i], input_info(in).name, bytes);
             input_size_[i] = bytes;
-            // finish: the stage's time and any failure belong to this kernel.
-            launch_kernel(id, frame, count, items.empty() ? no_items_ : items_, inputs_[i], i,
-                          [&] { queue_.finish(); });
+            // No wait: the next launch queues behind this one, the stage's time comes from
+            // the launch's events (kernel_seconds), and a failure found later is this
+            // kernel's (in_flight_).
+            launch_kernel(id, frame, count, items.empty() ? no_items_ : items_, inputs_[i], i, [] {});
         });
     }
 
     void fetch_input(KernelInput in, std::vector<float>& out) override {
         const int i = static_cast<int>(in);
         out.resize(input_size_[i] / sizeof(float));
-        run([&] { queue_.enqueueReadBuffer(inputs_[i], CL_TRUE, 0, input_size_[i], out.data()); });
+        run([&] {
+            queue_.enqueueReadBuffer(inputs_[i], CL_TRUE, 0, input_size_[i], out.data());
+            in_flight_.clear();
+        });
     }
+
+    double last_launch_seconds(KernelId id) override {
+        std::vector<cl::Event>& events = launch_events_[static_cast<int>(id)];
+        if (events.empty()) return Backend::last_launch_seconds(id);
+        double seconds = 0.0;
+        bool timed = true;
+        run([&] {
+            cl::Event::waitForEvents(events);
+            for (const cl::Event& e : events) {
+                const double s = event_seconds(e);
+                timed = timed && s >= 0.0;
+                seconds += s;
+            }
+        });
+        // A device without timestamps: the call's wall time (the enqueue's, as a bound below).
+        return timed ? seconds : Backend::last_launch_seconds(id);
+    }
+
+    void forget_launch(KernelId id) override { launch_events_[static_cast<int>(id)].clear(); }
 
 public:
     bool resolves_on_device() const override { return gpu_variant_; }
@@ -186,7 +212,9 @@ private:
         k.setArg(a++, items);
         k.setArg(a++, out);
         k.setArg(a++, static_cast<cl_uint>(count));
-        dispatch(name, k, work_items, read_back);
+        std::vector<cl::Event>& events = launch_events_[static_cast<int>(id)];
+        events.clear();
+        dispatch(name, k, work_items, read_back, &events);
     }
 
     // An empty input is stored as one zero element: OpenCL has no empty buffers, and a
@@ -260,23 +288,31 @@ private:
     // Launches `k` over `work_items` in tiles of about the launch budget, then runs
     // `read_back`; a resource failure of either becomes one message naming the device,
     // the kernel and the likely causes (opencl/launch.h).
+    // The launch's tile events are appended to `events` when given.
     template <class R>
-    void dispatch(const std::string& name, cl::Kernel& k, size_t work_items, R&& read_back) {
-        auto sizer = sizers_.find(name);
-        if (sizer == sizers_.end()) {
+    void dispatch(const std::string& name, cl::Kernel& k, size_t work_items, R&& read_back,
+                  std::vector<cl::Event>* events = nullptr) {
+        auto tiles = tiles_.find(name);
+        if (tiles == tiles_.end()) {
             // First tile: a few work-groups per compute unit, to time the kernel.
             const size_t first = 4 * std::max(1u, dev_.compute_units);
-            sizer = sizers_.emplace(name, TileSizer(launch_ms_ * 1e-3, tile_groups_, first)).first;
+            tiles = tiles_.emplace(name, KernelTiles{TileSizer(launch_ms_ * 1e-3, tile_groups_, first), {}}).first;
         }
         size_t tile_items = 0;
+        std::vector<cl::Event> launched;
         try {
-            enqueue_tiled(queue_, k, work_items, TS_WORKGROUP_SIZE, sizer->second, tile_items, fail_launch_);
+            enqueue_tiled(queue_, k, work_items, TS_WORKGROUP_SIZE, tiles->second.sizer, tiles->second.pending,
+                          launched, tile_items, fail_launch_);
+            for (const cl::Event& e : launched) in_flight_.emplace_back(name, e);
+            if (events) events->insert(events->end(), launched.begin(), launched.end());
             read_back();
         } catch (const cl::Error& e) {
             if (!is_resource_error(e.err())) throw;
             LaunchFailure f;
             f.device = dev_.name;
-            f.kernel = name;
+            // A launch queued earlier without a wait may be the one that failed.
+            const std::string failed = failed_launch(in_flight_);
+            f.kernel = failed.empty() ? name : failed;
             f.error = e.err();
             f.call = e.what();
             f.tile_items = tile_items;
@@ -315,7 +351,9 @@ private:
         try {
             f();
         } catch (const cl::Error& e) {
-            throw RuntimeError("OpenCL on " + dev_.name + ": " + describe_cl_error(e));
+            const std::string failed = is_resource_error(e.err()) ? failed_launch(in_flight_) : "";
+            throw RuntimeError("OpenCL on " + dev_.name + ": " + describe_cl_error(e) +
+                               (failed.empty() ? "" : " (kernel " + failed + ", queued earlier, failed)"));
         }
     }
 
@@ -394,6 +432,7 @@ private:
                 const auto* src = static_cast<const T*>(queue_.enqueueMapBuffer(out, CL_TRUE, CL_MAP_READ, 0, bytes));
                 in_parallel([&](size_t j) { std::memcpy(result + perm[j] * words, src + j * words, words * sizeof(T)); });
                 queue_.enqueueUnmapMemObject(out, const_cast<T*>(src));
+                in_flight_.clear();
             });
         });
     }
@@ -421,7 +460,10 @@ private:
             cl::Buffer& out = output_buffer(result_bytes);
             cl::Kernel& k = trace_kernel(name, n, out);
             dispatch(name, k, (n + per_item - 1) / per_item,
-                     [&] { queue_.enqueueReadBuffer(out, CL_TRUE, 0, result_bytes, result); });
+                     [&] {
+                         queue_.enqueueReadBuffer(out, CL_TRUE, 0, result_bytes, result);
+                         in_flight_.clear();
+                     });
         });
     }
 
@@ -446,7 +488,15 @@ private:
     cl::Buffer no_items_;                               // bound for pixel kernels
     cl::Buffer items_, rays_;                           // item lists, ray batches (persistent)
     size_t out_bytes_ = 0, items_bytes_ = 0, rays_bytes_ = 0;
-    std::map<std::string, TileSizer> sizers_;           // per kernel name
+    struct KernelTiles {
+        TileSizer sizer;
+        PendingTiles pending;  // tiles whose times the sizer has not seen yet
+    };
+    std::map<std::string, KernelTiles> tiles_;          // per kernel name
+    // Each kernel's last launch (KernelId order): its tiles' events, for kernel_seconds.
+    std::array<std::vector<cl::Event>, kKernelCount> launch_events_;
+    // Launches since the queue was last waited for, oldest first: which kernel failed.
+    InFlightLaunches in_flight_;
     std::map<std::string, cl::Program> programs_;
     std::map<std::string, cl::Kernel> kernels_;
 };

@@ -186,18 +186,12 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
 
 void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out) {
     // The base pass's outputs stay on the device, and so do the schedule kernels' masks
-    // and counts: the host reads per-tile counts back (gi/ais_items.h).
-    auto t0 = Clock::now();
-    backend_.launch_into(KernelId::IgiSurface, surface_frame, KernelInput::IgiSurface);
-    stats_.surface_seconds = since(t0);
-    stats_.media_seconds = 0.0;
+    // and counts: the host reads per-tile counts back (gi/ais_items.h). Launches queue
+    // without a wait; the host waits only for what it reads (the counts, the image), so
+    // the kernels' stage times are their own (Backend::kernel_seconds) and the host's
+    // parts are timed between those reads.
+    const auto t0 = Clock::now();
     const bool media = frame.igi_components & TS_COMPONENT_PM;
-    if (media) {
-        t0 = Clock::now();
-        backend_.launch_into(KernelId::IgiMedia, frame, KernelInput::IgiMedia);
-        stats_.media_seconds = since(t0);
-    }
-    const auto t_ais = Clock::now();
     const uint32_t bits = effective_components();
     const uint32_t guided = bits & (TS_COMPONENT_SS | TS_COMPONENT_ID | (media ? TS_COMPONENT_PM : 0u));
     schedule_table_ = ais_schedule_table(thresholds(), settings_.ais_mode, static_cast<int>(settings_.tile), guided,
@@ -205,28 +199,25 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     // No host schedule: the masks stay on the device, the host reads each (set, tile)'s
     // count and uploads their prefix sums (gi/ais_items.h; the guidance and set-count maps
     // are AOVs, which the host path draws). Unguided components keep their own set, so
-    // with none guided every count is 0.
+    // with none guided every count is 0. The table goes first: an upload queued behind
+    // the base pass would wait for it.
     guidance_ = AisGuidance{};
     schedule_ = AisSchedule{};
     backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
-    const auto t_masks = Clock::now();
+    backend_.launch_into(KernelId::IgiSurface, surface_frame, KernelInput::IgiSurface);
+    if (media) backend_.launch_into(KernelId::IgiMedia, frame, KernelInput::IgiMedia);
     backend_.launch_into(KernelId::AisSchedule, frame, KernelInput::AisMasks);
     const size_t tiles = ais_tile_count(frame.width, frame.height), pixels = size_t(frame.width) * frame.height;
     const size_t sets = size_t(frame.igi_tile) * frame.igi_tile;
     backend_.launch_count_into(KernelId::AisTileSets, frame, sets * tiles, KernelInput::AisTileSets);
     backend_.read_input(KernelInput::AisTileSets, tile_sets_);
-    stats_.ais_schedule_kernel_seconds = since(t_masks);
+    const auto t_offsets = Clock::now();
     ais_item_offsets(tile_sets_, sets, tiles, pixels, item_offsets_);
     backend_.set_input(KernelInput::AisItemOffsets, item_offsets_.offsets);
     stats_.flagged = item_offsets_.flagged;
     stats_.ais_items = item_offsets_.items();
-    stats_.ais_schedule_seconds = since(t_ais);
-    const auto t_kernel = Clock::now();
+    const double offsets_seconds = since(t_offsets);
     backend_.launch_count_into(KernelId::AisCompactItem, frame, item_offsets_.items(), KernelInput::AisItems);
-    stats_.ais_kernel_seconds = since(t_kernel);
-    stats_.ais_merge_seconds = 0.0;  // in the resolve
-    stats_.ais_seconds = since(t_ais);
-    t0 = Clock::now();
     TsFrame ais = frame;
     ais.igi_ais = 1u;
     if (ais.igi_clamp_screen) {
@@ -244,38 +235,57 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
         backend_.launch_into(KernelId::IgiResolve, ais, KernelInput::IgiPass);
         edges_on_device(frame, ais, out);
     }
-    stats_.filter_seconds = since(t0);
+    const double wall = since(t0);
+    stats_.surface_seconds = backend_.kernel_seconds(KernelId::IgiSurface);
+    stats_.media_seconds = media ? backend_.kernel_seconds(KernelId::IgiMedia) : 0.0;
+    stats_.ais_schedule_kernel_seconds =
+        backend_.kernel_seconds(KernelId::AisSchedule) + backend_.kernel_seconds(KernelId::AisTileSets);
+    stats_.ais_schedule_seconds = stats_.ais_schedule_kernel_seconds + offsets_seconds;
+    stats_.ais_kernel_seconds = backend_.kernel_seconds(KernelId::AisCompactItem);
+    stats_.ais_merge_seconds = 0.0;  // in the resolve
+    stats_.ais_seconds = stats_.ais_schedule_seconds + stats_.ais_kernel_seconds;
+    // The rest of the wall time: the clamp's and the resolve's kernels, the edges, the
+    // read-backs and the gaps.
+    stats_.filter_seconds = std::max(0.0, wall - stats_.surface_seconds - stats_.media_seconds - stats_.ais_seconds);
 }
 
 void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out) {
-    const auto t0 = Clock::now();
     // The edge schedule from the resolved pass where it lies (IgiPass): its ε from the
     // rows' luminance sums, the counts from the schedule kernel; the image is read back
-    // once, merged or not.
+    // once, merged or not. Kernel stage times as resolve_on_device's.
     backend_.launch_count(KernelId::EdgeRowSums, ais, frame.height, row_sums_);
+    auto t_host = Clock::now();
     const float eps = edge_epsilon_of_rows(row_sums_, size_t(frame.width) * frame.height, settings_.edges.dark);
     schedule_table_[TS_AIS_TABLE_EDGE_EPSILON] = std::bit_cast<uint32_t>(eps);
     backend_.set_input(KernelInput::AisScheduleTable, schedule_table_);
-    const auto t_counts = Clock::now();
+    double host_seconds = since(t_host);
     backend_.launch_into(KernelId::EdgeSchedule, ais, KernelInput::EdgeCounts);
     backend_.launch_count(KernelId::EdgeSegmentCounts, ais, ais_tile_count(frame.width, frame.height) * TS_AIS_TILE,
                           edge_segments_);
-    stats_.edge_schedule_kernel_seconds = since(t_counts);
+    t_host = Clock::now();
     edge_segment_offsets(edge_segments_, size_t(frame.width) * frame.height, edge_offsets_);
     stats_.edge_samples = edge_offsets_.samples();
     stats_.edge_flagged = edge_offsets_.flagged;
-    const auto t_kernel = Clock::now();
+    if (edge_offsets_.samples() > 0) backend_.set_input(KernelInput::EdgeSegmentOffsets, edge_offsets_.offsets);
+    host_seconds += since(t_host);
+    const auto t_read = Clock::now();
+    double read_seconds = 0.0;
     if (edge_offsets_.samples() > 0) {
-        backend_.set_input(KernelInput::EdgeSegmentOffsets, edge_offsets_.offsets);
         backend_.launch_count_into(KernelId::EdgeCompactSample, frame, edge_offsets_.samples(),
                                    KernelInput::EdgeSamples);
         backend_.launch(KernelId::AisEdgeMerge, ais, out);
     } else {
         backend_.read_input(KernelInput::IgiPass, out);
+        read_seconds = since(t_read);
     }
-    stats_.edge_seconds = since(t0);
-    stats_.edge_schedule_seconds = std::chrono::duration<double>(t_kernel - t0).count();
-    stats_.edge_kernel_seconds = since(t_kernel);
+    stats_.edge_schedule_kernel_seconds = backend_.kernel_seconds(KernelId::EdgeRowSums) +
+                                          backend_.kernel_seconds(KernelId::EdgeSchedule) +
+                                          backend_.kernel_seconds(KernelId::EdgeSegmentCounts);
+    stats_.edge_schedule_seconds = stats_.edge_schedule_kernel_seconds + host_seconds;
+    stats_.edge_kernel_seconds = edge_offsets_.samples() > 0 ? backend_.kernel_seconds(KernelId::EdgeCompactSample) +
+                                                                   backend_.kernel_seconds(KernelId::AisEdgeMerge)
+                                                             : read_seconds;
+    stats_.edge_seconds = stats_.edge_schedule_seconds + stats_.edge_kernel_seconds;
 }
 
 void AisFrame::add_to_sums() {
@@ -309,7 +319,7 @@ std::string AisFrame::describe() const {
                   1e3 * stats_.edge_seconds, 1e3 * stats_.edge_schedule_seconds, 1e3 * stats_.edge_kernel_seconds);
     std::string line = IgiFrame::describe() + buf;
     if (stats_.ais_schedule_kernel_seconds > 0.0 || stats_.edge_schedule_kernel_seconds > 0.0) {
-        std::snprintf(buf, sizeof buf, "; of the schedules, their kernels with read-backs %.1f and %.1f ms",
+        std::snprintf(buf, sizeof buf, "; of the schedules, their kernels %.1f and %.1f ms",
                       1e3 * stats_.ais_schedule_kernel_seconds, 1e3 * stats_.edge_schedule_kernel_seconds);
         line += buf;
     }

@@ -91,7 +91,10 @@ struct IgiSettings {
     EdgeSettings edges;
 };
 
-/// Timings and counts of the last frame, for the log and the benchmark.
+/// Timings and counts of the last frame, for the log and the benchmark. A frame resolved
+/// on the device (Backend::resolves_on_device) queues its kernels without host waits: its
+/// kernels' stages are their device times (Backend::kernel_seconds), its host parts wall
+/// times between the reads, and filter_seconds the rest of the frame's wall time.
 struct IgiFrameStats {
     double vpl_seconds = 0, surface_seconds = 0, media_seconds = 0, filter_seconds = 0;
     /// The VPL stage's parts: the view points (their camera rays), the light paths, the
@@ -101,13 +104,13 @@ struct IgiFrameStats {
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
     double ais_seconds = 0;  ///< guidance, schedule and the extra sets (AIS only)
-    /// Its parts (AIS only): guidance and schedule (a device frame's: their kernels, the
-    /// per-tile counts' read-back and the prefix sums' upload), the extra sets' kernel
-    /// launch with its read-back (on the device: kept there), and the host's merge of the
-    /// extra sets into the pixels (0 on the device, which merges in the resolve).
+    /// Its parts (AIS only): guidance and schedule (a device frame's: their kernels and
+    /// the host's prefix sums with their upload), the extra sets' kernel launch with its
+    /// read-back (on the device: kept there), and the host's merge of the extra sets into
+    /// the pixels (0 on the device, which merges in the resolve).
     double ais_schedule_seconds = 0, ais_kernel_seconds = 0, ais_merge_seconds = 0;
-    /// Of ais_schedule_seconds and edge_schedule_seconds, a device frame's schedule kernels
-    /// with their read-backs (the rest: the host's prefix sums; 0 on the host path).
+    /// Of ais_schedule_seconds and edge_schedule_seconds, a device frame's schedule
+    /// kernels (the rest: the host's prefix sums; 0 on the host path).
     double ais_schedule_kernel_seconds = 0, edge_schedule_kernel_seconds = 0;
     double cache_seconds = 0;  ///< the instant cache's indirect component (ic/tic only)
     size_t ais_items = 0;    ///< extra (pixel, set) evaluations (AIS only)

@@ -74,23 +74,59 @@ std::string launch_failure_message(const LaunchFailure& f) {
     return s;
 }
 
+std::string failed_launch(const InFlightLaunches& in_flight) {
+    for (const auto& [name, event] : in_flight) {
+        cl_int status = CL_COMPLETE;
+        if (event.getInfo(CL_EVENT_COMMAND_EXECUTION_STATUS, &status) != CL_SUCCESS || status < 0) return name;
+    }
+    return "";
+}
+
+double event_seconds(const cl::Event& e) {
+    cl_ulong start = 0, end = 0;
+    if (e.getProfilingInfo(CL_PROFILING_COMMAND_START, &start) != CL_SUCCESS ||
+        e.getProfilingInfo(CL_PROFILING_COMMAND_END, &end) != CL_SUCCESS)
+        return -1.0;
+    return end > start ? static_cast<double>(end - start) * 1e-9 : 0.0;
+}
+
+void record_finished_tiles(TileSizer& sizer, PendingTiles& pending) {
+    size_t done = 0;
+    for (; done < pending.tiles.size(); ++done) {
+        const auto& [groups, event] = pending.tiles[done];
+        const cl_int status = event.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>();
+        if (status > CL_COMPLETE) break;  // queued, submitted or running: later tiles too (in-order queue)
+        const double seconds = status == CL_COMPLETE ? event_seconds(event) : -1.0;
+        if (seconds >= 0.0) sizer.record(groups, seconds);
+    }
+    pending.tiles.erase(pending.tiles.begin(), pending.tiles.begin() + static_cast<std::ptrdiff_t>(done));
+}
+
 void enqueue_tiled(cl::CommandQueue& queue, cl::Kernel& k, size_t work_items, size_t work_group, TileSizer& sizer,
-                   size_t& tile_items, int fail_after_first) {
-    using Clock = std::chrono::steady_clock;
+                   PendingTiles& pending, std::vector<cl::Event>& events, size_t& tile_items, int fail_after_first) {
+    if (sizer.timed()) record_finished_tiles(sizer, pending);
     const size_t groups = (work_items + work_group - 1) / work_group;
     size_t done = 0;
     while (done < groups) {
         const size_t n = sizer.next(groups - done);
         tile_items = n * work_group;
-        const auto t0 = Clock::now();
+        cl::Event event;
+        const auto t0 = std::chrono::steady_clock::now();
         queue.enqueueNDRangeKernel(k, cl::NDRange(done * work_group), cl::NDRange(n * work_group),
-                                   cl::NDRange(work_group));
+                                   cl::NDRange(work_group), nullptr, &event);
         if (fail_after_first != 0) throw cl::Error(fail_after_first, "clFinish");
-        if (sizer.timed()) {
-            queue.finish();
-            sizer.record(n, std::chrono::duration<double>(Clock::now() - t0).count());
-        }
+        events.push_back(event);
         done += n;
+        if (!sizer.timed()) continue;
+        if (!sizer.has_rate() && done < groups) {
+            // The one wait: this tile's time sizes the rest of the launch.
+            event.wait();
+            const double seconds = event_seconds(event);
+            sizer.record(n, seconds >= 0.0 ? seconds
+                                           : std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        } else {
+            pending.tiles.emplace_back(n, event);
+        }
     }
 }
 

@@ -2,7 +2,7 @@
 // work items 0..count-1 without a list, on both backends. Count 0 launches nothing (and
 // keeps a placeholder input), a pixel kernel or a uint input is refused, and a launch over
 // a tile's rows gives the kernel's per-row output (KernelId::EdgeSegmentCounts over known
-// counts).
+// counts). Each launch's time is there to ask (kernel_seconds).
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -63,6 +63,35 @@ TEST_P(LaunchCount, CountsTilesWithoutAListAndRefusesWhatItCannotRun) {
     EXPECT_THROW(backend->launch_count_into(KernelId::EdgeSchedule, f, 4, KernelInput::EdgeCounts), std::logic_error);
     EXPECT_THROW(backend->launch_count_into(KernelId::EdgeSegmentCounts, f, 4, KernelInput::EdgeSegmentOffsets),
                  std::logic_error);
+}
+
+// Backend::kernel_seconds: a launch kept where the kernels run (queued without a host wait
+// on OpenCL) gives the same output as one read back, and its time once it has run (the
+// device's timestamps on OpenCL, waited for); a call that launches nothing leaves 0.
+TEST_P(LaunchCount, KernelSecondsTimeTheLastLaunchEvenWhenQueuedWithoutAWait) {
+    const Scene scene = test::cornell_box();
+    SceneBuffers buffers = make_scene_buffers(scene);
+    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
+    TsFrame f{};
+    f.width = 512;  // 32 × 32 tiles of 16 pixels, 16 segments each
+    f.height = 512;
+    f.igi_tile = 3;
+    std::vector<float> counts(size_t(f.width) * f.height);
+    for (size_t p = 0; p < counts.size(); ++p) counts[p] = float(p % 5);
+    backend->set_input(KernelInput::EdgeCounts, counts);
+    const size_t segments = 32 * 32 * 16;
+    EXPECT_EQ(backend->kernel_seconds(KernelId::EdgeSegmentCounts), 0.0);  // none yet
+    std::vector<float> read_back, kept;
+    backend->launch_count(KernelId::EdgeSegmentCounts, f, segments, read_back);
+    EXPECT_GT(backend->kernel_seconds(KernelId::EdgeSegmentCounts), 0.0);
+    backend->launch_count_into(KernelId::EdgeSegmentCounts, f, segments, KernelInput::EdgeSamples);
+    const double seconds = backend->kernel_seconds(KernelId::EdgeSegmentCounts);
+    EXPECT_GT(seconds, 0.0);
+    EXPECT_LT(seconds, 60.0);
+    backend->read_input(KernelInput::EdgeSamples, kept);
+    EXPECT_EQ(kept, read_back);
+    backend->launch_count(KernelId::EdgeSegmentCounts, f, 0, read_back);
+    EXPECT_EQ(backend->kernel_seconds(KernelId::EdgeSegmentCounts), 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, LaunchCount, ::testing::Values(BackendKind::OpenCL, BackendKind::Embree),

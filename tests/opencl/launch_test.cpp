@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "backend/backend.h"
+#include "opencl/device.h"
 #include "opencl/launch.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
@@ -29,7 +30,9 @@ TEST(TileSizer, TilesFollowTheMeasuredRateWithinTheBudget) {
     EXPECT_TRUE(s.timed());
     EXPECT_EQ(s.next(1000), 8u);  // first tile: no rate yet
     EXPECT_EQ(s.next(5), 5u);
+    EXPECT_FALSE(s.has_rate());   // enqueue_tiled waits for this first tile to time it
     s.record(8, 0.015625);        // 512 groups/s: 64 fit in the budget, growth capped at 4 × 8
+    EXPECT_TRUE(s.has_rate());
     EXPECT_EQ(s.next(1000), 32u);
     s.record(32, 0.03125);        // 1024 groups/s: 128 fit, cap 128
     EXPECT_EQ(s.next(1000), 128u);
@@ -66,6 +69,22 @@ TEST(LaunchFailure, MessageNamesDeviceKernelErrorAndCauses) {
     const std::string m2 = launch_failure_message(f);
     EXPECT_NE(m2.find("not tiled"), std::string::npos) << m2;
     EXPECT_NE(m2.find("does not report"), std::string::npos) << m2;
+}
+
+// A launch queued without a wait fails where the queue is next waited for: the message
+// names the first launch whose event failed (user events stand in for the tiles' events).
+TEST(LaunchFailure, AFailureFoundLaterIsPutOnTheLaunchThatFailed) {
+    const ClDeviceInfo dev = select_cl_device("");
+    cl::Context ctx(dev.device);
+    cl::UserEvent done(ctx), failed(ctx), later(ctx), running(ctx);
+    done.setStatus(CL_COMPLETE);
+    failed.setStatus(CL_OUT_OF_RESOURCES);
+    later.setStatus(CL_OUT_OF_RESOURCES);
+    EXPECT_EQ(failed_launch({{"igi_surface_pass", done}, {"igi_media_pass", failed}, {"igi_resolve", later}}),
+              "igi_media_pass");
+    EXPECT_EQ(failed_launch({{"igi_surface_pass", done}, {"igi_media_pass", running}}), "");
+    EXPECT_EQ(failed_launch({}), "");
+    running.setStatus(CL_COMPLETE);  // a user event must end before its context goes
 }
 
 TEST(LaunchFailure, ResourceErrorsAreRecognised) {
