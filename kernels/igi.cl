@@ -13,6 +13,7 @@
 #include "shared/igi_resolve.h"
 #include "shared/edge_samples.h"
 #include "shared/light_path_trace.h"
+#include "shared/vpl_importance_items.h"
 #include "igi_packets.h"
 
 TS_PIXEL_KERNEL(igi_surface_pass, ts_igi_surface_pixel, TS_IGI_SURF_FLOATS)
@@ -43,6 +44,11 @@ TS_ITEM_KERNEL(light_paths_media_pass, ts_light_path_media_item, TS_LP_MEDIA_FLO
 /* The frame's filter and composite where the kernels ran (GPU variant; shared/igi_resolve.h):
  * reads the surface and media kernels' outputs in place, writes the pass image. */
 TS_PIXEL_KERNEL(igi_resolve_pass, ts_igi_resolve_pixel, TS_PASS_FLOATS)
+
+/* The VPLs' importance for the view: the candidates' irradiance at each view point, then
+ * each VPL's share of it (shared/vpl_importance_items.h). Launched without a list. */
+TS_ITEM_KERNEL(vpl_importance_points_pass, ts_vpl_importance_point_item, TS_VI_E_FLOATS)
+TS_ITEM_KERNEL(vpl_importance_vpls_pass, ts_vpl_importance_vpl_item, 1)
 
 /* Each pixel's AIS set masks from the base pass (shared/ais_guidance.h). */
 TS_PIXEL_KERNEL(ais_schedule_pass, ts_ais_schedule_pixel, TS_AIS_MASK_FLOATS)

@@ -39,6 +39,7 @@
 #include "kernels/shared/igi.h"
 #include "kernels/shared/igi_resolve.h"
 #include "kernels/shared/pt.h"
+#include "kernels/shared/vpl_importance_items.h"
 
 namespace tessera {
 namespace {

@@ -55,6 +55,10 @@
       nullptr, no_packets)                                                                                        \
     X(EdgeSample, "edge_sample_pass", "igi.cl", TS_EDGE_SAMPLE_FLOATS, TS_EDGE_ITEM_WORDS, ts_edge_sample_item,    \
       nullptr, no_packets)                                                                                        \
+    X(VplImportancePoints, "vpl_importance_points_pass", "igi.cl", TS_VI_E_FLOATS, 1, ts_vpl_importance_point_item, \
+      nullptr, no_packets)                                                                                        \
+    X(VplImportanceVpls, "vpl_importance_vpls_pass", "igi.cl", 1, 1, ts_vpl_importance_vpl_item, nullptr,          \
+      no_packets)                                                                                                 \
     X(LightPaths, "light_paths_pass", "igi.cl", TS_LP_FLOATS, TS_LP_ITEM_WORDS, ts_light_path_item, nullptr,       \
       no_packets)                                                                                                 \
     X(LightPathsMedia, "light_paths_media_pass", "igi.cl", TS_LP_MEDIA_FLOATS, TS_LP_ITEM_WORDS,                   \

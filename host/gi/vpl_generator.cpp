@@ -13,8 +13,9 @@ namespace tessera {
 namespace {
 
 // Replaces each set's candidates by the VPLs select_vpls keeps of them.
-void keep_for_view(const VplSettings& settings, uint32_t oversampling, VplList& list) {
-    const std::vector<float> importance = vpl_view_importance(*settings.view, list.vpls, settings.importance_clamp);
+void keep_for_view(Backend& backend, const VplSettings& settings, uint32_t oversampling, VplList& list) {
+    const std::vector<float> importance =
+        vpl_view_importance(backend, *settings.view, list.vpls, settings.importance_clamp);
     std::vector<float> kept;
     std::vector<uint32_t> start(settings.sets + 1, 0u);
     for (uint32_t k = 0; k < settings.sets; ++k)
@@ -92,7 +93,7 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
         out.set_start[k + 1] += out.set_start[k];
         out.vrl_set_start[k + 1] += out.vrl_set_start[k];
     }
-    if (oversampling > 1) keep_for_view(settings, oversampling, out);
+    if (oversampling > 1) keep_for_view(backend, settings, oversampling, out);
     if (oversampling > 1 && !out.vrls.empty()) keep_ray_lights(settings, oversampling, out);
     out.select_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
     if (out.vpls.empty()) out.vpls.assign(TS_VPL_FLOATS, 0.0f);  // device buffers cannot be empty

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -14,6 +15,7 @@
 #include "kernels/shared/rng.h"
 #include "kernels/shared/sampling.h"
 #include "kernels/shared/vpl.h"
+#include "kernels/shared/vpl_importance.h"
 
 namespace tessera {
 namespace {
@@ -137,17 +139,36 @@ const ViewPoints& ViewPointHistory::points_for(Backend& backend, const SceneBuff
 
 namespace {
 
-// One VPL's c_ij = luminance · G'_ij over the view points (pts: x, n, ng, one array per
-// coordinate), into row.
-void vpl_row(const std::array<std::vector<float>, 9>& pts, const float* vpl, float lum, float g_clamp, float* row) {
-    const size_t np = pts[0].size();
-    const float *x0 = pts[0].data(), *x1 = pts[1].data(), *x2 = pts[2].data();
-    const float *n0 = pts[3].data(), *n1 = pts[4].data(), *n2 = pts[5].data();
-    const float *g0 = pts[6].data(), *g1 = pts[7].data(), *g2 = pts[8].data();
-    for (size_t j = 0; j < np; ++j)
-        row[j] = lum * ts::ts_vpl_geometry_term_of(ts::make_float3(x0[j], x1[j], x2[j]),
-                                                   ts::make_float3(n0[j], n1[j], n2[j]),
-                                                   ts::make_float3(g0[j], g1[j], g2[j]), vpl, g_clamp, 0.0f, 0);
+// One VPL's c_ij over the view points (`pts`: their coordinates as 9 arrays of np, the
+// VplImportance input's layout), into row.
+void vpl_row(const float* pts, uint32_t np, const float* vpl, float lum, float g_clamp, float* row) {
+    for (uint32_t j = 0; j < np; ++j) row[j] = ts::ts_vpl_importance_term(pts, np, j, vpl, lum, g_clamp);
+}
+
+// The view points as the VplImportance input lays them out (layout_igi.h, TS_VI_*), with
+// room for the weights (zeros).
+std::vector<float> importance_input(const ViewPoints& points, float g_clamp) {
+    const size_t np = points.count();
+    std::vector<float> in(TS_VI_FLOATS(np), 0.0f);
+    in[TS_VI_POINTS] = static_cast<float>(np);
+    in[TS_VI_G_CLAMP] = g_clamp;
+    for (int k = 0; k < TS_VI_POINT_FLOATS; ++k) {
+        const std::vector<float>& src = k < 3 ? points.position : k < 6 ? points.normal : points.geo_normal;
+        for (size_t j = 0; j < np; ++j) in[TS_VI_COORD(np, k) + j] = src[3 * j + k % 3];
+    }
+    return in;
+}
+
+// w_j = 1 / max(E_j, 10⁻³ · mean E) of the points' irradiance `e`, or nothing when the mean
+// is not positive (no candidate lights any point).
+std::vector<double> point_weights(const std::vector<double>& e) {
+    const size_t np = e.size();
+    double mean = 0.0;
+    for (size_t j = 0; j < np; ++j) mean += e[j] / np;
+    if (!(mean > 0.0)) return {};
+    std::vector<double> w(np);
+    for (size_t j = 0; j < np; ++j) w[j] = 1.0 / std::max(e[j], 1e-3 * mean);
+    return w;
 }
 
 }  // namespace
@@ -165,7 +186,7 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
         if (ts::ts_vpl_in_medium(v)) continue;
         surface.push_back(static_cast<uint32_t>(i));
         packed.insert(packed.end(), v, v + TS_VPL_FLOATS);
-        lum.push_back(ts::ts_luminance(ts::ts_f3_load(v + TS_VPL_FLUX)));
+        lum.push_back(ts::ts_vpl_importance_luminance(v));
     }
     const size_t ns = surface.size();
     if (ns == 0) return importance;
@@ -173,16 +194,12 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     // coordinate) are contiguous, so the row runs in SIMD. The sums keep their order (E_j
     // over the VPLs in VPL order, Φ_i over the points in point order), so the bits are
     // those of the point-major loop this replaced.
-    std::array<std::vector<float>, 9> pts;  // x, n, ng: one array per coordinate
-    for (int k = 0; k < 9; ++k) {
-        const std::vector<float>& src = k < 3 ? points.position : k < 6 ? points.normal : points.geo_normal;
-        pts[k].resize(np);
-        for (size_t j = 0; j < np; ++j) pts[k][j] = src[3 * j + k % 3];
-    }
+    const std::vector<float> in = importance_input(points, g_clamp);
+    const float* pts = in.data() + TS_VI_HEADER;
     std::vector<float> c(ns * np);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 16), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i)
-            vpl_row(pts, &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, c.data() + i * np);
+            vpl_row(pts, static_cast<uint32_t>(np), &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, c.data() + i * np);
     });
     std::vector<double> e(np, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 64), [&](const tbb::blocked_range<size_t>& r) {
@@ -191,11 +208,8 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
             for (size_t j = r.begin(); j < r.end(); ++j) e[j] += row[j];
         }
     });
-    double mean = 0.0;
-    for (size_t j = 0; j < np; ++j) mean += e[j] / np;
-    if (!(mean > 0.0)) return importance;
-    std::vector<double> w(np);
-    for (size_t j = 0; j < np; ++j) w[j] = 1.0 / std::max(e[j], 1e-3 * mean);
+    const std::vector<double> w = point_weights(e);
+    if (w.empty()) return importance;
     // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPLs in parallel.
     std::vector<double> sum(ns, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 64), [&](const tbb::blocked_range<size_t>& r) {
@@ -208,6 +222,45 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     });
     for (size_t i = 0; i < ns; ++i) importance[surface[i]] = static_cast<float>(sum[i]);
     return importance;
+}
+
+std::vector<float> vpl_view_importance_in_kernels(Backend& backend, const ViewPoints& points,
+                                                 const std::vector<float>& vpls, float g_clamp) {
+    const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
+    std::vector<float> importance(nv, 0.0f);
+    if (np == 0 || nv == 0) return importance;
+    std::vector<float> in = importance_input(points, g_clamp);
+    backend.set_input(KernelInput::Vpls, vpls);
+    backend.set_input(KernelInput::VplSetStart, std::vector<uint32_t>{0u, static_cast<uint32_t>(nv)});
+    backend.set_input(KernelInput::VplImportance, in);
+    const TsFrame frame{};
+    std::vector<float> out;
+    backend.launch_count(KernelId::VplImportancePoints, frame, np, out);
+    std::vector<double> e(np);
+    for (size_t j = 0; j < np; ++j) {
+        const float* o = &out[TS_VI_E_FLOATS * j];
+        e[j] = o[TS_VI_E_HAS_DOUBLE] != 0.0f
+                   ? ts::ts_double_of_words(std::bit_cast<uint32_t>(o[TS_VI_E_DOUBLE]),
+                                            std::bit_cast<uint32_t>(o[TS_VI_E_DOUBLE + 1]))
+                   : o[TS_VI_E_FLOAT];
+    }
+    const std::vector<double> w = point_weights(e);
+    if (w.empty()) return importance;
+    for (size_t j = 0; j < np; ++j) {
+        uint32_t lo, hi;
+        ts::ts_double_words(w[j], &lo, &hi);
+        float* wj = &in[TS_VI_WEIGHT(np, j)];
+        wj[0] = std::bit_cast<float>(lo), wj[1] = std::bit_cast<float>(hi), wj[2] = static_cast<float>(w[j]);
+    }
+    backend.set_input(KernelInput::VplImportance, in);
+    backend.launch_count(KernelId::VplImportanceVpls, frame, nv, importance);
+    return importance;
+}
+
+std::vector<float> vpl_view_importance(Backend& backend, const ViewPoints& points, const std::vector<float>& vpls,
+                                       float g_clamp) {
+    return backend.traces_light_paths_in_kernel() ? vpl_view_importance_in_kernels(backend, points, vpls, g_clamp)
+                                                  : vpl_view_importance(points, vpls, g_clamp);
 }
 
 std::vector<double> keep_probabilities(const std::vector<float>& importance, const std::vector<bool>& medium,

@@ -81,6 +81,21 @@ private:
 /// Medium VPLs get 0: their value lies in the medium, which the points do not see.
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp);
 
+/// The same importance from KernelId::VplImportancePoints and VplImportanceVpls
+/// (kernels/shared/vpl_importance.h): the terms and sums of vpl_view_importance where the
+/// kernels run, the host forming only the points' weights; the same floats bit for bit
+/// where the device rounds as the host does and has doubles. Sets the backend's Vpls,
+/// VplSetStart and VplImportance inputs (the caller sets the frame's VPLs afterwards).
+std::vector<float> vpl_view_importance_in_kernels(Backend& backend, const ViewPoints& points,
+                                                  const std::vector<float>& vpls, float g_clamp);
+
+/// vpl_view_importance_in_kernels on a backend that traces the light paths in a kernel
+/// (Backend::traces_light_paths_in_kernel: a GPU, whose host would otherwise hold up the
+/// VPL stage with the terms), else vpl_view_importance: the whole VPL stage where its
+/// light paths are traced.
+std::vector<float> vpl_view_importance(Backend& backend, const ViewPoints& points, const std::vector<float>& vpls,
+                                       float g_clamp);
+
 /// The keep probabilities of VPLs with importance `importance` (medium[i] marks a medium
 /// VPL): p_i = min(1, (Φ_i + ε Φ̄) / τ), Φ̄ the surface VPLs' mean and ε = 1 (no VPL has
 /// probability 0, so the estimate stays unbiased, and p ≥ 1/(2K)), τ chosen so that the surface VPLs'

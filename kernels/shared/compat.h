@@ -57,6 +57,8 @@ static inline void ts_double_words(double d, uint* lo, uint* hi) {
     *lo = b.x;
     *hi = b.y;
 }
+/* The double of those words. */
+static inline double ts_double_of_words(uint lo, uint hi) { return as_double((uint2)(lo, hi)); }
 #endif
 
 #else
@@ -157,6 +159,7 @@ inline void ts_double_words(double d, uint* lo, uint* hi) {
     *lo = static_cast<uint>(b);
     *hi = static_cast<uint>(b >> 32);
 }
+inline double ts_double_of_words(uint lo, uint hi) { return std::bit_cast<double>((uint64_t(hi) << 32) | lo); }
 inline float3 ts_f3_load(const float* p) { return {p[0], p[1], p[2]}; }
 inline void ts_f3_store(float* p, float3 v) { p[0] = v.x, p[1] = v.y, p[2] = v.z; }
 

@@ -74,7 +74,10 @@
  *   EdgeSegmentOffsets  the tiles' edge samples' exclusive prefix sums, T + 1 (layout_igi.h;
  *                    KernelId::EdgeCompactSample and AisEdgeMerge read them with EdgeCounts)
  *   AisScheduleTable the AIS schedule's parameters and set orders (layout_igi.h,
- *                    TS_AIS_TABLE_*; KernelId::AisSchedule and EdgeSchedule read it) */
+ *                    TS_AIS_TABLE_*; KernelId::AisSchedule and EdgeSchedule read it)
+ *   VplImportance    the view points and weights of the VPLs' importance (layout_igi.h,
+ *                    TS_VI_*; KernelId::VplImportancePoints and VplImportanceVpls, whose
+ *                    VPLs are the Vpls input, one set) */
 #define TS_KERNEL_INPUTS(X)                                                  \
     X(Vpls, vpls, float, "VPL")                                              \
     X(VplSetStart, vpl_set_start, uint, "VPL set table")                     \
@@ -100,7 +103,8 @@
     X(EdgeSamples, edge_samples, float, "edge samples")                      \
     X(EdgeCounts, edge_counts, float, "edge counts")                         \
     X(EdgeSegmentOffsets, edge_segment_offsets, uint, "edge tile offsets")         \
-    X(AisScheduleTable, ais_schedule_table, uint, "AIS schedule table")
+    X(AisScheduleTable, ais_schedule_table, uint, "AIS schedule table")      \
+    X(VplImportance, vpl_importance, float, "VPL importance")
 
 /* TsSceneView's pointer to one buffer (shared/geometry.h). */
 #define TS_VIEW_SCENE_FIELD(field, type, what) TS_GLOBAL const type* field;

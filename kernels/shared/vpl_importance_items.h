@@ -1,0 +1,71 @@
+/* The item kernels of the VPLs' importance (shared/vpl_importance.h, which documents the
+ * sums): KernelId::VplImportancePoints and VplImportanceVpls. The including backend
+ * defines TsTracer first (shared/direct.h); neither kernel traces. */
+#ifndef TS_VPL_IMPORTANCE_ITEMS_H
+#define TS_VPL_IMPORTANCE_ITEMS_H
+
+#include "shared/vpl_importance.h"
+
+TS_NAMESPACE_BEGIN
+
+/* Item kernel VplImportancePoints, launched without a list: item j = view point j. */
+TS_INLINE void ts_vpl_importance_point_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint j,
+                                            float* out) {
+    (void)tracer;
+    (void)f;
+    TS_GLOBAL const float* vi = sv->vpl_importance;
+    const uint np = (uint)vi[TS_VI_POINTS], nv = sv->vpl_set_start[1];
+    const float b = vi[TS_VI_G_CLAMP];
+    out[TS_VI_E_DOUBLE] = out[TS_VI_E_DOUBLE + 1] = out[TS_VI_E_FLOAT] = 0.0f;
+#ifdef TS_HAS_DOUBLE
+    double e = 0.0;
+#else
+    float e = 0.0f;
+#endif
+    for (uint i = 0; i < nv; ++i) {
+        TS_GLOBAL const float* v = sv->vpls + (size_t)i * TS_VPL_FLOATS;
+        if (ts_vpl_in_medium(v)) continue;
+        e += ts_vpl_importance_term(vi + TS_VI_HEADER, np, j, v, ts_vpl_importance_luminance(v), b);
+    }
+#ifdef TS_HAS_DOUBLE
+    uint lo, hi;
+    ts_double_words(e, &lo, &hi);
+    out[TS_VI_E_DOUBLE] = as_float(lo);
+    out[TS_VI_E_DOUBLE + 1] = as_float(hi);
+    out[TS_VI_E_HAS_DOUBLE] = 1.0f;
+#else
+    out[TS_VI_E_FLOAT] = e;
+    out[TS_VI_E_HAS_DOUBLE] = 0.0f;
+#endif
+}
+
+/* Item kernel VplImportanceVpls, launched without a list: item i = VPL i; writes Φ_i. */
+TS_INLINE void ts_vpl_importance_vpl_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                          float* out) {
+    (void)tracer;
+    (void)f;
+    TS_GLOBAL const float* vi = sv->vpl_importance;
+    TS_GLOBAL const float* v = sv->vpls + (size_t)i * TS_VPL_FLOATS;
+    out[0] = 0.0f;
+    if (ts_vpl_in_medium(v)) return;
+    const uint np = (uint)vi[TS_VI_POINTS];
+    const float b = vi[TS_VI_G_CLAMP], lum = ts_vpl_importance_luminance(v);
+#ifdef TS_HAS_DOUBLE
+    double s = 0.0;
+#else
+    float s = 0.0f;
+#endif
+    for (uint j = 0; j < np; ++j) {
+        TS_GLOBAL const float* w = vi + TS_VI_WEIGHT(np, j);
+        const float c = ts_vpl_importance_term(vi + TS_VI_HEADER, np, j, v, lum, b);
+#ifdef TS_HAS_DOUBLE
+        s += (double)c * ts_double_of_words(as_uint(w[0]), as_uint(w[1]));
+#else
+        s += c * w[2];
+#endif
+    }
+    out[0] = (float)s;
+}
+
+TS_NAMESPACE_END
+#endif /* TS_VPL_IMPORTANCE_ITEMS_H */
