@@ -140,9 +140,14 @@ const ViewPoints& ViewPointHistory::points_for(Backend& backend, const SceneBuff
 namespace {
 
 // One VPL's c_ij over the view points (`pts`: their coordinates as 9 arrays of np, the
-// VplImportance input's layout), into row.
-void vpl_row(const float* pts, uint32_t np, const float* vpl, float lum, float g_clamp, float* row) {
-    for (uint32_t j = 0; j < np; ++j) row[j] = ts::ts_vpl_importance_term(pts, np, j, vpl, lum, g_clamp);
+// VplImportance input's layout), into row. The arrays' own pointers and a size_t index
+// (not ts_vpl_importance_term's uint offsets, which may wrap) let the loop run in SIMD.
+void vpl_row(const float* pts, size_t np, const float* vpl, float lum, float g_clamp, float* row) {
+    const float *x0 = pts, *x1 = pts + np, *x2 = pts + 2 * np, *n0 = pts + 3 * np, *n1 = pts + 4 * np;
+    const float *n2 = pts + 5 * np, *g0 = pts + 6 * np, *g1 = pts + 7 * np, *g2 = pts + 8 * np;
+    for (size_t j = 0; j < np; ++j)
+        row[j] = ts::ts_vpl_importance_term_at(ts::make_float3(x0[j], x1[j], x2[j]), ts::make_float3(n0[j], n1[j], n2[j]),
+                                               ts::make_float3(g0[j], g1[j], g2[j]), vpl, lum, g_clamp);
 }
 
 // The view points as the VplImportance input lays them out (layout_igi.h, TS_VI_*), with
@@ -199,7 +204,7 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     std::vector<float> c(ns * np);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 16), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i)
-            vpl_row(pts, static_cast<uint32_t>(np), &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, c.data() + i * np);
+            vpl_row(pts, np, &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, c.data() + i * np);
     });
     std::vector<double> e(np, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 64), [&](const tbb::blocked_range<size_t>& r) {

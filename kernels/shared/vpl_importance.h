@@ -29,15 +29,22 @@
 
 TS_NAMESPACE_BEGIN
 
-/* c_ij: surface VPL `vpl` of flux luminance `lum` at point j of the np points whose
- * coordinates are the 9 arrays from `pts` (TS_VI_COORD(np, k) − TS_VI_HEADER), its
- * geometry term clamped to `g_clamp` (scene units^-2); visibility is not tested. */
+/* c_ij: surface VPL `vpl` of flux luminance `lum` at a view point at x with shading and
+ * geometric normals n and ng, its geometry term clamped to `g_clamp` (scene units^-2);
+ * visibility is not tested. */
+TS_INLINE float ts_vpl_importance_term_at(float3 x, float3 n, float3 ng, TS_GLOBAL const float* vpl, float lum,
+                                          float g_clamp) {
+    return lum * ts_vpl_geometry_term_of(x, n, ng, vpl, g_clamp, 0.0f, 0);
+}
+
+/* The same at point j of the np points whose coordinates are the 9 arrays from `pts`
+ * (TS_VI_COORD(np, k) − TS_VI_HEADER). */
 TS_INLINE float ts_vpl_importance_term(TS_GLOBAL const float* pts, uint np, uint j, TS_GLOBAL const float* vpl,
                                        float lum, float g_clamp) {
     const float3 x = make_float3(pts[j], pts[np + j], pts[2u * np + j]);
     const float3 n = make_float3(pts[3u * np + j], pts[4u * np + j], pts[5u * np + j]);
     const float3 ng = make_float3(pts[6u * np + j], pts[7u * np + j], pts[8u * np + j]);
-    return lum * ts_vpl_geometry_term_of(x, n, ng, vpl, g_clamp, 0.0f, 0);
+    return ts_vpl_importance_term_at(x, n, ng, vpl, lum, g_clamp);
 }
 
 /* The luminance of VPL `vpl`'s flux, the c_ij's factor. */
