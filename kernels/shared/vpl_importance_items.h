@@ -8,6 +8,13 @@
 
 TS_NAMESPACE_BEGIN
 
+/* The sums' type: double where the device has it (the host reference's), else float. */
+#ifdef TS_HAS_DOUBLE
+typedef double TsImportanceSum;
+#else
+typedef float TsImportanceSum;
+#endif
+
 /* Item kernel VplImportancePoints, launched without a list: item j = view point j. */
 TS_INLINE void ts_vpl_importance_point_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint j,
                                             float* out) {
@@ -17,11 +24,7 @@ TS_INLINE void ts_vpl_importance_point_item(const TsSceneView* sv, const TsTrace
     const uint np = (uint)vi[TS_VI_POINTS], nv = sv->vpl_set_start[1];
     const float b = vi[TS_VI_G_CLAMP];
     out[TS_VI_E_DOUBLE] = out[TS_VI_E_DOUBLE + 1] = out[TS_VI_E_FLOAT] = 0.0f;
-#ifdef TS_HAS_DOUBLE
-    double e = 0.0;
-#else
-    float e = 0.0f;
-#endif
+    TsImportanceSum e = 0;
     for (uint i = 0; i < nv; ++i) {
         TS_GLOBAL const float* v = sv->vpls + (size_t)i * TS_VPL_FLOATS;
         if (ts_vpl_in_medium(v)) continue;
@@ -50,11 +53,7 @@ TS_INLINE void ts_vpl_importance_vpl_item(const TsSceneView* sv, const TsTracer*
     if (ts_vpl_in_medium(v)) return;
     const uint np = (uint)vi[TS_VI_POINTS];
     const float b = vi[TS_VI_G_CLAMP], lum = ts_vpl_importance_luminance(v);
-#ifdef TS_HAS_DOUBLE
-    double s = 0.0;
-#else
-    float s = 0.0f;
-#endif
+    TsImportanceSum s = 0;
     for (uint j = 0; j < np; ++j) {
         TS_GLOBAL const float* w = vi + TS_VI_WEIGHT(np, j);
         const float c = ts_vpl_importance_term(vi + TS_VI_HEADER, np, j, v, lum, b);
