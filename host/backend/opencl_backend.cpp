@@ -164,7 +164,8 @@ protected:
                 seconds += s;
             }
         });
-        // A device without timestamps: the call's wall time (the enqueue's, as a bound below).
+        // A device without timestamps: the call's wall time (for a launch into an input,
+        // only its enqueue's).
         return timed ? seconds : Backend::last_launch_seconds(id);
     }
 
