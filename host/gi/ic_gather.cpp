@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "kernels/shared/vpl.h"
+
 namespace tessera {
 namespace {
 
@@ -21,6 +23,39 @@ void hits_of(const std::vector<float>& out, std::vector<uint32_t>& hits) {
 }
 
 }  // namespace
+
+IcGatherSums IcGatherSums::from_output(const float* out) {
+    IcGatherSums s;
+    auto pair = [&](int at) { return double(out[at]) + double(out[at + 1]); };
+    for (int c = 0; c < 3; ++c) s.e[c] = pair(TS_IC_GATHER_SUM + 2 * c);
+    s.inv_dist = pair(TS_IC_GATHER_INV_DIST);
+    s.seen = static_cast<int64_t>(out[TS_IC_GATHER_SEEN]);
+    return s;
+}
+
+IcGatherSums& IcGatherSums::operator+=(const IcGatherSums& o) {
+    for (int c = 0; c < 3; ++c) e[c] += o.e[c];
+    inv_dist += o.inv_dist, seen += o.seen;
+    return *this;
+}
+
+IcGatherSums& IcGatherSums::operator-=(const IcGatherSums& o) {
+    for (int c = 0; c < 3; ++c) e[c] -= o.e[c];
+    inv_dist -= o.inv_dist, seen -= o.seen;
+    // The count is exact: with no VPL left the sums are exactly 0, not their rounding.
+    if (seen <= 0) *this = IcGatherSums{};
+    return *this;
+}
+
+std::array<float, 3> IcGatherSums::irradiance() const {
+    if (seen <= 0) return {0.0f, 0.0f, 0.0f};
+    const ts::float3 r = ts::ts_vpl_gather_result_double({std::max(0.0, e[0]), std::max(0.0, e[1]), std::max(0.0, e[2])});
+    return {r.x, r.y, r.z};
+}
+
+float IcGatherSums::harmonic_mean() const {
+    return seen > 0 && inv_dist > 0 ? static_cast<float>(double(seen) / inv_dist) : ts::TS_INF;
+}
 
 void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records, const std::vector<float>& vpls) {
     std::vector<float> surfaces(records.size() * TS_IC_GBUF_FLOATS);

@@ -31,7 +31,6 @@ constexpr size_t kGatherBatch = size_t(1) << 24;
 
 bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_NO_HIT; }
 
-size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / TS_VPL_FLOATS; }
 
 }  // namespace
 
@@ -215,11 +214,12 @@ uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float
 
 // E of records[k] for every k of `which` from rows[k] over `vpls` (the gather kernel);
 // returns their harmonic mean distances to the visible VPLs, in the order of `which`.
-std::vector<float> InstantCache::gather(Backend& backend, const std::vector<float>& vpls,
-                                        const std::vector<Row>& rows, std::vector<IcRecord>& records,
-                                        const std::vector<uint32_t>& which, float g_clamp) const {
-    std::vector<float> harmonic(which.size());
-    if (which.empty()) return harmonic;
+std::vector<float> InstantCache::gather_outputs(Backend& backend, const std::vector<float>& vpls,
+                                                const std::vector<IcRecord>& records,
+                                                const std::vector<uint32_t>& which, float g_clamp,
+                                                const MaskFill& fill) const {
+    std::vector<float> outputs(TS_IC_GATHER_FLOATS * which.size());
+    if (which.empty()) return outputs;
     const auto t0 = Clock::now();
     ic_set_record_inputs(backend, records, vpls);
     const size_t nv = vpl_count(vpls), words = TS_IC_VISIBLE_WORDS(nv);
@@ -229,24 +229,38 @@ std::vector<float> InstantCache::gather(Backend& backend, const std::vector<floa
     for (size_t begin = 0; begin < which.size(); begin += per_launch) {
         const size_t n = std::min(per_launch, which.size() - begin);
         items.resize(TS_IC_GATHER_WORDS * n);
-        visibility.resize(n * words);
+        visibility.assign(n * words, 0u);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t k = r.begin(); k < r.end(); ++k) {
                 items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_RECORD] = which[begin + k];
                 items[TS_IC_GATHER_WORDS * k + TS_IC_GATHER_ROW] = static_cast<uint32_t>(k);
-                ic_pack_visible(rows[which[begin + k]].data(), nv, visibility.data() + k * words);
+                fill(begin + k, visibility.data() + k * words);
             }
         });
         const auto tk = Clock::now();
         ic_gather(backend, g_clamp, items, visibility, out);
         times_.gather_kernel += since(tk);
-        for (size_t k = 0; k < n; ++k) {
-            const float* o = &out[TS_IC_GATHER_FLOATS * k];
-            records[which[begin + k]].e = {o[TS_IC_GATHER_E], o[TS_IC_GATHER_E + 1], o[TS_IC_GATHER_E + 2]};
-            harmonic[begin + k] = o[TS_IC_GATHER_HARMONIC];
-        }
+        std::copy(out.begin(), out.begin() + TS_IC_GATHER_FLOATS * n, outputs.begin() + TS_IC_GATHER_FLOATS * begin);
     }
     times_.gather += since(t0);
+    return outputs;
+}
+
+std::vector<float> InstantCache::gather(Backend& backend, const std::vector<float>& vpls,
+                                        const std::vector<Row>& rows, std::vector<IcRecord>& records,
+                                        const std::vector<uint32_t>& which, float g_clamp,
+                                        std::vector<IcGatherSums>* sums) const {
+    const size_t nv = vpl_count(vpls);
+    const std::vector<float> out = gather_outputs(backend, vpls, records, which, g_clamp, [&](size_t k, uint32_t* mask) {
+        ic_pack_visible(rows[which[k]].data(), nv, mask);
+    });
+    std::vector<float> harmonic(which.size());
+    for (size_t k = 0; k < which.size(); ++k) {
+        const float* o = &out[TS_IC_GATHER_FLOATS * k];
+        records[which[k]].e = {o[TS_IC_GATHER_E], o[TS_IC_GATHER_E + 1], o[TS_IC_GATHER_E + 2]};
+        harmonic[k] = o[TS_IC_GATHER_HARMONIC];
+        if (sums) (*sums)[which[k]] = IcGatherSums::from_output(o);
+    }
     return harmonic;
 }
 
@@ -324,6 +338,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
             blocked.push_back({morton2(x, y), static_cast<uint32_t>(cache_.records().size())});
             cache_.records().push_back(rec);  // inserted in the octree once its radius is known
             rows_.emplace_back(nv, kIcFacing);
+            sums_.emplace_back();
         }
         std::sort(blocked.begin(), blocked.end());
         std::vector<uint32_t> order(blocked.size());
@@ -332,7 +347,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         std::vector<uint32_t> which(cache_.records().size() - first);
         for (size_t i = 0; i < which.size(); ++i) which[i] = static_cast<uint32_t>(first + i);
         stats_.probe_rays += probe(backend, cache_.records(), which);
-        const std::vector<float> harmonic = gather(backend, vpls_, rows_, cache_.records(), which, g_clamp);
+        const std::vector<float> harmonic = gather(backend, vpls_, rows_, cache_.records(), which, g_clamp, &sums_);
         std::vector<IcRecord> fresh(cache_.records().begin() + first, cache_.records().end());
         cache_.records().resize(first);
         for (size_t i = 0; i < fresh.size(); ++i) {
@@ -353,6 +368,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
     if (!settings_.temporal || !have_previous_) {
         cache_ = IrradianceCache(settings_.error_bound);
         rows_.clear();
+        sums_.clear();
         pass_ = frame.pass, seed_ = frame.seed;
         start_paths(backend, scene, frame.pass, selection);
     } else {
@@ -455,6 +471,7 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
 
 IcFrameStats& IcFrameStats::operator+=(const IcFrameStats& o) {
     records += o.records, created += o.created, removed += o.removed, resummed += o.resummed;
+    resummed_by_change += o.resummed_by_change;
     evicted += o.evicted, vpls += o.vpls, paths_retraced += o.paths_retraced, vpls_changed += o.vpls_changed;
     light_path_rays += o.light_path_rays, shadow_rays += o.shadow_rays, probe_rays += o.probe_rays;
     fallback_pixels += o.fallback_pixels;
@@ -470,11 +487,12 @@ std::string describe_ic(const IcSettings& settings, const IcFrameStats& s, uint3
     char buf[640], over[48] = "";
     if (passes > 1) std::snprintf(over, sizeof over, " summed over %u passes", passes);
     std::snprintf(buf, sizeof buf,
-                  "%s: a %.2f, %u paths%s: %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed), %zu paths re-traced, "
+                  "%s: a %.2f, %u paths%s: %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed, %zu by the changed VPLs), "
+                  "%zu paths re-traced, "
                   "rays: %llu light-path + %llu shadow + %llu probe, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms; of update and placement: shadow rays %.1f ms "
                   "(kernel %.1f), probes %.1f, gathers %.1f (kernel %.1f), octree %.1f, coverage %.1f",
                   settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, over, s.vpls, s.records,
-                  s.created, s.removed, s.resummed, s.paths_retraced,
+                  s.created, s.removed, s.resummed, s.resummed_by_change, s.paths_retraced,
                   static_cast<unsigned long long>(s.light_path_rays), static_cast<unsigned long long>(s.shadow_rays),
                   static_cast<unsigned long long>(s.probe_rays),
                   1e3 * s.update_seconds, 1e3 * s.place_seconds, 1e3 * s.interpolate_seconds, 1e3 * s.pair_seconds,

@@ -24,10 +24,12 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "backend/backend.h"
+#include "gi/ic_gather.h"
 #include "gi/irradiance_cache.h"
 #include "gi/light_paths.h"
 #include "gi/vpl_importance.h"
@@ -69,6 +71,7 @@ struct IcPathSelection {
 /// passes (IcFrame; records then counts each pass's cache).
 struct IcFrameStats {
     size_t records = 0, created = 0, removed = 0, resummed = 0;
+    size_t resummed_by_change = 0;  ///< of resummed: over the changed VPLs only (tic; IcGatherSums)
     size_t evicted = 0;  ///< records dropped for being out of view (tic)
     size_t vpls = 0, paths_retraced = 0, vpls_changed = 0;
     uint64_t light_path_rays = 0;  ///< rays of (re-)traced light paths
@@ -155,6 +158,12 @@ private:
     };
     using Row = std::vector<int32_t>;
     struct Change;  // what differs from the previous frame (temporal_update.cpp)
+    struct ChangedVpls;  // the VPLs that changed in a temporal update (temporal_update.cpp)
+    static ChangedVpls changed_vpls(const std::vector<float>& old_vpls, const std::vector<float>& vpls,
+                                    const std::vector<int64_t>& old_column);
+    void resum_by_change(Backend& backend, const std::vector<float>& old_vpls, const ChangedVpls& changed,
+                         const std::vector<uint32_t>& minus, const std::vector<std::vector<Pair>>& per_record,
+                         float g_clamp);
 
     void start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block, const IcPathSelection& selection);
     LightPathSettings path_settings() const;
@@ -175,8 +184,18 @@ private:
     template <class Launch, class Write>
     uint64_t trace_in_batches(size_t total, Launch&& launch, Write&& write) const;
     int32_t row_code(uint32_t hit) const;
+    /// Writes the gather kernel's visibility mask of item k (TS_IC_VISIBLE_WORDS(VPLs) uints, zeroed).
+    using MaskFill = std::function<void(size_t k, uint32_t* mask)>;
+    /// The gather kernel over records[which[k]] with the masks `fill` writes:
+    /// TS_IC_GATHER_FLOATS outputs per k (layout_ic.h).
+    std::vector<float> gather_outputs(Backend& backend, const std::vector<float>& vpls,
+                                      const std::vector<IcRecord>& records, const std::vector<uint32_t>& which,
+                                      float g_clamp, const MaskFill& fill) const;
+    /// Gathers records[which[k]] over the VPLs their rows mark visible: sets their E and
+    /// returns their harmonic mean distances; their sums go to (*sums)[which[k]] if given.
     std::vector<float> gather(Backend& backend, const std::vector<float>& vpls, const std::vector<Row>& rows,
-                              std::vector<IcRecord>& records, const std::vector<uint32_t>& which, float g_clamp) const;
+                              std::vector<IcRecord>& records, const std::vector<uint32_t>& which, float g_clamp,
+                              std::vector<IcGatherSums>* sums = nullptr) const;
     void update(Backend& backend, const SceneBuffers& scene, float g_clamp);
     void snapshot(const SceneBuffers& scene, float g_clamp);
     void mark_in_view(const TsFrame& frame);
@@ -194,6 +213,7 @@ private:
     std::vector<LightPath> paths_;
     std::vector<float> vpls_;
     std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL
+    std::vector<IcGatherSums> sums_;          // per record, its gather's sums (the temporal update adds to them)
     IcFrameStats stats_;
     // The stage times of the const helpers (trace_pairs, probe, gather), copied into stats_.
     struct StageTimes {

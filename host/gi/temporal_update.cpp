@@ -22,7 +22,11 @@
 //   eviction    a record out of the view frustum for evict_after_frames frames in a row
 //               is dropped first (it would only cost update work).
 //   E           re-summed (no rays) for records with a re-traced pair, and for all records
-//               when a VPL weight or the geometry-term bound changed.
+//               when a VPL weight or the geometry-term bound changed. Where fewer VPLs
+//               were added and removed than there are VPLs, a record's sums
+//               are updated instead of re-made: minus its old sum over the VPLs that
+//               changed or whose pair was re-traced, plus its new sum over them (the
+//               gather's double sums, IcGatherSums; equal to a full re-sum up to rounding).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -156,7 +160,41 @@ bool differ(const std::vector<float>& a, const std::vector<float>& b, size_t at,
     return std::memcmp(&a[at], &b[at], n * sizeof(float)) != 0;
 }
 
+void set_bit(uint32_t* mask, uint32_t j) { mask[j >> 5] |= 1u << (j & 31u); }
+
+// Sets in `mask` the bits of the columns in `which` that `row` marks visible.
+void mark_visible(const int32_t* row, const std::vector<uint32_t>& which, uint32_t* mask) {
+    for (const uint32_t j : which)
+        if (row[j] == kIcVisible) set_bit(mask, j);
+}
+
 }  // namespace
+
+struct InstantCache::ChangedVpls {
+    std::vector<uint32_t> added;    // new columns whose VPL is new or differs in any float
+    std::vector<uint32_t> removed;  // old columns no new column keeps as it was
+};
+
+// What changed between the VPLs the rows were traced with and the new ones, given
+// old_column (per new column, its old column with the same position, normal and offset
+// scale, or -1).
+InstantCache::ChangedVpls InstantCache::changed_vpls(const std::vector<float>& old_vpls,
+                                                     const std::vector<float>& vpls,
+                                                     const std::vector<int64_t>& old_column) {
+    ChangedVpls c;
+    std::vector<uint8_t> kept(vpl_count(old_vpls), 0);
+    for (size_t j = 0; j < old_column.size(); ++j) {
+        const int64_t k = old_column[j];
+        if (k >= 0 && std::memcmp(&vpls[j * TS_VPL_FLOATS], &old_vpls[size_t(k) * TS_VPL_FLOATS],
+                                  TS_VPL_FLOATS * sizeof(float)) == 0)
+            kept[size_t(k)] = 1;
+        else
+            c.added.push_back(static_cast<uint32_t>(j));
+    }
+    for (size_t k = 0; k < kept.size(); ++k)
+        if (!kept[k]) c.removed.push_back(static_cast<uint32_t>(k));
+    return c;
+}
 
 struct InstantCache::Change {
     std::vector<uint32_t> moved;            // objects of O
@@ -184,12 +222,14 @@ void InstantCache::evict_out_of_view() {
         if (kept != i) {  // a self-move would empty the row
             records[kept] = records[i];
             rows_[kept] = std::move(rows_[i]);
+            sums_[kept] = sums_[i];
         }
         ++kept;
     }
     stats_.evicted = records.size() - kept;
     records.resize(kept);
     rows_.resize(kept);
+    sums_.resize(kept);
 }
 
 void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_clamp) {
@@ -292,7 +332,12 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
             base += old_n;
         }
     }
+    const std::vector<float> old_vpls = vpls_;
     concat_vpls();
+    const ChangedVpls changed = changed_vpls(old_vpls, vpls_, old_column);
+    const size_t words_old = TS_IC_VISIBLE_WORDS(vpl_count(old_vpls));
+    const bool by_change = g_clamp == prev_g_clamp_ && sums_.size() == cache_.records().size() &&
+                           changed.added.size() + changed.removed.size() < old_column.size();
 
     // Records: drop the stale ones, re-map the rest to the new columns.
     std::vector<IcRecord>& records = cache_.records();
@@ -326,10 +371,16 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     }
     std::vector<IcRecord> kept(keep.size());
     std::vector<Row> rows(keep.size());
+    std::vector<IcGatherSums> sums(keep.size());
+    // By change: per kept record, its old row's visible VPLs among those that changed (a
+    // mask over the old columns, what to subtract), and below, the same for its new row.
+    std::vector<uint32_t> minus(by_change ? keep.size() * words_old : 0, 0u);
     const std::vector<ColumnRun> runs = same_columns ? std::vector<ColumnRun>{} : column_runs(old_column);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, keep.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t k = r.begin(); k < r.end(); ++k) {
             kept[k] = records[keep[k]];
+            sums[k] = sums_[keep[k]];
+            if (by_change) mark_visible(rows_[keep[k]].data(), changed.removed, &minus[k * words_old]);
             if (same_columns) {
                 rows[k] = std::move(rows_[keep[k]]);
                 for (const uint32_t j : new_columns) rows[k][j] = kNeedsTrace;
@@ -341,6 +392,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     });
     records.swap(kept);
     rows_.swap(rows);
+    sums_.swap(sums);
 
     // Pairs to re-trace: those never traced, those whose occluder moved, and the visible
     // ones whose shadow ray now meets a moved object's box. That ray is the one
@@ -372,25 +424,83 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
                                              retrace.data());
             }
             mark_retrace(rows_[i].data(), nv, ch.moved, retrace.data());
-            for (uint32_t j = 0; j < nv; ++j)
-                if (retrace[j]) per_record[i].push_back({static_cast<uint32_t>(i), j});
+            for (uint32_t j = 0; j < nv; ++j) {
+                if (!retrace[j]) continue;
+                per_record[i].push_back({static_cast<uint32_t>(i), j});
+                // A kept VPL's pair re-traced: its old visibility is still in the row.
+                if (by_change && old_column[j] >= 0 && rows_[i][j] == kIcVisible)
+                    set_bit(&minus[i * words_old], static_cast<uint32_t>(old_column[j]));
+            }
         }
     });
     std::vector<Pair> pairs;
     for (const auto& v : per_record) pairs.insert(pairs.end(), v.begin(), v.end());
     stats_.shadow_rays += trace_pairs(backend, vpls_, pairs, g_clamp, rows_);
 
+    if (by_change) {
+        resum_by_change(backend, old_vpls, changed, minus, per_record, g_clamp);
+        return;
+    }
     const bool all = weights_changed || g_clamp != prev_g_clamp_;
     std::vector<uint32_t> resum;
     for (size_t i = 0; i < records.size(); ++i)
         if (all || !per_record[i].empty()) resum.push_back(static_cast<uint32_t>(i));
-    const std::vector<float> harmonic = gather(backend, vpls_, rows_, records, resum, g_clamp);
+    const std::vector<float> harmonic = gather(backend, vpls_, rows_, records, resum, g_clamp, &sums_);
     for (size_t k = 0; k < resum.size(); ++k) {
         IcRecord& r = records[resum[k]];
         // The visible VPLs may have changed, and with them the harmonic mean distance.
         r.radius = radius_of(r, harmonic[k]);
     }
     stats_.resummed += resum.size();
+}
+
+// Each record's sums, minus its old sum over `minus` (a mask over old_vpls' columns per
+// record) and plus its new sum over the VPLs that were added and its re-traced pairs,
+// where visible now. Records whose masks are both empty keep E and R as they are.
+void InstantCache::resum_by_change(Backend& backend, const std::vector<float>& old_vpls, const ChangedVpls& changed,
+                                   const std::vector<uint32_t>& minus, const std::vector<std::vector<Pair>>& per_record,
+                                   float g_clamp) {
+    std::vector<IcRecord>& records = cache_.records();
+    const size_t words_old = TS_IC_VISIBLE_WORDS(vpl_count(old_vpls)), words = TS_IC_VISIBLE_WORDS(vpl_count(vpls_));
+    std::vector<uint32_t> plus(records.size() * words, 0u);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, records.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            mark_visible(rows_[i].data(), changed.added, &plus[i * words]);
+            for (const Pair& p : per_record[i])
+                if (rows_[i][p.vpl] == kIcVisible) set_bit(&plus[i * words], p.vpl);
+        }
+    });
+    auto with_bits = [&](const std::vector<uint32_t>& masks, size_t w) {
+        std::vector<uint32_t> which;
+        for (size_t i = 0; i < records.size(); ++i)
+            if (std::any_of(&masks[i * w], &masks[i * w] + w, [](uint32_t b) { return b != 0u; }))
+                which.push_back(static_cast<uint32_t>(i));
+        return which;
+    };
+    const std::vector<uint32_t> which_minus = with_bits(minus, words_old), which_plus = with_bits(plus, words);
+    auto copy_mask = [](const std::vector<uint32_t>& masks, size_t w, const std::vector<uint32_t>& which) {
+        return [&masks, w, &which](size_t k, uint32_t* mask) { std::copy_n(&masks[which[k] * w], w, mask); };
+    };
+    const std::vector<float> out_minus =
+        gather_outputs(backend, old_vpls, records, which_minus, g_clamp, copy_mask(minus, words_old, which_minus));
+    const std::vector<float> out_plus =
+        gather_outputs(backend, vpls_, records, which_plus, g_clamp, copy_mask(plus, words, which_plus));
+    // Subtract first: a count that reaches 0 leaves sums of exactly 0 (IcGatherSums).
+    std::vector<uint8_t> touched(records.size(), 0);
+    for (size_t k = 0; k < which_minus.size(); ++k) {
+        sums_[which_minus[k]] -= IcGatherSums::from_output(&out_minus[TS_IC_GATHER_FLOATS * k]);
+        touched[which_minus[k]] = 1;
+    }
+    for (size_t k = 0; k < which_plus.size(); ++k) {
+        sums_[which_plus[k]] += IcGatherSums::from_output(&out_plus[TS_IC_GATHER_FLOATS * k]);
+        touched[which_plus[k]] = 1;
+    }
+    for (size_t i = 0; i < records.size(); ++i) {
+        if (!touched[i]) continue;
+        records[i].e = sums_[i].irradiance();
+        records[i].radius = radius_of(records[i], sums_[i].harmonic_mean());
+        ++stats_.resummed, ++stats_.resummed_by_change;
+    }
 }
 
 }  // namespace tessera

@@ -27,6 +27,41 @@ TS_INLINE TsSurface ts_ic_record_surface(TS_GLOBAL const float* g) {
     return s;
 }
 
+/* Writes a gather's TS_IC_GATHER_FLOATS outputs (layout_ic.h) from its sums: E and the
+ * harmonic mean distance as ts_ic_gather has always formed them, then the sums themselves
+ * as (hi, lo) pairs. A double d goes out as hi = (float)d, lo = (float)(d - hi), whose sum
+ * holds d to about 2^-48 of it. */
+TS_INLINE void ts_ic_gather_pair_out(float* out, uint at, float hi, float lo) {
+    out[at] = hi;
+    out[at + 1u] = lo;
+}
+
+#ifdef TS_HAS_DOUBLE
+TS_INLINE void ts_ic_gather_split_out(float* out, uint at, double d) {
+    float hi = (float)d;
+    ts_ic_gather_pair_out(out, at, hi, (float)(d - (double)hi));
+}
+
+TS_INLINE void ts_ic_gather_store_double(float* out, TsDouble3 sum, double inv_dist, uint seen) {
+    ts_f3_store(out + TS_IC_GATHER_E, ts_vpl_gather_result_double(sum));
+    out[TS_IC_GATHER_HARMONIC] = seen > 0u && inv_dist > 0 ? (float)(seen / inv_dist) : TS_INF;
+    ts_ic_gather_split_out(out, TS_IC_GATHER_SUM, sum.x);
+    ts_ic_gather_split_out(out, TS_IC_GATHER_SUM + 2u, sum.y);
+    ts_ic_gather_split_out(out, TS_IC_GATHER_SUM + 4u, sum.z);
+    ts_ic_gather_split_out(out, TS_IC_GATHER_INV_DIST, inv_dist);
+    out[TS_IC_GATHER_SEEN] = (float)seen;
+}
+#else
+TS_INLINE void ts_ic_gather_store_compensated(float* out, TsSum3 sum, float inv_dist, float inv_dist_c, uint seen) {
+    ts_f3_store(out + TS_IC_GATHER_E, ts_vpl_gather_result_compensated(sum));
+    float total = inv_dist + inv_dist_c;
+    out[TS_IC_GATHER_HARMONIC] = seen > 0u && total > 0 ? (float)(seen / total) : TS_INF;
+    for (uint c = 0u; c < 3u; ++c) ts_ic_gather_pair_out(out, TS_IC_GATHER_SUM + 2u * c, sum.s[c], sum.c[c]);
+    ts_ic_gather_pair_out(out, TS_IC_GATHER_INV_DIST, inv_dist, inv_dist_c);
+    out[TS_IC_GATHER_SEEN] = (float)seen;
+}
+#endif
+
 /* E = (1/π) Σ_j C_j T_j min(G_j, b) over the `count` VPLs (in order) whose bit in the
  * mask `visible` (TS_IC_VISIBLE_WORDS(count) uints, layout_ic.h) is set, and the harmonic
  * mean distance to them (+inf for none): the
@@ -48,7 +83,14 @@ TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* visible, u
      * sums; a tic re-sum of 18k records on the Cornell box, Embree: 28 → 24.5 ms). */
     float3 org = ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale);
     for (uint j = 0; j < count; ++j) {
-        if (!((visible[j >> 5] >> (j & 31u)) & 1u)) continue;
+        /* A word without a visible VPL is skipped whole: the temporal update's re-sums
+         * over a few changed VPLs pass masks that are mostly zero. */
+        uint word = visible[j >> 5];
+        if (word == 0u) {
+            j |= 31u;
+            continue;
+        }
+        if (!((word >> (j & 31u)) & 1u)) continue;
         TS_GLOBAL const float* v = vpls + (size_t)TS_VPL_FLOATS * j;
         float g = ts_vpl_geometry_term(s->position, s->shading_normal, s->geo_normal, v, b, med->g);
         if (!(g > 0.0f)) continue;
@@ -64,13 +106,10 @@ TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* visible, u
         ++seen;
     }
 #ifdef TS_HAS_DOUBLE
-    float3 e = ts_vpl_gather_result_double(sum);
+    ts_ic_gather_store_double(out, sum, inv_dist, seen);
 #else
-    float3 e = ts_vpl_gather_result_compensated(sum);
-    inv_dist += inv_dist_c;
+    ts_ic_gather_store_compensated(out, sum, inv_dist, inv_dist_c, seen);
 #endif
-    ts_f3_store(out + TS_IC_GATHER_E, e);
-    out[TS_IC_GATHER_HARMONIC] = seen > 0u && inv_dist > 0 ? (float)(seen / inv_dist) : TS_INF;
 }
 
 #ifdef TS_HAS_DOUBLE
@@ -146,19 +185,25 @@ TS_INLINE void ts_ic_gather16(TsIcLanes* L, uint on, TS_GLOBAL const uint* visib
         L->e[0][i] = L->e[1][i] = L->e[2][i] = L->inv_dist[i] = 0.0;
         L->seen[i] = 0u;
     }
-    for (uint j = 0; j < count; ++j) {
-        if ((j & 31u) == 0u)
-            for (int i = 0; i < TS_PACKET_LANES; ++i)
-                L->word[i] = on >> i & 1u ? visibility[words * row[i] + (j >> 5)] : 0u;
-        ts_ic_lanes_add(L, vpls + (size_t)TS_VPL_FLOATS * j, j & 31u, b);
+    for (size_t w = 0; w < words; ++w) {
+        uint any = 0u;
+        for (int i = 0; i < TS_PACKET_LANES; ++i) {
+            L->word[i] = on >> i & 1u ? visibility[words * row[i] + w] : 0u;
+            any |= L->word[i];
+        }
+        /* Only the VPLs some lane sees, in increasing order: one no lane sees would add +0
+         * to every sum, so the sums are the same, and the temporal update's re-sums over a
+         * few changed VPLs cost a few VPLs, not their words' 32. */
+        while (any != 0u) {
+            uint bit = (uint)ts_ctz64((ulong)any);
+            any &= any - 1u;
+            ts_ic_lanes_add(L, vpls + (size_t)TS_VPL_FLOATS * (32u * w + bit), bit, b);
+        }
     }
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         if (!(on >> i & 1u)) continue;
         TsDouble3 sum = {L->e[0][i], L->e[1][i], L->e[2][i]};
-        float* o = out + (size_t)TS_IC_GATHER_FLOATS * i;
-        ts_f3_store(o + TS_IC_GATHER_E, ts_vpl_gather_result_double(sum));
-        double inv_dist = L->inv_dist[i];
-        o[TS_IC_GATHER_HARMONIC] = L->seen[i] > 0u && inv_dist > 0 ? (float)(L->seen[i] / inv_dist) : TS_INF;
+        ts_ic_gather_store_double(out + (size_t)TS_IC_GATHER_FLOATS * i, sum, L->inv_dist[i], L->seen[i]);
     }
 }
 #endif

@@ -81,13 +81,22 @@
  * (One bit a pair, not the host's int32 occluder: 32 times less to copy each frame.) Its output,
  * TS_IC_GATHER_FLOATS floats: TS_IC_GATHER_E 3 floats E = irradiance / π from the visible
  * VPLs, TS_IC_GATHER_HARMONIC the harmonic mean distance to them (scene units; +inf for
- * none). */
+ * none); then the sums they come from, for a caller that adds and subtracts sums over
+ * VPL subsets (the temporal update's re-sum, docs/instant-caching.md §8), each as a
+ * (hi, lo) float pair whose sum is the accumulator's value (a double split in two, or a
+ * compensated float sum and its compensation): TS_IC_GATHER_SUM 3 pairs Σ C·T·min(G, b)
+ * per channel (E before the 1/π), TS_IC_GATHER_INV_DIST one pair Σ 1/distance, and
+ * TS_IC_GATHER_SEEN the visible VPLs' count (a float, exact: --ic-paths ≤ 65536 makes far
+ * fewer than 2^24 VPLs). */
 #define TS_IC_GATHER_WORDS 2
 #define TS_IC_GATHER_RECORD 0
 #define TS_IC_GATHER_ROW 1
-#define TS_IC_GATHER_FLOATS 4
+#define TS_IC_GATHER_FLOATS 13
 #define TS_IC_GATHER_E 0
 #define TS_IC_GATHER_HARMONIC 3
+#define TS_IC_GATHER_SUM 4
+#define TS_IC_GATHER_INV_DIST 10
+#define TS_IC_GATHER_SEEN 12
 #define TS_IC_VISIBLE_WORDS(n) (((n) + 31u) / 32u)
 /* Depth bound of the octree (root = depth 0). */
 #define TS_IC_MAX_DEPTH 24
@@ -123,7 +132,9 @@ static_assert(tessera::layout_check::tiles({{TS_IC_GATHER_RECORD, 1}, {TS_IC_GAT
               "layout_ic.h: ic gather item fields do not tile TS_IC_GATHER_WORDS");
 static_assert(TS_IC_VISIBLE_WORDS(0u) == 0u && TS_IC_VISIBLE_WORDS(32u) == 1u && TS_IC_VISIBLE_WORDS(33u) == 2u,
               "layout_ic.h: TS_IC_VISIBLE_WORDS(n) is n bits rounded up to whole uints");
-static_assert(tessera::layout_check::tiles({{TS_IC_GATHER_E, 3}, {TS_IC_GATHER_HARMONIC, 1}}, TS_IC_GATHER_FLOATS),
+static_assert(tessera::layout_check::tiles({{TS_IC_GATHER_E, 3}, {TS_IC_GATHER_HARMONIC, 1}, {TS_IC_GATHER_SUM, 6},
+                                            {TS_IC_GATHER_INV_DIST, 2}, {TS_IC_GATHER_SEEN, 1}},
+                                           TS_IC_GATHER_FLOATS),
               "layout_ic.h: ic gather output fields do not tile TS_IC_GATHER_FLOATS");
 #endif /* __cplusplus */
 

@@ -11,6 +11,7 @@
 #include "gi/ic_gather.h"
 #include "opencl/device.h"
 #include "support/ic_test_frame.h"
+#include "support/scoped_env.h"
 
 namespace tessera {
 namespace {
@@ -72,19 +73,101 @@ TEST(IcGatherKernels, OpenClAndEmbreeAgreeOnPairsAndSumsOfAnAnimatedFrame) {
     // the sums differed in their last digits. Each term is positive, so a sum keeps its
     // terms' relative error: ~20 float operations of a few ulps each, ~1e-6; 1e-5 leaves
     // 10x. A lost or mis-weighted term moves a sum by ~1/(VPLs) ~ 1e-2.
+    // The sums' (hi, lo) pairs are compared as their sums: a lo is the rounding residue of
+    // its hi, so where the his differ in an ulp the los differ wholly.
     const double rel = select_cl_device("").type == "CPU" ? 0.0 : 1e-5;
     ASSERT_EQ(c.sums.size(), e.sums.size());
+    if (rel == 0.0) {
+        EXPECT_EQ(c.sums, e.sums);
+    }
     size_t lit = 0;
-    for (size_t k = 0; k < e.sums.size(); ++k) {
-        lit += e.sums[k] > 0.0f && (k % TS_IC_GATHER_FLOATS) == TS_IC_GATHER_E;
-        if (std::isinf(e.sums[k])) {
-            EXPECT_EQ(c.sums[k], e.sums[k]) << "record " << k / TS_IC_GATHER_FLOATS << " output " << k % TS_IC_GATHER_FLOATS;
-            continue;
+    for (size_t i = 0; i < records.size(); ++i) {
+        const float *ce = &c.sums[i * TS_IC_GATHER_FLOATS], *ee = &e.sums[i * TS_IC_GATHER_FLOATS];
+        lit += ee[TS_IC_GATHER_E] > 0.0f;
+        for (int k : {TS_IC_GATHER_E, TS_IC_GATHER_E + 1, TS_IC_GATHER_E + 2, TS_IC_GATHER_HARMONIC}) {
+            if (std::isinf(ee[k])) {
+                EXPECT_EQ(ce[k], ee[k]) << "record " << i << " output " << k;
+            } else {
+                EXPECT_NEAR(ce[k], ee[k], rel * std::fabs(ee[k])) << "record " << i << " output " << k;
+            }
         }
-        EXPECT_NEAR(c.sums[k], e.sums[k], rel * std::fabs(e.sums[k]))
-            << "record " << k / TS_IC_GATHER_FLOATS << " output " << k % TS_IC_GATHER_FLOATS;
+        const IcGatherSums cs = IcGatherSums::from_output(ce), es = IcGatherSums::from_output(ee);
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(cs.e[ch], es.e[ch], rel * std::fabs(es.e[ch])) << "record " << i;
+        EXPECT_NEAR(cs.inv_dist, es.inv_dist, rel * std::fabs(es.inv_dist)) << "record " << i;
+        EXPECT_EQ(cs.seen, es.seen) << "record " << i;
     }
     EXPECT_GT(lit, records.size() / 2);
+}
+
+// A gather's sums (IcGatherSums) form its E and harmonic mean distance as the kernel
+// does, and sums over disjoint VPL subsets add up to the sum over their union: what the
+// temporal update's re-sum by change relies on (temporal_update.cpp). Both backends.
+TEST(IcGatherKernels, SumsOfDisjointVplSubsetsAddUp) {
+    const test::IcTestFrame frame;
+    auto opencl = make_backend({BackendKind::OpenCL, ""}, frame.buffers, frame.plan);
+    const std::vector<IcRecord>& records = frame.records();
+    const float b = 0.5f;
+    std::vector<uint32_t> pairs, hits, rows;
+    frame.trace_all_pairs(b, pairs, hits, rows);
+    // Split each row's visible VPLs in two: the even and the odd ones.
+    std::vector<uint32_t> even(rows.size()), odd(rows.size());
+    for (size_t w = 0; w < rows.size(); ++w) even[w] = rows[w] & 0x55555555u, odd[w] = rows[w] & 0xaaaaaaaau;
+    std::vector<uint32_t> items;
+    for (uint32_t i = 0; i < records.size(); ++i) items.insert(items.end(), {i, i});
+    for (Backend* backend : {frame.embree.get(), opencl.get()}) {
+        ic_set_record_inputs(*backend, records, frame.vpls());
+        std::vector<float> whole, a, z;
+        ic_gather(*backend, b, items, rows, whole);
+        ic_gather(*backend, b, items, even, a);
+        ic_gather(*backend, b, items, odd, z);
+        size_t split = 0;
+        for (size_t i = 0; i < records.size(); ++i) {
+            const float* w = &whole[i * TS_IC_GATHER_FLOATS];
+            const IcGatherSums all = IcGatherSums::from_output(w);
+            // E and the harmonic mean from the sums are the kernel's, bit for bit (the
+            // (hi, lo) pair holds the double sum to 2^-48, far inside a float's rounding).
+            const std::array<float, 3> e = all.irradiance();
+            for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(e[ch], w[TS_IC_GATHER_E + ch]) << "record " << i;
+            EXPECT_EQ(all.harmonic_mean(), w[TS_IC_GATHER_HARMONIC]) << "record " << i;
+            IcGatherSums parts = IcGatherSums::from_output(&a[i * TS_IC_GATHER_FLOATS]);
+            split += parts.seen > 0 && parts.seen < all.seen;
+            parts += IcGatherSums::from_output(&z[i * TS_IC_GATHER_FLOATS]);
+            EXPECT_EQ(parts.seen, all.seen) << "record " << i;
+            // Two orders of the same double sum of ≤ nv positive terms: within nv ulps.
+            for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(parts.e[ch], all.e[ch], 1e-14 * all.e[ch]) << "record " << i;
+            EXPECT_NEAR(parts.inv_dist, all.inv_dist, 1e-14 * all.inv_dist) << "record " << i;
+            // Subtracting the odd part leaves the even one; subtracting both leaves exactly 0.
+            IcGatherSums rest = all;
+            rest -= IcGatherSums::from_output(&z[i * TS_IC_GATHER_FLOATS]);
+            const IcGatherSums even_sum = IcGatherSums::from_output(&a[i * TS_IC_GATHER_FLOATS]);
+            EXPECT_NEAR(rest.e[0], even_sum.e[0], 1e-14 * all.e[0]) << "record " << i;
+            rest -= even_sum;
+            EXPECT_EQ(rest.seen, 0) << "record " << i;
+            EXPECT_EQ(rest.irradiance()[0], 0.0f) << "record " << i;
+            EXPECT_TRUE(std::isinf(rest.harmonic_mean())) << "record " << i;
+        }
+        EXPECT_GT(split, records.size() / 2) << "most records see VPLs of both halves";
+    }
+    // The float form (devices without doubles: a compensated sum and its compensation as
+    // the pair): the same counts, sums within float rounding of the double ones (each term
+    // rounded in float, ~1e-7; 1e-5 leaves room).
+    std::vector<float> in_double, in_float;
+    ic_set_record_inputs(*frame.embree, records, frame.vpls());
+    ic_gather(*frame.embree, b, items, rows, in_double);
+    test::ScopedEnv options("TESSERA_CL_OPTIONS", "-DTS_NO_DOUBLE");
+    auto single = make_backend({BackendKind::OpenCL, ""}, frame.buffers, frame.plan);
+    ic_set_record_inputs(*single, records, frame.vpls());
+    ic_gather(*single, b, items, rows, in_float);
+    bool differs = false;
+    for (size_t i = 0; i < records.size(); ++i) {
+        const IcGatherSums d = IcGatherSums::from_output(&in_double[i * TS_IC_GATHER_FLOATS]);
+        const IcGatherSums f = IcGatherSums::from_output(&in_float[i * TS_IC_GATHER_FLOATS]);
+        EXPECT_EQ(f.seen, d.seen) << "record " << i;
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(f.e[ch], d.e[ch], 1e-5 * d.e[ch]) << "record " << i;
+        EXPECT_NEAR(f.inv_dist, d.inv_dist, 1e-5 * d.inv_dist) << "record " << i;
+        differs |= f.e[0] != d.e[0];
+    }
+    EXPECT_TRUE(differs) << "-DTS_NO_DOUBLE no longer reaches the kernels";
 }
 
 // Placement's pairs as a grid (TsFrame.ic_pair_grid: pair g = record g mod n, VPL g / n)

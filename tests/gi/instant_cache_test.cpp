@@ -115,6 +115,7 @@ void expect_distinct_points(const std::vector<IcRecord>& records, int frame) {
 
 struct TemporalRun {
     size_t removed = 0, retraced = 0, paths = 0;
+    size_t resummed = 0, by_change = 0;  // records re-summed, of them over the changed VPLs only
     uint64_t update_rays = 0, full_rays = 0;
 };
 
@@ -160,6 +161,8 @@ TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest, ui
             if (f == 0) continue;
             run.removed += c.stats().removed;
             run.retraced += c.stats().paths_retraced;
+            run.resummed += c.stats().resummed;
+            run.by_change += c.stats().resummed_by_change;
             run.paths += c.paths().size();
             run.update_rays += c.stats().shadow_rays + c.stats().probe_rays;
             run.full_rays += records.size() * (c.vpls().size() / TS_VPL_FLOATS + TS_IC_PROBE_RAYS);
@@ -185,6 +188,9 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     EXPECT_GT(moving.retraced, 0u);
     EXPECT_LT(moving.retraced, moving.paths / 2);
     EXPECT_LT(moving.update_rays, moving.full_rays / 4);
+    // Few VPLs change: records are re-summed over those alone (and still equal a rebuild).
+    EXPECT_GT(moving.by_change, 0u);
+    EXPECT_EQ(all.by_change, 0u) << "every VPL's weight changes as the light dims: a full re-sum";
     // Only the light dims: every path is re-traced (its weight changes) but lands where it
     // did, so no shadow ray is traced again and no record is removed.
     Scene dims = rest;
@@ -195,6 +201,8 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     EXPECT_EQ(dimming.retraced, dimming.paths);
     EXPECT_EQ(dimming.update_rays, 0u);
     EXPECT_EQ(dimming.removed, 0u);
+    EXPECT_GT(dimming.resummed, 0u);
+    EXPECT_EQ(dimming.by_change, 0u);
     // The moving cube is itself a light, and the camera moves: light paths from the cube
     // re-trace, the view adds records where it uncovers surfaces.
     Scene lamp = moves;

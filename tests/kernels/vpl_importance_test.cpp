@@ -60,7 +60,9 @@ TEST_P(VplImportanceKernels, EqualTheHostsImportanceBitForBit) {
         positive += host[i] > 0.0f;
     }
     EXPECT_GT(positive, nv / 2);
-    if (std::string(GetParam()) == "cornell-box-fog") EXPECT_GT(medium, 0u) << "the fog case has medium VPLs";
+    if (std::string(GetParam()) == "cornell-box-fog") {
+        EXPECT_GT(medium, 0u) << "the fog case has medium VPLs";
+    }
     for (BackendKind kind : {BackendKind::OpenCL, BackendKind::Embree}) {
         auto backend = make_backend({kind, ""}, buffers, plan_effects(scene));
         EXPECT_EQ(vpl_view_importance_in_kernels(*backend, c.view, c.vpls, g_clamp), host)
