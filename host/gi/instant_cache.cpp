@@ -31,7 +31,6 @@ constexpr size_t kGatherBatch = size_t(1) << 24;
 
 bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_NO_HIT; }
 
-
 }  // namespace
 
 void ic_gbuffer_from_surface(const std::vector<float>& surf, std::vector<float>& g) {
@@ -212,8 +211,8 @@ uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float
     return traced;
 }
 
-// E of records[k] for every k of `which` from rows[k] over `vpls` (the gather kernel);
-// returns their harmonic mean distances to the visible VPLs, in the order of `which`.
+// In launches of at most kGatherBatch mask words; the masks start zeroed, so a fill may
+// set only the bits it means.
 std::vector<float> InstantCache::gather_outputs(Backend& backend, const std::vector<float>& vpls,
                                                 const std::vector<IcRecord>& records,
                                                 const std::vector<uint32_t>& which, float g_clamp,
@@ -246,6 +245,8 @@ std::vector<float> InstantCache::gather_outputs(Backend& backend, const std::vec
     return outputs;
 }
 
+// E of records[k] for every k of `which` from rows[k] over `vpls` (the gather kernel);
+// returns their harmonic mean distances to the visible VPLs, in the order of `which`.
 std::vector<float> InstantCache::gather(Backend& backend, const std::vector<float>& vpls,
                                         const std::vector<Row>& rows, std::vector<IcRecord>& records,
                                         const std::vector<uint32_t>& which, float g_clamp,

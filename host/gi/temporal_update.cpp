@@ -336,8 +336,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     concat_vpls();
     const ChangedVpls changed = changed_vpls(old_vpls, vpls_, old_column);
     const size_t words_old = TS_IC_VISIBLE_WORDS(vpl_count(old_vpls));
-    const bool by_change = g_clamp == prev_g_clamp_ && sums_.size() == cache_.records().size() &&
-                           changed.added.size() + changed.removed.size() < old_column.size();
+    const bool by_change = g_clamp == prev_g_clamp_ && changed.added.size() + changed.removed.size() < old_column.size();
 
     // Records: drop the stale ones, re-map the rest to the new columns.
     std::vector<IcRecord>& records = cache_.records();
