@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "kernels/shared/vpl.h"
+#include "kernels/shared/ic_gather.h"
 
 namespace tessera {
 namespace {
@@ -54,7 +54,7 @@ std::array<float, 3> IcGatherSums::irradiance() const {
 }
 
 float IcGatherSums::harmonic_mean() const {
-    return seen > 0 && inv_dist > 0 ? static_cast<float>(double(seen) / inv_dist) : ts::TS_INF;
+    return ts::ts_ic_harmonic_mean(double(seen), inv_dist);
 }
 
 void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records, const std::vector<float>& vpls) {

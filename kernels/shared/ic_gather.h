@@ -37,6 +37,12 @@ TS_INLINE void ts_ic_gather_pair_out(float* out, uint at, float hi, float lo) {
 }
 
 #ifdef TS_HAS_DOUBLE
+/* The harmonic mean distance from the sums: `seen` visible VPLs, Σ 1/distance; +inf for
+ * none. The host forms it from its kept sums with this too (host/gi/ic_gather.h). */
+TS_INLINE float ts_ic_harmonic_mean(double seen, double inv_dist) {
+    return seen > 0.0 && inv_dist > 0 ? (float)(seen / inv_dist) : TS_INF;
+}
+
 TS_INLINE void ts_ic_gather_split_out(float* out, uint at, double d) {
     float hi = (float)d;
     ts_ic_gather_pair_out(out, at, hi, (float)(d - (double)hi));
@@ -44,7 +50,7 @@ TS_INLINE void ts_ic_gather_split_out(float* out, uint at, double d) {
 
 TS_INLINE void ts_ic_gather_store_double(float* out, TsDouble3 sum, double inv_dist, uint seen) {
     ts_f3_store(out + TS_IC_GATHER_E, ts_vpl_gather_result_double(sum));
-    out[TS_IC_GATHER_HARMONIC] = seen > 0u && inv_dist > 0 ? (float)(seen / inv_dist) : TS_INF;
+    out[TS_IC_GATHER_HARMONIC] = ts_ic_harmonic_mean((double)seen, inv_dist);
     ts_ic_gather_split_out(out, TS_IC_GATHER_SUM, sum.x);
     ts_ic_gather_split_out(out, TS_IC_GATHER_SUM + 2u, sum.y);
     ts_ic_gather_split_out(out, TS_IC_GATHER_SUM + 4u, sum.z);
