@@ -239,9 +239,14 @@ static inline int16 ts_packet_leaf_closest(__global const float* tris, int ref, 
 
 /* Occlusion of the lanes in `active` (bit i = lane i): returns the bits of those whose
  * ray hits a triangle with t in [tmin, tmax), each equal to ts_bvh_occluded for that
- * lane's ray. Lanes outside `active` are neither read as rays nor reported. */
-static inline uint ts_bvh_occluded16(__global const float* nodes, __global const float* tris, const TsRay16* r,
-                                     uint active) {
+ * lane's ray. Lanes outside `active` are neither read as rays nor reported. When `prim`
+ * is not 0, each occluded lane's entry becomes the triangle (TS_BVH_TRI_PRIM) that
+ * occluded it: the first the packet's walk found, not necessarily the nearest, and not
+ * always the one the lane's single-ray walk finds (the walk's order depends on the other
+ * lanes); the other entries are left as they are. `prim` is a constant at each call
+ * site, so the compiler drops its work where it is 0. */
+static inline uint ts_bvh_any_hit16(__global const float* nodes, __global const float* tris, const TsRay16* r,
+                                    uint active, uint16* prim) {
     if (active == 0u) return 0u;
     TsPacketSetup p = ts_packet_setup(r);
     const int16 live = ts_lane_mask16(active);
@@ -272,7 +277,9 @@ static inline uint ts_bvh_occluded16(__global const float* nodes, __global const
             uint v = ~(uint)ref;
             uint first = v >> 3, count = v & 7u;
             for (uint i = 0u; i < count; ++i) {
-                int16 hit = ts_packet_triangle(tris + (first + i) * TS_BVH_TRI_FLOATS, r, &p) & m;
+                __global const float* tri = tris + (first + i) * TS_BVH_TRI_FLOATS;
+                int16 hit = ts_packet_triangle(tri, r, &p) & m;
+                if (prim) *prim = select(*prim, (uint16)(as_uint(tri[TS_BVH_TRI_PRIM])), as_uint16(hit));
                 occluded |= hit;
                 m &= ~hit;
                 if (!ts_any16(m)) break;
@@ -281,6 +288,12 @@ static inline uint ts_bvh_occluded16(__global const float* nodes, __global const
         }
     }
     return ts_lane_bits16(occluded) & active;
+}
+
+/* Occlusion of the lanes in `active`: ts_bvh_any_hit16 without the triangles. */
+static inline uint ts_bvh_occluded16(__global const float* nodes, __global const float* tris, const TsRay16* r,
+                                     uint active) {
+    return ts_bvh_any_hit16(nodes, tris, r, active, 0);
 }
 
 /* hits[i] = lane i of h for each lane i in `valid` (bit i); the other entries untouched. */

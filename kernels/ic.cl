@@ -19,8 +19,9 @@ TS_ITEM_KERNEL(ic_gather_pass, ts_ic_gather_item, TS_IC_GATHER_FLOATS)
 /* The pair items, 16 consecutive items per work-item (CPU devices; placement lists a
  * block of records per VPL, so a packet's rays mostly end at one point; the temporal
  * update lists a record's pairs together): the items' shadow rays (ts_ic_pair_ray) as one
- * ts_bvh_closest16 packet, whose per-lane hit is ts_bvh_closest's; written as
- * ic_pair_pass writes them. work_items = the number of items. */
+ * ts_bvh_any_hit16 packet, which hits where ts_ic_pair_item's query does, the triangle
+ * it reports being any on the ray; written as ic_pair_pass writes them.
+ * work_items = the number of items. */
 __kernel __attribute__((reqd_work_group_size(TS_WORKGROUP_SIZE, 1, 1)))
 void ic_pair_packets(TS_KERNEL_ARGS) {
     uint first = get_global_id(0) * TS_PACKET_LANES;
@@ -36,9 +37,10 @@ void ic_pair_packets(TS_KERNEL_ARGS) {
         ts_ray16_put(a, (int)i, shadow);
     }
     TsRay16 r = ts_ray16_load(a);
-    TsHit16 h = ts_bvh_closest16(tracer.nodes, tracer.tris, &r, traced);
+    uint16 hit = (uint16)(TS_NO_HIT);
+    ts_bvh_any_hit16(tracer.nodes, tracer.tris, &r, traced, &hit);
     uint prim[TS_PACKET_LANES];
-    vstore16(h.prim, 0, prim);
+    vstore16(hit, 0, prim);
     for (uint i = 0u; i < lanes; ++i)
         out[(size_t)(first + i) * TS_IC_PAIR_FLOATS + TS_IC_PAIR_HIT] =
             as_float((traced >> i & 1u) ? prim[i] : (uint)TS_IC_PAIR_FACING);

@@ -15,6 +15,11 @@ static inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
 static inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
     return ts_bvh_occluded(tr->nodes, tr->tris, ray);
 }
+/* The triangle of the first hit the any-hit walk finds, not necessarily the nearest, or
+ * TS_NO_HIT: hits exactly when ts_trace_occluded does. */
+static inline uint ts_trace_any_hit(const TsTracer* tr, TsRay ray) {
+    return TS_BVH_TRAVERSE(tr->nodes, tr->tris, ray, 1).prim;
+}
 
 /* The argument list every kernel of the kernel table (host/device/kernel_table.h) takes,
  * in this order: the frame, the BVH, the scene's shading buffers and the named inputs

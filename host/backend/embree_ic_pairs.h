@@ -1,6 +1,7 @@
 // The instant cache's pair kernel (KernelId::IcPair) on the Embree backend, 16 record–VPL
-// pairs per rtcIntersect16 packet: the same hits as the one-pair kernel (apart from the
-// triangle chosen between coincident faces, docs/ray-batches.md §2).
+// pairs per rtcOccluded16 packet (ts_trace_any_hit16): the same pairs blocked as the
+// one-pair kernel, each with a triangle on its ray (not always the one-pair kernel's:
+// any-hit queries stop at the first triangle their walk finds).
 #pragma once
 #include <cstddef>
 #include <vector>

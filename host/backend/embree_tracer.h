@@ -76,6 +76,51 @@ inline RTCIntersectContext ts_packet_context(bool coherent) {
     return ctx;
 }
 
+/// The context of an any-hit query that also reports the triangle it found
+/// (ts_trace_any_hit, ts_trace_any_hit16): Embree's occlusion query with a context filter
+/// that, before accepting a hit, writes its primID to prim[id] (id = the ray's id field,
+/// its lane). The scene is built with RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION for it
+/// (bvh/embree_scene.cpp); other queries leave the filter unset.
+struct TsAnyHitContext {
+    RTCIntersectContext ctx;  // first: Embree hands the filter this pointer
+    uint32_t* prim;
+};
+
+inline void ts_record_any_hit(const RTCFilterFunctionNArguments* args) {
+    const auto* c = reinterpret_cast<const TsAnyHitContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i)
+        if (args->valid[i]) c->prim[RTCRayN_id(args->ray, args->N, i)] = RTCHitN_primID(args->hit, args->N, i);
+}
+
+inline TsAnyHitContext ts_any_hit_context(bool coherent, uint32_t* prim) {
+    TsAnyHitContext c{ts_packet_context(coherent), prim};
+    c.ctx.filter = ts_record_any_hit;
+    return c;
+}
+
+/// Any hit of `ray` in [tmin, tmax): the triangle of a hit Embree found first, not
+/// necessarily the nearest (an occlusion query, which stops there), or TS_NO_HIT. Equal
+/// to ts_trace_occluded in whether it hits.
+inline uint32_t ts_trace_any_hit(const TsTracer* tr, TsRay ray) {
+    uint32_t prim = TS_NO_HIT;
+    TsAnyHitContext c = ts_any_hit_context(false, &prim);
+    RTCRay r;
+    r.org_x = ray.org.x;
+    r.org_y = ray.org.y;
+    r.org_z = ray.org.z;
+    r.tnear = ray.tmin;
+    r.dir_x = ray.dir.x;
+    r.dir_y = ray.dir.y;
+    r.dir_z = ray.dir.z;
+    r.time = 0.0f;
+    r.tfar = ray.tmax;
+    r.mask = 0xffffffffu;
+    r.id = 0;
+    r.flags = 0;
+    rtcOccluded1(tr->scene, &c.ctx, &r);
+    return r.tfar < 0.0f ? prim : TS_NO_HIT;
+}
+
 /// The 16-ray packet of kernels/shared/igi_gather16.h (which documents the calls below):
 /// Embree's own layout, so the gather's vector loops write the rays straight into it.
 using TsRayLanes = RTCRay16;
@@ -132,6 +177,23 @@ inline uint32_t ts_trace_occluded16(const TsTracer* tr, const TsRay* rays, const
         ts_packet_set(r, i, valid[i] ? rays[i] : rays[0]);
     }
     return ts_occluded16(tr, r, v, coherent);
+}
+
+/// ts_trace_any_hit of up to 16 rays as one packet (rtcOccluded16): prim[i] for each lane
+/// with valid[i] != 0 (as for ts_trace_occluded16); the other entries are left as they are.
+inline void ts_trace_any_hit16(const TsTracer* tr, const TsRay* rays, const int* valid, bool coherent,
+                               uint32_t* prim) {
+    alignas(64) RTCRay16 r;
+    alignas(64) int v[16];
+    uint32_t found[16];
+    for (int i = 0; i < 16; ++i) {
+        v[i] = valid[i];
+        ts_packet_set(r, i, valid[i] ? rays[i] : rays[0]);
+    }
+    TsAnyHitContext c = ts_any_hit_context(coherent, found);
+    rtcOccluded16(v, tr->scene, &c.ctx, &r);
+    for (int i = 0; i < 16; ++i)
+        if (valid[i]) prim[i] = r.tfar[i] < 0.0f ? found[i] : TS_NO_HIT;
 }
 
 /// The packet query of kernels/shared/igi_march16.h: the rays of the lanes whose bit is set

@@ -9,7 +9,9 @@ namespace tessera {
 RTCScene build_embree_scene(const SceneBuffers& scene) {
     RTCDevice dev = embree_device();
     RTCScene s = rtcNewScene(dev);
-    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    // The context filter serves the any-hit queries that report their triangle
+    // (ts_trace_any_hit); queries without one pay a null test.
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_MEDIUM);
     const size_t n = scene.triangle_count;
     if (n > 0) {

@@ -97,7 +97,8 @@ std::string describe_ic(const IcSettings& settings, const IcFrameStats& stats, u
 /// Visibility of one record–VPL pair, as kept per record (one int32 per VPL; the bits of
 /// the pair kernel's TS_IC_PAIR_FACING and TS_IC_PAIR_VISIBLE, layout_ic.h):
 /// kIcFacing = the geometry term is 0 (no ray needed), kIcVisible = unoccluded, ≥ 0 the
-/// object (Scene::objects index) the shadow ray hit first.
+/// object (Scene::objects index) the shadow ray hits, the one its any-hit query found
+/// (any occluder serves the temporal update: docs/instant-caching.md §3).
 constexpr int32_t kIcFacing = -2;
 constexpr int32_t kIcVisible = -1;
 

@@ -56,13 +56,15 @@ TS_INLINE int ts_ic_pair_ray(const TsSceneView* sv, const TsFrame* f, uint i, Ts
                            sv->medium[TS_MEDIUM_G], shadow) > 0.0f;
 }
 
-/* Pair item i: the first triangle on its shadow ray (TS_IC_PAIR_FLOATS);
- * TS_IC_PAIR_FACING when no ray is needed (ts_ic_pair_ray). */
+/* Pair item i: a triangle on its shadow ray, the one the any-hit query found (not
+ * necessarily the nearest; TS_IC_PAIR_VISIBLE for none), or TS_IC_PAIR_FACING when no ray
+ * is needed (ts_ic_pair_ray). Any occluder serves the temporal update as well as the
+ * nearest (docs/instant-caching.md §8), and the query stops at it. */
 TS_INLINE void ts_ic_pair_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
                                float* out) {
     TsRay shadow;
     uint hit = TS_IC_PAIR_FACING;
-    if (ts_ic_pair_ray(sv, f, i, &shadow)) hit = ts_trace_closest(tracer, shadow).prim;
+    if (ts_ic_pair_ray(sv, f, i, &shadow)) hit = ts_trace_any_hit(tracer, shadow);
     out[TS_IC_PAIR_HIT] = as_float(hit);
 }
 

@@ -12,6 +12,8 @@
 #include "gi/ic_gather.h"
 #include "gi/ic_passes.h"
 #include "render/renderer.h"
+#include "gi/irradiance_cache.h"
+#include "kernels/shared/vpl.h"
 #include "scene/loader.h"
 
 namespace tessera::test {
@@ -60,6 +62,33 @@ struct IcTestFrame {
         rows.assign(records().size() * words, 0u);
         for (size_t i = 0; i < records().size(); ++i)
             ic_pack_visible(reinterpret_cast<const int32_t*>(&hits[i * nv]), nv, &rows[i * words]);
+    }
+
+    /// Whether triangle `prim` meets the shadow ray of the pair (record, vpl) with bound b
+    /// (the ray ts_ic_pair_ray builds): Möller–Trumbore in double, barycentrics and t
+    /// within `slack` (relative) of their ranges, so that a watertight hit on a shared
+    /// edge counts for either triangle.
+    bool pair_ray_meets(float b, uint32_t record, uint32_t vpl, uint32_t prim, double slack = 1e-5) const {
+        const ts::TsSurface s = ic_record_surface(records()[record]);
+        ts::TsRay ray;
+        if (ts::ts_vpl_geometry(&s, &vpls()[size_t(TS_VPL_FLOATS) * vpl], b, buffers.medium[TS_MEDIUM_G], &ray) <= 0.0f)
+            return false;
+        const float* t = &buffers.tri_pos[9 * size_t(prim)];
+        const double o[3] = {ray.org.x, ray.org.y, ray.org.z}, d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+        double e1[3], e2[3], sv[3];
+        for (int k = 0; k < 3; ++k) e1[k] = t[3 + k] - t[k], e2[k] = t[6 + k] - t[k], sv[k] = o[k] - t[k];
+        auto cross = [](const double* a, const double* c, double* r) {
+            r[0] = a[1] * c[2] - a[2] * c[1], r[1] = a[2] * c[0] - a[0] * c[2], r[2] = a[0] * c[1] - a[1] * c[0];
+        };
+        auto dot = [](const double* a, const double* c) { return a[0] * c[0] + a[1] * c[1] + a[2] * c[2]; };
+        double p[3], q[3];
+        cross(d, e2, p);
+        const double det = dot(e1, p);
+        if (det == 0.0) return false;
+        cross(sv, e1, q);
+        const double u = dot(sv, p) / det, v = dot(d, q) / det, tt = dot(e2, q) / det;
+        return u >= -slack && v >= -slack && u + v <= 1.0 + slack && tt >= ray.tmin * (1.0 - slack) &&
+               tt <= ray.tmax * (1.0 + slack);
     }
 };
 

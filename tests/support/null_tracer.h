@@ -11,6 +11,7 @@ namespace {
 struct TsTracer {};
 [[maybe_unused]] TsHit ts_trace_closest(const TsTracer*, TsRay) { return TsHit{0, 0, 0, TS_NO_HIT}; }
 [[maybe_unused]] int ts_trace_occluded(const TsTracer*, TsRay) { return 0; }
+[[maybe_unused]] uint ts_trace_any_hit(const TsTracer*, TsRay) { return TS_NO_HIT; }
 // The packet interface of shared/igi_view16.h and igi_march16.h: nothing hit, nothing blocked.
 [[maybe_unused]] void ts_trace_closest_lanes(const TsTracer*, const TsRay*, uint valid, TsHit* hits) {
     for (int i = 0; i < TS_PACKET_LANES; ++i)
