@@ -118,7 +118,10 @@ inline uint32_t ts_trace_any_hit(const TsTracer* tr, TsRay ray) {
     r.id = 0;
     r.flags = 0;
     rtcOccluded1(tr->scene, &c.ctx, &r);
-    return r.tfar < 0.0f ? prim : TS_NO_HIT;
+    if (!(r.tfar < 0.0f)) return TS_NO_HIT;
+    // Blocked without a triangle noted: an Embree built without filter functions. The
+    // closest hit is an answer too.
+    return prim != TS_NO_HIT ? prim : ts_trace_closest(tr, ray).prim;
 }
 
 /// The 16-ray packet of kernels/shared/igi_gather16.h (which documents the calls below):
@@ -188,12 +191,18 @@ inline void ts_trace_any_hit16(const TsTracer* tr, const TsRay* rays, const int*
     uint32_t found[16];
     for (int i = 0; i < 16; ++i) {
         v[i] = valid[i];
+        found[i] = TS_NO_HIT;
         ts_packet_set(r, i, valid[i] ? rays[i] : rays[0]);
     }
     TsAnyHitContext c = ts_any_hit_context(coherent, found);
     rtcOccluded16(v, tr->scene, &c.ctx, &r);
-    for (int i = 0; i < 16; ++i)
-        if (valid[i]) prim[i] = r.tfar[i] < 0.0f ? found[i] : TS_NO_HIT;
+    for (int i = 0; i < 16; ++i) {
+        if (!valid[i]) continue;
+        prim[i] = r.tfar[i] < 0.0f ? found[i] : TS_NO_HIT;
+        // Blocked without a triangle noted (an Embree without filter functions): the
+        // closest hit is an answer too.
+        if (r.tfar[i] < 0.0f && found[i] == TS_NO_HIT) prim[i] = ts_trace_closest(tr, rays[i]).prim;
+    }
 }
 
 /// The packet query of kernels/shared/igi_march16.h: the rays of the lanes whose bit is set
