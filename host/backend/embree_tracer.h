@@ -46,9 +46,8 @@ inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
     return h;
 }
 
-inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+/// `ray` as Embree's single ray (id 0, all masks, time 0).
+inline RTCRay ts_embree_ray(TsRay ray) {
     RTCRay r;
     r.org_x = ray.org.x;
     r.org_y = ray.org.y;
@@ -62,6 +61,13 @@ inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
     r.mask = 0xffffffffu;
     r.id = 0;
     r.flags = 0;
+    return r;
+}
+
+inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r = ts_embree_ray(ray);
     rtcOccluded1(tr->scene, &ctx, &r);
     return r.tfar < 0.0f ? 1 : 0;  // Embree sets tfar to -inf on occlusion
 }
@@ -104,19 +110,7 @@ inline TsAnyHitContext ts_any_hit_context(bool coherent, uint32_t* prim) {
 inline uint32_t ts_trace_any_hit(const TsTracer* tr, TsRay ray) {
     uint32_t prim = TS_NO_HIT;
     TsAnyHitContext c = ts_any_hit_context(false, &prim);
-    RTCRay r;
-    r.org_x = ray.org.x;
-    r.org_y = ray.org.y;
-    r.org_z = ray.org.z;
-    r.tnear = ray.tmin;
-    r.dir_x = ray.dir.x;
-    r.dir_y = ray.dir.y;
-    r.dir_z = ray.dir.z;
-    r.time = 0.0f;
-    r.tfar = ray.tmax;
-    r.mask = 0xffffffffu;
-    r.id = 0;
-    r.flags = 0;
+    RTCRay r = ts_embree_ray(ray);
     rtcOccluded1(tr->scene, &c.ctx, &r);
     if (!(r.tfar < 0.0f)) return TS_NO_HIT;
     // Blocked without a triangle noted: an Embree built without filter functions. The
