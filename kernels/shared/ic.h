@@ -59,7 +59,7 @@ TS_INLINE int ts_ic_pair_ray(const TsSceneView* sv, const TsFrame* f, uint i, Ts
 /* Pair item i: a triangle on its shadow ray, the one the any-hit query found (not
  * necessarily the nearest; TS_IC_PAIR_VISIBLE for none), or TS_IC_PAIR_FACING when no ray
  * is needed (ts_ic_pair_ray). Any occluder serves the temporal update as well as the
- * nearest (docs/instant-caching.md §8), and the query stops at it. */
+ * nearest (docs/instant-caching.md §3), and the query stops at it. */
 TS_INLINE void ts_ic_pair_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
                                float* out) {
     TsRay shadow;

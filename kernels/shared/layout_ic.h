@@ -64,8 +64,8 @@
  * TS_IC_PAIR_WORDS uints: TS_IC_PAIR_RECORD the record (index into the IcRecordSurfaces
  * input), TS_IC_PAIR_VPL the VPL (index into the Vpls input). Its output,
  * TS_IC_PAIR_FLOATS floats: TS_IC_PAIR_HIT (uint bits) a triangle the shadow ray hits
- * (the one its any-hit query found), TS_IC_PAIR_VISIBLE (= TS_NO_HIT) when unoccluded, TS_IC_PAIR_FACING when the
- * geometry term is 0 (no ray traced). */
+ * (the one its any-hit query found), TS_IC_PAIR_VISIBLE (= TS_NO_HIT) when unoccluded,
+ * TS_IC_PAIR_FACING when the geometry term is 0 (no ray traced). */
 #define TS_IC_PAIR_WORDS 2
 #define TS_IC_PAIR_RECORD 0
 #define TS_IC_PAIR_VPL 1

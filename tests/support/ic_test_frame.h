@@ -11,9 +11,9 @@
 #include "device/scene_buffers.h"
 #include "gi/ic_gather.h"
 #include "gi/ic_passes.h"
-#include "render/renderer.h"
 #include "gi/irradiance_cache.h"
 #include "kernels/shared/vpl.h"
+#include "render/renderer.h"
 #include "scene/loader.h"
 
 namespace tessera::test {
@@ -67,8 +67,9 @@ struct IcTestFrame {
     /// Whether triangle `prim` meets the shadow ray of the pair (record, vpl) with bound b
     /// (the ray ts_ic_pair_ray builds): Möller–Trumbore in double, barycentrics and t
     /// within `slack` (relative) of their ranges, so that a watertight hit on a shared
-    /// edge counts for either triangle.
+    /// edge counts for either triangle. False for a `prim` that is no triangle.
     bool pair_ray_meets(float b, uint32_t record, uint32_t vpl, uint32_t prim, double slack = 1e-5) const {
+        if (prim >= buffers.triangle_count) return false;
         const ts::TsSurface s = ic_record_surface(records()[record]);
         ts::TsRay ray;
         if (ts::ts_vpl_geometry(&s, &vpls()[size_t(TS_VPL_FLOATS) * vpl], b, buffers.medium[TS_MEDIUM_G], &ray) <= 0.0f)
