@@ -18,34 +18,6 @@ struct TsTracer {
     bool coherent = false;
 };
 
-inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRayHit rh;
-    rh.ray.org_x = ray.org.x;
-    rh.ray.org_y = ray.org.y;
-    rh.ray.org_z = ray.org.z;
-    rh.ray.tnear = ray.tmin;
-    rh.ray.dir_x = ray.dir.x;
-    rh.ray.dir_y = ray.dir.y;
-    rh.ray.dir_z = ray.dir.z;
-    rh.ray.time = 0.0f;
-    rh.ray.tfar = ray.tmax;
-    rh.ray.mask = 0xffffffffu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(tr->scene, &ctx, &rh);
-    TsHit h;
-    h.t = rh.ray.tfar;
-    h.u = rh.hit.u;
-    h.v = rh.hit.v;
-    h.prim = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? TS_NO_HIT : rh.hit.primID;
-    if (h.prim == TS_NO_HIT) h.u = h.v = 0.0f;
-    return h;
-}
-
 /// `ray` as Embree's single ray (id 0, all masks, time 0).
 inline RTCRay ts_embree_ray(TsRay ray) {
     RTCRay r;
@@ -62,6 +34,23 @@ inline RTCRay ts_embree_ray(TsRay ray) {
     r.id = 0;
     r.flags = 0;
     return r;
+}
+
+inline TsHit ts_trace_closest(const TsTracer* tr, TsRay ray) {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray = ts_embree_ray(ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(tr->scene, &ctx, &rh);
+    TsHit h;
+    h.t = rh.ray.tfar;
+    h.u = rh.hit.u;
+    h.v = rh.hit.v;
+    h.prim = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? TS_NO_HIT : rh.hit.primID;
+    if (h.prim == TS_NO_HIT) h.u = h.v = 0.0f;
+    return h;
 }
 
 inline int ts_trace_occluded(const TsTracer* tr, TsRay ray) {
