@@ -73,6 +73,7 @@ ts::TsAisParams params_of(const AisThresholds& t, AisMode mode, int tile) {
     p.pm_cov = t.pm_cov;
     p.min_accepted = min_accepted(t, sets);
     p.complete = t.complete_sets > 0 ? t.complete_sets : p.min_accepted;
+    p.graded = t.graded_sets > 0 ? std::min(t.graded_sets, sets) : sets;
     p.amax = mode == AisMode::AMax;
     return p;
 }
@@ -204,6 +205,7 @@ std::vector<uint32_t> ais_schedule_table(const AisThresholds& t, AisMode mode, i
     table[TS_AIS_TABLE_PM_COV] = std::bit_cast<uint32_t>(p.pm_cov);
     table[TS_AIS_TABLE_MIN_ACCEPTED] = uint32_t(p.min_accepted);
     table[TS_AIS_TABLE_COMPLETE] = uint32_t(p.complete);
+    table[TS_AIS_TABLE_GRADED] = uint32_t(p.graded);
     table[TS_AIS_TABLE_MODE] = uint32_t(p.amax);
     table[TS_AIS_TABLE_COMPONENTS] = components;
     table[TS_AIS_TABLE_EDGE_TRIGGER] = std::bit_cast<uint32_t>(e.trigger);

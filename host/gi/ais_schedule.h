@@ -52,6 +52,13 @@ struct AisThresholds {
     /// that many is one the filter counts as cleanable (N_min, docs/ais.md §3); all N
     /// buys error at a worse rate than extra passes do (docs/ais.md §7).
     int complete_sets = 0;
+    /// A: the set count G of the graded term, ⌈a·(min(G, N)−1)⌉ sets beyond the completed
+    /// ones; 0: N (every set, the rule before it was bounded). 9, the N of the default
+    /// tile (3), so the default frame is the same and a larger tile costs no more per
+    /// flagged pixel: with ⌈a·(N−1)⌉ the extra work grew with N (Cornell box 512², tile
+    /// 8: 703k extra set evaluations against 39k at tile 3), and the sets past 9 bought
+    /// ~0.1 points of HDR-VDP-3 P ≥ 75% for 1.6–2.3× the frame time (docs/ais.md §7).
+    int graded_sets = 9;
 };
 
 /// What the base pass leaves per pixel (row-major, width × height), host side.
@@ -107,12 +114,12 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
 /// of (pixel, set) evaluations to dispatch. A flagged pixel p with own set k gets:
 ///   A-MAX: all N sets;
 ///   A: missing sets until it holds `complete_sets` distinct sets with its accepted
-///      neighbours' (each set present at most once: ais_reconstruct.h), plus ⌈a·(N−1)⌉
-///      more, a = (grade − trigger) / (1 − trigger)
+///      neighbours' (each set present at most once: ais_reconstruct.h), plus ⌈a·(G−1)⌉
+///      more, G = min(`graded_sets`, N), a = (grade − trigger) / (1 − trigger)
 ///      clamped to [0, 1], the signal's strength above its trigger; taken from the
 ///      window's farthest accepted neighbours first (the nearest stay in the estimate:
 ///      least blur). At the trigger the filter's estimate is as good as the pixel's own;
-///      far above it, all sets.
+///      far above it, G sets (all N where G ≥ N).
 /// Unflagged pixels keep their own set only. Tile edge n ≤ 8, so a set fits in 64 bits.
 /// A guidance without `grade` maps grades by g; one without `missing` misses no sets and
 /// one without `held` counts only the pixel's own set as held.

@@ -73,6 +73,8 @@ const Parameter kParameters[] = {
      .doc = "ais: coefficient of variation of in-scattered light that saturates PM guidance (0: off)"},
     {.option = "--ais-complete", .value_name = "N", .field = TS_SETTING(igi.ais.complete_sets), .min = 0, .max = 64,
      .unit = "sets", .doc = "ais: distinct sets a flagged edge pixel completes its window to (0: ⌈N/2⌉, N: all)"},
+    {.option = "--ais-graded-sets", .value_name = "G", .field = TS_SETTING(igi.ais.graded_sets), .min = 0, .max = 64,
+     .unit = "sets", .doc = "ais: A gives a flagged pixel ⌈a·(min(G, N)−1)⌉ sets graded by its guidance a (0: G = N)"},
     {.option = "--ais-edge-samples", .value_name = "N", .field = TS_SETTING(igi.edges.samples), .min = 1, .max = 15,
      .unit = "samples", .doc = "ais: extra camera samples an edge pixel takes at most (ais-max: all)"},
     {.option = "--ais-edge-trigger", .value_name = "T", .field = TS_SETTING(igi.edges.trigger), .min = 0, .max = 1,

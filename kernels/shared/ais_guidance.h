@@ -44,6 +44,7 @@ typedef struct TsAisParams {
     float id_cov, pm_cov;
     int min_accepted; /* N_min */
     int complete;     /* A: distinct sets to complete to */
+    int graded;       /* A: the graded term's set count G, ⌈a·(G−1)⌉ more sets (≤ N) */
     int amax;         /* 1: A-MAX */
 } TsAisParams;
 
@@ -241,8 +242,8 @@ TS_INLINE TsAisValue ts_ais_guidance(const TsAisGuideView* v, const TsAisParams*
 /* The sets pixel p (own set `own`) evaluates for a component of guidance `value`
  * (make_schedule, gi/ais_schedule.h): its own set where g ≤ trigger; else A-MAX all
  * `sets`, A the missing sets (bits of `missing`, taken in `order`: the other sets
- * far-first) until p holds `complete` distinct sets with `held`, then ⌈a·(N−1)⌉ more in
- * `order`, a = (grade − trigger) / (1 − trigger) clamped to [0, 1]. */
+ * far-first) until p holds `complete` distinct sets with `held`, then ⌈a·(G−1)⌉ more in
+ * `order`, a = (grade − trigger) / (1 − trigger) clamped to [0, 1], G = min(`graded`, N). */
 TS_INLINE ulong ts_ais_set_mask(TsAisValue value, float trigger, const TsAisParams* t, int own, int sets, ulong held,
                                 ulong missing, TS_GLOBAL const uint* order) {
     ulong mask = (ulong)1 << own;
@@ -256,7 +257,8 @@ TS_INLINE ulong ts_ais_set_mask(TsAisValue value, float trigger, const TsAisPara
         }
     float a = (value.grade - trigger) / (1.0f - trigger);
     a = a < 0.0f ? 0.0f : (1.0f < a ? 1.0f : a);
-    int more = (int)ceil(a * (float)(sets - 1));
+    const int graded = t->graded < sets ? t->graded : sets;
+    int more = (int)ceil(a * (float)(graded - 1));
     for (int r = 0; r < sets - 1 && more > 0; ++r)
         if (!((mask >> order[r]) & 1ul)) {
             mask |= (ulong)1 << order[r];
@@ -273,6 +275,7 @@ TS_INLINE TsAisParams ts_ais_params(TS_GLOBAL const uint* table) {
     t.pm_cov = as_float(table[TS_AIS_TABLE_PM_COV]);
     t.min_accepted = (int)table[TS_AIS_TABLE_MIN_ACCEPTED];
     t.complete = (int)table[TS_AIS_TABLE_COMPLETE];
+    t.graded = (int)table[TS_AIS_TABLE_GRADED];
     t.amax = (int)table[TS_AIS_TABLE_MODE];
     return t;
 }

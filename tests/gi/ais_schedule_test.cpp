@@ -204,6 +204,32 @@ TEST(AisSchedule, AAtADepthEdgeCompletesMissingSetsUpToTheThreshold) {
     EXPECT_EQ(a.item_pixels.size(), size_t(4));
 }
 
+TEST(AisSchedule, AGradesOverAtMostGradedSetsWhateverTheTile) {
+    // ID guidance alone, no missing sets: pixel (10,10) saturated (grade 1), (3,3) half
+    // way above the trigger 0.5 (grade 0.75, a = 0.5). A adds ⌈a·(min(G, N)−1)⌉ sets.
+    const int w = 20, h = 20;
+    AisGuidance g;
+    g.g[kAisID].assign(w * h, 0.0f);
+    g.g[kAisID][10 * w + 10] = 1.0f;
+    g.g[kAisID][3 * w + 3] = 0.75f;
+    auto sets = [&](int graded, int tile, AisMode mode) {
+        AisThresholds t;
+        t.graded_sets = graded;
+        const AisSchedule s = make_schedule(g, t, mode, w, h, tile);
+        return std::pair<int, int>(s.sets[kAisID][10 * w + 10], s.sets[kAisID][3 * w + 3]);
+    };
+    using P = std::pair<int, int>;
+    EXPECT_EQ(AisThresholds{}.graded_sets, 9);
+    EXPECT_EQ(sets(9, 5, AisMode::A), P(9, 5)) << "default: 1 + 8, 1 + ⌈0.5·8⌉ of 25 sets";
+    EXPECT_EQ(sets(9, 8, AisMode::A), P(9, 5)) << "the same at 64 sets";
+    EXPECT_EQ(sets(0, 5, AisMode::A), P(25, 13)) << "0: all N, 1 + ⌈0.5·24⌉";
+    EXPECT_EQ(sets(64, 5, AisMode::A), P(25, 13)) << "G past N counts as N";
+    EXPECT_EQ(sets(4, 5, AisMode::A), P(4, 3)) << "1 + 3, 1 + ⌈1.5⌉";
+    EXPECT_EQ(sets(1, 5, AisMode::A), P(1, 1)) << "G = 1: no graded sets";
+    EXPECT_EQ(sets(9, 3, AisMode::A), sets(0, 3, AisMode::A)) << "tile 3: G = 9 is every set";
+    EXPECT_EQ(sets(4, 5, AisMode::AMax), P(25, 25)) << "A-MAX gives all N sets whatever G";
+}
+
 TEST(AisSchedule, ItemsRunSetBySetThenTileByTile) {
     // A-MAX on a 40×36 image flagging a diagonal line and row 20 (ID g = 1): every flagged
     // pixel gets its 8 other sets. Items must come set by set, within a set by

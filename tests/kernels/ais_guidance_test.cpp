@@ -161,6 +161,7 @@ struct ScheduleCase {
     AisMode mode;
     uint32_t components;  // TS_COMPONENT_* guided
     float pm_cov;
+    int graded_sets = AisThresholds{}.graded_sets;
 };
 
 void PrintTo(const ScheduleCase& c, std::ostream* os) { *os << c.name; }
@@ -177,6 +178,7 @@ TEST_P(AisScheduleKernel, EqualsTheHostSchedule) {
     discontinuity_precompute(base.geometry, filter);  // as the host frame does
     AisThresholds t;
     t.pm_cov = c.pm_cov;
+    t.graded_sets = c.graded_sets;
     const std::array<bool, kAisComponents> enabled = {(c.components & TS_COMPONENT_SS) != 0,
                                                       (c.components & TS_COMPONENT_ID) != 0, media};
     const AisGuidance guidance = compute_guidance(base, filter, t, enabled);
@@ -246,6 +248,8 @@ INSTANTIATE_TEST_SUITE_P(
         ScheduleCase{"OpenclTile2", BackendKind::OpenCL, 2, AisMode::A, 7u, 0.0f},
         ScheduleCase{"OpenclTile4PmCov", BackendKind::OpenCL, 4, AisMode::A, 7u, 1.0f},
         ScheduleCase{"OpenclTile8", BackendKind::OpenCL, 8, AisMode::A, TS_COMPONENT_SS | TS_COMPONENT_ID, 0.0f},
+        ScheduleCase{"OpenclTile8AllGraded", BackendKind::OpenCL, 8, AisMode::A, TS_COMPONENT_SS | TS_COMPONENT_ID, 0.0f, 0},
+        ScheduleCase{"OpenclTile4Graded3", BackendKind::OpenCL, 4, AisMode::A, 7u, 0.0f, 3},
         ScheduleCase{"OpenclIdOnly", BackendKind::OpenCL, 3, AisMode::A, TS_COMPONENT_ID, 0.0f},
         ScheduleCase{"OpenclTile1", BackendKind::OpenCL, 1, AisMode::A, 7u, 0.0f},
         ScheduleCase{"EmbreeA", BackendKind::Embree, 3, AisMode::A, 7u, 0.0f},
