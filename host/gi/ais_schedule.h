@@ -17,7 +17,7 @@ namespace tessera {
 enum AisComponent { kAisSS = 0, kAisID = 1, kAisPM = 2, kAisComponents = 3 };
 
 /// A: a flagged pixel gets enough of the sets its filter window is missing to hold
-/// ⌈N/2⌉, plus a number graded by the signal, ⌈grade·(N−1)⌉ (make_schedule). A-MAX: every
+/// ⌈N/2⌉, plus a number graded by the signal, ⌈a·(min(G, N)−1)⌉ (make_schedule). A-MAX: every
 /// flagged pixel gets all N sets. (docs/ais.md §4-5: reading 1 of A-MAX; completing
 /// missing sets at edges instead of saturating them is our assumption.)
 enum class AisMode { A, AMax };
