@@ -57,7 +57,7 @@ struct AisThresholds {
     /// tile (3), so the default frame is the same and a larger tile costs no more per
     /// flagged pixel: with ⌈a·(N−1)⌉ the extra work grew with N (Cornell box 512², tile
     /// 8: 703k extra set evaluations against 39k at tile 3), and the sets past 9 bought
-    /// ~0.1 points of HDR-VDP-3 P ≥ 75% for 1.6–2.3× the frame time (docs/ais.md §7).
+    /// ~0.1 points of HDR-VDP-3 P ≥ 75% for 1.3–1.4× the frame time (docs/ais.md §7).
     int graded_sets = 9;
 };
 
