@@ -23,10 +23,33 @@ void prefix(size_t n, Count count, const char* what, std::vector<uint32_t>& offs
 }  // namespace
 
 std::vector<uint32_t> ais_item_list(const AisSchedule& s) {
-    std::vector<uint32_t> list(TS_AIS_ITEM_WORDS * s.item_pixels.size());
-    for (size_t i = 0; i < s.item_pixels.size(); ++i) {
-        list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_PIXEL] = s.item_pixels[i];
-        list[TS_AIS_ITEM_WORDS * i + TS_AIS_ITEM_CODE] = s.item_sets[i] | uint32_t(s.item_components[i]) << 8;
+    std::vector<uint32_t> order(s.item_pixels.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>(i);
+    return ais_item_list(s, order);
+}
+
+std::vector<uint32_t> ais_dispatch_order(const AisSchedule& s) {
+    const size_t n = s.item_pixels.size();
+    std::vector<uint32_t> order;
+    order.reserve(n);
+    for (size_t begin = 0; begin < n;) {  // one set's run of items
+        size_t end = begin;
+        while (end < n && s.item_sets[end] == s.item_sets[begin]) ++end;
+        for (int id_pass = 1; id_pass >= 0; --id_pass)
+            for (size_t i = begin; i < end; ++i)
+                if (((s.item_components[i] & TS_COMPONENT_ID) != 0) == (id_pass == 1))
+                    order.push_back(static_cast<uint32_t>(i));
+        begin = end;
+    }
+    return order;
+}
+
+std::vector<uint32_t> ais_item_list(const AisSchedule& s, const std::vector<uint32_t>& order) {
+    std::vector<uint32_t> list(TS_AIS_ITEM_WORDS * order.size());
+    for (size_t j = 0; j < order.size(); ++j) {
+        const uint32_t i = order[j];
+        list[TS_AIS_ITEM_WORDS * j + TS_AIS_ITEM_PIXEL] = s.item_pixels[i];
+        list[TS_AIS_ITEM_WORDS * j + TS_AIS_ITEM_CODE] = s.item_sets[i] | uint32_t(s.item_components[i]) << 8;
     }
     return list;
 }

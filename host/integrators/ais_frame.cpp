@@ -91,7 +91,8 @@ std::vector<uint32_t> AisFrame::item_list() {
     stats_.ais_items = schedule_.item_pixels.size();
     static_assert(1u << kAisSS == TS_COMPONENT_SS && 1u << kAisID == TS_COMPONENT_ID &&
                   1u << kAisPM == TS_COMPONENT_PM, "AIS component bits are the kernels' TS_COMPONENT_* bits");
-    return ais_item_list(schedule_);
+    dispatch_ = ais_dispatch_order(schedule_);
+    return ais_item_list(schedule_, dispatch_);
 }
 
 // AIS: guidance from the base pass, the schedule, the extra sets; each refined pixel's
@@ -104,9 +105,13 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
     const std::vector<uint32_t> list = schedule_sets(base_of(surf, media));
     stats_.ais_schedule_seconds = since(t_schedule);
     const auto t_kernel = Clock::now();
-    std::vector<float> items;
-    backend_.launch_items(KernelId::AisItem, frame, list, items);
+    std::vector<float> dispatched, items;
+    backend_.launch_items(KernelId::AisItem, frame, list, dispatched);
     stats_.ais_kernel_seconds = since(t_kernel);
+    // The kernels wrote the items in dispatch order (ais_dispatch_order); back to the schedule's.
+    items.resize(dispatched.size());
+    for (size_t j = 0; j < dispatch_.size(); ++j)
+        std::copy_n(&dispatched[j * TS_AIS_ITEM_FLOATS], TS_AIS_ITEM_FLOATS, &items[dispatch_[j] * TS_AIS_ITEM_FLOATS]);
     const auto t_merge = Clock::now();
     // own_sum_ is read only where a pixel evaluated more than its own set
     // (ais_reconstruct); elsewhere it is left unset, and raw_ = own sum / 1 unchanged.

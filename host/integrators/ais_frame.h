@@ -64,7 +64,8 @@ private:
     /// which lends geometry_ for the time: the extra sets' item list (TS_AIS_ITEM_WORDS
     /// per item).
     std::vector<uint32_t> schedule_sets(AisBaseBuffers base);
-    /// schedule_'s item list (TS_AIS_ITEM_WORDS per item); sets the flagged and item stats.
+    /// schedule_'s item list (TS_AIS_ITEM_WORDS per item) in dispatch order (dispatch_);
+    /// sets the flagged and item stats.
     std::vector<uint32_t> item_list();
     /// Edge guidance and schedule from the pass image `out` and emitter_ (edge_guidance_,
     /// edge_schedule_).
@@ -78,6 +79,7 @@ private:
     std::array<std::vector<double>, kAisComponents> own_sum_;
     AisGuidance guidance_;
     AisSchedule schedule_;
+    std::vector<uint32_t> dispatch_;  // the items' dispatch order (ais_dispatch_order)
     // Guidance (1 per pixel per component), then set counts, summed over frames; then the
     // edge guidance and each pixel's camera samples (1 + its edge samples).
     std::array<std::vector<double>, 8> guidance_sums_;

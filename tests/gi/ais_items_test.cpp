@@ -56,6 +56,28 @@ TEST(EdgeSegmentOffsets, PrefixSumsOverSegmentsAndFlaggedFraction) {
     EXPECT_DOUBLE_EQ(out.flagged, 6.0 / 12);
 }
 
+TEST(AisDispatchOrder, SetsInOrderIdItemsFirstEachGroupInScheduleOrder) {
+    // Items of sets 0, 0, 0, 0, 2, 2, 5: set 0's ID-bearing items (1, 3) go first, then its
+    // SS- and PM-only ones (0, 2); set 2 has no ID item; set 5 only one.
+    AisSchedule s;
+    s.item_pixels = {10, 11, 12, 13, 14, 15, 16};
+    s.item_sets = {0, 0, 0, 0, 2, 2, 5};
+    const uint8_t ss = TS_COMPONENT_SS, id = TS_COMPONENT_ID, pm = TS_COMPONENT_PM;
+    s.item_components = {ss, uint8_t(id | ss), pm, id, ss, pm, id};
+    const std::vector<uint32_t> order = ais_dispatch_order(s);
+    EXPECT_EQ(order, (std::vector<uint32_t>{1, 3, 0, 2, 4, 5, 6}));
+    const std::vector<uint32_t> list = ais_item_list(s, order);
+    ASSERT_EQ(list.size(), TS_AIS_ITEM_WORDS * order.size());
+    for (size_t j = 0; j < order.size(); ++j) {
+        EXPECT_EQ(list[TS_AIS_ITEM_WORDS * j + TS_AIS_ITEM_PIXEL], s.item_pixels[order[j]]) << j;
+        EXPECT_EQ(list[TS_AIS_ITEM_WORDS * j + TS_AIS_ITEM_CODE],
+                  s.item_sets[order[j]] | uint32_t(s.item_components[order[j]]) << 8)
+            << j;
+    }
+    EXPECT_EQ(ais_item_list(s), ais_item_list(s, {0, 1, 2, 3, 4, 5, 6})) << "no order: the schedule's";
+    EXPECT_TRUE(ais_dispatch_order(AisSchedule{}).empty());
+}
+
 TEST(AisTileCount, RowsOfSixteenPixelTiles) {
     EXPECT_EQ(ais_tile_count(16, 16), 1u);
     EXPECT_EQ(ais_tile_count(17, 16), 2u);
