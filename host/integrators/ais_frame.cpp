@@ -108,11 +108,12 @@ void AisFrame::add_sets(const TsFrame& frame, const std::vector<float>& surf, co
     std::vector<float> dispatched, items;
     backend_.launch_items(KernelId::AisItem, frame, list, dispatched);
     stats_.ais_kernel_seconds = since(t_kernel);
+    const auto t_merge = Clock::now();
     // The kernels wrote the items in dispatch order (ais_dispatch_order); back to the schedule's.
     items.resize(dispatched.size());
     for (size_t j = 0; j < dispatch_.size(); ++j)
-        std::copy_n(&dispatched[j * TS_AIS_ITEM_FLOATS], TS_AIS_ITEM_FLOATS, &items[dispatch_[j] * TS_AIS_ITEM_FLOATS]);
-    const auto t_merge = Clock::now();
+        std::copy_n(&dispatched[j * TS_AIS_ITEM_FLOATS], TS_AIS_ITEM_FLOATS,
+                    &items[size_t(dispatch_[j]) * TS_AIS_ITEM_FLOATS]);
     // own_sum_ is read only where a pixel evaluated more than its own set
     // (ais_reconstruct); elsewhere it is left unset, and raw_ = own sum / 1 unchanged.
     for (int c = 0; c < kAisComponents; ++c) {
