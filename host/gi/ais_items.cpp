@@ -22,12 +22,6 @@ void prefix(size_t n, Count count, const char* what, std::vector<uint32_t>& offs
 
 }  // namespace
 
-std::vector<uint32_t> ais_item_list(const AisSchedule& s) {
-    std::vector<uint32_t> order(s.item_pixels.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<uint32_t>(i);
-    return ais_item_list(s, order);
-}
-
 std::vector<uint32_t> ais_dispatch_order(const AisSchedule& s) {
     const size_t n = s.item_pixels.size();
     std::vector<uint32_t> order;

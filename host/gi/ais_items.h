@@ -17,9 +17,6 @@ namespace tessera {
 
 static_assert(kItemTile == TS_AIS_TILE, "the device's compact tables keep the host list's order");
 
-/// s's item list, TS_AIS_ITEM_WORDS per item (layout_igi.h), in s's item order.
-std::vector<uint32_t> ais_item_list(const AisSchedule& s);
-
 /// The order the host path dispatches s's items in, a permutation of 0 .. items − 1 (entry
 /// j: the schedule's item dispatched j-th): s's sets in s's order and, within a set, first
 /// the items that gather VPLs (TS_COMPONENT_ID), then the others, each group in s's order.
@@ -29,7 +26,8 @@ std::vector<uint32_t> ais_item_list(const AisSchedule& s);
 /// the merge adds a pixel's items in s's order (docs/ais.md §2).
 std::vector<uint32_t> ais_dispatch_order(const AisSchedule& s);
 
-/// s's item list in dispatch order: entry j holds item order[j] (TS_AIS_ITEM_WORDS each).
+/// s's item list in dispatch order: entry j holds item order[j], TS_AIS_ITEM_WORDS words
+/// (layout_igi.h).
 std::vector<uint32_t> ais_item_list(const AisSchedule& s, const std::vector<uint32_t>& order);
 
 /// T, the TS_AIS_TILE² pixel tiles of a width × height frame (rows of tiles).

@@ -73,7 +73,7 @@ ts::TsAisParams params_of(const AisThresholds& t, AisMode mode, int tile) {
     p.pm_cov = t.pm_cov;
     p.min_accepted = min_accepted(t, sets);
     p.complete = t.complete_sets > 0 ? t.complete_sets : p.min_accepted;
-    p.graded = t.graded_sets > 0 ? std::min(t.graded_sets, sets) : sets;
+    p.graded = t.graded_sets > 0 ? t.graded_sets : sets;  // ts_ais_set_mask takes min(G, N)
     p.amax = mode == AisMode::AMax;
     return p;
 }

@@ -44,7 +44,7 @@ typedef struct TsAisParams {
     float id_cov, pm_cov;
     int min_accepted; /* N_min */
     int complete;     /* A: distinct sets to complete to */
-    int graded;       /* A: the graded term's set count G, ⌈a·(G−1)⌉ more sets (≤ N) */
+    int graded;       /* A: the graded term's set count G, ⌈a·(min(G, N)−1)⌉ more sets */
     int amax;         /* 1: A-MAX */
 } TsAisParams;
 

@@ -145,7 +145,7 @@
  *   TS_AIS_TABLE_PM_COV        the same for PM (float; 0: no g_var)
  *   TS_AIS_TABLE_MIN_ACCEPTED  N_min, the accepted-neighbour count of a cleanable pixel
  *   TS_AIS_TABLE_COMPLETE      A: the distinct sets a flagged pixel completes to
- *   TS_AIS_TABLE_GRADED        A: the set count G of the graded term ⌈a·(G−1)⌉ (≤ N)
+ *   TS_AIS_TABLE_GRADED        A: the graded term's set count G, ⌈a·(min(G, N)−1)⌉ sets
  *   TS_AIS_TABLE_MODE          0 A, 1 A-MAX
  *   TS_AIS_TABLE_COMPONENTS    TS_COMPONENT_* bits of the components guided
  *   TS_AIS_TABLE_EDGE_TRIGGER, TS_AIS_TABLE_EDGE_FULL  edge contrast trigger, full (floats)

@@ -74,7 +74,6 @@ TEST(AisDispatchOrder, SetsInOrderIdItemsFirstEachGroupInScheduleOrder) {
                   s.item_sets[order[j]] | uint32_t(s.item_components[order[j]]) << 8)
             << j;
     }
-    EXPECT_EQ(ais_item_list(s), ais_item_list(s, {0, 1, 2, 3, 4, 5, 6})) << "no order: the schedule's";
     EXPECT_TRUE(ais_dispatch_order(AisSchedule{}).empty());
 }
 
