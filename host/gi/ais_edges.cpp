@@ -66,11 +66,15 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
     std::vector<float> y(pixels);
     for (size_t p = 0; p < pixels; ++p) y[p] = ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
     const float eps = edge_epsilon(radiance, g.width, dark);
-    // With tile 3 the filter's window is this 3×3 window, and the frame's precomputed masks
-    // (discontinuity_precompute) hold the test's answers: bit (dy + 1)·3 + (dx + 1). The
-    // test per pair took 6 ms of a 256² frame; the masks give the same bits.
-    const bool masks = s.tile == 3 && g.accepted.size() == pixels && g.accepted_for.tile == s.tile &&
-                       g.accepted_for.normal_cos == s.normal_cos && g.accepted_for.depth_rel == s.depth_rel;
+    // The frame's precomputed masks (discontinuity_precompute) hold the test's answers for
+    // every window that covers this 3×3 one (tile 3, and every tile from 4 on): bit
+    // (dy − lo)·n + (dx − lo). The test per pair took 6 ms of a 256² frame at tile 3 and
+    // 12 ms of a 512² frame at tile 8; the masks give the same bits.
+    int lo = 0, hi = 0;
+    discontinuity_window(s.tile, &lo, &hi);
+    const bool masks = lo <= -1 && hi >= 1 && s.tile <= 8 && g.accepted.size() == pixels &&
+                       g.accepted_for.tile == s.tile && g.accepted_for.normal_cos == s.normal_cos &&
+                       g.accepted_for.depth_rel == s.depth_rel;
     std::vector<float> out(pixels, 0.0f);
     parallel_rows(g.height, [&](int py) {
         for (int px = 0; px < g.width; ++px) {
@@ -80,7 +84,7 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
                 const int qx = px + kWindow[i][0], qy = py + kWindow[i][1];
                 if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
                 const size_t q = size_t(qy) * g.width + qx;
-                const bool accepted = masks ? (g.accepted[p] >> ((kWindow[i][1] + 1) * 3 + kWindow[i][0] + 1)) & 1u
+                const bool accepted = masks ? (g.accepted[p] >> ((kWindow[i][1] - lo) * s.tile + kWindow[i][0] - lo)) & 1u
                                             : discontinuity_accepts(g, s, p, q);
                 const bool light_edge = !emitter.empty() && (emitter[p] != 0) != (emitter[q] != 0);
                 if (accepted && !light_edge) continue;

@@ -58,15 +58,24 @@ TEST(AisEdgeGuidance, DepthEdgeWithContrastFlagsBothSides) {
 }
 
 TEST(AisEdgeGuidance, PrecomputedWindowMasksGiveTheSameGuidance) {
-    // The frame's discontinuity masks (tile 3: the same 3×3 window) stand in for the test.
-    GeometryBuffer g = two_walls(4.0f);
-    g.normal[3 * (2 * W + 1) + 0] = 1.0f, g.normal[3 * (2 * W + 1) + 2] = 0.0f;  // a crease at (1, 2)
-    const std::vector<float> img = pass_image(1.0f, 0.25f);
-    const std::vector<float> tested = edge_guidance(g, kFilter, img, 0.01f);
-    discontinuity_precompute(g, kFilter);
-    ASSERT_EQ(g.accepted.size(), size_t(W * H));
-    EXPECT_EQ(edge_guidance(g, kFilter, img, 0.01f), tested);
-    EXPECT_EQ(tested[2 * W + 1], 0.0f);  // a crease with no contrast across it
+    // The frame's discontinuity masks stand in for the test wherever the filter's window
+    // covers the guidance's 3×3 one: tile 3 and every tile from 4 on (tile 2's window,
+    // offsets -1..0, does not, and the test runs per pair).
+    for (int tile : {2, 3, 4, 5, 8}) {
+        SCOPED_TRACE(testing::Message() << "tile " << tile);
+        const DiscontinuitySettings filter{tile, 0.9f, 0.05f};
+        GeometryBuffer g = two_walls(4.0f);
+        g.normal[3 * (2 * W + 1) + 0] = 1.0f, g.normal[3 * (2 * W + 1) + 2] = 0.0f;  // a crease at (1, 2)
+        g.depth[4 * W + 6] = kInf;                                                    // an escaped ray at (6, 4)
+        std::vector<float> img = pass_image(1.0f, 0.25f);
+        for (int c = 0; c < 3; ++c) img[(4 * W + 6) * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] = 0.0f;  // black sky
+        const std::vector<float> tested = edge_guidance(g, filter, img, 0.01f);
+        discontinuity_precompute(g, filter);
+        ASSERT_EQ(g.accepted.size(), size_t(W * H));
+        EXPECT_EQ(edge_guidance(g, filter, img, 0.01f), tested);
+        EXPECT_EQ(tested[2 * W + 1], 0.0f);  // a crease with no contrast across it
+        EXPECT_GT(tested[4 * W + 5], 0.0f);  // beside the escaped ray, with contrast
+    }
 }
 
 TEST(AisEdgeGuidance, NoContrastOrNoGeometricEdgeFlagsNothing) {
