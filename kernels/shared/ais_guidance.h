@@ -105,6 +105,18 @@ TS_INLINE int ts_ais_unfilterable(ulong in_image, ulong accepted, int min_accept
     return ts_popcount64(accepted) < min_accepted && accepted != in_image;
 }
 
+#ifdef TS_HAS_DOUBLE
+/* The coefficient of variation from `count` luminances' sum and sum of squares (double,
+ * summed in window order), over `cov`, clamped to 1 (0 where the mean is 0). */
+TS_INLINE float ts_ais_cov_of_sums(double sum, double sum2, int count, float cov) {
+    const double mean = sum / count;
+    if (!(mean > 0.0)) return 0.0f;
+    const double var = sum2 / count - mean * mean;
+    const double c = sqrt(0.0 < var ? var : 0.0) / mean / cov;
+    return (float)(c < 1.0 ? c : 1.0);
+}
+#endif
+
 /* The coefficient of variation over p's accepted window positions of the luminance in v,
  * over `cov`, clamped to 1 (0 where the mean is 0): g_var of ID and PM. Sums in double in
  * window order where the device has it (the host's bits), else compensated float. */
@@ -119,11 +131,7 @@ TS_INLINE float ts_ais_window_cov(TS_GLOBAL const float* v, uint stride, int rgb
         sum2 += y * y;
         ++count;
     }
-    const double mean = sum / count;
-    if (!(mean > 0.0)) return 0.0f;
-    const double var = sum2 / count - mean * mean;
-    const double c = sqrt(0.0 < var ? var : 0.0) / mean / cov;
-    return (float)(c < 1.0 ? c : 1.0);
+    return ts_ais_cov_of_sums(sum, sum2, count, cov);
 #else
     float sum = 0.0f, sum_c = 0.0f, sum2 = 0.0f, sum2_c = 0.0f;
     for (ulong b = accepted; b != 0ul; b &= b - 1ul) {
@@ -140,6 +148,15 @@ TS_INLINE float ts_ais_window_cov(TS_GLOBAL const float* v, uint stride, int rgb
 #endif
 }
 
+/* SS from the visibility range lo..hi over A(p) and p's own visibility s: g = the range,
+ * or 1 on an unfilterable pixel whose own visibility is fractional; grade the range. */
+TS_INLINE TsAisValue ts_ais_ss_value(float lo, float hi, float s, ulong in_image, ulong accepted, int min_accepted) {
+    const float range = hi - lo;
+    const int edge = s > 0.0f && s < 1.0f && ts_ais_unfilterable(in_image, accepted, min_accepted);
+    TsAisValue r = {edge ? 1.0f : range, range};
+    return r;
+}
+
 /* SS: g = range of visibility over A(p), or 1 on an unfilterable pixel whose own
  * visibility is fractional; grade the range. */
 TS_INLINE TsAisValue ts_ais_ss(const TsAisGuideView* v, const TsAisParams* t, const long* offset, ulong in_image,
@@ -150,10 +167,7 @@ TS_INLINE TsAisValue ts_ais_ss(const TsAisGuideView* v, const TsAisParams* t, co
         lo = s < lo ? s : lo;
         hi = hi < s ? s : hi;
     }
-    const float s = v->visibility[p * v->surf_stride], range = hi - lo;
-    const int edge = s > 0.0f && s < 1.0f && ts_ais_unfilterable(in_image, accepted, t->min_accepted);
-    TsAisValue r = {edge ? 1.0f : range, range};
-    return r;
+    return ts_ais_ss_value(lo, hi, v->visibility[p * v->surf_stride], in_image, accepted, t->min_accepted);
 }
 
 /* Whether a pixel of p's 3×3 neighbourhood (in the image) lies across p's discontinuity
@@ -188,16 +202,22 @@ TS_INLINE int ts_ais_geometric_edge(const TsAisGuideView* v, ulong in_image, ulo
     return 0;
 }
 
-/* ID: g = max(g_geo, g_var) as 1 on an unfilterable or geometric-edge pixel, else g_var;
- * grade g_var. */
-TS_INLINE TsAisValue ts_ais_id(const TsAisGuideView* v, const TsAisParams* t, const long* offset, ulong in_image,
-                               ulong accepted, int x, int y) {
-    const size_t p = (size_t)y * (size_t)v->width + (size_t)x;
-    const float var = ts_ais_window_cov(v->indirect, v->surf_stride, v->indirect_rgb, offset, accepted, p, t->id_cov);
+/* ID from g_var = `var` (ts_ais_window_cov): g = max(g_geo, g_var) as 1 on an
+ * unfilterable or geometric-edge pixel, else g_var; grade g_var. */
+TS_INLINE TsAisValue ts_ais_id_value(const TsAisGuideView* v, const TsAisParams* t, float var, ulong in_image,
+                                     ulong accepted, int x, int y) {
     const int edge =
         ts_ais_unfilterable(in_image, accepted, t->min_accepted) || ts_ais_geometric_edge(v, in_image, accepted, x, y);
     TsAisValue r = {edge ? 1.0f : var, var};
     return r;
+}
+
+/* ID: ts_ais_id_value of the CoV of E_id over A(p). */
+TS_INLINE TsAisValue ts_ais_id(const TsAisGuideView* v, const TsAisParams* t, const long* offset, ulong in_image,
+                               ulong accepted, int x, int y) {
+    const size_t p = (size_t)y * (size_t)v->width + (size_t)x;
+    const float var = ts_ais_window_cov(v->indirect, v->surf_stride, v->indirect_rgb, offset, accepted, p, t->id_cov);
+    return ts_ais_id_value(v, t, var, in_image, accepted, x, y);
 }
 
 /* PM: g = 1 where a window pixel the filter rejects has a medium length differing by more

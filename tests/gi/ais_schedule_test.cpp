@@ -2,10 +2,15 @@
 // flagged, A grades and A-MAX saturates, and the schedule is deterministic.
 #include "gi/ais_schedule.h"
 
+#include <bit>
+#include <cmath>
+#include <random>
 #include <set>
 #include <utility>
 
 #include <gtest/gtest.h>
+
+#include "kernels/shared/ais_guidance.h"
 
 namespace tessera {
 namespace {
@@ -278,6 +283,74 @@ TEST(AisSchedule, RepeatRunsAreBitIdentical) {
     EXPECT_EQ(s1.item_sets, s2.item_sets);
     EXPECT_EQ(s1.item_components, s2.item_components);
     for (int c : {kAisSS, kAisID}) EXPECT_EQ(s1.sets[c], s2.sets[c]);
+}
+
+// The host's guidance takes each window's statistics one window position at a time across
+// a row (compute_guidance); the shared per-pixel function (ts_ais_guidance, which the
+// device's schedule kernel runs) loops over each pixel's mask bits. On random buffers
+// with depth steps, creases, escaped rays and penumbrae, both give the same g and grade
+// bit for bit, at tiles whose windows cross the borders in every way, with the frame's
+// precomputed masks and without.
+TEST(AisGuidance, RowWiseWindowsEqualThePerPixelGuidance) {
+    constexpr int w = 19, h = 14;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    AisBaseBuffers b;
+    GeometryBuffer& g = b.geometry;
+    g.width = w, g.height = h;
+    for (int i = 0; i < w * h; ++i) {
+        const float r = u(rng), z = r < 0.1f ? ts::TS_INF : r < 0.4f ? 2.6f : 2.0f;
+        const float nz = u(rng) < 0.2f ? 0.7f : 1.0f, nx = std::sqrt(1.0f - nz * nz);
+        g.normal.insert(g.normal.end(), {nx, 0.0f, nz});
+        g.position.insert(g.position.end(), {0.01f * (i % w), 0.01f * (i / w), -z});
+        g.depth.push_back(z);
+        b.visibility.push_back(u(rng) < 0.5f ? 1.0f : u(rng));
+        b.indirect.push_back(u(rng) < 0.05f ? 40.0f * u(rng) : u(rng));
+    }
+    AisThresholds t;
+    t.id_cov = 0.7f;
+    for (int tile : {2, 3, 4, 5, 8}) {
+        for (bool precomputed : {false, true}) {
+            SCOPED_TRACE(testing::Message() << "tile " << tile << (precomputed ? ", precomputed masks" : ""));
+            const DiscontinuitySettings filter{tile, 0.9f, 0.05f};
+            if (precomputed) discontinuity_precompute(g, filter);
+            else g.accepted.clear();
+            const AisGuidance got = compute_guidance(b, filter, t, kSurface);
+
+            ts::TsAisGuideView v{};
+            v.depth = g.depth.data(), v.normal = g.normal.data(), v.position = g.position.data();
+            v.visibility = b.visibility.data(), v.indirect = b.indirect.data();
+            v.depth_stride = v.surf_stride = v.media_stride = 1, v.vec_stride = 3;
+            v.width = w, v.height = h, v.tile = tile, v.cos_min = filter.normal_cos, v.depth_rel = filter.depth_rel;
+            ts::TsAisParams params{};  // what SS and ID read: N_min (default ⌈N/2⌉) and the CoV scale
+            params.min_accepted = (tile * tile + 1) / 2;
+            params.id_cov = t.id_cov;
+            const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(tile, w);
+            size_t flagged = 0, partial = 0;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    const size_t p = size_t(y) * w + x;
+                    const uint64_t in_image = ts::ts_ais_in_image(x, y, w, h, tile);
+                    const uint64_t accepted = ts::ts_discontinuity_mask(x, y, w, h, tile, g.depth.data(),
+                                                                        g.normal.data(), g.position.data(), 1, 3, 1,
+                                                                        filter.normal_cos, filter.depth_rel);
+                    partial += accepted != in_image;
+                    for (int c : {kAisSS, kAisID}) {
+                        const ts::TsAisValue want =
+                            ts::ts_ais_guidance(&v, &params, offset.data(), c, in_image, accepted, x, y);
+                        ASSERT_EQ(std::bit_cast<uint32_t>(got.g[c][p]), std::bit_cast<uint32_t>(want.g))
+                            << "component " << c << " pixel " << x << "," << y;
+                        ASSERT_EQ(std::bit_cast<uint32_t>(got.grade[c][p]), std::bit_cast<uint32_t>(want.grade))
+                            << "component " << c << " pixel " << x << "," << y;
+                        flagged += want.grade > 0.0f && want.grade < 1.0f;
+                    }
+                }
+            if (tile > 1) {
+                EXPECT_GT(partial, size_t(w * h / 4)) << "the windows should reject some positions";
+                EXPECT_GT(flagged, size_t(w * h / 4)) << "and the grades should be fractional";
+            }
+        }
+    }
 }
 
 }  // namespace
