@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -122,20 +123,78 @@ void window_bits_run(const GeometryArrays& a, const DiscontinuitySettings& s, in
     }
 }
 
+// Four pixels' window means at once, for pixels p..p+3 whose windows lie inside the image
+// (masks bits[0..3]), C channels: ts_discontinuity_mean's double sums over the positions
+// in window order, then sum / count, as 4·C lanes that one position's 4·C contiguous input
+// floats add into (a rejected position adds +0, its value's bits masked off, which leaves
+// a sum that starts at +0 as it was). The same floats; pixel by pixel over the mask's bits
+// the filter took 1.6 times as long (perf, 512², tile 3 and tile 8 alike).
+// GCC's vector types: AVX2 registers on x86-64-v3, pairs of SSE2 registers without it.
+using Double4 = double __attribute__((vector_size(32)));
+using Float4 = float __attribute__((vector_size(16)));
+using Bits4 = uint64_t __attribute__((vector_size(32)));
+
+template <int C>
+void mean4(const float* in, size_t p, const ptrdiff_t* offset, int positions, const uint64_t* bits, float* out) {
+    static_assert(C == 1 || C == 3, "1 or 3 channels");
+    Double4 sum[C] = {};
+    const Bits4 masks = {bits[0], bits[1], bits[2], bits[3]};
+    for (int i = 0; i < positions; ++i) {
+        const float* q = in + (static_cast<ptrdiff_t>(p) + offset[i]) * C;
+        const Bits4 keep = Bits4{} - ((masks >> i) & 1u);  // lane j: all ones where pixel j accepts i
+        // Lane e of vector v holds pixel (4v + e) / C's channel: the pixels' keeps spread so.
+        Bits4 k[C];
+        if constexpr (C == 1) {
+            k[0] = keep;
+        } else {
+            k[0] = __builtin_shuffle(keep, Bits4{0, 0, 0, 1});
+            k[1] = __builtin_shuffle(keep, Bits4{1, 1, 2, 2});
+            k[2] = __builtin_shuffle(keep, Bits4{2, 3, 3, 3});
+        }
+        for (int v = 0; v < C; ++v) {
+            Float4 f;
+            std::memcpy(&f, q + 4 * v, sizeof f);
+            sum[v] += reinterpret_cast<Double4>(reinterpret_cast<Bits4>(__builtin_convertvector(f, Double4)) & k[v]);
+        }
+    }
+    double lanes[4 * C];
+    std::memcpy(lanes, sum, sizeof lanes);
+    for (int j = 0; j < 4; ++j) {
+        const int count = std::popcount(bits[j]);
+        for (int c = 0; c < C; ++c) out[j * C + c] = static_cast<float>(lanes[j * C + c] / count);
+    }
+}
+
 // The filter of rows [y0, y1) with C channels: each pixel's mean over its accepted window
-// positions (ts_discontinuity_mean, the device resolve's too).
+// positions, four at a time where the windows lie inside the image (mean4), else
+// ts_discontinuity_mean (the device resolve's) pixel by pixel.
 template <int C>
 void filter_rows(const GeometryBuffer& g, const DiscontinuitySettings& s, bool precomputed, const float* __restrict in,
                  float* __restrict out, uint8_t* accepted, int y0, int y1) {
-    const int w = g.width;
-    const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(s.tile, w);
-    for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; ++x) {
+    const int w = g.width, h = g.height, n = s.tile;
+    const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, w);
+    int lo, hi;
+    discontinuity_window(n, &lo, &hi);
+    for (int y = y0; y < y1; ++y) {
+        const bool rows_inside = y + lo >= 0 && y + hi < h;
+        for (int x = 0; x < w;) {
             const size_t p = size_t(y) * w + x;
+            if (rows_inside && x + lo >= 0 && x + 3 + hi < w) {
+                uint64_t bits[4];
+                for (int j = 0; j < 4; ++j)
+                    bits[j] = precomputed ? g.accepted[p + j] : compute_window_mask(g, s, x + j, y);
+                mean4<C>(in, p, offset.data(), n * n, bits, out + p * C);
+                if (accepted)
+                    for (int j = 0; j < 4; ++j) accepted[p + j] = static_cast<uint8_t>(std::popcount(bits[j]));
+                x += 4;
+                continue;
+            }
             const uint64_t bits = precomputed ? g.accepted[p] : compute_window_mask(g, s, x, y);
             ts::ts_discontinuity_mean(in, C, C, p, offset.data(), bits, out + p * C);
             if (accepted) accepted[p] = static_cast<uint8_t>(std::popcount(bits));
+            ++x;
         }
+    }
 }
 
 }  // namespace

@@ -3,11 +3,14 @@
 #include "gi/discontinuity_filter.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <random>
 
 #include <gtest/gtest.h>
+
+#include "kernels/shared/discontinuity.h"
 
 namespace tessera {
 namespace {
@@ -180,6 +183,41 @@ TEST(DiscontinuityFilter, PrecomputedMasksMatchThePairwiseTest) {
                 fresh.accepted.clear();
                 return discontinuity_window_mask(fresh, looser, 11, 8);
             }());
+        }
+    }
+}
+
+// The host filter takes four pixels' window sums at once where their windows lie inside
+// the image, and ts_discontinuity_mean (the device resolve's) pixel by pixel elsewhere. On
+// random geometry and values (a tenth of them 1000, so a position summed that should not
+// be shows), 1 and 3 channels, with precomputed masks and without, both give the same
+// floats bit for bit as the per-pixel mean.
+TEST(DiscontinuityFilter, FourPixelSumsEqualThePerPixelMean) {
+    for (int n : {2, 3, 4, 8}) {
+        for (int channels : {1, 3}) {
+            for (bool precomputed : {false, true}) {
+                SCOPED_TRACE(testing::Message() << "tile " << n << ", " << channels << " channels"
+                                                << (precomputed ? ", precomputed masks" : ""));
+                const DiscontinuitySettings s{n, 0.9f, 0.05f};
+                GeometryBuffer g = random_geometry(29, 19, 7u + n);
+                if (precomputed) discontinuity_precompute(g, s);
+                std::vector<float> in(29 * 19 * channels);
+                std::mt19937 rng(9);
+                for (float& v : in) v = std::uniform_real_distribution<float>(0.0f, 1.0f)(rng) < 0.1f ? 1e3f : 0.37f;
+                std::vector<float> out;
+                std::vector<uint8_t> count;
+                discontinuity_filter(g, s, channels, in, out, &count);
+                const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, 29);
+                for (int y = 0; y < 19; ++y)
+                    for (int x = 0; x < 29; ++x) {
+                        const size_t p = size_t(y) * 29 + x;
+                        const uint64_t bits = discontinuity_window_mask(g, s, x, y);
+                        float want[3];
+                        ts::ts_discontinuity_mean(in.data(), channels, channels, p, offset.data(), bits, want);
+                        ASSERT_EQ(std::memcmp(&out[p * channels], want, 4 * channels), 0) << x << "," << y;
+                        ASSERT_EQ(count[p], std::popcount(bits)) << x << "," << y;
+                    }
+            }
         }
     }
 }
