@@ -1,6 +1,8 @@
 #include "gi/ais_reconstruct.h"
 
+#include <array>
 #include <bit>
+#include <cstddef>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -16,6 +18,7 @@ void ais_reconstruct(const GeometryBuffer& g, const DiscontinuitySettings& s, co
     const int w = g.width, h = g.height, n = s.tile;
     int lo, hi;
     discontinuity_window(n, &lo, &hi);
+    const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, w);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < w; ++x) {
@@ -24,17 +27,21 @@ void ais_reconstruct(const GeometryBuffer& g, const DiscontinuitySettings& s, co
                 if (std::popcount(mask) < 2) continue;  // the filter's value stands
                 double sum[3] = {own_sum[3 * p], own_sum[3 * p + 1], own_sum[3 * p + 2]};
                 int count = std::popcount(mask);
-                const uint64_t accepted = discontinuity_window_mask(g, s, x, y);
-                int i = 0;
-                for (int dy = lo; dy <= hi; ++dy)
-                    for (int dx = lo; dx <= hi; ++dx, ++i) {
-                        if (!(accepted >> i & 1)) continue;  // outside the image, or rejected
-                        const int qx = x + dx, qy = y + dy;
-                        if (mask >> interleave_set(qx, qy, n) & 1) continue;  // p has its own
-                        const size_t q = size_t(qy) * w + qx;
-                        for (int j = 0; j < 3; ++j) sum[j] += base[3 * q + j];
-                        ++count;
-                    }
+                // The set held by window position (row r, column c) is set_col[c] +
+                // set_row[r] (interleave_set; x + lo + k >= lo > -n, so + n keeps it >= 0).
+                int set_col[8], set_row[8];
+                for (int k = 0; k < n; ++k) {
+                    set_col[k] = (x + lo + k + n) % n;
+                    set_row[k] = n * ((y + lo + k + n) % n);
+                }
+                // The accepted positions in window order (outside the image: no bit).
+                for (uint64_t b = discontinuity_window_mask(g, s, x, y); b; b &= b - 1) {
+                    const int i = std::countr_zero(b);
+                    if (mask >> (set_col[i % n] + set_row[i / n]) & 1) continue;  // p has its own
+                    const size_t q = static_cast<size_t>(static_cast<ptrdiff_t>(p) + offset[i]);
+                    for (int j = 0; j < 3; ++j) sum[j] += base[3 * q + j];
+                    ++count;
+                }
                 for (int j = 0; j < 3; ++j) out[3 * p + j] = static_cast<float>(sum[j] / count);
             }
     });
