@@ -40,7 +40,7 @@ ts::TsAisGuideView guide_view(const AisBaseBuffers& b, const DiscontinuitySettin
 // accepted window positions (`masks`, the row's): SS's range (lo, hi) and ID's sums. Taken
 // one window position at a time across the row, a branch-free loop the compiler runs in
 // SIMD, instead of pixel by pixel over the mask's bits (at tile 8, 64 positions a pixel,
-// that loop took 2.3 times as long). Each pixel's positions still come in window order,
+// that loop took 1.5 times as long). Each pixel's positions still come in window order,
 // with the same operations as ts_ais_ss and ts_ais_window_cov: the same values.
 struct WindowRow {
     std::vector<float> lo, hi;

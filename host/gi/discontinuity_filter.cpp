@@ -81,7 +81,7 @@ GeometryArrays geometry_arrays(const GeometryBuffer& g) {
 // (dx, dy) at position i: one offset over a run of a row, a branch-free loop over
 // consecutive pixels that the compiler runs in SIMD (the per-pixel calls of
 // ts_discontinuity_accepts, with its early returns and the G-buffer's interleaved
-// coordinates, took 3.5 times as long at tile 8). The same test, term by term as
+// coordinates, took 2.6 times as long at tile 8). The same test, term by term as
 // ts_discontinuity_accepts writes it, on the same operands: the same bits (the
 // precomputed-masks test checks it). The caller keeps (x + dx, y + dy) inside the image.
 // Plane: the arrays have positions (the test's use_plane).
