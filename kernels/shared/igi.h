@@ -65,11 +65,12 @@ typedef struct TsIgiLink {
     uint vpl;   /* VPL index, or TS_NO_HIT for a light sample */
 } TsIgiLink;
 
-/* The running sums of one pixel's links: E_ss and E_id before normalisation, and the
- * number of light samples found visible. */
+/* The running sums of one pixel's links: E_ss and E_id before normalisation, the number
+ * of light samples the surface faces (their shadow rays traced) and of those found
+ * visible. */
 typedef struct TsIgiGather {
     float3 ss, id;
-    uint seen;
+    uint facing, seen;
 } TsIgiGather;
 
 /* Number of light-sample links of a set for `mask` (m, or 0). */
@@ -112,7 +113,7 @@ TS_INLINE int ts_igi_link(const TsSceneView* sv, const TsFrame* f, const TsSurfa
 TS_INLINE TsIgiGather ts_igi_gather_begin(void) {
     TsIgiGather g;
     g.ss = g.id = make_float3(0.0f, 0.0f, 0.0f);
-    g.seen = 0u;
+    g.facing = g.seen = 0u;
     return g;
 }
 
@@ -131,14 +132,19 @@ TS_INLINE void ts_igi_gather_add(TsIgiGather* g, const TsSceneView* sv, const Ts
 }
 
 /* E_ss = direct irradiance / π from the set's m light samples, E_id = indirect
- * irradiance / π from its VPLs (the gather sum of shared/vpl.h), and the fraction of the
- * light samples that reach the light (0 for samples the surface faces away from). */
+ * irradiance / π from its VPLs (the gather sum of shared/vpl.h), and the visibility: the
+ * fraction of the m samples not blocked, a sample behind the surface's plane counting as
+ * not blocked. AIS's SS guidance reads it (docs/ais.md §3). Samples behind the plane are
+ * no shadow: counted as blocked, every set's visibility differed on a surface that faces
+ * part of a light (each set's samples cover a different strip of it), which flagged whole
+ * walls the filter cleans; and the fraction of the faced samples that are visible swings
+ * from 0 to 1 where a surface faces one sample, which flagged more than it saved. */
 TS_INLINE void ts_igi_gather_end(const TsIgiGather* g, const TsFrame* f, float3* e_ss, float3* e_id,
                                  float* visible) {
     float m = (float)f->shadow_samples;
     *e_ss = g->ss * (TS_INV_PI / m);
     *e_id = ts_vpl_gather_result(g->id);
-    *visible = (float)g->seen / m;
+    *visible = (m - (float)(g->facing - g->seen)) / m;
 }
 
 /* Follows mirror and dielectric bounces from the camera (at most 5) to the first
@@ -223,8 +229,9 @@ TS_INLINE void ts_igi_surface_set(const TsSceneView* sv, const TsTracer* tracer,
         uint n = ts_igi_link_count(sv, f, k, mask);
         for (uint j = 0u; j < n; ++j) {
             TsIgiLink l;
-            if (ts_igi_link(sv, f, &v->s, k, mask, j, &l) && !ts_trace_occluded(tracer, l.shadow))
-                ts_igi_gather_add(&g, sv, &med, &l);
+            if (!ts_igi_link(sv, f, &v->s, k, mask, j, &l)) continue;
+            if (l.vpl == TS_NO_HIT) ++g.facing;
+            if (!ts_trace_occluded(tracer, l.shadow)) ts_igi_gather_add(&g, sv, &med, &l);
         }
     }
     ts_igi_gather_end(&g, f, e_ss, e_id, visible);

@@ -42,7 +42,7 @@ typedef struct TS_ALIGN64 TsIgiLanes {
         origin[3][TS_PACKET_LANES];
     float pos_scale[TS_PACKET_LANES];
     float ss[3][TS_PACKET_LANES], id[3][TS_PACKET_LANES];
-    uint seen[TS_PACKET_LANES];
+    uint facing[TS_PACKET_LANES], seen[TS_PACKET_LANES];
 } TsIgiLanes;
 
 /* One link against the lanes: which lanes take part (in_ss, in_id: -1 or 0), whose rays
@@ -80,7 +80,7 @@ TS_INLINE void ts_igi_lanes_set(TsIgiLanes* ls, int i, const TsSurface* s) {
     ls->origin[0][i] = s->origin.x, ls->origin[1][i] = s->origin.y, ls->origin[2][i] = s->origin.z;
     ls->pos_scale[i] = s->pos_scale;
     for (int a = 0; a < 3; ++a) ls->ss[a][i] = ls->id[a][i] = 0.0f;
-    ls->seen[i] = 0u;
+    ls->facing[i] = ls->seen[i] = 0u;
 }
 
 /* x where mask is -1, +0 where it is 0: a select GCC 12 vectorises (it does not for
@@ -107,7 +107,8 @@ TS_INLINE void ts_igi_lanes_light_links(const TsIgiLanes* TS_RESTRICT ls, TsLigh
 }
 
 /* Adds the light-sample terms of the lanes with L->visible[i] = -1 to their E_ss and
- * counts them as seen, with the medium's transmittance along each lane's ray in r. */
+ * counts them as seen, with the medium's transmittance along each lane's ray in r; counts
+ * the traced ones (L->traced[i] = -1) as facing. */
 TS_INLINE void ts_igi_lanes_light_gather(TsIgiLanes* TS_RESTRICT ls, const TsIgiLinkLanes* TS_RESTRICT L,
                                           const TsMedium* med, const TsRayLanes* TS_RESTRICT r) {
     if (!med->present) {
@@ -120,11 +121,13 @@ TS_INLINE void ts_igi_lanes_light_gather(TsIgiLanes* TS_RESTRICT ls, const TsIgi
             ls->ss[0][i] += t.x;
             ls->ss[1][i] += t.y;
             ls->ss[2][i] += t.z;
+            ls->facing[i] += (uint)L->traced[i] & 1u;
             ls->seen[i] += (uint)v & 1u;
         }
         return;
     }
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        ls->facing[i] += (uint)L->traced[i] & 1u;
         if (!L->visible[i]) continue;
         const float3 ci = make_float3(L->c[0][i], L->c[1][i], L->c[2][i]);
         const float3 t = ts_igi_light_term(ci, ts_shadow_transmittance(med, ts_ray_lanes_get(r, i)));
@@ -231,6 +234,7 @@ TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer
         if (set[i] != k || links[i] == 0u) continue;
         gather[i].ss = make_float3(ls.ss[0][i], ls.ss[1][i], ls.ss[2][i]);
         gather[i].id = make_float3(ls.id[0][i], ls.id[1][i], ls.id[2][i]);
+        gather[i].facing = ls.facing[i];
         gather[i].seen = ls.seen[i];
     }
 }

@@ -61,8 +61,9 @@
  *   TS_IGI_SURF_NORMAL     3 floats: shading normal
  *   TS_IGI_SURF_DISTANCE   distance to the surface along the camera path (+inf on a miss)
  *   TS_IGI_SURF_THROUGHPUT 3 floats: throughput of specular bounces before it (1 for none)
- *   TS_IGI_SURF_VISIBLE    fraction of the light samples that reached the light
- *                          unoccluded (AIS soft-shadow guidance)
+ *   TS_IGI_SURF_VISIBLE    fraction of the set's light samples not blocked, one behind
+ *                          the surface's plane counting as not blocked (AIS soft-shadow
+ *                          guidance; ts_igi_gather_end)
  *   TS_IGI_SURF_POSITION   3 floats: the surface position (world space; for the filter's
  *                          plane-distance test)
  *   TS_IGI_SURF_GEO_NORMAL 3 floats: geometric normal (toward the viewer)

@@ -140,7 +140,7 @@ TEST(IgiGather16, LightLinksEqualTheSharedContributionPerLane) {
 
 // Sums after two VPLs and two light samples with a fixed visibility pattern equal the
 // one-pixel gather (ts_igi_gather_add) of the visible links, bit for bit; hidden lanes'
-// sums do not move, and the light samples seen are counted.
+// sums do not move, and the light samples traced (faced) and seen are counted.
 void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
     std::mt19937 rng(7);
     float vpl[TS_VPL_FLOATS];
@@ -174,8 +174,10 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
         }
         ts::ts_igi_lanes_light_links(&ls, q, &L, &r);
         for (int i = 0; i < kLanes; ++i) L.visible[i] = L.traced[i] && (i + round) % 4 != 1 ? -1 : 0;
+        if (round == 1) L.traced[5] = L.visible[5] = 0;  // a lane that does not face the sample
         ts::ts_igi_lanes_light_gather(&ls, &L, &med, &r);
         for (int i = 0; i < kLanes; ++i) {
+            want[i].facing += L.traced[i] ? 1u : 0u;  // as ts_igi_surface_set counts them
             if (!visible[i]) continue;
             ts::TsIgiLink l;
             l.vpl = TS_NO_HIT;
@@ -183,7 +185,7 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
             ts::ts_igi_gather_add(&want[i], &sv, &med, &l);
         }
     }
-    int any = 0;
+    int any = 0, blocked = 0;
     for (int i = 0; i < kLanes; ++i) {
         EXPECT_TRUE(same_bits(ls.id[0][i], want[i].id.x) && same_bits(ls.id[1][i], want[i].id.y) &&
                     same_bits(ls.id[2][i], want[i].id.z))
@@ -192,9 +194,37 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
                     same_bits(ls.ss[2][i], want[i].ss.z))
             << "lane " << i << " E_ss " << ls.ss[0][i] << " vs " << want[i].ss.x;
         EXPECT_EQ(ls.seen[i], want[i].seen) << "lane " << i;
+        EXPECT_EQ(ls.facing[i], want[i].facing) << "lane " << i;
         any += want[i].id.x > 0.0f && want[i].ss.x > 0.0f;
+        blocked += want[i].facing > want[i].seen;
     }
     EXPECT_GT(any, 0) << "the pattern must leave some lanes with both sums";
+    EXPECT_GT(blocked, 0) << "... and some with samples faced but blocked";
+    EXPECT_EQ(want[5].facing, 1u) << "lane 5 faces one of the two samples";
+}
+
+// The visibility AIS's SS guidance reads: the fraction of the m light samples not blocked,
+// a sample behind the surface's plane counting as not blocked (it is no shadow).
+TEST(IgiGather, VisibilityIsTheFractionOfSamplesNotBlocked) {
+    TsFrame f{};
+    f.shadow_samples = 4;
+    ts::float3 e_ss, e_id;
+    float visible = -1.0f;
+    ts::TsIgiGather g = ts::ts_igi_gather_begin();
+    ts::ts_igi_gather_end(&g, &f, &e_ss, &e_id, &visible);
+    EXPECT_EQ(visible, 1.0f) << "facing no sample: no shadow";
+    g.facing = 2, g.seen = 2;
+    ts::ts_igi_gather_end(&g, &f, &e_ss, &e_id, &visible);
+    EXPECT_EQ(visible, 1.0f) << "both faced samples visible, two behind the plane";
+    g.facing = 1, g.seen = 0;
+    ts::ts_igi_gather_end(&g, &f, &e_ss, &e_id, &visible);
+    EXPECT_EQ(visible, 0.75f) << "the one faced sample blocked";
+    g.facing = 4, g.seen = 1;
+    ts::ts_igi_gather_end(&g, &f, &e_ss, &e_id, &visible);
+    EXPECT_EQ(visible, 0.25f);
+    g.facing = 4, g.seen = 0;
+    ts::ts_igi_gather_end(&g, &f, &e_ss, &e_id, &visible);
+    EXPECT_EQ(visible, 0.0f) << "umbra";
 }
 
 // The packet's answers are the single rays' (ts_trace_occluded) for the traced lanes, in
