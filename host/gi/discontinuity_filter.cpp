@@ -129,7 +129,8 @@ void window_bits_run(const GeometryArrays& a, const DiscontinuitySettings& s, in
 // floats add into (a rejected position adds +0, its value's bits masked off, which leaves
 // a sum that starts at +0 as it was). The same floats; pixel by pixel over the mask's bits
 // the filter took 1.6 times as long (perf, 512², tile 3 and tile 8 alike).
-// GCC's vector types: AVX2 registers on x86-64-v3, pairs of SSE2 registers without it.
+// GCC's and Clang's vector types: AVX2 registers on x86-64-v3, pairs of SSE2 registers
+// without it.
 using Double4 = double __attribute__((vector_size(32)));
 using Float4 = float __attribute__((vector_size(16)));
 using Bits4 = uint64_t __attribute__((vector_size(32)));
@@ -143,13 +144,15 @@ void mean4(const float* in, size_t p, const ptrdiff_t* offset, int positions, co
         const float* q = in + (static_cast<ptrdiff_t>(p) + offset[i]) * C;
         const Bits4 keep = Bits4{} - ((masks >> i) & 1u);  // lane j: all ones where pixel j accepts i
         // Lane e of vector v holds pixel (4v + e) / C's channel: the pixels' keeps spread so.
+        // (Built from keep's elements: GCC makes each a vpermq, and Clang, which has no
+        // __builtin_shuffle, takes it too.)
         Bits4 k[C];
         if constexpr (C == 1) {
             k[0] = keep;
         } else {
-            k[0] = __builtin_shuffle(keep, Bits4{0, 0, 0, 1});
-            k[1] = __builtin_shuffle(keep, Bits4{1, 1, 2, 2});
-            k[2] = __builtin_shuffle(keep, Bits4{2, 3, 3, 3});
+            k[0] = Bits4{keep[0], keep[0], keep[0], keep[1]};
+            k[1] = Bits4{keep[1], keep[1], keep[2], keep[2]};
+            k[2] = Bits4{keep[2], keep[3], keep[3], keep[3]};
         }
         for (int v = 0; v < C; ++v) {
             Float4 f;
