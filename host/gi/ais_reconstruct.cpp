@@ -7,7 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "gi/ais_schedule.h"
+#include "kernels/shared/ais_guidance.h"
 
 namespace tessera {
 
@@ -16,8 +16,6 @@ void ais_reconstruct(const GeometryBuffer& g, const DiscontinuitySettings& s, co
                      std::vector<float>& out) {
     discontinuity_filter(g, s, 3, base, out);
     const int w = g.width, h = g.height, n = s.tile;
-    int lo, hi;
-    discontinuity_window(n, &lo, &hi);
     const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, w);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
@@ -28,11 +26,12 @@ void ais_reconstruct(const GeometryBuffer& g, const DiscontinuitySettings& s, co
                 double sum[3] = {own_sum[3 * p], own_sum[3 * p + 1], own_sum[3 * p + 2]};
                 int count = std::popcount(mask);
                 // The set held by window position (row r, column c) is set_col[c] +
-                // set_row[r] (interleave_set; x + lo + k >= lo > -n, so + n keeps it >= 0).
+                // set_row[r]: the window's first position holds set column sx and row sy.
+                const int sx = ts::ts_ais_window_origin(x, n), sy = ts::ts_ais_window_origin(y, n);
                 int set_col[8], set_row[8];
                 for (int k = 0; k < n; ++k) {
-                    set_col[k] = (x + lo + k + n) % n;
-                    set_row[k] = n * ((y + lo + k + n) % n);
+                    set_col[k] = (sx + k) % n;
+                    set_row[k] = n * ((sy + k) % n);
                 }
                 // The accepted positions in window order (outside the image: no bit).
                 for (uint64_t b = discontinuity_window_mask(g, s, x, y); b; b &= b - 1) {
