@@ -6,6 +6,9 @@
 #include <cstring>
 #include <memory>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "gi/halton.h"
 #include "kernels/shared/layout_light_path.h"
 #include "kernels/shared/light_path.h"
@@ -78,6 +81,23 @@ void clear(LightPath& p) {
     p.light = 0;
 }
 
+// Path p's segment of `bounce` from the hit `hit_floats` of its ray (ts_light_path_segment):
+// appends what it leaves to p's records and returns ts_light_path_segment's flags.
+uint32_t segment(const ts::TsSceneView& sv, const ts::TsMedium& med, const ScrambledHalton& halton,
+                 const ts::TsLightPathParams& lp, const LightPathSettings& settings, uint32_t bounce,
+                 const float* hit_floats, InFlight& p) {
+    const ts::TsRay before = p.state.ray;
+    const ts::TsHit hit = load_hit(hit_floats);
+    ts::TsLightPathEvent ev;
+    const uint32_t what = ts::ts_light_path_segment(&sv, &med, halton.table().data(), &lp, bounce, hit, &p.state, &ev);
+    if (settings.segments)
+        p.path->segments.push_back(PathSegment{{before.org.x, before.org.y, before.org.z},
+                                               {before.dir.x, before.dir.y, before.dir.z}, ev.seg_t, ev.seg_prim});
+    if (what & TS_LIGHT_PATH_VRL) append(p.path->vrls, ev.vrl, TS_VRL_FLOATS);
+    if (what & TS_LIGHT_PATH_VPL) append(p.path->vpls, ev.vpl, TS_VPL_FLOATS);
+    return what;
+}
+
 // Every bounce of every path batched through Backend::trace_closest, each segment through
 // ts_light_path_segment.
 uint64_t trace_batched(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
@@ -103,21 +123,16 @@ uint64_t trace_batched(Backend& backend, const SceneBuffers& scene, const LightP
         for (size_t i = 0; i < live.size(); ++i) store_ray(live[i].state.ray, &rays[TS_RAY_FLOATS * i]);
         backend.trace_closest(rays, hits);
         traced += live.size();
+        // Each path's segment in parallel (a path writes only its own records); the
+        // survivors then keep their order, so the VPLs do too.
+        std::vector<uint32_t> what(live.size());
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, live.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) what[i] = segment(sv, med, halton, lp, settings, bounce,
+                                                                            &hits[TS_HIT_FLOATS * i], live[i]);
+        });
         std::vector<InFlight> alive;
-        for (InFlight& p : live) {
-            const ts::TsRay before = p.state.ray;
-            const ts::TsHit hit = load_hit(&hits[TS_HIT_FLOATS * (&p - live.data())]);
-            ts::TsLightPathEvent ev;
-            const uint32_t what =
-                ts::ts_light_path_segment(&sv, &med, halton.table().data(), &lp, bounce, hit, &p.state, &ev);
-            if (settings.segments)
-                p.path->segments.push_back(PathSegment{{before.org.x, before.org.y, before.org.z},
-                                                       {before.dir.x, before.dir.y, before.dir.z}, ev.seg_t,
-                                                       ev.seg_prim});
-            if (what & TS_LIGHT_PATH_VRL) append(p.path->vrls, ev.vrl, TS_VRL_FLOATS);
-            if (what & TS_LIGHT_PATH_VPL) append(p.path->vpls, ev.vpl, TS_VPL_FLOATS);
-            if (what & TS_LIGHT_PATH_CONTINUES) alive.push_back(p);
-        }
+        for (size_t i = 0; i < live.size(); ++i)
+            if (what[i] & TS_LIGHT_PATH_CONTINUES) alive.push_back(live[i]);
         live.swap(alive);
     }
     return traced;

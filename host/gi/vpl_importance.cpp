@@ -139,15 +139,18 @@ const ViewPoints& ViewPointHistory::points_for(Backend& backend, const SceneBuff
 
 namespace {
 
-// One VPL's c_ij over the view points (`pts`: their coordinates as 9 arrays of np, the
-// VplImportance input's layout), into row. The arrays' own pointers and a size_t index
-// (not ts_vpl_importance_term's uint offsets, which may wrap) let the loop run in SIMD.
-void vpl_row(const float* pts, size_t np, const float* vpl, float lum, float g_clamp, float* row) {
+// One VPL's c_ij over view points [j0, j1) (`pts`: the np points' coordinates as 9 arrays
+// of np, the VplImportance input's layout), into row[0, j1 − j0). The arrays' own pointers
+// and a size_t index (not ts_vpl_importance_term's uint offsets, which may wrap) let the
+// loop run in SIMD.
+void vpl_row(const float* pts, size_t np, size_t j0, size_t j1, const float* vpl, float lum, float g_clamp,
+             float* row) {
     const float *x0 = pts, *x1 = pts + np, *x2 = pts + 2 * np, *n0 = pts + 3 * np, *n1 = pts + 4 * np;
     const float *n2 = pts + 5 * np, *g0 = pts + 6 * np, *g1 = pts + 7 * np, *g2 = pts + 8 * np;
-    for (size_t j = 0; j < np; ++j)
-        row[j] = ts::ts_vpl_importance_term_at(ts::make_float3(x0[j], x1[j], x2[j]), ts::make_float3(n0[j], n1[j], n2[j]),
-                                               ts::make_float3(g0[j], g1[j], g2[j]), vpl, lum, g_clamp);
+    for (size_t j = j0; j < j1; ++j)
+        row[j - j0] = ts::ts_vpl_importance_term_at(ts::make_float3(x0[j], x1[j], x2[j]),
+                                                    ts::make_float3(n0[j], n1[j], n2[j]),
+                                                    ts::make_float3(g0[j], g1[j], g2[j]), vpl, lum, g_clamp);
 }
 
 // The view points as the VplImportance input lays them out (layout_igi.h, TS_VI_*), with
@@ -195,22 +198,23 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     }
     const size_t ns = surface.size();
     if (ns == 0) return importance;
-    // c_ij in VPL-major rows: a VPL's terms over the points, whose arrays (one per
-    // coordinate) are contiguous, so the row runs in SIMD. The sums keep their order (E_j
-    // over the VPLs in VPL order, Φ_i over the points in point order), so the bits are
-    // those of the point-major loop this replaced.
+    // c_ij is computed twice, not stored (ns × np floats, 13 MB for the 12,700 candidates of
+    // 2,048 paths at K = 4 and 256 points: written once and read twice, with a page fault
+    // per 4 kB on a frame's first use, it cost more than the terms). The sums keep their
+    // order (E_j over the VPLs in VPL order, Φ_i over the points in point order), so the
+    // bits are those of the point-major loop this replaced and of the kernels.
     const std::vector<float> in = importance_input(points, g_clamp);
     const float* pts = in.data() + TS_VI_HEADER;
-    std::vector<float> c(ns * np);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 16), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i)
-            vpl_row(pts, np, &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, c.data() + i * np);
-    });
+    constexpr size_t kPointBlock = 32;  // a block's terms stay in registers and L1
     std::vector<double> e(np, 0.0);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, np, 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = 0; i < ns; ++i) {
-            const float* row = c.data() + i * np;
-            for (size_t j = r.begin(); j < r.end(); ++j) e[j] += row[j];
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, np, kPointBlock), [&](const tbb::blocked_range<size_t>& r) {
+        float row[kPointBlock];
+        for (size_t j0 = r.begin(); j0 < r.end(); j0 += kPointBlock) {
+            const size_t j1 = std::min(r.end(), j0 + kPointBlock);
+            for (size_t i = 0; i < ns; ++i) {
+                vpl_row(pts, np, j0, j1, &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, row);
+                for (size_t j = j0; j < j1; ++j) e[j] += row[j - j0];
+            }
         }
     });
     const std::vector<double> w = point_weights(e);
@@ -218,8 +222,9 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPLs in parallel.
     std::vector<double> sum(ns, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 64), [&](const tbb::blocked_range<size_t>& r) {
+        std::vector<float> row(np);
         for (size_t i = r.begin(); i < r.end(); ++i) {
-            const float* row = c.data() + i * np;
+            vpl_row(pts, np, 0, np, &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, row.data());
             double s = 0.0;
             for (size_t j = 0; j < np; ++j) s += row[j] * w[j];
             sum[i] = s;
