@@ -77,17 +77,18 @@ GeometryArrays geometry_arrays(const GeometryBuffer& g) {
     return a;
 }
 
-// Pixel y·w + x's bit i of its window mask, for x in [x0, x1) of row y and window offset
-// (dx, dy) at position i: one offset over a run of a row, a branch-free loop over
-// consecutive pixels that the compiler runs in SIMD (the per-pixel calls of
-// ts_discontinuity_accepts, with its early returns and the G-buffer's interleaved
-// coordinates, took 2.6 times as long at tile 8). The same test, term by term as
-// ts_discontinuity_accepts writes it, on the same operands: the same bits (the
-// precomputed-masks test checks it). The caller keeps (x + dx, y + dy) inside the image.
-// Plane: the arrays have positions (the test's use_plane).
+// Pixel y·w + x's bit `col` of its window row's mask, for x in [x0, x1) of row y and window
+// offset (dx, dy): one offset over a run of a row, a branch-free loop over consecutive
+// pixels that the compiler runs in SIMD (the per-pixel calls of ts_discontinuity_accepts,
+// with its early returns and the G-buffer's interleaved coordinates, took 2.6 times as
+// long at tile 8). The same test, term by term as ts_discontinuity_accepts writes it, on
+// the same operands: the same bits (the precomputed-masks test checks it). 32-bit lanes,
+// as wide as the floats', so a vector of tests needs no widening (a window row has at most
+// 8 positions); the caller shifts a row's mask into place. The caller keeps
+// (x + dx, y + dy) inside the image. Plane: the arrays have positions (the test's use_plane).
 template <bool Plane>
 void window_bits_run(const GeometryArrays& a, const DiscontinuitySettings& s, int width, int y, int x0, int x1,
-                     int dx, int dy, int i, uint64_t* __restrict bits) {
+                     int dx, int dy, int col, uint32_t* __restrict row_bits) {
     const ptrdiff_t p0 = static_cast<ptrdiff_t>(y) * width + x0;
     const ptrdiff_t q0 = p0 + static_cast<ptrdiff_t>(dy) * width + dx;
     const float *__restrict zp = a.z.data() + p0, *__restrict zq = a.z.data() + q0;
@@ -102,8 +103,7 @@ void window_bits_run(const GeometryArrays& a, const DiscontinuitySettings& s, in
         xpy = a.x[1].data() + p0, xqy = a.x[1].data() + q0;
         xpz = a.x[2].data() + p0, xqz = a.x[2].data() + q0;
     }
-    uint64_t* __restrict out = bits + x0;
-    const uint64_t bit = 1ull << i;
+    uint32_t* __restrict out = row_bits + x0;
     const float cos_min = s.normal_cos, depth_rel = s.depth_rel;
     const int count = x1 - x0;
     for (int j = 0; j < count; ++j) {
@@ -115,11 +115,11 @@ void window_bits_run(const GeometryArrays& a, const DiscontinuitySettings& s, in
             dist = zp[j] - zq[j];
         // !(c < cos_min), not c >= cos_min: a NaN c goes on to the distance, as there.
         // Integer ands and ors, not && and ?:, which would be branches.
-        const uint64_t surface = uint64_t(!(c < cos_min)) & uint64_t(std::fabs(dist) <= depth_rel * zp[j]);
+        const uint32_t surface = uint32_t(!(c < cos_min)) & uint32_t(std::fabs(dist) <= depth_rel * zp[j]);
         // Escaped pixels accept only each other.
-        const uint64_t escaped = uint64_t(ep[j] | eq[j]), both = uint64_t(ep[j] & eq[j]);
-        const uint64_t ok = both | (surface & (escaped ^ 1u));
-        out[j] |= bit & (0ull - static_cast<uint64_t>(ok));
+        const uint32_t escaped = uint32_t(ep[j] | eq[j]), both = uint32_t(ep[j] & eq[j]);
+        const uint32_t ok = both | (surface & (escaped ^ 1u));
+        out[j] |= ok << col;
     }
 }
 
@@ -206,25 +206,31 @@ void discontinuity_precompute(GeometryBuffer& g, const DiscontinuitySettings& s)
     const int w = g.width, h = g.height;
     int lo, hi;
     discontinuity_window(s.tile, &lo, &hi);
+    const int n = hi - lo + 1;  // bit i = row · n + col of the window's positions
     g.accepted.assign(size_t(w) * h, 0);
     const GeometryArrays arrays = geometry_arrays(g);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
+        std::vector<uint32_t> row_bits(w);
         for (int y = rows.begin(); y < rows.end(); ++y) {
             uint64_t* bits = &g.accepted[size_t(y) * w];
-            int i = 0;
-            for (int dy = lo; dy <= hi; ++dy)
-                for (int dx = lo; dx <= hi; ++dx, ++i) {
-                    if (y + dy < 0 || y + dy >= h) continue;
+            for (int dy = lo; dy <= hi; ++dy) {
+                if (y + dy < 0 || y + dy >= h) continue;
+                std::fill(row_bits.begin(), row_bits.end(), 0u);
+                for (int dx = lo; dx <= hi; ++dx) {
+                    const int col = dx - lo;
                     if (dx == 0 && dy == 0) {  // p accepts itself
-                        for (int x = 0; x < w; ++x) bits[x] |= 1ull << i;
+                        for (int x = 0; x < w; ++x) row_bits[x] |= 1u << col;
                         continue;
                     }
                     const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
                     if (g.position.empty())
-                        window_bits_run<false>(arrays, s, w, y, x0, x1, dx, dy, i, bits);
+                        window_bits_run<false>(arrays, s, w, y, x0, x1, dx, dy, col, row_bits.data());
                     else
-                        window_bits_run<true>(arrays, s, w, y, x0, x1, dx, dy, i, bits);
+                        window_bits_run<true>(arrays, s, w, y, x0, x1, dx, dy, col, row_bits.data());
                 }
+                const int shift = (dy - lo) * n;
+                for (int x = 0; x < w; ++x) bits[x] |= uint64_t(row_bits[x]) << shift;
+            }
         }
     });
     g.accepted_for = s;
