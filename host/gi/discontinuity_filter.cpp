@@ -168,25 +168,114 @@ void mean4(const float* in, size_t p, const ptrdiff_t* offset, int positions, co
     }
 }
 
+// Exact window sums from column sums. A float v ≠ 0 with exponent field E (E' = max(E, 1))
+// is a multiple of 2^(E' − 150) below 2^(E' − 126) in magnitude, so any partial sum of k
+// window values whose E' span D = E'max − E'min is an integer multiple of 2^(E'min − 150) of
+// at most k · 2^(D + 24) of them: exact in double while that is ≤ 2^53, D ≤ 29 − ⌈log2 k⌉.
+// Then every order of summing gives the same double, and a window's sum is that of its n
+// column sums (each a sum of n values): 2n additions a pixel and channel, not n², in loops
+// over a row's consecutive values that run in SIMD. The filter takes this path where all of
+// a window's n² positions are accepted and its values meet the bound, else the
+// window-order sums (mean4); the floats are the same either way (the filter's tests
+// compare with ts_discontinuity_mean bit for bit, and build a window the bound rejects).
+constexpr int16_t kNoExponent = 1000;   // E'min of values without a nonzero one
+constexpr int16_t kNotFinite = 2000;    // E'max of values with a NaN or an infinity
+
+// Per pixel of `in` (C channels): the E' range of its nonzero channels, with E'max =
+// kNotFinite where one is not finite (any window holding it then fails the bound).
+template <int C>
+void pixel_exponents(const float* in, size_t pixels, std::vector<int16_t>& emax, std::vector<int16_t>& emin) {
+    emax.resize(pixels);
+    emin.resize(pixels);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t p = r.begin(); p < r.end(); ++p) {
+            int hi = 0, lo = kNoExponent;
+            for (int c = 0; c < C; ++c) {
+                const uint32_t bits = std::bit_cast<uint32_t>(in[p * C + c]);
+                const int e = static_cast<int>(bits >> 23 & 0xffu), e1 = std::max(e, 1);
+                const bool nonzero = (bits & 0x7fffffffu) != 0;
+                hi = std::max(hi, e == 255 ? int(kNotFinite) : nonzero ? e1 : 0);
+                lo = std::min(lo, nonzero ? e1 : int(kNoExponent));
+            }
+            emax[p] = static_cast<int16_t>(hi);
+            emin[p] = static_cast<int16_t>(lo);
+        }
+    });
+}
+
+// A row's window sums from column sums, and their E' ranges.
+struct RowSums {
+    std::vector<double> column, window;           // C per pixel
+    std::vector<int16_t> cmax, cmin, wmax, wmin;  // per pixel
+};
+
+// Row y's window sums (valid for pixels x with x + lo ≥ 0 and x + hi < w; rows y + lo ..
+// y + hi inside the image) and their values' E' ranges.
+template <int C>
+void row_sums(const float* in, const std::vector<int16_t>& emax, const std::vector<int16_t>& emin, int w, int y,
+              int lo, int hi, RowSums& r) {
+    const size_t k = size_t(w) * C;
+    r.column.assign(k, 0.0);
+    r.cmax.assign(w, 0);
+    r.cmin.assign(w, kNoExponent);
+    for (int dy = lo; dy <= hi; ++dy) {
+        const float* row = in + (size_t(y) + dy) * k;
+        const int16_t *hx = emax.data() + (size_t(y) + dy) * w, *lx = emin.data() + (size_t(y) + dy) * w;
+        for (size_t i = 0; i < k; ++i) r.column[i] += row[i];
+        for (int x = 0; x < w; ++x) {
+            r.cmax[x] = std::max(r.cmax[x], hx[x]);
+            r.cmin[x] = std::min(r.cmin[x], lx[x]);
+        }
+    }
+    r.window.assign(k, 0.0);
+    r.wmax.assign(w, 0);
+    r.wmin.assign(w, kNoExponent);
+    const int x0 = -lo, x1 = w - hi;  // pixels whose window lies inside the row
+    for (int dx = lo; dx <= hi; ++dx) {
+        const double* col = r.column.data() + ptrdiff_t(dx) * C;
+        for (size_t i = size_t(x0) * C; i < size_t(x1) * C; ++i) r.window[i] += col[i];
+        for (int x = x0; x < x1; ++x) {
+            r.wmax[x] = std::max(r.wmax[x], r.cmax[x + dx]);
+            r.wmin[x] = std::min(r.wmin[x], r.cmin[x + dx]);
+        }
+    }
+}
+
 // The filter of rows [y0, y1) with C channels: each pixel's mean over its accepted window
-// positions, four at a time where the windows lie inside the image (mean4), else
-// ts_discontinuity_mean (the device resolve's) pixel by pixel.
+// positions, four at a time where the windows lie inside the image (mean4, or the row's
+// column sums where all four windows are whole and exact: `exp_max`, `exp_min` from
+// pixel_exponents, given for n ≥ 4, where they save work), else ts_discontinuity_mean (the
+// device resolve's) pixel by pixel.
 template <int C>
 void filter_rows(const GeometryBuffer& g, const DiscontinuitySettings& s, bool precomputed, const float* __restrict in,
-                 float* __restrict out, uint8_t* accepted, int y0, int y1) {
+                 float* __restrict out, uint8_t* accepted, const std::vector<int16_t>* exp_max,
+                 const std::vector<int16_t>* exp_min, int y0, int y1) {
     const int w = g.width, h = g.height, n = s.tile;
     const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, w);
     int lo, hi;
     discontinuity_window(n, &lo, &hi);
+    const int positions = n * n;
+    const uint64_t whole = positions == 64 ? ~0ull : (1ull << positions) - 1u;
+    const int span = 29 - std::bit_width(static_cast<unsigned>(positions - 1));  // 29 − ⌈log2 n²⌉
+    RowSums rs;
     for (int y = y0; y < y1; ++y) {
         const bool rows_inside = y + lo >= 0 && y + hi < h;
+        const bool columns = exp_max && rows_inside;
+        if (columns) row_sums<C>(in, *exp_max, *exp_min, w, y, lo, hi, rs);
         for (int x = 0; x < w;) {
             const size_t p = size_t(y) * w + x;
             if (rows_inside && x + lo >= 0 && x + 3 + hi < w) {
                 uint64_t bits[4];
                 for (int j = 0; j < 4; ++j)
                     bits[j] = precomputed ? g.accepted[p + j] : compute_window_mask(g, s, x + j, y);
-                mean4<C>(in, p, offset.data(), n * n, bits, out + p * C);
+                bool exact = columns;
+                for (int j = 0; exact && j < 4; ++j)
+                    exact = bits[j] == whole && (rs.wmin[x + j] == kNoExponent || rs.wmax[x + j] - rs.wmin[x + j] <= span);
+                if (exact)
+                    for (int i = 0; i < 4 * C; ++i)
+                        out[p * C + i] = static_cast<float>(rs.window[size_t(x) * C + i] / positions);
+                else
+                    mean4<C>(in, p, offset.data(), positions, bits, out + p * C);
                 if (accepted)
                     for (int j = 0; j < 4; ++j) accepted[p + j] = static_cast<uint8_t>(std::popcount(bits[j]));
                 x += 4;
@@ -250,11 +339,21 @@ void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& 
     if (accepted) accepted->resize(size_t(w) * h);
     const bool precomputed = !g.accepted.empty() && same_settings(g.accepted_for, s);
     uint8_t* acc = accepted ? accepted->data() : nullptr;
+    // Column sums from n = 4 on: at 3 they would take 2n = 6 additions a pixel against 9.
+    std::vector<int16_t> emax, emin;
+    const bool columns = s.tile >= 4;
+    if (columns) {
+        if (channels == 1)
+            pixel_exponents<1>(in.data(), size_t(w) * h, emax, emin);
+        else
+            pixel_exponents<3>(in.data(), size_t(w) * h, emax, emin);
+    }
+    const std::vector<int16_t>*hx = columns ? &emax : nullptr, *lx = columns ? &emin : nullptr;
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         if (channels == 1)
-            filter_rows<1>(g, s, precomputed, in.data(), out.data(), acc, rows.begin(), rows.end());
+            filter_rows<1>(g, s, precomputed, in.data(), out.data(), acc, hx, lx, rows.begin(), rows.end());
         else
-            filter_rows<3>(g, s, precomputed, in.data(), out.data(), acc, rows.begin(), rows.end());
+            filter_rows<3>(g, s, precomputed, in.data(), out.data(), acc, hx, lx, rows.begin(), rows.end());
     });
 }
 

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -220,6 +221,75 @@ TEST(DiscontinuityFilter, FourPixelSumsEqualThePerPixelMean) {
             }
         }
     }
+}
+
+// Where a whole window is accepted (one plane: two_regions with both halves alike) the
+// host filter sums it from column sums when its values' exponents allow an exact sum, and
+// in window order otherwise. Both give ts_discontinuity_mean's floats bit for bit (a NaN
+// as a NaN): values
+// in [0, 1) (exact), then with some of 1e-30 and 1e20 (an exponent span past the bound, so
+// the column sums would round otherwise), infinities and NaNs, and denormals, zeros and
+// negatives.
+TEST(DiscontinuityFilter, ColumnSumsEqualTheWindowOrderSums) {
+    const int w = 40, h = 30;
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const std::vector<std::function<float()>> draws = {
+        [&] { return u(rng); },
+        [&] { const float r = u(rng); return r < 0.05f ? 1e-30f : r < 0.1f ? 1e20f : r; },
+        [&] { const float r = u(rng); return r < 0.01f ? INFINITY : r < 0.02f ? -INFINITY : r < 0.03f ? NAN : r; },
+        [&] { const float r = u(rng); return r < 0.2f ? 1e-40f : r < 0.4f ? 0.0f : r < 0.5f ? -0.0f : r - 0.7f; },
+    };
+    for (int n : {4, 5, 8}) {
+        for (int channels : {1, 3}) {
+            for (size_t d = 0; d < draws.size(); ++d) {
+                SCOPED_TRACE(testing::Message() << "tile " << n << ", " << channels << " channels, draw " << d);
+                const DiscontinuitySettings s{n, 0.9f, 0.05f};
+                GeometryBuffer g = two_regions(w, h, 2.0f, 1.0f);
+                discontinuity_precompute(g, s);
+                std::vector<float> in(size_t(w) * h * channels), out;
+                for (float& v : in) v = draws[d]();
+                discontinuity_filter(g, s, channels, in, out);
+                const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, w);
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x) {
+                        const size_t p = size_t(y) * w + x;
+                        float want[3];
+                        ts::ts_discontinuity_mean(in.data(), channels, channels, p, offset.data(),
+                                                  discontinuity_window_mask(g, s, x, y), want);
+                        for (int c = 0; c < channels; ++c) {
+                            // A NaN's sign and payload depend on the operands' order in
+                            // each addition, which the compiler may swap: NaN is all.
+                            if (std::isnan(want[c]))
+                                ASSERT_TRUE(std::isnan(out[p * channels + c])) << x << "," << y;
+                            else
+                                ASSERT_EQ(std::bit_cast<uint32_t>(out[p * channels + c]),
+                                          std::bit_cast<uint32_t>(want[c])) << x << "," << y << " channel " << c;
+                        }
+                    }
+            }
+        }
+    }
+}
+
+// A window whose exponents span too much for an exact sum, built so that the order
+// shows in the float: at tile 8 (positions x − 4 .. x + 3) pixel (20, 15)'s window holds
+// H = 2^30 first, then 2^-24 down its second column, 3 − 2^-21 and 3.5 elsewhere. In
+// window order each 2^-24 is lost against H, giving (2^30 + 192 − 2^-21)/64, just below the
+// float tie 2^24 + 3, so 2^24 + 2; the column sums keep them, (2^30 + 192)/64 = 2^24 + 3,
+// which rounds to even, 2^24 + 4. The filter must give the window order's float.
+TEST(DiscontinuityFilter, ColumnSumsFallBackWhereTheExactSumWouldRoundOtherwise) {
+    const int w = 40, h = 30, cx = 20, cy = 15;
+    const DiscontinuitySettings s{8, 0.9f, 0.05f};
+    GeometryBuffer g = two_regions(w, h, 2.0f, 1.0f);
+    discontinuity_precompute(g, s);
+    std::vector<float> in(size_t(w) * h, 3.5f), out;
+    in[size_t(cy - 4) * w + cx - 4] = 0x1p30f;
+    for (int y = cy - 4; y <= cy + 3; ++y) in[size_t(y) * w + cx - 3] = 0x1p-24f;
+    in[size_t(cy - 4) * w + cx - 2] = 3.0f - 0x1p-21f;
+    ASSERT_EQ(static_cast<float>((0x1p30 + 192.0) / 64), 0x1p24f + 4.0f) << "the exact sum's float";
+    discontinuity_filter(g, s, 1, in, out);
+    EXPECT_EQ(out[size_t(cy) * w + cx], 0x1p24f + 2.0f);
 }
 
 }  // namespace
