@@ -67,7 +67,9 @@ std::array<ptrdiff_t, 64> discontinuity_window_offsets(int n, int width);
 /// every set (x mod n, y mod n) exactly once). A pixel always accepts itself; pixels
 /// whose rays escaped accept only other escaped pixels. `accepted`, if given, receives
 /// |A(p)| per pixel (the guidance signal AIS uses). `channels` is 1 or 3 (else
-/// std::invalid_argument); sums are double, in window order.
+/// std::invalid_argument); the means are those of double sums in window order (whole
+/// windows whose values sum exactly in double, from n = 4, are summed by columns: the same
+/// floats, fewer additions).
 void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& s, int channels,
                           const std::vector<float>& in, std::vector<float>& out,
                           std::vector<uint8_t>* accepted = nullptr);
