@@ -295,7 +295,7 @@ void discontinuity_precompute(GeometryBuffer& g, const DiscontinuitySettings& s)
     const int w = g.width, h = g.height;
     int lo, hi;
     discontinuity_window(s.tile, &lo, &hi);
-    const int n = hi - lo + 1;  // bit i = row · n + col of the window's positions
+    const int n = s.tile;  // bit i = row · n + col of the window's positions
     g.accepted.assign(size_t(w) * h, 0);
     const GeometryArrays arrays = geometry_arrays(g);
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
