@@ -181,10 +181,17 @@ void mean4(const float* in, size_t p, const ptrdiff_t* offset, int positions, co
 constexpr int16_t kNoExponent = 1000;   // E'min of values without a nonzero one
 constexpr int16_t kNotFinite = 2000;    // E'max of values with a NaN or an infinity
 
-// Per pixel of `in` (C channels): the E' range of its nonzero channels, with E'max =
-// kNotFinite where one is not finite (any window holding it then fails the bound).
+// Per pixel of an image: the E' range of its nonzero channels, with E'max = kNotFinite
+// where one is not finite (any window holding it then fails the bound).
+struct PixelExponents {
+    std::vector<int16_t> emax, emin;
+};
+
+// The PixelExponents of `in` (C channels a pixel).
 template <int C>
-void pixel_exponents(const float* in, size_t pixels, std::vector<int16_t>& emax, std::vector<int16_t>& emin) {
+PixelExponents pixel_exponents(const float* in, size_t pixels) {
+    PixelExponents e;
+    std::vector<int16_t>&emax = e.emax, &emin = e.emin;
     emax.resize(pixels);
     emin.resize(pixels);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels, 4096), [&](const tbb::blocked_range<size_t>& r) {
@@ -201,6 +208,7 @@ void pixel_exponents(const float* in, size_t pixels, std::vector<int16_t>& emax,
             emin[p] = static_cast<int16_t>(lo);
         }
     });
+    return e;
 }
 
 // A row's window sums from column sums, and their E' ranges.
@@ -212,15 +220,14 @@ struct RowSums {
 // Row y's window sums (valid for pixels x with x + lo ≥ 0 and x + hi < w; rows y + lo ..
 // y + hi inside the image) and their values' E' ranges.
 template <int C>
-void row_sums(const float* in, const std::vector<int16_t>& emax, const std::vector<int16_t>& emin, int w, int y,
-              int lo, int hi, RowSums& r) {
+void row_sums(const float* in, const PixelExponents& e, int w, int y, int lo, int hi, RowSums& r) {
     const size_t k = size_t(w) * C;
     r.column.assign(k, 0.0);
     r.cmax.assign(w, 0);
     r.cmin.assign(w, kNoExponent);
     for (int dy = lo; dy <= hi; ++dy) {
         const float* row = in + (size_t(y) + dy) * k;
-        const int16_t *hx = emax.data() + (size_t(y) + dy) * w, *lx = emin.data() + (size_t(y) + dy) * w;
+        const int16_t *hx = e.emax.data() + (size_t(y) + dy) * w, *lx = e.emin.data() + (size_t(y) + dy) * w;
         for (size_t i = 0; i < k; ++i) r.column[i] += row[i];
         for (int x = 0; x < w; ++x) {
             r.cmax[x] = std::max(r.cmax[x], hx[x]);
@@ -243,13 +250,12 @@ void row_sums(const float* in, const std::vector<int16_t>& emax, const std::vect
 
 // The filter of rows [y0, y1) with C channels: each pixel's mean over its accepted window
 // positions, four at a time where the windows lie inside the image (mean4, or the row's
-// column sums where all four windows are whole and exact: `exp_max`, `exp_min` from
-// pixel_exponents, given for n ≥ 4, where they save work), else ts_discontinuity_mean (the
-// device resolve's) pixel by pixel.
+// column sums where all four windows are whole and exact: `exponents` of `in`, given for
+// n ≥ 4, where they save work), else ts_discontinuity_mean (the device resolve's) pixel by
+// pixel.
 template <int C>
 void filter_rows(const GeometryBuffer& g, const DiscontinuitySettings& s, bool precomputed, const float* __restrict in,
-                 float* __restrict out, uint8_t* accepted, const std::vector<int16_t>* exp_max,
-                 const std::vector<int16_t>* exp_min, int y0, int y1) {
+                 float* __restrict out, uint8_t* accepted, const PixelExponents* exponents, int y0, int y1) {
     const int w = g.width, h = g.height, n = s.tile;
     const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, w);
     int lo, hi;
@@ -260,8 +266,8 @@ void filter_rows(const GeometryBuffer& g, const DiscontinuitySettings& s, bool p
     RowSums rs;
     for (int y = y0; y < y1; ++y) {
         const bool rows_inside = y + lo >= 0 && y + hi < h;
-        const bool columns = exp_max && rows_inside;
-        if (columns) row_sums<C>(in, *exp_max, *exp_min, w, y, lo, hi, rs);
+        const bool columns = exponents && rows_inside;
+        if (columns) row_sums<C>(in, *exponents, w, y, lo, hi, rs);
         for (int x = 0; x < w;) {
             const size_t p = size_t(y) * w + x;
             if (rows_inside && x + lo >= 0 && x + 3 + hi < w) {
@@ -340,20 +346,17 @@ void discontinuity_filter(const GeometryBuffer& g, const DiscontinuitySettings& 
     const bool precomputed = !g.accepted.empty() && same_settings(g.accepted_for, s);
     uint8_t* acc = accepted ? accepted->data() : nullptr;
     // Column sums from n = 4 on: at 3 they would take 2n = 6 additions a pixel against 9.
-    std::vector<int16_t> emax, emin;
+    PixelExponents exponents;
     const bool columns = s.tile >= 4;
-    if (columns) {
-        if (channels == 1)
-            pixel_exponents<1>(in.data(), size_t(w) * h, emax, emin);
-        else
-            pixel_exponents<3>(in.data(), size_t(w) * h, emax, emin);
-    }
-    const std::vector<int16_t>*hx = columns ? &emax : nullptr, *lx = columns ? &emin : nullptr;
+    if (columns)
+        exponents = channels == 1 ? pixel_exponents<1>(in.data(), size_t(w) * h)
+                                  : pixel_exponents<3>(in.data(), size_t(w) * h);
+    const PixelExponents* e = columns ? &exponents : nullptr;
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         if (channels == 1)
-            filter_rows<1>(g, s, precomputed, in.data(), out.data(), acc, hx, lx, rows.begin(), rows.end());
+            filter_rows<1>(g, s, precomputed, in.data(), out.data(), acc, e, rows.begin(), rows.end());
         else
-            filter_rows<3>(g, s, precomputed, in.data(), out.data(), acc, hx, lx, rows.begin(), rows.end());
+            filter_rows<3>(g, s, precomputed, in.data(), out.data(), acc, e, rows.begin(), rows.end());
     });
 }
 
