@@ -2,8 +2,10 @@
 // lookup in obj_mesh.cpp): a texture that is missing, a directory, or not a decodable
 // image is rejected with the texture's path (and, where the MTL names it, the MTL file and
 // material) and the reason.
+#include <cstdint>
 #include <fstream>
 #include <iterator>
+#include <string>
 
 #include "scene/scene_test_util.h"
 #include "scene/texture_file.h"
@@ -81,6 +83,56 @@ INSTANTIATE_TEST_SUITE_P(
 TEST_F(TextureFiles, MapKdMessageNamesTheMaterial) {
     const std::string e = test::load_error(write_scene());
     EXPECT_CONTAINS(e, "map_Kd of " + (dir_ / "m.mtl").string() + ":1: material 'm'");
+}
+
+// A chunk as it sits in a PNG: big-endian length, type, data, and a CRC (zeros here:
+// neither drop_empty_png_idat nor stb_image checks it).
+std::string png_chunk(const std::string& type, const std::string& data) {
+    const auto n = static_cast<uint32_t>(data.size());
+    const char length[4] = {char(n >> 24), char(n >> 16), char(n >> 8), char(n)};
+    return std::string(length, 4) + type + data + std::string(4, '\0');
+}
+
+const std::string kPngSignature("\x89PNG\r\n\x1a\n", 8);
+
+TEST(DropEmptyPngIdat, RemovesOnlyZeroLengthIdatChunks) {
+    const std::string ihdr = png_chunk("IHDR", std::string(13, '\1')), data = png_chunk("IDAT", "xyz");
+    const std::string text = png_chunk("tEXt", ""), end = png_chunk("IEND", "");
+    std::string bytes = kPngSignature + ihdr + png_chunk("IDAT", "") + png_chunk("IDAT", "") + data + text +
+                        png_chunk("IDAT", "") + end;
+    scene_detail::drop_empty_png_idat(bytes);
+    // Empty chunks of other types (tEXt, IEND) stay.
+    EXPECT_EQ(bytes, kPngSignature + ihdr + data + text + end);
+}
+
+TEST(DropEmptyPngIdat, LeavesOtherBytesAndTruncatedTailsAlone) {
+    std::string not_png = "P6\n1 1\n255\n" + png_chunk("IDAT", "");
+    const std::string before = not_png;
+    scene_detail::drop_empty_png_idat(not_png);
+    EXPECT_EQ(not_png, before);
+    // A chunk whose length runs past the end stops the walk: it and what follows stay.
+    const std::string empty = png_chunk("IDAT", ""), overlong = png_chunk("IDAT", "ab").substr(0, 9);
+    std::string bytes = kPngSignature + empty + overlong + empty;
+    scene_detail::drop_empty_png_idat(bytes);
+    EXPECT_EQ(bytes, kPngSignature + overlong + empty);
+}
+
+// A PNG whose image data starts with an empty IDAT chunk (valid: the data stream is the
+// IDAT chunks' concatenation) decodes to the texels of the same file without it. Under
+// UBSan the scene fuzzer's seed seed-empty_idat covers the stb_image defect it avoids.
+TEST_F(TextureFiles, EmptyIdatChunkDecodesLikeTheFileWithoutIt) {
+    make_texture(Make::Png);
+    const Texture plain = scene_detail::load_texture(dir_ / "tex.png");
+    std::ifstream in(dir_ / "tex.png", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t idat = bytes.find("IDAT");
+    ASSERT_NE(idat, std::string::npos);
+    bytes.insert(idat - 4, png_chunk("IDAT", ""));
+    std::ofstream(dir_ / "empty_idat.png", std::ios::binary) << bytes;
+    const Texture t = scene_detail::load_texture(dir_ / "empty_idat.png");
+    EXPECT_EQ(t.width, plain.width);
+    EXPECT_EQ(t.height, plain.height);
+    EXPECT_EQ(t.rgba8, plain.rgba8);
 }
 
 TEST_F(TextureFiles, ValidTextureLoads) {
