@@ -9,6 +9,8 @@ find_package(CLI11 REQUIRED)
 find_package(glm REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+# JPEG textures (host/scene/jpeg_decode.cpp): libjpeg62-turbo through libjpeg-dev.
+find_package(JPEG REQUIRED)
 if(NOT TARGET glm::glm)
   add_library(glm::glm INTERFACE IMPORTED)
   target_include_directories(glm::glm INTERFACE ${GLM_INCLUDE_DIRS})

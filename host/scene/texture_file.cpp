@@ -1,5 +1,6 @@
 #include "scene/texture_file.h"
 
+#include <cctype>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -7,6 +8,7 @@
 #include <stb_image.h>  // the implementation lives in Debian's libstb
 
 #include "scene/input_file.h"
+#include "scene/jpeg_decode.h"
 #include "util/error.h"
 #include "util/input_limits.h"
 
@@ -21,10 +23,14 @@ uint32_t big_endian32(const std::string& b, size_t at) {
 
 }  // namespace
 
-void drop_empty_png_idat(std::string& bytes) {
+bool is_png(const std::string& bytes) {
     static constexpr char kSignature[] = "\x89PNG\r\n\x1a\n";
+    return bytes.size() >= 8 && std::memcmp(bytes.data(), kSignature, 8) == 0;
+}
+
+void drop_empty_png_idat(std::string& bytes) {
     constexpr size_t kSignatureBytes = 8, kChunkFrame = 12;  // length, type, CRC
-    if (bytes.size() < kSignatureBytes || std::memcmp(bytes.data(), kSignature, kSignatureBytes) != 0) return;
+    if (!is_png(bytes)) return;
     // One pass with a read and a write cursor, so a file of many empty chunks costs
     // linear time.
     size_t read = kSignatureBytes, write = kSignatureBytes;
@@ -45,29 +51,61 @@ void drop_empty_png_idat(std::string& bytes) {
     }
 }
 
-Texture load_texture(const std::filesystem::path& file) {
-    std::string bytes = read_input_file(file, "texture", limits::kTextureFileBytes);
-    if (bytes.size() > limits::kTextureFileBytes)  // grew after read_input_file's size check
-        throw InputError(file.string() + ": texture of " + std::to_string(bytes.size()) + " bytes exceeds the limit of " +
-                         std::to_string(limits::kTextureFileBytes) + " bytes");
+namespace {
+
+// What a file that is neither PNG nor JPEG looks like, by its signature, for the message.
+std::string format_hint(const std::string& b) {
+    auto starts = [&](const char* magic, size_t n) { return b.size() >= n && b.compare(0, n, magic, n) == 0; };
+    if (starts("GIF8", 4)) return "its first bytes are those of a GIF image";
+    if (starts("BM", 2)) return "its first bytes are those of a BMP image";
+    if (starts("8BPS", 4)) return "its first bytes are those of a PSD image";
+    if (starts("#?RADIANCE", 10) || starts("#?RGBE", 6)) return "its first bytes are those of a Radiance HDR image";
+    if (starts("\x76\x2f\x31\x01", 4)) return "its first bytes are those of an OpenEXR image";
+    if (starts("II*\0", 4) || starts("MM\0*", 4)) return "its first bytes are those of a TIFF image";
+    if (b.size() >= 3 && b[0] == 'P' && b[1] >= '1' && b[1] <= '7' && std::isspace(static_cast<unsigned char>(b[2])))
+        return "its first bytes are those of a PNM image";
+    return "its first bytes match neither signature; a TGA, which has none, is also not read";
+}
+
+// Decodes a PNG with stb_image, first dropping its empty IDAT chunks (drop_empty_png_idat).
+DecodedImage decode_png(std::string& bytes, const std::string& file) {
     drop_empty_png_idat(bytes);
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int size = static_cast<int>(bytes.size());  // kTextureFileBytes fits an int
     int w = 0, h = 0, channels = 0;
     // The header's size first: a few bytes of PNG header can ask for gigabytes of pixels.
-    if (stbi_info_from_memory(data, size, &w, &h, &channels))
-        limits::check_image_size("texture", file.string(), w, h, 4);
+    if (stbi_info_from_memory(data, size, &w, &h, &channels)) limits::check_image_size("texture", file, w, h, 4);
     std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &w, &h, &channels, 4),
                                                      stbi_image_free);
     if (!pixels)
-        throw InputError(file.string() + ": texture is not a decodable image (stb_image: " + stbi_failure_reason() +
-                         "; it reads PNG, JPEG, TGA, BMP, PSD, GIF, HDR, PIC and PNM)");
+        throw InputError(file + ": texture is not a decodable PNG image (stb_image: " + stbi_failure_reason() + ")");
+    DecodedImage image;
+    image.width = w, image.height = h;
+    image.rgba.assign(pixels.get(), pixels.get() + size_t(w) * size_t(h) * 4);
+    return image;
+}
+
+}  // namespace
+
+Texture load_texture(const std::filesystem::path& file) {
+    std::string bytes = read_input_file(file, "texture", limits::kTextureFileBytes);
+    if (bytes.size() > limits::kTextureFileBytes)  // grew after read_input_file's size check
+        throw InputError(file.string() + ": texture of " + std::to_string(bytes.size()) + " bytes exceeds the limit of " +
+                         std::to_string(limits::kTextureFileBytes) + " bytes");
+    DecodedImage image;
+    if (is_png(bytes))
+        image = decode_png(bytes, file.string());
+    else if (is_jpeg(bytes))
+        image = decode_jpeg(bytes, file.string());
+    else
+        throw InputError(file.string() + ": texture is not a PNG or JPEG image (" + format_hint(bytes) +
+                         "); convert it to PNG");
     Texture tex;
     tex.path = file;
-    tex.width = w;
-    tex.height = h;
-    tex.rgba8.resize(static_cast<size_t>(w) * static_cast<size_t>(h));
-    const stbi_uc* p = pixels.get();
+    tex.width = image.width;
+    tex.height = image.height;
+    tex.rgba8.resize(size_t(image.width) * size_t(image.height));
+    const uint8_t* p = image.rgba.data();
     // Pack explicitly (R in the low byte) rather than memcpy, so the layout does not
     // depend on the host's byte order.
     for (auto& texel : tex.rgba8) {

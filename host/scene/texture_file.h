@@ -7,12 +7,18 @@
 
 namespace tessera::scene_detail {
 
-/// Decodes `file` with stb_image, forcing 4 channels (a grey or RGB image gets
-/// A = 255). The file is read whole (at most limits::kTextureFileBytes) and, if it is a
-/// PNG, passed through drop_empty_png_idat() first. Throws InputError naming the file if
-/// it is missing, a directory, not a regular file, too large, or undecodable (with
-/// stb_image's reason).
+/// Decodes a PNG (stb_image, after drop_empty_png_idat()) or JPEG (libjpeg-turbo,
+/// scene/jpeg_decode.h) texture, told apart by their signatures, to 4 channels (a grey or
+/// RGB image gets A = 255). The file is read whole (at most limits::kTextureFileBytes).
+/// Other formats are refused: stb_image 2.27 reads more, but its JPEG decoder writes out
+/// of bounds on a crafted file, and its other decoders had no fuzzing here. Throws
+/// InputError naming the file if it is missing, a directory, not a regular file, too
+/// large, neither PNG nor JPEG (with what its signature looks like), or undecodable (with
+/// the decoder's reason).
 Texture load_texture(const std::filesystem::path& file);
+
+/// Whether `bytes` start with the 8-byte PNG signature.
+bool is_png(const std::string& bytes);
 
 /// Removes every zero-length IDAT chunk (12 bytes: length 0, type, CRC) from the PNG in
 /// `bytes`, in place, leaving all other bytes in order. The image data stream is the

@@ -1,7 +1,7 @@
 // The texture layer of the input contract (host/scene/texture_file.cpp and the map_Kd
-// lookup in obj_mesh.cpp): a texture that is missing, a directory, or not a decodable
-// image is rejected with the texture's path (and, where the MTL names it, the MTL file and
-// material) and the reason.
+// lookup in obj_mesh.cpp): a texture that is missing, a directory, neither PNG nor JPEG,
+// or not decodable is rejected with the texture's path (and, where the MTL names it, the
+// MTL file and material) and the reason; PNG and JPEG textures decode to their texels.
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -14,7 +14,7 @@
 namespace tessera {
 namespace {
 
-enum class Make { Nothing, Directory, Text, Empty, TruncatedPng, HugePnm, Png };
+enum class Make { Nothing, Directory, Text, Empty, TruncatedPng, HugePng, Gif, Pnm, TruncatedJpeg, CmykJpeg, Png };
 
 struct BadTexture {
     const char* name;
@@ -22,19 +22,36 @@ struct BadTexture {
     const char* what;   ///< the reason the message must give
 };
 
+std::string read_fixture(const std::string& name) {
+    std::ifstream in(test::fixture(name), std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 class TextureFiles : public test::ScratchDirTest {
 protected:
     void make_texture(Make make) {
         const auto tex = dir_ / "tex.png";
-        std::ifstream png(test::fixture("checker.png"), std::ios::binary);
-        const std::string bytes((std::istreambuf_iterator<char>(png)), std::istreambuf_iterator<char>());
+        const std::string bytes = read_fixture("checker.png");
         switch (make) {
             case Make::Nothing: break;
             case Make::Directory: std::filesystem::create_directories(tex); break;
             case Make::Text: std::ofstream(tex) << "not an image\n"; break;
             case Make::Empty: std::ofstream{tex}; break;
             case Make::TruncatedPng: std::ofstream(tex, std::ios::binary) << bytes.substr(0, bytes.size() / 2); break;
-            case Make::HugePnm: std::ofstream(tex, std::ios::binary) << "P6\n20000 8\n255\n" << bytes; break;
+            // A PNG header (signature, IHDR) asking for 20000 x 8 pixels, and no data.
+            case Make::HugePng:
+                std::ofstream(tex, std::ios::binary)
+                    << bytes.substr(0, 8) << std::string("\0\0\0\x0dIHDR\0\0\x4e\x20\0\0\0\x08\x08\x06\0\0\0", 21)
+                    << std::string(4, '\0');
+                break;
+            case Make::Gif: std::ofstream(tex, std::ios::binary) << "GIF89a" << std::string(20, '\0'); break;
+            case Make::Pnm: std::ofstream(tex, std::ios::binary) << "P6\n2 2\n255\n" << std::string(12, '\x7f'); break;
+            case Make::TruncatedJpeg: {
+                const std::string jpeg = read_fixture("checker.jpg");
+                std::ofstream(tex, std::ios::binary) << jpeg.substr(0, jpeg.size() / 2);
+                break;
+            }
+            case Make::CmykJpeg: std::ofstream(tex, std::ios::binary) << read_fixture("cmyk.jpg"); break;
             case Make::Png: std::ofstream(tex, std::ios::binary) << bytes; break;
         }
     }
@@ -72,11 +89,16 @@ INSTANTIATE_TEST_SUITE_P(
     Texture, TextureInput,
     ::testing::Values(BadTexture{"Missing", Make::Nothing, "not found"},
                       BadTexture{"Directory", Make::Directory, "is a directory, not a file"},
-                      BadTexture{"NotAnImage", Make::Text, "texture is not a decodable image"},
-                      BadTexture{"Empty", Make::Empty, "texture is not a decodable image"},
-                      BadTexture{"TruncatedPng", Make::TruncatedPng, "texture is not a decodable image"},
+                      BadTexture{"NotAnImage", Make::Text, "texture is not a PNG or JPEG image (its first bytes match neither"},
+                      BadTexture{"Empty", Make::Empty, "texture is not a PNG or JPEG image"},
+                      BadTexture{"Gif", Make::Gif, "those of a GIF image); convert it to PNG"},
+                      BadTexture{"Pnm", Make::Pnm, "those of a PNM image); convert it to PNG"},
+                      BadTexture{"TruncatedPng", Make::TruncatedPng, "texture is not a decodable PNG image (stb_image: "},
+                      // A truncated JPEG is an error, not an image whose missing rows are grey.
+                      BadTexture{"TruncatedJpeg", Make::TruncatedJpeg, "texture is not a decodable JPEG image (libjpeg: "},
+                      BadTexture{"CmykJpeg", Make::CmykJpeg, "texture is a CMYK JPEG image"},
                       // A header asking for more than limits::kImageSide: refused before decoding.
-                      BadTexture{"HugeHeader", Make::HugePnm, "texture of 20000x8 pixels exceeds the limit of 16384"}),
+                      BadTexture{"HugeHeader", Make::HugePng, "texture of 20000x8 pixels exceeds the limit of 16384"}),
     [](const auto& info) { return std::string(info.param.name); });
 
 // The map_Kd message also says which MTL line and material named the texture.
@@ -133,6 +155,37 @@ TEST_F(TextureFiles, EmptyIdatChunkDecodesLikeTheFileWithoutIt) {
     EXPECT_EQ(t.width, plain.width);
     EXPECT_EQ(t.height, plain.height);
     EXPECT_EQ(t.rgba8, plain.rgba8);
+}
+
+// JPEG textures decode through libjpeg-turbo: two 8x8 blocks of one colour each (quality
+// 100, no chroma subsampling), baseline and progressive, land within 3 of their values
+// (the DCT's rounding; a swapped channel or row order is off by 160), and a grey JPEG
+// becomes grey RGB; A = 255.
+uint8_t channel(uint32_t texel, int c) { return uint8_t(texel >> (8 * c)); }
+
+TEST(JpegTexture, DecodesBaselineAndProgressiveToTheirColours) {
+    for (const char* name : {"checker.jpg", "checker_progressive.jpg"}) {
+        SCOPED_TRACE(name);
+        const Texture t = scene_detail::load_texture(test::fixture(name));
+        ASSERT_EQ(t.width, 16);
+        ASSERT_EQ(t.height, 8);
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 16; ++x) {
+                const uint32_t texel = t.rgba8[size_t(y) * 16 + x];
+                const int want[3] = {x < 8 ? 200 : 40, 40, x < 8 ? 40 : 200};
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(channel(texel, c), want[c], 3) << x << "," << y;
+                EXPECT_EQ(channel(texel, 3), 255);
+            }
+    }
+}
+
+TEST(JpegTexture, GreyBecomesGreyRgb) {
+    const Texture t = scene_detail::load_texture(test::fixture("grey.jpg"));
+    ASSERT_EQ(t.rgba8.size(), 64u);
+    for (uint32_t texel : t.rgba8) {
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(channel(texel, c), 100, 2);
+        EXPECT_EQ(channel(texel, 3), 255);
+    }
 }
 
 TEST_F(TextureFiles, ValidTextureLoads) {
