@@ -67,8 +67,21 @@ std::string format_hint(const std::string& b) {
     return "its first bytes match neither signature; a TGA, which has none, is also not read";
 }
 
-// Decodes a PNG with stb_image, first dropping its empty IDAT chunks (drop_empty_png_idat).
-DecodedImage decode_png(std::string& bytes, const std::string& file) {
+// `w` x `h` RGBA8 pixels from `p` as tex's texels, packed explicitly (R in the low byte)
+// rather than copied, so the layout does not depend on the host's byte order.
+void pack_texels(const uint8_t* p, int w, int h, Texture& tex) {
+    tex.width = w;
+    tex.height = h;
+    tex.rgba8.resize(size_t(w) * size_t(h));
+    for (auto& texel : tex.rgba8) {
+        texel = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
+        p += 4;
+    }
+}
+
+// Decodes a PNG with stb_image into tex, first dropping its empty IDAT chunks
+// (drop_empty_png_idat); packs from stb's buffer, so a texture costs two copies at most.
+void decode_png(std::string& bytes, const std::string& file, Texture& tex) {
     drop_empty_png_idat(bytes);
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int size = static_cast<int>(bytes.size());  // kTextureFileBytes fits an int
@@ -79,10 +92,7 @@ DecodedImage decode_png(std::string& bytes, const std::string& file) {
                                                      stbi_image_free);
     if (!pixels)
         throw InputError(file + ": texture is not a decodable PNG image (stb_image: " + stbi_failure_reason() + ")");
-    DecodedImage image;
-    image.width = w, image.height = h;
-    image.rgba.assign(pixels.get(), pixels.get() + size_t(w) * size_t(h) * 4);
-    return image;
+    pack_texels(pixels.get(), w, h, tex);
 }
 
 }  // namespace
@@ -92,25 +102,16 @@ Texture load_texture(const std::filesystem::path& file) {
     if (bytes.size() > limits::kTextureFileBytes)  // grew after read_input_file's size check
         throw InputError(file.string() + ": texture of " + std::to_string(bytes.size()) + " bytes exceeds the limit of " +
                          std::to_string(limits::kTextureFileBytes) + " bytes");
-    DecodedImage image;
-    if (is_png(bytes))
-        image = decode_png(bytes, file.string());
-    else if (is_jpeg(bytes))
-        image = decode_jpeg(bytes, file.string());
-    else
-        throw InputError(file.string() + ": texture is not a PNG or JPEG image (" + format_hint(bytes) +
-                         "); convert it to PNG");
     Texture tex;
     tex.path = file;
-    tex.width = image.width;
-    tex.height = image.height;
-    tex.rgba8.resize(size_t(image.width) * size_t(image.height));
-    const uint8_t* p = image.rgba.data();
-    // Pack explicitly (R in the low byte) rather than memcpy, so the layout does not
-    // depend on the host's byte order.
-    for (auto& texel : tex.rgba8) {
-        texel = uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-        p += 4;
+    if (is_png(bytes)) {
+        decode_png(bytes, file.string(), tex);
+    } else if (is_jpeg(bytes)) {
+        const DecodedImage image = decode_jpeg(bytes, file.string());
+        pack_texels(image.rgba.data(), image.width, image.height, tex);
+    } else {
+        throw InputError(file.string() + ": texture is not a PNG or JPEG image (" + format_hint(bytes) +
+                         "); convert it to PNG");
     }
     return tex;
 }
