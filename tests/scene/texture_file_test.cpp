@@ -143,10 +143,8 @@ TEST(DropEmptyPngIdat, LeavesOtherBytesAndTruncatedTailsAlone) {
 // IDAT chunks' concatenation) decodes to the texels of the same file without it. Under
 // UBSan the scene fuzzer's seed seed-empty_idat covers the stb_image defect it avoids.
 TEST_F(TextureFiles, EmptyIdatChunkDecodesLikeTheFileWithoutIt) {
-    make_texture(Make::Png);
-    const Texture plain = scene_detail::load_texture(dir_ / "tex.png");
-    std::ifstream in(dir_ / "tex.png", std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const Texture plain = scene_detail::load_texture(test::fixture("checker.png"));
+    std::string bytes = read_fixture("checker.png");
     const size_t idat = bytes.find("IDAT");
     ASSERT_NE(idat, std::string::npos);
     bytes.insert(idat - 4, png_chunk("IDAT", ""));
