@@ -1,5 +1,6 @@
 #include "scene/obj_scan.h"
 
+#include <climits>
 #include <cmath>
 #include <set>
 
@@ -34,6 +35,29 @@ void check_reals(const fs::path& obj, const TextLine& l, size_t min, size_t max,
         if (i < finite && !(std::isfinite(d) && std::isfinite(static_cast<float>(d))))
             line_error(obj, l.number, std::string(what) + " value " + in_quotes(values[i]) +
                                           " is not finite (or overflows a float)");
+    }
+}
+
+// vw <vertex> <joint> <weight> [<joint> <weight> ...], tinyobjloader's skin-weight
+// extension (not used here). Its parser converts the vertex with atoi and each joint id,
+// read as a float, to int: an id that is not finite or outside [0, 2^31) as a float would
+// be undefined behaviour inside it (found by scripts/fuzz), so every value must be a
+// number and those two in range.
+void check_skin_weight(const fs::path& obj, const TextLine& l) {
+    const auto values = value_tokens(l);
+    long long vertex = 0;
+    bool overflow = false;
+    if (values.empty() || !parse_index(values[0], vertex, overflow) || overflow || vertex < INT_MIN ||
+        vertex > INT_MAX)
+        line_error(obj, l.number, "skin weight (vw) needs a vertex index that fits an int first: " + in_quotes(l.text));
+    for (size_t i = 1; i < values.size(); ++i) {
+        double d = 0;
+        if (!parse_real(values[i], d))
+            line_error(obj, l.number, "skin weight (vw) value " + in_quotes(values[i]) + " is not a number");
+        const bool joint = i % 2 == 1;
+        if (joint && !(d >= 0.0 && static_cast<float>(d) < 2147483648.0f))
+            line_error(obj, l.number, "skin weight (vw) joint id " + in_quotes(values[i]) +
+                                          " is not a float in [0, 2^31)");
     }
 }
 
@@ -135,6 +159,8 @@ ObjScan scan_obj(const fs::path& obj, std::string_view text) {
         } else if (k == "vn") {
             check_reals(obj, l, 3, 3, 3, "normal (vn)");
             ++so_far.vn;
+        } else if (k == "vw") {
+            check_skin_weight(obj, l);
         } else if (k == "f" || k == "l" || k == "p") {
             const size_t corners = l.tokens.size() - 1;
             const size_t needed = k == "f" ? 3 : k == "l" ? 2 : 1;

@@ -47,6 +47,16 @@ const std::string T = kTriangle;
 INSTANTIATE_TEST_SUITE_P(
     Obj, BadObjInput,
     ::testing::Values(
+        // tinyobjloader's skin weights (vw): it casts joint ids to int, so an id that is not
+        // finite or beyond an int would be undefined behaviour in the parser.
+        BadObj{"SkinJointInfinite", T + "vw 1 1e999 0.5\nf 1 2 3\n", "broken.obj:4:", "'1e999'",
+               "joint id '1e999' is not a float in [0, 2^31)"},
+        BadObj{"SkinJointAboveInt", T + "vw 1 0 0.5 2147483647 0.5\nf 1 2 3\n", "broken.obj:4:", "'2147483647'",
+               "is not a float in [0, 2^31)"},
+        BadObj{"SkinJointNegative", T + "vw 1 -1 0.5\nf 1 2 3\n", "broken.obj:4:", "'-1'", "is not a float in"},
+        BadObj{"SkinWeightNotANumber", T + "vw 1 0 heavy\nf 1 2 3\n", "broken.obj:4:", "'heavy'", "is not a number"},
+        BadObj{"SkinVertexOverflow", T + "vw 99999999999 0 1\nf 1 2 3\n", "broken.obj:4:", "vw 99999999999",
+               "needs a vertex index that fits an int"},
         // Faces with too few corners (tinyobjloader drops them without an error).
         BadObj{"TwoCorners", T + "f 1 2\n", "broken.obj:4:", "'f 1 2'", "face has 2 corners (needs at least 3)"},
         BadObj{"OneCorner", T + "f 1\n", "broken.obj:4:", "'f 1'", "face has 1 corner"},
@@ -120,6 +130,7 @@ TEST_F(ObjInput, ValidVariantsLoad) {
         "v +1.0e0 .0 -0.\r\n"
         "vt 0.5\r\n"
         "vn 0 1 0\r\n"
+        "vw 1 0 0.25 2147483520 -0.5\r\n"  // skin weights, ignored; the largest float id below 2^31
         "usemtl x\r\n"
         "f 1/1/1 3/1/1 2/1/1\r\n"
         "f -4//-1 -2//-1 -1//1\r\n"  // relative indices
