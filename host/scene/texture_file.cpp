@@ -51,6 +51,21 @@ void drop_empty_png_idat(std::string& bytes) {
     }
 }
 
+void check_png_chunks(const std::string& bytes, const std::string& file) {
+    constexpr size_t kSignatureBytes = 8, kChunkFrame = 12;
+    if (!is_png(bytes)) return;
+    for (size_t at = kSignatureBytes; at < bytes.size();) {
+        const size_t left = bytes.size() - at;
+        const uint64_t length = left >= 4 ? big_endian32(bytes, at) : 0;
+        if (left < kChunkFrame || kChunkFrame + length > left)
+            throw InputError(file + ": texture is not a decodable PNG image (the chunk at byte " + std::to_string(at) +
+                             (left < kChunkFrame ? " is cut off" : " declares " + std::to_string(length) + " bytes") +
+                             ", past the end of the file's " + std::to_string(bytes.size()) + " bytes)");
+        if (bytes.compare(at + 4, 4, "IEND") == 0) return;  // what follows IEND is not read
+        at += size_t(kChunkFrame + length);
+    }
+}
+
 namespace {
 
 // What a file that is neither PNG nor JPEG looks like, by its signature, for the message.
@@ -79,9 +94,10 @@ void pack_texels(const uint8_t* p, int w, int h, Texture& tex) {
     }
 }
 
-// Decodes a PNG with stb_image into tex, first dropping its empty IDAT chunks
-// (drop_empty_png_idat); packs from stb's buffer, so a texture costs two copies at most.
+// Decodes a PNG with stb_image into tex, after check_png_chunks and dropping its empty
+// IDAT chunks (drop_empty_png_idat); packs from stb's buffer, so a texture costs two copies at most.
 void decode_png(std::string& bytes, const std::string& file, Texture& tex) {
+    check_png_chunks(bytes, file);
     drop_empty_png_idat(bytes);
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
     const int size = static_cast<int>(bytes.size());  // kTextureFileBytes fits an int

@@ -17,6 +17,13 @@ namespace tessera::scene_detail {
 /// the decoder's reason).
 Texture load_texture(const std::filesystem::path& file);
 
+/// Throws InputError "<file>: texture is not a decodable PNG image (the chunk at byte N
+/// ...)" when a chunk of the PNG in `bytes`, up to IEND, is cut off or declares more bytes
+/// than the file has left. stb_image 2.27 grows its IDAT buffer to a chunk's declared
+/// length before reading it, so a file of a few bytes could make it allocate 2 GB
+/// (found by scripts/fuzz). Bytes that are not a PNG are left to the caller.
+void check_png_chunks(const std::string& bytes, const std::string& file);
+
 /// Whether `bytes` start with the 8-byte PNG signature.
 bool is_png(const std::string& bytes);
 

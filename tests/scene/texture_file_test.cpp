@@ -93,7 +93,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadTexture{"Empty", Make::Empty, "texture is not a PNG or JPEG image"},
                       BadTexture{"Gif", Make::Gif, "those of a GIF image); convert it to PNG"},
                       BadTexture{"Pnm", Make::Pnm, "those of a PNM image); convert it to PNG"},
-                      BadTexture{"TruncatedPng", Make::TruncatedPng, "texture is not a decodable PNG image (stb_image: "},
+                      BadTexture{"TruncatedPng", Make::TruncatedPng, "texture is not a decodable PNG image (the chunk at byte "},
                       // A truncated JPEG is an error, not an image whose missing rows are grey.
                       BadTexture{"TruncatedJpeg", Make::TruncatedJpeg, "texture is not a decodable JPEG image (libjpeg: "},
                       BadTexture{"CmykJpeg", Make::CmykJpeg, "texture is a CMYK JPEG image"},
@@ -125,6 +125,24 @@ TEST(DropEmptyPngIdat, RemovesOnlyZeroLengthIdatChunks) {
     scene_detail::drop_empty_png_idat(bytes);
     // Empty chunks of other types (tEXt, IEND) stay.
     EXPECT_EQ(bytes, kPngSignature + ihdr + data + text + end);
+}
+
+// A chunk declaring more bytes than the file has is refused before stb_image, which would
+// grow its buffer to the declared length first; so is one cut off in its 12-byte frame.
+// Whatever follows IEND is not read.
+TEST(CheckPngChunks, RefusesChunksPastTheEndAndStopsAtIend) {
+    const std::string ihdr = png_chunk("IHDR", std::string(13, '\1')), end = png_chunk("IEND", "");
+    std::string huge = png_chunk("IDAT", "xy");
+    huge[0] = '\x7f';  // declares 2^31 - 1 + ... bytes
+    try {
+        scene_detail::check_png_chunks(kPngSignature + ihdr + huge + end, "t.png");
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_CONTAINS(e.what(), "t.png: texture is not a decodable PNG image (the chunk at byte 33 declares");
+    }
+    EXPECT_THROW(scene_detail::check_png_chunks(kPngSignature + ihdr + end.substr(0, 11), "t.png"), InputError);
+    EXPECT_NO_THROW(scene_detail::check_png_chunks(kPngSignature + ihdr + end + "trailing bytes", "t.png"));
+    EXPECT_NO_THROW(scene_detail::check_png_chunks("not a png", "t.png"));
 }
 
 TEST(DropEmptyPngIdat, LeavesOtherBytesAndTruncatedTailsAlone) {
