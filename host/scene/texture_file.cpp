@@ -16,6 +16,9 @@ namespace tessera::scene_detail {
 
 namespace {
 
+// A PNG: the 8-byte signature, then chunks framed by 12 bytes (length, type, CRC).
+constexpr size_t kPngSignatureBytes = 8, kPngChunkFrame = 12;
+
 uint32_t big_endian32(const std::string& b, size_t at) {
     const auto u = [&](size_t i) { return uint32_t(static_cast<unsigned char>(b[at + i])); };
     return u(0) << 24 | u(1) << 16 | u(2) << 8 | u(3);
@@ -25,11 +28,11 @@ uint32_t big_endian32(const std::string& b, size_t at) {
 
 bool is_png(const std::string& bytes) {
     static constexpr char kSignature[] = "\x89PNG\r\n\x1a\n";
-    return bytes.size() >= 8 && std::memcmp(bytes.data(), kSignature, 8) == 0;
+    return bytes.size() >= kPngSignatureBytes && std::memcmp(bytes.data(), kSignature, kPngSignatureBytes) == 0;
 }
 
 void drop_empty_png_idat(std::string& bytes) {
-    constexpr size_t kSignatureBytes = 8, kChunkFrame = 12;  // length, type, CRC
+    constexpr size_t kSignatureBytes = kPngSignatureBytes, kChunkFrame = kPngChunkFrame;
     if (!is_png(bytes)) return;
     // One pass with a read and a write cursor, so a file of many empty chunks costs
     // linear time.
@@ -52,7 +55,7 @@ void drop_empty_png_idat(std::string& bytes) {
 }
 
 void check_png_chunks(const std::string& bytes, const std::string& file) {
-    constexpr size_t kSignatureBytes = 8, kChunkFrame = 12;
+    constexpr size_t kSignatureBytes = kPngSignatureBytes, kChunkFrame = kPngChunkFrame;
     if (!is_png(bytes)) return;
     for (size_t at = kSignatureBytes; at < bytes.size();) {
         const size_t left = bytes.size() - at;
