@@ -14,6 +14,7 @@
 #include "gi/ic_gather.h"
 #include "gi/ic_probe.h"
 #include "kernels/shared/ic_lookup.h"
+#include "kernels/shared/rng.h"
 #include "kernels/shared/sampling.h"
 #include "util/error.h"
 #include "util/morton.h"
@@ -32,6 +33,8 @@ constexpr size_t kGatherBatch = size_t(1) << 24;
 bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_NO_HIT; }
 
 }  // namespace
+
+uint32_t ic_subsets_for_spp(uint32_t spp) { return spp >= 16 ? 4u : spp >= 4 ? 2u : 1u; }
 
 void ic_gbuffer_from_surface(const std::vector<float>& surf, std::vector<float>& g) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
@@ -89,7 +92,9 @@ LightPathSettings InstantCache::path_settings() const {
 void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint32_t block,
                                const IcPathSelection& selection) {
     oversampling_ = selection.view ? std::max(1u, selection.oversampling) : 1u;
-    const uint64_t n = uint64_t(settings_.paths) * oversampling_;
+    // M subsets of K·paths candidates each; a candidate weighs 1/(K·paths) (path_settings),
+    // so each subset alone is the estimate of paths light paths.
+    const uint64_t n = uint64_t(settings_.paths) * oversampling_ * subsets();
     paths_.assign(n, LightPath{});
     for (uint64_t j = 0; j < n; ++j) paths_[j].index = uint64_t(block) * n + j;
     stats_.light_path_rays += trace_light_paths(backend, scene, path_settings(), paths_);
@@ -105,7 +110,46 @@ void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint
 void InstantCache::concat_vpls() {
     vpls_.clear();
     for (const LightPath& p : paths_) vpls_.insert(vpls_.end(), p.vpls.begin(), p.vpls.end());
+    subset_vpls_ = subset_offsets(paths_);
     stats_.vpls = vpl_count(vpls_);
+}
+
+// Subset s is the candidates s·K·paths .. (s + 1)·K·paths − 1 of the pass's block: a run of
+// consecutive Halton points, as well spread as the block (point i mod M would fix the
+// leading base-2 digit of a subset's points). Kept paths stay in index order
+// (select_paths), so each subset's VPLs are one run of columns.
+std::vector<size_t> InstantCache::subset_offsets(const std::vector<LightPath>& paths) const {
+    const uint32_t m = subsets();
+    const uint64_t per_subset = uint64_t(settings_.paths) * oversampling_, first = uint64_t(pass_) * per_subset * m;
+    std::vector<size_t> offsets(m + 1, 0);
+    for (const LightPath& p : paths) {
+        const uint64_t s = (p.index - first) / per_subset;
+        if (p.index < first || s >= m) throw std::logic_error("ic: a light path outside its pass's block");
+        offsets[s + 1] += p.vpls.size() / TS_VPL_FLOATS;
+    }
+    for (uint32_t s = 0; s < m; ++s) offsets[s + 1] += offsets[s];
+    return offsets;
+}
+
+// A hash of the placement level, the block of grid cells, the pass and the seed:
+// neighbouring blocks draw independent subsets, so a region's mean sees all M·paths paths while each record gathers
+// from paths of them.
+uint32_t InstantCache::record_subset(uint32_t level, uint32_t block) const {
+    const uint32_t m = subsets();
+    if (m == 1) return 0;
+    return ts::ts_pcg_hash(block ^ ts::ts_pcg_hash(level ^ ts::ts_pcg_hash(pass_ ^ ts::ts_pcg_hash(seed_ + 0x69637375u)))) % m;
+}
+
+void InstantCache::clear_outside_subsets(std::vector<Row>& rows, int32_t code) const {
+    if (subsets() == 1) return;
+    const std::vector<IcRecord>& records = cache_.records();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rows.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            const size_t lo = subset_vpls_[records[i].subset], hi = subset_vpls_[records[i].subset + 1];
+            for (size_t j = 0; j < rows[i].size(); ++j)
+                if ((j < lo || j >= hi) && rows[i][j] == code) rows[i][j] = kIcFacing;
+        }
+    });
 }
 
 uint64_t InstantCache::probe(Backend& backend, std::vector<IcRecord>& records,
@@ -185,19 +229,42 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
     return traced;
 }
 
-// trace_pairs for every pair of `records` and VPLs 0 .. nv-1, VPL by VPL and the records
-// in the given order, as a grid the kernel reads without a list (ic_trace_pair_grid):
-// placement gives its records in Morton order of their grid cells, so 16 consecutive
-// pairs are a 4×4 block of records and one VPL, rays that end at one point and trace as a
-// coherent packet (docs/instant-caching.md §7). Pairs are independent, so the order
-// changes no result.
+// trace_pairs for every pair of `records` and the VPLs of its subset (`offsets`): subset by
+// subset, the records of one in the given order (trace_subset_grid). With one subset, one
+// grid of every record and VPL.
 uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float>& vpls,
-                                       const std::vector<uint32_t>& records, float g_clamp,
-                                       std::vector<Row>& rows) const {
-    const size_t n = records.size(), total = n * vpl_count(vpls);
+                                       const std::vector<size_t>& offsets, const std::vector<uint32_t>& records,
+                                       float g_clamp, std::vector<Row>& rows) const {
+    const size_t m = offsets.size() - 1;
+    if (m == 1) return trace_subset_grid(backend, vpls, 0, vpl_count(vpls), records, g_clamp, rows);
+    const std::vector<IcRecord>& all = cache_.records();
+    uint64_t traced = 0;
+    for (size_t s = 0; s < m; ++s) {
+        std::vector<uint32_t> mine;
+        for (const uint32_t r : records)
+            if (all[r].subset == s) mine.push_back(r);
+        traced += trace_subset_grid(backend, vpls, offsets[s], offsets[s + 1], mine, g_clamp, rows);
+    }
+    return traced;
+}
+
+// The grid of `records` and VPL columns first .. end-1, VPL by VPL and the records in the
+// given order, which the kernel reads without a list (ic_trace_pair_grid): placement gives
+// its records in Morton order of their grid cells, so 16 consecutive pairs are a 4×4 block
+// of records and one VPL, rays that end at one point and trace as a coherent packet
+// (docs/instant-caching.md §7). Pairs are independent, so the order changes no result.
+uint64_t InstantCache::trace_subset_grid(Backend& backend, const std::vector<float>& vpls, size_t first, size_t end,
+                                         const std::vector<uint32_t>& records, float g_clamp,
+                                         std::vector<Row>& rows) const {
+    const size_t n = records.size(), total = n * (end - first);
     if (total == 0) return 0;
     const auto t0 = Clock::now();
-    ic_set_record_inputs(backend, cache_.records(), vpls);
+    if (first == 0 && end == vpl_count(vpls)) {
+        ic_set_record_inputs(backend, cache_.records(), vpls);
+    } else {
+        const std::vector<float> slice(vpls.begin() + first * TS_VPL_FLOATS, vpls.begin() + end * TS_VPL_FLOATS);
+        ic_set_record_inputs(backend, cache_.records(), slice);
+    }
     backend.set_input(KernelInput::IcPairRecords, records);
     const uint64_t traced = trace_in_batches(
         total,
@@ -206,7 +273,7 @@ uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float
             ic_trace_pair_grid(backend, g_clamp, static_cast<uint32_t>(n), static_cast<uint32_t>(begin), count, hits);
             times_.pair_kernel += since(tk);
         },
-        [&](size_t g, uint32_t hit) { rows[records[g % n]][g / n] = row_code(hit); });
+        [&](size_t g, uint32_t hit) { rows[records[g % n]][first + g / n] = row_code(hit); });
     times_.pairs += since(t0);
     return traced;
 }
@@ -336,6 +403,11 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
             rec.pixel_size = rec.surface[TS_IC_GBUF_DISTANCE] * footprint;
             rec.last_in_view = frame_count_;
             const uint32_t x = candidates[i] % frame.width / stride, y = candidates[i] / frame.width / stride;
+            // The records of a 2×2 block of the level's grid cells share a subset: they
+            // are neighbours in Morton order, so the pair kernel's packets of 16 rays stay
+            // groups of nearby records; and a record's subset depends on its cell alone,
+            // not on which other records were made.
+            rec.subset = record_subset(stride, morton2(x >> 1, y >> 1));
             blocked.push_back({morton2(x, y), static_cast<uint32_t>(cache_.records().size())});
             cache_.records().push_back(rec);  // inserted in the octree once its radius is known
             rows_.emplace_back(nv, kIcFacing);
@@ -344,7 +416,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         std::sort(blocked.begin(), blocked.end());
         std::vector<uint32_t> order(blocked.size());
         for (size_t i = 0; i < order.size(); ++i) order[i] = blocked[i].second;
-        stats_.shadow_rays += trace_pair_grid(backend, vpls_, order, g_clamp, rows_);
+        stats_.shadow_rays += trace_pair_grid(backend, vpls_, subset_vpls_, order, g_clamp, rows_);
         std::vector<uint32_t> which(cache_.records().size() - first);
         for (size_t i = 0; i < which.size(); ++i) which[i] = static_cast<uint32_t>(first + i);
         stats_.probe_rays += probe(backend, cache_.records(), which);
@@ -460,7 +532,7 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
     std::vector<Row> rows(records.size(), Row(nv, kIcFacing));
     std::vector<uint32_t> order(records.size());
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    trace_pair_grid(backend, vpls, order, g_clamp, rows);
+    trace_pair_grid(backend, vpls, subset_offsets(paths), order, g_clamp, rows);
     std::vector<IcRecord> out(records);
     std::vector<uint32_t> all(out.size());
     for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
@@ -485,14 +557,15 @@ IcFrameStats& IcFrameStats::operator+=(const IcFrameStats& o) {
 }
 
 std::string describe_ic(const IcSettings& settings, const IcFrameStats& s, uint32_t passes) {
-    char buf[640], over[48] = "";
+    char buf[704], over[48] = "", subsets[40] = "";
     if (passes > 1) std::snprintf(over, sizeof over, " summed over %u passes", passes);
+    if (settings.subsets > 1) std::snprintf(subsets, sizeof subsets, " in each of %u subsets", settings.subsets);
     std::snprintf(buf, sizeof buf,
-                  "%s: a %.2f, %u paths%s: %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed, %zu by the changed VPLs), "
+                  "%s: a %.2f, %u paths%s%s: %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed, %zu by the changed VPLs), "
                   "%zu paths re-traced, "
                   "rays: %llu light-path + %llu shadow + %llu probe, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms; of update and placement: shadow rays %.1f ms "
                   "(kernel %.1f), probes %.1f, gathers %.1f (kernel %.1f), octree %.1f, coverage %.1f",
-                  settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, over, s.vpls, s.records,
+                  settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, subsets, over, s.vpls, s.records,
                   s.created, s.removed, s.resummed, s.resummed_by_change, s.paths_retraced,
                   static_cast<unsigned long long>(s.light_path_rays), static_cast<unsigned long long>(s.shadow_rays),
                   static_cast<unsigned long long>(s.probe_rays),

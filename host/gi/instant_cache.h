@@ -40,7 +40,11 @@ namespace tessera {
 
 /// Settings; defaults from docs/instant-caching.md (ours, not the paper's).
 struct IcSettings {
-    uint32_t paths = 256;        ///< N_p light paths, one set: every record gathers from all VPLs
+    uint32_t paths = 256;        ///< N_p light paths a record gathers from
+    /// M path subsets a pass draws (M·N_p paths); each record gathers from one, chosen by a
+    /// hash of its pixel (docs/instant-caching.md §2b). 0 = 1 here; the renderer sets it
+    /// from the spp (ic_subsets_for_spp) unless --ic-subsets gives it.
+    uint32_t subsets = 0;
     float error_bound = 0.3f;    ///< Ward's a: a record serves points with ε < a (shared/ic_lookup.h)
     float min_radius_px = 1.5f;  ///< record radius bounds in pixel footprints (ic_record_radius)
     float max_radius_px = 20.0f;
@@ -90,6 +94,11 @@ struct IcFrameStats {
     uint64_t indirect_rays() const { return light_path_rays + shadow_rays + probe_rays; }
     IcFrameStats& operator+=(const IcFrameStats& o);
 };
+
+/// The path subsets M the renderer gives ic and tic at `spp` passes when --ic-subsets is
+/// 0 (docs/instant-caching.md §2b): 1 below 4 spp, where each record's own VPL noise would
+/// show as record-shaped blotches, 2 below 16 spp, 4 from 16 spp.
+uint32_t ic_subsets_for_spp(uint32_t spp);
 
 /// One log line: the cache's settings and `stats` (one pass, or summed over `passes`).
 std::string describe_ic(const IcSettings& settings, const IcFrameStats& stats, uint32_t passes);
@@ -149,6 +158,10 @@ public:
     const IcFrameStats& stats() const { return stats_; }
     bool temporal() const { return settings_.temporal; }
     const IcSettings& settings() const { return settings_; }
+    /// M: the path subsets of each pass (IcSettings::subsets, at least 1).
+    uint32_t subsets() const { return settings_.subsets > 1 ? settings_.subsets : 1u; }
+    /// The VPL columns of subset s of the current light paths: [offsets[s], offsets[s + 1]).
+    const std::vector<size_t>& subset_vpls() const { return subset_vpls_; }
     /// Record–VPL visibilities kept (4 bytes each).
     size_t pairs_kept() const { return rows_.empty() ? 0 : rows_.size() * rows_.front().size(); }
     std::string describe() const { return describe_ic(settings_, stats_, 1); }
@@ -174,14 +187,29 @@ private:
     /// (docs/instant-caching.md §4).
     float radius_of(const IcRecord& r, float harmonic_mean) const;
     void concat_vpls();
+    /// The VPL column offsets of the M subsets of `paths` (subset_vpls), the paths of pass
+    /// block pass_ with oversampling_ candidates a path.
+    std::vector<size_t> subset_offsets(const std::vector<LightPath>& paths) const;
+    /// The subset the records of block `block` (the Morton code of a 2×2 block of grid
+    /// cells) of placement level `level` (its grid stride) gather from.
+    uint32_t record_subset(uint32_t level, uint32_t block) const;
+    /// Sets each record's entries outside its subset's columns (kNeedsTrace after a
+    /// temporal update's re-map) to kIcFacing: no ray, never visible.
+    void clear_outside_subsets(std::vector<std::vector<int32_t>>& rows, int32_t code) const;
     void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp,
                const SceneBounds& bounds);
     std::vector<uint8_t> covered(IrradianceCache& cache, const std::vector<float>& gbuffer,
                                  const std::vector<uint32_t>& pixels) const;
     uint64_t trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
                          float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
-    uint64_t trace_pair_grid(Backend& backend, const std::vector<float>& vpls, const std::vector<uint32_t>& records,
-                             float g_clamp, std::vector<std::vector<int32_t>>& rows) const;
+    /// The pairs of `records` with the VPLs of each one's subset (`offsets`, subset_offsets).
+    uint64_t trace_pair_grid(Backend& backend, const std::vector<float>& vpls, const std::vector<size_t>& offsets,
+                             const std::vector<uint32_t>& records, float g_clamp,
+                             std::vector<std::vector<int32_t>>& rows) const;
+    /// trace_pair_grid for the records of one subset and its VPL columns [first, end).
+    uint64_t trace_subset_grid(Backend& backend, const std::vector<float>& vpls, size_t first, size_t end,
+                               const std::vector<uint32_t>& records, float g_clamp,
+                               std::vector<std::vector<int32_t>>& rows) const;
     template <class Launch, class Write>
     uint64_t trace_in_batches(size_t total, Launch&& launch, Write&& write) const;
     int32_t row_code(uint32_t hit) const;
@@ -213,7 +241,8 @@ private:
     IrradianceCache cache_;
     std::vector<LightPath> paths_;
     std::vector<float> vpls_;
-    std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL
+    std::vector<size_t> subset_vpls_;          // subset_vpls()
+    std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL (kIcFacing outside its subset)
     std::vector<IcGatherSums> sums_;          // per record, its gather's sums (the temporal update adds to them)
     IcFrameStats stats_;
     // The stage times of the const helpers (trace_pairs, probe, gather), copied into stats_.

@@ -40,6 +40,7 @@ struct IcRecord {
     /// reach; gi/ic_probe.h): R_i ≤ probe / (2a), so the validity ball stays clear of it.
     float probe = INFINITY;
     uint32_t last_in_view = 0;  ///< the last frame (InstantCache's count) whose view held it
+    uint32_t subset = 0;        ///< the path subset it gathers from (IcSettings::subsets)
     std::array<float, 3> e{};                         ///< irradiance / π, W/m² / π
     glm::vec3 position() const {
         return {surface[TS_IC_GBUF_POSITION], surface[TS_IC_GBUF_POSITION + 1], surface[TS_IC_GBUF_POSITION + 2]};

@@ -392,6 +392,8 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     records.swap(kept);
     rows_.swap(rows);
     sums_.swap(sums);
+    // A record gathers from its own subset only: the new columns of the others need no ray.
+    clear_outside_subsets(rows_, kNeedsTrace);
 
     // Pairs to re-trace: those never traced, those whose occluder moved, and the visible
     // ones whose shadow ray now meets a moved object's box. That ray is the one

@@ -14,6 +14,7 @@
 #include "render/cluster.h"
 #include "render/pass_exchange.h"
 #include "device/frame.h"
+#include "gi/instant_cache.h"
 #include "render/parameters.h"
 #include "util/error.h"
 
@@ -40,6 +41,7 @@ IntegratorSettings integrator_settings(const RenderSettings& settings) {
     s.igi.component_aovs = s.igi.component_aovs || settings.aovs;
     // One switch for the clamp's compensation: igi's screen-space estimate and ic's rays.
     s.ic.clamp_compensation = s.ic.clamp_compensation && s.igi.clamp_compensation;
+    if (s.ic.subsets == 0) s.ic.subsets = ic_subsets_for_spp(settings.spp);
     return s;
 }
 

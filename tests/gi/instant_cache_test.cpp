@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <numeric>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +73,89 @@ TEST_P(InstantCacheOn, MatchesIgiWithTheSameVpls) {
     EXPECT_LT(error[1], error[2]);
 }
 
+// Path subsets (docs/instant-caching.md §2b): with M subsets pass 0 draws paths 0 .. M·N_p − 1
+// and subset s is paths s·N_p .. (s + 1)·N_p − 1 (K = 1 here), so subset 0 is the one set
+// of M = 1. The first placement level puts records at the same pixels whatever the VPLs
+// (nothing covers anything yet), so a subset-0 record there must have the E of the M = 1
+// record at its point bit for bit (same VPLs, same order, same sums), and a record of
+// another subset another E. A record that gathered from every VPL, or from another
+// subset's columns, fails the first; one that ignored its subset, the second.
+TEST_P(InstantCacheOn, RecordsGatherFromTheirSubsetOnly) {
+    const Scene scene = test::shipped_scene("cornell-box.json");
+    auto cache_of = [&](uint32_t subsets) {
+        RenderSettings s = small(Method::Ic, 40);
+        s.ic.paths = 32;
+        s.ic.subsets = subsets;
+        s.igi.vpl_importance = 1;
+        s.ic_state = std::make_shared<IcPassCaches>(s.ic, scene.objects);
+        test::render_with(GetParam(), scene, s);
+        return s.ic_state;
+    };
+    const auto one = cache_of(1), three = cache_of(3);
+    const InstantCache& c1 = one->pass(0);
+    const InstantCache& c3 = three->pass(0);
+    ASSERT_EQ(c3.subsets(), 3u);
+    // The subsets partition the VPLs in path order.
+    const std::vector<size_t>& at = c3.subset_vpls();
+    ASSERT_EQ(at.size(), 4u);
+    EXPECT_EQ(at.front(), 0u);
+    EXPECT_EQ(at.back(), c3.vpls().size() / TS_VPL_FLOATS);
+    EXPECT_TRUE(std::is_sorted(at.begin(), at.end()));
+    EXPECT_EQ(c3.paths().size(), 3u * 32u) << "K = 1: every path of the three subsets";
+    EXPECT_EQ(at[1], c1.vpls().size() / TS_VPL_FLOATS) << "subset 0 holds the M = 1 VPLs";
+    EXPECT_TRUE(std::equal(c1.vpls().begin(), c1.vpls().end(), c3.vpls().begin()));
+    std::array<size_t, 3> per_subset{};
+    size_t same = 0, other = 0, differ = 0;
+    for (const IcRecord& r : c3.cache().records()) {
+        ASSERT_LT(r.subset, 3u);
+        ++per_subset[r.subset];
+        for (const IcRecord& q : c1.cache().records()) {
+            if (q.position() != r.position() || q.surface != r.surface) continue;
+            if (r.subset == 0) {
+                EXPECT_EQ(r.e, q.e) << "a subset-0 record gathers the M = 1 VPLs";
+                ++same;
+            } else {
+                ++other;
+                differ += r.e != q.e;
+            }
+        }
+    }
+    for (size_t n : per_subset) EXPECT_GT(n, 10u);
+    EXPECT_GT(same, 5u);
+    EXPECT_GT(other, 5u);
+    EXPECT_EQ(differ, other) << "records of subsets 1 and 2 gather from other VPLs";
+}
+
+// Each subset alone estimates the indirect light of N_p paths (its candidates weigh
+// 1/(K·N_p)), so M changes the noise, not the mean: over seeds the ID mean at M = 4 must
+// match M = 1 within 4 standard errors of the difference, estimated from the seeds' spread
+// (24², 64 paths, 4 spp, seeds 1-8: 4 standard errors are about 10% of the mean). A subset
+// weighted as 1/M of the pass (or M times) would be off by a factor of M.
+TEST_P(InstantCacheOn, SubsetsKeepTheMean) {
+    const Scene scene = test::shipped_scene("cornell-box.json");
+    RenderSettings s = small(Method::Ic, 24);
+    s.spp = 4;
+    s.ic.paths = 64;
+    std::array<std::vector<double>, 2> means;
+    for (uint32_t seed = 1; seed <= 8; ++seed) {
+        s.seed = seed;
+        for (int k = 0; k < 2; ++k) {
+            s.ic.subsets = k == 0 ? 1u : 4u;
+            means[k].push_back(test::channel_mean(test::render_with(GetParam(), scene, s), "ID.G"));
+        }
+    }
+    auto mean = [](const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / v.size(); };
+    auto var = [&](const std::vector<double>& v) {
+        double m = mean(v), q = 0.0;
+        for (double x : v) q += (x - m) * (x - m);
+        return q / (v.size() - 1);
+    };
+    const double se = std::sqrt((var(means[0]) + var(means[1])) / means[0].size());
+    EXPECT_GT(mean(means[0]), 0.0);
+    EXPECT_NEAR(mean(means[1]), mean(means[0]), 4.0 * se);
+    EXPECT_LT(4.0 * se, 0.25 * mean(means[0])) << "the test must be able to see a factor of M";
+}
+
 // The clamp's residual (kernels/shared/ic_residual.h) returns what the geometry-term clamp
 // took from the indirect light. With the same seed the clamped and the unclamped cache
 // gather from the same VPLs, so the unclamped one is the reference of exactly that part.
@@ -84,6 +168,12 @@ TEST_P(InstantCacheOn, ClampCompensationReturnsWhatTheClampRemoved) {
     RenderSettings s = small(Method::Ic, 32);
     s.spp = 16;
     s.igi.clamp_decay = 0.0f;
+    // One path subset (16 spp would give 4): the unclamped image is the reference, and
+    // with M subsets it holds M times the VPLs, so a VPL next to a surface becomes likelier
+    // and outweighs the clamp's share (M = 4, seed 2: the unclamped mean +4%, "returned"
+    // 0.69). What the compensation adds does not depend on M: over seeds 1-6 its sum was
+    // the same at M = 1 and M = 4 to 0.1%.
+    s.ic.subsets = 1;
     for (uint32_t seed : {1u, 2u}) {
         s.seed = seed;
         s.igi.clamp_c = 0.0f;
@@ -122,9 +212,11 @@ struct TemporalRun {
 // Renders every frame of `rest` with tic at `spp` passes; after each frame every pass's
 // cache must equal a rebuild from scratch (fresh light paths with the same indices,
 // every shadow ray traced, the pass's own clamp).
-TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest, uint32_t spp = 1) {
+TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest, uint32_t spp = 1,
+                                         uint32_t subsets = 1) {
     RenderSettings s = small(Method::Tic, 40);
     s.spp = spp;
+    s.ic.subsets = subsets;
     s.ic.paths = 64;
     s.ic.temporal = true;
     s.ic_state = std::make_shared<IcPassCaches>(s.ic, rest.objects);
@@ -190,6 +282,11 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     EXPECT_LT(moving.update_rays, moving.full_rays / 4);
     // Few VPLs change: records are re-summed over those alone (and still equal a rebuild).
     EXPECT_GT(moving.by_change, 0u);
+    // Three path subsets: a re-traced path's new VPLs are traced only from the records of
+    // its subset, and the update still equals the rebuild.
+    const TemporalRun subsets = run_and_compare_with_rebuild(GetParam(), moves, 1, 3);
+    EXPECT_GT(subsets.retraced, 0u);
+    EXPECT_LT(subsets.update_rays, subsets.full_rays / 4);
     EXPECT_EQ(all.by_change, 0u) << "every VPL's weight changes as the light dims: a full re-sum";
     // Only the light dims: every path is re-traced (its weight changes) but lands where it
     // did, so no shadow ray is traced again and no record is removed.
