@@ -45,6 +45,10 @@ IntegratorSettings integrator_settings(const RenderSettings& settings) {
     return s;
 }
 
+void resolve_ic_subsets(RenderSettings& settings) {
+    if (settings.ic.subsets == 0) settings.ic.subsets = ic_subsets_for_spp(settings.spp);
+}
+
 TsFrame make_render_frame(const Camera& camera, int width, int height, const SceneBuffers& buffers,
                           const RenderSettings& settings) {
     TsFrame frame = make_frame(camera, width, height, settings.shadow_samples, settings.seed, buffers.light_count);

@@ -25,8 +25,14 @@ class Cluster;             // render/cluster.h
 
 /// The integrator settings of a render or view with `settings`: as given, with the igi
 /// family's components kept on the host when the method's AOV channels are wanted
-/// (IgiSettings::component_aovs).
+/// (IgiSettings::component_aovs) and ic's path subsets resolved (resolve_ic_subsets).
 IntegratorSettings integrator_settings(const RenderSettings& settings);
+
+/// Sets ic's path subsets M from settings.spp where they are 0 (--ic-subsets not given):
+/// ic_subsets_for_spp (docs/instant-caching.md §2b). Every caller that makes tic's caches
+/// (render_sequence, the viewer) applies it first, so that tic and ic, and a view at rest
+/// and a render, draw the same M at the same spp.
+void resolve_ic_subsets(RenderSettings& settings);
 
 /// The per-pass frame parameters render_frame uses for `camera` at width × height:
 /// make_frame (device/frame.h) with the settings' shadow samples, seed, depth and scatter

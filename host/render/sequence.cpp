@@ -6,8 +6,8 @@
 
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
-#include "gi/instant_cache.h"
 #include "render/parameters.h"
+#include "render/renderer.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -52,9 +52,7 @@ void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& 
                      const ProgressFn& progress) {
     validate_settings(sequence_settings);  // before the tic cache is made from them
     RenderSettings settings = sequence_settings;
-    // tic's caches are made here, before render_frame would pick M: the same M as an ic
-    // render at this spp, so that frame 0 is ic's image.
-    if (settings.ic.subsets == 0) settings.ic.subsets = ic_subsets_for_spp(settings.spp);
+    resolve_ic_subsets(settings);  // tic's caches are made here: ic's M at this spp
     prepare_sequence(settings, rest);
     // One backend for the sequence, given each frame's scene with set_scene: the BVH is
     // rebuilt and every scene buffer re-uploaded (simple and correct for moving

@@ -10,6 +10,7 @@
 
 #include "metrics/image_metrics.h"
 #include "render/parameters.h"
+#include "render/renderer.h"
 #include "render/sequence.h"
 #include "util/error.h"
 #include "view/camera_control.h"
@@ -34,6 +35,7 @@ ViewSession::ViewSession(const Scene& rest, const ViewOptions& options)
                              std::to_string(width_) + "x" + std::to_string(height_));
         metrics::rgb_for_metrics(*reference_, options.reference);  // checks R, G, B exist and are finite
     }
+    resolve_ic_subsets(settings_);       // tic's caches: a render's M at this spp
     prepare_sequence(settings_, rest_);  // what the method keeps across frames (tic's cache)
     switch_method(0);  // the budget of the starting method
     build_backend();

@@ -71,6 +71,20 @@ TEST_P(ViewSessionMethods, AccumulationAtRestEqualsRender) {
     expect_equal_images(session.accumulation(), still(scene, scene.camera, o.settings, 3));
 }
 
+TEST(ViewSession, IcAndTicDrawARendersPathSubsets) {
+    // At 4 spp a render draws 2 path subsets for ic and tic (ic_subsets_for_spp); the
+    // viewer makes tic's caches before any pass, so it must pick M from the same spp, or
+    // its accumulation at rest would be another image than the render's.
+    const Scene scene = cornell();
+    for (Method m : {Method::Ic, Method::Tic}) {
+        ViewOptions o = options(m, 4);
+        ViewSession session(scene, o);
+        for (int i = 0; i < 6; ++i) session.advance(1.0 / 30);
+        EXPECT_EQ(session.passes(), 4u);
+        expect_equal_images(session.accumulation(), still(scene, scene.camera, o.settings, 4));
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(View, ViewSessionMethods,
                          ::testing::Values(Method::PathTrace, Method::Igi, Method::Ais, Method::AisMax, Method::Ic,
                                            Method::Tic),
