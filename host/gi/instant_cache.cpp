@@ -132,8 +132,8 @@ std::vector<size_t> InstantCache::subset_offsets(const std::vector<LightPath>& p
 }
 
 // A hash of the placement level, the block of grid cells, the pass and the seed:
-// neighbouring blocks draw independent subsets, so a region's mean sees all M·paths paths while each record gathers
-// from paths of them.
+// neighbouring blocks draw independent subsets, so a region's mean sees all M·paths paths
+// while each record gathers from paths of them.
 uint32_t InstantCache::record_subset(uint32_t level, uint32_t block) const {
     const uint32_t m = subsets();
     if (m == 1) return 0;

@@ -1,10 +1,10 @@
 // Instant caching (Debattista, Dubla et al., CGF 2009) and its temporal form: the
 // indirect diffuse component of an igi frame read from an irradiance cache whose records
-// gather from all VPLs (docs/instant-caching.md). Host code shared by every backend: record
-// placement, the visibility bookkeeping and the temporal update's decisions run here; the
-// G-buffer, the record–VPL shadow rays and gather sums (KernelId::IcPair and IcGather,
-// launched through gi/ic_gather.h) and the interpolation (KernelId::IcInterpolate) run
-// on the backend.
+// gather from the VPLs of one path subset (docs/instant-caching.md). Host code shared by
+// every backend: record placement, the visibility bookkeeping and the temporal update's
+// decisions run here; the G-buffer, the record–VPL shadow rays and gather sums
+// (KernelId::IcPair and IcGather, launched through gi/ic_gather.h) and the interpolation
+// (KernelId::IcInterpolate) run on the backend.
 //
 // Choices the paper does not fix for us (docs/instant-caching.md marks them ours), and why:
 // - Radius: the harmonic mean distance to the VPLs a record sees, clamped to 1.5–20 pixel
