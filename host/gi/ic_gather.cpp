@@ -62,6 +62,10 @@ void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records
     for (size_t i = 0; i < records.size(); ++i)
         std::memcpy(&surfaces[i * TS_IC_GBUF_FLOATS], records[i].surface.data(), sizeof(float) * TS_IC_GBUF_FLOATS);
     backend.set_input(KernelInput::IcRecordSurfaces, surfaces);
+    ic_set_vpl_inputs(backend, vpls);
+}
+
+void ic_set_vpl_inputs(Backend& backend, const std::vector<float>& vpls) {
     backend.set_input(KernelInput::Vpls, vpls.empty() ? std::vector<float>(TS_VPL_FLOATS, 0.0f) : vpls);
     backend.set_input(KernelInput::VplSetStart, std::vector<uint32_t>{0u, static_cast<uint32_t>(vpls.size() / TS_VPL_FLOATS)});
 }

@@ -23,6 +23,9 @@ inline size_t vpl_count(const std::vector<float>& vpls) { return vpls.size() / T
 /// (TS_VPL_FLOATS each) as one sample set (Vpls, VplSetStart = {0, count}). Replaces
 /// the igi VPLs: call after the igi kernels of the pass.
 void ic_set_record_inputs(Backend& backend, const std::vector<IcRecord>& records, const std::vector<float>& vpls);
+/// The VPL inputs alone (Vpls, VplSetStart = {0, count}), ic_set_record_inputs' second
+/// half: the pair grid of one path subset reads that subset's VPLs with the records set.
+void ic_set_vpl_inputs(Backend& backend, const std::vector<float>& vpls);
 
 /// One launch of the pair kernel over `items` (TS_IC_PAIR_WORDS uints each: record, VPL;
 /// layout_ic.h) with geometry-term bound `g_clamp`. `hits` gets one code per item: the first

@@ -235,6 +235,10 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
 uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float>& vpls,
                                        const std::vector<size_t>& offsets, const std::vector<uint32_t>& records,
                                        float g_clamp, std::vector<Row>& rows) const {
+    if (records.empty() || vpls.empty()) return 0;
+    const auto t0 = Clock::now();
+    ic_set_record_inputs(backend, cache_.records(), vpls);
+    times_.pairs += since(t0);
     const size_t m = offsets.size() - 1;
     if (m == 1) return trace_subset_grid(backend, vpls, 0, vpl_count(vpls), records, g_clamp, rows);
     const std::vector<IcRecord>& all = cache_.records();
@@ -249,9 +253,10 @@ uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float
 }
 
 // The grid of `records` and VPL columns first .. end-1, VPL by VPL and the records in the
-// given order, which the kernel reads without a list (ic_trace_pair_grid): placement gives
-// its records in Morton order of their grid cells, so 16 consecutive pairs are a 4×4 block
-// of records and one VPL, rays that end at one point and trace as a coherent packet
+// given order, which the kernel reads without a list (ic_trace_pair_grid); the record
+// inputs are set (trace_pair_grid), with all of `vpls`. Placement gives its records in
+// Morton order of their grid cells, so 16 consecutive pairs are a 4×4 block of records
+// and one VPL, rays that end at one point and trace as a coherent packet
 // (docs/instant-caching.md §7). Pairs are independent, so the order changes no result.
 uint64_t InstantCache::trace_subset_grid(Backend& backend, const std::vector<float>& vpls, size_t first, size_t end,
                                          const std::vector<uint32_t>& records, float g_clamp,
@@ -259,12 +264,9 @@ uint64_t InstantCache::trace_subset_grid(Backend& backend, const std::vector<flo
     const size_t n = records.size(), total = n * (end - first);
     if (total == 0) return 0;
     const auto t0 = Clock::now();
-    if (first == 0 && end == vpl_count(vpls)) {
-        ic_set_record_inputs(backend, cache_.records(), vpls);
-    } else {
-        const std::vector<float> slice(vpls.begin() + first * TS_VPL_FLOATS, vpls.begin() + end * TS_VPL_FLOATS);
-        ic_set_record_inputs(backend, cache_.records(), slice);
-    }
+    if (first != 0 || end != vpl_count(vpls))
+        ic_set_vpl_inputs(backend, std::vector<float>(vpls.begin() + first * TS_VPL_FLOATS,
+                                                      vpls.begin() + end * TS_VPL_FLOATS));
     backend.set_input(KernelInput::IcPairRecords, records);
     const uint64_t traced = trace_in_batches(
         total,

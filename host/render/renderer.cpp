@@ -37,11 +37,12 @@ uint64_t render_fingerprint(const Scene& scene, const RenderSettings& settings, 
 }  // namespace
 
 IntegratorSettings integrator_settings(const RenderSettings& settings) {
-    IntegratorSettings s = settings;
+    RenderSettings resolved = settings;
+    resolve_ic_subsets(resolved);
+    IntegratorSettings s = resolved;
     s.igi.component_aovs = s.igi.component_aovs || settings.aovs;
     // One switch for the clamp's compensation: igi's screen-space estimate and ic's rays.
     s.ic.clamp_compensation = s.ic.clamp_compensation && s.igi.clamp_compensation;
-    if (s.ic.subsets == 0) s.ic.subsets = ic_subsets_for_spp(settings.spp);
     return s;
 }
 
