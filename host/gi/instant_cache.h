@@ -42,8 +42,8 @@ namespace tessera {
 struct IcSettings {
     uint32_t paths = 256;        ///< N_p light paths a record gathers from
     /// M path subsets a pass draws (M·N_p paths); each record gathers from one, chosen by a
-    /// hash of its pixel (docs/instant-caching.md §2b). 0 = 1 here; the renderer sets it
-    /// from the spp (ic_subsets_for_spp) unless --ic-subsets gives it.
+    /// hash of its 2×2 block of placement cells (docs/instant-caching.md §2b). 0 = 1 here;
+    /// the renderer sets it from the spp (resolve_ic_subsets) unless --ic-subsets gives it.
     uint32_t subsets = 0;
     float error_bound = 0.3f;    ///< Ward's a: a record serves points with ε < a (shared/ic_lookup.h)
     float min_radius_px = 1.5f;  ///< record radius bounds in pixel footprints (ic_record_radius)

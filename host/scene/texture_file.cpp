@@ -32,15 +32,14 @@ bool is_png(const std::string& bytes) {
 }
 
 void drop_empty_png_idat(std::string& bytes) {
-    constexpr size_t kSignatureBytes = kPngSignatureBytes, kChunkFrame = kPngChunkFrame;
     if (!is_png(bytes)) return;
     // One pass with a read and a write cursor, so a file of many empty chunks costs
     // linear time.
-    size_t read = kSignatureBytes, write = kSignatureBytes;
-    while (bytes.size() - read >= kChunkFrame) {
-        const uint64_t frame = kChunkFrame + uint64_t(big_endian32(bytes, read));
+    size_t read = kPngSignatureBytes, write = kPngSignatureBytes;
+    while (bytes.size() - read >= kPngChunkFrame) {
+        const uint64_t frame = kPngChunkFrame + uint64_t(big_endian32(bytes, read));
         if (frame > bytes.size() - read) break;
-        const bool empty_idat = frame == kChunkFrame && bytes.compare(read + 4, 4, "IDAT") == 0;
+        const bool empty_idat = frame == kPngChunkFrame && bytes.compare(read + 4, 4, "IDAT") == 0;
         if (!empty_idat) {
             if (write != read) std::memmove(&bytes[write], &bytes[read], size_t(frame));
             write += size_t(frame);
@@ -55,17 +54,17 @@ void drop_empty_png_idat(std::string& bytes) {
 }
 
 void check_png_chunks(const std::string& bytes, const std::string& file) {
-    constexpr size_t kSignatureBytes = kPngSignatureBytes, kChunkFrame = kPngChunkFrame;
     if (!is_png(bytes)) return;
-    for (size_t at = kSignatureBytes; at < bytes.size();) {
+    for (size_t at = kPngSignatureBytes; at < bytes.size();) {
         const size_t left = bytes.size() - at;
         const uint64_t length = left >= 4 ? big_endian32(bytes, at) : 0;
-        if (left < kChunkFrame || kChunkFrame + length > left)
+        if (left < kPngChunkFrame || kPngChunkFrame + length > left)
             throw InputError(file + ": texture is not a decodable PNG image (the chunk at byte " + std::to_string(at) +
-                             (left < kChunkFrame ? " is cut off" : " declares " + std::to_string(length) + " bytes") +
+                             (left < kPngChunkFrame ? " is cut off"
+                                                    : " declares " + std::to_string(length) + " bytes") +
                              ", past the end of the file's " + std::to_string(bytes.size()) + " bytes)");
         if (bytes.compare(at + 4, 4, "IEND") == 0) return;  // what follows IEND is not read
-        at += size_t(kChunkFrame + length);
+        at += size_t(kPngChunkFrame + length);
     }
 }
 
