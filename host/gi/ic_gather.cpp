@@ -70,14 +70,10 @@ void ic_set_vpl_inputs(Backend& backend, const std::vector<float>& vpls) {
     backend.set_input(KernelInput::VplSetStart, std::vector<uint32_t>{0u, static_cast<uint32_t>(vpls.size() / TS_VPL_FLOATS)});
 }
 
-void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask) {
-    const size_t words = TS_IC_VISIBLE_WORDS(count);
-    for (size_t w = 0; w < words; ++w) {
-        uint32_t bits = 0;
-        for (size_t j = 32 * w; j < std::min(count, 32 * w + 32); ++j)
-            bits |= uint32_t(row[j] == int32_t(TS_IC_PAIR_VISIBLE)) << (j % 32);
-        mask[w] = bits;
-    }
+void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask, size_t first) {
+    // Column first + k; the words the row begins and ends in may hold other columns' bits.
+    for (size_t k = 0; k < count; ++k)
+        if (row[k] == int32_t(TS_IC_PAIR_VISIBLE)) mask[(first + k) >> 5] |= 1u << ((first + k) & 31u);
 }
 
 void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>& items, std::vector<uint32_t>& hits) {

@@ -41,10 +41,11 @@ void ic_trace_pairs(Backend& backend, float g_clamp, const std::vector<uint32_t>
 void ic_trace_pair_grid(Backend& backend, float g_clamp, uint32_t records, uint32_t first, size_t count,
                         std::vector<uint32_t>& hits);
 
-/// Packs the visibility `row` of `count` VPLs (the host's int32 per pair, kIcVisible where
-/// unoccluded; instant_cache.h) into the gather kernel's bit mask: TS_IC_VISIBLE_WORDS(count)
-/// uints at `mask` (layout_ic.h).
-void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask);
+/// Packs the visibility `row` of `count` VPLs, columns first .. first + count − 1 (the
+/// host's int32 per pair, kIcVisible where unoccluded; instant_cache.h), into the gather
+/// kernel's bit mask over all the set's VPLs (TS_IC_VISIBLE_WORDS(VPLs) uints at `mask`,
+/// layout_ic.h): sets the bits of the visible columns, so `mask` must start zeroed.
+void ic_pack_visible(const int32_t* row, size_t count, uint32_t* mask, size_t first = 0);
 
 /// A gather's sums (the TS_IC_GATHER_SUM, _INV_DIST and _SEEN outputs, layout_ic.h), in
 /// double: Σ C·T·min(G, b) per channel (π E), Σ 1/distance (1 / scene units) and the count

@@ -140,16 +140,16 @@ uint32_t InstantCache::record_subset(uint32_t level, uint32_t block) const {
     return ts::ts_pcg_hash(block ^ ts::ts_pcg_hash(level ^ ts::ts_pcg_hash(pass_ ^ ts::ts_pcg_hash(seed_ + 0x69637375u)))) % m;
 }
 
-void InstantCache::clear_outside_subsets(std::vector<Row>& rows, int32_t code) const {
-    if (subsets() == 1) return;
-    const std::vector<IcRecord>& records = cache_.records();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, rows.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-            const size_t lo = subset_vpls_[records[i].subset], hi = subset_vpls_[records[i].subset + 1];
-            for (size_t j = 0; j < rows[i].size(); ++j)
-                if ((j < lo || j >= hi) && rows[i][j] == code) rows[i][j] = kIcFacing;
-        }
-    });
+size_t InstantCache::widest_subset(const std::vector<size_t>& offsets) {
+    size_t widest = 0;
+    for (size_t s = 0; s + 1 < offsets.size(); ++s) widest = std::max(widest, offsets[s + 1] - offsets[s]);
+    return widest;
+}
+
+size_t InstantCache::pairs_kept() const {
+    size_t n = 0;
+    for (const Row& row : rows_) n += row.size();
+    return n;
 }
 
 uint64_t InstantCache::probe(Backend& backend, std::vector<IcRecord>& records,
@@ -202,8 +202,9 @@ int32_t InstantCache::row_code(uint32_t hit) const {
 }
 
 // Traces the shadow ray of every pair whose geometry term is positive (the pair kernel)
-// and writes each pair's visibility into rows[record][vpl] (kIcFacing for the others).
-// Returns rays traced.
+// and writes each pair's visibility into the record's row (kIcFacing for the others).
+// A pair's VPL is a column of vpls, which are the current ones (subset_vpls_). Returns
+// rays traced.
 uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& vpls, const std::vector<Pair>& pairs,
                                    float g_clamp, std::vector<Row>& rows) const {
     if (pairs.empty()) return 0;
@@ -224,7 +225,10 @@ uint64_t InstantCache::trace_pairs(Backend& backend, const std::vector<float>& v
             ic_trace_pairs(backend, g_clamp, items, hits);
             times_.pair_kernel += since(tk);
         },
-        [&](size_t g, uint32_t hit) { rows[pairs[g].record][pairs[g].vpl] = row_code(hit); });
+        [&](size_t g, uint32_t hit) {
+            const Pair& p = pairs[g];
+            rows[p.record][p.vpl - row_first(cache_.records()[p.record], subset_vpls_)] = row_code(hit);
+        });
     times_.pairs += since(t0);
     return traced;
 }
@@ -254,7 +258,8 @@ uint64_t InstantCache::trace_pair_grid(Backend& backend, const std::vector<float
 
 // The grid of `records` and VPL columns first .. end-1, VPL by VPL and the records in the
 // given order, which the kernel reads without a list (ic_trace_pair_grid); the record
-// inputs are set (trace_pair_grid), with all of `vpls`. Placement gives its records in
+// inputs are set (trace_pair_grid), with all of `vpls`. The rows of `records` are those
+// of subset [first, end): pair (record, first + k) writes entry k. Placement gives its records in
 // Morton order of their grid cells, so 16 consecutive pairs are a 4×4 block of records
 // and one VPL, rays that end at one point and trace as a coherent packet
 // (docs/instant-caching.md §7). Pairs are independent, so the order changes no result.
@@ -275,7 +280,7 @@ uint64_t InstantCache::trace_subset_grid(Backend& backend, const std::vector<flo
             ic_trace_pair_grid(backend, g_clamp, static_cast<uint32_t>(n), static_cast<uint32_t>(begin), count, hits);
             times_.pair_kernel += since(tk);
         },
-        [&](size_t g, uint32_t hit) { rows[records[g % n]][first + g / n] = row_code(hit); });
+        [&](size_t g, uint32_t hit) { rows[records[g % n]][g / n] = row_code(hit); });
     times_.pairs += since(t0);
     return traced;
 }
@@ -314,22 +319,33 @@ std::vector<float> InstantCache::gather_outputs(Backend& backend, const std::vec
     return outputs;
 }
 
-// E of records[k] for every k of `which` from rows[k] over `vpls` (the gather kernel);
-// returns their harmonic mean distances to the visible VPLs, in the order of `which`.
+// E of records[k] for every k of `which` from rows[k] (over the subsets `offsets`) and
+// `vpls` (the gather kernel); returns their harmonic mean distances to the visible VPLs,
+// in the order of `which`. The records go to the kernel grouped by subset: a batch of
+// records that share their VPLs walks one subset's columns, where a batch of M subsets
+// walks M (the Embree gather adds every VPL one lane sees to all 16; a lane that does not
+// see it adds +0, so the sums are the same in any grouping).
 std::vector<float> InstantCache::gather(Backend& backend, const std::vector<float>& vpls,
-                                        const std::vector<Row>& rows, std::vector<IcRecord>& records,
-                                        const std::vector<uint32_t>& which, float g_clamp,
-                                        std::vector<IcGatherSums>* sums) const {
-    const size_t nv = vpl_count(vpls);
-    const std::vector<float> out = gather_outputs(backend, vpls, records, which, g_clamp, [&](size_t k, uint32_t* mask) {
-        ic_pack_visible(rows[which[k]].data(), nv, mask);
+                                        const std::vector<size_t>& offsets, const std::vector<Row>& rows,
+                                        std::vector<IcRecord>& records, const std::vector<uint32_t>& which,
+                                        float g_clamp, std::vector<IcGatherSums>* sums) const {
+    std::vector<uint32_t> order(which.size());
+    for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return records[which[a]].subset < records[which[b]].subset; });
+    std::vector<uint32_t> grouped(which.size());
+    for (size_t k = 0; k < order.size(); ++k) grouped[k] = which[order[k]];
+    const std::vector<float> out = gather_outputs(backend, vpls, records, grouped, g_clamp, [&](size_t k, uint32_t* mask) {
+        const IcRecord& r = records[grouped[k]];
+        ic_pack_visible(rows[grouped[k]].data(), rows[grouped[k]].size(), mask, row_first(r, offsets));
     });
     std::vector<float> harmonic(which.size());
-    for (size_t k = 0; k < which.size(); ++k) {
+    for (size_t k = 0; k < order.size(); ++k) {
         const float* o = &out[TS_IC_GATHER_FLOATS * k];
-        records[which[k]].e = {o[TS_IC_GATHER_E], o[TS_IC_GATHER_E + 1], o[TS_IC_GATHER_E + 2]};
-        harmonic[k] = o[TS_IC_GATHER_HARMONIC];
-        if (sums) (*sums)[which[k]] = IcGatherSums::from_output(o);
+        IcRecord& r = records[grouped[k]];
+        r.e = {o[TS_IC_GATHER_E], o[TS_IC_GATHER_E + 1], o[TS_IC_GATHER_E + 2]};
+        harmonic[order[k]] = o[TS_IC_GATHER_HARMONIC];
+        if (sums) (*sums)[grouped[k]] = IcGatherSums::from_output(o);
     }
     return harmonic;
 }
@@ -367,7 +383,6 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
                          float g_clamp, const SceneBounds& bounds) {
     const float footprint = 2.0f * std::sqrt(frame.cam_up[0] * frame.cam_up[0] + frame.cam_up[1] * frame.cam_up[1] +
                                              frame.cam_up[2] * frame.cam_up[2]) / static_cast<float>(frame.height);
-    const size_t nv = vpl_count(vpls_);
     auto t_cover = Clock::now();
     std::vector<uint32_t> seen;  // the pixels with a surface
     for (uint32_t p = 0; p < frame.width * frame.height; ++p)
@@ -395,7 +410,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         stats_.coverage_seconds += since(t_cover);
         const size_t first = cache_.records().size();
         const size_t fresh_count = std::count(covered_now.begin(), covered_now.end(), uint8_t(0));
-        check_pairs(first + fresh_count, nv);
+        check_pairs(first + fresh_count, widest_subset(subset_vpls_));
         std::vector<std::pair<uint32_t, uint32_t>> blocked;  // (Morton code of the grid cell, record)
         for (size_t i = 0; i < candidates.size(); ++i) {
             if (covered_now[i]) continue;
@@ -412,7 +427,7 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
             rec.subset = record_subset(stride, morton2(x >> 1, y >> 1));
             blocked.push_back({morton2(x, y), static_cast<uint32_t>(cache_.records().size())});
             cache_.records().push_back(rec);  // inserted in the octree once its radius is known
-            rows_.emplace_back(nv, kIcFacing);
+            rows_.emplace_back(row_size(rec, subset_vpls_), kIcFacing);
             sums_.emplace_back();
         }
         std::sort(blocked.begin(), blocked.end());
@@ -422,7 +437,8 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
         std::vector<uint32_t> which(cache_.records().size() - first);
         for (size_t i = 0; i < which.size(); ++i) which[i] = static_cast<uint32_t>(first + i);
         stats_.probe_rays += probe(backend, cache_.records(), which);
-        const std::vector<float> harmonic = gather(backend, vpls_, rows_, cache_.records(), which, g_clamp, &sums_);
+        const std::vector<float> harmonic =
+            gather(backend, vpls_, subset_vpls_, rows_, cache_.records(), which, g_clamp, &sums_);
         std::vector<IcRecord> fresh(cache_.records().begin() + first, cache_.records().end());
         cache_.records().resize(first);
         for (size_t i = 0; i < fresh.size(); ++i) {
@@ -529,17 +545,18 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
     trace_light_paths(backend, scene, path_settings(), paths);
     std::vector<float> vpls;
     for (const LightPath& p : paths) vpls.insert(vpls.end(), p.vpls.begin(), p.vpls.end());
-    const size_t nv = vpl_count(vpls);
+    const std::vector<size_t> offsets = subset_offsets(paths);
     const std::vector<IcRecord>& records = cache_.records();
-    std::vector<Row> rows(records.size(), Row(nv, kIcFacing));
+    std::vector<Row> rows;
+    for (const IcRecord& r : records) rows.emplace_back(row_size(r, offsets), kIcFacing);
     std::vector<uint32_t> order(records.size());
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    trace_pair_grid(backend, vpls, subset_offsets(paths), order, g_clamp, rows);
+    trace_pair_grid(backend, vpls, offsets, order, g_clamp, rows);
     std::vector<IcRecord> out(records);
     std::vector<uint32_t> all(out.size());
     for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
     probe(backend, out, all);
-    const std::vector<float> harmonic = gather(backend, vpls, rows, out, all, g_clamp);
+    const std::vector<float> harmonic = gather(backend, vpls, offsets, rows, out, all, g_clamp);
     for (size_t i = 0; i < out.size(); ++i) out[i].radius = radius_of(out[i], harmonic[i]);
     return out;
 }

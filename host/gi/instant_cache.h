@@ -162,8 +162,9 @@ public:
     uint32_t subsets() const { return settings_.subsets > 1 ? settings_.subsets : 1u; }
     /// The VPL columns of subset s of the current light paths: [offsets[s], offsets[s + 1]).
     const std::vector<size_t>& subset_vpls() const { return subset_vpls_; }
-    /// Record–VPL visibilities kept (4 bytes each).
-    size_t pairs_kept() const { return rows_.empty() ? 0 : rows_.size() * rows_.front().size(); }
+    /// Record–VPL visibilities kept (4 bytes each): each record's row spans its subset's
+    /// VPLs only.
+    size_t pairs_kept() const;
     std::string describe() const { return describe_ic(settings_, stats_, 1); }
 
 private:
@@ -193,9 +194,15 @@ private:
     /// The subset the records of block `block` (the Morton code of a 2×2 block of grid
     /// cells) of placement level `level` (its grid stride) gather from.
     uint32_t record_subset(uint32_t level, uint32_t block) const;
-    /// Sets each record's entries outside its subset's columns (kNeedsTrace after a
-    /// temporal update's re-map) to kIcFacing: no ray, never visible.
-    void clear_outside_subsets(std::vector<std::vector<int32_t>>& rows, int32_t code) const;
+    /// The first VPL column of the subset of `r` among the subsets `offsets`
+    /// (subset_offsets): its row's entry k is the visibility of column first + k.
+    static size_t row_first(const IcRecord& r, const std::vector<size_t>& offsets) { return offsets.at(r.subset); }
+    /// The VPL columns of the subset of `r`: its row's length.
+    static size_t row_size(const IcRecord& r, const std::vector<size_t>& offsets) {
+        return offsets.at(r.subset + 1) - offsets.at(r.subset);
+    }
+    /// The most VPLs a subset of `offsets` has: what a row may hold.
+    static size_t widest_subset(const std::vector<size_t>& offsets);
     void place(Backend& backend, const std::vector<float>& gbuffer, const TsFrame& frame, float g_clamp,
                const SceneBounds& bounds);
     std::vector<uint8_t> covered(IrradianceCache& cache, const std::vector<float>& gbuffer,
@@ -220,10 +227,11 @@ private:
     std::vector<float> gather_outputs(Backend& backend, const std::vector<float>& vpls,
                                       const std::vector<IcRecord>& records, const std::vector<uint32_t>& which,
                                       float g_clamp, const MaskFill& fill) const;
-    /// Gathers records[which[k]] over the VPLs their rows mark visible: sets their E and
+    /// Gathers records[which[k]] over the VPLs their rows (over the subsets `offsets`) mark
+    /// visible, in launches grouped by subset: sets their E and
     /// returns their harmonic mean distances; their sums go to (*sums)[which[k]] if given.
-    std::vector<float> gather(Backend& backend, const std::vector<float>& vpls, const std::vector<Row>& rows,
-                              std::vector<IcRecord>& records, const std::vector<uint32_t>& which, float g_clamp,
+    std::vector<float> gather(Backend& backend, const std::vector<float>& vpls, const std::vector<size_t>& offsets,
+                              const std::vector<Row>& rows, std::vector<IcRecord>& records, const std::vector<uint32_t>& which, float g_clamp,
                               std::vector<IcGatherSums>* sums = nullptr) const;
     void update(Backend& backend, const SceneBuffers& scene, float g_clamp);
     void snapshot(const SceneBuffers& scene, float g_clamp);
@@ -242,7 +250,7 @@ private:
     std::vector<LightPath> paths_;
     std::vector<float> vpls_;
     std::vector<size_t> subset_vpls_;          // subset_vpls()
-    std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL (kIcFacing outside its subset)
+    std::vector<std::vector<int32_t>> rows_;  // per record, one entry per VPL of its subset (row_first)
     std::vector<IcGatherSums> sums_;          // per record, its gather's sums (the temporal update adds to them)
     IcFrameStats stats_;
     // The stage times of the const helpers (trace_pairs, probe, gather), copied into stats_.

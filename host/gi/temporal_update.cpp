@@ -136,12 +136,18 @@ std::vector<ColumnRun> column_runs(const std::vector<int64_t>& old_column) {
 }
 
 // The new row from the old one: copies of the kept columns, kNeedsTrace in the new ones.
-void remap_row(const std::vector<ColumnRun>& runs, const int32_t* old_row, int32_t* row) {
+void remap_row(const std::vector<ColumnRun>& runs, const int32_t* old_row, size_t old_first, int32_t* row,
+               size_t first, size_t end) {
+    // A row spans its subset's columns: new [first, end), old from old_first. A path keeps
+    // its subset, so a kept column of the new range comes from the old row's range.
     for (const ColumnRun& run : runs) {
+        const size_t lo = std::max<size_t>(run.to, first), hi = std::min<size_t>(run.to + run.n, end);
+        if (lo >= hi) continue;
         if (run.from == kNewColumns)
-            std::fill(row + run.to, row + run.to + run.n, kNeedsTrace);
+            std::fill(row + (lo - first), row + (hi - first), kNeedsTrace);
         else
-            std::copy(old_row + run.from, old_row + run.from + run.n, row + run.to);
+            std::copy(old_row + (run.from + (lo - run.to) - old_first), old_row + (run.from + (hi - run.to) - old_first),
+                      row + (lo - first));
     }
 }
 
@@ -162,10 +168,11 @@ bool differ(const std::vector<float>& a, const std::vector<float>& b, size_t at,
 
 void set_bit(uint32_t* mask, uint32_t j) { mask[j >> 5] |= 1u << (j & 31u); }
 
-// Sets in `mask` the bits of the columns in `which` that `row` marks visible.
-void mark_visible(const int32_t* row, const std::vector<uint32_t>& which, uint32_t* mask) {
+// Sets in `mask` the bits of the columns in `which` that `row` (columns first ..
+// first + n − 1) marks visible.
+void mark_visible(const int32_t* row, size_t first, size_t n, const std::vector<uint32_t>& which, uint32_t* mask) {
     for (const uint32_t j : which)
-        if (row[j] == kIcVisible) set_bit(mask, j);
+        if (j >= first && j - first < n && row[j - first] == kIcVisible) set_bit(mask, j);
 }
 
 }  // namespace
@@ -333,6 +340,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
         }
     }
     const std::vector<float> old_vpls = vpls_;
+    const std::vector<size_t> old_offsets = subset_vpls_;
     concat_vpls();
     const ChangedVpls changed = changed_vpls(old_vpls, vpls_, old_column);
     const size_t words_old = TS_IC_VISIBLE_WORDS(vpl_count(old_vpls));
@@ -340,12 +348,12 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
 
     // Records: drop the stale ones, re-map the rest to the new columns.
     std::vector<IcRecord>& records = cache_.records();
-    check_pairs(records.size(), old_column.size());
+    check_pairs(records.size(), widest_subset(subset_vpls_));
     // Usually every VPL keeps its place: the same column, or a new VPL in the column of the
     // old one (a re-traced path with as many VPLs as before). Each row then moves over as it
     // is, without a copy (45k records × 400 VPLs = 72 MB a frame on Sibenik), and only the
     // new columns are marked (`new_columns`).
-    bool same_columns = !rows_.empty() && old_column.size() == rows_.front().size();
+    bool same_columns = old_offsets == subset_vpls_;
     std::vector<uint32_t> new_columns;
     for (size_t j = 0; same_columns && j < old_column.size(); ++j) {
         same_columns = old_column[j] == int64_t(j) || old_column[j] < 0;
@@ -379,21 +387,24 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
         for (size_t k = r.begin(); k < r.end(); ++k) {
             kept[k] = records[keep[k]];
             sums[k] = sums_[keep[k]];
-            if (by_change) mark_visible(rows_[keep[k]].data(), changed.removed, &minus[k * words_old]);
+            const Row& old_row = rows_[keep[k]];
+            const size_t old_first = row_first(kept[k], old_offsets);
+            if (by_change) mark_visible(old_row.data(), old_first, old_row.size(), changed.removed, &minus[k * words_old]);
+            const size_t first = row_first(kept[k], subset_vpls_), end = first + row_size(kept[k], subset_vpls_);
             if (same_columns) {
+                // Only the new columns of the record's own subset need a ray.
                 rows[k] = std::move(rows_[keep[k]]);
-                for (const uint32_t j : new_columns) rows[k][j] = kNeedsTrace;
+                for (const uint32_t j : new_columns)
+                    if (j >= first && j < end) rows[k][j - first] = kNeedsTrace;
                 continue;
             }
-            rows[k].resize(old_column.size());
-            remap_row(runs, rows_[keep[k]].data(), rows[k].data());
+            rows[k].resize(end - first);
+            remap_row(runs, old_row.data(), old_first, rows[k].data(), first, end);
         }
     });
     records.swap(kept);
     rows_.swap(rows);
     sums_.swap(sums);
-    // A record gathers from its own subset only: the new columns of the others need no ray.
-    clear_outside_subsets(rows_, kNeedsTrace);
 
     // Pairs to re-trace: those never traced, those whose occluder moved, and the visible
     // ones whose shadow ray now meets a moved object's box. That ray is the one
@@ -413,23 +424,25 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     }
     std::vector<std::vector<Pair>> per_record(records.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, records.size(), 16), [&](const tbb::blocked_range<size_t>& rr) {
-        std::vector<int32_t> retrace(nv);  // per VPL: meets a moved box, then: re-trace
+        std::vector<int32_t> retrace;  // per VPL of the record's subset: meets a moved box, then: re-trace
         for (size_t i = rr.begin(); i < rr.end(); ++i) {
-            std::fill(retrace.begin(), retrace.end(), 0);
+            const size_t first = row_first(records[i], subset_vpls_), n = rows_[i].size();
+            retrace.assign(n, 0);
             if (!ch.moved.empty()) {
                 const ts::TsSurface s = ic_record_surface(records[i]);
                 const ts::float3 o = ts::ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
                 const float org[3] = {o.x, o.y, o.z};
                 for (uint32_t m : ch.moved)
-                    ch.new_box[m].meets_many(org, end[0].data(), end[1].data(), end[2].data(), nv, t_lo, t_hi,
-                                             retrace.data());
+                    ch.new_box[m].meets_many(org, end[0].data() + first, end[1].data() + first, end[2].data() + first,
+                                             n, t_lo, t_hi, retrace.data());
             }
-            mark_retrace(rows_[i].data(), nv, ch.moved, retrace.data());
-            for (uint32_t j = 0; j < nv; ++j) {
-                if (!retrace[j]) continue;
-                per_record[i].push_back({static_cast<uint32_t>(i), j});
+            mark_retrace(rows_[i].data(), n, ch.moved, retrace.data());
+            for (size_t k = 0; k < n; ++k) {
+                if (!retrace[k]) continue;
+                const size_t j = first + k;
+                per_record[i].push_back({static_cast<uint32_t>(i), static_cast<uint32_t>(j)});
                 // A kept VPL's pair re-traced: its old visibility is still in the row.
-                if (by_change && old_column[j] >= 0 && rows_[i][j] == kIcVisible)
+                if (by_change && old_column[j] >= 0 && rows_[i][k] == kIcVisible)
                     set_bit(&minus[i * words_old], static_cast<uint32_t>(old_column[j]));
             }
         }
@@ -446,7 +459,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
     std::vector<uint32_t> resum;
     for (size_t i = 0; i < records.size(); ++i)
         if (all || !per_record[i].empty()) resum.push_back(static_cast<uint32_t>(i));
-    const std::vector<float> harmonic = gather(backend, vpls_, rows_, records, resum, g_clamp, &sums_);
+    const std::vector<float> harmonic = gather(backend, vpls_, subset_vpls_, rows_, records, resum, g_clamp, &sums_);
     for (size_t k = 0; k < resum.size(); ++k) {
         IcRecord& r = records[resum[k]];
         // The visible VPLs may have changed, and with them the harmonic mean distance.
@@ -466,9 +479,10 @@ void InstantCache::resum_by_change(Backend& backend, const std::vector<float>& o
     std::vector<uint32_t> plus(records.size() * words, 0u);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, records.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
-            mark_visible(rows_[i].data(), changed.added, &plus[i * words]);
+            const size_t first = row_first(records[i], subset_vpls_);
+            mark_visible(rows_[i].data(), first, rows_[i].size(), changed.added, &plus[i * words]);
             for (const Pair& p : per_record[i])
-                if (rows_[i][p.vpl] == kIcVisible) set_bit(&plus[i * words], p.vpl);
+                if (rows_[i][p.vpl - first] == kIcVisible) set_bit(&plus[i * words], p.vpl);
         }
     });
     auto with_bits = [&](const std::vector<uint32_t>& masks, size_t w) {

@@ -248,10 +248,22 @@ TEST(IcGatherKernels, PackVisibleSetsOneBitPerUnoccludedPair) {
     std::vector<int32_t> row(40, kIcFacing);
     row[3] = 0, row[17] = 5;
     for (int j : {0, 31, 32, 39}) row[j] = kIcVisible;
-    uint32_t mask[2] = {0xdeadbeefu, 0xdeadbeefu};
+    uint32_t mask[2] = {0u, 0u};
     ic_pack_visible(row.data(), row.size(), mask);
     EXPECT_EQ(mask[0], 0x80000001u);
     EXPECT_EQ(mask[1], 0x81u);  // bits 32 and 39; the bits past the 40th stay 0
+}
+
+TEST(IcGatherKernels, PackVisibleAtAColumnOffsetKeepsTheOtherColumnsBits) {
+    // A subset's row of 8 VPLs, columns 28..35, into a mask that already holds column 2:
+    // the row straddles a word, and column 2 stays set.
+    std::vector<int32_t> row(8, kIcFacing);
+    row[0] = row[4] = row[7] = kIcVisible;  // columns 28, 32, 35
+    row[5] = 3;                             // occluded by object 3
+    uint32_t mask[2] = {1u << 2, 0u};
+    ic_pack_visible(row.data(), row.size(), mask, 28);
+    EXPECT_EQ(mask[0], (1u << 2) | (1u << 28));
+    EXPECT_EQ(mask[1], (1u << 0) | (1u << 3));
 }
 
 }  // namespace
