@@ -34,7 +34,7 @@ bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_
 
 }  // namespace
 
-uint32_t ic_subsets_for_spp(uint32_t spp) { return spp >= 16 ? 4u : spp >= 4 ? 2u : 1u; }
+uint32_t ic_subsets_for_spp(uint32_t spp) { return spp >= 16 ? 16u : spp >= 4 ? 2u : 1u; }
 
 void ic_gbuffer_from_surface(const std::vector<float>& surf, std::vector<float>& g) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
@@ -101,7 +101,9 @@ void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint
     stats_.paths_retraced = paths_.size();
     if (oversampling_ > 1) {
         concat_vpls();
-        const std::vector<float> importance = vpl_view_importance(*selection.view, vpls_, selection.importance_clamp);
+        // The points' irradiance E_j from the first subset's candidates (vpl_view_importance).
+        const std::vector<float> importance =
+            vpl_view_importance(*selection.view, vpls_, selection.importance_clamp, subset_vpls_.at(1));
         paths_ = select_paths(paths_, importance, oversampling_, light_path_seed_mix(seed_));
     }
     concat_vpls();
@@ -131,7 +133,7 @@ std::vector<size_t> InstantCache::subset_offsets(const std::vector<LightPath>& p
     return offsets;
 }
 
-// A hash of the placement level, the block of grid cells, the pass and the seed:
+// A hash of the placement level, the block of the image, the pass and the seed:
 // neighbouring blocks draw independent subsets, so a region's mean sees all M·paths paths
 // while each record gathers from paths of them.
 uint32_t InstantCache::record_subset(uint32_t level, uint32_t block) const {
@@ -420,11 +422,12 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
             rec.pixel_size = rec.surface[TS_IC_GBUF_DISTANCE] * footprint;
             rec.last_in_view = frame_count_;
             const uint32_t x = candidates[i] % frame.width / stride, y = candidates[i] / frame.width / stride;
-            // The records of a 2×2 block of the level's grid cells share a subset: they
-            // are neighbours in Morton order, so the pair kernel's packets of 16 rays stay
-            // groups of nearby records; and a record's subset depends on its cell alone,
-            // not on which other records were made.
-            rec.subset = record_subset(stride, morton2(x >> 1, y >> 1));
+            // The records of a level in one 16×16-pixel block of the image share a subset:
+            // they are neighbours in Morton order, so the pair kernel's packets of 16 rays
+            // stay groups of nearby records, and a 4×3 region of a 384×256 image still
+            // holds ~30 blocks of each level, so its mean sees every subset. A record's
+            // subset depends on its pixel alone, not on which other records were made.
+            rec.subset = record_subset(stride, morton2(x * stride >> 4, y * stride >> 4));
             blocked.push_back({morton2(x, y), static_cast<uint32_t>(cache_.records().size())});
             cache_.records().push_back(rec);  // inserted in the octree once its radius is known
             rows_.emplace_back(row_size(rec, subset_vpls_), kIcFacing);

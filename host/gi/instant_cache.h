@@ -42,7 +42,7 @@ namespace tessera {
 struct IcSettings {
     uint32_t paths = 256;        ///< N_p light paths a record gathers from
     /// M path subsets a pass draws (M·N_p paths); each record gathers from one, chosen by a
-    /// hash of its 2×2 block of placement cells (docs/instant-caching.md §2b). 0 = 1 here;
+    /// hash of its 16×16-pixel block and placement level (docs/instant-caching.md §2b). 0 = 1 here;
     /// the renderer sets it from the spp (resolve_ic_subsets) unless --ic-subsets gives it.
     uint32_t subsets = 0;
     float error_bound = 0.3f;    ///< Ward's a: a record serves points with ε < a (shared/ic_lookup.h)
@@ -97,7 +97,7 @@ struct IcFrameStats {
 
 /// The path subsets M the renderer gives ic and tic at `spp` passes when --ic-subsets is
 /// 0 (docs/instant-caching.md §2b): 1 below 4 spp, where each record's own VPL noise would
-/// show as record-shaped blotches, 2 below 16 spp, 4 from 16 spp.
+/// show as record-shaped blotches, 2 below 16 spp, 16 from 16 spp.
 uint32_t ic_subsets_for_spp(uint32_t spp);
 
 /// One log line: the cache's settings and `stats` (one pass, or summed over `passes`).
@@ -191,8 +191,8 @@ private:
     /// The VPL column offsets of the M subsets of `paths` (subset_vpls), the paths of pass
     /// block pass_ with oversampling_ candidates a path.
     std::vector<size_t> subset_offsets(const std::vector<LightPath>& paths) const;
-    /// The subset the records of block `block` (the Morton code of a 2×2 block of grid
-    /// cells) of placement level `level` (its grid stride) gather from.
+    /// The subset the records of block `block` (the Morton code of a 16×16-pixel block of
+    /// the image) of placement level `level` (its grid stride) gather from.
     uint32_t record_subset(uint32_t level, uint32_t block) const;
     /// The first VPL column of the subset of `r` among the subsets `offsets`
     /// (subset_offsets): its row's entry k is the visibility of column first + k.

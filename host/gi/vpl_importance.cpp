@@ -181,7 +181,8 @@ std::vector<double> point_weights(const std::vector<double>& e) {
 
 }  // namespace
 
-std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp) {
+std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp,
+                                       size_t e_vpls) {
     const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
     std::vector<float> importance(nv, 0.0f);
     if (np == 0 || nv == 0) return importance;
@@ -206,12 +207,14 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     const std::vector<float> in = importance_input(points, g_clamp);
     const float* pts = in.data() + TS_VI_HEADER;
     constexpr size_t kPointBlock = 32;  // a block's terms stay in registers and L1
+    // E_j over the surface VPLs among the first e_vpls.
+    const size_t ne = static_cast<size_t>(std::lower_bound(surface.begin(), surface.end(), e_vpls) - surface.begin());
     std::vector<double> e(np, 0.0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, np, kPointBlock), [&](const tbb::blocked_range<size_t>& r) {
         float row[kPointBlock];
         for (size_t j0 = r.begin(); j0 < r.end(); j0 += kPointBlock) {
             const size_t j1 = std::min(r.end(), j0 + kPointBlock);
-            for (size_t i = 0; i < ns; ++i) {
+            for (size_t i = 0; i < ne; ++i) {
                 vpl_row(pts, np, j0, j1, &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, row);
                 for (size_t j = j0; j < j1; ++j) e[j] += row[j - j0];
             }

@@ -79,7 +79,12 @@ private:
 /// weigh by absolute image contribution; and with shadow rays, measured on the Cornell
 /// box and Sibenik, the frames were no better at 1.6-2× the frame time (docs/igi.md §3b).
 /// Medium VPLs get 0: their value lies in the medium, which the points do not see.
-std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp);
+/// `e_vpls`: E_j sums over the first e_vpls VPLs only (all by default). E_j only weighs
+/// the points, so any estimate of it keeps the selection unbiased; the instant cache's M
+/// path subsets take it from the first subset's candidates, at 1/M of the sum's cost
+/// (docs/instant-caching.md §2b).
+std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp,
+                                       size_t e_vpls = SIZE_MAX);
 
 /// The same importance from KernelId::VplImportancePoints and VplImportanceVpls
 /// (kernels/shared/vpl_importance.h): the terms and sums of vpl_view_importance where the

@@ -124,6 +124,11 @@ TEST_P(InstantCacheOn, RecordsGatherFromTheirSubsetOnly) {
     EXPECT_GT(same, 5u);
     EXPECT_GT(other, 5u);
     EXPECT_EQ(differ, other) << "records of subsets 1 and 2 gather from other VPLs";
+    // A row spans its record's subset: one visibility per record and VPL of that subset.
+    size_t pairs = 0;
+    for (const IcRecord& r : c3.cache().records()) pairs += at[r.subset + 1] - at[r.subset];
+    EXPECT_EQ(c3.pairs_kept(), pairs);
+    EXPECT_EQ(c1.pairs_kept(), c1.cache().records().size() * at[1]);
 }
 
 // Each subset alone estimates the indirect light of N_p paths (its candidates weigh

@@ -38,6 +38,20 @@ ViewPoints point_at_origin(std::array<float, 3> normal) {
     return p;
 }
 
+TEST(VplImportance, WeighsThePointsByTheLeadingVplsWhenAsked) {
+    // As above (G = 1 and 1/4 at the point), E_j from the first VPL only: E = 1, so the
+    // importances are 1 and 1/4; from the first two, the shares 0.8 and 0.2 again.
+    std::vector<float> vpls;
+    add(vpls, vpl({0, 0, 1}, {0, 0, -1}, 1.0f, 0));
+    add(vpls, vpl({0, 0, 2}, {0, 0, -1}, 1.0f, 1));
+    const std::vector<float> first = vpl_view_importance(point_at_origin({0, 0, 1}), vpls, 1e30f, 1);
+    ASSERT_EQ(first.size(), 2u);
+    EXPECT_NEAR(first[0], 1.0f, 1e-6f);
+    EXPECT_NEAR(first[1], 0.25f, 1e-6f);
+    EXPECT_EQ(vpl_view_importance(point_at_origin({0, 0, 1}), vpls, 1e30f, 2),
+              vpl_view_importance(point_at_origin({0, 0, 1}), vpls, 1e30f));
+}
+
 TEST(VplImportance, IsEachVplsShareOfAPointsIrradiance) {
     // One point at the origin facing +z; VPLs straight above at heights 1 and 2 facing
     // down: G = 1 and 1/4, so the shares are 0.8 and 0.2. A medium VPL gets 0; a VPL

@@ -46,8 +46,12 @@ TEST_P(Degenerate, ZeroAreaTrianglesAndDuplicatesChangeNothing) {
     ASSERT_TRUE(all_finite(img));
     // Zero-area triangles are never hit and zero-area emitters carry no power, and a
     // duplicate of the floor shades like the floor, so the image is the plain box's with
-    // the same samples: equal up to rounding (relMSE < 1e-6, i.e. 0.1% per pixel).
-    EXPECT_LT(rel_mse(img, ref), 1e-6);
+    // the same samples: equal up to rounding. ic/tic keep whole light paths for the view
+    // in steps of 1/64 of a probability (host/gi/vpl_importance.cpp), so a last-bit
+    // difference of the view points (the floor's copy) may flip the decision on one path
+    // near a step: relMSE 0.5-1.7e-6 here over 1-16 path subsets, 0 with the selection
+    // off. Decisions that hung on each other (a cumulative sum) gave 5e-5.
+    EXPECT_LT(rel_mse(img, ref), 4e-6);
     const double bound = radiance_bound(method().transport, 5.0, 0.5);
     EXPECT_LE(radiance_max(img), bound);
 }
