@@ -34,7 +34,11 @@ bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_
 
 }  // namespace
 
-uint32_t ic_subsets_for_spp(uint32_t spp) { return spp >= 16 ? 16u : spp >= 4 ? 2u : 1u; }
+uint32_t ic_subsets_for(uint32_t spp, uint64_t pixels) {
+    if (spp < 4) return 1u;
+    if (spp < 16) return 2u;
+    return pixels >= kIcManySubsetsPixels ? 16u : 4u;
+}
 
 void ic_gbuffer_from_surface(const std::vector<float>& surf, std::vector<float>& g) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;

@@ -82,7 +82,7 @@ const Parameter kParameters[] = {
     {.option = "--ic-paths", .value_name = "N", .field = TS_SETTING(ic.paths), .min = 1, .max = 65536,
      .unit = "paths", .doc = "ic/tic: light paths N_p a record gathers from"},
     {.option = "--ic-subsets", .value_name = "M", .field = TS_SETTING(ic.subsets), .min = 0, .max = 64,
-     .unit = "subsets", .doc = "ic/tic: a pass draws M·N_p paths in M subsets, each record gathering from one (0: 1 below 4 spp, 2 below 16, else 16)"},
+     .unit = "subsets", .doc = "ic/tic: a pass draws M·N_p paths in M subsets, each record gathering from one (0: 1 below 4 spp, 2 below 16, else 16 from 256² pixels, 4 below)"},
     {.option = "--ic-error", .value_name = "A", .field = TS_SETTING(ic.error_bound), .min = 0.001, .max = 2,
      .doc = "ic/tic: Ward's error bound a"},
     {.option = "--no-clamp-compensation", .value_name = "", .field = TS_SETTING(igi.clamp_compensation), .negated = true,

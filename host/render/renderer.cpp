@@ -36,9 +36,9 @@ uint64_t render_fingerprint(const Scene& scene, const RenderSettings& settings, 
 
 }  // namespace
 
-IntegratorSettings integrator_settings(const RenderSettings& settings) {
+IntegratorSettings integrator_settings(const RenderSettings& settings, int width, int height) {
     RenderSettings resolved = settings;
-    resolve_ic_subsets(resolved);
+    resolve_ic_subsets(resolved, width, height);
     IntegratorSettings s = resolved;
     s.igi.component_aovs = s.igi.component_aovs || settings.aovs;
     // One switch for the clamp's compensation: igi's screen-space estimate and ic's rays.
@@ -46,8 +46,9 @@ IntegratorSettings integrator_settings(const RenderSettings& settings) {
     return s;
 }
 
-void resolve_ic_subsets(RenderSettings& settings) {
-    if (settings.ic.subsets == 0) settings.ic.subsets = ic_subsets_for_spp(settings.spp);
+void resolve_ic_subsets(RenderSettings& settings, int width, int height) {
+    if (settings.ic.subsets == 0)
+        settings.ic.subsets = ic_subsets_for(settings.spp, uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0)));
 }
 
 TsFrame make_render_frame(const Camera& camera, int width, int height, const SceneBuffers& buffers,
@@ -75,7 +76,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     std::unique_ptr<Integrator> integrator;
     auto set_up = [&] {
         first = session.restore(acc);
-        integrator = make_integrator(backend, scene, buffers, integrator_settings(settings));
+        integrator = make_integrator(backend, scene, buffers, integrator_settings(settings, w, h));
     };
     if (distributed) {
         uint64_t mine = 0;

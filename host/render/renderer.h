@@ -25,14 +25,16 @@ class Cluster;             // render/cluster.h
 
 /// The integrator settings of a render or view with `settings`: as given, with the igi
 /// family's components kept on the host when the method's AOV channels are wanted
-/// (IgiSettings::component_aovs) and ic's path subsets resolved (resolve_ic_subsets).
-IntegratorSettings integrator_settings(const RenderSettings& settings);
+/// (IgiSettings::component_aovs) and ic's path subsets resolved (resolve_ic_subsets) for an
+/// image of width × height pixels.
+IntegratorSettings integrator_settings(const RenderSettings& settings, int width, int height);
 
-/// Sets ic's path subsets M from settings.spp where they are 0 (--ic-subsets not given):
-/// ic_subsets_for_spp (docs/instant-caching.md §2b). Every caller that makes tic's caches
-/// (render_sequence, the viewer) applies it first, so that tic and ic, and a view at rest
-/// and a render, draw the same M at the same spp.
-void resolve_ic_subsets(RenderSettings& settings);
+/// Sets ic's path subsets M from settings.spp and the image's width × height pixels where
+/// they are 0 (--ic-subsets not given): ic_subsets_for (docs/instant-caching.md §2b).
+/// Every caller that makes tic's caches (render_sequence, the viewer) applies it first,
+/// so that tic and ic, and a view at rest and a render, draw the same M at the same spp
+/// and size.
+void resolve_ic_subsets(RenderSettings& settings, int width, int height);
 
 /// The per-pass frame parameters render_frame uses for `camera` at width × height:
 /// make_frame (device/frame.h) with the settings' shadow samples, seed, depth and scatter

@@ -35,7 +35,7 @@ ViewSession::ViewSession(const Scene& rest, const ViewOptions& options)
                              std::to_string(width_) + "x" + std::to_string(height_));
         metrics::rgb_for_metrics(*reference_, options.reference);  // checks R, G, B exist and are finite
     }
-    resolve_ic_subsets(settings_);       // tic's caches: a render's M at this spp
+    resolve_ic_subsets(settings_, width_, height_);  // tic's caches: a render's M at this spp and size
     prepare_sequence(settings_, rest_);  // what the method keeps across frames (tic's cache)
     switch_method(0);  // the budget of the starting method
     build_backend();
@@ -73,7 +73,7 @@ void ViewSession::restart() {
     integrator_.reset();
     acc_kept_points_ = false;
     const RenderSettings s = pass_settings();
-    IntegratorSettings is = integrator_settings(s);
+    IntegratorSettings is = integrator_settings(s, width_, height_);  // M resolved at the full size (constructor)
     // The AIS guidance and sets AOVs need the host's schedule and its sums. Where AIS
     // reconstructs on the host anyway they are kept at no cost, so any AOV shows at once;
     // a backend that schedules and resolves on the device (a GPU) keeps the frame there

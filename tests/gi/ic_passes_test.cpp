@@ -32,16 +32,38 @@ RenderSettings small(Method m, uint32_t spp) {
 
 class IcPassesOn : public ::testing::TestWithParam<BackendKind> {};
 
+TEST(IcSubsets, FollowTheSppAndTheImageSize) {
+    // docs/instant-caching.md §2b: 1 below 4 spp, 2 below 16, then 4 on small images and 16
+    // from 2^16 pixels; a given M stays as given.
+    EXPECT_EQ(ic_subsets_for(1, 512 * 512), 1u);
+    EXPECT_EQ(ic_subsets_for(4, 512 * 512), 2u);
+    EXPECT_EQ(ic_subsets_for(15, 512 * 512), 2u);
+    EXPECT_EQ(ic_subsets_for(16, 128 * 96), 4u);
+    EXPECT_EQ(ic_subsets_for(16, 256 * 256 - 1), 4u);
+    EXPECT_EQ(ic_subsets_for(16, 256 * 256), 16u);
+    EXPECT_EQ(ic_subsets_for(64, 384 * 256), 16u);
+    RenderSettings s;
+    s.spp = 16;
+    EXPECT_EQ(integrator_settings(s, 384, 256).ic.subsets, 16u);
+    EXPECT_EQ(integrator_settings(s, 128, 96).ic.subsets, 4u);
+    s.ic.subsets = 3;
+    EXPECT_EQ(integrator_settings(s, 384, 256).ic.subsets, 3u);
+}
+
 TEST_P(IcPassesOn, TicFrameZeroIsIcForEverySpp) {
     // Pass p of both draws path block p with pass p's clamp and places the same records
     // from the same G-buffer: the same bits, at any spp. (Before, tic drew block 0 in
     // every pass with a fixed clamp: its spp = 4 image was its spp = 1 image.)
     const Scene scene = test::cornell_box();
-    // spp 4 and 16 draw 2 and 4 path subsets (ic_subsets_for_spp) in both.
-    for (uint32_t spp : {1u, 2u, 4u, 16u}) {
-        const Image ic = test::render_with(GetParam(), scene, small(Method::Ic, spp));
-        const Image tic = test::render_with(GetParam(), scene, small(Method::Tic, spp));
-        test::expect_images_identical(ic, tic);
+    // spp 4 and 16 draw 2 and 4 path subsets (ic_subsets_for: a small image) in both;
+    // the last round gives the 16 a larger image draws at 16 spp.
+    struct Case {
+        uint32_t spp, subsets;  // subsets 0: by spp and size
+    };
+    for (const Case c : {Case{1, 0}, Case{2, 0}, Case{4, 0}, Case{16, 0}, Case{16, 16}}) {
+        RenderSettings ic = small(Method::Ic, c.spp), tic = small(Method::Tic, c.spp);
+        ic.ic.subsets = tic.ic.subsets = c.subsets;
+        test::expect_images_identical(test::render_with(GetParam(), scene, ic), test::render_with(GetParam(), scene, tic));
     }
     const Image one = test::render_with(GetParam(), scene, small(Method::Tic, 1));
     const Image four = test::render_with(GetParam(), scene, small(Method::Tic, 4));

@@ -72,7 +72,7 @@ TEST_P(ViewSessionMethods, AccumulationAtRestEqualsRender) {
 }
 
 TEST(ViewSession, IcAndTicDrawARendersPathSubsets) {
-    // At 4 spp a render draws 2 path subsets for ic and tic (ic_subsets_for_spp); the
+    // At 4 spp a render draws 2 path subsets for ic and tic (ic_subsets_for); the
     // viewer makes tic's caches before any pass, so it must pick M from the same spp, or
     // its accumulation at rest would be another image than the render's.
     const Scene scene = cornell();
