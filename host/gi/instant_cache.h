@@ -244,7 +244,8 @@ private:
     void mark_in_view(const TsFrame& frame);
     void evict_out_of_view();
     uint32_t object_of(uint32_t triangle) const;
-    /// Throws RuntimeError when records × vpls visibilities exceed kMaxPairs.
+    /// Throws RuntimeError when records × vpls visibilities exceed kMaxPairs (with vpls
+    /// the widest subset's VPLs: a bound on what the rows hold).
     static void check_pairs(size_t records, size_t vpls);
     /// Record–VPL visibilities the cache may keep: 4 bytes each, so 2 GiB (ten times what
     /// 512² at the default settings needs; a guard against --ic-paths in the tens of thousands).
