@@ -571,7 +571,8 @@ std::vector<IcRecord> InstantCache::rebuilt_records(Backend& backend, const Scen
 IcFrameStats& IcFrameStats::operator+=(const IcFrameStats& o) {
     records += o.records, created += o.created, removed += o.removed, resummed += o.resummed;
     resummed_by_change += o.resummed_by_change;
-    evicted += o.evicted, vpls += o.vpls, paths_retraced += o.paths_retraced, vpls_changed += o.vpls_changed;
+    evicted += o.evicted, rows_remade += o.rows_remade;
+    vpls += o.vpls, paths_retraced += o.paths_retraced, vpls_changed += o.vpls_changed;
     light_path_rays += o.light_path_rays, shadow_rays += o.shadow_rays, probe_rays += o.probe_rays;
     fallback_pixels += o.fallback_pixels;
     update_seconds += o.update_seconds, place_seconds += o.place_seconds;

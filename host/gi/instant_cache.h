@@ -77,6 +77,9 @@ struct IcFrameStats {
     size_t records = 0, created = 0, removed = 0, resummed = 0;
     size_t resummed_by_change = 0;  ///< of resummed: over the changed VPLs only (tic; IcGatherSums)
     size_t evicted = 0;  ///< records dropped for being out of view (tic)
+    /// tic: records whose rows were re-made from runs of kept columns (a re-traced path
+    /// changed its VPL count), not moved over as they were
+    size_t rows_remade = 0;
     size_t vpls = 0, paths_retraced = 0, vpls_changed = 0;
     uint64_t light_path_rays = 0;  ///< rays of (re-)traced light paths
     uint64_t shadow_rays = 0;      ///< record–VPL shadow rays

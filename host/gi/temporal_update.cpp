@@ -402,6 +402,7 @@ void InstantCache::update(Backend& backend, const SceneBuffers& scene, float g_c
             remap_row(runs, old_row.data(), old_first, rows[k].data(), first, end);
         }
     });
+    if (!same_columns) stats_.rows_remade = keep.size();
     records.swap(kept);
     rows_.swap(rows);
     sums_.swap(sums);

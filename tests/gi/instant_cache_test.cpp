@@ -211,6 +211,7 @@ void expect_distinct_points(const std::vector<IcRecord>& records, int frame) {
 struct TemporalRun {
     size_t removed = 0, retraced = 0, paths = 0;
     size_t resummed = 0, by_change = 0;  // records re-summed, of them over the changed VPLs only
+    size_t rows_remade = 0;              // records whose rows were re-made from runs of columns
     uint64_t update_rays = 0, full_rays = 0;
 };
 
@@ -260,6 +261,7 @@ TemporalRun run_and_compare_with_rebuild(BackendKind kind, const Scene& rest, ui
             run.retraced += c.stats().paths_retraced;
             run.resummed += c.stats().resummed;
             run.by_change += c.stats().resummed_by_change;
+            run.rows_remade += c.stats().rows_remade;
             run.paths += c.paths().size();
             run.update_rays += c.stats().shadow_rays + c.stats().probe_rays;
             run.full_rays += records.size() * (c.vpls().size() / TS_VPL_FLOATS + TS_IC_PROBE_RAYS);
@@ -291,6 +293,9 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     // its subset, and the update still equals the rebuild.
     const TemporalRun subsets = run_and_compare_with_rebuild(GetParam(), moves, 1, 3);
     EXPECT_GT(subsets.retraced, 0u);
+    // Re-traced paths change their VPL counts, so the subsets' columns shift and rows are
+    // re-made, each clipped to its subset's new columns: that path is the one checked here.
+    EXPECT_GT(subsets.rows_remade, 0u);
     EXPECT_LT(subsets.update_rays, subsets.full_rays / 4);
     EXPECT_EQ(all.by_change, 0u) << "every VPL's weight changes as the light dims: a full re-sum";
     // Only the light dims: every path is re-traced (its weight changes) but lands where it
