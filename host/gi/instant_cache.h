@@ -103,10 +103,10 @@ struct IcFrameStats {
 /// record's own VPL noise would show as record-shaped blotches, 2 below 16 spp; from 16
 /// spp 16 on images of at least kIcManySubsetsPixels, else 4.
 uint32_t ic_subsets_for(uint32_t spp, uint64_t pixels);
-/// The smallest image (pixels, 2^16: 256², or 384×256 at 1.5×) on which M = 16 pays: a
-/// 4×3 region of it holds ~20 or more of the 16-pixel blocks a subset is drawn per, and
-/// the records outweigh the light paths. At 128×96 M = 16 cost 1.5-1.6× M = 4 for a
-/// region error barely lower (bench/results/ic_subsets.md).
+/// The smallest image on which M = 16 pays (2^16 pixels: 256²; the two rooms' 384×256
+/// has 1.5× that): a 4×3 region of it holds ~20 or more of the 16-pixel blocks a subset
+/// is drawn per, and the records outweigh the light paths. At 128×96 M = 16 cost 1.3-1.6×
+/// M = 4 for a region error barely lower (bench/results/ic_subsets_128x96.md).
 inline constexpr uint64_t kIcManySubsetsPixels = uint64_t(1) << 16;
 
 /// One log line: the cache's settings and `stats` (one pass, or summed over `passes`).
