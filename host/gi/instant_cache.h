@@ -42,8 +42,9 @@ namespace tessera {
 struct IcSettings {
     uint32_t paths = 256;        ///< N_p light paths a record gathers from
     /// M path subsets a pass draws (M·N_p paths); each record gathers from one, chosen by a
-    /// hash of its 16×16-pixel block and placement level (docs/instant-caching.md §2b). 0 = 1 here;
-    /// the renderer sets it from the spp (resolve_ic_subsets) unless --ic-subsets gives it.
+    /// hash of its 16×16-pixel block and placement level (docs/instant-caching.md §2b).
+    /// 0 = 1 here; the renderer sets it from the spp and image size (resolve_ic_subsets)
+    /// unless --ic-subsets gives it.
     uint32_t subsets = 0;
     float error_bound = 0.3f;    ///< Ward's a: a record serves points with ε < a (shared/ic_lookup.h)
     float min_radius_px = 1.5f;  ///< record radius bounds in pixel footprints (ic_record_radius)
@@ -240,7 +241,8 @@ private:
     /// visible, in launches grouped by subset: sets their E and
     /// returns their harmonic mean distances; their sums go to (*sums)[which[k]] if given.
     std::vector<float> gather(Backend& backend, const std::vector<float>& vpls, const std::vector<size_t>& offsets,
-                              const std::vector<Row>& rows, std::vector<IcRecord>& records, const std::vector<uint32_t>& which, float g_clamp,
+                              const std::vector<Row>& rows, std::vector<IcRecord>& records,
+                              const std::vector<uint32_t>& which, float g_clamp,
                               std::vector<IcGatherSums>* sums = nullptr) const;
     void update(Backend& backend, const SceneBuffers& scene, float g_clamp);
     void snapshot(const SceneBuffers& scene, float g_clamp);

@@ -46,6 +46,10 @@ IntegratorSettings integrator_settings(const RenderSettings& settings, int width
     return s;
 }
 
+ImageSize render_image_size(const RenderSettings& settings, const Camera& camera) {
+    return {settings.width > 0 ? settings.width : camera.width, settings.height > 0 ? settings.height : camera.height};
+}
+
 void resolve_ic_subsets(RenderSettings& settings, int width, int height) {
     if (settings.ic.subsets == 0)
         settings.ic.subsets = ic_subsets_for(settings.spp, uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0)));
@@ -65,8 +69,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
                    const RenderSettings& settings, RenderStats* stats, const ProgressFn& progress,
                    const CheckpointOptions* checkpoint, Cluster* cluster) {
     validate_settings(settings);
-    const int w = settings.width > 0 ? settings.width : scene.camera.width;
-    const int h = settings.height > 0 ? settings.height : scene.camera.height;
+    const auto [w, h] = render_image_size(settings, scene.camera);
     TsFrame frame = make_render_frame(scene.camera, w, h, buffers, settings);
     const bool distributed = cluster && cluster->size() > 1;
     const bool lead = !distributed || cluster->rank() == 0;  // accumulates, checkpoints, reports

@@ -29,6 +29,13 @@ class Cluster;             // render/cluster.h
 /// image of width × height pixels.
 IntegratorSettings integrator_settings(const RenderSettings& settings, int width, int height);
 
+/// The image size of a render with `settings` of a scene with `camera`: --width and
+/// --height where given, else the camera's (pixels).
+struct ImageSize {
+    int width, height;
+};
+ImageSize render_image_size(const RenderSettings& settings, const Camera& camera);
+
 /// Sets ic's path subsets M from settings.spp and the image's width × height pixels where
 /// they are 0 (--ic-subsets not given): ic_subsets_for (docs/instant-caching.md §2b).
 /// Every caller that makes tic's caches (render_sequence, the viewer) applies it first,

@@ -53,8 +53,8 @@ void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& 
     validate_settings(sequence_settings);  // before the tic cache is made from them
     RenderSettings settings = sequence_settings;
     // tic's caches are made here: ic's M at this spp and size.
-    resolve_ic_subsets(settings, settings.width > 0 ? settings.width : rest.camera.width,
-                       settings.height > 0 ? settings.height : rest.camera.height);
+    const ImageSize size = render_image_size(settings, rest.camera);
+    resolve_ic_subsets(settings, size.width, size.height);
     prepare_sequence(settings, rest);
     // One backend for the sequence, given each frame's scene with set_scene: the BVH is
     // rebuilt and every scene buffer re-uploaded (simple and correct for moving

@@ -21,8 +21,8 @@ ViewSession::ViewSession(const Scene& rest, const ViewOptions& options)
     : rest_(rest), options_(options), settings_(options.settings), exposure_(options.exposure) {
     validate_settings(settings_);
     camera_ = home_camera_ = rest_.camera;
-    width_ = settings_.width > 0 ? settings_.width : rest_.camera.width;
-    height_ = settings_.height > 0 ? settings_.height : rest_.camera.height;
+    const ImageSize size = render_image_size(settings_, rest_.camera);
+    width_ = size.width, height_ = size.height;
     camera_.width = home_camera_.width = width_;
     camera_.height = home_camera_.height = height_;
     speed_ = start_speed_ = options.speed > 0 ? options.speed : default_speed(rest_);
