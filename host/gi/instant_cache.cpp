@@ -106,8 +106,11 @@ void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint
     if (oversampling_ > 1) {
         concat_vpls();
         // The points' irradiance E_j from the first subset's candidates (vpl_view_importance).
+        // The view rays' draws are keyed by the pass's path block, as the paths are.
+        ViewVisibility visibility{&backend, selection.view_rays, light_path_seed_mix(seed_) ^ block};
         const std::vector<float> importance =
-            vpl_view_importance(*selection.view, vpls_, selection.importance_clamp, subset_vpls_.at(1));
+            vpl_view_importance(*selection.view, vpls_, selection.importance_clamp, subset_vpls_.at(1), &visibility);
+        stats_.view_rays += visibility.traced;
         paths_ = select_paths(paths_, importance, oversampling_, light_path_seed_mix(seed_));
     }
     concat_vpls();
@@ -573,7 +576,8 @@ IcFrameStats& IcFrameStats::operator+=(const IcFrameStats& o) {
     resummed_by_change += o.resummed_by_change;
     evicted += o.evicted, rows_remade += o.rows_remade;
     vpls += o.vpls, paths_retraced += o.paths_retraced, vpls_changed += o.vpls_changed;
-    light_path_rays += o.light_path_rays, shadow_rays += o.shadow_rays, probe_rays += o.probe_rays;
+    light_path_rays += o.light_path_rays, view_rays += o.view_rays, shadow_rays += o.shadow_rays;
+    probe_rays += o.probe_rays;
     fallback_pixels += o.fallback_pixels;
     update_seconds += o.update_seconds, place_seconds += o.place_seconds;
     interpolate_seconds += o.interpolate_seconds;
@@ -584,18 +588,19 @@ IcFrameStats& IcFrameStats::operator+=(const IcFrameStats& o) {
 }
 
 std::string describe_ic(const IcSettings& settings, const IcFrameStats& s, uint32_t passes) {
-    char buf[704], over[48] = "", subsets[40] = "";
+    char buf[768], over[48] = "", subsets[40] = "";
     if (passes > 1) std::snprintf(over, sizeof over, " summed over %u passes", passes);
     if (settings.subsets > 1) std::snprintf(subsets, sizeof subsets, " in each of %u subsets", settings.subsets);
     std::snprintf(buf, sizeof buf,
-                  "%s: a %.2f, %u paths%s%s: %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed, %zu by the changed VPLs), "
+                  "%s: a %.2f, %u paths%s%s, kept for the view from %ux (%u view rays a VPL): %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed, %zu by the changed VPLs), "
                   "%zu paths re-traced, "
-                  "rays: %llu light-path + %llu shadow + %llu probe, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms; of update and placement: shadow rays %.1f ms "
+                  "rays: %llu light-path + %llu view + %llu shadow + %llu probe, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms; of update and placement: shadow rays %.1f ms "
                   "(kernel %.1f), probes %.1f, gathers %.1f (kernel %.1f), octree %.1f, coverage %.1f",
-                  settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, subsets, over, s.vpls, s.records,
+                  settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, subsets, over,
+                  settings.path_importance, settings.view_rays, s.vpls, s.records,
                   s.created, s.removed, s.resummed, s.resummed_by_change, s.paths_retraced,
-                  static_cast<unsigned long long>(s.light_path_rays), static_cast<unsigned long long>(s.shadow_rays),
-                  static_cast<unsigned long long>(s.probe_rays),
+                  static_cast<unsigned long long>(s.light_path_rays), static_cast<unsigned long long>(s.view_rays),
+                  static_cast<unsigned long long>(s.shadow_rays), static_cast<unsigned long long>(s.probe_rays),
                   1e3 * s.update_seconds, 1e3 * s.place_seconds, 1e3 * s.interpolate_seconds, 1e3 * s.pair_seconds,
                   1e3 * s.pair_kernel_seconds, 1e3 * s.probe_seconds, 1e3 * s.gather_seconds,
                   1e3 * s.gather_kernel_seconds, 1e3 * s.octree_seconds, 1e3 * s.coverage_seconds);

@@ -46,6 +46,13 @@ struct IcSettings {
     /// 0 = 1 here; the renderer sets it from the spp and image size (resolve_ic_subsets)
     /// unless --ic-subsets gives it.
     uint32_t subsets = 0;
+    /// K: a pass draws K·N_p candidate paths a subset and keeps N_p paths' worth of VPLs
+    /// for the view (select_paths; 1: the paths as drawn). 8, twice igi's VPL K, because
+    /// the view rays below make more candidates pay (docs/instant-caching.md §2).
+    uint32_t path_importance = 8;
+    /// S: shadow rays a candidate VPL traces toward the view points it would light, so a
+    /// path whose VPLs the view cannot see weighs nothing (vpl_view_importance; 0: off).
+    uint32_t view_rays = 2;
     float error_bound = 0.3f;    ///< Ward's a: a record serves points with ε < a (shared/ic_lookup.h)
     float min_radius_px = 1.5f;  ///< record radius bounds in pixel footprints (ic_record_radius)
     float max_radius_px = 20.0f;
@@ -63,13 +70,14 @@ struct IcSettings {
 };
 
 /// How the cache draws fresh light paths (docs/instant-caching.md §2): as they come, or
-/// kept for the view as igi keeps its VPLs (IgiSettings::vpl_importance).
+/// kept for the view (IcSettings::path_importance).
 struct IcPathSelection {
     /// K > 1 (with `view`): K·paths candidate paths, of which select_paths keeps paths'
     /// worth on average; 1: the paths as drawn.
     uint32_t oversampling = 1;
     const ViewPoints* view = nullptr;  ///< the frame's view points (trace_view_points)
     float importance_clamp = 0.0f;     ///< vpl_view_importance's g_clamp, scene units^-2
+    uint32_t view_rays = 0;            ///< IcSettings::view_rays
 };
 
 /// Counts and times of the last indirect() call (one pass), or summed over a frame's
@@ -85,6 +93,7 @@ struct IcFrameStats {
     uint64_t light_path_rays = 0;  ///< rays of (re-)traced light paths
     uint64_t shadow_rays = 0;      ///< record–VPL shadow rays
     uint64_t probe_rays = 0;       ///< the new records' hemisphere probes (gi/ic_probe.h)
+    uint64_t view_rays = 0;        ///< the path selection's VPL–view point shadow rays (IcSettings::view_rays)
     size_t fallback_pixels = 0;    ///< pixels the kernel found uncovered (rounding), shaded on the host
     double update_seconds = 0, place_seconds = 0, interpolate_seconds = 0;
     /// Of update and placement: the record–VPL shadow rays (the pair lists, the pair
@@ -95,7 +104,7 @@ struct IcFrameStats {
            gather_kernel_seconds = 0;
     /// Of placement: the octree's rebuild, and the coverage tests of its four levels.
     double octree_seconds = 0, coverage_seconds = 0;
-    uint64_t indirect_rays() const { return light_path_rays + shadow_rays + probe_rays; }
+    uint64_t indirect_rays() const { return light_path_rays + view_rays + shadow_rays + probe_rays; }
     IcFrameStats& operator+=(const IcFrameStats& o);
 };
 

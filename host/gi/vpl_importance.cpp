@@ -36,6 +36,8 @@ constexpr double kSteps = 64.0;
 constexpr uint32_t kKeepSeed = 0x76706c69u;
 // Seed of the instant cache's path decisions ("icpk"), apart from the VPL decisions.
 constexpr uint32_t kPathKeepSeed = 0x6963706bu;
+// Seed of the view points drawn for the visibility estimate ("visi").
+constexpr uint32_t kVisibilitySeed = 0x76697369u;
 
 uint32_t path_of(const float* v) {
     uint32_t p;
@@ -90,6 +92,7 @@ ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const 
         push(out.position, s.position);
         push(out.normal, s.shading_normal);
         push(out.geo_normal, s.geo_normal);
+        out.pos_scale.push_back(s.pos_scale);
     }
     return out;
 }
@@ -179,10 +182,61 @@ std::vector<double> point_weights(const std::vector<double>& e) {
     return w;
 }
 
+// Shadow ray k of S from a view point drawn by c_ij·w_j (stratified: the k-th of S equal
+// steps of the VPL's cumulative sum `cdf`, jittered by `u`) to `vpl`, into ray (TS_RAY_FLOATS).
+void visibility_ray(const ViewPoints& points, const std::vector<double>& cdf, uint32_t k, uint32_t S, float u,
+                    const float* vpl, float* ray) {
+    const double target = (k + double(u)) / S * cdf.back();
+    const size_t j = std::min<size_t>(cdf.size() - 1, std::upper_bound(cdf.begin(), cdf.end(), target) - cdf.begin());
+    const float* x = &points.position[3 * j];
+    const float3 p = ts::make_float3(x[0], x[1], x[2]);
+    float3 ng = ts::make_float3(points.geo_normal[3 * j], points.geo_normal[3 * j + 1], points.geo_normal[3 * j + 2]);
+    // Off the point's surface on the VPL's side (a point lit from behind has c_ij = 0).
+    if (ts::dot(ng, ts::ts_f3_load(vpl + TS_VPL_POSITION) - p) < 0.0f) ng = -ng;
+    const float scale = j < points.pos_scale.size()
+                            ? points.pos_scale[j]
+                            : std::max({std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])});
+    store_ray(ts::ts_vpl_shadow_ray(ts::ts_offset_ray_origin(p, ng, scale), vpl), ray);
+}
+
+// Φ_i (in `sum`, for the surface VPLs `packed`) times the fraction of vis.rays shadow rays
+// from view points drawn by c_ij·w_j that reach VPL i (vpl_view_importance).
+void weigh_by_visibility(const ViewPoints& points, const float* pts, const std::vector<float>& packed,
+                         const std::vector<float>& lum, const std::vector<uint32_t>& surface,
+                         const std::vector<double>& w, float g_clamp, ViewVisibility& vis, std::vector<double>& sum) {
+    const size_t ns = surface.size(), np = points.count(), S = vis.rays;
+    std::vector<float> rays(ns * S * TS_RAY_FLOATS, 0.0f);
+    std::vector<uint8_t> drawn(ns, 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 64), [&](const tbb::blocked_range<size_t>& r) {
+        std::vector<float> row(np);
+        std::vector<double> cdf(np);
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            const float* v = &packed[TS_VPL_FLOATS * i];
+            vpl_row(pts, np, 0, np, v, lum[i], g_clamp, row.data());
+            double c = 0.0;
+            for (size_t j = 0; j < np; ++j) cdf[j] = (c += double(row[j]) * w[j]);
+            if (!(c > 0.0)) continue;  // Φ_i = 0 already; its rays stay empty (tmax 0)
+            drawn[i] = 1;
+            ts::TsRng rng = ts::ts_rng_seed(kVisibilitySeed ^ vis.seed_mix, surface[i], 0u);
+            for (uint32_t k = 0; k < S; ++k)
+                visibility_ray(points, cdf, k, uint32_t(S), ts::ts_rng_next(&rng), v, &rays[(i * S + k) * TS_RAY_FLOATS]);
+        }
+    });
+    std::vector<uint32_t> occluded;
+    vis.backend->trace_occluded(rays, occluded);
+    vis.traced += ns * S;
+    for (size_t i = 0; i < ns; ++i) {
+        if (!drawn[i]) continue;
+        size_t seen = 0;
+        for (size_t k = 0; k < S; ++k) seen += occluded[i * S + k] == 0u;
+        sum[i] *= double(seen) / double(S);
+    }
+}
+
 }  // namespace
 
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp,
-                                       size_t e_vpls) {
+                                       size_t e_vpls, ViewVisibility* visibility) {
     const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
     std::vector<float> importance(nv, 0.0f);
     if (np == 0 || nv == 0) return importance;
@@ -233,6 +287,8 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
             sum[i] = s;
         }
     });
+    if (visibility && visibility->rays > 0)
+        weigh_by_visibility(points, pts, packed, lum, surface, w, g_clamp, *visibility, sum);
     for (size_t i = 0; i < ns; ++i) importance[surface[i]] = static_cast<float>(sum[i]);
     return importance;
 }

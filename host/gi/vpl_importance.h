@@ -17,9 +17,11 @@
 namespace tessera {
 
 /// Surfaces seen through a grid of camera rays: 3 floats each of position, shading
-/// normal and geometric normal (flipped toward the camera), scene units.
+/// normal and geometric normal (flipped toward the camera), scene units, and the
+/// position's offset scale (TsSurface::pos_scale; when empty, a point's largest
+/// coordinate magnitude stands in).
 struct ViewPoints {
-    std::vector<float> position, normal, geo_normal;
+    std::vector<float> position, normal, geo_normal, pos_scale;
     size_t count() const { return position.size() / 3; }
 };
 
@@ -83,8 +85,24 @@ private:
 /// the points, so any estimate of it keeps the selection unbiased; the instant cache's M
 /// path subsets take it from the first subset's candidates, at 1/M of the sum's cost
 /// (docs/instant-caching.md §2b).
+///
+/// `visibility` (with rays S > 0): each surface VPL's Φ_i times the fraction of S shadow
+/// rays that reach it from view points drawn in proportion to its terms c_ij·w_j
+/// (stratified over their cumulative sum), an unbiased estimate of Σ_j c_ij w_j V_ij:
+/// a VPL behind a wall from every point it would light gets 0 (kept only by the
+/// selection's floor). The instant cache's paths are chosen so (docs/instant-caching.md §2).
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp,
-                                       size_t e_vpls = SIZE_MAX);
+                                       size_t e_vpls = SIZE_MAX, struct ViewVisibility* visibility = nullptr);
+
+/// The shadow rays of vpl_view_importance's visibility estimate: `rays` S per surface
+/// VPL, traced by `backend`; the draws are keyed by `seed_mix` and the VPL's index, so the
+/// same candidates get the same importance. `traced` counts the rays traced.
+struct ViewVisibility {
+    Backend* backend = nullptr;
+    uint32_t rays = 0;
+    uint32_t seed_mix = 0;
+    uint64_t traced = 0;
+};
 
 /// The same importance from KernelId::VplImportancePoints and VplImportanceVpls
 /// (kernels/shared/vpl_importance.h): the terms and sums of vpl_view_importance where the

@@ -21,9 +21,10 @@ void IcFrame::refine(const TsFrame& frame, const std::vector<float>& surf, const
         // Fresh paths are kept for the view as igi keeps its VPLs (docs/instant-caching.md §2).
         IcPathSelection selection;
         ViewPoints view;
-        if (settings_.vpl_importance > 1 && cache.draws_paths()) {
+        const IcSettings& ic = caches_->settings();
+        if (ic.path_importance > 1 && cache.draws_paths()) {
             view = view_points(frame);
-            selection = {settings_.vpl_importance, &view, importance_clamp_};
+            selection = {ic.path_importance, &view, importance_clamp_, ic.view_rays};
         }
         cache.indirect(backend_, scene_, frame, surf, frame.igi_g_clamp, selection, caches_->gbuffer(), cached_,
                        residual_);

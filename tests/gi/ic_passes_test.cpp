@@ -78,7 +78,7 @@ TEST_P(IcPassesOn, EachPassKeepsItsOwnLightPathsAcrossFrames) {
     // (KeepsThePathsItKeptForTheFirstView).
     const Scene rest = test::shipped_scene("cornell-box-animated.json");
     RenderSettings tic = small(Method::Tic, 2);
-    tic.igi.vpl_importance = 1;
+    tic.ic.path_importance = 1;
     tic.ic.temporal = true;
     tic.ic_state = std::make_shared<IcPassCaches>(tic.ic, rest.objects);
     RenderStats stats;
@@ -105,7 +105,7 @@ TEST_P(IcPassesOn, EachPassKeepsItsOwnLightPathsAcrossFrames) {
     auto backend = make_backend({GetParam(), ""}, buffers, plan_effects(scene));
     for (uint32_t pass : {0u, 1u}) {
         RenderSettings ic = small(Method::Ic, pass + 1);  // ic's one cache holds its last pass
-        ic.igi.vpl_importance = 1;
+        ic.ic.path_importance = 1;
         ic.ic_state = std::make_shared<IcPassCaches>(ic.ic, rest.objects);
         render_frame(*backend, scene, buffers, ic);
         EXPECT_EQ(ic.ic_state->pass(pass).vpls(), tic.ic_state->pass(pass).vpls()) << "pass " << pass;
@@ -113,13 +113,13 @@ TEST_P(IcPassesOn, EachPassKeepsItsOwnLightPathsAcrossFrames) {
 }
 
 TEST_P(IcPassesOn, KeepsThePathsItKeptForTheFirstView) {
-    // At the default K = 4, a pass's cache keeps paths for the view it was built for
-    // (select_paths): 4·paths candidates, paths' worth kept, weights 1/p. Over an animation
+    // At the default K = 8, a pass's cache keeps paths for the view it was built for
+    // (select_paths): 8·paths candidates, paths' worth kept, weights 1/p. Over an animation
     // the temporal update re-traces kept paths with the same indices and weights, so
     // its estimate stays unbiased and equal to the rebuild.
     const Scene rest = test::shipped_scene("cornell-box-animated.json");
     RenderSettings tic = small(Method::Tic, 1);
-    ASSERT_EQ(tic.igi.vpl_importance, 4u);
+    ASSERT_EQ(tic.ic.path_importance, 8u);
     tic.ic.temporal = true;
     tic.ic_state = std::make_shared<IcPassCaches>(tic.ic, rest.objects);
     std::vector<std::pair<uint64_t, float>> first;
@@ -132,18 +132,21 @@ TEST_P(IcPassesOn, KeepsThePathsItKeptForTheFirstView) {
         std::vector<std::pair<uint64_t, float>> now;
         for (const LightPath& p : tic.ic_state->pass(0).paths()) now.emplace_back(p.index, p.weight);
         if (f == 0) {
-            EXPECT_EQ(stats.ic.paths_retraced, 4u * tic.ic.paths) << "frame 0 traces every candidate";
+            EXPECT_EQ(stats.ic.paths_retraced, 8u * tic.ic.paths) << "frame 0 traces every candidate";
+            EXPECT_GT(stats.ic.view_rays, 0u) << "the candidates' VPLs test the view points' visibility";
+            EXPECT_LE(stats.ic.view_rays, uint64_t(tic.ic.view_rays) * stats.ic.light_path_rays)
+                << "S per candidate VPL, each at most one per light-path ray";
             first = now;
             continue;
         }
         EXPECT_EQ(now, first) << "frame " << f << ": the same paths with the same weights";
     }
-    // Kept: on average `paths` of the 4·paths candidates, each with weight 1/p ≥ 1.
+    // Kept: on average `paths` of the 8·paths candidates, each with weight 1/p ≥ 1.
     EXPECT_GT(first.size(), tic.ic.paths / 2);
     EXPECT_LT(first.size(), 2 * tic.ic.paths);
     size_t weighted = 0;
     for (const auto& [index, weight] : first) {
-        EXPECT_LT(index, 4u * tic.ic.paths) << "path block 0 of 4·paths candidates";
+        EXPECT_LT(index, 8u * tic.ic.paths) << "path block 0 of 8·paths candidates";
         EXPECT_GE(weight, 1.0f);
         weighted += weight > 1.0f;
     }

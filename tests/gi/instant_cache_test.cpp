@@ -58,7 +58,7 @@ TEST_P(InstantCacheOn, MatchesIgiWithTheSameVpls) {
     const Image reference = test::render_with(GetParam(), scene, igi);
     RenderSettings ic = small(Method::Ic, 64);
     ic.ic.paths = 256;
-    ic.igi.vpl_importance = 1;
+    ic.ic.path_importance = 1;
     ic.ic.clamp_compensation = false;  // igi's clamped estimate, not more
     std::vector<double> error;
     for (float a : {0.05f, 0.3f, 1.0f}) {
@@ -86,7 +86,7 @@ TEST_P(InstantCacheOn, RecordsGatherFromTheirSubsetOnly) {
         RenderSettings s = small(Method::Ic, 40);
         s.ic.paths = 32;
         s.ic.subsets = subsets;
-        s.igi.vpl_importance = 1;
+        s.ic.path_importance = 1;
         s.ic_state = std::make_shared<IcPassCaches>(s.ic, scene.objects);
         test::render_with(GetParam(), scene, s);
         return s.ic_state;

@@ -52,6 +52,39 @@ TEST(VplImportance, WeighsThePointsByTheLeadingVplsWhenAsked) {
               vpl_view_importance(point_at_origin({0, 0, 1}), vpls, 1e30f));
 }
 
+TEST(VplImportance, ViewRaysWeighOutTheVplsTheViewCannotSee) {
+    // The Cornell box's view points (floor, walls, blocks). A VPL under the ceiling facing
+    // down lights most of them; one above the ceiling facing down has the same kind of
+    // terms (visibility is not in c_ij) but the ceiling hides it from every point. With
+    // S view rays its importance is 0; the visible one keeps most of its share; the same
+    // draws give the same floats, on both backends.
+    Scene s = test::cornell_box();
+    SceneBuffers b = make_scene_buffers(s);
+    const TsFrame frame = make_frame(s.camera, 64, 64, 1, 1, b.light_count);
+    std::vector<float> vpls;
+    add(vpls, vpl({0.278f, 0.50f, 0.28f}, {0, -1, 0}, 1.0f, 0));
+    add(vpls, vpl({0.278f, 0.60f, 0.28f}, {0, -1, 0}, 1.0f, 1));
+    for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
+        auto backend = make_backend({kind, ""}, b, plan_effects(s));
+        const ViewPoints view = trace_view_points(*backend, b, frame, 16);
+        ASSERT_EQ(view.pos_scale.size(), view.count());
+        const std::vector<float> blind = vpl_view_importance(view, vpls, 1e30f);
+        ASSERT_GT(blind[0], 0.0f);
+        ASSERT_GT(blind[1], 0.0f) << "c_ij alone does not see the ceiling";
+        ViewVisibility vis{backend.get(), 8, 7};
+        const std::vector<float> seen = vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, &vis);
+        EXPECT_EQ(vis.traced, 16u) << "8 rays for each of the 2 surface VPLs";
+        EXPECT_EQ(seen[1], 0.0f) << "behind the ceiling from every point";
+        EXPECT_GT(seen[0], 0.5f * blind[0]) << "most points under the ceiling see it";
+        EXPECT_LE(seen[0], blind[0]);
+        ViewVisibility again{backend.get(), 8, 7};
+        EXPECT_EQ(vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, &again), seen);
+        ViewVisibility none{backend.get(), 0, 7};
+        EXPECT_EQ(vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, &none), blind) << "S = 0: no rays";
+        EXPECT_EQ(none.traced, 0u);
+    }
+}
+
 TEST(VplImportance, IsEachVplsShareOfAPointsIrradiance) {
     // One point at the origin facing +z; VPLs straight above at heights 1 and 2 facing
     // down: G = 1 and 1/4, so the shares are 0.8 and 0.2. A medium VPL gets 0; a VPL
