@@ -199,36 +199,22 @@ void visibility_ray(const ViewPoints& points, const std::vector<double>& cdf, ui
     store_ray(ts::ts_vpl_shadow_ray(ts::ts_offset_ray_origin(p, ng, scale), vpl), ray);
 }
 
-// Φ_i (in `sum`, for the surface VPLs `packed`) times the fraction of vis.rays shadow rays
-// from view points drawn by c_ij·w_j that reach VPL i (vpl_view_importance).
-void weigh_by_visibility(const ViewPoints& points, const float* pts, const std::vector<float>& packed,
-                         const std::vector<float>& lum, const std::vector<uint32_t>& surface,
-                         const std::vector<double>& w, float g_clamp, ViewVisibility& vis, std::vector<double>& sum) {
-    const size_t ns = surface.size(), np = points.count(), S = vis.rays;
-    std::vector<float> rays(ns * S * TS_RAY_FLOATS, 0.0f);
-    std::vector<uint8_t> drawn(ns, 0);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 64), [&](const tbb::blocked_range<size_t>& r) {
-        std::vector<float> row(np);
-        std::vector<double> cdf(np);
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-            const float* v = &packed[TS_VPL_FLOATS * i];
-            vpl_row(pts, np, 0, np, v, lum[i], g_clamp, row.data());
-            double c = 0.0;
-            for (size_t j = 0; j < np; ++j) cdf[j] = (c += double(row[j]) * w[j]);
-            if (!(c > 0.0)) continue;  // Φ_i = 0 already; its rays stay empty (tmax 0)
-            drawn[i] = 1;
-            ts::TsRng rng = ts::ts_rng_seed(kVisibilitySeed ^ vis.seed_mix, surface[i], 0u);
-            for (uint32_t k = 0; k < S; ++k)
-                visibility_ray(points, cdf, k, uint32_t(S), ts::ts_rng_next(&rng), v, &rays[(i * S + k) * TS_RAY_FLOATS]);
-        }
-    });
+// Scales Φ_i (`sum`) by the share of the S = vis.rays rays of VPL i (`rays`, S a VPL,
+// drawn where drawn[i]; the others have no terms, Φ_i = 0, and trace none) that arrive:
+// vpl_view_importance's visibility estimate.
+void scale_by_visibility(const std::vector<float>& rays, const std::vector<uint8_t>& drawn, ViewVisibility& vis,
+                         std::vector<double>& sum) {
+    const size_t S = vis.rays, block = S * TS_RAY_FLOATS;
+    std::vector<float> traced;  // the drawn VPLs' rays only
+    for (size_t i = 0; i < sum.size(); ++i)
+        if (drawn[i]) traced.insert(traced.end(), rays.begin() + i * block, rays.begin() + (i + 1) * block);
     std::vector<uint32_t> occluded;
-    vis.backend->trace_occluded(rays, occluded);
-    vis.traced += ns * S;
-    for (size_t i = 0; i < ns; ++i) {
+    vis.backend->trace_occluded(traced, occluded);
+    vis.traced += traced.size() / TS_RAY_FLOATS;
+    for (size_t i = 0, at = 0; i < sum.size(); ++i) {
         if (!drawn[i]) continue;
         size_t seen = 0;
-        for (size_t k = 0; k < S; ++k) seen += occluded[i * S + k] == 0u;
+        for (size_t k = 0; k < S; ++k) seen += occluded[at++] == 0u;
         sum[i] *= double(seen) / double(S);
     }
 }
@@ -276,19 +262,29 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     });
     const std::vector<double> w = point_weights(e);
     if (w.empty()) return importance;
-    // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPLs in parallel.
+    // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPLs in parallel. With view rays
+    // the running sums are the cumulative sum the rays' points are drawn from.
+    const uint32_t S = visibility ? visibility->rays : 0u;
     std::vector<double> sum(ns, 0.0);
+    std::vector<float> rays(size_t(ns) * S * TS_RAY_FLOATS, 0.0f);
+    std::vector<uint8_t> drawn(S > 0 ? ns : 0, 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, ns, 64), [&](const tbb::blocked_range<size_t>& r) {
         std::vector<float> row(np);
+        std::vector<double> cdf(np);
         for (size_t i = r.begin(); i < r.end(); ++i) {
-            vpl_row(pts, np, 0, np, &packed[TS_VPL_FLOATS * i], lum[i], g_clamp, row.data());
+            const float* v = &packed[TS_VPL_FLOATS * i];
+            vpl_row(pts, np, 0, np, v, lum[i], g_clamp, row.data());
             double s = 0.0;
-            for (size_t j = 0; j < np; ++j) s += row[j] * w[j];
+            for (size_t j = 0; j < np; ++j) cdf[j] = (s += row[j] * w[j]);
             sum[i] = s;
+            if (S == 0 || !(s > 0.0)) continue;
+            drawn[i] = 1;
+            ts::TsRng rng = ts::ts_rng_seed(kVisibilitySeed ^ visibility->seed_mix, surface[i], 0u);
+            for (uint32_t k = 0; k < S; ++k)
+                visibility_ray(points, cdf, k, S, ts::ts_rng_next(&rng), v, &rays[(i * S + k) * TS_RAY_FLOATS]);
         }
     });
-    if (visibility && visibility->rays > 0)
-        weigh_by_visibility(points, pts, packed, lum, surface, w, g_clamp, *visibility, sum);
+    if (S > 0) scale_by_visibility(rays, drawn, *visibility, sum);
     for (size_t i = 0; i < ns; ++i) importance[surface[i]] = static_cast<float>(sum[i]);
     return importance;
 }
