@@ -69,6 +69,16 @@ private:
     bool have_points_ = false, have_last_ = false, kept_ = false;
 };
 
+/// The shadow rays of vpl_view_importance's visibility estimate: `rays` S per surface
+/// VPL, traced by `backend`; the draws are keyed by `seed_mix` and the VPL's index, so the
+/// same candidates get the same importance. `traced` counts the rays traced.
+struct ViewVisibility {
+    Backend* backend = nullptr;
+    uint32_t rays = 0;
+    uint32_t seed_mix = 0;
+    uint64_t traced = 0;
+};
+
 /// Each VPL's importance for the view, one float per VPL of `vpls` (TS_VPL_FLOATS each):
 /// its share of the irradiance at each view point, Φ_i = Σ_j c_ij / E_j, with
 /// c_ij = luminance(C_i) · G'_ij (ts_vpl_geometry_term, clamped to `g_clamp` in scene
@@ -92,17 +102,7 @@ private:
 /// a VPL behind a wall from every point it would light gets 0 (kept only by the
 /// selection's floor). The instant cache's paths are chosen so (docs/instant-caching.md §2).
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp,
-                                       size_t e_vpls = SIZE_MAX, struct ViewVisibility* visibility = nullptr);
-
-/// The shadow rays of vpl_view_importance's visibility estimate: `rays` S per surface
-/// VPL, traced by `backend`; the draws are keyed by `seed_mix` and the VPL's index, so the
-/// same candidates get the same importance. `traced` counts the rays traced.
-struct ViewVisibility {
-    Backend* backend = nullptr;
-    uint32_t rays = 0;
-    uint32_t seed_mix = 0;
-    uint64_t traced = 0;
-};
+                                       size_t e_vpls = SIZE_MAX, ViewVisibility* visibility = nullptr);
 
 /// The same importance from KernelId::VplImportancePoints and VplImportanceVpls
 /// (kernels/shared/vpl_importance.h): the terms and sums of vpl_view_importance where the
