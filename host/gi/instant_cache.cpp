@@ -588,16 +588,19 @@ IcFrameStats& IcFrameStats::operator+=(const IcFrameStats& o) {
 }
 
 std::string describe_ic(const IcSettings& settings, const IcFrameStats& s, uint32_t passes) {
-    char buf[768], over[48] = "", subsets[40] = "";
+    char buf[768], over[48] = "", subsets[40] = "", kept[64] = ", as drawn";
     if (passes > 1) std::snprintf(over, sizeof over, " summed over %u passes", passes);
+    if (settings.path_importance > 1)
+        std::snprintf(kept, sizeof kept, ", kept for the view from %ux (%u view rays a VPL)", settings.path_importance,
+                      settings.view_rays);
     if (settings.subsets > 1) std::snprintf(subsets, sizeof subsets, " in each of %u subsets", settings.subsets);
     std::snprintf(buf, sizeof buf,
-                  "%s: a %.2f, %u paths%s%s, kept for the view from %ux (%u view rays a VPL): %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed, %zu by the changed VPLs), "
+                  "%s: a %.2f, %u paths%s%s%s: %zu VPLs, %zu records (+%zu, -%zu, %zu re-summed, %zu by the changed VPLs), "
                   "%zu paths re-traced, "
                   "rays: %llu light-path + %llu view + %llu shadow + %llu probe, update %.1f ms, place+gather %.1f ms, interpolate %.1f ms; of update and placement: shadow rays %.1f ms "
                   "(kernel %.1f), probes %.1f, gathers %.1f (kernel %.1f), octree %.1f, coverage %.1f",
-                  settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, subsets, over,
-                  settings.path_importance, settings.view_rays, s.vpls, s.records,
+                  settings.temporal ? "tic" : "ic", settings.error_bound, settings.paths, subsets, over, kept,
+                  s.vpls, s.records,
                   s.created, s.removed, s.resummed, s.resummed_by_change, s.paths_retraced,
                   static_cast<unsigned long long>(s.light_path_rays), static_cast<unsigned long long>(s.view_rays),
                   static_cast<unsigned long long>(s.shadow_rays), static_cast<unsigned long long>(s.probe_rays),

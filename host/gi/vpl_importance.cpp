@@ -92,6 +92,7 @@ ViewPoints trace_view_points(Backend& backend, const SceneBuffers& scene, const 
         push(out.position, s.position);
         push(out.normal, s.shading_normal);
         push(out.geo_normal, s.geo_normal);
+        push(out.origin, s.origin);
         out.pos_scale.push_back(s.pos_scale);
     }
     return out;
@@ -188,15 +189,13 @@ void visibility_ray(const ViewPoints& points, const std::vector<double>& cdf, ui
                     const float* vpl, float* ray) {
     const double target = (k + double(u)) / S * cdf.back();
     const size_t j = std::min<size_t>(cdf.size() - 1, std::upper_bound(cdf.begin(), cdf.end(), target) - cdf.begin());
-    const float* x = &points.position[3 * j];
-    const float3 p = ts::make_float3(x[0], x[1], x[2]);
-    float3 ng = ts::make_float3(points.geo_normal[3 * j], points.geo_normal[3 * j + 1], points.geo_normal[3 * j + 2]);
-    // Off the point's surface on the VPL's side (a point lit from behind has c_ij = 0).
-    if (ts::dot(ng, ts::ts_f3_load(vpl + TS_VPL_POSITION) - p) < 0.0f) ng = -ng;
-    const float scale = j < points.pos_scale.size()
-                            ? points.pos_scale[j]
-                            : std::max({std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])});
-    store_ray(ts::ts_vpl_shadow_ray(ts::ts_offset_ray_origin(p, ng, scale), vpl), ray);
+    // From the point's ray origin, off its surface along the geometric normal (c_ij > 0
+    // puts the VPL on that side), as a pixel's shadow ray to a VPL leaves (shared/vpl.h).
+    const bool own = 3 * j + 2 < points.origin.size() && j < points.pos_scale.size();
+    const float* x = own ? &points.origin[3 * j] : &points.position[3 * j];
+    const float3 ng = ts::make_float3(points.geo_normal[3 * j], points.geo_normal[3 * j + 1], points.geo_normal[3 * j + 2]);
+    const float scale = own ? points.pos_scale[j] : std::max({std::fabs(x[0]), std::fabs(x[1]), std::fabs(x[2])});
+    store_ray(ts::ts_vpl_shadow_ray(ts::ts_offset_ray_origin(ts::make_float3(x[0], x[1], x[2]), ng, scale), vpl), ray);
 }
 
 // Scales Φ_i (`sum`) by the share of the S = vis.rays rays of VPL i (`rays`, S a VPL,

@@ -17,11 +17,13 @@
 namespace tessera {
 
 /// Surfaces seen through a grid of camera rays: 3 floats each of position, shading
-/// normal and geometric normal (flipped toward the camera), scene units, and the
-/// position's offset scale (TsSurface::pos_scale; when empty, a point's largest
-/// coordinate magnitude stands in).
+/// normal and geometric normal (flipped toward the camera), scene units; for the view
+/// rays (ViewVisibility), 3 floats of the point rays leave from (TsSurface::origin,
+/// pulled inside its triangle) and 1 of its offset scale (TsSurface::pos_scale). Points
+/// made by hand may leave those two empty: the position and its largest coordinate
+/// magnitude stand in.
 struct ViewPoints {
-    std::vector<float> position, normal, geo_normal, pos_scale;
+    std::vector<float> position, normal, geo_normal, origin, pos_scale;
     size_t count() const { return position.size() / 3; }
 };
 

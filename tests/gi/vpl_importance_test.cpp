@@ -56,27 +56,36 @@ TEST(VplImportance, ViewRaysWeighOutTheVplsTheViewCannotSee) {
     // The Cornell box's view points (floor, walls, blocks). A VPL under the ceiling facing
     // down lights most of them; one above the ceiling facing down has the same kind of
     // terms (visibility is not in c_ij) but the ceiling hides it from every point. With
-    // S view rays its importance is 0; the visible one keeps most of its share; the same
-    // draws give the same floats, on both backends.
+    // S view rays its importance is 0; the visible one keeps most of its share. A medium
+    // VPL (0, no rays) comes first, so the surface VPLs' indices are not the list's; one
+    // in front of the box's open side, facing the camera, lights no point and draws no rays. Each backend gives the same
+    // floats for the same draws.
     Scene s = test::cornell_box();
     SceneBuffers b = make_scene_buffers(s);
     const TsFrame frame = make_frame(s.camera, 64, 64, 1, 1, b.light_count);
     std::vector<float> vpls;
+    add(vpls, vpl({0.278f, 0.30f, 0.28f}, {0, 0, 0}, 1.0f, 2, true));
     add(vpls, vpl({0.278f, 0.50f, 0.28f}, {0, -1, 0}, 1.0f, 0));
+    add(vpls, vpl({0.278f, 0.27f, -0.05f}, {0, 0, -1}, 1.0f, 3));
     add(vpls, vpl({0.278f, 0.60f, 0.28f}, {0, -1, 0}, 1.0f, 1));
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
         auto backend = make_backend({kind, ""}, b, plan_effects(s));
         const ViewPoints view = trace_view_points(*backend, b, frame, 16);
         ASSERT_EQ(view.pos_scale.size(), view.count());
+        ASSERT_EQ(view.origin.size(), 3 * view.count());
         const std::vector<float> blind = vpl_view_importance(view, vpls, 1e30f);
-        ASSERT_GT(blind[0], 0.0f);
-        ASSERT_GT(blind[1], 0.0f) << "c_ij alone does not see the ceiling";
+        ASSERT_EQ(blind[0], 0.0f) << "medium";
+        ASSERT_GT(blind[1], 0.0f);
+        ASSERT_EQ(blind[2], 0.0f) << "faces away from every point";
+        ASSERT_GT(blind[3], 0.0f) << "c_ij alone does not see the ceiling";
         ViewVisibility vis{backend.get(), 8, 7};
         const std::vector<float> seen = vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, &vis);
-        EXPECT_EQ(vis.traced, 16u) << "8 rays for each of the 2 surface VPLs";
-        EXPECT_EQ(seen[1], 0.0f) << "behind the ceiling from every point";
-        EXPECT_GT(seen[0], 0.5f * blind[0]) << "most points under the ceiling see it";
-        EXPECT_LE(seen[0], blind[0]);
+        EXPECT_EQ(vis.traced, 16u) << "8 rays for each of the 2 surface VPLs with terms";
+        EXPECT_EQ(seen[0], 0.0f);
+        EXPECT_EQ(seen[2], 0.0f);
+        EXPECT_EQ(seen[3], 0.0f) << "behind the ceiling from every point";
+        EXPECT_GT(seen[1], 0.5f * blind[1]) << "most points under the ceiling see it";
+        EXPECT_LE(seen[1], blind[1]);
         ViewVisibility again{backend.get(), 8, 7};
         EXPECT_EQ(vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, &again), seen);
         ViewVisibility none{backend.get(), 0, 7};
