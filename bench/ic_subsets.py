@@ -55,6 +55,22 @@ def regions(img, ref):
     return np.array(out)
 
 
+def seed_stats(images, ref):
+    """The region figures of renders `images` (luminance, one per seed) against `ref`, as
+    the tables report them: per-seed regions (seeds x regions), the largest region sd, the
+    median worst region, the renders with every region within 2%, the worst region of
+    the seeds' mean image and the median relMSE."""
+    reg = np.array([regions(img, ref) for img in images])
+    worst = np.abs(reg - 1.0).max(axis=1)
+    rel = [float(((img - ref) ** 2 / (ref ** 2 + 1e-2)).mean()) for img in images]
+    return reg, {"largest_region_sd": float(reg.std(axis=0, ddof=1).max()),
+                 "median_worst_region": float(np.median(worst)),
+                 "within_2pct": f"{int((worst <= 0.02).sum())} of {len(images)}",
+                 "average_worst_region": float(np.abs(regions(np.mean(images, axis=0), ref) - 1).max()),
+                 "median_relmse": float(statistics.median(rel)),
+                 "region_sd": reg.std(axis=0, ddof=1).round(4).tolist()}
+
+
 def flip_mean(ref_path, test_path):
     res = subprocess.run([sys.executable, str(ROOT / "bench/flip_metric.py"), str(ref_path), str(test_path)],
                          check=True, capture_output=True, text=True)
@@ -87,31 +103,21 @@ def main():
             for backend in args.backends:
                 base_time = None
                 for m in args.subsets:
-                    times, reg, rel, flips, images = [], [], [], [], []
+                    times, flips, images = [], [], []
                     for seed in range(1, args.seeds + 1):
                         out = tmp / f"t{seed}.exr"
                         times.append(render(args.tessera, scene, ["--method", "ic", "--spp", "16", "--ic-subsets",
                                                                   str(m), "--seed", str(seed), "--backend", backend,
                                                                   *size], out))
-                        img = luminance(out)
-                        images.append(img)
-                        reg.append(regions(img, ref))
-                        rel.append(float(((img - ref) ** 2 / (ref ** 2 + 1e-2)).mean()))
+                        images.append(luminance(out))
                         if backend == "embree" and seed <= args.flip_seeds:
                             flips.append(flip_mean(ref_path, out))
-                    reg = np.array(reg)
-                    worst = np.abs(reg - 1.0).max(axis=1)
+                    _, stats = seed_stats(images, ref)
                     t = statistics.median(times)
                     base_time = t if m == args.subsets[0] else base_time
                     row = {"scene": name, "backend": backend, "subsets": m, "time": t,
-                           "time_ratio": t / base_time if base_time else float("nan"),
-                           "largest_region_sd": float(reg.std(axis=0, ddof=1).max()),
-                           "median_worst_region": float(np.median(worst)),
-                           "within_2pct": f"{int((worst <= 0.02).sum())} of {args.seeds}",
-                           "average_worst_region": float(np.abs(regions(np.mean(images, axis=0), ref) - 1).max()),
-                           "median_relmse": float(statistics.median(rel)),
-                           "flip": f"{statistics.fmean(flips):.4f}" if flips else "—",
-                           "region_sd": reg.std(axis=0, ddof=1).round(4).tolist()}
+                           "time_ratio": t / base_time if base_time else float("nan"), **stats,
+                           "flip": f"{statistics.fmean(flips):.4f}" if flips else "—"}
                     rows.append(row)
                     print(json.dumps({k: v for k, v in row.items() if k != "region_sd"}), flush=True)
     columns = [("scene", "scene", ""), ("backend", "backend", ""), ("M", "subsets", ""), ("time (s)", "time", ".2f"),

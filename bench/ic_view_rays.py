@@ -28,8 +28,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from ic_convergence import ROOT, luminance, write_results  # noqa: E402
-from ic_subsets import regions, render  # noqa: E402
-import numpy as np  # noqa: E402
+from ic_subsets import render, seed_stats  # noqa: E402
 
 SCENE = ROOT / "tests/data/two-rooms/two-rooms.json"
 # The 4 x 3 regions (row-major) that see into the lit room through the doorway; the
@@ -65,29 +64,19 @@ def main():
         ref = luminance(ref_path)
         for label, backends, binary, extra in configs:
             for backend in backends:
-                times, reg, rel, images = [], [], [], []
+                times, images = [], []
                 for seed in range(1, args.seeds + 1):
                     out = tmp / f"t{seed}.exr"
                     times.append(render(binary, SCENE, ["--method", "ic", "--spp", "16", "--seed", str(seed),
                                                         "--backend", backend, *extra], out))
-                    img = luminance(out)
-                    images.append(img)
-                    reg.append(regions(img, ref))
-                    rel.append(float(((img - ref) ** 2 / (ref ** 2 + 1e-2)).mean()))
-                reg = np.array(reg)
-                worst = np.abs(reg - 1.0).max(axis=1)
+                    images.append(luminance(out))
+                reg, stats = seed_stats(images, ref)
                 near = [k for k in range(reg.shape[1]) if k not in DOORWAY]
                 t = statistics.median(times)
                 first_time.setdefault(backend, t)
                 row = {"config": label, "args": " ".join(extra), "backend": backend, "time": t,
-                       "time_ratio": t / first_time[backend],
-                       "largest_region_sd": float(reg.std(axis=0, ddof=1).max()),
-                       "near_room_level_sd": float(reg[:, near].mean(axis=1).std(ddof=1)),
-                       "median_worst_region": float(np.median(worst)),
-                       "within_2pct": f"{int((worst <= 0.02).sum())} of {args.seeds}",
-                       "average_worst_region": float(np.abs(regions(np.mean(images, axis=0), ref) - 1).max()),
-                       "median_relmse": float(statistics.median(rel)),
-                       "region_sd": reg.std(axis=0, ddof=1).round(4).tolist()}
+                       "time_ratio": t / first_time[backend], **stats,
+                       "near_room_level_sd": float(reg[:, near].mean(axis=1).std(ddof=1))}
                 rows.append(row)
                 print(json.dumps({k: v for k, v in row.items() if k != "region_sd"}), flush=True)
     columns = [("config", "config", ""), ("options", "args", ""), ("backend", "backend", ""),
