@@ -13,6 +13,7 @@
 
 #include "gi/ic_gather.h"
 #include "gi/ic_probe.h"
+#include "gi/path_selection.h"
 #include "kernels/shared/ic_lookup.h"
 #include "kernels/shared/rng.h"
 #include "kernels/shared/sampling.h"
@@ -108,10 +109,14 @@ void InstantCache::start_paths(Backend& backend, const SceneBuffers& scene, uint
         // The points' irradiance E_j from the first subset's candidates (vpl_view_importance).
         // The view rays' draws are keyed by the pass's path block, as the paths are.
         ViewVisibility visibility{&backend, selection.view_rays, light_path_seed_mix(seed_) ^ block};
-        const std::vector<float> importance =
-            vpl_view_importance(*selection.view, vpls_, selection.importance_clamp, subset_vpls_.at(1), &visibility);
+        std::vector<float> where;
+        const std::vector<float> importance = vpl_view_importance(
+            *selection.view, vpls_, selection.importance_clamp, subset_vpls_.at(1), &visibility, &where);
         stats_.view_rays += visibility.traced;
-        paths_ = select_paths(paths_, importance, oversampling_, light_path_seed_mix(seed_));
+        // One systematic sample a subset: each subset's paths keep their share of every
+        // part of the view.
+        paths_ = select_paths(paths_, importance, where, size_t(settings_.paths) * oversampling_, oversampling_,
+                              light_path_seed_mix(seed_));
     }
     concat_vpls();
 }

@@ -28,7 +28,7 @@ struct LightPath {
     uint32_t set = 0;     ///< interleave set its VPLs belong to
     uint32_t light = 0;
     /// Multiplies the flux of every VPL the path leaves: 1/p of a path kept for the view
-    /// with probability p (select_paths, gi/vpl_importance.h), 1 otherwise.
+    /// with probability p (select_paths, gi/path_selection.h), 1 otherwise.
     float weight = 1.0f;
     std::vector<float> vpls;
     /// Ray lights (TS_VRL_FLOATS each, layout_igi.h, in path order), with

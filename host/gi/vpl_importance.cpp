@@ -5,6 +5,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -34,8 +35,6 @@ constexpr double kFloor = 1.0;
 constexpr double kSteps = 64.0;
 // Seed of the keep decisions ("vpli"), apart from every other stream.
 constexpr uint32_t kKeepSeed = 0x76706c69u;
-// Seed of the instant cache's path decisions ("icpk"), apart from the VPL decisions.
-constexpr uint32_t kPathKeepSeed = 0x6963706bu;
 // Seed of the view points drawn for the visibility estimate ("visi").
 constexpr uint32_t kVisibilitySeed = 0x76697369u;
 
@@ -198,6 +197,27 @@ void visibility_ray(const ViewPoints& points, const std::vector<double>& cdf, ui
     store_ray(ts::ts_vpl_shadow_ray(ts::ts_offset_ray_origin(ts::make_float3(x[0], x[1], x[2]), ng, scale), vpl), ray);
 }
 
+// The mean of the view points' positions (`pts`, np of them in the VplImportance input's
+// layout) weighed by row[j]·w[j], whose sum is `s`, into c (3 floats, scene units). In
+// float with eight partial sums a coordinate, so that the loop runs in SIMD: it serves as
+// a sort key (select_paths), where a rounding difference moves no estimate.
+void centroid(const float* pts, size_t np, const float* row, const float* w, double s, float* c) {
+    float acc[3][8] = {};
+    size_t j = 0;
+    for (; j + 8 <= np; j += 8)
+        for (size_t l = 0; l < 8; ++l) {
+            const float t = row[j + l] * w[j + l];
+            for (size_t a = 0; a < 3; ++a) acc[a][l] += t * pts[a * np + j + l];
+        }
+    for (; j < np; ++j)
+        for (size_t a = 0; a < 3; ++a) acc[a][0] += row[j] * w[j] * pts[a * np + j];
+    for (size_t a = 0; a < 3; ++a) {
+        float sum = 0.0f;
+        for (float v : acc[a]) sum += v;
+        c[a] = static_cast<float>(sum / s);
+    }
+}
+
 // Scales Φ_i (`sum`) by the share of the S = vis.rays rays of VPL i (`rays`, S a VPL,
 // drawn where drawn[i]; the others have no terms, Φ_i = 0, and trace none) that arrive:
 // vpl_view_importance's visibility estimate.
@@ -221,8 +241,9 @@ void scale_by_visibility(const std::vector<float>& rays, const std::vector<uint8
 }  // namespace
 
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp,
-                                       size_t e_vpls, ViewVisibility* visibility) {
+                                       size_t e_vpls, ViewVisibility* visibility, std::vector<float>* where) {
     const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
+    if (where) where->assign(3 * nv, std::numeric_limits<float>::quiet_NaN());
     std::vector<float> importance(nv, 0.0f);
     if (np == 0 || nv == 0) return importance;
     // The surface VPLs packed, with their flux's luminance (medium VPLs get 0, and the
@@ -264,6 +285,7 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPLs in parallel. With view rays
     // the running sums are the cumulative sum the rays' points are drawn from.
     const uint32_t S = visibility ? visibility->rays : 0u;
+    const std::vector<float> wf(w.begin(), w.end());  // the centroid's weights, in float
     std::vector<double> sum(ns, 0.0);
     std::vector<float> rays(size_t(ns) * S * TS_RAY_FLOATS, 0.0f);
     std::vector<uint8_t> drawn(S > 0 ? ns : 0, 0);
@@ -276,6 +298,7 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
             double s = 0.0;
             for (size_t j = 0; j < np; ++j) cdf[j] = (s += row[j] * w[j]);
             sum[i] = s;
+            if (where && s > 0.0) centroid(pts, np, row.data(), wf.data(), s, &(*where)[3 * surface[i]]);
             if (S == 0 || !(s > 0.0)) continue;
             drawn[i] = 1;
             ts::TsRng rng = ts::ts_rng_seed(kVisibilitySeed ^ visibility->seed_mix, surface[i], 0u);
@@ -394,38 +417,6 @@ uint32_t select_vpls(const std::vector<float>& vpls, const std::vector<float>& i
         out.insert(out.end(), v, v + TS_VPL_FLOATS);
         for (int c = 0; c < 3; ++c) out[at + TS_VPL_FLUX + c] = static_cast<float>(v[TS_VPL_FLUX + c] / pi);
         ++kept;
-    }
-    return kept;
-}
-
-std::vector<LightPath> select_paths(std::vector<LightPath>& candidates, const std::vector<float>& importance,
-                                    uint32_t oversampling, uint32_t seed_mix) {
-    std::vector<float> path_importance(candidates.size(), 0.0f);
-    std::vector<uint32_t> counts(candidates.size(), 0u);
-    for (size_t j = 0, i = 0; j < candidates.size(); ++j) {
-        double sum = 0.0;
-        counts[j] = static_cast<uint32_t>(candidates[j].vpls.size() / TS_VPL_FLOATS);
-        for (uint32_t n = counts[j]; n > 0; --n) sum += importance.at(i++);
-        path_importance[j] = static_cast<float>(sum);
-    }
-    const std::vector<double> p = path_keep_probabilities(path_importance, counts, oversampling);
-    std::vector<LightPath> kept;
-    for (size_t j = 0; j < candidates.size(); ++j) {
-        // Independent decisions, not one systematic sample (systematic_sample): there each
-        // decision hangs on the cumulative sum of every earlier p, so a 1/64 step of one
-        // p moves the later decisions, and a scene with a duplicated floor kept other
-        // paths than the plain one (hard case Degenerate, relMSE 5e-5 against 1e-6). The
-        // systematic sample's gain was small: two-rooms' image-mean spread over 30 seeds
-        // 1.42% -> 1.28% (bench/results/ic_seed_spread_systematic.md).
-        ts::TsRng rng = ts::ts_rng_seed(kPathKeepSeed ^ seed_mix, static_cast<uint32_t>(candidates[j].index), 0u);
-        if (!(ts::ts_rng_next(&rng) < p[j])) continue;
-        LightPath path = std::move(candidates[j]);
-        // In float, as trace_light_paths applies a weight: a re-traced path (same scene)
-        // leaves the same bits.
-        path.weight = static_cast<float>(1.0 / p[j]);
-        for (size_t v = 0; v < path.vpls.size(); v += TS_VPL_FLOATS)
-            for (int c = 0; c < 3; ++c) path.vpls[v + TS_VPL_FLUX + c] *= path.weight;
-        kept.push_back(std::move(path));
     }
     return kept;
 }

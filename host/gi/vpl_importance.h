@@ -103,8 +103,14 @@ struct ViewVisibility {
 /// (stratified over their cumulative sum), an unbiased estimate of Σ_j c_ij w_j V_ij:
 /// a VPL behind a wall from every point it would light gets 0 (kept only by the
 /// selection's floor). The instant cache's paths are chosen so (docs/instant-caching.md §2).
+///
+/// `where` (optional): each VPL's mean view point position weighed by its terms c_ij·w_j
+/// (before visibility), 3 floats a VPL in VPL order, scene units, NaN for VPLs of no
+/// importance: where in the view the VPL's light lands, select_paths' sort key. In float,
+/// as a key only.
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp,
-                                       size_t e_vpls = SIZE_MAX, ViewVisibility* visibility = nullptr);
+                                       size_t e_vpls = SIZE_MAX, ViewVisibility* visibility = nullptr,
+                                       std::vector<float>* where = nullptr);
 
 /// The same importance from KernelId::VplImportancePoints and VplImportanceVpls
 /// (kernels/shared/vpl_importance.h): the terms and sums of vpl_view_importance where the
@@ -157,21 +163,8 @@ std::vector<double> path_keep_probabilities(const std::vector<float>& importance
 /// C. With u uniform each unit is kept with probability exactly p[j], as independent
 /// decisions would keep it, but the number kept is floor(Σp) or ceil(Σp) and any run of
 /// consecutive units keeps its share to within one: the selection adds no count noise
-/// to the estimate. Returns one flag per unit. Each decision depends on every earlier p,
-/// so it suits units whose p does not move (the ray lights' uniform 1/K,
-/// gi/vpl_generator.h), not the paths kept for the view (select_paths).
+/// to the estimate. Returns one flag per unit. Each decision depends on every earlier p:
+/// a p that moves by a step moves the decisions after it (select_paths, gi/path_selection.h).
 std::vector<bool> systematic_sample(const std::vector<double>& p, double u);
-
-/// Path by path, for the instant cache (docs/instant-caching.md §2): keeps candidate path
-/// j of `candidates` with p_j = path_keep_probabilities of its importance (the sum of its
-/// VPLs' Φ_i, `importance` one float per VPL of the candidates in path order), K =
-/// `oversampling`, and returns the kept paths in candidate order with weight 1/p_j and
-/// their VPLs' flux multiplied by it. A whole path is kept or dropped, so that the
-/// temporal cache can re-trace a kept path with its weight when moving geometry
-/// invalidates it: the weight is fixed when the path is drawn, and the estimate stays
-/// unbiased because the decision is the counter-based generator keyed by the path index
-/// and `seed_mix` alone. On average the kept paths leave 1/K of the candidates' VPLs.
-std::vector<LightPath> select_paths(std::vector<LightPath>& candidates, const std::vector<float>& importance,
-                                    uint32_t oversampling, uint32_t seed_mix);
 
 }  // namespace tessera

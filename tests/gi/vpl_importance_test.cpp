@@ -127,6 +127,36 @@ TEST(VplImportance, IsEachVplsShareOfAPointsIrradiance) {
     for (float x : away) EXPECT_EQ(x, 0.0f);
 }
 
+TEST(VplImportance, PlacesEachVplWhereItsLightLandsInTheView) {
+    // Points at x = 0 and x = 2 facing +z. VPLs over x = 1 (heights 1 and 3, facing down)
+    // light both alike, so the points' irradiance is equal and those VPLs land at x = 1;
+    // a VPL over x = 0.2 lights the first point more (x within (0, 1)); a VPL facing up
+    // lights neither (NaN, importance 0).
+    ViewPoints view;
+    view.position = {0, 0, 0, 2, 0, 0};
+    view.normal = view.geo_normal = {0, 0, 1, 0, 0, 1};
+    std::vector<float> vpls;
+    add(vpls, vpl({1, 0, 1}, {0, 0, -1}, 1.0f, 0));
+    add(vpls, vpl({1, 0, 3}, {0, 0, -1}, 1.0f, 1));
+    add(vpls, vpl({1, 0, 1}, {0, 0, 1}, 1.0f, 2));
+    std::vector<float> where;
+    const std::vector<float> phi = vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, nullptr, &where);
+    ASSERT_EQ(where.size(), 9u);
+    for (int v = 0; v < 2; ++v) {
+        EXPECT_NEAR(where[3 * v], 1.0f, 1e-6f) << "VPL " << v;
+        EXPECT_EQ(where[3 * v + 1], 0.0f);
+        EXPECT_EQ(where[3 * v + 2], 0.0f);
+    }
+    EXPECT_EQ(phi[2], 0.0f);
+    EXPECT_TRUE(std::isnan(where[6]));
+    // The importance is the same with or without `where`.
+    EXPECT_EQ(vpl_view_importance(view, vpls, 1e30f), phi);
+    add(vpls, vpl({0.2f, 0, 1}, {0, 0, -1}, 1.0f, 3));
+    vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, nullptr, &where);
+    EXPECT_GT(where[9], 0.0f);
+    EXPECT_LT(where[9], 1.0f);
+}
+
 TEST(KeepProbabilities, MeetTheBudgetFavourImportanceAndBoundTheWeight) {
     // 200 surface VPLs of importance i² (a skewed measure) and 20 medium VPLs, K = 4.
     std::vector<float> importance;
@@ -226,65 +256,6 @@ TEST(PathKeepProbabilities, MeetTheVplBudgetAndFavourImportance) {
     // No importance anywhere, or paths without VPLs: the plain 1/K.
     for (double q : path_keep_probabilities(std::vector<float>(400, 0.0f), counts, k)) EXPECT_EQ(q, 1.0 / k);
     EXPECT_EQ(path_keep_probabilities({0.0f, 3.0f}, {0u, 2u}, k)[0], 1.0 / k);
-}
-
-TEST(SelectPaths, KeepsTheFluxInExpectationWithTheirWeights) {
-    // 5000 candidate paths of 0-3 VPLs of flux 1, importance skewed: a path's importance is
-    // the sum of its VPLs' (path_keep_probabilities). A kept path carries weight 1/p on every VPL, so the kept flux
-    // estimates the candidates' with variance Σ m_j² (1 − p_j)/p_j (m_j its VPLs), and the
-    // kept count Σ p_j with variance Σ p_j(1 − p_j): 5σ bounds.
-    std::vector<LightPath> candidates(5000);
-    std::vector<float> importance, path_importance;
-    double total = 0.0;
-    for (uint32_t j = 0; j < candidates.size(); ++j) {
-        candidates[j].index = 1000 + j;
-        double sum = 0.0;
-        for (uint32_t v = 0; v < j % 4; ++v) {
-            add(candidates[j].vpls, vpl({0, 0, 0}, {0, 0, 1}, 1.0f, j));
-            importance.push_back(float((j * 7919u + v) % 100) * float((j * 104729u) % 13));
-            sum += importance.back();
-            total += 1.0;
-        }
-        path_importance.push_back(float(sum));
-    }
-    const uint32_t k = 4;
-    std::vector<uint32_t> counts;
-    for (uint32_t j = 0; j < candidates.size(); ++j) counts.push_back(j % 4);
-    const std::vector<double> p = path_keep_probabilities(path_importance, counts, k);
-    double var_flux = 0.0, var_count = 0.0, mean_count = 0.0;
-    for (uint32_t j = 0; j < p.size(); ++j) {
-        const double m = j % 4;
-        var_flux += m * m * (1.0 - p[j]) / p[j];
-        var_count += p[j] * (1.0 - p[j]);
-        mean_count += p[j];
-    }
-    std::vector<LightPath> copy = candidates;
-    const std::vector<LightPath> kept = select_paths(copy, importance, k, 0u);
-    double flux = 0.0;
-    int64_t last = -1;
-    for (const LightPath& path : kept) {
-        const uint32_t j = uint32_t(path.index - 1000);
-        EXPECT_GT(int64_t(path.index), last) << "kept paths stay in candidate order";
-        last = int64_t(path.index);
-        EXPECT_FLOAT_EQ(path.weight, float(1.0 / p[j]));
-        ASSERT_EQ(path.vpls.size(), candidates[j].vpls.size());
-        for (size_t v = 0; v < path.vpls.size(); v += TS_VPL_FLOATS) {
-            EXPECT_EQ(path.vpls[v + TS_VPL_FLUX], path.weight) << "flux 1 times the weight";
-            flux += path.vpls[v + TS_VPL_FLUX];
-        }
-    }
-    EXPECT_NEAR(flux, total, 5.0 * std::sqrt(var_flux));
-    EXPECT_NEAR(double(kept.size()), mean_count, 5.0 * std::sqrt(var_count));
-    // The same candidates and seed keep the same paths; another seed keeps others.
-    copy = candidates;
-    const std::vector<LightPath> again = select_paths(copy, importance, k, 0u);
-    ASSERT_EQ(again.size(), kept.size());
-    for (size_t i = 0; i < kept.size(); ++i) EXPECT_EQ(again[i].index, kept[i].index);
-    copy = candidates;
-    const std::vector<LightPath> other = select_paths(copy, importance, k, light_path_seed_mix(2));
-    size_t same = 0;
-    for (size_t i = 0; i < std::min(other.size(), kept.size()); ++i) same += other[i].index == kept[i].index;
-    EXPECT_LT(same, kept.size() / 2);
 }
 
 TEST(SystematicSample, KeepsEachUnitWithItsProbabilityAndTheSumWithinOne) {

@@ -41,16 +41,19 @@ Scene degenerate_box() {
 class Degenerate : public HardCase {};
 
 TEST_P(Degenerate, ZeroAreaTrianglesAndDuplicatesChangeNothing) {
-    const Image ref = render(plain_box(), 16);
-    const Image img = render(degenerate_box(), 16);
-    ASSERT_TRUE(all_finite(img));
     // Zero-area triangles are never hit and zero-area emitters carry no power, and a
     // duplicate of the floor shades like the floor, so the image is the plain box's with
-    // the same samples: equal up to rounding. ic/tic keep whole light paths for the view
-    // in steps of 1/64 of a probability (host/gi/vpl_importance.cpp), so a last-bit
-    // difference of the view points (the floor's copy) may flip the decision on one path
-    // near a step: relMSE 0.5-1.7e-6 here over 1-16 path subsets, 0 with the selection
-    // off. Decisions that hung on each other (a cumulative sum) gave 5e-5.
+    // the same samples: equal up to rounding. ic/tic's paths kept for the view are off
+    // (K = 1): their systematic sample (host/gi/path_selection.h) keeps other paths when
+    // the view points' importance differs, and one of the 256 view points lands
+    // differently here (the importance of the VPLs differs by ~1/256), which moved the
+    // decisions after it (relMSE 1-3e-4 with it on, 0 off). That selection is unbiased
+    // for any importance (tests/gi/path_selection_test.cpp).
+    RenderSettings rs = settings(16);
+    rs.ic.path_importance = 1;
+    const Image ref = render_with(backend(), plain_box(), rs);
+    const Image img = render_with(backend(), degenerate_box(), rs);
+    ASSERT_TRUE(all_finite(img));
     EXPECT_LT(rel_mse(img, ref), 4e-6);
     const double bound = radiance_bound(method().transport, 5.0, 0.5);
     EXPECT_LE(radiance_max(img), bound);
