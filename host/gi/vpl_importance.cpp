@@ -197,27 +197,6 @@ void visibility_ray(const ViewPoints& points, const std::vector<double>& cdf, ui
     store_ray(ts::ts_vpl_shadow_ray(ts::ts_offset_ray_origin(ts::make_float3(x[0], x[1], x[2]), ng, scale), vpl), ray);
 }
 
-// The mean of the view points' positions (`pts`, np of them in the VplImportance input's
-// layout) weighed by row[j]·w[j], whose sum is `s`, into c (3 floats, scene units). In
-// float with eight partial sums a coordinate, so that the loop runs in SIMD: it serves as
-// a sort key (select_paths), where a rounding difference moves no estimate.
-void centroid(const float* pts, size_t np, const float* row, const float* w, double s, float* c) {
-    float acc[3][8] = {};
-    size_t j = 0;
-    for (; j + 8 <= np; j += 8)
-        for (size_t l = 0; l < 8; ++l) {
-            const float t = row[j + l] * w[j + l];
-            for (size_t a = 0; a < 3; ++a) acc[a][l] += t * pts[a * np + j + l];
-        }
-    for (; j < np; ++j)
-        for (size_t a = 0; a < 3; ++a) acc[a][0] += row[j] * w[j] * pts[a * np + j];
-    for (size_t a = 0; a < 3; ++a) {
-        float sum = 0.0f;
-        for (float v : acc[a]) sum += v;
-        c[a] = static_cast<float>(sum / s);
-    }
-}
-
 // Scales Φ_i (`sum`) by the share of the S = vis.rays rays of VPL i (`rays`, S a VPL,
 // drawn where drawn[i]; the others have no terms, Φ_i = 0, and trace none) that arrive:
 // vpl_view_importance's visibility estimate.
@@ -285,7 +264,6 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
     // Φ_i = Σ_j c_ij w_j, each VPL's sum in point order; VPLs in parallel. With view rays
     // the running sums are the cumulative sum the rays' points are drawn from.
     const uint32_t S = visibility ? visibility->rays : 0u;
-    const std::vector<float> wf(w.begin(), w.end());  // the centroid's weights, in float
     std::vector<double> sum(ns, 0.0);
     std::vector<float> rays(size_t(ns) * S * TS_RAY_FLOATS, 0.0f);
     std::vector<uint8_t> drawn(S > 0 ? ns : 0, 0);
@@ -296,9 +274,21 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
             const float* v = &packed[TS_VPL_FLOATS * i];
             vpl_row(pts, np, 0, np, v, lum[i], g_clamp, row.data());
             double s = 0.0;
-            for (size_t j = 0; j < np; ++j) cdf[j] = (s += row[j] * w[j]);
+            if (where) {
+                // The centre's sums ride on the running sum's chain of dependent adds,
+                // which bounds the loop's time: they cost next to nothing.
+                double c[3] = {0.0, 0.0, 0.0};
+                for (size_t j = 0; j < np; ++j) {
+                    const double t = row[j] * w[j];
+                    cdf[j] = (s += t);
+                    for (size_t a = 0; a < 3; ++a) c[a] += t * pts[a * np + j];
+                }
+                if (s > 0.0)
+                    for (size_t a = 0; a < 3; ++a) (*where)[3 * surface[i] + a] = static_cast<float>(c[a] / s);
+            } else {
+                for (size_t j = 0; j < np; ++j) cdf[j] = (s += row[j] * w[j]);
+            }
             sum[i] = s;
-            if (where && s > 0.0) centroid(pts, np, row.data(), wf.data(), s, &(*where)[3 * surface[i]]);
             if (S == 0 || !(s > 0.0)) continue;
             drawn[i] = 1;
             ts::TsRng rng = ts::ts_rng_seed(kVisibilitySeed ^ visibility->seed_mix, surface[i], 0u);
