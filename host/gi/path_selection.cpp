@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "gi/vpl_importance.h"
 #include "kernels/shared/rng.h"
@@ -33,6 +35,9 @@ uint64_t spread_bits(uint64_t v) {
 std::vector<uint64_t> path_view_keys(const std::vector<LightPath>& candidates, const std::vector<float>& importance,
                                      const std::vector<float>& where) {
     const size_t n = candidates.size();
+    if (where.size() != 3 * importance.size())
+        throw std::invalid_argument("path_view_keys: 3 floats of `where` a VPL, " + std::to_string(where.size()) +
+                                    " for " + std::to_string(importance.size()) + " VPLs");
     std::vector<std::array<double, 3>> centre(n, {0.0, 0.0, 0.0});
     std::vector<bool> has(n, false);
     std::array<double, 3> lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
@@ -40,11 +45,14 @@ std::vector<uint64_t> path_view_keys(const std::vector<LightPath>& candidates, c
         double sum = 0.0;
         for (size_t v = candidates[j].vpls.size() / TS_VPL_FLOATS; v > 0; --v, ++i) {
             const double f = importance.at(i);
-            if (!(f > 0.0) || !std::isfinite(where.at(3 * i))) continue;
+            const float* at = &where[3 * i];
+            if (!(f > 0.0) || !std::isfinite(f) || !std::isfinite(at[0]) || !std::isfinite(at[1]) ||
+                !std::isfinite(at[2]))
+                continue;  // no place in the view (a medium VPL, or one that lights no point)
             sum += f;
-            for (int a = 0; a < 3; ++a) centre[j][a] += f * where[3 * i + a];
+            for (int a = 0; a < 3; ++a) centre[j][a] += f * at[a];
         }
-        if (!(sum > 0.0)) continue;
+        if (!(sum > 0.0) || !std::isfinite(sum)) continue;
         has[j] = true;
         for (int a = 0; a < 3; ++a) {
             centre[j][a] /= sum;
@@ -87,7 +95,10 @@ std::vector<LightPath> select_paths(std::vector<LightPath>& candidates, const st
         std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key[a] < key[b]; });
         std::vector<double> q(order.size());
         for (size_t t = 0; t < order.size(); ++t) q[t] = p[order[t]];
-        ts::TsRng rng = ts::ts_rng_seed(kPathKeepSeed ^ seed_mix, static_cast<uint32_t>(candidates[begin].index), 0u);
+        // Keyed by the whole 64-bit index: runs of passes 2^32 candidates apart differ.
+        const uint64_t first = candidates[begin].index;
+        ts::TsRng rng = ts::ts_rng_seed(kPathKeepSeed ^ seed_mix, static_cast<uint32_t>(first),
+                                        static_cast<uint32_t>(first >> 32));
         const std::vector<bool> kept = systematic_sample(q, ts::ts_rng_next(&rng));
         for (size_t t = 0; t < order.size(); ++t) keep[order[t]] = kept[t];
     }

@@ -105,9 +105,10 @@ struct ViewVisibility {
 /// selection's floor). The instant cache's paths are chosen so (docs/instant-caching.md §2).
 ///
 /// `where` (optional): each VPL's mean view point position weighed by its terms c_ij·w_j
-/// (before visibility), 3 floats a VPL in VPL order, scene units, NaN for VPLs of no
-/// importance: where in the view the VPL's light lands, select_paths' sort key. In float,
-/// as a key only.
+/// (before visibility), 3 floats a VPL in VPL order, scene units; NaN for medium VPLs and
+/// VPLs whose terms are all 0 (a VPL whose view rays are all blocked keeps its place, with
+/// importance 0): where in the view the VPL's light lands, select_paths' sort key
+/// (gi/path_selection.h). In float, as a key only.
 std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vector<float>& vpls, float g_clamp,
                                        size_t e_vpls = SIZE_MAX, ViewVisibility* visibility = nullptr,
                                        std::vector<float>* where = nullptr);

@@ -1,7 +1,9 @@
 // The instant cache's paths kept for the view (gi/path_selection.h): each path kept with
 // its probability and weighed by its inverse, and every part of the view keeping its
 // share of paths to within one.
+#include <array>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -130,6 +132,7 @@ TEST(SelectPaths, EveryPartOfTheViewKeepsItsShare) {
     // the view: they sort last, after the far room's.
     const std::vector<uint64_t> keys = path_view_keys(c.paths, c.importance, c.where);
     for (uint32_t j = 4; j < n; j += 4) EXPECT_EQ(keys[j], UINT64_MAX) << "a path without VPLs has no place";
+    EXPECT_THROW(path_view_keys(c.paths, c.importance, {}), std::invalid_argument);
     auto in_near_room = [&](uint32_t j) { return j % 2 == 1 && keys[j] != UINT64_MAX; };
     double share = 0.0, binomial = 0.0;
     for (uint32_t j = 0; j < n; ++j)

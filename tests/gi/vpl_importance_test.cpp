@@ -128,33 +128,36 @@ TEST(VplImportance, IsEachVplsShareOfAPointsIrradiance) {
 }
 
 TEST(VplImportance, PlacesEachVplWhereItsLightLandsInTheView) {
-    // Points at x = 0 and x = 2 facing +z. VPLs over x = 1 (heights 1 and 3, facing down)
-    // light both alike, so the points' irradiance is equal and those VPLs land at x = 1;
-    // a VPL over x = 0.2 lights the first point more (x within (0, 1)); a VPL facing up
-    // lights neither (NaN, importance 0).
+    // Points at x = 0 and x = 2 facing +z. A medium VPL first (NaN: the points do not see
+    // the medium, and the surface VPLs' places must not shift onto its slot). VPLs over
+    // x = 1 (heights 1 and 3, facing down) light both alike, so the points' irradiance is
+    // equal and those VPLs land at x = 1; a VPL over x = 0.2 lights the first point more
+    // (x within (0, 1)); a VPL facing up lights neither (NaN, importance 0).
     ViewPoints view;
     view.position = {0, 0, 0, 2, 0, 0};
     view.normal = view.geo_normal = {0, 0, 1, 0, 0, 1};
     std::vector<float> vpls;
+    add(vpls, vpl({1, 0, 1}, {0, 0, -1}, 1.0f, 9, /*medium=*/true));
     add(vpls, vpl({1, 0, 1}, {0, 0, -1}, 1.0f, 0));
     add(vpls, vpl({1, 0, 3}, {0, 0, -1}, 1.0f, 1));
     add(vpls, vpl({1, 0, 1}, {0, 0, 1}, 1.0f, 2));
     std::vector<float> where;
     const std::vector<float> phi = vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, nullptr, &where);
-    ASSERT_EQ(where.size(), 9u);
-    for (int v = 0; v < 2; ++v) {
+    ASSERT_EQ(where.size(), 12u);
+    EXPECT_TRUE(std::isnan(where[0]));
+    for (int v = 1; v < 3; ++v) {
         EXPECT_NEAR(where[3 * v], 1.0f, 1e-6f) << "VPL " << v;
         EXPECT_EQ(where[3 * v + 1], 0.0f);
         EXPECT_EQ(where[3 * v + 2], 0.0f);
     }
-    EXPECT_EQ(phi[2], 0.0f);
-    EXPECT_TRUE(std::isnan(where[6]));
+    EXPECT_EQ(phi[3], 0.0f);
+    EXPECT_TRUE(std::isnan(where[9]));
     // The importance is the same with or without `where`.
     EXPECT_EQ(vpl_view_importance(view, vpls, 1e30f), phi);
     add(vpls, vpl({0.2f, 0, 1}, {0, 0, -1}, 1.0f, 3));
     vpl_view_importance(view, vpls, 1e30f, SIZE_MAX, nullptr, &where);
-    EXPECT_GT(where[9], 0.0f);
-    EXPECT_LT(where[9], 1.0f);
+    EXPECT_GT(where[12], 0.0f);
+    EXPECT_LT(where[12], 1.0f);
 }
 
 TEST(KeepProbabilities, MeetTheBudgetFavourImportanceAndBoundTheWeight) {
