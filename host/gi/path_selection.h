@@ -32,9 +32,10 @@ std::vector<uint64_t> path_view_keys(const std::vector<LightPath>& candidates, c
 /// of the Morton order) keep their share Σ p_j to within one, where independent decisions
 /// left that count its binomial noise; a region of the image that spans r such cells is
 /// within r. The sample's offset is the counter-based generator keyed by `seed_mix` and the
-/// 64-bit index of the run's first candidate. `run` 0 counts as 1 (independent decisions). A whole path is kept or dropped, so that the temporal cache
-/// can re-trace a kept path with its weight when moving geometry invalidates it; the
-/// weight is fixed when the path is drawn.
+/// 64-bit index of the run's first candidate. `run` 0 counts as 1 (independent decisions).
+/// A whole path is kept or dropped, so that the temporal cache can re-trace a kept path
+/// with its weight when moving geometry invalidates it; the weight is fixed when the path
+/// is drawn.
 /// A decision depends on the p and keys of the run's paths sorted before it: importance
 /// that differs (another backend's view points, a duplicated surface in view) may keep
 /// other paths, an estimate as good but not the same samples.
