@@ -10,6 +10,7 @@
 #include "gi/vpl_importance.h"
 #include "kernels/shared/rng.h"
 #include "kernels/shared/vpl.h"
+#include "util/morton.h"
 
 namespace tessera {
 namespace {
@@ -18,17 +19,6 @@ namespace {
 constexpr uint32_t kPathKeepSeed = 0x6963706bu;
 constexpr int kKeyBits = 21;  // an axis: three fit in a 64-bit key
 constexpr double kKeyCells = double((1u << kKeyBits) - 1u);
-
-// The low 21 bits of v with two zero bits after each (a Morton code's one axis).
-uint64_t spread_bits(uint64_t v) {
-    v &= 0x1fffffull;
-    v = (v | v << 32) & 0x1f00000000ffffull;
-    v = (v | v << 16) & 0x1f0000ff0000ffull;
-    v = (v | v << 8) & 0x100f00f00f00f00full;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-}
 
 }  // namespace
 
@@ -62,12 +52,12 @@ std::vector<uint64_t> path_view_keys(const std::vector<LightPath>& candidates, c
     std::vector<uint64_t> key(n, UINT64_MAX);
     for (size_t j = 0; j < n; ++j) {
         if (!has[j]) continue;
-        uint64_t code = 0;
+        uint32_t cell[3];
         for (int a = 0; a < 3; ++a) {
             const double t = hi[a] > lo[a] ? (centre[j][a] - lo[a]) / (hi[a] - lo[a]) : 0.0;
-            code |= spread_bits(static_cast<uint64_t>(std::clamp(t, 0.0, 1.0) * kKeyCells)) << a;
+            cell[a] = static_cast<uint32_t>(std::clamp(t, 0.0, 1.0) * kKeyCells);
         }
-        key[j] = code;
+        key[j] = morton3(cell[0], cell[1], cell[2]);
     }
     return key;
 }

@@ -1,4 +1,4 @@
-// The Z-order (Morton) index of a 2D grid cell.
+// The Z-order (Morton) index of a 2D or 3D grid cell.
 #pragma once
 #include <cstdint>
 
@@ -16,6 +16,20 @@ inline uint32_t morton2(uint32_t x, uint32_t y) {
         return (v | v << 1) & 0x55555555u;
     };
     return spread(x) | spread(y) << 1;
+}
+
+/// The Z-order index of 3D grid cell (x, y, z), each below 2^21: their bits interleaved
+/// (x in bits 0, 3, 6, ...), 63 bits in all.
+inline uint64_t morton3(uint32_t x, uint32_t y, uint32_t z) {
+    auto spread = [](uint64_t v) {
+        v &= 0x1fffffull;
+        v = (v | v << 32) & 0x1f00000000ffffull;
+        v = (v | v << 16) & 0x1f0000ff0000ffull;
+        v = (v | v << 8) & 0x100f00f00f00f00full;
+        v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+        return (v | v << 2) & 0x1249249249249249ull;
+    };
+    return spread(x) | spread(y) << 1 | spread(z) << 2;
 }
 
 }  // namespace tessera

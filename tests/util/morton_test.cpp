@@ -35,5 +35,19 @@ TEST(Morton2, SixteenConsecutiveIndicesAreAFourByFourBlock) {
     }
 }
 
+// Bit k of x, y, z lands at bit 3k, 3k + 1, 3k + 2, for every k of the 21, against the
+// bit-by-bit definition.
+TEST(Morton3, InterleavesTwentyOneBitsAnAxis) {
+    for (uint32_t x : {0u, 1u, 5u, 0x155555u, 0x1fffffu, 123457u})
+        for (uint32_t y : {0u, 2u, 0xaaaaau, 0x1fffffu})
+            for (uint32_t z : {0u, 7u, 0x100000u, 0x1fffffu}) {
+                uint64_t want = 0;
+                for (int k = 0; k < 21; ++k)
+                    want |= uint64_t((x >> k) & 1u) << (3 * k) | uint64_t((y >> k) & 1u) << (3 * k + 1) |
+                            uint64_t((z >> k) & 1u) << (3 * k + 2);
+                EXPECT_EQ(morton3(x, y, z), want) << x << " " << y << " " << z;
+            }
+}
+
 }  // namespace
 }  // namespace tessera
