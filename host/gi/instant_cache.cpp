@@ -41,6 +41,23 @@ uint32_t ic_subsets_for(uint32_t spp, uint64_t pixels) {
     return pixels >= kIcManySubsetsPixels ? 16u : 4u;
 }
 
+// Each run of M blocks holds every subset once, where independent draws per block (before
+// 2026-11-28) left the count of each subset in a region binomial: a region's mean now sees
+// its M·N_p paths in nearer equal shares.
+uint32_t ic_record_subset(uint32_t subsets, uint32_t level, uint32_t block, uint32_t pass, uint32_t seed) {
+    if (subsets <= 1) return 0;
+    uint32_t state = ts::ts_pcg_hash(block / subsets ^
+                                     ts::ts_pcg_hash(level ^ ts::ts_pcg_hash(pass ^ ts::ts_pcg_hash(seed + 0x69637375u))));
+    // Entry block mod M of a Fisher–Yates shuffle of 0 .. M − 1.
+    std::vector<uint32_t> order(subsets);
+    for (uint32_t k = 0; k < subsets; ++k) order[k] = k;
+    for (uint32_t k = subsets - 1; k > 0; --k) {
+        state = ts::ts_pcg_hash(state);
+        std::swap(order[k], order[state % (k + 1)]);
+    }
+    return order[block % subsets];
+}
+
 void ic_gbuffer_from_surface(const std::vector<float>& surf, std::vector<float>& g) {
     const size_t pixels = surf.size() / TS_IGI_SURF_FLOATS;
     g.resize(pixels * TS_IC_GBUF_FLOATS);
@@ -143,15 +160,6 @@ std::vector<size_t> InstantCache::subset_offsets(const std::vector<LightPath>& p
     }
     for (uint32_t s = 0; s < m; ++s) offsets[s + 1] += offsets[s];
     return offsets;
-}
-
-// A hash of the placement level, the block of the image, the pass and the seed:
-// neighbouring blocks draw independent subsets, so a region's mean sees all M·paths paths
-// while each record gathers from paths of them.
-uint32_t InstantCache::record_subset(uint32_t level, uint32_t block) const {
-    const uint32_t m = subsets();
-    if (m == 1) return 0;
-    return ts::ts_pcg_hash(block ^ ts::ts_pcg_hash(level ^ ts::ts_pcg_hash(pass_ ^ ts::ts_pcg_hash(seed_ + 0x69637375u)))) % m;
 }
 
 size_t InstantCache::widest_subset(const std::vector<size_t>& offsets) {

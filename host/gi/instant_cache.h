@@ -113,6 +113,13 @@ struct IcFrameStats {
 /// record's own VPL noise would show as record-shaped blotches, 2 below 16 spp; from 16
 /// spp 16 on images of at least kIcManySubsetsPixels, else 4.
 uint32_t ic_subsets_for(uint32_t spp, uint64_t pixels);
+
+/// The path subset, of `subsets` M ≥ 1, that the records of image block `block` (the
+/// Morton code of a 16×16-pixel block) at placement level `level` (its grid stride) gather
+/// from in pass `pass` with seed `seed` (docs/instant-caching.md §2b). Each run of M
+/// consecutive blocks (block / M equal: a 4×4 square of blocks at M = 16, 2×2 at M = 4)
+/// holds every subset once, in an order drawn per run, level, pass and seed; 0 when M is 1.
+uint32_t ic_record_subset(uint32_t subsets, uint32_t level, uint32_t block, uint32_t pass, uint32_t seed);
 /// The smallest image on which M = 16 pays (2^16 pixels: 256²; the two rooms' 384×256
 /// has 1.5× that): a 4×3 region of it holds ~20 or more of the 16-pixel blocks a subset
 /// is drawn per, and the records outweigh the light paths. At 128×96 M = 16 cost 1.3-1.6×
@@ -210,9 +217,10 @@ private:
     /// The VPL column offsets of the M subsets of `paths` (subset_vpls), the paths of pass
     /// block pass_ with oversampling_ candidates a path.
     std::vector<size_t> subset_offsets(const std::vector<LightPath>& paths) const;
-    /// The subset the records of block `block` (the Morton code of a 16×16-pixel block of
-    /// the image) of placement level `level` (its grid stride) gather from.
-    uint32_t record_subset(uint32_t level, uint32_t block) const;
+    /// ic_record_subset with this cache's M, pass and seed.
+    uint32_t record_subset(uint32_t level, uint32_t block) const {
+        return ic_record_subset(subsets(), level, block, pass_, seed_);
+    }
     /// The first VPL column of the subset of `r` among the subsets `offsets`
     /// (subset_offsets): its row's entry k is the visibility of column first + k.
     static size_t row_first(const IcRecord& r, const std::vector<size_t>& offsets) { return offsets.at(r.subset); }

@@ -199,16 +199,21 @@ void visibility_ray(const ViewPoints& points, const std::vector<double>& cdf, ui
 
 // Scales Φ_i (`sum`) by the share of the S = vis.rays rays of VPL i (`rays`, S a VPL,
 // drawn where drawn[i]; the others have no terms, Φ_i = 0, and trace none) that arrive:
-// vpl_view_importance's visibility estimate.
-void scale_by_visibility(const std::vector<float>& rays, const std::vector<uint8_t>& drawn, ViewVisibility& vis,
+// vpl_view_importance's visibility estimate. Packs the drawn VPLs' rays to the front of
+// `rays` in place (a copy of them cost an allocation of the whole buffer a pass).
+void scale_by_visibility(std::vector<float>& rays, const std::vector<uint8_t>& drawn, ViewVisibility& vis,
                          std::vector<double>& sum) {
     const size_t S = vis.rays, block = S * TS_RAY_FLOATS;
-    std::vector<float> traced;  // the drawn VPLs' rays only
-    for (size_t i = 0; i < sum.size(); ++i)
-        if (drawn[i]) traced.insert(traced.end(), rays.begin() + i * block, rays.begin() + (i + 1) * block);
+    size_t packed = 0;
+    for (size_t i = 0; i < sum.size(); ++i) {
+        if (!drawn[i]) continue;
+        if (packed != i) std::copy_n(rays.begin() + i * block, block, rays.begin() + packed * block);
+        ++packed;
+    }
+    rays.resize(packed * block);
     std::vector<uint32_t> occluded;
-    vis.backend->trace_occluded(traced, occluded);
-    vis.traced += traced.size() / TS_RAY_FLOATS;
+    vis.backend->trace_occluded(rays, occluded);
+    vis.traced += rays.size() / TS_RAY_FLOATS;
     for (size_t i = 0, at = 0; i < sum.size(); ++i) {
         if (!drawn[i]) continue;
         size_t seen = 0;
