@@ -121,8 +121,8 @@ uint32_t ic_subsets_for(uint32_t spp, uint64_t pixels);
 /// holds every subset once, in an order drawn per run, level, pass and seed; 0 when M is 1.
 uint32_t ic_record_subset(uint32_t subsets, uint32_t level, uint32_t block, uint32_t pass, uint32_t seed);
 /// The smallest image on which M = 16 pays (2^16 pixels: 256²; the two rooms' 384×256
-/// has 1.5× that): a 4×3 region of it holds ~20 or more of the 16-pixel blocks a subset
-/// is drawn per, and the records outweigh the light paths. At 128×96 M = 16 cost 1.3-1.6×
+/// has 1.5× that): a 4×3 region of it holds ~20 or more of the 16-pixel blocks that share
+/// a subset, and the records outweigh the light paths. At 128×96 M = 16 cost 1.3-1.6×
 /// M = 4 for a region error barely lower (bench/results/ic_subsets_128x96.md).
 inline constexpr uint64_t kIcManySubsetsPixels = uint64_t(1) << 16;
 

@@ -427,7 +427,7 @@ TEST(IcRecordSubset, EachRunOfBlocksHoldsEverySubsetOnce) {
                     }
     constexpr uint32_t kM = 16, kRuns = 1600;
     std::array<double, kM> first{};
-    for (uint32_t run = 0; run < kRuns; ++run) first[ic_record_subset(kM, 4, run * kM, 0, 1)] += 1.0;
+    for (uint32_t run = 0; run < kRuns; ++run) first.at(ic_record_subset(kM, 4, run * kM, 0, 1)) += 1.0;
     double chi2 = 0.0;
     for (const double n : first) chi2 += (n - kRuns / kM) * (n - kRuns / kM) / (kRuns / kM);
     EXPECT_LT(chi2, 37.7);
