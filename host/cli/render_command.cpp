@@ -38,7 +38,7 @@ struct RenderArgs {
     std::string device;
     std::string out;
     std::string data_dir;
-    std::string method = "direct";
+    std::string method = "ais";  ///< the thesis's method: a user who names none gets global illumination
     std::string components = "ss,id,pm,edge";
     std::string stats_json;
     std::string frames;  ///< --frames A:B, "" for one still image

@@ -98,7 +98,8 @@ TEST(DevicesCli, ListsPocl) {
 
 }  // namespace
 
-// --stats-json: the timing the accuracy sweeps read (bench/accuracy).
+// --stats-json: the timing the accuracy sweeps read (bench/accuracy). No --method: the
+// record names the default, ais.
 TEST_F(RenderCli, StatsJson) {
     const fs::path out = dir_ / "img.exr", stats = dir_ / "stats.json";
     CliResult r = run_tessera("render " + kData + "/light.json --spp 3 --width 8 --height 8 --backend embree --out " +
@@ -109,7 +110,7 @@ TEST_F(RenderCli, StatsJson) {
     const nlohmann::json j = nlohmann::json::parse(f);
     EXPECT_EQ(j["passes"], 3);
     EXPECT_EQ(j["spp"], 3);
-    EXPECT_EQ(j["method"], "direct");
+    EXPECT_EQ(j["method"], "ais");
     EXPECT_EQ(j["backend"], "embree");
     EXPECT_EQ(j["mpi_ranks"], 1);
     EXPECT_EQ(j["tracer"].get<std::string>().substr(0, 7), "embree ") << j["tracer"];  // Backend::description()
