@@ -2,71 +2,14 @@
 
 #include <cctype>
 #include <cstdint>
-#include <cstring>
-#include <memory>
-
-#include <stb_image.h>  // the implementation lives in Debian's libstb
 
 #include "scene/input_file.h"
 #include "scene/jpeg_decode.h"
+#include "scene/png_decode.h"
 #include "util/error.h"
 #include "util/input_limits.h"
 
 namespace tessera::scene_detail {
-
-namespace {
-
-// A PNG: the 8-byte signature, then chunks framed by 12 bytes (length, type, CRC).
-constexpr size_t kPngSignatureBytes = 8, kPngChunkFrame = 12;
-
-uint32_t big_endian32(const std::string& b, size_t at) {
-    const auto u = [&](size_t i) { return uint32_t(static_cast<unsigned char>(b[at + i])); };
-    return u(0) << 24 | u(1) << 16 | u(2) << 8 | u(3);
-}
-
-}  // namespace
-
-bool is_png(const std::string& bytes) {
-    static constexpr char kSignature[] = "\x89PNG\r\n\x1a\n";
-    return bytes.size() >= kPngSignatureBytes && std::memcmp(bytes.data(), kSignature, kPngSignatureBytes) == 0;
-}
-
-void drop_empty_png_idat(std::string& bytes) {
-    if (!is_png(bytes)) return;
-    // One pass with a read and a write cursor, so a file of many empty chunks costs
-    // linear time.
-    size_t read = kPngSignatureBytes, write = kPngSignatureBytes;
-    while (bytes.size() - read >= kPngChunkFrame) {
-        const uint64_t frame = kPngChunkFrame + uint64_t(big_endian32(bytes, read));
-        if (frame > bytes.size() - read) break;
-        const bool empty_idat = frame == kPngChunkFrame && bytes.compare(read + 4, 4, "IDAT") == 0;
-        if (!empty_idat) {
-            if (write != read) std::memmove(&bytes[write], &bytes[read], size_t(frame));
-            write += size_t(frame);
-        }
-        read += size_t(frame);
-    }
-    // The tail that is not a whole chunk stays, for stb_image to report.
-    if (write != read) {
-        std::memmove(&bytes[write], &bytes[read], bytes.size() - read);
-        bytes.resize(bytes.size() - (read - write));
-    }
-}
-
-void check_png_chunks(const std::string& bytes, const std::string& file) {
-    if (!is_png(bytes)) return;
-    for (size_t at = kPngSignatureBytes; at < bytes.size();) {
-        const size_t left = bytes.size() - at;
-        const uint64_t length = left >= 4 ? big_endian32(bytes, at) : 0;
-        if (left < kPngChunkFrame || kPngChunkFrame + length > left)
-            throw InputError(file + ": texture is not a decodable PNG image (the chunk at byte " + std::to_string(at) +
-                             (left < kPngChunkFrame ? " is cut off"
-                                                    : " declares " + std::to_string(length) + " bytes") +
-                             ", past the end of the file's " + std::to_string(bytes.size()) + " bytes)");
-        if (bytes.compare(at + 4, 4, "IEND") == 0) return;  // what follows IEND is not read
-        at += size_t(kPngChunkFrame + length);
-    }
-}
 
 namespace {
 
@@ -96,36 +39,17 @@ void pack_texels(const uint8_t* p, int w, int h, Texture& tex) {
     }
 }
 
-// Decodes a PNG with stb_image into tex, after check_png_chunks and dropping its empty
-// IDAT chunks (drop_empty_png_idat); packs from stb's buffer, so a texture costs two copies at most.
-void decode_png(std::string& bytes, const std::string& file, Texture& tex) {
-    check_png_chunks(bytes, file);
-    drop_empty_png_idat(bytes);
-    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-    const int size = static_cast<int>(bytes.size());  // kTextureFileBytes fits an int
-    int w = 0, h = 0, channels = 0;
-    // The header's size first: a few bytes of PNG header can ask for gigabytes of pixels.
-    if (stbi_info_from_memory(data, size, &w, &h, &channels)) limits::check_image_size("texture", file, w, h, 4);
-    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(data, size, &w, &h, &channels, 4),
-                                                     stbi_image_free);
-    if (!pixels)
-        throw InputError(file + ": texture is not a decodable PNG image (stb_image: " + stbi_failure_reason() + ")");
-    pack_texels(pixels.get(), w, h, tex);
-}
-
 }  // namespace
 
 Texture load_texture(const std::filesystem::path& file) {
-    std::string bytes = read_input_file(file, "texture", limits::kTextureFileBytes);
+    const std::string bytes = read_input_file(file, "texture", limits::kTextureFileBytes);
     if (bytes.size() > limits::kTextureFileBytes)  // grew after read_input_file's size check
         throw InputError(file.string() + ": texture of " + std::to_string(bytes.size()) + " bytes exceeds the limit of " +
                          std::to_string(limits::kTextureFileBytes) + " bytes");
     Texture tex;
     tex.path = file;
-    if (is_png(bytes)) {
-        decode_png(bytes, file.string(), tex);
-    } else if (is_jpeg(bytes)) {
-        const DecodedImage image = decode_jpeg(bytes, file.string());
+    if (is_png(bytes) || is_jpeg(bytes)) {
+        const DecodedImage image = is_png(bytes) ? decode_png(bytes, file.string()) : decode_jpeg(bytes, file.string());
         pack_texels(image.rgba.data(), image.width, image.height, tex);
     } else {
         throw InputError(file.string() + ": texture is not a PNG or JPEG image (" + format_hint(bytes) +

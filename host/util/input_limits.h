@@ -24,9 +24,8 @@ constexpr int kJsonDepth = 64;
 /// 32-bit vertex and index counts of the scanner can describe in practice.
 constexpr std::uintmax_t kMeshFileBytes = std::uintmax_t(2) << 30;
 
-/// Bytes of one texture file, read into memory whole: stb_image takes a memory buffer's
-/// length as an int, so 2^31 - 1 bytes is the most it can read (a 16384 x 16384 RGBA
-/// PNG stored without compression is 1 GiB).
+/// Bytes of one texture file, read into memory whole: twice the 1 GiB of a 16384 x 16384
+/// RGBA PNG stored without compression, the largest texture of the image side limit.
 constexpr std::uintmax_t kTextureFileBytes = (std::uintmax_t(1) << 31) - 1;
 
 /// Pixels on either side of an input image (texture, `compare` and `--reference` EXR,

@@ -1,7 +1,4 @@
-// The implementations of tinyobjloader and stb_image, compiled into the fuzzer (with its
-// instrumentation) instead of linking Debian's shared libraries.
+// The implementation of tinyobjloader, compiled into the fuzzer (with its instrumentation)
+// instead of linking Debian's shared library.
 #define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
-
-#define STB_IMAGE_IMPLEMENTATION
-#include <stb_image.h>

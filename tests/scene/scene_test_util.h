@@ -2,11 +2,13 @@
 #pragma once
 #include <unistd.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <glm/glm.hpp>
+#include <zlib.h>  // crc32, through libpng's link
 
 #include "scene/loader.h"
 #include "util/error.h"
@@ -26,6 +28,15 @@ inline std::filesystem::path unique_temp_dir(const std::string& tag) {
     for (char& c : name)
         if (c == '/') c = '-';
     return std::filesystem::temp_directory_path() / (tag + "-" + std::to_string(::getpid()) + "-" + name);
+}
+
+/// A PNG chunk as it sits in the file: big-endian length, type, data and the CRC-32 of
+/// type and data (PNG spec, 5.3), which libpng checks.
+inline std::string png_chunk(const std::string& type, const std::string& data) {
+    const std::string body = type + data;
+    const auto crc = static_cast<uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(body.data()), uInt(body.size())));
+    auto be = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
+    return be(static_cast<uint32_t>(data.size())) + body + be(crc);
 }
 
 /// Geometric normal of triangle i, cross(p1 - p0, p2 - p0), normalised.
