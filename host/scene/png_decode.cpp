@@ -3,6 +3,7 @@
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <png.h>
@@ -66,12 +67,32 @@ struct Decoder {
 };
 
 // Reads the signature and the chunks up to the first IDAT; false with d.errors.message
-// set on a libpng error.
+// set on a libpng error. Every ancillary chunk but tRNS is skipped unread, as stb_image
+// did: libpng would keep each text chunk's text, and a zTXt chunk of 8 kB inflates to the
+// 8 MB it allows a chunk, in up to 1,000 chunks.
 bool read_header(Decoder& d) {
     if (setjmp(png_jmpbuf(d.png))) return false;
     png_set_read_fn(d.png, &d.source, read_from_source);
+    png_set_keep_unknown_chunks(d.png, PNG_HANDLE_CHUNK_NEVER, nullptr, -1);
     png_read_info(d.png, d.info);
     return true;
+}
+
+// The tRNS colour of a grey or RGB image whose samples do not fit the bit depth (the PNG
+// spec, 11.3.2.1, forbids it): libpng would mask it to the depth and make the pixels of
+// the masked value transparent, stb_image none. "" when there is none or it fits.
+std::string trns_out_of_range(png_structp png, png_infop info) {
+    png_color_16p colour = nullptr;
+    if (!png_get_tRNS(png, info, nullptr, nullptr, &colour) || !colour) return "";
+    const int type = png_get_color_type(png, info), depth = png_get_bit_depth(png, info);
+    if (type == PNG_COLOR_TYPE_PALETTE || depth == 16) return "";
+    const unsigned max = (1u << depth) - 1;
+    const bool grey = type == PNG_COLOR_TYPE_GRAY;
+    if (grey ? colour->gray <= max : colour->red <= max && colour->green <= max && colour->blue <= max) return "";
+    const std::string value = grey ? std::to_string(colour->gray)
+                                   : std::to_string(colour->red) + ", " + std::to_string(colour->green) + ", " +
+                                         std::to_string(colour->blue);
+    return "its tRNS colour (" + value + ") does not fit its " + std::to_string(depth) + "-bit samples";
 }
 
 // Decodes every row, as RGBA8, into `rows` (height pointers to row_bytes each, allocated
@@ -103,6 +124,8 @@ DecodedImage decode_png(const std::string& bytes, const std::string& file) {
     };
     if (!d.png || !d.info) throw fail("out of memory creating the reader");
     if (!read_header(d)) throw fail(d.errors.message);
+    if (const std::string why = trns_out_of_range(d.png, d.info); !why.empty())
+        throw InputError(file + ": texture is not a valid PNG image (" + why + ")");
     const png_uint_32 width = png_get_image_width(d.png, d.info), height = png_get_image_height(d.png, d.info);
     limits::check_image_size("texture", file, width, height, 4);
     DecodedImage image;

@@ -16,10 +16,12 @@ bool is_png(const std::string& bytes);
 /// RGBA8, texel for texel what stb_image gives: palette and tRNS expanded to RGBA, grey
 /// replicated to RGB, 1/2/4-bit samples scaled to 0–255, 16-bit samples cut to their high
 /// byte, A = 255 where the image has no alpha, and no gamma or colour-profile conversion
-/// (gAMA, sRGB and iCCP are ignored, as in every texture path of the renderer). Throws
+/// (gAMA, sRGB, iCCP and every other ancillary chunk but tRNS are skipped unread). Throws
 /// InputError "<file>: texture is not a decodable PNG image (libpng: <reason>)" for a
-/// corrupt, truncated or CRC-damaged file, or a size over the limits of
-/// util/input_limits.h, checked from the header before any pixel is decoded.
+/// corrupt, truncated or CRC-damaged file, "<file>: texture is not a valid PNG image
+/// (...)" for a tRNS colour outside the bit depth (which stb_image and libpng would read
+/// differently), or a size over the limits of util/input_limits.h, checked from the header
+/// before any pixel is decoded.
 DecodedImage decode_png(const std::string& bytes, const std::string& file);
 
 }  // namespace tessera::scene_detail

@@ -43,8 +43,9 @@ class CheckpointCli : public tessera::test::ScratchDirTest {
 protected:
 
     std::vector<std::string> render_args(const std::vector<std::string>& extra) const {
-        // Slow enough (~0.1 s per pass on two cores) that SIGINT arrives mid-render.
-        std::vector<std::string> a{"render",  "--backend", "embree", "--spp", "50", "--width", "96",
+        // Slow enough (50 passes of ~30 ms on two cores) that SIGINT arrives mid-render;
+        // the method named, so the test does not change with the CLI's default.
+        std::vector<std::string> a{"render",  "--method", "direct", "--backend", "embree", "--spp", "50", "--width", "96",
                                    "--height", "96", "--shadow-samples", "48", "--out", (dir_ / "img.exr").string()};
         a.insert(a.end(), extra.begin(), extra.end());
         return a;

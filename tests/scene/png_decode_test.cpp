@@ -10,8 +10,11 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include <png.h>
 #include <stb_image.h>
+#include <zlib.h>
 
 #include "scene/png_decode.h"
 #include "scene/scene_test_util.h"
@@ -227,7 +230,7 @@ TEST(PngDecode, EmptyIdatAndAncillaryChunkWithABadCrcDecodeLikeThePlainFile) {
     const std::string plain = read_bytes(test::fixture("checker.png"));
     const DecodedImage want = scene_detail::decode_png(plain, "t.png");
     const auto [head, tail] = at_first_idat(plain);
-    std::string bad_text = test::png_chunk("tEXt", "Comment\0x");
+    std::string bad_text = test::png_chunk("tEXt", std::string("Comment\0x", 9));
     bad_text.back() ^= 1;
     for (const std::string& bytes : {head + test::png_chunk("IDAT", "") + tail, head + bad_text + tail}) {
         const DecodedImage got = scene_detail::decode_png(bytes, "t.png");
@@ -263,6 +266,52 @@ TEST(PngDecode, ImageDataShorterThanItsHeaderIsRefused) {
     const std::string bytes = plain.substr(0, 8) + tall + plain.substr(8 + 25);
     ASSERT_EQ(bytes.size(), plain.size());
     EXPECT_CONTAINS(decode_error(bytes), "t.png: texture is not a decodable PNG image (libpng: Not enough image data)");
+}
+
+// A tRNS colour that does not fit the bit depth (PNG spec 11.3.2.1) is refused naming it:
+// libpng would mask it to the depth and stb_image would not, so no texels are right.
+TEST(PngDecode, TrnsColourOutsideTheBitDepthIsRefused) {
+    struct Case {
+        Variant v;
+        std::string trns, what;
+    };
+    const Case cases[] = {
+        {{PNG_COLOR_TYPE_GRAY, 2, false, false}, std::string("\0\x05", 2), "(its tRNS colour (5) does not fit its 2-bit"},
+        {{PNG_COLOR_TYPE_GRAY, 8, true, false}, std::string("\x01\x05", 2), "(its tRNS colour (261) does not fit its 8-bit"},
+        {{PNG_COLOR_TYPE_RGB, 8, false, false}, std::string("\0\x01\0\x02\x01\x2c", 6),
+         "(its tRNS colour (1, 2, 300) does not fit its 8-bit samples)"}};
+    for (const Case& c : cases) {
+        const auto [head, tail] = at_first_idat(encode(c.v, 13, 7, 9));
+        EXPECT_CONTAINS(decode_error(head + test::png_chunk("tRNS", c.trns) + tail),
+                        "t.png: texture is not a valid PNG image " + c.what);
+    }
+    const auto [head, tail] = at_first_idat(encode({PNG_COLOR_TYPE_GRAY, 2, false, false}, 13, 7, 9));
+    EXPECT_NO_THROW(scene_detail::decode_png(head + test::png_chunk("tRNS", std::string("\0\x03", 2)) + tail, "t.png"));
+}
+
+// Text chunks are skipped unread: sixteen zTXt chunks of about 8 kB, each inflating to
+// 7.9 MB (libpng keeps up to 1,000 of them, each up to 8 MB), leave the texels as they are
+// and the process's peak memory within 64 MB of where it was (it rose by ~130 MB when
+// libpng kept their text).
+TEST(PngDecode, TextChunksAreSkippedUnread) {
+    const std::string plain = read_bytes(test::fixture("checker.png"));
+    const DecodedImage want = scene_detail::decode_png(plain, "t.png");
+    const std::string text(7'900'000, 'a');
+    std::string packed(compressBound(uLong(text.size())), '\0');
+    uLongf packed_size = uLongf(packed.size());
+    ASSERT_EQ(compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_size,
+                        reinterpret_cast<const Bytef*>(text.data()), uLong(text.size()), 9),
+              Z_OK);
+    packed.resize(packed_size);
+    const std::string ztxt = test::png_chunk("zTXt", std::string("Comment\0\0", 9) + packed);
+    auto [head, tail] = at_first_idat(plain);
+    for (int i = 0; i < 16; ++i) head += ztxt;
+    rusage before{}, after{};
+    ::getrusage(RUSAGE_SELF, &before);
+    const DecodedImage got = scene_detail::decode_png(head + tail, "t.png");
+    ::getrusage(RUSAGE_SELF, &after);
+    EXPECT_EQ(got.rgba, want.rgba);
+    EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 64 * 1024) << "KiB";  // ru_maxrss: KiB on Linux
 }
 
 TEST(PngDecode, IsPngReadsTheSignature) {
