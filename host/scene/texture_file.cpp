@@ -48,13 +48,15 @@ Texture load_texture(const std::filesystem::path& file) {
                          std::to_string(limits::kTextureFileBytes) + " bytes");
     Texture tex;
     tex.path = file;
-    if (is_png(bytes) || is_jpeg(bytes)) {
-        const DecodedImage image = is_png(bytes) ? decode_png(bytes, file.string()) : decode_jpeg(bytes, file.string());
-        pack_texels(image.rgba.data(), image.width, image.height, tex);
-    } else {
+    DecodedImage image;
+    if (is_png(bytes))
+        image = decode_png(bytes, file.string());
+    else if (is_jpeg(bytes))
+        image = decode_jpeg(bytes, file.string());
+    else
         throw InputError(file.string() + ": texture is not a PNG or JPEG image (" + format_hint(bytes) +
                          "); convert it to PNG");
-    }
+    pack_texels(image.rgba.data(), image.width, image.height, tex);
     return tex;
 }
 
