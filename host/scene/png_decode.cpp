@@ -43,7 +43,7 @@ extern "C" void read_from_source(png_structp png, png_bytep out, png_size_t n) {
     auto* s = static_cast<Source*>(png_get_io_ptr(png));
     if (n > s->size - s->at) {
         char why[96];
-        std::snprintf(why, sizeof why, "the file ends at byte %zu, inside a chunk", s->size);
+        std::snprintf(why, sizeof why, "the file ends at byte %zu, before the image does", s->size);
         png_error(png, why);
     }
     std::memcpy(out, s->data + s->at, n);

@@ -250,7 +250,7 @@ TEST(PngDecode, DamagedOrTruncatedFilesAreRefused) {
     bad_crc[8 + idat_length] ^= 0x40;
     EXPECT_CONTAINS(decode_error(head + bad_crc), "t.png: texture is not a decodable PNG image (libpng: IDAT: CRC error");
     EXPECT_CONTAINS(decode_error(plain.substr(0, head.size() + 10)),
-                    "(libpng: the file ends at byte " + std::to_string(head.size() + 10) + ", inside a chunk)");
+                    "(libpng: the file ends at byte " + std::to_string(head.size() + 10) + ", before the image does)");
     std::string huge = test::png_chunk("IDAT", "xy");
     huge[0] = '\x7f';
     EXPECT_CONTAINS(decode_error(head + huge), "t.png: texture is not a decodable PNG image (libpng: ");
