@@ -4,8 +4,6 @@
 // refused with libpng's reason, and what stb_image needed workarounds for decodes.
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -24,11 +22,6 @@ namespace tessera {
 namespace {
 
 using scene_detail::DecodedImage;
-
-std::string read_bytes(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
 
 /// What an encoded test image is: its IHDR colour type and bit depth, Adam7 or not, and
 /// whether it carries a tRNS chunk (palette alphas, or one transparent grey/RGB value).
@@ -194,7 +187,7 @@ TEST(PngDecode, SibenikTexturesDecodeAsStbImage) {
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
         if (entry.path().extension() != ".png") continue;
         SCOPED_TRACE(entry.path().string());
-        const std::string bytes = read_bytes(entry.path());
+        const std::string bytes = test::read_bytes(entry.path());
         int w = 0, h = 0;
         const std::vector<uint8_t> want = stb_rgba(bytes, w, h);
         const DecodedImage got = scene_detail::decode_png(bytes, entry.path().string());
@@ -227,7 +220,7 @@ std::string decode_error(const std::string& bytes) {
 // decode to the texels of the plain file. (stb_image 2.27 copied to a null buffer on the
 // first; the fuzz seed seed-empty_idat keeps it covered.)
 TEST(PngDecode, EmptyIdatAndAncillaryChunkWithABadCrcDecodeLikeThePlainFile) {
-    const std::string plain = read_bytes(test::fixture("checker.png"));
+    const std::string plain = test::read_bytes(test::fixture("checker.png"));
     const DecodedImage want = scene_detail::decode_png(plain, "t.png");
     const auto [head, tail] = at_first_idat(plain);
     std::string bad_text = test::png_chunk("tEXt", std::string("Comment\0x", 9));
@@ -243,7 +236,7 @@ TEST(PngDecode, EmptyIdatAndAncillaryChunkWithABadCrcDecodeLikeThePlainFile) {
 // file holds (stb_image 2.27 first grew its buffer to the declared length, 2 GB from a few
 // bytes) are refused with libpng's reason, without decoding made-up pixels.
 TEST(PngDecode, DamagedOrTruncatedFilesAreRefused) {
-    const std::string plain = read_bytes(test::fixture("checker.png"));
+    const std::string plain = test::read_bytes(test::fixture("checker.png"));
     const auto [head, tail] = at_first_idat(plain);
     std::string bad_crc = tail;  // IDAT's CRC, after its 8-byte head and its data
     const size_t idat_length = size_t(uint8_t(tail[2])) << 8 | uint8_t(tail[3]);
@@ -294,7 +287,7 @@ TEST(PngDecode, TrnsColourOutsideTheBitDepthIsRefused) {
 // and the process's peak memory within 64 MB of where it was (it rose by ~130 MB when
 // libpng kept their text).
 TEST(PngDecode, TextChunksAreSkippedUnread) {
-    const std::string plain = read_bytes(test::fixture("checker.png"));
+    const std::string plain = test::read_bytes(test::fixture("checker.png"));
     const DecodedImage want = scene_detail::decode_png(plain, "t.png");
     const std::string text(7'900'000, 'a');
     std::string packed(compressBound(uLong(text.size())), '\0');

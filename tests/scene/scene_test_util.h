@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -28,6 +30,12 @@ inline std::filesystem::path unique_temp_dir(const std::string& tag) {
     for (char& c : name)
         if (c == '/') c = '-';
     return std::filesystem::temp_directory_path() / (tag + "-" + std::to_string(::getpid()) + "-" + name);
+}
+
+/// The bytes of `file`, whole ("" if it cannot be read).
+inline std::string read_bytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 /// A PNG chunk as it sits in the file: big-endian length, type, data and the CRC-32 of

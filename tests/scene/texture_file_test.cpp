@@ -4,7 +4,6 @@
 // MTL file and material) and the reason; PNG and JPEG textures decode to their texels.
 #include <cstdint>
 #include <fstream>
-#include <iterator>
 #include <string>
 
 #include "scene/scene_test_util.h"
@@ -22,10 +21,7 @@ struct BadTexture {
     const char* what;   ///< the reason the message must give
 };
 
-std::string read_fixture(const std::string& name) {
-    std::ifstream in(test::fixture(name), std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+std::string read_fixture(const std::string& name) { return test::read_bytes(test::fixture(name)); }
 
 class TextureFiles : public test::ScratchDirTest {
 protected:
