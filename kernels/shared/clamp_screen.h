@@ -97,16 +97,26 @@ TS_INLINE float ts_clamp_screen_radius(float plane, float z, float b) {
     return (r > 0.0f) ? fmin(r, TS_CLAMP_SCREEN_MAX_RADIUS) : 0.0f;
 }
 
-/* Writes the record (TS_CLAMP_SCREEN_FLOATS, layout_igi.h) of a pixel that sees a diffuse
+/* Where the gather finds the records (layout_igi.h): pixel i's hot part at
+ * hot + i · hot_stride, its cold part at cold + i · cold_stride. A device's records are
+ * one array (hot = records, cold = records + TS_CLAMP_SCREEN_COLD, both strides
+ * TS_CLAMP_SCREEN_FLOATS); the host's are two. */
+typedef struct TsClampScreenRecords {
+    TS_GLOBAL const float* hot;
+    TS_GLOBAL const float* cold;
+    int hot_stride, cold_stride;
+} TsClampScreenRecords;
+
+/* Writes the record's hot and cold parts (layout_igi.h) of a pixel that sees a diffuse
  * surface directly at position p with unit normal n and albedo rho, whose reconstructed
  * irradiance / π is e = E_ss + E_id; plane: ts_clamp_screen_pixel_plane. */
 TS_INLINE void ts_clamp_screen_record(const TsFrame* f, float plane, float3 p, float3 n, float3 rho, float3 e,
-                                      float* out) {
+                                      float* hot, float* cold) {
     const float area = ts_clamp_screen_area(f, plane, p, n);
-    ts_f3_store(out + TS_CLAMP_SCREEN_POSITION, p);
-    ts_f3_store(out + TS_CLAMP_SCREEN_NORMAL, n);
-    ts_f3_store(out + TS_CLAMP_SCREEN_SOURCE, rho * e * area);
-    out[TS_CLAMP_SCREEN_AREA] = area;
+    ts_f3_store(hot + TS_CLAMP_SCREEN_POSITION, p);
+    hot[TS_CLAMP_SCREEN_AREA] = area;
+    ts_f3_store(cold + TS_CLAMP_SCREEN_NORMAL, n);
+    ts_f3_store(cold + TS_CLAMP_SCREEN_SOURCE, rho * e * area);
 }
 
 /* Adds pixel q's share to *sum: `weight` pixels' worth of q's source times
@@ -115,37 +125,44 @@ TS_INLINE void ts_clamp_screen_record(const TsFrame* f, float plane, float3 p, f
  * axis: ∫ cos cos / r² dA = A / (d² + A/π)): a point's 1/d² would make the pixels next
  * to a corner, whose sub-pixel positions move with the camera jitter, a noise of their
  * own. A ring sample's share is spread around its ring, not a disc about the sample, so
- * it keeps q's own disc (with the share's area it lost 10-20%). */
+ * it keeps q's own disc (with the share's area it lost 10-20%). The tests that need only
+ * q's hot part come first: most samples end there, beyond the clamp radius or behind x,
+ * and never touch the cold part's cache line (the order changes no value: every test
+ * must pass for q to count). */
 TS_INLINE void ts_clamp_screen_add(float3* sum, float3 px, float3 nx, float b, float inv_b, const TsMedium* med,
-                                   TS_GLOBAL const float* q, float weight) {
-    float3 s = ts_f3_load(q + TS_CLAMP_SCREEN_SOURCE);
-    if (!(s.x + s.y + s.z > 0.0f)) return;
-    float3 d = ts_f3_load(q + TS_CLAMP_SCREEN_POSITION) - px;
+                                   const TsClampScreenRecords* rec, size_t q, float weight) {
+    TS_GLOBAL const float* hot = rec->hot + q * rec->hot_stride;
+    float3 d = ts_f3_load(hot + TS_CLAMP_SCREEN_POSITION) - px;
     float d2 = ts_clamp_screen_dot(d, d);
     /* Beyond 1/sqrt(b), G ≤ 1/d² < b: nothing was clamped. */
     if (!(d2 > 0.0f) || !(d2 < inv_b)) return;
-    float cos_x = ts_clamp_screen_dot(nx, d), cos_y = -ts_clamp_screen_dot(ts_f3_load(q + TS_CLAMP_SCREEN_NORMAL), d);
-    if (!(cos_x > 0.0f) || !(cos_y > 0.0f)) return;
-    float g = cos_x * cos_y / (d2 * (d2 + q[TS_CLAMP_SCREEN_AREA] * 0.31830989f));
+    float cos_x = ts_clamp_screen_dot(nx, d);
+    if (!(cos_x > 0.0f)) return;
+    TS_GLOBAL const float* cold = rec->cold + q * rec->cold_stride;
+    float cos_y = -ts_clamp_screen_dot(ts_f3_load(cold + TS_CLAMP_SCREEN_NORMAL), d);
+    if (!(cos_y > 0.0f)) return;
+    float g = cos_x * cos_y / (d2 * (d2 + hot[TS_CLAMP_SCREEN_AREA] * 0.31830989f));
     if (!(g > b)) return;
+    float3 s = ts_f3_load(cold + TS_CLAMP_SCREEN_SOURCE);
+    if (!(s.x + s.y + s.z > 0.0f)) return;
     float3 tr = med ? ts_medium_transmittance(med, px, d, 0.0f, 1.0f) : make_float3(1.0f, 1.0f, 1.0f);
     *sum += s * tr * ((g - b) * weight);
 }
 
 /* E_res at pixel (x, y) of a w × h frame (irradiance / π, per colour channel), from the
- * per-pixel records `rec` (TS_CLAMP_SCREEN_FLOATS). px, nx: x's position and normal; r: the
+ * per-pixel records `rec` (TsClampScreenRecords). px, nx: x's position and normal; r: the
  * window radius in pixels (ts_clamp_screen_radius); b: the frame's clamp; med: the
  * scene's medium or 0. Deterministic: fixed sample offsets, so a smooth surface gets a
  * smooth estimate. */
 TS_INLINE float3 ts_clamp_screen_pixel(int x, int y, int w, int h, float3 px, float3 nx, float r, float b,
-                                       const TsMedium* med, TS_GLOBAL const float* rec) {
+                                       const TsMedium* med, const TsClampScreenRecords* rec) {
     float3 sum = make_float3(0.0f, 0.0f, 0.0f);
     const float inv_b = 1.0f / b;
     for (int dy = -TS_CLAMP_SCREEN_NEAR; dy <= TS_CLAMP_SCREEN_NEAR; ++dy)
         for (int dx = -TS_CLAMP_SCREEN_NEAR; dx <= TS_CLAMP_SCREEN_NEAR; ++dx) {
             int qx = x + dx, qy = y + dy;
             if ((dx == 0 && dy == 0) || qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-            ts_clamp_screen_add(&sum, px, nx, b, inv_b, med, rec + ((ulong)qy * w + qx) * TS_CLAMP_SCREEN_FLOATS, 1.0f);
+            ts_clamp_screen_add(&sum, px, nx, b, inv_b, med, rec, (size_t)qy * w + qx, 1.0f);
         }
     /* Rings start where a disc has the near square's area: π r0² = (2·NEAR + 1)². */
     const float side = 2.0f * TS_CLAMP_SCREEN_NEAR + 1.0f;
@@ -172,8 +189,7 @@ TS_INLINE float3 ts_clamp_screen_pixel(int x, int y, int w, int h, float3 px, fl
             s = s * step_c + c * step_s;
             c = c1;
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-            ts_clamp_screen_add(&sum, px, nx, b, inv_b, med, rec + ((ulong)qy * w + qx) * TS_CLAMP_SCREEN_FLOATS,
-                                weight);
+            ts_clamp_screen_add(&sum, px, nx, b, inv_b, med, rec, (size_t)qy * w + qx, weight);
         }
         r0 = r1;
         if (r1 >= r) break;

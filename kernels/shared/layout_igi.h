@@ -236,22 +236,30 @@
 #define TS_EDGE_ITEM_PIXEL 0
 #define TS_EDGE_ITEM_SAMPLE 1
 #define TS_EDGE_ITEM_COUNT 2
-/* The clamp compensation's per-pixel record (shared/clamp_screen.h, the gather reads it;
- * TS_CLAMP_SCREEN_FLOATS floats, one sample costs one cache miss):
- *   TS_CLAMP_SCREEN_POSITION 3 floats: world position (scene units)
- *   TS_CLAMP_SCREEN_NORMAL   3 floats: unit normal
- *   TS_CLAMP_SCREEN_SOURCE   3 floats: s_q = L_q · A_q, the diffuse radiance ρ (E_ss + E_id)
- *                            times the patch area (zero for a pixel that is no diffuse
- *                            surface seen directly)
- *   TS_CLAMP_SCREEN_AREA     A_q, the pixel's patch area (scene units²)
- * On a device (KernelId::IgiClampRecords) every field is zero for a pixel not seen
- * directly. The gather's output, KernelId::IgiClampGather's: TS_CLAMP_RESIDUAL_FLOATS
- * floats a pixel, E_res (irradiance / π) at the pixels of the even grid, zero elsewhere. */
-#define TS_CLAMP_SCREEN_FLOATS 10
+/* The clamp compensation's per-pixel record (shared/clamp_screen.h, the gather reads it),
+ * in two parts: the hot part, TS_CLAMP_SCREEN_HOT_FLOATS floats, which every sample of
+ * the gather reads, and the cold part, TS_CLAMP_SCREEN_COLD_FLOATS floats, read only by
+ * samples within the clamp radius (most are not). Offsets are within their part:
+ *   hot:  TS_CLAMP_SCREEN_POSITION 3 floats: world position (scene units)
+ *         TS_CLAMP_SCREEN_AREA     A_q, the pixel's patch area (scene units²)
+ *   cold: TS_CLAMP_SCREEN_NORMAL   3 floats: unit normal
+ *         TS_CLAMP_SCREEN_SOURCE   3 floats: s_q = L_q · A_q, the diffuse radiance ρ (E_ss + E_id)
+ *                                  times the patch area (zero for a pixel that is no diffuse
+ *                                  surface seen directly)
+ * On a device (KernelId::IgiClampRecords) a pixel's record is TS_CLAMP_SCREEN_FLOATS floats,
+ * the hot part then the cold part (at TS_CLAMP_SCREEN_COLD), every field zero for a pixel
+ * not seen directly. The host keeps the parts in two arrays, so a cache line holds four
+ * pixels' hot parts (host/gi/clamp_screen.cpp). The gather's output,
+ * KernelId::IgiClampGather's: TS_CLAMP_RESIDUAL_FLOATS floats a pixel, E_res
+ * (irradiance / π) at the pixels of the even grid, zero elsewhere. */
+#define TS_CLAMP_SCREEN_HOT_FLOATS 4
 #define TS_CLAMP_SCREEN_POSITION 0
-#define TS_CLAMP_SCREEN_NORMAL 3
-#define TS_CLAMP_SCREEN_SOURCE 6
-#define TS_CLAMP_SCREEN_AREA 9
+#define TS_CLAMP_SCREEN_AREA 3
+#define TS_CLAMP_SCREEN_COLD_FLOATS 6
+#define TS_CLAMP_SCREEN_NORMAL 0
+#define TS_CLAMP_SCREEN_SOURCE 3
+#define TS_CLAMP_SCREEN_COLD TS_CLAMP_SCREEN_HOT_FLOATS
+#define TS_CLAMP_SCREEN_FLOATS (TS_CLAMP_SCREEN_HOT_FLOATS + TS_CLAMP_SCREEN_COLD_FLOATS)
 #define TS_CLAMP_RESIDUAL_FLOATS 3
 
 #ifdef __cplusplus
@@ -290,10 +298,12 @@ static_assert(tessera::layout_check::tiles({{TS_EDGE_SAMPLE_ALBEDO, 3}, {TS_EDGE
                                             {TS_EDGE_SAMPLE_POSITION, 3}, {TS_EDGE_SAMPLE_DISTANCE, 1}},
                                            TS_EDGE_SAMPLE_FLOATS),
               "layout_igi.h: edge-sample fields do not tile TS_EDGE_SAMPLE_FLOATS");
-static_assert(tessera::layout_check::tiles({{TS_CLAMP_SCREEN_POSITION, 3}, {TS_CLAMP_SCREEN_NORMAL, 3},
-                                            {TS_CLAMP_SCREEN_SOURCE, 3}, {TS_CLAMP_SCREEN_AREA, 1}},
-                                           TS_CLAMP_SCREEN_FLOATS),
-              "layout_igi.h: clamp-screen record fields do not tile TS_CLAMP_SCREEN_FLOATS");
+static_assert(tessera::layout_check::tiles({{TS_CLAMP_SCREEN_POSITION, 3}, {TS_CLAMP_SCREEN_AREA, 1}},
+                                           TS_CLAMP_SCREEN_HOT_FLOATS),
+              "layout_igi.h: clamp-screen hot fields do not tile TS_CLAMP_SCREEN_HOT_FLOATS");
+static_assert(tessera::layout_check::tiles({{TS_CLAMP_SCREEN_NORMAL, 3}, {TS_CLAMP_SCREEN_SOURCE, 3}},
+                                           TS_CLAMP_SCREEN_COLD_FLOATS),
+              "layout_igi.h: clamp-screen cold fields do not tile TS_CLAMP_SCREEN_COLD_FLOATS");
 #endif /* __cplusplus */
 
 #endif /* TS_LAYOUT_IGI_H */
