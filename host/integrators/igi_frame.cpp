@@ -227,7 +227,8 @@ void IgiFrame::compensate_clamp(const TsFrame& frame, const std::vector<float>& 
     in.same_surface = settings_.discontinuity;
     ts::TsMedium medium;
     if (plan_.medium) medium = ts::ts_medium_load(scene_.medium.data());
-    clamp_screen_residual(frame, frame.igi_g_clamp, plan_.medium ? &medium : nullptr, in, clamp_residual_);
+    clamp_screen_residual(frame, frame.igi_g_clamp, plan_.medium ? &medium : nullptr, in, clamp_residual_,
+                          clamp_planes_);
     std::vector<float>& e_id = final_[kAisID];
     for (size_t j = 0; j < e_id.size(); ++j) e_id[j] += clamp_residual_[j];
 }

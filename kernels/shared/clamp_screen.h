@@ -97,6 +97,52 @@ TS_INLINE float ts_clamp_screen_radius(float plane, float z, float b) {
     return (r > 0.0f) ? fmin(r, TS_CLAMP_SCREEN_MAX_RADIUS) : 0.0f;
 }
 
+/* Whether a sample at offset d from x (|d|² = d2, cos_x = n_x · d unnormalised) can carry
+ * clamped light: closer than the clamp radius 1/sqrt(b) (beyond, G ≤ 1/d² < b) and in
+ * front of x. Needs only the record's hot part; -1 or 0, so 16 lanes can mask with it. */
+TS_INLINE int ts_clamp_screen_in_reach(float d2, float cos_x, float inv_b) {
+    return -((d2 > 0.0f) & (d2 < inv_b) & (cos_x > 0.0f));
+}
+
+/* G − b of a sample in reach (ts_clamp_screen_in_reach), or 0 where it gets nothing: q's
+ * patch faces away from x (cos_y = −n_q · d ≤ 0), G ≤ b, or q sends no light (source s
+ * summing to ≤ 0). G is that of q's own patch as a disc of area A_q facing x,
+ * cos_x cos_y / (d² + A_q/π) over d² (exact on its axis: ∫ cos cos / r² dA =
+ * A / (d² + A/π)): a point's 1/d² would make the pixels next to a corner, whose sub-pixel
+ * positions move with the camera jitter, a noise of their own. G > b makes G − b > 0
+ * (gradual underflow), so a caller tests the result against 0. */
+TS_INLINE float ts_clamp_screen_excess(float d2, float cos_x, float cos_y, float area, float3 s, float b) {
+    const float g = cos_x * cos_y / (d2 * (d2 + area * 0.31830989f));
+    return ((cos_y > 0.0f) & (g > b) & (s.x + s.y + s.z > 0.0f)) ? g - b : 0.0f;
+}
+
+/* A ring sample's share (pixels) of the ring from radius r0 to r1. */
+TS_INLINE float ts_clamp_screen_ring_weight(float r0, float r1) {
+    return 3.14159265f * (r1 * r1 - r0 * r0) / (float)TS_CLAMP_SCREEN_RING;
+}
+
+/* A ring sample's offset (pixels) along one axis: radius rm times the direction's
+ * component c, rounded to the nearest pixel. */
+TS_INLINE int ts_clamp_screen_offset(float rm, float c) { return (int)floor(rm * c + 0.5f); }
+
+/* Turns the direction (c, s) by the angle whose cosine and sine are (tc, ts). A ring's
+ * samples step by 2π/TS_CLAMP_SCREEN_RING (cos = sin = 1/sqrt(2) for 8); each ring starts
+ * turned by the golden angle from the last (cos, sin of 2.3999632), so no two rings'
+ * samples line up. Constants, not cos/sin calls: those were 2% of an AIS frame, and the
+ * device's may round apart from the host's. */
+#define TS_CLAMP_SCREEN_STEP_C 0.70710678f
+#define TS_CLAMP_SCREEN_STEP_S 0.70710678f
+#define TS_CLAMP_SCREEN_GOLDEN_C (-0.73736886f)
+#define TS_CLAMP_SCREEN_GOLDEN_S 0.67549032f
+TS_INLINE void ts_clamp_screen_turn(float* c, float* s, float tc, float ts) {
+    const float c1 = *c * tc - *s * ts;
+    *s = *s * tc + *c * ts;
+    *c = c1;
+}
+
+/* Rings start where a disc has the near square's area: π r0² = (2·NEAR + 1)². */
+#define TS_CLAMP_SCREEN_FIRST_RING ((2.0f * TS_CLAMP_SCREEN_NEAR + 1.0f) * 0.5641896f) /* 1/sqrt(π) */
+
 /* Where the gather finds the records (layout_igi.h): pixel i's hot part at
  * hot + i · hot_stride, its cold part at cold + i · cold_stride. A device's records are
  * one array (hot = records, cold = records + TS_CLAMP_SCREEN_COLD, both strides
@@ -120,33 +166,25 @@ TS_INLINE void ts_clamp_screen_record(const TsFrame* f, float plane, float3 p, f
 }
 
 /* Adds pixel q's share to *sum: `weight` pixels' worth of q's source times
- * max(0, G − b) · Tr between x (position px, unit normal nx) and q's point. G is that of
- * q's own patch as a disc of area A_q facing x, cos_x cos_y / (d² + A_q/π) (exact on its
- * axis: ∫ cos cos / r² dA = A / (d² + A/π)): a point's 1/d² would make the pixels next
- * to a corner, whose sub-pixel positions move with the camera jitter, a noise of their
- * own. A ring sample's share is spread around its ring, not a disc about the sample, so
- * it keeps q's own disc (with the share's area it lost 10-20%). The tests that need only
- * q's hot part come first: most samples end there, beyond the clamp radius or behind x,
- * and never touch the cold part's cache line (the order changes no value: every test
+ * max(0, G − b) · Tr between x (position px, unit normal nx) and q's point
+ * (ts_clamp_screen_excess). A ring sample's share is spread around its ring, not a disc
+ * about the sample, so it keeps q's own disc (with the share's area it lost 10-20%). The
+ * hot part's tests come first: most samples end there, beyond the clamp radius or behind
+ * x, and never touch the cold part's cache line (the order changes no value: every test
  * must pass for q to count). */
 TS_INLINE void ts_clamp_screen_add(float3* sum, float3 px, float3 nx, float b, float inv_b, const TsMedium* med,
                                    const TsClampScreenRecords* rec, size_t q, float weight) {
     TS_GLOBAL const float* hot = rec->hot + q * rec->hot_stride;
     float3 d = ts_f3_load(hot + TS_CLAMP_SCREEN_POSITION) - px;
-    float d2 = ts_clamp_screen_dot(d, d);
-    /* Beyond 1/sqrt(b), G ≤ 1/d² < b: nothing was clamped. */
-    if (!(d2 > 0.0f) || !(d2 < inv_b)) return;
-    float cos_x = ts_clamp_screen_dot(nx, d);
-    if (!(cos_x > 0.0f)) return;
+    float d2 = ts_clamp_screen_dot(d, d), cos_x = ts_clamp_screen_dot(nx, d);
+    if (!ts_clamp_screen_in_reach(d2, cos_x, inv_b)) return;
     TS_GLOBAL const float* cold = rec->cold + q * rec->cold_stride;
-    float cos_y = -ts_clamp_screen_dot(ts_f3_load(cold + TS_CLAMP_SCREEN_NORMAL), d);
-    if (!(cos_y > 0.0f)) return;
-    float g = cos_x * cos_y / (d2 * (d2 + hot[TS_CLAMP_SCREEN_AREA] * 0.31830989f));
-    if (!(g > b)) return;
     float3 s = ts_f3_load(cold + TS_CLAMP_SCREEN_SOURCE);
-    if (!(s.x + s.y + s.z > 0.0f)) return;
+    float e = ts_clamp_screen_excess(d2, cos_x, -ts_clamp_screen_dot(ts_f3_load(cold + TS_CLAMP_SCREEN_NORMAL), d),
+                                     hot[TS_CLAMP_SCREEN_AREA], s, b);
+    if (!(e > 0.0f)) return;
     float3 tr = med ? ts_medium_transmittance(med, px, d, 0.0f, 1.0f) : make_float3(1.0f, 1.0f, 1.0f);
-    *sum += s * tr * ((g - b) * weight);
+    *sum += s * tr * (e * weight);
 }
 
 /* E_res at pixel (x, y) of a w × h frame (irradiance / π, per colour channel), from the
@@ -164,30 +202,17 @@ TS_INLINE float3 ts_clamp_screen_pixel(int x, int y, int w, int h, float3 px, fl
             if ((dx == 0 && dy == 0) || qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             ts_clamp_screen_add(&sum, px, nx, b, inv_b, med, rec, (size_t)qy * w + qx, 1.0f);
         }
-    /* Rings start where a disc has the near square's area: π r0² = (2·NEAR + 1)². */
-    const float side = 2.0f * TS_CLAMP_SCREEN_NEAR + 1.0f;
-    float r0 = side * 0.5641896f; /* 1/sqrt(π) */
-    /* A ring's samples step by the turn 2π/TS_CLAMP_SCREEN_RING (cos = sin = 1/sqrt(2)
-       for 8), applied as a rotation; each ring starts turned by the golden angle from the
-       last (cos, sin of 2.3999632), so no two rings' samples line up. Constants, not
-       cos/sin calls: those were 2% of an AIS frame, and the device's may round apart
-       from the host's. */
-    const float step_c = 0.70710678f, step_s = 0.70710678f;
-    const float golden_c = -0.73736886f, golden_s = 0.67549032f;
+    float r0 = TS_CLAMP_SCREEN_FIRST_RING;
     float ring_c = 1.0f, ring_s = 0.0f;
     while (r0 < r) {
         float r1 = fmin(r0 * TS_CLAMP_SCREEN_GROWTH, r);
         float rm = 0.5f * (r0 + r1);
-        float weight = 3.14159265f * (r1 * r1 - r0 * r0) / (float)TS_CLAMP_SCREEN_RING;
+        float weight = ts_clamp_screen_ring_weight(r0, r1);
         float c = ring_c, s = ring_s;
-        float ring_c1 = ring_c * golden_c - ring_s * golden_s;
-        ring_s = ring_s * golden_c + ring_c * golden_s;
-        ring_c = ring_c1;
+        ts_clamp_screen_turn(&ring_c, &ring_s, TS_CLAMP_SCREEN_GOLDEN_C, TS_CLAMP_SCREEN_GOLDEN_S);
         for (int j = 0; j < TS_CLAMP_SCREEN_RING; ++j) {
-            int qx = x + (int)floor(rm * c + 0.5f), qy = y + (int)floor(rm * s + 0.5f);
-            float c1 = c * step_c - s * step_s;
-            s = s * step_c + c * step_s;
-            c = c1;
+            int qx = x + ts_clamp_screen_offset(rm, c), qy = y + ts_clamp_screen_offset(rm, s);
+            ts_clamp_screen_turn(&c, &s, TS_CLAMP_SCREEN_STEP_C, TS_CLAMP_SCREEN_STEP_S);
             if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
             ts_clamp_screen_add(&sum, px, nx, b, inv_b, med, rec, (size_t)qy * w + qx, weight);
         }
