@@ -6,7 +6,7 @@
  * ts_clamp_screen_pixel's bit for bit (tests/gi/clamp_screen_test.cpp; a device resolving
  * an igi frame runs ts_clamp_screen_pixel: tests/kernels/igi_resolve_test.cpp).
  *
- * Why 16 lanes: one pixel's gather is ~90 samples of branches and scattered loads (12.9%
+ * Why 16 lanes: one pixel's gather is ~90 samples of branches and scattered loads (14%
  * of a default AIS frame on Embree). The lanes' samples at one offset lie side by side in
  * the records' planes below (pixels two apart, one parity), so a sample is a few vector
  * loads and a loop GCC vectorises; the file that includes this is built with
