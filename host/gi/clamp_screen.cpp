@@ -56,8 +56,7 @@ ts::TsClampScreenPlanes records(const TsFrame& frame, const ClampScreenInputs& i
                     const float3 e = ts::ts_f3_load(&(*in.e_ss)[3 * p]) + ts::ts_f3_load(&(*in.e_id)[3 * p]);
                     ts::ts_clamp_screen_record(&frame, plane, ts::ts_f3_load(&g.position[3 * p]),
                                                ts::ts_f3_load(&g.normal[3 * p]),
-                                               ts::ts_f3_load(&(*in.albedo)[p * in.stride + in.albedo_at]), e, rec,
-                                               rec + TS_CLAMP_SCREEN_COLD);
+                                               ts::ts_f3_load(&(*in.albedo)[p * in.stride + in.albedo_at]), e, rec);
                 }
                 const size_t at = ts::ts_clamp_planes_at(P, x, y);
                 for (int k = 0; k < TS_CLAMP_SCREEN_FLOATS; ++k) out[at + k * field] = rec[k];

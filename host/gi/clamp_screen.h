@@ -34,8 +34,8 @@ struct ClampScreenInputs {
 /// E_res per pixel (3 floats, irradiance / π, W/m² / π) for clamp b (scene units⁻²; +inf
 /// or 0: zeros), `frame`'s camera and medium `med` (nullptr: none), in `residual`
 /// (resized). `planes`: scratch for the gather's records (kernels/shared/clamp_screen16.h;
-/// resized, about 55 bytes a pixel), which a caller keeps so that its frames reuse the
-/// memory. TBB-parallel over rows; deterministic.
+/// resized to 40 + 6,400 / width bytes a pixel, 52.5 at 512 wide), which a caller keeps so
+/// that its frames reuse the memory. TBB-parallel over rows; deterministic.
 void clamp_screen_residual(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampScreenInputs& in,
                            std::vector<float>& residual, std::vector<float>& planes);
 /// The same with scratch of its own.

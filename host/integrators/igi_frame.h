@@ -216,7 +216,9 @@ protected:
     std::array<std::vector<float>, kAisComponents> raw_, final_;
     std::vector<float> transmittance_;
     std::vector<float> clamp_residual_;  ///< E_res of the last frame (compensate_clamp)
-    std::vector<float> clamp_planes_;    ///< compensate_clamp's scratch, reused by each frame
+    /// compensate_clamp's scratch (the records' planes, ~10 floats a pixel), kept between
+    /// frames so each reuses it rather than allocating and zeroing it again.
+    std::vector<float> clamp_planes_;
     // The surface and media kernels' outputs, kept across passes: a fresh 32 MB (512², 31
     // floats a pixel) each pass cost its zero fill and page faults, ~5 ms.
     std::vector<float> surf_, media_;

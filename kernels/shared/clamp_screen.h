@@ -22,11 +22,12 @@
  * between x and y; missing: surfaces off screen or hidden (the paper's approximations;
  * most of the loss is the surface across a corner, which the camera sees with x).
  *
- * Host code runs it per pixel over its copies of the components
- * (host/gi/clamp_screen.cpp); an igi frame resolved on the device runs it in kernels over
- * the surface pass's output (shared/igi_clamp_screen.h), the same functions in the same
- * order, so both give the same bits (no built-in whose rounding may differ: dot and
- * length written out, no cos or sin). C and OpenCL C compatible (shared/compat.h). */
+ * An igi frame resolved on the device runs ts_clamp_screen_pixel in kernels over the
+ * surface pass's output (shared/igi_clamp_screen.h); host code (host/gi/clamp_screen.cpp)
+ * runs the same samples in the same order through the same pieces, 16 pixels at a time
+ * (shared/clamp_screen16.h), so both give the same bits (no built-in whose rounding may
+ * differ: dot and length written out, no cos or sin). C and OpenCL C compatible
+ * (shared/compat.h). */
 #ifndef TS_CLAMP_SCREEN_H
 #define TS_CLAMP_SCREEN_H
 #include "shared/compat.h"
@@ -143,42 +144,33 @@ TS_INLINE void ts_clamp_screen_turn(float* c, float* s, float tc, float ts) {
 /* Rings start where a disc has the near square's area: π r0² = (2·NEAR + 1)². */
 #define TS_CLAMP_SCREEN_FIRST_RING ((2.0f * TS_CLAMP_SCREEN_NEAR + 1.0f) * 0.5641896f) /* 1/sqrt(π) */
 
-/* Where the gather finds the records (layout_igi.h): pixel i's hot part at
- * hot + i · hot_stride, its cold part at cold + i · cold_stride. A device's records are
- * one array (hot = records, cold = records + TS_CLAMP_SCREEN_COLD, both strides
- * TS_CLAMP_SCREEN_FLOATS); the host's are two. */
-typedef struct TsClampScreenRecords {
-    TS_GLOBAL const float* hot;
-    TS_GLOBAL const float* cold;
-    int hot_stride, cold_stride;
-} TsClampScreenRecords;
-
-/* Writes the record's hot and cold parts (layout_igi.h) of a pixel that sees a diffuse
- * surface directly at position p with unit normal n and albedo rho, whose reconstructed
- * irradiance / π is e = E_ss + E_id; plane: ts_clamp_screen_pixel_plane. */
+/* Writes the record (TS_CLAMP_SCREEN_FLOATS, layout_igi.h: hot part, then cold part) of a
+ * pixel that sees a diffuse surface directly at position p with unit normal n and albedo
+ * rho, whose reconstructed irradiance / π is e = E_ss + E_id; plane:
+ * ts_clamp_screen_pixel_plane. */
 TS_INLINE void ts_clamp_screen_record(const TsFrame* f, float plane, float3 p, float3 n, float3 rho, float3 e,
-                                      float* hot, float* cold) {
+                                      float* out) {
     const float area = ts_clamp_screen_area(f, plane, p, n);
-    ts_f3_store(hot + TS_CLAMP_SCREEN_POSITION, p);
-    hot[TS_CLAMP_SCREEN_AREA] = area;
-    ts_f3_store(cold + TS_CLAMP_SCREEN_NORMAL, n);
-    ts_f3_store(cold + TS_CLAMP_SCREEN_SOURCE, rho * e * area);
+    ts_f3_store(out + TS_CLAMP_SCREEN_POSITION, p);
+    out[TS_CLAMP_SCREEN_AREA] = area;
+    ts_f3_store(out + TS_CLAMP_SCREEN_COLD + TS_CLAMP_SCREEN_NORMAL, n);
+    ts_f3_store(out + TS_CLAMP_SCREEN_COLD + TS_CLAMP_SCREEN_SOURCE, rho * e * area);
 }
 
-/* Adds pixel q's share to *sum: `weight` pixels' worth of q's source times
- * max(0, G − b) · Tr between x (position px, unit normal nx) and q's point
- * (ts_clamp_screen_excess). A ring sample's share is spread around its ring, not a disc
- * about the sample, so it keeps q's own disc (with the share's area it lost 10-20%). The
- * hot part's tests come first: most samples end there, beyond the clamp radius or behind
- * x, and never touch the cold part's cache line (the order changes no value: every test
- * must pass for q to count). */
+/* Adds pixel q's share to *sum, q's record at rec + q · TS_CLAMP_SCREEN_FLOATS: `weight`
+ * pixels' worth of q's source times max(0, G − b) · Tr between x (position px, unit normal
+ * nx) and q's point (ts_clamp_screen_excess). A ring sample's share is spread around its
+ * ring, not a disc about the sample, so it keeps q's own disc (with the share's area it
+ * lost 10-20%). The hot part's tests come first, so most samples, beyond the clamp radius
+ * or behind x, load 4 floats of the record, not 10 (the order changes no value: every
+ * test must pass for q to count). */
 TS_INLINE void ts_clamp_screen_add(float3* sum, float3 px, float3 nx, float b, float inv_b, const TsMedium* med,
-                                   const TsClampScreenRecords* rec, size_t q, float weight) {
-    TS_GLOBAL const float* hot = rec->hot + q * rec->hot_stride;
+                                   TS_GLOBAL const float* rec, size_t q, float weight) {
+    TS_GLOBAL const float* hot = rec + q * TS_CLAMP_SCREEN_FLOATS;
     float3 d = ts_f3_load(hot + TS_CLAMP_SCREEN_POSITION) - px;
     float d2 = ts_clamp_screen_dot(d, d), cos_x = ts_clamp_screen_dot(nx, d);
     if (!ts_clamp_screen_in_reach(d2, cos_x, inv_b)) return;
-    TS_GLOBAL const float* cold = rec->cold + q * rec->cold_stride;
+    TS_GLOBAL const float* cold = hot + TS_CLAMP_SCREEN_COLD;
     float3 s = ts_f3_load(cold + TS_CLAMP_SCREEN_SOURCE);
     float e = ts_clamp_screen_excess(d2, cos_x, -ts_clamp_screen_dot(ts_f3_load(cold + TS_CLAMP_SCREEN_NORMAL), d),
                                      hot[TS_CLAMP_SCREEN_AREA], s, b);
@@ -188,12 +180,12 @@ TS_INLINE void ts_clamp_screen_add(float3* sum, float3 px, float3 nx, float b, f
 }
 
 /* E_res at pixel (x, y) of a w × h frame (irradiance / π, per colour channel), from the
- * per-pixel records `rec` (TsClampScreenRecords). px, nx: x's position and normal; r: the
+ * per-pixel records `rec` (TS_CLAMP_SCREEN_FLOATS). px, nx: x's position and normal; r: the
  * window radius in pixels (ts_clamp_screen_radius); b: the frame's clamp; med: the
  * scene's medium or 0. Deterministic: fixed sample offsets, so a smooth surface gets a
  * smooth estimate. */
 TS_INLINE float3 ts_clamp_screen_pixel(int x, int y, int w, int h, float3 px, float3 nx, float r, float b,
-                                       const TsMedium* med, const TsClampScreenRecords* rec) {
+                                       const TsMedium* med, TS_GLOBAL const float* rec) {
     float3 sum = make_float3(0.0f, 0.0f, 0.0f);
     const float inv_b = 1.0f / b;
     for (int dy = -TS_CLAMP_SCREEN_NEAR; dy <= TS_CLAMP_SCREEN_NEAR; ++dy)

@@ -3,14 +3,18 @@
  * (host/gi/clamp_screen.cpp) runs it over the even grid, whose pixels are two apart. Each
  * lane takes the samples ts_clamp_screen_pixel takes, in the same order, through the same
  * functions, and adds a term only where that function adds it, so its E_res equals
- * ts_clamp_screen_pixel's bit for bit (tests/gi/clamp_screen_test.cpp; a device resolving
- * an igi frame runs ts_clamp_screen_pixel: tests/kernels/igi_resolve_test.cpp).
+ * ts_clamp_screen_pixel's bit for bit (tests/kernels/clamp_screen16_test.cpp; the host's
+ * whole estimate against one built from ts_clamp_screen_pixel: tests/gi/clamp_screen_test.cpp;
+ * a device resolving an igi frame runs ts_clamp_screen_pixel:
+ * tests/kernels/igi_resolve_test.cpp).
  *
  * Why 16 lanes: one pixel's gather is ~90 samples of branches and scattered loads (14%
  * of a default AIS frame on Embree). The lanes' samples at one offset lie side by side in
  * the records' planes below (pixels two apart, one parity), so a sample is a few vector
- * loads and a loop GCC vectorises; the file that includes this is built with
- * -fno-trapping-math (CMakeLists.txt says why that changes no value).
+ * loads and a loop GCC vectorises; every file that includes this is built with
+ * -fno-trapping-math (CMakeLists.txt says why that changes no value), and its functions
+ * have internal linkage in C++ (TS_LANES_INLINE), so no file's copy stands in for
+ * another's at link time.
  *
  * The records' planes (TsClampScreenPlanes): each of a record's TS_CLAMP_SCREEN_FLOATS
  * fields (layout_igi.h: field k is a device record's float k) is stored as two planes, the
@@ -18,7 +22,7 @@
  * gives the planes' order), pixel (x, y) at
  * column TS_CLAMP_PLANE_PAD + (x >> 1) of parity x & 1 (>> rounds down, so a column left
  * of the image is a pad). The pads, zero, hold the columns that the lanes read beyond the
- * image's sides (ring offsets reach ±TS_CLAMP_SCREEN_MAX_RADIUS, and lanes 30 pixels to
+ * image's sides (ring offsets stay within ±TS_CLAMP_SCREEN_MAX_RADIUS, and lanes 30 pixels to
  * the right of x0), so the loads need no test; their terms are masked. C and OpenCL C
  * compatible in form, used by the host only. */
 #ifndef TS_CLAMP_SCREEN16_H
@@ -29,10 +33,16 @@
 TS_NAMESPACE_BEGIN
 
 #define TS_CLAMP_LANES TS_PACKET_LANES
-/* Columns of pad left of each plane row: ring offsets reach -64 pixels, 32 columns. */
+#ifdef __cplusplus
+#define TS_LANES_INLINE static inline
+#else
+#define TS_LANES_INLINE TS_INLINE
+#endif
+/* Columns of pad left of each plane row: ring offsets stay within ±TS_CLAMP_SCREEN_MAX_RADIUS
+ * pixels (about ±56: a ring's middle radius is below r ≤ 64), 32 columns. */
 #define TS_CLAMP_PLANE_PAD 32
 /* Columns right of the image's: +64 pixels of offset and lanes up to 30 pixels right of a
- * pixel in the image, (64 + 30) / 2 + 1 columns. */
+ * pixel in the image, (64 + 30) / 2 + 1 columns (with the same margin). */
 #define TS_CLAMP_PLANE_PAD_RIGHT 48
 #ifdef __cplusplus
 static_assert(TS_CLAMP_PLANE_PAD * 2 >= TS_CLAMP_SCREEN_MAX_RADIUS &&
@@ -53,16 +63,16 @@ typedef struct TsClampScreenPlanes {
  * on Embree against 1.5%). */
 #define TS_CLAMP_PLANE_SKEW 16
 
-TS_INLINE int ts_clamp_planes_pitch(int width) { return (width + 1) / 2 + TS_CLAMP_PLANE_PAD + TS_CLAMP_PLANE_PAD_RIGHT; }
+TS_LANES_INLINE int ts_clamp_planes_pitch(int width) { return (width + 1) / 2 + TS_CLAMP_PLANE_PAD + TS_CLAMP_PLANE_PAD_RIGHT; }
 /* Floats from a field's even plane to its odd one, and from one field to the next. */
-TS_INLINE size_t ts_clamp_planes_parity(const TsClampScreenPlanes* P) {
+TS_LANES_INLINE size_t ts_clamp_planes_parity(const TsClampScreenPlanes* P) {
     return (size_t)P->height * P->pitch + TS_CLAMP_PLANE_SKEW;
 }
-TS_INLINE size_t ts_clamp_planes_field(const TsClampScreenPlanes* P) {
+TS_LANES_INLINE size_t ts_clamp_planes_field(const TsClampScreenPlanes* P) {
     return 2 * ts_clamp_planes_parity(P) + TS_CLAMP_PLANE_SKEW;
 }
 /* Floats in the planes of a width × height image. */
-TS_INLINE size_t ts_clamp_planes_floats(int width, int height) {
+TS_LANES_INLINE size_t ts_clamp_planes_floats(int width, int height) {
     TsClampScreenPlanes P;
     P.data = 0;
     P.width = width;
@@ -73,7 +83,7 @@ TS_INLINE size_t ts_clamp_planes_floats(int width, int height) {
 
 /* Index of field 0 of pixel (x, y) (x may be a pad's column); field k is k ·
  * ts_clamp_planes_field further on. */
-TS_INLINE size_t ts_clamp_planes_at(const TsClampScreenPlanes* P, int x, int y) {
+TS_LANES_INLINE size_t ts_clamp_planes_at(const TsClampScreenPlanes* P, int x, int y) {
     return (size_t)(x & 1) * ts_clamp_planes_parity(P) + (size_t)y * P->pitch + TS_CLAMP_PLANE_PAD + (x >> 1);
 }
 
@@ -89,7 +99,7 @@ typedef struct TS_ALIGN64 TsClampScreenLanes {
  * ts_clamp_screen_add's tests and term. Lane i's record is field k at
  * src[k · field + i] (side by side: a plane row, or a copy). The hot fields are read
  * first; where no lane is in reach the cold fields are not read. */
-TS_INLINE void ts_clamp_lanes_add(TsClampScreenLanes* L, const float* TS_RESTRICT src, size_t field,
+TS_LANES_INLINE void ts_clamp_lanes_add(TsClampScreenLanes* L, const float* TS_RESTRICT src, size_t field,
                                   const int* use, const float* w, float b, float inv_b, const TsMedium* med) {
     float d[3][TS_CLAMP_LANES], d2[TS_CLAMP_LANES], cos_x[TS_CLAMP_LANES], e[TS_CLAMP_LANES];
     float s[3][TS_CLAMP_LANES];
@@ -140,7 +150,7 @@ TS_INLINE void ts_clamp_lanes_add(TsClampScreenLanes* L, const float* TS_RESTRIC
 
 /* The lanes' sample at offset (ox, oy) from their pixels (x0 + 2i, y), weight w, for the
  * lanes in `use`: records side by side in one plane row. */
-TS_INLINE void ts_clamp_lanes_offset(TsClampScreenLanes* L, const TsClampScreenPlanes* P, int x0, int y, int ox,
+TS_LANES_INLINE void ts_clamp_lanes_offset(TsClampScreenLanes* L, const TsClampScreenPlanes* P, int x0, int y, int ox,
                                      int oy, const int* use, float w, float b, float inv_b, const TsMedium* med) {
     const int qy = y + oy;
     if (qy < 0 || qy >= P->height) return;
@@ -157,7 +167,7 @@ TS_INLINE void ts_clamp_lanes_offset(TsClampScreenLanes* L, const TsClampScreenP
 
 /* The lanes' samples at their own pixels (qx[i], qy[i]), weights w[i], for the lanes in
  * `use`: their records copied side by side. */
-TS_INLINE void ts_clamp_lanes_at(TsClampScreenLanes* L, const TsClampScreenPlanes* P, const int* qx, const int* qy,
+TS_LANES_INLINE void ts_clamp_lanes_at(TsClampScreenLanes* L, const TsClampScreenPlanes* P, const int* qx, const int* qy,
                                  const int* use, const float* w, float b, float inv_b, const TsMedium* med) {
     float rec[TS_CLAMP_SCREEN_FLOATS][TS_CLAMP_LANES];
     int in[TS_CLAMP_LANES];
@@ -174,7 +184,7 @@ TS_INLINE void ts_clamp_lanes_at(TsClampScreenLanes* L, const TsClampScreenPlane
  * lanes' sums: the near square, then the rings. A ring's lanes whose window reaches past
  * it (r ≥ r0 · growth) share its radius and offsets; a lane whose window ends inside it
  * has its own (its last ring), taken per lane with its own offsets. */
-TS_INLINE void ts_clamp_lanes_gather(TsClampScreenLanes* L, const TsClampScreenPlanes* P, int x0, int y, float b,
+TS_LANES_INLINE void ts_clamp_lanes_gather(TsClampScreenLanes* L, const TsClampScreenPlanes* P, int x0, int y, float b,
                                      const TsMedium* med) {
     const float inv_b = 1.0f / b;
     float rmax = 0.0f;

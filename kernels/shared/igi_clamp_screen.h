@@ -75,18 +75,13 @@ TS_INLINE void ts_igi_clamp_records_pixel(const TsSceneView* sv, const TsTracer*
     ts_igi_filtered_means(sv, frame, x, y, 0, e);
     const float3 sum = make_float3(e[0], e[1], e[2]) + make_float3(e[3], e[4], e[5]);
     ts_clamp_screen_record(frame, ts_clamp_screen_pixel_plane(frame), ts_f3_load(sp + TS_IGI_SURF_POSITION),
-                           ts_f3_load(sp + TS_IGI_SURF_NORMAL), ts_f3_load(sp + TS_IGI_SURF_ALBEDO), sum, out,
-                           out + TS_CLAMP_SCREEN_COLD);
+                           ts_f3_load(sp + TS_IGI_SURF_NORMAL), ts_f3_load(sp + TS_IGI_SURF_ALBEDO), sum, out);
 }
 
-/* E_res gathered at pixel (x, y) from the records (host: gather_pixel). */
+/* E_res gathered at pixel (x, y) from the records (the host: ts_clamp_lanes_gather). */
 TS_INLINE float3 ts_igi_clamp_gather_at(const TsSceneView* sv, const TsFrame* frame, uint x, uint y) {
-    TsClampScreenRecords rec;
-    rec.hot = sv->clamp_records;
-    rec.cold = sv->clamp_records + TS_CLAMP_SCREEN_COLD;
-    rec.hot_stride = rec.cold_stride = TS_CLAMP_SCREEN_FLOATS;
-    const size_t p = (size_t)y * frame->width + x;
-    const float3 pos = ts_f3_load(rec.hot + p * rec.hot_stride + TS_CLAMP_SCREEN_POSITION);
+    TS_GLOBAL const float* q = sv->clamp_records + ((size_t)y * frame->width + x) * TS_CLAMP_SCREEN_FLOATS;
+    const float3 pos = ts_f3_load(q + TS_CLAMP_SCREEN_POSITION);
     const float b = frame->igi_g_clamp;
     const float r = ts_clamp_screen_radius(ts_clamp_screen_pixel_plane(frame), ts_clamp_screen_depth(frame, pos), b);
 #ifdef TS_HAS_MEDIUM
@@ -97,7 +92,8 @@ TS_INLINE float3 ts_igi_clamp_gather_at(const TsSceneView* sv, const TsFrame* fr
     const TsMedium* m = 0;
 #endif
     return ts_clamp_screen_pixel((int)x, (int)y, (int)frame->width, (int)frame->height, pos,
-                                 ts_f3_load(rec.cold + p * rec.cold_stride + TS_CLAMP_SCREEN_NORMAL), r, b, m, &rec);
+                                 ts_f3_load(q + TS_CLAMP_SCREEN_COLD + TS_CLAMP_SCREEN_NORMAL), r, b, m,
+                                 sv->clamp_records);
 }
 
 /* Kernel IgiClampGather: E_res at the even grid's pixels seen directly, zero elsewhere. */

@@ -246,10 +246,10 @@
  *         TS_CLAMP_SCREEN_SOURCE   3 floats: s_q = L_q · A_q, the diffuse radiance ρ (E_ss + E_id)
  *                                  times the patch area (zero for a pixel that is no diffuse
  *                                  surface seen directly)
- * On a device (KernelId::IgiClampRecords) a pixel's record is TS_CLAMP_SCREEN_FLOATS floats,
- * the hot part then the cold part (at TS_CLAMP_SCREEN_COLD), every field zero for a pixel
- * not seen directly. The host keeps the parts in two arrays, so a cache line holds four
- * pixels' hot parts (host/gi/clamp_screen.cpp). The gather's output,
+ * A pixel's record is TS_CLAMP_SCREEN_FLOATS floats, the hot part then the cold part (at
+ * TS_CLAMP_SCREEN_COLD); on a device (KernelId::IgiClampRecords) every field is zero for a
+ * pixel not seen directly. The host keeps field k of the records as planes
+ * (shared/clamp_screen16.h). The gather's output,
  * KernelId::IgiClampGather's: TS_CLAMP_RESIDUAL_FLOATS floats a pixel, E_res
  * (irradiance / π) at the pixels of the even grid, zero elsewhere. */
 #define TS_CLAMP_SCREEN_HOT_FLOATS 4

@@ -3,12 +3,15 @@
 // nothing was clamped, and in a render, most of what the clamp removed comes back.
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "device/frame.h"
 #include "gi/clamp_screen.h"
+#include "kernels/shared/clamp_screen.h"
 #include "scene/scene.h"
 #include "support/render_helpers.h"
 
@@ -150,6 +153,114 @@ TEST(ClampScreen, PixelsSeenThroughAMirrorNeitherGetNorSend) {
     std::vector<float> res;
     clamp_screen_residual(c.frame, kClamp, nullptr, c.inputs(), res);
     for (float v : res) ASSERT_EQ(v, 0.0f);
+}
+
+// The estimate as the one-pixel gather a device runs would give it (kernels/shared/
+// clamp_screen.h: records of TS_CLAMP_SCREEN_FLOATS a pixel, ts_clamp_screen_pixel at the
+// even grid, ts_clamp_screen_fill or the pixel's own gather elsewhere).
+std::vector<float> one_pixel_estimate(const TsFrame& frame, float b, const ts::TsMedium* med,
+                                      const ClampScreenInputs& in) {
+    const GeometryBuffer& g = *in.g;
+    const int w = g.width, h = g.height;
+    const size_t n = size_t(w) * h;
+    ts::TsClampScreenView v;
+    v.depth = g.depth.data(), v.normal = g.normal.data(), v.position = g.position.data();
+    v.throughput = in.throughput->data() + in.throughput_at;
+    v.depth_stride = 1, v.normal_stride = v.position_stride = 3, v.throughput_stride = in.stride;
+    const float plane = ts::ts_clamp_screen_pixel_plane(&frame);
+    std::vector<float> rec(TS_CLAMP_SCREEN_FLOATS * n, 0.0f), out(3 * n, 0.0f);
+    for (size_t p = 0; p < n; ++p)
+        if (ts::ts_clamp_screen_seen(&v, p))
+            ts::ts_clamp_screen_record(&frame, plane, ts::ts_f3_load(&g.position[3 * p]),
+                                       ts::ts_f3_load(&g.normal[3 * p]), ts::ts_f3_load(&(*in.albedo)[3 * p]),
+                                       ts::ts_f3_load(&(*in.e_ss)[3 * p]) + ts::ts_f3_load(&(*in.e_id)[3 * p]),
+                                       &rec[TS_CLAMP_SCREEN_FLOATS * p]);
+    auto gather = [&](int x, int y) {
+        const size_t p = size_t(y) * w + x;
+        const ts::float3 pos = ts::ts_f3_load(&g.position[3 * p]);
+        const float r = ts::ts_clamp_screen_radius(plane, ts::ts_clamp_screen_depth(&frame, pos), b);
+        return ts::ts_clamp_screen_pixel(x, y, w, h, pos, ts::ts_f3_load(&g.normal[3 * p]), r, b, med, rec.data());
+    };
+    for (int pass = 0; pass < 2; ++pass)
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t p = size_t(y) * w + x;
+                if ((pass == 0) != (x % 2 == 0 && y % 2 == 0) || !ts::ts_clamp_screen_seen(&v, p)) continue;
+                ts::float3 e;
+                if (pass == 0 || !ts::ts_clamp_screen_fill(&v, x, y, w, h, out.data(), in.same_surface.normal_cos,
+                                                            in.same_surface.depth_rel, &e))
+                    e = gather(x, y);
+                ts::ts_f3_store(&out[3 * p], e);
+            }
+    return out;
+}
+
+// The host's estimate (16 lanes over planes, kernels/shared/clamp_screen16.h) equals the
+// one-pixel gather's bit for bit: images of 1 to 97 pixels a side, odd and even widths
+// (the planes' pads), clamp radii of 0.2 to 2.2 scene units (windows cut at every radius),
+// with and without a medium, with pixels not seen or seen through a mirror, and with NaN
+// and Inf in the irradiance and NaN positions; the scratch planes reused between calls.
+TEST(ClampScreen, HostEstimateEqualsTheOnePixelGatherBitForBit) {
+    const int sizes[][2] = {{1, 1}, {7, 1}, {1, 7}, {2, 2}, {33, 3}, {41, 33}, {64, 9}, {97, 61}};
+    ts::TsMedium fog{};
+    fog.sigma_s = ts::make_float3(0.5f, 0.5f, 0.5f);
+    fog.sigma_t = ts::make_float3(0.7f, 0.8f, 0.9f);
+    fog.present = 1;
+    std::vector<float> planes;
+    size_t lit = 0, compared = 0;
+    for (const auto& size : sizes)
+        for (bool broken : {false, true})
+            for (const ts::TsMedium* med : {static_cast<const ts::TsMedium*>(nullptr), static_cast<const ts::TsMedium*>(&fog)}) {
+                const int w = size[0], h = size[1];
+                std::mt19937 rng(uint32_t(w * 131 + h + (broken ? 1000 : 0)));
+                std::uniform_real_distribution<float> u(0.0f, 1.0f);
+                // A camera at z = 2 looking down -z at the back wall z = 0 over the floor y = -0.5.
+                TsFrame f{};
+                const float half = 0.4f;
+                f.cam_pos[2] = 2.0f, f.cam_forward[2] = -1.0f;
+                f.cam_right[0] = half * w / h, f.cam_up[1] = half;
+                f.width = uint32_t(w), f.height = uint32_t(h);
+                GeometryBuffer g;
+                g.width = w, g.height = h;
+                const size_t n = size_t(w) * h;
+                g.normal.assign(3 * n, 0.0f), g.position.resize(3 * n), g.depth.resize(n);
+                std::vector<float> albedo(3 * n, 0.5f), throughput(3 * n, 1.0f), e_ss(3 * n), e_id(3 * n);
+                for (int y = 0; y < h; ++y)
+                    for (int x = 0; x < w; ++x) {
+                        const size_t p = size_t(y) * w + x;
+                        const float d[3] = {(2.0f * (x + 0.5f) / w - 1.0f) * f.cam_right[0],
+                                            (1.0f - 2.0f * (y + 0.5f) / h) * half, -1.0f};
+                        const float t_floor = d[1] < 0.0f ? -0.5f / d[1] : INFINITY;
+                        const bool wall = 2.0f < t_floor;
+                        const float t = wall ? 2.0f : t_floor;
+                        for (int a = 0; a < 3; ++a)
+                            g.position[3 * p + a] = f.cam_pos[a] + d[a] * t + 0.01f * (u(rng) - 0.5f);
+                        g.normal[3 * p + (wall ? 2 : 1)] = 1.0f;
+                        g.depth[p] = t * std::sqrt(d[0] * d[0] + d[1] * d[1] + 1.0f);
+                        for (int a = 0; a < 3; ++a)
+                            e_ss[3 * p + a] = wall ? 1.0f : 0.1f * u(rng), e_id[3 * p + a] = 0.05f * u(rng);
+                        if (u(rng) < 0.05f) g.depth[p] = INFINITY;
+                        if (u(rng) < 0.05f) throughput[3 * p] = 0.5f;
+                        if (broken && u(rng) < 0.03f) e_ss[3 * p + rng() % 3] = u(rng) < 0.5f ? NAN : INFINITY;
+                        if (broken && u(rng) < 0.03f) g.position[3 * p + rng() % 3] = NAN;
+                    }
+                ClampScreenInputs in;
+                in.g = &g, in.albedo = &albedo, in.throughput = &throughput, in.e_ss = &e_ss, in.e_id = &e_id;
+                for (float b : {0.2f, 1.0f, 20.0f}) {
+                    std::vector<float> got;
+                    clamp_screen_residual(f, b, med, in, got, planes);
+                    const std::vector<float> want = one_pixel_estimate(f, b, med, in);
+                    ASSERT_EQ(got.size(), want.size());
+                    for (size_t j = 0; j < got.size(); ++j) {
+                        ASSERT_EQ(std::memcmp(&got[j], &want[j], sizeof(float)), 0)
+                            << w << "x" << h << (broken ? " broken" : "") << (med ? " fog" : "") << " b " << b
+                            << ": float " << j << " is " << got[j] << ", the one-pixel gather's " << want[j];
+                        lit += want[j] > 0.0f;
+                    }
+                    compared += got.size();
+                }
+            }
+    EXPECT_GT(lit, compared / 4) << "most floats compared must carry light, not zeros";
 }
 
 TEST(IgiClampCompensation, ReturnsMostOfWhatTheClampRemoved) {

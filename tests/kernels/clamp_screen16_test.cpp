@@ -4,7 +4,8 @@
 // about a quarter of the pairs face each other), with pixels not seen and sources of zero,
 // windows of every radius (a lane's last ring cut short at its own radius), lanes off,
 // lanes past the image's right side, pixels at the image's edges and at odd columns, with
-// and without a medium. Images through the host and the device are compared by
+// and without a medium, and records that break the arithmetic: Inf and NaN sources, NaN
+// positions, a record at the lane's own position (d = 0). Images through the host and the device are compared by
 // tests/kernels/igi_resolve_test.cpp.
 #include <cmath>
 #include <cstring>
@@ -46,15 +47,17 @@ struct Field {
                         0.3f * x / kW + 0.2f * u(rng), 0.2f * y / kH + 0.2f * u(rng), 0.2f * u(rng),
                         0.002f * u(rng), nq.x, nq.y, nq.z, s, 0.5f * s, 2.0f * s};
                     std::memcpy(r, f, sizeof f);
+                    const float odd = u(rng);  // 2% each: a masked lane's term must not leak
+                    if (odd < 0.02f) r[TS_CLAMP_SCREEN_COLD + TS_CLAMP_SCREEN_SOURCE + 1] = INFINITY;
+                    else if (odd < 0.04f) r[TS_CLAMP_SCREEN_COLD + TS_CLAMP_SCREEN_SOURCE] = NAN;
+                    else if (odd < 0.06f) r[TS_CLAMP_SCREEN_POSITION + 2] = NAN;
+                    else if (odd < 0.08f && x >= 2) std::memcpy(r, r - 2 * TS_CLAMP_SCREEN_FLOATS, 3 * sizeof(float));
                 }
                 const size_t at = ts::ts_clamp_planes_at(&view, x, y);
                 for (int k = 0; k < TS_CLAMP_SCREEN_FLOATS; ++k) planes[at + k * field] = r[k];
             }
     }
 
-    ts::TsClampScreenRecords aos() const {
-        return {records.data(), records.data() + TS_CLAMP_SCREEN_COLD, TS_CLAMP_SCREEN_FLOATS, TS_CLAMP_SCREEN_FLOATS};
-    }
     ts::float3 position(int x, int y) const {
         return ts::ts_f3_load(&records[size_t(TS_CLAMP_SCREEN_FLOATS) * (size_t(y) * kW + x)]);
     }
@@ -88,13 +91,13 @@ int check_lanes(const Field& f, std::mt19937& rng, int x0, int y, const ts::TsMe
         L.on[i] = in ? -1 : 0;
     }
     ts::ts_clamp_lanes_gather(&L, &f.view, x0, y, kB, med);
-    const ts::TsClampScreenRecords aos = f.aos();
     int lit = 0;
     for (int i = 0; i < TS_CLAMP_LANES; ++i) {
         if (!L.on[i]) continue;
         const int x = x0 + 2 * i;
         const ts::float3 want =
-            ts::ts_clamp_screen_pixel(x, y, kW, kH, f.position(x, y), f.normal(x, y), L.r[i], kB, med, &aos);
+            ts::ts_clamp_screen_pixel(x, y, kW, kH, f.position(x, y), f.normal(x, y), L.r[i], kB, med,
+                                      f.records.data());
         const ts::float3 got = ts::make_float3(L.sum[0][i], L.sum[1][i], L.sum[2][i]) * 0.31830989f;
         EXPECT_TRUE(same_bits(got.x, want.x) && same_bits(got.y, want.y) && same_bits(got.z, want.z))
             << "pixel (" << x << ", " << y << "), r " << L.r[i] << ": lanes " << got.x << " " << got.y << " "
