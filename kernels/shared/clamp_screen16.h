@@ -63,7 +63,9 @@ typedef struct TsClampScreenPlanes {
  * on Embree against 1.5%). */
 #define TS_CLAMP_PLANE_SKEW 16
 
-TS_LANES_INLINE int ts_clamp_planes_pitch(int width) { return (width + 1) / 2 + TS_CLAMP_PLANE_PAD + TS_CLAMP_PLANE_PAD_RIGHT; }
+TS_LANES_INLINE int ts_clamp_planes_pitch(int width) {
+    return (width + 1) / 2 + TS_CLAMP_PLANE_PAD + TS_CLAMP_PLANE_PAD_RIGHT;
+}
 /* Floats from a field's even plane to its odd one, and from one field to the next. */
 TS_LANES_INLINE size_t ts_clamp_planes_parity(const TsClampScreenPlanes* P) {
     return (size_t)P->height * P->pitch + TS_CLAMP_PLANE_SKEW;
@@ -100,7 +102,7 @@ typedef struct TS_ALIGN64 TsClampScreenLanes {
  * src[k · field + i] (side by side: a plane row, or a copy). The hot fields are read
  * first; where no lane is in reach the cold fields are not read. */
 TS_LANES_INLINE void ts_clamp_lanes_add(TsClampScreenLanes* L, const float* TS_RESTRICT src, size_t field,
-                                  const int* use, const float* w, float b, float inv_b, const TsMedium* med) {
+                                        const int* use, const float* w, float b, float inv_b, const TsMedium* med) {
     float d[3][TS_CLAMP_LANES], d2[TS_CLAMP_LANES], cos_x[TS_CLAMP_LANES], e[TS_CLAMP_LANES];
     float s[3][TS_CLAMP_LANES];
     int ok[TS_CLAMP_LANES], any = 0;
@@ -151,7 +153,7 @@ TS_LANES_INLINE void ts_clamp_lanes_add(TsClampScreenLanes* L, const float* TS_R
 /* The lanes' sample at offset (ox, oy) from their pixels (x0 + 2i, y), weight w, for the
  * lanes in `use`: records side by side in one plane row. */
 TS_LANES_INLINE void ts_clamp_lanes_offset(TsClampScreenLanes* L, const TsClampScreenPlanes* P, int x0, int y, int ox,
-                                     int oy, const int* use, float w, float b, float inv_b, const TsMedium* med) {
+                                           int oy, const int* use, float w, float b, float inv_b, const TsMedium* med) {
     const int qy = y + oy;
     if (qy < 0 || qy >= P->height) return;
     int in[TS_CLAMP_LANES];
@@ -167,8 +169,9 @@ TS_LANES_INLINE void ts_clamp_lanes_offset(TsClampScreenLanes* L, const TsClampS
 
 /* The lanes' samples at their own pixels (qx[i], qy[i]), weights w[i], for the lanes in
  * `use`: their records copied side by side. */
-TS_LANES_INLINE void ts_clamp_lanes_at(TsClampScreenLanes* L, const TsClampScreenPlanes* P, const int* qx, const int* qy,
-                                 const int* use, const float* w, float b, float inv_b, const TsMedium* med) {
+TS_LANES_INLINE void ts_clamp_lanes_at(TsClampScreenLanes* L, const TsClampScreenPlanes* P, const int* qx,
+                                       const int* qy, const int* use, const float* w, float b, float inv_b,
+                                       const TsMedium* med) {
     float rec[TS_CLAMP_SCREEN_FLOATS][TS_CLAMP_LANES];
     int in[TS_CLAMP_LANES];
     const size_t field = ts_clamp_planes_field(P);
@@ -185,7 +188,7 @@ TS_LANES_INLINE void ts_clamp_lanes_at(TsClampScreenLanes* L, const TsClampScree
  * it (r ≥ r0 · growth) share its radius and offsets; a lane whose window ends inside it
  * has its own (its last ring), taken per lane with its own offsets. */
 TS_LANES_INLINE void ts_clamp_lanes_gather(TsClampScreenLanes* L, const TsClampScreenPlanes* P, int x0, int y, float b,
-                                     const TsMedium* med) {
+                                           const TsMedium* med) {
     const float inv_b = 1.0f / b;
     float rmax = 0.0f;
     for (int i = 0; i < TS_CLAMP_LANES; ++i) {
@@ -217,8 +220,8 @@ TS_LANES_INLINE void ts_clamp_lanes_gather(TsClampScreenLanes* L, const TsClampS
         const float rm_full = 0.5f * (r0 + r1), w_full = ts_clamp_screen_ring_weight(r0, r1);
         for (int j = 0; j < TS_CLAMP_SCREEN_RING; ++j) {
             if (any_full)
-                ts_clamp_lanes_offset(L, P, x0, y, ts_clamp_screen_offset(rm_full, c), ts_clamp_screen_offset(rm_full, s),
-                                      full, w_full, b, inv_b, med);
+                ts_clamp_lanes_offset(L, P, x0, y, ts_clamp_screen_offset(rm_full, c),
+                                      ts_clamp_screen_offset(rm_full, s), full, w_full, b, inv_b, med);
             if (any_last) {
                 int qx[TS_CLAMP_LANES], qy[TS_CLAMP_LANES];
                 for (int i = 0; i < TS_CLAMP_LANES; ++i) {

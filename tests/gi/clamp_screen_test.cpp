@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <initializer_list>
 #include <random>
 #include <vector>
 
@@ -210,7 +211,7 @@ TEST(ClampScreen, HostEstimateEqualsTheOnePixelGatherBitForBit) {
     size_t lit = 0, compared = 0;
     for (const auto& size : sizes)
         for (bool broken : {false, true})
-            for (const ts::TsMedium* med : {static_cast<const ts::TsMedium*>(nullptr), static_cast<const ts::TsMedium*>(&fog)}) {
+            for (const ts::TsMedium* med : std::initializer_list<const ts::TsMedium*>{nullptr, &fog}) {
                 const int w = size[0], h = size[1];
                 std::mt19937 rng(uint32_t(w * 131 + h + (broken ? 1000 : 0)));
                 std::uniform_real_distribution<float> u(0.0f, 1.0f);
