@@ -284,27 +284,47 @@ TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* trace
  * (the standard scenes have 2 and 8). */
 #define TS_IGI_EMITTER_BOXES_MAX 16u
 
+/* Emitter triangle i's box (sv->lights: every triangle with emission) for the box test
+ * of ts_igi_may_meet_emitter, and the largest coordinate magnitude of its corners. */
+typedef struct TsEmitterBox {
+    float3 lo, hi;
+    float mag;
+} TsEmitterBox;
+
+TS_INLINE TsEmitterBox ts_igi_emitter_box(const TsSceneView* sv, uint i) {
+    TS_GLOBAL const float* L = sv->lights + i * TS_LIGHT_FLOATS;
+    float3 p0 = ts_f3_load(L + TS_LIGHT_P0), p1 = p0 + ts_f3_load(L + TS_LIGHT_E1), p2 = p0 + ts_f3_load(L + TS_LIGHT_E2);
+    TsEmitterBox b;
+    b.lo = fmin(p0, fmin(p1, p2));
+    b.hi = fmax(p0, fmax(p1, p2));
+    b.mag = fmax(ts_max_abs3(b.lo), ts_max_abs3(b.hi));
+    return b;
+}
+
+/* The pad that grows an emitter's box for a ray from x (mx = ts_max_abs3(x)): 1e-4 of the
+ * largest coordinate magnitude of the box and of x, far more than the rounding between
+ * the table's p0 + e1 and the mesh's own vertex and that of the slab test (relative to the
+ * coordinates and the distance travelled). */
+TS_INLINE float ts_igi_emitter_pad(float mag, float mx) { return 1e-4f * fmax(mx, mag) + 1e-30f; }
+
 /* Whether a ray from x along wi can hit an emitter: false only when it misses the
- * bounding box of every emitter triangle (sv->lights, every triangle with emission),
- * each box grown by 1e-4 of the largest coordinate magnitude of the box and of x, far more
- * than the rounding between the table's p0 + e1 and the mesh's own vertex and that of the
- * slab test (relative to the coordinates and the distance travelled); such a ray's
- * closest hit cannot be an emitter, so ts_igi_emitter_along's answer (nothing) needs no
- * trace. Most phase-sampled rays of the ray march miss the lights this way (a small
- * light seen from the medium); the rest are traced as before, so results do not change. */
+ * bounding box of every emitter triangle (ts_igi_emitter_box), each grown by
+ * ts_igi_emitter_pad; such a ray's closest hit cannot be an emitter, so
+ * ts_igi_emitter_traced's answer (nothing) needs no trace. Most phase-sampled rays of the
+ * ray march miss the lights this way (a small light seen from the medium); the rest are
+ * traced as before, so results do not change. The 16-lane march tests its lanes
+ * together (ts_igi_may_meet_emitter_lanes, shared/igi_march16.h). */
 TS_INLINE int ts_igi_may_meet_emitter(const TsSceneView* sv, float3 x, float3 wi) {
     if (sv->light_count > TS_IGI_EMITTER_BOXES_MAX) return 1;
     /* A zero component of wi gives an infinite inverse, and the slab test still holds:
      * ±inf where x lies outside that slab (an empty interval), (-inf, inf) inside. */
     float3 inv = make_float3(1.0f / wi.x, 1.0f / wi.y, 1.0f / wi.z);
+    float mx = ts_max_abs3(x);
     for (uint i = 0u; i < sv->light_count; ++i) {
-        TS_GLOBAL const float* L = sv->lights + i * TS_LIGHT_FLOATS;
-        float3 p0 = ts_f3_load(L + TS_LIGHT_P0), p1 = p0 + ts_f3_load(L + TS_LIGHT_E1),
-               p2 = p0 + ts_f3_load(L + TS_LIGHT_E2);
-        float3 lo = fmin(p0, fmin(p1, p2)), hi = fmax(p0, fmax(p1, p2));
-        float pad = 1e-4f * fmax(ts_max_abs3(x), fmax(ts_max_abs3(lo), ts_max_abs3(hi))) + 1e-30f;
+        TsEmitterBox box = ts_igi_emitter_box(sv, i);
+        float pad = ts_igi_emitter_pad(box.mag, mx);
         float3 grow = make_float3(pad, pad, pad);
-        float3 a = (lo - grow - x) * inv, b = (hi + grow - x) * inv;
+        float3 a = (box.lo - grow - x) * inv, b = (box.hi + grow - x) * inv;
         float3 near = fmin(a, b), far = fmax(a, b);
         float t0 = fmax(0.0f, fmax(near.x, fmax(near.y, near.z))), t1 = fmin(far.x, fmin(far.y, far.z));
         if (t0 <= t1) return 1;
@@ -312,12 +332,12 @@ TS_INLINE int ts_igi_may_meet_emitter(const TsSceneView* sv, float3 x, float3 wi
     return 0;
 }
 
-/* Light arriving at medium point x from direction `wi` found by tracing a ray, and the
+/* Light arriving at medium point x from direction `wi`, found by tracing a ray, and the
  * pdf (per steradian) with which light sampling would have picked that emitter point and
  * its distance *t_hit: for the phase-sampled half of the ray march's MIS. Zero when the
  * ray misses, hits a non-emitter or an emitter's back. */
-TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                      const TsMedium* med, float3 x, float3 wi, float* pdf_light, float* t_hit) {
+TS_INLINE float3 ts_igi_emitter_traced(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                       const TsMedium* med, float3 x, float3 wi, float* pdf_light, float* t_hit) {
     TsRay r;
     r.org = x;
     r.dir = wi;
@@ -325,7 +345,6 @@ TS_INLINE float3 ts_igi_emitter_along(const TsSceneView* sv, const TsTracer* tra
     r.tmax = TS_INF;
     *pdf_light = 0.0f;
     *t_hit = 0.0f;
-    if (!ts_igi_may_meet_emitter(sv, x, wi)) return make_float3(0.0f, 0.0f, 0.0f);
     TsHit h = ts_trace_closest(tracer, r);
     if (h.prim == TS_NO_HIT) return make_float3(0.0f, 0.0f, 0.0f);
     TsSurface s = ts_surface_at(sv, r, h);
@@ -364,6 +383,8 @@ typedef struct TsIgiMarch {
     int active;
     int equiangular;
     uint key; /* the pixel and set, (py·width + px)·64 + k: keys the ray lights' numbers */
+    float t_step;  /* the current step's own distance (ts_igi_march_step_begin) */
+    float3 tr_step; /* the camera segment's transmittance from t0 to t_step */
 } TsIgiMarch;
 
 /* Traces pixel (px, py)'s camera ray and clips its segment to the medium. An escaping
@@ -386,7 +407,24 @@ TS_INLINE TsIgiMarch ts_igi_march_begin(const TsTracer* tracer, const TsFrame* f
     m.active = ts_medium_clip(med, m.ray.org, m.ray.dir, &m.t0, &m.t1) && f->igi_steps > 0u;
     m.step = m.active ? (m.t1 - m.t0) / (float)f->igi_steps : 0.0f;
     m.equiangular = f->igi_equiangular != 0u;
+    m.t_step = m.t0;
+    m.tr_step = make_float3(1.0f, 1.0f, 1.0f);
     return m;
+}
+
+/* Starts the step whose own distance is t: keeps the camera segment's transmittance up to
+ * it, which its light link, its far VPLs and ray lights, and its end all take
+ * (ts_igi_march_tr), so a step computes it once, not once a link. */
+TS_INLINE void ts_igi_march_step_begin(TsIgiMarch* m, const TsMedium* med, float t) {
+    m->t_step = t;
+    m->tr_step = ts_exp3(med->sigma_t * (-(t - m->t0)));
+}
+
+/* The camera segment's transmittance from t0 to t: the step's, kept by
+ * ts_igi_march_step_begin, where t is the step's own distance (the same number exp gives
+ * again), else computed. */
+TS_INLINE float3 ts_igi_march_tr(const TsMedium* med, const TsIgiMarch* m, float t) {
+    return t == m->t_step ? m->tr_step : ts_exp3(med->sigma_t * (-(t - m->t0)));
 }
 
 /* Distance along the camera ray of step i: offset by (k + ξ)/N of a step for set k, ξ the
@@ -434,8 +472,9 @@ TS_INLINE float ts_igi_march_eq_ratio(const TsIgiMarch* m, float3 p, float t) {
     return ts_equiangular_pdf(&e, t) * (m->t1 - m->t0);
 }
 
-/* Step i's light-sample link: one of set k's light samples, taken in turn, seen from a
- * point of the camera segment. With m->equiangular (the default) the point is drawn by
+/* Step i's light-sample link: *ls, one of set k's light samples, taken in turn (step i
+ * takes ts_igi_light_sample(sv, f, k, i % f->shadow_samples), the same for every pixel of
+ * the set), seen from a point of the camera segment. With m->equiangular (the default) the point is drawn by
  * equiangular sampling toward the light sample (Kulla and Fajardo 2012), with the
  * march's stratified offset (t - t0)/(t1 - t0) as its uniform number, and the link
  * carries its own distance: *radiance is the light's radiance times sigma_s and the
@@ -448,32 +487,28 @@ TS_INLINE float ts_igi_march_eq_ratio(const TsIgiMarch* m, float3 p, float t) {
  * w_MIS / pl, the direction-only MIS, for the step's `in`. Returns 0 when the sample
  * faces away (nothing to trace); else the shadow ray too, for ts_igi_march_light_add
  * when the ray is unoccluded. */
-TS_INLINE int ts_igi_march_light_link(const TsSceneView* sv, const TsFrame* f, const TsMedium* med,
-                                      const TsIgiMarch* m, float t, uint k, uint i, TsRay* shadow,
-                                      float3* radiance, float* w) {
-    uint n = f->shadow_samples;
-    float3 q = ts_igi_light_point(f, k * n + i % n);
-    TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
+TS_INLINE int ts_igi_march_light_link(const TsMedium* med, const TsIgiMarch* m, float t, const TsLightSample* ls,
+                                      TsRay* shadow, float3* radiance, float* w) {
     float eq = 1.0f;
     if (m->equiangular) {
-        t = ts_igi_march_toward(m, ls.position, 0.0f, t, &eq);
+        t = ts_igi_march_toward(m, ls->position, 0.0f, t, &eq);
         if (!(eq > 0.0f)) return 0;
     }
     float3 x = m->ray.org + m->ray.dir * t;
-    float3 d = ls.position - x;
+    float3 d = ls->position - x;
     float dist2 = dot(d, d);
     float3 wi = d / sqrt(dist2);
-    float cos_y = -dot(ls.normal, wi);
+    float cos_y = -dot(ls->normal, wi);
     if (!(cos_y > 0.0f)) return 0;
-    *shadow = ts_shadow_ray(x, ls.position, ls.normal, ls.pos_scale);
-    float pl = ls.pdf_area * dist2 / cos_y;
+    *shadow = ts_shadow_ray(x, ls->position, ls->normal, ls->pos_scale);
+    float pl = ls->pdf_area * dist2 / cos_y;
     float phase = ts_hg_phase(dot(m->ray.dir, wi), med->g);
     if (!m->equiangular) {
-        *radiance = ls.radiance;
+        *radiance = ls->radiance;
         *w = phase * ts_power_heuristic(pl, phase) / pl;
         return 1;
     }
-    *radiance = ls.radiance * med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0)));
+    *radiance = ls->radiance * med->sigma_s * ts_igi_march_tr(med, m, t);
     /* 1 / (density of t) = (t1 - t0) / eq, over N steps: m->step / eq. */
     *w = phase * ts_power_heuristic(pl * eq, phase) * m->step / (pl * eq);
     return 1;
@@ -490,24 +525,39 @@ TS_INLINE void ts_igi_march_light_add(TsIgiMarch* m, const TsMedium* med, TsRay 
     else *in += radiance * tr * w;
 }
 
-/* Adds the phase-sampled half of step i's MIS at medium point x (distance t along the
- * camera ray) to `in`: a Henyey–Greenstein direction (weight phase/pdf = 1) traced to
- * whatever emitter it meets (ts_igi_emitter_along). Its MIS weight compares the phase pdf
- * with the light-sample technique's density at this point: the light pdf, times with
- * m->equiangular the relative density of the distance toward the emitter point met
- * (ts_igi_march_eq_ratio). Draws two numbers from the march's phase stream. */
-TS_INLINE void ts_igi_march_phase_add(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                      const TsMedium* med, TsIgiMarch* m, float3 x, float t, float3* in) {
+/* The phase-sampled direction of march m's step: a Henyey–Greenstein direction (weight
+ * phase/pdf = 1) from two numbers of the march's phase stream. */
+TS_INLINE float3 ts_igi_march_phase_dir(const TsMedium* med, TsIgiMarch* m) {
     /* Two declarations, not two arguments: C leaves argument order open, and both backends
        must draw the two numbers in the same order for one seed. */
     float u1 = ts_rng_next(&m->prng);
     float u2 = ts_rng_next(&m->prng);
-    float3 wp = ts_sample_hg(m->ray.dir, med->g, u1, u2);
+    return ts_sample_hg(m->ray.dir, med->g, u1, u2);
+}
+
+/* Adds to `in` the light of the phase-sampled direction wp (ts_igi_march_phase_dir) from
+ * medium point x (distance t along the camera ray), traced to whatever emitter it meets
+ * (ts_igi_emitter_traced): for a direction that may meet one (ts_igi_may_meet_emitter;
+ * the others add nothing). Its MIS weight compares the phase pdf with the light-sample
+ * technique's density at this point: the light pdf, times with m->equiangular the
+ * relative density of the distance toward the emitter point met (ts_igi_march_eq_ratio). */
+TS_INLINE void ts_igi_march_phase_gather(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                         const TsMedium* med, const TsIgiMarch* m, float3 x, float t, float3 wp,
+                                         float3* in) {
     float pl2, t_hit;
-    float3 le = ts_igi_emitter_along(sv, tracer, f, med, x, wp, &pl2, &t_hit);
+    float3 le = ts_igi_emitter_traced(sv, tracer, f, med, x, wp, &pl2, &t_hit);
     if (!(pl2 > 0.0f)) return;
     if (m->equiangular) pl2 *= ts_igi_march_eq_ratio(m, x + wp * t_hit, t);
     *in += le * ts_power_heuristic(ts_hg_phase(dot(m->ray.dir, wp), med->g), pl2);
+}
+
+/* Adds the phase-sampled half of step i's MIS at medium point x (distance t along the
+ * camera ray) to `in`: ts_igi_march_phase_dir, then ts_igi_march_phase_gather where the
+ * direction may meet an emitter. */
+TS_INLINE void ts_igi_march_phase_add(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
+                                      const TsMedium* med, TsIgiMarch* m, float3 x, float t, float3* in) {
+    float3 wp = ts_igi_march_phase_dir(med, m);
+    if (ts_igi_may_meet_emitter(sv, x, wp)) ts_igi_march_phase_gather(sv, tracer, f, med, m, x, t, wp, in);
 }
 
 /* Where step i's share of a set's list starts, relative to the set's first entry, for a
@@ -561,7 +611,7 @@ TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const
         float eq;
         t = ts_igi_march_toward(m, y, 1.0f / sqrt(b), t, &eq);
         if (!(eq > 0.0f)) return 0;
-        *tint = med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0))) * (m->step / eq);
+        *tint = med->sigma_s * ts_igi_march_tr(med, m, t) * (m->step / eq);
     }
     float3 x = m->ray.org + m->ray.dir * t;
     float3 d = y - x;
@@ -636,7 +686,7 @@ TS_INLINE int ts_igi_march_vrl_link(const TsMedium* med, const TsIgiMarch* m, fl
             eq = ts_line_pdf(&ls, t) * len;
             if (!(eq > 0.0f && eq < TS_INF)) return 0;
         }
-        camera = med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0))) * (m->step / eq);
+        camera = med->sigma_s * ts_igi_march_tr(med, m, t) * (m->step / eq);
     }
     float3 x = m->ray.org + m->ray.dir * t;
     TsEquiangular e = ts_equiangular_angles(ts_equiangular_setup(start, omega, vlen, x, 0.0f), 0.0f, vlen);
@@ -707,7 +757,7 @@ TS_INLINE float3 ts_igi_media_vpls(const TsSceneView* sv, const TsTracer* tracer
 /* Ends step i at distance t: adds its in-scattered light `in`, attenuated back to the
  * segment's start, to the march's radiance. */
 TS_INLINE void ts_igi_march_step_end(TsIgiMarch* m, const TsMedium* med, float t, float3 in) {
-    m->L += med->sigma_s * ts_exp3(med->sigma_t * (-(t - m->t0))) * in * m->step;
+    m->L += med->sigma_s * ts_igi_march_tr(med, m, t) * in * m->step;
 }
 
 /* Writes the march's TS_IGI_MEDIA_FLOATS values: its radiance, the segment's
@@ -741,12 +791,14 @@ TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, c
     TsIgiMarch m = ts_igi_march_begin(tracer, f, &med, px, py, k);
     for (uint i = 0u; m.active && i < f->igi_steps; ++i) {
         float t = ts_igi_march_t(f, &m, k, i);
+        ts_igi_march_step_begin(&m, &med, t);
         float3 x = m.ray.org + m.ray.dir * t;
         float3 in = make_float3(0.0f, 0.0f, 0.0f);
         TsRay shadow;
         float3 radiance;
         float w;
-        if (ts_igi_march_light_link(sv, f, &med, &m, t, k, i, &shadow, &radiance, &w) &&
+        TsLightSample ls = ts_igi_light_sample(sv, f, k, i % f->shadow_samples);
+        if (ts_igi_march_light_link(&med, &m, t, &ls, &shadow, &radiance, &w) &&
             !ts_trace_occluded(tracer, shadow))
             ts_igi_march_light_add(&m, &med, shadow, radiance, w, &in);
         ts_igi_march_phase_add(sv, tracer, f, &med, &m, x, t, &in);

@@ -1,7 +1,9 @@
 // kernels/shared/igi.h ts_igi_may_meet_emitter: the box test that lets the ray march skip
 // tracing phase-sampled rays that cannot reach a light. It must be conservative (every
 // ray whose closest hit is an emitter passes it, so images do not change) and it must
-// cull (most directions from inside the Cornell box miss its small ceiling light).
+// cull (most directions from inside the Cornell box miss its small ceiling light). Its
+// 16-lane form (kernels/shared/igi_march16.h ts_igi_may_meet_emitter_lanes) must pass
+// every ray the one-ray test passes, and for rays of numbers exactly those.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -15,6 +17,7 @@
 
 // After the tracer (embree_tracer.h): the shared code calls it.
 #include "kernels/shared/igi.h"
+#include "kernels/shared/igi_march16.h"
 
 namespace tessera {
 namespace {
@@ -88,6 +91,67 @@ TEST(IgiEmitterCull, CullsUpToTheBoxLimitOnly) {
     EXPECT_EQ(ts::ts_igi_may_meet_emitter(&sv, x, ts::make_float3(-1.0f, 0.0f, 0.0f)), 0);
     sv.light_count = TS_IGI_EMITTER_BOXES_MAX + 1;
     EXPECT_EQ(ts::ts_igi_may_meet_emitter(&sv, x, ts::make_float3(-1.0f, 0.0f, 0.0f)), 1);
+}
+
+// The lanes against the one-ray test, over the Cornell box's lights: random points and
+// directions, the axis directions (infinite inverses), points on a box's faces with a
+// direction parallel to them (0·∞ in the slab test), NaN and infinite inputs, and lanes
+// left out of `in` holding NaNs (which must not be read into the answer).
+TEST(IgiEmitterCull, TheLanesPassWhatTheOneRayTestPasses) {
+    const Scene scene = test::cornell_box();
+    const SceneBuffers b = make_scene_buffers(scene);
+    const ts::TsSceneView sv = make_scene_view(b);
+    ASSERT_GT(sv.light_count, 0u);
+    const ts::TsEmitterBox box = ts::ts_igi_emitter_box(&sv, 0);
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& p : scene.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const float nan = std::nanf(""), inf = INFINITY;
+    int passed = 0, culled = 0, special = 0;
+    for (int round = 0; round < 4000; ++round) {
+        ts::float3 x[TS_PACKET_LANES], wi[TS_PACKET_LANES];
+        bool exact[TS_PACKET_LANES];
+        const uint32_t in = round % 5 == 4 ? uint32_t(rng()) & 0xffffu : 0xffffu;
+        for (int l = 0; l < TS_PACKET_LANES; ++l) {
+            const glm::vec3 q = lo + (hi - lo) * glm::vec3(u(rng), u(rng), u(rng));
+            x[l] = ts::make_float3(q.x, q.y, q.z);
+            wi[l] = unit(rng);
+            exact[l] = true;
+            switch (rng() % 8) {
+            case 0:  // an axis direction
+                wi[l] = ts::make_float3(0.0f, 0.0f, 0.0f);
+                (rng() % 2 ? wi[l].y : wi[l].x) = rng() % 2 ? 1.0f : -1.0f;
+                break;
+            case 1:  // on the light box's low y face (grown), moving in x: 0·∞ in y
+                x[l].y = box.lo.y;
+                wi[l] = ts::make_float3(1.0f, 0.0f, 0.0f);
+                exact[l] = false;
+                break;
+            case 2:  // not numbers
+                (rng() % 2 ? x[l].z : wi[l].x) = rng() % 2 ? nan : inf;
+                exact[l] = false;
+                break;
+            default:
+                break;
+            }
+            if (!(in >> l & 1u)) x[l].x = wi[l].y = nan;  // must not be read
+        }
+        const uint32_t lanes = ts::ts_igi_may_meet_emitter_lanes(&sv, x, wi, in);
+        EXPECT_EQ(lanes & ~in, 0u);
+        for (int l = 0; l < TS_PACKET_LANES; ++l) {
+            if (!(in >> l & 1u)) continue;
+            const bool one = ts::ts_igi_may_meet_emitter(&sv, x[l], wi[l]) != 0, lane = (lanes >> l & 1u) != 0;
+            if (exact[l]) EXPECT_EQ(lane, one) << "round " << round << " lane " << l;
+            else EXPECT_TRUE(lane || !one) << "round " << round << " lane " << l;
+            passed += lane;
+            culled += !lane;
+            special += !exact[l];
+        }
+    }
+    EXPECT_GT(passed, 1000);  // both answers were seen many times
+    EXPECT_GT(culled, 10000);
+    EXPECT_GT(special, 5000);
 }
 
 }  // namespace

@@ -93,11 +93,13 @@ double links(const ts::TsIgiMarch& m, const RayLight& r, double* largest) {
     for (int i = 0; i < 8; ++i)
         for (int a = 0; a < nx; ++a) {
             const float t = m.t0 + (float(i) + (a + 0.5f) / nx) * m.step;
+            ts::TsIgiMarch at = m;  // the march at the step of distance t, as the march keeps it
+            ts::ts_igi_march_step_begin(&at, &med, t);
             for (int b = 0; b < nu; ++b) {
                 ts::TsRay shadow;
                 float w;
                 float3 tint;
-                if (!ts::ts_igi_march_vrl_link(&med, &m, t, (b + 0.5f) / nu, 1.0f, r.v, &shadow, &w, &tint)) continue;
+                if (!ts::ts_igi_march_vrl_link(&med, &at, t, (b + 0.5f) / nu, 1.0f, r.v, &shadow, &w, &tint)) continue;
                 double term = double(w) * tint.y * ts::ts_shadow_transmittance(&med, shadow).y;
                 if (!m.equiangular) term *= kSigmaS * std::exp(-sigma_t * (t - m.t0)) * m.step;
                 sum += term;
