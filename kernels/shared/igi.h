@@ -586,6 +586,47 @@ TS_INLINE void ts_igi_march_vpl_share(const TsSceneView* sv, const TsFrame* f, u
     *first = sv->vpl_set_start[k] + ts_igi_march_share_offset(f, k, i, TS_IGI_MEDIA_VPL_THINNING, 0x76706c6fu);
 }
 
+/* The pieces of ts_igi_march_vpl_link, which the 16-lane march also runs
+ * (ts_igi_march_vpl_links16, shared/igi_march16.h). The clamp b of a VPL's link: a
+ * medium VPL's times TS_VPL_MEDIUM_CLAMP_SCALE; returns 0 for a medium VPL when the march
+ * takes the medium's light from ray lights instead (ts_igi_march_vrl_link). */
+TS_INLINE int ts_igi_march_vpl_clamp(const TsFrame* f, TS_GLOBAL const float* vpl, float* b) {
+    if (f->igi_media_vpls == TS_MEDIA_VPLS_RAYS && ts_vpl_in_medium(vpl)) return 0;
+    *b = ts_vpl_in_medium(vpl) ? f->igi_g_clamp * TS_VPL_MEDIUM_CLAMP_SCALE : f->igi_g_clamp;
+    return 1;
+}
+
+/* The point *x of march m's camera segment that links to VPL position y from the step
+ * whose own distance is t, and the link's *tint (ts_igi_march_vpl_link says which);
+ * 0 when the equiangular density is unusable (nothing to trace). */
+TS_INLINE int ts_igi_march_vpl_point(const TsMedium* med, const TsIgiMarch* m, float t, float3 y, float b, float3* x,
+                                     float3* tint) {
+    *tint = make_float3(1.0f, 1.0f, 1.0f);
+    if (m->equiangular) {
+        float eq;
+        t = ts_igi_march_toward(m, y, 1.0f / sqrt(b), t, &eq);
+        if (!(eq > 0.0f)) return 0;
+        *tint = med->sigma_s * ts_igi_march_tr(med, m, t) * (m->step / eq);
+    }
+    *x = m->ray.org + m->ray.dir * t;
+    return 1;
+}
+
+/* The clamped weight min(e · phase(dir, ω_i) / d², b) of the link from point x of a camera
+ * ray of direction dir to the VPL at y (of kind `medium`, ts_vpl_in_medium), and *ok:
+ * whether there is a link (d > 0 and the VPL sends light toward x, e > 0). Without
+ * branches, so that the lanes' loop vectorises; where *ok is 0 the weight is not used
+ * (it may be NaN). ts_min_bound is fmin here: b, a clamp, is never NaN. */
+TS_INLINE float ts_igi_march_vpl_weight(float3 x, float3 dir, float3 y, TS_GLOBAL const float* vpl, int medium, float g,
+                                        float b, int* ok) {
+    float3 d = y - x;
+    float dist2 = dot(d, d);
+    float3 wi = d / sqrt(dist2);
+    float e = ts_vpl_emission_factor_of(vpl, -wi, g, medium);
+    *ok = (dist2 > 0.0f) & (e > 0.0f);
+    return ts_min_bound(e * ts_hg_phase(dot(dir, wi), g) / dist2, b);
+}
+
 /* VPL `vpl`'s link from the camera segment of march m at step i, whose own distance is t:
  * 0 when the VPL sends nothing toward the point (nothing to trace); else the shadow ray,
  * the clamped weight w = min(e · phase(dir, ω_i) / d², b) (e the VPL's emission factor
@@ -602,26 +643,15 @@ TS_INLINE void ts_igi_march_vpl_share(const TsSceneView* sv, const TsFrame* f, u
  * directly (ts_igi_march_vpls_add). */
 TS_INLINE int ts_igi_march_vpl_link(const TsFrame* f, const TsMedium* med, const TsIgiMarch* m, float t,
                                     TS_GLOBAL const float* vpl, TsRay* shadow, float* w, float3* tint) {
-    /* With ray lights the march takes the medium's light from them (ts_igi_march_vrl_link). */
-    if (f->igi_media_vpls == TS_MEDIA_VPLS_RAYS && ts_vpl_in_medium(vpl)) return 0;
-    float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
-    float b = ts_vpl_in_medium(vpl) ? f->igi_g_clamp * TS_VPL_MEDIUM_CLAMP_SCALE : f->igi_g_clamp;
-    *tint = make_float3(1.0f, 1.0f, 1.0f);
-    if (m->equiangular) {
-        float eq;
-        t = ts_igi_march_toward(m, y, 1.0f / sqrt(b), t, &eq);
-        if (!(eq > 0.0f)) return 0;
-        *tint = med->sigma_s * ts_igi_march_tr(med, m, t) * (m->step / eq);
-    }
-    float3 x = m->ray.org + m->ray.dir * t;
-    float3 d = y - x;
-    float dist2 = dot(d, d);
-    if (!(dist2 > 0.0f)) return 0;
-    float3 wi = d / sqrt(dist2);
-    float e = ts_vpl_emission_factor(vpl, -wi, med->g);
-    if (!(e > 0.0f)) return 0;
+    float b;
+    if (!ts_igi_march_vpl_clamp(f, vpl, &b)) return 0;
+    float3 y = ts_f3_load(vpl + TS_VPL_POSITION), x;
+    if (!ts_igi_march_vpl_point(med, m, t, y, b, &x, tint)) return 0;
+    int ok;
+    float wv = ts_igi_march_vpl_weight(x, m->ray.dir, y, vpl, ts_vpl_in_medium(vpl), med->g, b, &ok);
+    if (!ok) return 0;
     *shadow = ts_vpl_shadow_ray(x, vpl);
-    *w = fmin(e * ts_hg_phase(dot(m->ray.dir, wi), med->g) / dist2, b);
+    *w = wv;
     return 1;
 }
 

@@ -92,6 +92,55 @@ TS_INLINE void ts_igi_march_phase16(const TsSceneView* sv, const TsTracer* trace
         if (may >> l & 1u) ts_igi_march_phase_gather(sv, tracer, f, med, &m[l], s->x[l], s->t[l], wp[l], &s->light[l]);
 }
 
+/* ts_igi_march_vpl_weight over the lanes for VPLs of one kind (medium: 1 for a medium
+ * VPL): the kind test folds away once this is inlined with a constant `medium`, so the
+ * loop computes only that kind's emission factor and GCC vectorises it. */
+TS_INLINE void ts_igi_march_vpl_weights16(float (*x)[TS_PACKET_LANES], float (*dir)[TS_PACKET_LANES],
+                                          float3 y, TS_GLOBAL const float* vpl, int medium, float g, float b,
+                                          float* w, int* ok) {
+    if (ts_vpl_in_medium(vpl) != medium) TS_UNREACHABLE();
+    for (int l = 0; l < TS_PACKET_LANES; ++l)
+        w[l] = ts_igi_march_vpl_weight(make_float3(x[0][l], x[1][l], x[2][l]),
+                                       make_float3(dir[0][l], dir[1][l], dir[2][l]), y, vpl, medium, g, b, &ok[l]);
+}
+
+/* ts_igi_march_vpl_link for the marches of the lanes in `in`, from the step's own
+ * distances s->t: the links' points (ts_igi_march_vpl_point, lane by lane), their weights
+ * (ts_igi_march_vpl_weight, over the lanes at once: the phase values and divisions were
+ * most of a VPL link's time one lane at a time), then the shadow rays of the lanes with a
+ * link. Sets s->shadow, s->w and s->tint of those lanes, as ts_igi_march_vpl_link would,
+ * and returns their mask. */
+TS_INLINE uint ts_igi_march_vpl_links16(const TsFrame* f, const TsMedium* med, const TsIgiMarch* m, uint in,
+                                        TS_GLOBAL const float* vpl, TsMarchStep* s) {
+    float b;
+    if (in == 0u || !ts_igi_march_vpl_clamp(f, vpl, &b)) return 0u;
+    float3 y = ts_f3_load(vpl + TS_VPL_POSITION);
+    float x[3][TS_PACKET_LANES], dir[3][TS_PACKET_LANES], w[TS_PACKET_LANES];
+    int ok[TS_PACKET_LANES];
+    uint pointed = 0u;
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        float3 xl = make_float3(0.0f, 0.0f, 0.0f), dl = make_float3(0.0f, 0.0f, 1.0f);
+        if ((in >> l & 1u) && ts_igi_march_vpl_point(med, &m[l], s->t[l], y, b, &xl, &s->tint[l])) {
+            pointed |= 1u << l;
+            dl = m[l].ray.dir;
+        }
+        x[0][l] = xl.x, x[1][l] = xl.y, x[2][l] = xl.z;
+        dir[0][l] = dl.x, dir[1][l] = dl.y, dir[2][l] = dl.z;
+    }
+    if (ts_vpl_in_medium(vpl))
+        ts_igi_march_vpl_weights16(x, dir, y, vpl, 1, med->g, b, w, ok);
+    else
+        ts_igi_march_vpl_weights16(x, dir, y, vpl, 0, med->g, b, w, ok);
+    uint valid = 0u;
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        if (!(pointed >> l & 1u) || !ok[l]) continue;
+        s->shadow[l] = ts_vpl_shadow_ray(make_float3(x[0][l], x[1][l], x[2][l]), vpl);
+        s->w[l] = w[l];
+        valid |= 1u << l;
+    }
+    return valid;
+}
+
 /* Step i of the marches in `in` (bit l: lane l), all of set k: the light link (one light
  * sample for all the lanes), the phase sample, the VPL share, then each lane's step end. */
 TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
@@ -117,11 +166,7 @@ TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer
         for (int l = 0; l < TS_PACKET_LANES; ++l) s->vpl_sum[l] = make_float3(0.0f, 0.0f, 0.0f);
         for (uint j = first; j < sv->vpl_set_start[k + 1u]; j += stride) {
             TS_GLOBAL const float* vpl = sv->vpls + j * TS_VPL_FLOATS;
-            valid = 0u;
-            for (int l = 0; l < TS_PACKET_LANES; ++l)
-                if ((in >> l & 1u) &&
-                    ts_igi_march_vpl_link(f, med, &m[l], s->t[l], vpl, &s->shadow[l], &s->w[l], &s->tint[l]))
-                    valid |= 1u << l;
+            valid = ts_igi_march_vpl_links16(f, med, m, in, vpl, s);
             seen = ts_march16_visible(tracer, s, valid);
             for (int l = 0; l < TS_PACKET_LANES; ++l)
                 if (seen >> l & 1u) ts_igi_march_vpl_add(&s->vpl_sum[l], vpl, med, s->shadow[l], s->w[l], s->tint[l]);
