@@ -35,6 +35,7 @@
 #include "shared/layout_rays.h"
 #include "shared/layout_scene.h"
 #include "shared/material.h"
+#include "shared/math_lanes.h"
 #include "shared/medium.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
@@ -684,6 +685,72 @@ TS_INLINE float ts_igi_vrl_u(const TsFrame* f, const TsIgiMarch* m, uint j) {
     return ts_rng_next(&r);
 }
 
+/* The pieces of ts_igi_march_vrl_link, which the 16-lane march also runs
+ * (ts_igi_march_vrl_links16, shared/igi_march16.h). The camera side: the point *x of march
+ * m's camera segment that links to ray light `vrl` from the step whose own distance is t,
+ * and the camera side's factor *camera (ts_igi_march_vrl_link says which); 0 when there is
+ * nothing to link (an empty segment or ray light, or an unusable density). */
+TS_INLINE int ts_igi_march_vrl_point(const TsMedium* med, const TsIgiMarch* m, float t, TS_GLOBAL const float* vrl,
+                                     float3* x, float3* camera) {
+    float len = m->t1 - m->t0, vlen = vrl[TS_VRL_LENGTH];
+    if (!(len > 0.0f) || !(vlen > 0.0f)) return 0;
+    *camera = make_float3(1.0f, 1.0f, 1.0f);
+    if (m->equiangular) {
+        /* As a point light's (ts_igi_march_toward): only a ray light whose line passes
+         * within TS_IGI_EQUIANGULAR_REACH steps of the camera ray's draws its distance;
+         * farther ones light the segment smoothly and keep the step's own point, eq = 1. */
+        float eq = 1.0f;
+        TsLineSampler ls =
+            ts_line_setup(m->ray.org, m->ray.dir, m->t0, m->t1, ts_f3_load(vrl + TS_VRL_START), ts_f3_load(vrl + TS_VRL_DIR));
+        if (ls.h < TS_IGI_EQUIANGULAR_REACH * m->step) {
+            ls = ts_line_bounds(ls, m->t0, m->t1);
+            t = ts_line_sample(&ls, m->t0, m->t1, (t - m->t0) / len);
+            eq = ts_line_pdf(&ls, t) * len;
+            if (!(eq > 0.0f && eq < TS_INF)) return 0;
+        }
+        *camera = med->sigma_s * ts_igi_march_tr(med, m, t) * (m->step / eq);
+    }
+    *x = m->ray.org + m->ray.dir * t;
+    return 1;
+}
+
+/* The ray light's side of the link from point x of a camera ray of direction dir to the ray
+ * light from `start` along unit `omega` over [0, vlen] (scene units), for uniform u: its
+ * point *y = start + omega·τ, τ by equiangular sampling toward x (ts_equiangular_*, Kulla
+ * and Fajardo 2012; D floored as ts_equiangular_setup floors it), the weight
+ * w = e · phase(dir, ω_i) / (d² · pdf(τ)) (returned), *tint = camera · σs · Tr(τ) · stride,
+ * and *ok: whether there is a link (a usable density, d > 0, and a finite w > 0; where
+ * *ok is 0 the rest is not used). Without branches, its arctangents, tangent and
+ * exponential from shared/math_lanes.h, so that the lanes' loop vectorises: these were
+ * most of a foggy frame's ray-light links one lane at a time. Its min and max are selects,
+ * fmin and fmax wherever no NaN enters. */
+TS_INLINE float ts_igi_march_vrl_weight(const TsMedium* med, float3 x, float3 dir, float3 start, float3 omega,
+                                        float vlen, float u, float3 camera, float stride, float3* y, float3* tint,
+                                        int* ok) {
+    float3 op = x - start;
+    float delta = dot(op, omega);
+    float3 perp = op - omega * delta;
+    float lp = length(perp), ad = fabs(delta);
+    float floor_d = 1e-5f * (vlen > ad ? vlen : ad) + 1e-30f;
+    float D = lp > floor_d ? lp : floor_d;
+    float th_a = ts_lanes_atan((0.0f - delta) / D), th_b = ts_lanes_atan((vlen - delta) / D);
+    float tau = delta + D * ts_lanes_tan(th_a + u * (th_b - th_a));
+    tau = tau > 0.0f ? tau : 0.0f; /* against rounding of the tangent */
+    tau = tau < vlen ? tau : vlen;
+    float xt = tau - delta;
+    float pv = D / ((th_b - th_a) * (D * D + xt * xt));
+    *y = start + omega * tau;
+    float3 d = *y - x;
+    float dist2 = dot(d, d);
+    float3 wi = d / sqrt(dist2);
+    float ev = ts_hg_phase(dot(omega, -wi), med->g);
+    float w = ev * ts_hg_phase(dot(dir, wi), med->g) / (dist2 * pv);
+    float3 st = med->sigma_t * (-tau);
+    *tint = camera * med->sigma_s * make_float3(ts_lanes_exp(st.x), ts_lanes_exp(st.y), ts_lanes_exp(st.z)) * stride;
+    *ok = (pv > 0.0f) & (pv < TS_INF) & (dist2 > 0.0f) & (w > 0.0f) & (w < TS_INF);
+    return w;
+}
+
 /* Ray light `vrl`'s link (layout_igi.h TS_VRL_*; docs/igi.md §6) from the camera segment
  * of march m at the step whose own distance is t; u places the point on the ray light
  * (ts_igi_vrl_u). A ray light of flux Φ along a segment y(τ), τ in [0, ℓ], sends a point
@@ -700,39 +767,15 @@ TS_INLINE float ts_igi_vrl_u(const TsFrame* f, const TsIgiMarch* m, uint j) {
  * Returns 0 when there is nothing to trace; else the shadow ray from x to y. */
 TS_INLINE int ts_igi_march_vrl_link(const TsMedium* med, const TsIgiMarch* m, float t, float u, float stride,
                                     TS_GLOBAL const float* vrl, TsRay* shadow, float* w, float3* tint) {
-    float len = m->t1 - m->t0, vlen = vrl[TS_VRL_LENGTH];
-    if (!(len > 0.0f) || !(vlen > 0.0f)) return 0;
-    float3 start = ts_f3_load(vrl + TS_VRL_START), omega = ts_f3_load(vrl + TS_VRL_DIR);
-    float3 camera = make_float3(1.0f, 1.0f, 1.0f);
-    if (m->equiangular) {
-        /* As a point light's (ts_igi_march_toward): only a ray light whose line passes
-         * within TS_IGI_EQUIANGULAR_REACH steps of the camera ray's draws its distance;
-         * farther ones light the segment smoothly and keep the step's own point, eq = 1. */
-        float eq = 1.0f;
-        TsLineSampler ls = ts_line_setup(m->ray.org, m->ray.dir, m->t0, m->t1, start, omega);
-        if (ls.h < TS_IGI_EQUIANGULAR_REACH * m->step) {
-            ls = ts_line_bounds(ls, m->t0, m->t1);
-            t = ts_line_sample(&ls, m->t0, m->t1, (t - m->t0) / len);
-            eq = ts_line_pdf(&ls, t) * len;
-            if (!(eq > 0.0f && eq < TS_INF)) return 0;
-        }
-        camera = med->sigma_s * ts_igi_march_tr(med, m, t) * (m->step / eq);
-    }
-    float3 x = m->ray.org + m->ray.dir * t;
-    TsEquiangular e = ts_equiangular_angles(ts_equiangular_setup(start, omega, vlen, x, 0.0f), 0.0f, vlen);
-    float tau = ts_equiangular_sample(&e, 0.0f, vlen, u);
-    float pv = ts_equiangular_pdf(&e, tau);
-    if (!(pv > 0.0f && pv < TS_INF)) return 0;
-    float3 y = start + omega * tau;
-    float3 d = y - x;
-    float dist2 = dot(d, d);
-    if (!(dist2 > 0.0f)) return 0;
-    float3 wi = d / sqrt(dist2);
-    float ev = ts_hg_phase(dot(omega, -wi), med->g);
+    float3 x, camera, y;
+    if (!ts_igi_march_vrl_point(med, m, t, vrl, &x, &camera)) return 0;
+    int ok;
+    float wv = ts_igi_march_vrl_weight(med, x, m->ray.dir, ts_f3_load(vrl + TS_VRL_START), ts_f3_load(vrl + TS_VRL_DIR),
+                                       vrl[TS_VRL_LENGTH], u, camera, stride, &y, tint, &ok);
+    if (!ok) return 0;
     *shadow = ts_shadow_ray(x, y, make_float3(0.0f, 0.0f, 0.0f), 0.0f);
-    *w = ev * ts_hg_phase(dot(m->ray.dir, wi), med->g) / (dist2 * pv);
-    *tint = camera * med->sigma_s * ts_exp3(med->sigma_t * (-tau)) * stride;
-    return *w > 0.0f && *w < TS_INF;
+    *w = wv;
+    return 1;
 }
 
 /* Adds a visible VPL link (ts_igi_march_vpl_link) to *sum: C · Tr · w · tint. */

@@ -141,6 +141,55 @@ TS_INLINE uint ts_igi_march_vpl_links16(const TsFrame* f, const TsMedium* med, c
     return valid;
 }
 
+/* ts_igi_march_vrl_link for the marches of the lanes in `in`, from the step's own
+ * distances s->t, for ray light j of the set (`vrl`) and the share's stride: the camera
+ * side (ts_igi_march_vrl_point and the ray light's number ts_igi_vrl_u, lane by lane),
+ * the ray light's side (ts_igi_march_vrl_weight, over the lanes at once), then the shadow
+ * rays of the lanes with a link. Sets s->shadow, s->w and s->tint of those lanes, as
+ * ts_igi_march_vrl_link would, and returns their mask. */
+TS_INLINE uint ts_igi_march_vrl_links16(const TsFrame* f, const TsMedium* med, const TsIgiMarch* m, uint in, uint j,
+                                        float stride, TS_GLOBAL const float* vrl, TsMarchStep* s) {
+    if (in == 0u) return 0u;
+    float3 start = ts_f3_load(vrl + TS_VRL_START), omega = ts_f3_load(vrl + TS_VRL_DIR);
+    float vlen = vrl[TS_VRL_LENGTH];
+    float x[3][TS_PACKET_LANES], dir[3][TS_PACKET_LANES], cam[3][TS_PACKET_LANES], u[TS_PACKET_LANES];
+    float y[3][TS_PACKET_LANES], tint[3][TS_PACKET_LANES], w[TS_PACKET_LANES];
+    int ok[TS_PACKET_LANES];
+    uint pointed = 0u;
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        float3 xl = make_float3(0.0f, 0.0f, 0.0f), dl = make_float3(0.0f, 0.0f, 1.0f), cl = xl;
+        float ul = 0.5f;
+        if ((in >> l & 1u) && ts_igi_march_vrl_point(med, &m[l], s->t[l], vrl, &xl, &cl)) {
+            pointed |= 1u << l;
+            dl = m[l].ray.dir;
+            ul = ts_igi_vrl_u(f, &m[l], j);
+        }
+        x[0][l] = xl.x, x[1][l] = xl.y, x[2][l] = xl.z;
+        dir[0][l] = dl.x, dir[1][l] = dl.y, dir[2][l] = dl.z;
+        cam[0][l] = cl.x, cam[1][l] = cl.y, cam[2][l] = cl.z;
+        u[l] = ul;
+    }
+    if (pointed == 0u) return 0u;
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        float3 yl, tl;
+        w[l] = ts_igi_march_vrl_weight(med, make_float3(x[0][l], x[1][l], x[2][l]),
+                                       make_float3(dir[0][l], dir[1][l], dir[2][l]), start, omega, vlen, u[l],
+                                       make_float3(cam[0][l], cam[1][l], cam[2][l]), stride, &yl, &tl, &ok[l]);
+        y[0][l] = yl.x, y[1][l] = yl.y, y[2][l] = yl.z;
+        tint[0][l] = tl.x, tint[1][l] = tl.y, tint[2][l] = tl.z;
+    }
+    uint valid = 0u;
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        if (!(pointed >> l & 1u) || !ok[l]) continue;
+        s->shadow[l] = ts_shadow_ray(make_float3(x[0][l], x[1][l], x[2][l]), make_float3(y[0][l], y[1][l], y[2][l]),
+                                     make_float3(0.0f, 0.0f, 0.0f), 0.0f);
+        s->w[l] = w[l];
+        s->tint[l] = make_float3(tint[0][l], tint[1][l], tint[2][l]);
+        valid |= 1u << l;
+    }
+    return valid;
+}
+
 /* Step i of the marches in `in` (bit l: lane l), all of set k: the light link (one light
  * sample for all the lanes), the phase sample, the VPL share, then each lane's step end. */
 TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
@@ -177,12 +226,7 @@ TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer
             ts_igi_march_vrl_share(sv, f, k, i, &first, &stride);
             for (uint j = first; j < sv->vrl_set_start[k + 1u]; j += stride) {
                 TS_GLOBAL const float* vrl = sv->vrls + j * TS_VRL_FLOATS;
-                valid = 0u;
-                for (int l = 0; l < TS_PACKET_LANES; ++l)
-                    if ((in >> l & 1u) && ts_igi_march_vrl_link(med, &m[l], s->t[l], ts_igi_vrl_u(f, &m[l], j),
-                                                                (float)stride, vrl, &s->shadow[l], &s->w[l],
-                                                                &s->tint[l]))
-                        valid |= 1u << l;
+                valid = ts_igi_march_vrl_links16(f, med, m, in, j, (float)stride, vrl, s);
                 seen = ts_march16_visible(tracer, s, valid);
                 for (int l = 0; l < TS_PACKET_LANES; ++l)
                     if (seen >> l & 1u)

@@ -1,10 +1,12 @@
-// kernels/shared/igi_march16.h ts_igi_march_vpl_links16: the VPL links of 16 marches at
-// once must be ts_igi_march_vpl_link's, lane by lane, bit for bit: which lanes link, and
-// each linked lane's weight, tint and shadow ray. Whole foggy images are compared with the
+// kernels/shared/igi_march16.h ts_igi_march_vpl_links16 and ts_igi_march_vrl_links16: the
+// VPL and ray-light links of 16 marches at once must be ts_igi_march_vpl_link's and
+// ts_igi_march_vrl_link's, lane by lane, bit for bit: which lanes link, and each linked
+// lane's weight, tint and shadow ray. Whole foggy images are compared with the
 // one-ray march in tests/backend/media_packets_test.cpp; this test reaches the cases those
 // images rarely hold: a VPL on a lane's camera ray (d = 0 at the link's point), VPLs
 // facing away, medium VPLs with and without ray lights, equiangular points near the VPL
-// and the step's own point far from it, NaN and infinite VPLs, lanes left out.
+// and the step's own point far from it, NaN and infinite VPLs, lanes left out; ray lights
+// crossing a lane's camera ray, passing near it or far, with NaN ends or no length.
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -108,6 +110,84 @@ TEST(IgiMarch16, VplLinksEqualTheOneLaneLinkBitForBit) {
     EXPECT_GT(linked, 10000);  // both answers, and equiangular points, were seen many times
     EXPECT_GT(unlinked, 10000);
     EXPECT_GT(near_points, 300);
+}
+
+// 16 marches with random cameras and steps, as the march has them at a step.
+void random_marches(std::mt19937& rng, const ts::TsMedium& med, bool equiangular, ts::TsIgiMarch* m,
+                    ts::TsMarchStep* s) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        ts::TsIgiMarch& ml = m[l];
+        std::memset(&ml, 0, sizeof ml);
+        ml.ray.org = make_float3(4.0f * u(rng) - 2.0f, 4.0f * u(rng) - 2.0f, 4.0f * u(rng) - 2.0f);
+        ml.ray.dir = unit(rng);
+        ml.ray.tmax = ts::TS_INF;
+        ml.t0 = u(rng);
+        ml.t1 = ml.t0 + 0.5f + 4.0f * u(rng);
+        ml.step = (ml.t1 - ml.t0) / 8.0f;
+        ml.active = 1;
+        ml.equiangular = equiangular;
+        ml.key = uint32_t(rng());
+        s->t[l] = ml.t0 + (ml.t1 - ml.t0) * u(rng);
+        ts::ts_igi_march_step_begin(&ml, &med, s->t[l]);
+    }
+}
+
+TEST(IgiMarch16, RayLightLinksEqualTheOneLaneLinkBitForBit) {
+    const ts::TsMedium med = fog();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    int linked = 0, unlinked = 0;
+    for (int round = 0; round < 3000; ++round) {
+        TsFrame f{};
+        f.seed = uint32_t(rng());
+        f.pass = round;
+        ts::TsIgiMarch m[TS_PACKET_LANES];
+        ts::TsMarchStep s;
+        random_marches(rng, med, round % 4 != 3, m, &s);
+        const uint32_t in = round % 5 == 4 ? uint32_t(rng()) & 0xffffu : 0xffffu;
+        // The ray light: through lane 0's step point, near lane 0's camera ray or anywhere;
+        // sometimes with a NaN start or no length.
+        const int kind = int(rng() % 8);
+        float3 start = make_float3(6.0f * u(rng) - 3.0f, 6.0f * u(rng) - 3.0f, 6.0f * u(rng) - 3.0f);
+        const float3 omega = unit(rng);
+        float length = 0.1f + 5.0f * u(rng);
+        const float3 p0 = m[0].ray.org + m[0].ray.dir * s.t[0];
+        if (kind == 0) start = p0 - omega * (length * u(rng));
+        if (kind <= 2 && kind > 0) start = p0 + unit(rng) * (0.1f * u(rng)) - omega * (length * u(rng));
+        if (kind == 3) start.z = std::nanf("");
+        if (kind == 4) length = rng() % 2 ? 0.0f : std::nanf("");
+        std::vector<float> vrl(TS_VRL_FLOATS, 0.0f);
+        ts::ts_f3_store(vrl.data() + TS_VRL_START, start);
+        ts::ts_f3_store(vrl.data() + TS_VRL_DIR, omega);
+        ts::ts_f3_store(vrl.data() + TS_VRL_FLUX, make_float3(1.0f, 1.0f, 1.0f));
+        vrl[TS_VRL_LENGTH] = length;
+        const uint32_t j = uint32_t(rng() % 1000);
+        const float stride = float(1 + rng() % 64);
+        const uint32_t lanes = ts::ts_igi_march_vrl_links16(&f, &med, m, in, j, stride, vrl.data(), &s);
+        EXPECT_EQ(lanes & ~in, 0u);
+        for (int l = 0; l < TS_PACKET_LANES; ++l) {
+            if (!(in >> l & 1u)) continue;
+            ts::TsRay shadow{};
+            float w = 0.0f;
+            float3 tint = make_float3(0.0f, 0.0f, 0.0f);
+            const bool one = ts::ts_igi_march_vrl_link(&med, &m[l], s.t[l], ts::ts_igi_vrl_u(&f, &m[l], j), stride,
+                                                       vrl.data(), &shadow, &w, &tint) != 0;
+            ASSERT_EQ((lanes >> l & 1u) != 0, one) << "round " << round << " lane " << l;
+            if (!one) {
+                ++unlinked;
+                continue;
+            }
+            ++linked;
+            EXPECT_TRUE(same_bits(s.w[l], w)) << "round " << round << " lane " << l << ": " << s.w[l] << " " << w;
+            EXPECT_TRUE(same_bits(s.tint[l], tint)) << "round " << round << " lane " << l;
+            EXPECT_TRUE(same_bits(s.shadow[l].org, shadow.org) && same_bits(s.shadow[l].dir, shadow.dir) &&
+                        same_bits(s.shadow[l].tmin, shadow.tmin) && same_bits(s.shadow[l].tmax, shadow.tmax))
+                << "round " << round << " lane " << l;
+        }
+    }
+    EXPECT_GT(linked, 20000);
+    EXPECT_GT(unlinked, 3000);
 }
 
 }  // namespace
