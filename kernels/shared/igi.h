@@ -384,7 +384,7 @@ typedef struct TsIgiMarch {
     int active;
     int equiangular;
     uint key; /* the pixel and set, (py·width + px)·64 + k: keys the ray lights' numbers */
-    float t_step;  /* the current step's own distance (ts_igi_march_step_begin) */
+    float t_step;  /* the current step's own distance (ts_igi_march_step_begin; NaN before) */
     float3 tr_step; /* the camera segment's transmittance from t0 to t_step */
 } TsIgiMarch;
 
@@ -408,7 +408,7 @@ TS_INLINE TsIgiMarch ts_igi_march_begin(const TsTracer* tracer, const TsFrame* f
     m.active = ts_medium_clip(med, m.ray.org, m.ray.dir, &m.t0, &m.t1) && f->igi_steps > 0u;
     m.step = m.active ? (m.t1 - m.t0) / (float)f->igi_steps : 0.0f;
     m.equiangular = f->igi_equiangular != 0u;
-    m.t_step = m.t0;
+    m.t_step = TS_NAN; /* no step yet: ts_igi_march_tr computes until ts_igi_march_step_begin */
     m.tr_step = make_float3(1.0f, 1.0f, 1.0f);
     return m;
 }
@@ -423,7 +423,9 @@ TS_INLINE void ts_igi_march_step_begin(TsIgiMarch* m, const TsMedium* med, float
 
 /* The camera segment's transmittance from t0 to t: the step's, kept by
  * ts_igi_march_step_begin, where t is the step's own distance (the same number exp gives
- * again), else computed. */
+ * again), else computed. The march must come from ts_igi_march_begin, its steps begun by
+ * ts_igi_march_step_begin with the medium passed here (a march filled by hand, with
+ * t_step 0 and tr_step 0, would give 0 at t = 0). */
 TS_INLINE float3 ts_igi_march_tr(const TsMedium* med, const TsIgiMarch* m, float t) {
     return t == m->t_step ? m->tr_step : ts_exp3(med->sigma_t * (-(t - m->t0)));
 }

@@ -13,7 +13,8 @@
  * which traces the rays of the lanes whose bit is set in `valid` as one packet and
  * returns the bit mask of those found blocked (the rays of other lanes are not read).
  *
- * Private memory: 16 marches (≈ 100 B each) and one step's lane state (≈ 2.2 KB). */
+ * Private memory: 16 marches (128 B each), one step's lane state (2.4 KB) and, within a
+ * link's lanes function, up to 1.2 KB of the lanes' link values (ts_igi_march_vrl_links16). */
 #ifndef TS_IGI_MARCH16_H
 #define TS_IGI_MARCH16_H
 #include "shared/igi.h"

@@ -1,17 +1,19 @@
 /* Arctangent, tangent and exponential in float without branches, for loops over 16 lanes
  * that GCC vectorises (the ray lights' links of the media march, shared/igi_march16.h),
- * and for the one-lane code that must give those lanes' numbers bit for bit
- * (ts_igi_march_vrl_link, shared/igi.h). libm's forms are calls GCC cannot vectorise, and
+ * and for the one-lane code that must give those lanes' numbers bit for bit (both call
+ * ts_igi_march_vrl_weight, shared/igi.h). libm's forms are calls GCC cannot vectorise, and
  * glibc's vector forms (libmvec) are reached only with finite-math flags, which must stay
  * off here (NaN and Inf are caught). The methods and coefficients are Cephes' single
  * precision atanf, tanf and expf (S. L. Moshier, "Methods and Programs for Mathematical
  * Functions", 1989; the Cephes library, cephes/single), with the range reductions' tests
- * written as selects. Accuracy (tests/kernels/math_lanes_test.cpp, against double): within
- * 2e-7 relative for the arctangent, 3e-7 for the exponential, 4e-7 for the tangent on
- * |x| < π/2. Special values: NaN gives NaN; atan(±Inf) = ±π/2; exp(-Inf) = 0, exp(+Inf) = Inf.
- * The exponential flushes results below 2^-126 (x < -87.3365) to 0 where libm returns
- * subnormals (at most 1.2e-38 apart). Every C++ file that includes this is built with
- * -ffp-contract=off (CMakeLists.txt), so the lanes' and one lane's numbers agree. */
+ * written as selects. Accuracy against double (tests/kernels/math_lanes_test.cpp, with
+ * correctly rounded division and square root): the arctangent within 2.1e-7 relative
+ * (2.8 ulp, near x = 0.428), the tangent 1.7e-7 on |x| <= π/2 (its only use), the
+ * exponential 8.2e-8. Special values: NaN gives NaN; atan(±Inf) = ±π/2; exp(-Inf) = 0,
+ * exp(+Inf) = Inf. The exponential flushes results below 2^-126 (x < -87.3365) to 0 where
+ * libm returns subnormals (at most 1.2e-38 apart). Every C++ file that includes this is
+ * built with -ffp-contract=off (CMakeLists.txt), so the lanes' and one lane's numbers
+ * agree. */
 #ifndef TS_MATH_LANES_H
 #define TS_MATH_LANES_H
 #include "shared/compat.h"
@@ -34,9 +36,11 @@ TS_INLINE float ts_lanes_atan(float x) {
     return ts_lanes_with_sign(y0 + (p * z2 * z + z), x);
 }
 
-/* tan(x) for |x| < 8192 (radians): reduction to |z| <= π/4 by j, the even multiple of π/4
- * nearest below |x| (π/4 in three parts, exact in float products), then -1/tan(z) where j
- * is 2 modulo 4. */
+/* tan(x), radians: reduction to |z| <= π/4 by j·π/4, j the even integer nearest
+ * |x|·4/π (π/4 in three parts, the first two of whose products with j are exact below
+ * 8192), then -1/tan(z) where j is 2 modulo 4. Accurate to 1.7e-7 relative for
+ * |x| <= π/2, the only use here; beyond, valid below 8192 with a relative error that grows
+ * near the multiples of π/2. */
 TS_INLINE float ts_lanes_tan(float x) {
     float ax = fabs(x);
     float j = floor(ax * 1.27323954473516f);

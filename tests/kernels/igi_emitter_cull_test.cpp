@@ -94,9 +94,9 @@ TEST(IgiEmitterCull, CullsUpToTheBoxLimitOnly) {
 }
 
 // The lanes against the one-ray test, over the Cornell box's lights: random points and
-// directions, the axis directions (infinite inverses), points on a box's faces with a
-// direction parallel to them (0·∞ in the slab test), NaN and infinite inputs, and lanes
-// left out of `in` holding NaNs (which must not be read into the answer).
+// directions, the axis directions (infinite inverses), points on a grown box's face with a
+// direction parallel to it (0·∞ in the slab test), NaN and infinite inputs, and lanes left
+// out of `in` holding NaNs (which must not leak into the other lanes' answers).
 TEST(IgiEmitterCull, TheLanesPassWhatTheOneRayTestPasses) {
     const Scene scene = test::cornell_box();
     const SceneBuffers b = make_scene_buffers(scene);
@@ -108,7 +108,7 @@ TEST(IgiEmitterCull, TheLanesPassWhatTheOneRayTestPasses) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     const float nan = std::nanf(""), inf = INFINITY;
-    int passed = 0, culled = 0, special = 0;
+    int passed = 0, culled = 0, special = 0, zero_inf = 0;
     for (int round = 0; round < 4000; ++round) {
         ts::float3 x[TS_PACKET_LANES], wi[TS_PACKET_LANES];
         bool exact[TS_PACKET_LANES];
@@ -123,11 +123,15 @@ TEST(IgiEmitterCull, TheLanesPassWhatTheOneRayTestPasses) {
                 wi[l] = ts::make_float3(0.0f, 0.0f, 0.0f);
                 (rng() % 2 ? wi[l].y : wi[l].x) = rng() % 2 ? 1.0f : -1.0f;
                 break;
-            case 1:  // on the light box's low y face (grown), moving in x: 0·∞ in y
-                x[l].y = box.lo.y;
-                wi[l] = ts::make_float3(1.0f, 0.0f, 0.0f);
-                exact[l] = false;
+            case 1: {  // on the light box's grown low y face, moving in x: (lo - pad - y)·∞ = 0·∞
+                x[l].x = hi.x * 4.0f;  // the largest coordinate, so that it sets the pad
+                const float pad = ts::ts_igi_emitter_pad(box.mag, ts::ts_max_abs3(x[l]));
+                x[l].y = box.lo.y - pad;
+                exact[l] = box.lo.y - pad - x[l].y != 0.0f;  // the slab distance is NaN where this is 0
+                wi[l] = ts::make_float3(rng() % 2 ? 1.0f : -1.0f, 0.0f, 0.0f);
+                zero_inf += !exact[l];
                 break;
+            }
             case 2:  // not numbers
                 (rng() % 2 ? x[l].z : wi[l].x) = rng() % 2 ? nan : inf;
                 exact[l] = false;
@@ -135,7 +139,7 @@ TEST(IgiEmitterCull, TheLanesPassWhatTheOneRayTestPasses) {
             default:
                 break;
             }
-            if (!(in >> l & 1u)) x[l].x = wi[l].y = nan;  // must not be read
+            if (!(in >> l & 1u)) x[l].x = wi[l].y = nan;  // must not leak into the other lanes
         }
         const uint32_t lanes = ts::ts_igi_may_meet_emitter_lanes(&sv, x, wi, in);
         EXPECT_EQ(lanes & ~in, 0u);
@@ -152,6 +156,7 @@ TEST(IgiEmitterCull, TheLanesPassWhatTheOneRayTestPasses) {
     EXPECT_GT(passed, 1000);  // both answers were seen many times
     EXPECT_GT(culled, 10000);
     EXPECT_GT(special, 5000);
+    EXPECT_GT(zero_inf, 3000);  // the 0·∞ case came about
 }
 
 }  // namespace

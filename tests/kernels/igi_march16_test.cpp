@@ -5,7 +5,7 @@
 // one-ray march in tests/backend/media_packets_test.cpp; this test reaches the cases those
 // images rarely hold: a VPL on a lane's camera ray (d = 0 at the link's point), VPLs
 // facing away, medium VPLs with and without ray lights, equiangular points near the VPL
-// and the step's own point far from it, NaN and infinite VPLs, lanes left out; ray lights
+// and the step's own point far from it, NaN and infinite VPLs, lanes left out (holding NaNs); ray lights
 // crossing a lane's camera ray, passing near it or far, with NaN ends or no length.
 #include <cmath>
 #include <cstring>
@@ -48,6 +48,34 @@ std::vector<float> vpl_at(float3 y, float3 n, bool medium) {
     return v;
 }
 
+// 16 marches with random cameras and steps, as the march has them at a step; the lanes
+// outside `in` hold NaNs and no step, which the lanes' functions must not read.
+void random_marches(std::mt19937& rng, const ts::TsMedium& med, bool equiangular, uint32_t in, ts::TsIgiMarch* m,
+                    ts::TsMarchStep* s) {
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const float nan = std::nanf("");
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        ts::TsIgiMarch& ml = m[l];
+        std::memset(&ml, 0, sizeof ml);
+        ml.ray.org = make_float3(4.0f * u(rng) - 2.0f, 4.0f * u(rng) - 2.0f, 4.0f * u(rng) - 2.0f);
+        ml.ray.dir = unit(rng);
+        ml.ray.tmax = ts::TS_INF;
+        ml.t0 = u(rng);
+        ml.t1 = ml.t0 + 0.5f + 4.0f * u(rng);
+        ml.step = (ml.t1 - ml.t0) / 8.0f;
+        ml.active = 1;
+        ml.equiangular = equiangular;
+        ml.key = uint32_t(rng());
+        s->t[l] = ml.t0 + (ml.t1 - ml.t0) * u(rng);
+        if (in >> l & 1u) {
+            ts::ts_igi_march_step_begin(&ml, &med, s->t[l]);
+        } else {
+            ml.ray.org = ml.ray.dir = make_float3(nan, nan, nan);
+            ml.t0 = ml.t1 = ml.step = s->t[l] = nan;
+        }
+    }
+}
+
 TEST(IgiMarch16, VplLinksEqualTheOneLaneLinkBitForBit) {
     const ts::TsMedium med = fog();
     std::mt19937 rng(3);
@@ -60,21 +88,8 @@ TEST(IgiMarch16, VplLinksEqualTheOneLaneLinkBitForBit) {
         const bool equiangular = round % 4 != 3;
         ts::TsIgiMarch m[TS_PACKET_LANES];
         ts::TsMarchStep s;
-        const uint32_t in = round % 5 == 4 ? uint32_t(rng()) & 0xffffu : 0xffffu;
-        for (int l = 0; l < TS_PACKET_LANES; ++l) {
-            ts::TsIgiMarch& ml = m[l];
-            std::memset(&ml, 0, sizeof ml);
-            ml.ray.org = make_float3(4.0f * u(rng) - 2.0f, 4.0f * u(rng) - 2.0f, 4.0f * u(rng) - 2.0f);
-            ml.ray.dir = unit(rng);
-            ml.ray.tmax = ts::TS_INF;
-            ml.t0 = u(rng);
-            ml.t1 = ml.t0 + 0.5f + 4.0f * u(rng);
-            ml.step = (ml.t1 - ml.t0) / 8.0f;
-            ml.active = 1;
-            ml.equiangular = equiangular;
-            s.t[l] = ml.t0 + (ml.t1 - ml.t0) * u(rng);
-            ts::ts_igi_march_step_begin(&ml, &med, s.t[l]);
-        }
+        const uint32_t in = round % 5 == 4 ? uint32_t(rng()) & 0xfffeu : 0xffffu;  // lane 0 in: the VPL is by it
+        random_marches(rng, med, equiangular, in, m, &s);
         // The VPL: near lane 0's camera ray (an equiangular point drawn toward it) or far
         // from every ray, sometimes exactly at lane 0's step point, or not a number.
         const int kind = int(rng() % 8);
@@ -112,27 +127,6 @@ TEST(IgiMarch16, VplLinksEqualTheOneLaneLinkBitForBit) {
     EXPECT_GT(near_points, 300);
 }
 
-// 16 marches with random cameras and steps, as the march has them at a step.
-void random_marches(std::mt19937& rng, const ts::TsMedium& med, bool equiangular, ts::TsIgiMarch* m,
-                    ts::TsMarchStep* s) {
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    for (int l = 0; l < TS_PACKET_LANES; ++l) {
-        ts::TsIgiMarch& ml = m[l];
-        std::memset(&ml, 0, sizeof ml);
-        ml.ray.org = make_float3(4.0f * u(rng) - 2.0f, 4.0f * u(rng) - 2.0f, 4.0f * u(rng) - 2.0f);
-        ml.ray.dir = unit(rng);
-        ml.ray.tmax = ts::TS_INF;
-        ml.t0 = u(rng);
-        ml.t1 = ml.t0 + 0.5f + 4.0f * u(rng);
-        ml.step = (ml.t1 - ml.t0) / 8.0f;
-        ml.active = 1;
-        ml.equiangular = equiangular;
-        ml.key = uint32_t(rng());
-        s->t[l] = ml.t0 + (ml.t1 - ml.t0) * u(rng);
-        ts::ts_igi_march_step_begin(&ml, &med, s->t[l]);
-    }
-}
-
 TEST(IgiMarch16, RayLightLinksEqualTheOneLaneLinkBitForBit) {
     const ts::TsMedium med = fog();
     std::mt19937 rng(5);
@@ -144,8 +138,8 @@ TEST(IgiMarch16, RayLightLinksEqualTheOneLaneLinkBitForBit) {
         f.pass = round;
         ts::TsIgiMarch m[TS_PACKET_LANES];
         ts::TsMarchStep s;
-        random_marches(rng, med, round % 4 != 3, m, &s);
-        const uint32_t in = round % 5 == 4 ? uint32_t(rng()) & 0xffffu : 0xffffu;
+        const uint32_t in = round % 5 == 4 ? uint32_t(rng()) & 0xfffeu : 0xffffu;  // lane 0 in: the ray light is by it
+        random_marches(rng, med, round % 4 != 3, in, m, &s);
         // The ray light: through lane 0's step point, near lane 0's camera ray or anywhere;
         // sometimes with a NaN start or no length.
         const int kind = int(rng() % 8);
