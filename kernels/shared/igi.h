@@ -294,7 +294,8 @@ typedef struct TsEmitterBox {
 
 TS_INLINE TsEmitterBox ts_igi_emitter_box(const TsSceneView* sv, uint i) {
     TS_GLOBAL const float* L = sv->lights + i * TS_LIGHT_FLOATS;
-    float3 p0 = ts_f3_load(L + TS_LIGHT_P0), p1 = p0 + ts_f3_load(L + TS_LIGHT_E1), p2 = p0 + ts_f3_load(L + TS_LIGHT_E2);
+    float3 p0 = ts_f3_load(L + TS_LIGHT_P0);
+    float3 p1 = p0 + ts_f3_load(L + TS_LIGHT_E1), p2 = p0 + ts_f3_load(L + TS_LIGHT_E2);
     TsEmitterBox b;
     b.lo = fmin(p0, fmin(p1, p2));
     b.hi = fmax(p0, fmax(p1, p2));
@@ -702,8 +703,8 @@ TS_INLINE int ts_igi_march_vrl_point(const TsMedium* med, const TsIgiMarch* m, f
          * within TS_IGI_EQUIANGULAR_REACH steps of the camera ray's draws its distance;
          * farther ones light the segment smoothly and keep the step's own point, eq = 1. */
         float eq = 1.0f;
-        TsLineSampler ls =
-            ts_line_setup(m->ray.org, m->ray.dir, m->t0, m->t1, ts_f3_load(vrl + TS_VRL_START), ts_f3_load(vrl + TS_VRL_DIR));
+        float3 start = ts_f3_load(vrl + TS_VRL_START), omega = ts_f3_load(vrl + TS_VRL_DIR);
+        TsLineSampler ls = ts_line_setup(m->ray.org, m->ray.dir, m->t0, m->t1, start, omega);
         if (ls.h < TS_IGI_EQUIANGULAR_REACH * m->step) {
             ls = ts_line_bounds(ls, m->t0, m->t1);
             t = ts_line_sample(&ls, m->t0, m->t1, (t - m->t0) / len);

@@ -48,6 +48,36 @@ std::vector<float> vpl_at(float3 y, float3 n, bool medium) {
     return v;
 }
 
+// The lanes' answer (`lanes`, and s's weights, tints and shadow rays) against the one-lane
+// link one_lane(l, &shadow, &w, &tint) of every lane of `in`, bit for bit. Returns the
+// lanes that link; adds to the counts.
+template <class OneLane>
+uint32_t expect_lanes_are(const ts::TsMarchStep& s, uint32_t in, uint32_t lanes, OneLane one_lane, int round,
+                          int* linked, int* unlinked) {
+    EXPECT_EQ(lanes & ~in, 0u);
+    uint32_t ones = 0;
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        if (!(in >> l & 1u)) continue;
+        ts::TsRay shadow{};
+        float w = 0.0f;
+        float3 tint = make_float3(0.0f, 0.0f, 0.0f);
+        const bool one = one_lane(l, &shadow, &w, &tint);
+        EXPECT_EQ((lanes >> l & 1u) != 0, one) << "round " << round << " lane " << l;
+        if (!one || !(lanes >> l & 1u)) {
+            *unlinked += !one;
+            continue;
+        }
+        ++*linked;
+        ones |= 1u << l;
+        EXPECT_TRUE(same_bits(s.w[l], w)) << "round " << round << " lane " << l << ": " << s.w[l] << " " << w;
+        EXPECT_TRUE(same_bits(s.tint[l], tint)) << "round " << round << " lane " << l;
+        EXPECT_TRUE(same_bits(s.shadow[l].org, shadow.org) && same_bits(s.shadow[l].dir, shadow.dir) &&
+                    same_bits(s.shadow[l].tmin, shadow.tmin) && same_bits(s.shadow[l].tmax, shadow.tmax))
+            << "round " << round << " lane " << l;
+    }
+    return ones;
+}
+
 // 16 marches with random cameras and steps, as the march has them at a step; the lanes
 // outside `in` hold NaNs and no step, which the lanes' functions must not read.
 void random_marches(std::mt19937& rng, const ts::TsMedium& med, bool equiangular, uint32_t in, ts::TsIgiMarch* m,
@@ -99,28 +129,15 @@ TEST(IgiMarch16, VplLinksEqualTheOneLaneLinkBitForBit) {
         if (kind == 4) y.y = rng() % 2 ? std::nanf("") : INFINITY;
         const std::vector<float> vpl = vpl_at(y, unit(rng), rng() % 3 == 0);
         const uint32_t lanes = ts::ts_igi_march_vpl_links16(&f, &med, m, in, vpl.data(), &s);
-        EXPECT_EQ(lanes & ~in, 0u);
-        for (int l = 0; l < TS_PACKET_LANES; ++l) {
-            if (!(in >> l & 1u)) continue;
-            ts::TsRay shadow{};
-            float w = 0.0f;
-            float3 tint = make_float3(0.0f, 0.0f, 0.0f);
-            const bool one = ts::ts_igi_march_vpl_link(&f, &med, &m[l], s.t[l], vpl.data(), &shadow, &w, &tint) != 0;
-            ASSERT_EQ((lanes >> l & 1u) != 0, one) << "round " << round << " lane " << l;
-            if (!one) {
-                ++unlinked;
-                continue;
-            }
-            ++linked;
-            float b = 0.0f, eq;
-            ts::ts_igi_march_vpl_clamp(&f, vpl.data(), &b);
-            near_points += ts::ts_igi_march_toward(&m[l], y, 1.0f / std::sqrt(b), s.t[l], &eq) != s.t[l];
-            EXPECT_TRUE(same_bits(s.w[l], w)) << "round " << round << " lane " << l << ": " << s.w[l] << " " << w;
-            EXPECT_TRUE(same_bits(s.tint[l], tint)) << "round " << round << " lane " << l;
-            EXPECT_TRUE(same_bits(s.shadow[l].org, shadow.org) && same_bits(s.shadow[l].dir, shadow.dir) &&
-                        same_bits(s.shadow[l].tmin, shadow.tmin) && same_bits(s.shadow[l].tmax, shadow.tmax))
-                << "round " << round << " lane " << l;
-        }
+        const auto one_lane = [&](int l, ts::TsRay* shadow, float* w, float3* tint) {
+            return ts::ts_igi_march_vpl_link(&f, &med, &m[l], s.t[l], vpl.data(), shadow, w, tint) != 0;
+        };
+        const uint32_t ones = expect_lanes_are(s, in, lanes, one_lane, round, &linked, &unlinked);
+        float b = 0.0f, eq;
+        ts::ts_igi_march_vpl_clamp(&f, vpl.data(), &b);
+        for (int l = 0; l < TS_PACKET_LANES; ++l)
+            if (ones >> l & 1u)
+                near_points += ts::ts_igi_march_toward(&m[l], y, 1.0f / std::sqrt(b), s.t[l], &eq) != s.t[l];
     }
     EXPECT_GT(linked, 10000);  // both answers, and equiangular points, were seen many times
     EXPECT_GT(unlinked, 10000);
@@ -159,26 +176,11 @@ TEST(IgiMarch16, RayLightLinksEqualTheOneLaneLinkBitForBit) {
         const uint32_t j = uint32_t(rng() % 1000);
         const float stride = float(1 + rng() % 64);
         const uint32_t lanes = ts::ts_igi_march_vrl_links16(&f, &med, m, in, j, stride, vrl.data(), &s);
-        EXPECT_EQ(lanes & ~in, 0u);
-        for (int l = 0; l < TS_PACKET_LANES; ++l) {
-            if (!(in >> l & 1u)) continue;
-            ts::TsRay shadow{};
-            float w = 0.0f;
-            float3 tint = make_float3(0.0f, 0.0f, 0.0f);
-            const bool one = ts::ts_igi_march_vrl_link(&med, &m[l], s.t[l], ts::ts_igi_vrl_u(&f, &m[l], j), stride,
-                                                       vrl.data(), &shadow, &w, &tint) != 0;
-            ASSERT_EQ((lanes >> l & 1u) != 0, one) << "round " << round << " lane " << l;
-            if (!one) {
-                ++unlinked;
-                continue;
-            }
-            ++linked;
-            EXPECT_TRUE(same_bits(s.w[l], w)) << "round " << round << " lane " << l << ": " << s.w[l] << " " << w;
-            EXPECT_TRUE(same_bits(s.tint[l], tint)) << "round " << round << " lane " << l;
-            EXPECT_TRUE(same_bits(s.shadow[l].org, shadow.org) && same_bits(s.shadow[l].dir, shadow.dir) &&
-                        same_bits(s.shadow[l].tmin, shadow.tmin) && same_bits(s.shadow[l].tmax, shadow.tmax))
-                << "round " << round << " lane " << l;
-        }
+        const auto one_lane = [&](int l, ts::TsRay* shadow, float* w, float3* tint) {
+            return ts::ts_igi_march_vrl_link(&med, &m[l], s.t[l], ts::ts_igi_vrl_u(&f, &m[l], j), stride, vrl.data(),
+                                             shadow, w, tint) != 0;
+        };
+        expect_lanes_are(s, in, lanes, one_lane, round, &linked, &unlinked);
     }
     EXPECT_GT(linked, 20000);
     EXPECT_GT(unlinked, 3000);
