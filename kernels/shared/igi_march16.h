@@ -1,11 +1,14 @@
 /* The igi ray march of up to 16 pixels side by side (docs/ray-batches.md §2, §4), for the
  * backends that trace 16-ray packets: the Embree backend
  * (host/backend/embree_media_packets.cpp) and the OpenCL CPU kernels
- * (kernels/igi_packets.h). Each lane makes the calls ts_igi_media_set (shared/igi.h)
- * makes, in the same order; where ts_igi_media_set traces one shadow ray, the lanes of
- * one sample set trace theirs together, since at step i they all meet the same light
- * sample and the same VPL share. So every lane's values equal ts_igi_media_set's bit for
- * bit (tests/backend/media_packets_test.cpp).
+ * (kernels/igi_packets.h). Each lane computes what ts_igi_media_set (shared/igi.h)
+ * computes, through the same functions, in the same order for its own sums; where
+ * ts_igi_media_set traces one shadow ray, the lanes of one sample set trace theirs
+ * together, since at step i they all meet the same light sample and the same VPL share.
+ * The links' branch-free parts (the box test of the phase samples, the VPL and ray-light
+ * weights) run over the lanes in loops GCC vectorises. So every lane's values equal
+ * ts_igi_media_set's bit for bit (tests/backend/media_packets_test.cpp,
+ * tests/kernels/igi_march16_test.cpp).
  *
  * Besides the tracer interface of shared/direct.h, the tracer provides
  *   uint ts_trace_occluded_lanes(const TsTracer*, const TsRay rays[TS_PACKET_LANES],
