@@ -307,30 +307,44 @@ TS_INLINE TsEmitterBox ts_igi_emitter_box(const TsSceneView* sv, uint i) {
  * largest coordinate magnitude of the box and of x, far more than the rounding between
  * the table's p0 + e1 and the mesh's own vertex and that of the slab test (relative to the
  * coordinates and the distance travelled). */
-TS_INLINE float ts_igi_emitter_pad(float mag, float mx) { return 1e-4f * fmax(mx, mag) + 1e-30f; }
+TS_INLINE float ts_igi_emitter_pad(float mag, float mx) { return 1e-4f * (mx > mag ? mx : mag) + 1e-30f; }
+
+/* Whether the ray from x (mx = ts_max_abs3(x)) with inverse direction inv (1/wi per
+ * component) may meet `box` grown by ts_igi_emitter_pad: the slab test, with selects for
+ * fmin and fmax (their values wherever no NaN enters; GCC vectorises selects over the
+ * lanes of ts_igi_may_meet_emitter_lanes, shared/igi_march16.h). A zero component of wi
+ * gives an infinite inverse, and the test still holds: ±inf where x lies outside that
+ * slab (an empty interval), (-inf, inf) inside. A NaN slab distance (0·∞: x on a grown
+ * face with wi parallel to it; or a NaN x or wi) passes: a ray passed needlessly is only
+ * traced, and meets no emitter. */
+TS_INLINE int ts_igi_emitter_box_may(TsEmitterBox box, float3 x, float3 inv, float mx) {
+    float pad = ts_igi_emitter_pad(box.mag, mx);
+    float ax = (box.lo.x - pad - x.x) * inv.x, bx = (box.hi.x + pad - x.x) * inv.x;
+    float ay = (box.lo.y - pad - x.y) * inv.y, by = (box.hi.y + pad - x.y) * inv.y;
+    float az = (box.lo.z - pad - x.z) * inv.z, bz = (box.hi.z + pad - x.z) * inv.z;
+    float nx = ax < bx ? ax : bx, ny = ay < by ? ay : by, nz = az < bz ? az : bz;
+    float fx = ax > bx ? ax : bx, fy = ay > by ? ay : by, fz = az > bz ? az : bz;
+    float t0 = nx > ny ? nx : ny, t1 = fx < fy ? fx : fy;
+    t0 = t0 > nz ? t0 : nz;
+    t0 = t0 > 0.0f ? t0 : 0.0f;
+    t1 = t1 < fz ? t1 : fz;
+    int nan = (ax != ax) | (bx != bx) | (ay != ay) | (by != by) | (az != az) | (bz != bz);
+    return (t0 <= t1) | nan;
+}
 
 /* Whether a ray from x along wi can hit an emitter: false only when it misses the
  * bounding box of every emitter triangle (ts_igi_emitter_box), each grown by
- * ts_igi_emitter_pad; such a ray's closest hit cannot be an emitter, so
+ * ts_igi_emitter_pad (ts_igi_emitter_box_may); such a ray's closest hit cannot be an emitter, so
  * ts_igi_emitter_traced's answer (nothing) needs no trace. Most phase-sampled rays of the
  * ray march miss the lights this way (a small light seen from the medium); the rest are
  * traced as before, so results do not change. The 16-lane march tests its lanes
  * together (ts_igi_may_meet_emitter_lanes, shared/igi_march16.h). */
 TS_INLINE int ts_igi_may_meet_emitter(const TsSceneView* sv, float3 x, float3 wi) {
     if (sv->light_count > TS_IGI_EMITTER_BOXES_MAX) return 1;
-    /* A zero component of wi gives an infinite inverse, and the slab test still holds:
-     * ±inf where x lies outside that slab (an empty interval), (-inf, inf) inside. */
     float3 inv = make_float3(1.0f / wi.x, 1.0f / wi.y, 1.0f / wi.z);
     float mx = ts_max_abs3(x);
-    for (uint i = 0u; i < sv->light_count; ++i) {
-        TsEmitterBox box = ts_igi_emitter_box(sv, i);
-        float pad = ts_igi_emitter_pad(box.mag, mx);
-        float3 grow = make_float3(pad, pad, pad);
-        float3 a = (box.lo - grow - x) * inv, b = (box.hi + grow - x) * inv;
-        float3 near = fmin(a, b), far = fmax(a, b);
-        float t0 = fmax(0.0f, fmax(near.x, fmax(near.y, near.z))), t1 = fmin(far.x, fmin(far.y, far.z));
-        if (t0 <= t1) return 1;
-    }
+    for (uint i = 0u; i < sv->light_count; ++i)
+        if (ts_igi_emitter_box_may(ts_igi_emitter_box(sv, i), x, inv, mx)) return 1;
     return 0;
 }
 
@@ -720,28 +734,18 @@ TS_INLINE int ts_igi_march_vrl_point(const TsMedium* med, const TsIgiMarch* m, f
 /* The ray light's side of the link from point x of a camera ray of direction dir to the ray
  * light from `start` along unit `omega` over [0, vlen] (scene units), for uniform u: its
  * point *y = start + omega·τ, τ by equiangular sampling toward x (ts_equiangular_*, Kulla
- * and Fajardo 2012; D floored as ts_equiangular_setup floors it), the weight
- * w = e · phase(dir, ω_i) / (d² · pdf(τ)) (returned), *tint = camera · σs · Tr(τ) · stride,
- * and *ok: whether there is a link (a usable density, d > 0, and a finite w > 0; where
- * *ok is 0 the rest is not used). Without branches, its arctangents, tangent and
- * exponential from shared/math_lanes.h, so that the lanes' loop vectorises: these were
- * most of a foggy frame's ray-light links one lane at a time. Its min and max are selects,
- * fmin and fmax wherever no NaN enters. */
+ * and Fajardo 2012), the weight w = e · phase(dir, ω_i) / (d² · pdf(τ)) (returned),
+ * *tint = camera · σs · Tr(τ) · stride, and *ok: whether there is a link (a usable
+ * density, d > 0, and a finite w > 0; where *ok is 0 the rest is not used). Without
+ * branches, its arctangents and tangent (in ts_equiangular_*) and exponential from
+ * shared/math_lanes.h, so that the lanes' loop vectorises: these were most of a foggy
+ * frame's ray-light links one lane at a time. */
 TS_INLINE float ts_igi_march_vrl_weight(const TsMedium* med, float3 x, float3 dir, float3 start, float3 omega,
                                         float vlen, float u, float3 camera, float stride, float3* y, float3* tint,
                                         int* ok) {
-    float3 op = x - start;
-    float delta = dot(op, omega);
-    float3 perp = op - omega * delta;
-    float lp = length(perp), ad = fabs(delta);
-    float floor_d = 1e-5f * (vlen > ad ? vlen : ad) + 1e-30f;
-    float D = lp > floor_d ? lp : floor_d;
-    float th_a = ts_lanes_atan((0.0f - delta) / D), th_b = ts_lanes_atan((vlen - delta) / D);
-    float tau = delta + D * ts_lanes_tan(th_a + u * (th_b - th_a));
-    tau = tau > 0.0f ? tau : 0.0f; /* against rounding of the tangent */
-    tau = tau < vlen ? tau : vlen;
-    float xt = tau - delta;
-    float pv = D / ((th_b - th_a) * (D * D + xt * xt));
+    TsEquiangular e = ts_equiangular_angles(ts_equiangular_setup(start, omega, vlen, x, 0.0f), 0.0f, vlen);
+    float tau = ts_equiangular_sample(&e, 0.0f, vlen, u);
+    float pv = ts_equiangular_pdf(&e, tau);
     *y = start + omega * tau;
     float3 d = *y - x;
     float dist2 = dot(d, d);

@@ -41,42 +41,27 @@ TS_INLINE uint ts_march16_visible(const TsTracer* tracer, const TsMarchStep* s, 
 
 /* ts_igi_may_meet_emitter for the rays of the lanes in `in`, lane l's from x[l] along
  * wi[l] (other lanes' entries are not read): the bit mask of those that may meet an
- * emitter. Each emitter's box is computed once for all the lanes, and the slab test runs
- * over the lanes side by side with selects instead of fmin and fmax, so that GCC can
- * vectorise it: for numbers the two agree, and so do the two tests. A lane whose slab
- * distances hold a NaN (0·∞: x on a slab's face with wi parallel to it; or a NaN x or wi),
- * where the selects and fmin/fmax could part, passes: a ray passed needlessly is only
- * traced, and meets no emitter, so images do not change. Most phase-sampled rays of a
- * foggy frame miss the lights, and this test was 7% of its time one lane at a time. */
+ * emitter. Each emitter's box is computed once for all the lanes, and its test
+ * (ts_igi_emitter_box_may, selects only) runs over the lanes in a loop GCC vectorises. Most
+ * phase-sampled rays of a foggy frame miss the lights, and this test was 7% of its time
+ * one lane at a time. */
 TS_INLINE uint ts_igi_may_meet_emitter_lanes(const TsSceneView* sv, const float3* x, const float3* wi, uint in) {
     if (in == 0u || sv->light_count > TS_IGI_EMITTER_BOXES_MAX) return in;
-    float ox[TS_PACKET_LANES], oy[TS_PACKET_LANES], oz[TS_PACKET_LANES];
-    float ix[TS_PACKET_LANES], iy[TS_PACKET_LANES], iz[TS_PACKET_LANES], mx[TS_PACKET_LANES];
+    float o[3][TS_PACKET_LANES], inv[3][TS_PACKET_LANES], mx[TS_PACKET_LANES];
     int may[TS_PACKET_LANES];
     for (int l = 0; l < TS_PACKET_LANES; ++l) {
         int on = (int)(in >> l & 1u);
-        float3 o = on ? x[l] : make_float3(0.0f, 0.0f, 0.0f), w = on ? wi[l] : make_float3(1.0f, 1.0f, 1.0f);
-        ox[l] = o.x, oy[l] = o.y, oz[l] = o.z;
-        ix[l] = 1.0f / w.x, iy[l] = 1.0f / w.y, iz[l] = 1.0f / w.z;
-        mx[l] = ts_max_abs3(o);
+        float3 ol = on ? x[l] : make_float3(0.0f, 0.0f, 0.0f), w = on ? wi[l] : make_float3(1.0f, 1.0f, 1.0f);
+        o[0][l] = ol.x, o[1][l] = ol.y, o[2][l] = ol.z;
+        inv[0][l] = 1.0f / w.x, inv[1][l] = 1.0f / w.y, inv[2][l] = 1.0f / w.z;
+        mx[l] = ts_max_abs3(ol);
         may[l] = 0;
     }
     for (uint i = 0u; i < sv->light_count; ++i) {
         TsEmitterBox box = ts_igi_emitter_box(sv, i);
-        for (int l = 0; l < TS_PACKET_LANES; ++l) {
-            float pad = 1e-4f * (mx[l] > box.mag ? mx[l] : box.mag) + 1e-30f; /* ts_igi_emitter_pad */
-            float ax = (box.lo.x - pad - ox[l]) * ix[l], bx = (box.hi.x + pad - ox[l]) * ix[l];
-            float ay = (box.lo.y - pad - oy[l]) * iy[l], by = (box.hi.y + pad - oy[l]) * iy[l];
-            float az = (box.lo.z - pad - oz[l]) * iz[l], bz = (box.hi.z + pad - oz[l]) * iz[l];
-            float nx = ax < bx ? ax : bx, ny = ay < by ? ay : by, nz = az < bz ? az : bz;
-            float fx = ax > bx ? ax : bx, fy = ay > by ? ay : by, fz = az > bz ? az : bz;
-            float t0 = nx > ny ? nx : ny, t1 = fx < fy ? fx : fy;
-            t0 = t0 > nz ? t0 : nz;
-            t0 = t0 > 0.0f ? t0 : 0.0f;
-            t1 = t1 < fz ? t1 : fz;
-            int nan = (ax != ax) | (bx != bx) | (ay != ay) | (by != by) | (az != az) | (bz != bz);
-            may[l] |= (t0 <= t1) | nan;
-        }
+        for (int l = 0; l < TS_PACKET_LANES; ++l)
+            may[l] |= ts_igi_emitter_box_may(box, make_float3(o[0][l], o[1][l], o[2][l]),
+                                             make_float3(inv[0][l], inv[1][l], inv[2][l]), mx[l]);
     }
     uint mask = 0u;
     for (int l = 0; l < TS_PACKET_LANES; ++l) mask |= (uint)may[l] << l;

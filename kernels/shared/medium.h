@@ -5,6 +5,7 @@
 #include "shared/compat.h"
 #include "shared/geometry.h"
 #include "shared/layout_scene.h"
+#include "shared/math_lanes.h"
 
 TS_NAMESPACE_BEGIN
 
@@ -104,22 +105,31 @@ TS_INLINE TsEquiangular ts_equiangular_setup(float3 org, float3 dir, float b, fl
     float3 op = p - org;
     e.delta = dot(op, dir);
     float3 perp = op - dir * e.delta;
-    e.D = fmax(fmax(length(perp), d_min), 1e-5f * fmax(fabs(b), fabs(e.delta)) + 1e-30f);
+    float lp = length(perp), fb = fabs(b), fd = fabs(e.delta);
+    float floor_d = 1e-5f * (fb > fd ? fb : fd) + 1e-30f;
+    float D = lp > d_min ? lp : d_min;
+    e.D = D > floor_d ? D : floor_d;
     e.theta_a = e.theta_b = 0.0f;
     return e;
 }
 
-/* The angles of the segment [a, b]'s ends seen from p (after ts_equiangular_setup). */
+/* The angles of the segment [a, b]'s ends seen from p (after ts_equiangular_setup):
+ * atan((a - delta) / D), D > 0 (floored), with the branch-free arctangent of
+ * shared/math_lanes.h, so that the 16-lane ray march vectorises the ray lights' draws
+ * (shared/igi_march16.h). */
 TS_INLINE TsEquiangular ts_equiangular_angles(TsEquiangular e, float a, float b) {
-    e.theta_a = atan2(a - e.delta, e.D);
-    e.theta_b = atan2(b - e.delta, e.D);
+    e.theta_a = ts_lanes_atan((a - e.delta) / e.D);
+    e.theta_b = ts_lanes_atan((b - e.delta) / e.D);
     return e;
 }
 
-/* The distance for uniform u in [0, 1), clamped to [a, b] against rounding of tan. */
+/* The distance for uniform u in [0, 1), clamped to [a, b] against rounding of the tangent
+ * (shared/math_lanes.h's, as the angles). Without branches: the selects give fmin and
+ * fmax's values, a NaN t too (it gives a). */
 TS_INLINE float ts_equiangular_sample(const TsEquiangular* e, float a, float b, float u) {
-    float t = e->delta + e->D * tan(e->theta_a + u * (e->theta_b - e->theta_a));
-    return fmin(fmax(t, a), b);
+    float t = e->delta + e->D * ts_lanes_tan(e->theta_a + u * (e->theta_b - e->theta_a));
+    t = t > a ? t : a;
+    return t < b ? t : b;
 }
 
 /* The density of ts_equiangular_sample at t (per scene unit). */
