@@ -4,6 +4,7 @@
 // sums must agree.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include <gtest/gtest.h>
@@ -23,6 +24,28 @@ struct KernelResults {
 
 // 0 visible, 1 facing (no ray), 2 occluded (the code is then a triangle on the ray).
 int pair_class(uint32_t hit) { return hit == TS_IC_PAIR_VISIBLE ? 0 : hit == TS_IC_PAIR_FACING ? 1 : 2; }
+
+// Pairs that two backends class apart: all of them, and those not on a knife edge
+// (IcTestFrame::pair_faces_on_edge, pair_ray_only_grazes), which no correct traversal
+// classes apart. A CPU device (PoCL) builds the rays from the same floats as C++ and
+// must class every pair alike; a GPU's built-ins may tip a knife-edge pair.
+struct ClassesApart {
+    size_t all = 0, inside = 0;
+    void add(const test::IcTestFrame& f, float b, uint32_t record, uint32_t vpl, uint32_t h1, uint32_t h2) {
+        const int c1 = pair_class(h1), c2 = pair_class(h2);
+        if (c1 == c2) return;
+        ++all;
+        const bool edge = c1 == 1 || c2 == 1 ? f.pair_faces_on_edge(record, vpl) : f.pair_ray_only_grazes(b, record, vpl);
+        inside += !edge;
+    }
+    void expect(const char* what) const {
+        EXPECT_EQ(inside, 0u) << what << ": pairs classed apart off a knife edge";
+        if (select_cl_device("").type == "CPU") {
+            EXPECT_EQ(all, 0u) << what;
+        }
+        std::printf("  %s: %zu pairs classed apart, %zu of them off a knife edge\n", what, all, inside);
+    }
+};
 
 KernelResults run_kernels(Backend& backend, const std::vector<IcRecord>& records, const std::vector<float>& vpls,
                           float b, const std::vector<uint32_t>& pairs, const std::vector<uint32_t>& rows) {
@@ -62,29 +85,35 @@ TEST(IcGatherKernels, OpenClAndEmbreeAgreeOnPairsAndSumsOfAnAnimatedFrame) {
         ic_set_record_inputs(*gpu, records, vpls);
         ic_trace_pairs(*gpu, b, pairs, g);
         ASSERT_EQ(g.size(), e.hits.size());
-        size_t differ = 0, off_ray = 0;
+        ClassesApart apart;
+        size_t off_ray = 0;
         for (size_t k = 0; k < g.size(); ++k) {
-            differ += pair_class(g[k]) != pair_class(e.hits[k]);
+            apart.add(frame, b, pairs[2 * k], pairs[2 * k + 1], g[k], e.hits[k]);
             off_ray += pair_class(g[k]) == 2 && !frame.pair_ray_meets(b, pairs[2 * k], pairs[2 * k + 1], g[k]);
         }
-        EXPECT_EQ(differ, 0u);
+        apart.expect("GPU variant against Embree");
         EXPECT_EQ(off_ray, 0u);
     }
 
     // The same shadow rays (the same shared code builds them) through two traversals,
     // Embree's and ours (kernels/bvh_traverse.h): both watertight, they could differ only
     // for a ray through a shared edge or vertex, where each picks one of the triangles;
-    // none of this frame's pairs does, so they are visible, facing or occluded alike. An
+    // none of this frame's pairs does, so on a CPU device they are visible, facing or
+    // occluded alike (on a GPU, ClassesApart above). The knife-edge tests are selective:
+    // few occluded or visible pairs are knife edges, so a traversal that lost or added
+    // triangles would be caught. (Facing pairs are often coplanar, each on a wall: those
+    // are knife edges, and their G is ~0 either way.) An
     // occluded pair's code is the triangle its any-hit query found first, which depends on
     // the traversal: each backend's must lie on the pair's shadow ray.
-    size_t visible = 0, facing = 0, occluded = 0, differ = 0, off_ray = 0;
+    size_t visible = 0, facing = 0, occluded = 0, off_ray = 0;
+    ClassesApart apart;
     ASSERT_EQ(c.hits.size(), e.hits.size());
     for (size_t k = 0; k < e.hits.size(); ++k) {
         visible += e.hits[k] == TS_IC_PAIR_VISIBLE;
         facing += e.hits[k] == TS_IC_PAIR_FACING;
         const bool blocked = pair_class(e.hits[k]) == 2;
         occluded += blocked;
-        differ += pair_class(c.hits[k]) != pair_class(e.hits[k]);
+        apart.add(frame, b, pairs[2 * k], pairs[2 * k + 1], c.hits[k], e.hits[k]);
         if (blocked)
             for (const uint32_t hit : {e.hits[k], c.hits[k]})
                 off_ray += !frame.pair_ray_meets(b, pairs[2 * k], pairs[2 * k + 1], hit);
@@ -92,7 +121,17 @@ TEST(IcGatherKernels, OpenClAndEmbreeAgreeOnPairsAndSumsOfAnAnimatedFrame) {
     EXPECT_GT(visible, e.hits.size() / 10);  // all three kinds occur in the frame
     EXPECT_GT(facing, e.hits.size() / 10);
     EXPECT_GT(occluded, e.hits.size() / 100);
-    EXPECT_EQ(differ, 0u);
+    size_t grazing = 0, facing_edge = 0;
+    for (size_t k = 0; k < e.hits.size(); ++k) {
+        const int cls = pair_class(e.hits[k]);
+        grazing += cls == 2 && frame.pair_ray_only_grazes(b, pairs[2 * k], pairs[2 * k + 1]);
+        facing_edge += cls == 0 && frame.pair_faces_on_edge(pairs[2 * k], pairs[2 * k + 1]);
+    }
+    EXPECT_LT(grazing, occluded / 100) << "occluded pairs that only graze a triangle";
+    EXPECT_LT(facing_edge, visible / 100) << "visible pairs with a cosine near 0";
+    std::printf("  knife edges: %zu of %zu occluded pairs, %zu of %zu visible (%zu pairs)\n", grazing, occluded,
+                facing_edge, visible, e.hits.size());
+    apart.expect("OpenCL against Embree");
     EXPECT_EQ(off_ray, 0u);
 
     // The same rows, VPLs and records: both backends sum the same terms in the same order

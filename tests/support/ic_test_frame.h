@@ -2,6 +2,7 @@
 // Cornell box (the cube mid-way across the floor), 40², 64 light paths, the cache built on
 // Embree, and the visibility of every record–VPL pair as the Embree pair kernel finds it.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -67,7 +68,8 @@ struct IcTestFrame {
     /// Whether triangle `prim` meets the shadow ray of the pair (record, vpl) with bound b
     /// (the ray ts_ic_pair_ray builds): Möller–Trumbore in double, barycentrics and t
     /// within `slack` (relative) of their ranges, so that a watertight hit on a shared
-    /// edge counts for either triangle. False for a `prim` that is no triangle.
+    /// edge counts for either triangle; a negative `slack` asks for a hit that far inside
+    /// them. False for a `prim` that is no triangle.
     bool pair_ray_meets(float b, uint32_t record, uint32_t vpl, uint32_t prim, double slack = 1e-5) const {
         if (prim >= buffers.triangle_count) return false;
         const ts::TsSurface s = ic_record_surface(records()[record]);
@@ -90,6 +92,40 @@ struct IcTestFrame {
         const double u = dot(sv, p) / det, v = dot(d, q) / det, tt = dot(e2, q) / det;
         return u >= -slack && v >= -slack && u + v <= 1.0 + slack && tt >= ray.tmin * (1.0 - slack) &&
                tt <= ray.tmax * (1.0 + slack);
+    }
+
+    /// Knife-edge pairs, which two correct backends may class apart when their rays differ
+    /// by a few ulps (a GPU's built-ins, such as dot, round apart from C++); a traversal
+    /// that drops or adds a triangle the ray crosses well inside meets neither test.
+    /// pair_faces_on_edge: a facing cosine of the pair (record, vpl) within `slack` of 0
+    /// and not 0 (in double from the shared layout), for facing against visible or
+    /// occluded. A float cosine's products round by ~6e-8 each, so two devices' cosines
+    /// differ by a few 1e-7: 1e-6 covers that. An exact 0 (a pair on one axis-aligned
+    /// wall) is 0 on every device.
+    bool pair_faces_on_edge(uint32_t record, uint32_t vpl, double slack = 1e-6) const {
+        const ts::TsSurface s = ic_record_surface(records()[record]);
+        const float* v = &vpls()[size_t(TS_VPL_FLOATS) * vpl];
+        const double w[3] = {double(v[TS_VPL_POSITION]) - s.position.x, double(v[TS_VPL_POSITION + 1]) - s.position.y,
+                             double(v[TS_VPL_POSITION + 2]) - s.position.z};
+        const double len = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        auto cosine = [&](double x, double y, double z) { return (x * w[0] + y * w[1] + z * w[2]) / len; };
+        for (double c : {cosine(s.shading_normal.x, s.shading_normal.y, s.shading_normal.z),
+                         cosine(s.geo_normal.x, s.geo_normal.y, s.geo_normal.z),
+                         cosine(v[TS_VPL_NORMAL], v[TS_VPL_NORMAL + 1], v[TS_VPL_NORMAL + 2])})
+            if (c != 0.0 && std::fabs(c) < slack) return true;
+        return false;
+    }
+
+    /// pair_ray_only_grazes: no triangle meets the pair's shadow ray with barycentrics and
+    /// t `slack` inside their ranges, and some triangle meets it within `slack` outside
+    /// them (pair_ray_meets), for visible against occluded.
+    bool pair_ray_only_grazes(float b, uint32_t record, uint32_t vpl, double slack = 1e-5) const {
+        bool grazed = false;
+        for (uint32_t prim = 0; prim < buffers.triangle_count; ++prim) {
+            if (pair_ray_meets(b, record, vpl, prim, -slack)) return false;
+            grazed = grazed || pair_ray_meets(b, record, vpl, prim, slack);
+        }
+        return grazed;
     }
 };
 
