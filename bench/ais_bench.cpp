@@ -82,6 +82,56 @@ int main(int argc, char** argv) {
     // Per backend and column, the values of every scene that has one: the Average rows
     // (as in the seed, the mean over the scenes with a value, e.g. PM over the fog scenes).
     std::map<std::string, std::map<std::string, std::vector<double>>> fps_of, speedup_of;
+    // The tables with their Average rows, written after every scene so that a run stopped
+    // early (a lent GPU's time limit) leaves the scenes it finished.
+    auto write_tables = [&]() {
+        // Average rows, per backend: columns in table order, "-" where no scene has a value.
+        auto average_row = [&](const std::string& bname, auto& values, const std::vector<std::string>& keys,
+                               nlohmann::json& out) {
+            std::string row = "| Average | " + bname;
+            for (const std::string& k : keys) {
+                const std::vector<double>& v = values[bname][k];
+                if (v.empty()) {
+                    row += " | -";
+                    continue;
+                }
+                double sum = 0;
+                for (double x : v) sum += x;
+                out[k] = sum / double(v.size());
+                row += " | " + num(sum / double(v.size()));
+            }
+            return row + " |\n";
+        };
+        std::string a51 = t51, a52 = t52;
+        for (const std::string bname : {"opencl", "embree"}) {
+            a51 += average_row(bname, fps_of,
+                               {"ID A", "ID A-MAX", "SS A", "SS A-MAX", "PM A", "PM A-MAX", "FULL A", "FULL A-MAX",
+                                "FULL IGI", "FULL IGI full-rate"},
+                               j["average"]["fps"][bname]);
+            a52 += average_row(bname, speedup_of,
+                               {"ID A vs ID A-MAX", "SS A vs SS A-MAX", "PM A vs PM A-MAX", "FULL A vs FULL A-MAX",
+                                "FULL A vs FULL IGI", "FULL A vs FULL IGI full-rate"},
+                               j["average"]["speedup"][bname]);
+        }
+        fs::create_directories(out_dir);
+        std::ofstream(fs::path(out_dir) / "ais_bench.json") << j.dump(2) << "\n";
+        std::ofstream(fs::path(out_dir) / "ais_bench.md")
+            << "# AIS vs A-MAX vs IGI, " << size << "x" << size << ", median of " << frames << " frames\n\n"
+            << "Machine: " << bench::machine_description() << ". All at tile 3x3, 32 VPL paths per set, 4 light samples per pixel, "
+               "8 march steps; ID/SS/PM render that component alone, FULL all the scene calls for. FULL IGI "
+               "is IGI at those same settings, i.e. the base pass AIS refines: A costs more than it by "
+               "construction, and its error is lower. FULL IGI full-rate is IGI without interleaving taking the "
+               "samples of all 9 sets at every pixel (tile 1, 288 paths, 36 light samples, 72 march steps): the "
+               "seed's IGI (its IGI runs slower than its A-MAX, which only a non-interleaved IGI can), whose "
+               "error is at most A's. The fair comparison, against the cheapest IGI configuration that reaches "
+               "A's error, is bench/results/accuracy/report.md, Tables 2 and 2b.\n\n"
+            << "## Frames per second (layout of the seed's Table 5.1)\n\n" << a51
+            << "\n## Speedups (layout of the seed's Table 5.2)\n\n" << a52
+            << "\n## The adaptive pass alone (FULL; guidance, schedule, extra sets)\n\n"
+               "The part of the frame where A and A-MAX differ: both share the base pass, the filter and the "
+               "composite. Extra sets per pixel: (pixel, set) evaluations over the image's pixels.\n\n"
+            << t_adapt;
+    };
     for (const std::string& path : scenes) {
         Scene scene = load_scene(path, make_data_path(std::nullopt));
         SceneBuffers b = make_scene_buffers(scene);
@@ -139,51 +189,7 @@ int main(int argc, char** argv) {
                          scene.name.c_str(), bname.c_str(), f["FULL A"], f["FULL A-MAX"], f["FULL IGI"],
                          f["FULL IGI full-rate"]);
         }
+        write_tables();
     }
-    // Average rows, per backend: columns in table order, "-" where no scene has a value.
-    auto average_row = [&](const std::string& bname, auto& values, const std::vector<std::string>& keys,
-                           nlohmann::json& out) {
-        std::string row = "| Average | " + bname;
-        for (const std::string& k : keys) {
-            const std::vector<double>& v = values[bname][k];
-            if (v.empty()) {
-                row += " | -";
-                continue;
-            }
-            double sum = 0;
-            for (double x : v) sum += x;
-            out[k] = sum / double(v.size());
-            row += " | " + num(sum / double(v.size()));
-        }
-        return row + " |\n";
-    };
-    for (const std::string bname : {"opencl", "embree"}) {
-        t51 += average_row(bname, fps_of,
-                           {"ID A", "ID A-MAX", "SS A", "SS A-MAX", "PM A", "PM A-MAX", "FULL A", "FULL A-MAX",
-                            "FULL IGI", "FULL IGI full-rate"},
-                           j["average"]["fps"][bname]);
-        t52 += average_row(bname, speedup_of,
-                           {"ID A vs ID A-MAX", "SS A vs SS A-MAX", "PM A vs PM A-MAX", "FULL A vs FULL A-MAX",
-                            "FULL A vs FULL IGI", "FULL A vs FULL IGI full-rate"},
-                           j["average"]["speedup"][bname]);
-    }
-    fs::create_directories(out_dir);
-    std::ofstream(fs::path(out_dir) / "ais_bench.json") << j.dump(2) << "\n";
-    std::ofstream(fs::path(out_dir) / "ais_bench.md")
-        << "# AIS vs A-MAX vs IGI, " << size << "x" << size << ", median of " << frames << " frames\n\n"
-        << "Machine: " << bench::machine_description() << ". All at tile 3x3, 32 VPL paths per set, 4 light samples per pixel, "
-           "8 march steps; ID/SS/PM render that component alone, FULL all the scene calls for. FULL IGI "
-           "is IGI at those same settings, i.e. the base pass AIS refines: A costs more than it by "
-           "construction, and its error is lower. FULL IGI full-rate is IGI without interleaving taking the "
-           "samples of all 9 sets at every pixel (tile 1, 288 paths, 36 light samples, 72 march steps): the "
-           "seed's IGI (its IGI runs slower than its A-MAX, which only a non-interleaved IGI can), whose "
-           "error is at most A's. The fair comparison, against the cheapest IGI configuration that reaches "
-           "A's error, is bench/results/accuracy/report.md, Tables 2 and 2b.\n\n"
-        << "## Frames per second (layout of the seed's Table 5.1)\n\n" << t51
-        << "\n## Speedups (layout of the seed's Table 5.2)\n\n" << t52
-        << "\n## The adaptive pass alone (FULL; guidance, schedule, extra sets)\n\n"
-           "The part of the frame where A and A-MAX differ: both share the base pass, the filter and the "
-           "composite. Extra sets per pixel: (pixel, set) evaluations over the image's pixels.\n\n"
-        << t_adapt;
     return 0;
 }
