@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -93,10 +95,32 @@ void store_lane(const ts::TsClampScreenLanes& lanes, int i, std::vector<float>& 
     for (int a = 0; a < 3; ++a) residual[3 * p + a] = lanes.sum[a][i] * 0.31830989f; /* 1/π */
 }
 
+// The edge pixels of row y (edge[x] = 1: seen directly, and no grid neighbour fills them)
+// gather themselves. Lane i of a gather at x0 is pixel x0 + 2i, and a lane's sums do not
+// depend on the other lanes (ts_clamp_lanes_gather), so the row's edges of one column
+// parity share gathers, 16 pixel positions apart at most, as the even grid's do.
+void gather_edges(ts::TsClampScreenLanes& lanes, const std::vector<uint8_t>& edge, int y, const TsFrame& frame,
+                  float plane, float b, const ts::TsMedium* med, const GeometryBuffer& g,
+                  const ts::TsClampScreenPlanes* P, std::vector<float>& residual) {
+    const int w = g.width;
+    for (int parity = 0; parity < 2; ++parity)
+        for (int x0 = parity; x0 < w; x0 += 2 * TS_CLAMP_LANES) {
+            int any = 0;
+            for (int i = 0; i < TS_CLAMP_LANES && x0 + 2 * i < w; ++i) any |= edge[x0 + 2 * i];
+            if (!any) continue;
+            clear_lanes(lanes);
+            for (int i = 0; i < TS_CLAMP_LANES && x0 + 2 * i < w; ++i)
+                if (edge[x0 + 2 * i]) set_lane(lanes, i, frame, plane, b, g, size_t(y) * w + x0 + 2 * i);
+            ts::ts_clamp_lanes_gather(&lanes, P, x0, y, b, med);
+            for (int i = 0; i < TS_CLAMP_LANES; ++i)
+                if (lanes.on[i]) store_lane(lanes, i, residual, size_t(y) * w + x0 + 2 * i);
+        }
+}
+
 // E_res from the planes into `residual`: the gather at every second pixel in x and y (the
 // even grid), 16 pixels of a row at a time, then every other pixel seen directly from its
-// grid neighbours (ts_clamp_screen_fill), or its own gather at an edge. The grid's pixels
-// are only read while the others are written, so both loops run in parallel.
+// grid neighbours (ts_clamp_screen_fill), or at an edge its own gather (gather_edges). The
+// grid's pixels are only read while the others are written, so both loops run in parallel.
 void gather(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampScreenInputs& in,
             const ts::TsClampScreenPlanes& planes, std::vector<float>& residual) {
     const GeometryBuffer& g = *in.g;
@@ -125,21 +149,21 @@ void gather(const TsFrame& frame, float b, const ts::TsMedium* med, const ClampS
     });
     tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& rows) {
         ts::TsClampScreenLanes lanes;
-        for (int y = rows.begin(); y < rows.end(); ++y)
+        std::vector<uint8_t> edge(w);
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            std::fill(edge.begin(), edge.end(), uint8_t(0));
             for (int x = (y % 2 == 0) ? 1 : 0; x < w; x += (y % 2 == 0) ? 2 : 1) {
                 const size_t p = size_t(y) * w + x;
                 if (!ts::ts_clamp_screen_seen(&v, p)) continue;
                 float3 e;
                 if (ts::ts_clamp_screen_fill(&v, x, y, w, h, residual.data(), in.same_surface.normal_cos,
-                                             in.same_surface.depth_rel, &e)) {
+                                             in.same_surface.depth_rel, &e))
                     ts::ts_f3_store(&residual[3 * p], e);
-                    continue;
-                }
-                clear_lanes(lanes); /* an edge: the pixel gathers itself, as lane 0 */
-                set_lane(lanes, 0, frame, plane, b, g, p);
-                ts::ts_clamp_lanes_gather(&lanes, P, x, y, b, med);
-                store_lane(lanes, 0, residual, p);
+                else
+                    edge[x] = 1;
             }
+            gather_edges(lanes, edge, y, frame, plane, b, med, g, P, residual);
+        }
     });
 }
 
