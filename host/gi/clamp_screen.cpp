@@ -98,7 +98,7 @@ void store_lane(const ts::TsClampScreenLanes& lanes, int i, std::vector<float>& 
 // The edge pixels of row y (edge[x] = 1: seen directly, and no grid neighbour fills them)
 // gather themselves. Lane i of a gather at x0 is pixel x0 + 2i, and a lane's sums do not
 // depend on the other lanes (ts_clamp_lanes_gather), so the row's edges of one column
-// parity share gathers, 16 pixel positions apart at most, as the even grid's do.
+// parity share gathers, up to 16 in 32 columns, as the even grid's pixels do.
 void gather_edges(ts::TsClampScreenLanes& lanes, const std::vector<uint8_t>& edge, int y, const TsFrame& frame,
                   float plane, float b, const ts::TsMedium* med, const GeometryBuffer& g,
                   const ts::TsClampScreenPlanes* P, std::vector<float>& residual) {

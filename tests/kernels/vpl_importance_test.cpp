@@ -1,9 +1,8 @@
 // The VPLs' importance where the kernels run (kernels/shared/vpl_importance.h,
 // vpl_importance_items.h; gi/vpl_importance.h's vpl_view_importance_in_kernels): the same
-// floats as the host's reference bit for bit on PoCL and Embree (double sums), within the
-// built-ins' rounding on a GPU, the float
-// form within its rounding, medium VPLs at 0, and a GPU-variant backend's VPL lists the
-// same as the host's.
+// floats as the host's reference bit for bit on PoCL and Embree (double sums) and within
+// the built-ins' rounding on a GPU, the float form within its rounding, medium VPLs at 0,
+// and a GPU-variant backend's VPL lists the same as the host's.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -73,7 +72,7 @@ TEST_P(VplImportanceKernels, EqualTheHostsImportanceBitForBit) {
             EXPECT_EQ(got, host) << (kind == BackendKind::OpenCL ? "OpenCL" : "Embree");
             continue;
         }
-        // A GPU's built-ins (dot, sqrt's neighbours) round a few ulps apart from C++, and
+        // A GPU's built-ins (dot, normalize) may round a few ulps apart from C++, and
         // each VPL sums 256 positive terms in double: within 1e-5 relative (~20 float
         // operations a term, a few ulps each, ~1e-6; 10x left). A term whose cosine is a
         // knife edge (|cos| < 1e-6) may be in on one side only; it is at most 1e-6 of the
