@@ -107,7 +107,16 @@ void Backend::set_input(KernelInput in, const std::vector<float>& data) {
 
 void Backend::set_input(KernelInput in, const std::vector<uint32_t>& data) {
     if (!input_info(in).is_uint) throw std::logic_error(std::string(input_info(in).name) + " input holds floats");
+    unchanged_[static_cast<int>(in)].reset();
     store_input(in, data);
+}
+
+void Backend::set_input_if_changed(KernelInput in, const std::vector<uint32_t>& data) {
+    std::optional<std::vector<uint32_t>>& last = unchanged_[static_cast<int>(in)];
+    if (last && *last == data) return;
+    set_input(in, data);  // a uint input (or it throws); only uint inputs are written here
+    last = data;
+    ++changed_input_stores_;
 }
 
 void Backend::store_placeholder_inputs() {

@@ -157,6 +157,14 @@ public:
     void set_input(KernelInput in, const std::vector<float>& data);
     void set_input(KernelInput in, const std::vector<uint32_t>& data);
 
+    /// Sets uint input `in` as set_input does, unless the last store to `in` was a call of
+    /// this with equal `data`: a table that stays the same frame after frame (the light-path
+    /// kernel's Halton digits, 0.2 MB at 48 bounces) then crosses a GPU's bus once, not
+    /// every frame. Keeps a copy of `data` to compare with. Throws as set_input.
+    void set_input_if_changed(KernelInput in, const std::vector<uint32_t>& data);
+    /// How many set_input_if_changed calls stored their data (for tests).
+    uint64_t changed_input_stores() const { return changed_input_stores_; }
+
     /// How a batch of rays is ordered, a hint that never changes results. Coherent16: each
     /// 16 consecutive rays start close together and head the same way (a 4×4 pixel tile's
     /// camera rays, shadow rays from one tile to one point); Embree then traverses them as
@@ -218,6 +226,9 @@ private:
 
     uint64_t dispatches_[kKernelCount] = {};
     double wall_seconds_[kKernelCount] = {};
+    // What set_input_if_changed last stored in each input; unset once anything else has.
+    std::optional<std::vector<uint32_t>> unchanged_[kKernelInputCount];
+    uint64_t changed_input_stores_ = 0;
 };
 
 /// Creates a backend for `scene`. The OpenCL backend builds its BVH with Embree's

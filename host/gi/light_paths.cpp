@@ -152,7 +152,7 @@ uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene
     std::vector<uint32_t> table(header.begin(), header.end());
     const std::shared_ptr<const ScrambledHalton> halton = halton_for(5 + 3 * static_cast<int>(bounces), scramble);
     table.insert(table.end(), halton->table().begin(), halton->table().end());
-    backend.set_input(KernelInput::LightPathTable, table);
+    backend.set_input_if_changed(KernelInput::LightPathTable, table);
     std::vector<uint32_t> items(TS_LP_ITEM_WORDS * paths.size());
     for (size_t i = 0; i < paths.size(); ++i) {
         uint32_t* it = &items[TS_LP_ITEM_WORDS * i];

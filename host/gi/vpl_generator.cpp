@@ -1,6 +1,7 @@
 #include "gi/vpl_generator.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstring>
 
@@ -52,6 +53,27 @@ void keep_ray_lights(const VplSettings& settings, uint32_t oversampling, VplList
     list.vrl_set_start.swap(start);
 }
 
+// The device time of kernels `ids` launched since the dispatch counts `before` were taken
+// (Backend::kernel_seconds of each that launched since; each launches at most once a stage).
+using StageKernels = std::array<KernelId, 2>;
+
+double kernel_seconds_since(Backend& backend, const StageKernels& ids, const std::vector<uint64_t>& before) {
+    double seconds = 0.0;
+    size_t i = 0;
+    for (KernelId k : ids)
+        if (backend.dispatch_count(k) != before[i++]) seconds += backend.kernel_seconds(k);
+    return seconds;
+}
+
+std::vector<uint64_t> dispatch_counts(const Backend& backend, const StageKernels& ids) {
+    std::vector<uint64_t> n;
+    for (KernelId k : ids) n.push_back(backend.dispatch_count(k));
+    return n;
+}
+
+constexpr StageKernels kPathKernels = {KernelId::LightPaths, KernelId::LightPathsMedia};
+constexpr StageKernels kImportanceKernels = {KernelId::VplImportancePoints, KernelId::VplImportanceVpls};
+
 }  // namespace
 
 VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSettings& settings) {
@@ -77,10 +99,14 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
     ls.inv_paths = 1.0f / static_cast<float>(per_set);
     ls.segments = false;  // VPLs only: a GPU traces the paths in one kernel
     using Clock = std::chrono::steady_clock;
+    const std::vector<uint64_t> paths_before = dispatch_counts(backend, kPathKernels);
     const auto t0 = Clock::now();
     out.rays = trace_light_paths(backend, scene, ls, paths);
     const auto t1 = Clock::now();
     out.trace_seconds = std::chrono::duration<double>(t1 - t0).count();
+    out.trace_kernel_seconds = kernel_seconds_since(backend, kPathKernels, paths_before);
+    const std::vector<uint64_t> select_before = dispatch_counts(backend, kImportanceKernels);
+    const auto t2 = Clock::now();  // after the kernel time's wait, which is the paths'
     // Paths are in set order, so concatenating them sorts the VPLs and ray lights by set.
     out.vrl_set_start.assign(settings.sets + 1, 0u);
     for (const LightPath& p : paths) {
@@ -95,7 +121,8 @@ VplList generate_vpls(Backend& backend, const SceneBuffers& scene, const VplSett
     }
     if (oversampling > 1) keep_for_view(backend, settings, oversampling, out);
     if (oversampling > 1 && !out.vrls.empty()) keep_ray_lights(settings, oversampling, out);
-    out.select_seconds = std::chrono::duration<double>(Clock::now() - t1).count();
+    out.select_seconds = std::chrono::duration<double>(Clock::now() - t2).count();
+    out.select_kernel_seconds = kernel_seconds_since(backend, kImportanceKernels, select_before);
     if (out.vpls.empty()) out.vpls.assign(TS_VPL_FLOATS, 0.0f);  // device buffers cannot be empty
     if (out.vrls.empty()) out.vrls.assign(TS_VRL_FLOATS, 0.0f);
     return out;

@@ -53,6 +53,11 @@ struct VplList {
     /// Wall time of the light paths (trace_light_paths) and of the selection for the view
     /// (importance, keep decisions, ray lights' share), seconds: the stage-time table's parts.
     double trace_seconds = 0, select_seconds = 0;
+    /// Of those, the device time (Backend::kernel_seconds) of the kernels that ran them:
+    /// KernelId::LightPaths or LightPathsMedia, and VplImportancePoints plus
+    /// VplImportanceVpls; 0 where the host did that work (Embree, OpenCL on CPUs). The rest of
+    /// each part is uploads, read-backs, waits and host work: where a GPU's VPL stage goes.
+    double trace_kernel_seconds = 0, select_kernel_seconds = 0;
     size_t count() const { return set_start.empty() ? 0 : set_start.back(); }
 };
 

@@ -109,6 +109,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     const TsFrame frame = prepare(unprepared);
     auto t0 = Clock::now();
     stats_.view_seconds = stats_.paths_seconds = stats_.select_seconds = 0.0;
+    stats_.paths_kernel_seconds = stats_.select_kernel_seconds = 0.0;
     VplList vpls;
     if (needs_vpl_sets(frame.igi_components)) {
         VplSettings vs;
@@ -130,6 +131,8 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         vpls = generate_vpls(backend_, scene_, vs);
         stats_.paths_seconds = vpls.trace_seconds;
         stats_.select_seconds = vpls.select_seconds;
+        stats_.paths_kernel_seconds = vpls.trace_kernel_seconds;
+        stats_.select_kernel_seconds = vpls.select_kernel_seconds;
     } else {  // nothing reflects: no light paths, no VPLs (the kernels see empty sets)
         vpls.set_start.assign(sets + 1, 0u);
         vpls.vpls.assign(TS_VPL_FLOATS, 0.0f);
@@ -293,16 +296,22 @@ void IgiFrame::add_to_sums() {
 }
 
 std::string IgiFrame::describe() const {
-    char buf[420], view[64] = "";
+    char buf[480], view[64] = "", paths_kernel[32] = "", select_kernels[32] = "";
     if (settings_.vpl_importance > 1)
         std::snprintf(view, sizeof view, ", kept for the view from %ux", settings_.vpl_importance);
+    // A GPU's VPL stage is mostly waits and transfers around short kernels: their share.
+    if (stats_.paths_kernel_seconds > 0.0)
+        std::snprintf(paths_kernel, sizeof paths_kernel, " (kernel %.2f)", 1e3 * stats_.paths_kernel_seconds);
+    if (stats_.select_kernel_seconds > 0.0)
+        std::snprintf(select_kernels, sizeof select_kernels, " (kernels %.2f)", 1e3 * stats_.select_kernel_seconds);
     std::snprintf(buf, sizeof buf,
                   "igi: tile %ux%u, %zu VPLs from %u paths per set%s (%llu light-path rays), G clamp %.4g, "
-                  "last frame: VPLs %.1f ms (view points %.1f, paths %.1f, selection %.1f), surface %.1f ms, "
+                  "last frame: VPLs %.1f ms (view points %.1f, paths %.1f%s, selection %.1f%s), surface %.1f ms, "
                   "media %.1f ms%s, filter+composite %.1f ms",
                   settings_.tile, settings_.tile, stats_.vpls, settings_.paths_per_set, view,
                   static_cast<unsigned long long>(stats_.vpl_rays), g_clamp_, 1e3 * stats_.vpl_seconds,
-                  1e3 * stats_.view_seconds, 1e3 * stats_.paths_seconds, 1e3 * stats_.select_seconds,
+                  1e3 * stats_.view_seconds, 1e3 * stats_.paths_seconds, paths_kernel, 1e3 * stats_.select_seconds,
+                  select_kernels,
                   1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
                   1e3 * stats_.filter_seconds);
     return buf;

@@ -100,6 +100,9 @@ struct IgiFrameStats {
     /// The VPL stage's parts: the view points (their camera rays), the light paths, the
     /// selection for the view, and the rest (the sets' concatenation and their upload).
     double view_seconds = 0, paths_seconds = 0, select_seconds = 0;
+    /// Of paths_seconds and select_seconds, the device time of their kernels where they
+    /// ran (VplList::trace_kernel_seconds, select_kernel_seconds; 0 on the host paths).
+    double paths_kernel_seconds = 0, select_kernel_seconds = 0;
     size_t vpls = 0;
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)

@@ -155,6 +155,36 @@ TEST(LightPathKernel, PathsPastItsSlotsAreTracedAgainOnTheHost) {
     EXPECT_EQ(kernel.rays, host.rays);
 }
 
+TEST(LightPathKernel, TheTableCrossesOnceWhileItsSettingsHold) {
+    // The Halton table is the same frame after frame: it is stored once, and again only
+    // when a setting it holds changes (the seed's scramble), and the paths traced with the
+    // kept table are those of a fresh backend's first trace.
+    const Scene s = test::cornell_box();
+    const SceneBuffers buffers = make_scene_buffers(s);
+    auto embree = make_backend({BackendKind::Embree, ""}, buffers, plan_effects(s));
+    LightPathSettings ls = media_settings(false);
+    const Traced first = trace(*embree, buffers, ls, true, 64);
+    const Traced again = trace(*embree, buffers, ls, true, 64);
+    EXPECT_EQ(embree->changed_input_stores(), 1u);
+    ls.seed = 7;
+    const Traced seeded = trace(*embree, buffers, ls, true, 64);
+    EXPECT_EQ(embree->changed_input_stores(), 2u);
+    auto fresh = make_backend({BackendKind::Embree, ""}, buffers, plan_effects(s));
+    const Traced reference = trace(*fresh, buffers, ls, true, 64);
+    size_t differ = 0;
+    for (size_t j = 0; j < first.paths.size(); ++j) {
+        EXPECT_EQ(again.paths[j].vpls, first.paths[j].vpls) << "path " << j;
+        EXPECT_EQ(seeded.paths[j].vpls, reference.paths[j].vpls) << "path " << j;
+        differ += seeded.paths[j].vpls != first.paths[j].vpls;
+    }
+    EXPECT_GT(differ, 32u) << "another seed's table draws other paths";
+    // A plain set_input in between stores the table again on the next trace.
+    embree->set_input(KernelInput::LightPathTable, std::vector<uint32_t>(1, 0u));
+    const Traced after = trace(*embree, buffers, ls, true, 64);
+    EXPECT_EQ(embree->changed_input_stores(), 3u);
+    for (size_t j = 0; j < after.paths.size(); ++j) EXPECT_EQ(after.paths[j].vpls, reference.paths[j].vpls);
+}
+
 // The scrambled radical inverse as the project computed it before the table (the digits
 // of every figure in bench/results): a reference for ts_halton_sample.
 double reference_halton(uint64_t index, uint32_t base, const uint32_t* perm) {
