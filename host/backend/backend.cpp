@@ -151,7 +151,8 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
     // TESSERA_CL_PACKETS=0 likewise turns the OpenCL CPU packet kernels off;
     // TESSERA_CL_GPU=1 runs the GPU variant on any device, TESSERA_CL_GPU=0 on none;
     // TESSERA_CL_LIGHT_PATHS=1 / 0 the light-path kernel; TESSERA_CL_LAUNCH_MS and
-    // TESSERA_CL_TILE_GROUPS set the launch tiling (BackendOptions).
+    // TESSERA_CL_TILE_GROUPS set the launch tiling, TESSERA_CL_IMPORTANCE_CHUNK the view
+    // importance's chunks (BackendOptions).
     BackendOptions o = options;
     const char* env = std::getenv("TESSERA_CL_PACKETS");
     o.cl_packets = options.cl_packets && !(env && std::string(env) == "0");
@@ -165,6 +166,12 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
         if (n != static_cast<double>(static_cast<uint32_t>(n)))
             throw InputError(std::string("TESSERA_CL_TILE_GROUPS=") + g + ": expected a whole number of work-groups");
         o.cl_tile_groups = static_cast<uint32_t>(n);
+    }
+    if (const char* c = env_value("TESSERA_CL_IMPORTANCE_CHUNK")) {
+        const double n = parse_env_number("TESSERA_CL_IMPORTANCE_CHUNK", c, double(TS_VI_MAX_CHUNK));
+        if (n != static_cast<double>(static_cast<uint32_t>(n)))
+            throw InputError(std::string("TESSERA_CL_IMPORTANCE_CHUNK=") + c + ": expected a whole number of VPLs");
+        o.cl_importance_chunk = static_cast<uint32_t>(n);
     }
     return make_opencl_backend(scene, plan, o);
 }

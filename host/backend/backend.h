@@ -62,6 +62,12 @@ struct BackendOptions {
     /// OpenCL, for tests: tiles of exactly this many work-groups (0: sized by the budget).
     /// TESSERA_CL_TILE_GROUPS sets it per run. Same images with any tiling.
     uint32_t cl_tile_groups = 0;
+    /// OpenCL, where the light paths are traced in a kernel: the VPLs each work item of the
+    /// view importance's E sums take (Backend::importance_chunk); 0: all, one item a view
+    /// point. TESSERA_CL_IMPORTANCE_CHUNK sets it per run. The same VPLs either way
+    /// (vpl_view_importance_in_kernels); 0 until a GPU has timed the chunks against it
+    /// (bench/results/gpu-h200/README.md).
+    uint32_t cl_importance_chunk = 0;
 };
 
 /// Traces rays and launches the kernels of the kernel table (device/kernel_table.h);
@@ -125,6 +131,11 @@ public:
     /// than its rays (OpenCL's GPU variant); false on the CPU backends, whose batched
     /// bounces are as fast and whose VPLs then stay the host's bit for bit.
     virtual bool traces_light_paths_in_kernel() const { return false; }
+
+    /// The VPLs a work item of KernelId::VplImportancePoints sums where the importance runs
+    /// in kernels (vpl_view_importance(Backend&, ...), gi/vpl_importance.h): 0, all of
+    /// them, one item a view point, unless BackendOptions::cl_importance_chunk sets it.
+    virtual uint32_t importance_chunk() const { return 0; }
 
     /// Replaces the scene the backend traces and shades, e.g. the next frame of an
     /// animation: a new BVH (built from `scene`) and new scene buffers. What does not

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -307,25 +309,32 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
 }
 
 std::vector<float> vpl_view_importance_in_kernels(Backend& backend, const ViewPoints& points,
-                                                 const std::vector<float>& vpls, float g_clamp) {
+                                                 const std::vector<float>& vpls, float g_clamp, size_t e_chunk) {
     const size_t nv = vpls.size() / TS_VPL_FLOATS, np = points.count();
     std::vector<float> importance(nv, 0.0f);
     if (np == 0 || nv == 0) return importance;
+    if (e_chunk > TS_VI_MAX_CHUNK)
+        throw std::invalid_argument("vpl_view_importance_in_kernels: e_chunk " + std::to_string(e_chunk) +
+                                    " is past " + std::to_string(TS_VI_MAX_CHUNK));
+    if (e_chunk >= nv) e_chunk = 0;  // one chunk: the same sums as none
     std::vector<float> in = importance_input(points, g_clamp);
+    in[TS_VI_CHUNK] = static_cast<float>(e_chunk);
     backend.set_input(KernelInput::Vpls, vpls);
     backend.set_input(KernelInput::VplSetStart, std::vector<uint32_t>{0u, static_cast<uint32_t>(nv)});
     backend.set_input(KernelInput::VplImportance, in);
     const TsFrame frame{};
     std::vector<float> out;
-    backend.launch_count(KernelId::VplImportancePoints, frame, np, out);
-    std::vector<double> e(np);
-    for (size_t j = 0; j < np; ++j) {
-        const float* o = &out[TS_VI_E_FLOATS * j];
-        e[j] = o[TS_VI_E_HAS_DOUBLE] != 0.0f
-                   ? ts::ts_double_of_words(std::bit_cast<uint32_t>(o[TS_VI_E_DOUBLE]),
-                                            std::bit_cast<uint32_t>(o[TS_VI_E_DOUBLE + 1]))
-                   : o[TS_VI_E_FLOAT];
-    }
+    const size_t chunks = e_chunk > 0 ? (nv + e_chunk - 1) / e_chunk : 1;
+    backend.launch_count(KernelId::VplImportancePoints, frame, np * chunks, out);
+    std::vector<double> e(np, 0.0);
+    for (size_t c = 0; c < chunks; ++c)
+        for (size_t j = 0; j < np; ++j) {
+            const float* o = &out[TS_VI_E_FLOATS * (c * np + j)];
+            e[j] += o[TS_VI_E_HAS_DOUBLE] != 0.0f
+                        ? ts::ts_double_of_words(std::bit_cast<uint32_t>(o[TS_VI_E_DOUBLE]),
+                                                 std::bit_cast<uint32_t>(o[TS_VI_E_DOUBLE + 1]))
+                        : o[TS_VI_E_FLOAT];
+        }
     const std::vector<double> w = point_weights(e);
     if (w.empty()) return importance;
     for (size_t j = 0; j < np; ++j) {
@@ -341,8 +350,9 @@ std::vector<float> vpl_view_importance_in_kernels(Backend& backend, const ViewPo
 
 std::vector<float> vpl_view_importance(Backend& backend, const ViewPoints& points, const std::vector<float>& vpls,
                                        float g_clamp) {
-    return backend.traces_light_paths_in_kernel() ? vpl_view_importance_in_kernels(backend, points, vpls, g_clamp)
-                                                  : vpl_view_importance(points, vpls, g_clamp);
+    return backend.traces_light_paths_in_kernel()
+               ? vpl_view_importance_in_kernels(backend, points, vpls, g_clamp, backend.importance_chunk())
+               : vpl_view_importance(points, vpls, g_clamp);
 }
 
 std::vector<double> keep_probabilities(const std::vector<float>& importance, const std::vector<bool>& medium,

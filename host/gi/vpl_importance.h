@@ -116,15 +116,21 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
 /// The same importance from KernelId::VplImportancePoints and VplImportanceVpls
 /// (kernels/shared/vpl_importance.h): the terms and sums of vpl_view_importance where the
 /// kernels run, the host forming only the points' weights; the same floats bit for bit
-/// where the device rounds as the host does and has doubles. Sets the backend's Vpls,
+/// where the device rounds as the host does and has doubles. `e_chunk` > 0 sums E_j in
+/// parts of e_chunk VPLs, one work item a point and part (np × ⌈nv / e_chunk⌉ items, not
+/// np), whose results the host reads back and adds in order; 0 (or ≥ the VPL count): one
+/// item a point. The parts change no bit of Φ in practice: E_j is a double sum of float
+/// terms, exact in any order while the terms of a point lie within 2^29 of each other, and
+/// past that its order moves E_j's last double bits, far below Φ's float rounding. Sets the backend's Vpls,
 /// VplSetStart and VplImportance inputs (the caller sets the frame's VPLs afterwards).
+/// Throws std::invalid_argument for e_chunk past TS_VI_MAX_CHUNK.
 std::vector<float> vpl_view_importance_in_kernels(Backend& backend, const ViewPoints& points,
-                                                  const std::vector<float>& vpls, float g_clamp);
+                                                  const std::vector<float>& vpls, float g_clamp, size_t e_chunk = 0);
 
-/// vpl_view_importance_in_kernels on a backend that traces the light paths in a kernel
-/// (Backend::traces_light_paths_in_kernel: a GPU, whose host would otherwise hold up the
-/// VPL stage with the terms), else vpl_view_importance: the whole VPL stage where its
-/// light paths are traced.
+/// vpl_view_importance_in_kernels, in Backend::importance_chunk()'s parts, on a backend
+/// that traces the light paths in a kernel (Backend::traces_light_paths_in_kernel: a GPU,
+/// whose host would otherwise hold up the VPL stage with the terms), else
+/// vpl_view_importance: the whole VPL stage where its light paths are traced.
 std::vector<float> vpl_view_importance(Backend& backend, const ViewPoints& points, const std::vector<float>& vpls,
                                        float g_clamp);
 

@@ -177,17 +177,21 @@
 #define TS_EDGE_ROW_FLOAT 3
 /* The VPLs' importance for the view (shared/vpl_importance.h; host/gi/vpl_importance.h).
  * Named input VplImportance, floats: TS_VI_POINTS the view points' count np (exact in
- * float), TS_VI_G_CLAMP the geometry terms' clamp (scene units^-2); from TS_VI_HEADER the
+ * float), TS_VI_G_CLAMP the geometry terms' clamp (scene units^-2), TS_VI_CHUNK the VPLs
+ * a partial sum of E takes (0: all; exact in float); from TS_VI_HEADER the
  * points' 9 coordinates as 9 arrays of np (position x, y, z, shading normal x, y, z,
  * geometric normal x, y, z: TS_VI_COORD(np, k)); then per point j the weight w_j of the
  * VPLs' pass (TS_VI_WEIGHT(np, j)): the low and high 32 bits of a double, then a float.
- * KernelId::VplImportancePoints (item j = view point j) writes TS_VI_E_FLOATS: point j's
- * candidates' irradiance E_j as a double's words (TS_VI_E_DOUBLE, TS_VI_E_DOUBLE + 1) with
- * TS_VI_E_HAS_DOUBLE 1, or as a float (TS_VI_E_FLOAT) with 0 where the device has no
+ * KernelId::VplImportancePoints (item t = view point t mod np, VPL chunk t div np: one
+ * item a point when TS_VI_CHUNK is 0) writes TS_VI_E_FLOATS: that chunk's part of point
+ * j's candidates' irradiance E_j as a double's words (TS_VI_E_DOUBLE, TS_VI_E_DOUBLE + 1)
+ * with TS_VI_E_HAS_DOUBLE 1, or as a float (TS_VI_E_FLOAT) with 0 where the device has no
  * double; KernelId::VplImportanceVpls (item i = VPL i of the Vpls input) writes one float,
  * Φ_i. */
 #define TS_VI_POINTS 0
 #define TS_VI_G_CLAMP 1
+#define TS_VI_CHUNK 2
+#define TS_VI_MAX_CHUNK 16777216u /* 2^24: TS_VI_CHUNK exact in float */
 #define TS_VI_HEADER 4
 #define TS_VI_POINT_FLOATS 9
 #define TS_VI_COORD(np, k) (TS_VI_HEADER + (k) * (np))

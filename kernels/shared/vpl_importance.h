@@ -4,11 +4,12 @@
  * With E_j = Σ_i c_ij over the candidate surface VPLs i at view point j and
  * Φ_i = Σ_j c_ij w_j, w_j = 1 / max(E_j, 10⁻³ · mean E), c_ij = luminance(C_i) · G'_ij
  * (ts_vpl_importance_term): KernelId::VplImportancePoints sums E_j, one work item a
- * point; the host then forms the w_j (a mean over all points) and KernelId::
- * VplImportanceVpls sums Φ_i, one work item a VPL. host/gi/vpl_importance.h's
- * vpl_view_importance is the reference: it builds each c_ij with
- * ts_vpl_importance_term, sums E_j in VPL order and Φ_i in point order, in double, and so
- * do these (a device without doubles sums in float: Φ then differs in its last bits, which
+ * point, or one a point and chunk of VPLs whose parts the host adds; the host then forms
+ * the w_j (a mean over all points) and KernelId::VplImportanceVpls sums Φ_i, one work
+ * item a VPL. host/gi/vpl_importance.h's vpl_view_importance is the reference: it builds
+ * each c_ij with ts_vpl_importance_term, sums E_j in VPL order (exact in any order in
+ * practice: vpl_view_importance_in_kernels) and
+ * Φ_i in point order, in double, and so do these (a device without doubles sums in float: Φ then differs in its last bits, which
  * the keep probabilities' 1/64 steps absorb). A GPU thus keeps the matrix of terms (VPLs ×
  * points, 0.5 M at K = 4 and a 16² grid) off the host, which reads back one float a VPL.
  *

@@ -15,17 +15,23 @@ typedef double TsImportanceSum;
 typedef float TsImportanceSum;
 #endif
 
-/* Item kernel VplImportancePoints, launched without a list: item j = view point j. */
-TS_INLINE void ts_vpl_importance_point_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint j,
+/* Item kernel VplImportancePoints, launched without a list: item t sums view point
+ * j = t mod np's terms over the VPLs of chunk t div np (TS_VI_CHUNK VPLs a chunk, in VPL
+ * order; chunk 0: all of them, one item a point). The host adds a point's parts in chunk
+ * order. Why chunks: a GPU runs one item a point as np threads (256) each looping over
+ * every VPL (2,000+), a chain of dependent loads and adds no other thread hides. */
+TS_INLINE void ts_vpl_importance_point_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint t,
                                             float* out) {
     (void)tracer;
     (void)f;
     TS_GLOBAL const float* vi = sv->vpl_importance;
-    const uint np = (uint)vi[TS_VI_POINTS], nv = sv->vpl_set_start[1];
+    const uint np = (uint)vi[TS_VI_POINTS], nv = sv->vpl_set_start[1], chunk = (uint)vi[TS_VI_CHUNK];
+    const uint j = t % np, first = chunk > 0u ? (t / np) * chunk : 0u;
+    const uint end = chunk > 0u && nv - first > chunk ? first + chunk : nv;
     const float b = vi[TS_VI_G_CLAMP];
     out[TS_VI_E_DOUBLE] = out[TS_VI_E_DOUBLE + 1] = out[TS_VI_E_FLOAT] = 0.0f;
     TsImportanceSum e = 0;
-    for (uint i = 0; i < nv; ++i) {
+    for (uint i = first; i < end; ++i) {
         TS_GLOBAL const float* v = sv->vpls + (size_t)i * TS_VPL_FLOATS;
         if (ts_vpl_in_medium(v)) continue;
         e += ts_vpl_importance_term(vi + TS_VI_HEADER, np, j, v, ts_vpl_importance_luminance(v), b);

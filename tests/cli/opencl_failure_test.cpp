@@ -109,4 +109,15 @@ TEST_F(OpenCLFailureCli, BadLaunchBudgetIsNamed) {
         << r.output;
 }
 
+TEST_F(OpenCLFailureCli, BadImportanceChunkIsNamed) {
+    const fs::path out = dir_ / "img.exr";
+    for (const char* env : {"TESSERA_CL_IMPORTANCE_CHUNK=2.5", "TESSERA_CL_IMPORTANCE_CHUNK=99999999"}) {
+        const CliResult r = run_tessera(
+            "render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " + out.string(), env);
+        EXPECT_NE(r.exit_code, 0) << r.output;
+        EXPECT_NE(r.output.find(std::string("tessera: error: ") + env + ": expected a"), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(out));
+    }
+}
+
 }  // namespace
