@@ -253,6 +253,7 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     // The rest of the wall time: the clamp's and the resolve's kernels, the edges, the
     // read-backs and the gaps.
     stats_.filter_seconds = std::max(0.0, wall - stats_.surface_seconds - stats_.media_seconds - stats_.ais_seconds);
+    stats_.resolve_kernel_seconds = resolve_kernels_seconds(ais);
 }
 
 void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out) {

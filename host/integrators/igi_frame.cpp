@@ -109,7 +109,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     const TsFrame frame = prepare(unprepared);
     auto t0 = Clock::now();
     stats_.view_seconds = stats_.paths_seconds = stats_.select_seconds = 0.0;
-    stats_.paths_kernel_seconds = stats_.select_kernel_seconds = 0.0;
+    stats_.paths_kernel_seconds = stats_.select_kernel_seconds = stats_.resolve_kernel_seconds = 0.0;
     VplList vpls;
     if (needs_vpl_sets(frame.igi_components)) {
         VplSettings vs;
@@ -212,6 +212,14 @@ void IgiFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     stats_.media_seconds = media ? backend_.kernel_seconds(KernelId::IgiMedia) : 0.0;
     // The rest of the wall time: the filter's kernels, the read-back and the gaps.
     stats_.filter_seconds = std::max(0.0, since(t0) - stats_.surface_seconds - stats_.media_seconds);
+    stats_.resolve_kernel_seconds = resolve_kernels_seconds(frame);
+}
+
+double IgiFrame::resolve_kernels_seconds(const TsFrame& frame) {
+    double s = backend_.kernel_seconds(KernelId::IgiResolve);
+    if (frame.igi_clamp_screen)
+        s += backend_.kernel_seconds(KernelId::IgiClampRecords) + backend_.kernel_seconds(KernelId::IgiClampGather);
+    return s;
 }
 
 bool IgiFrame::compensates_clamp() const {
@@ -296,7 +304,7 @@ void IgiFrame::add_to_sums() {
 }
 
 std::string IgiFrame::describe() const {
-    char buf[480], view[64] = "", paths_kernel[32] = "", select_kernels[32] = "";
+    char buf[520], view[64] = "", paths_kernel[32] = "", select_kernels[32] = "", resolve_kernels[32] = "";
     if (settings_.vpl_importance > 1)
         std::snprintf(view, sizeof view, ", kept for the view from %ux", settings_.vpl_importance);
     // A GPU's VPL stage is mostly waits and transfers around short kernels: their share.
@@ -304,16 +312,18 @@ std::string IgiFrame::describe() const {
         std::snprintf(paths_kernel, sizeof paths_kernel, " (kernel %.2f)", 1e3 * stats_.paths_kernel_seconds);
     if (stats_.select_kernel_seconds > 0.0)
         std::snprintf(select_kernels, sizeof select_kernels, " (kernels %.2f)", 1e3 * stats_.select_kernel_seconds);
+    if (stats_.resolve_kernel_seconds > 0.0)
+        std::snprintf(resolve_kernels, sizeof resolve_kernels, " (kernels %.2f)", 1e3 * stats_.resolve_kernel_seconds);
     std::snprintf(buf, sizeof buf,
                   "igi: tile %ux%u, %zu VPLs from %u paths per set%s (%llu light-path rays), G clamp %.4g, "
                   "last frame: VPLs %.1f ms (view points %.1f, paths %.1f%s, selection %.1f%s), surface %.1f ms, "
-                  "media %.1f ms%s, filter+composite %.1f ms",
+                  "media %.1f ms%s, filter+composite %.1f ms%s",
                   settings_.tile, settings_.tile, stats_.vpls, settings_.paths_per_set, view,
                   static_cast<unsigned long long>(stats_.vpl_rays), g_clamp_, 1e3 * stats_.vpl_seconds,
                   1e3 * stats_.view_seconds, 1e3 * stats_.paths_seconds, paths_kernel, 1e3 * stats_.select_seconds,
                   select_kernels,
                   1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
-                  1e3 * stats_.filter_seconds);
+                  1e3 * stats_.filter_seconds, resolve_kernels);
     return buf;
 }
 

@@ -103,6 +103,10 @@ struct IgiFrameStats {
     /// Of paths_seconds and select_seconds, the device time of their kernels where they
     /// ran (VplList::trace_kernel_seconds, select_kernel_seconds; 0 on the host paths).
     double paths_kernel_seconds = 0, select_kernel_seconds = 0;
+    /// Of filter_seconds, on a frame resolved on the device: the device time of the resolve
+    /// and the clamp compensation's kernels (the rest: the image's read-back, TS_PASS_FLOATS
+    /// a pixel, and the gaps); 0 on the host path.
+    double resolve_kernel_seconds = 0;
     size_t vpls = 0;
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
@@ -230,6 +234,9 @@ protected:
     /// The kernels' outputs stay where they ran; IgiResolve filters and composites there
     /// (AisFrame: its schedule's extra sets and edge samples too).
     virtual void resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out);
+    /// The device time of the last resolve of `frame` (IgiResolve) and, where the frame
+    /// compensates the clamp, of its two kernels: IgiFrameStats::resolve_kernel_seconds.
+    double resolve_kernels_seconds(const TsFrame& frame);
     /// raw_, transmittance_ and geometry_ from the surface and media kernels' outputs.
     void extract(int width, const std::vector<float>& surf, const std::vector<float>& media);
 
