@@ -121,9 +121,9 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
 /// np), whose results the host reads back and adds in order; 0 (or ≥ the VPL count): one
 /// item a point. The parts change no bit of Φ in practice: E_j is a double sum of float
 /// terms, exact in any order while the terms of a point lie within 2^29 of each other, and
-/// past that its order moves E_j's last double bits, far below Φ's float rounding. Sets the backend's Vpls,
-/// VplSetStart and VplImportance inputs (the caller sets the frame's VPLs afterwards).
-/// Throws std::invalid_argument for e_chunk past TS_VI_MAX_CHUNK.
+/// past that its order moves E_j's last double bits, far below Φ's float rounding. Sets
+/// the backend's Vpls, VplSetStart and VplImportance inputs (the caller sets the frame's
+/// VPLs afterwards). Throws std::invalid_argument for e_chunk past TS_VI_MAX_CHUNK.
 std::vector<float> vpl_view_importance_in_kernels(Backend& backend, const ViewPoints& points,
                                                   const std::vector<float>& vpls, float g_clamp, size_t e_chunk = 0);
 
