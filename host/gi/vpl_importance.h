@@ -120,8 +120,9 @@ std::vector<float> vpl_view_importance(const ViewPoints& points, const std::vect
 /// parts of e_chunk VPLs, one work item a point and part (np × ⌈nv / e_chunk⌉ items, not
 /// np), whose results the host reads back and adds in order; 0 (or ≥ the VPL count): one
 /// item a point. The parts change no bit of Φ in practice: E_j is a double sum of float
-/// terms, exact in any order while the terms of a point lie within 2^29 of each other, and
-/// past that its order moves E_j's last double bits, far below Φ's float rounding. Sets
+/// terms, exact in any order while it fits a double's 53 bits (a float's 24, the count's
+/// log2, 11 for 2,000 terms, and the terms' spread: within 2^18 of each other), and past
+/// that its order moves E_j's last double bits, far below Φ's float rounding. Sets
 /// the backend's Vpls, VplSetStart and VplImportance inputs (the caller sets the frame's
 /// VPLs afterwards). Throws std::invalid_argument for e_chunk past TS_VI_MAX_CHUNK.
 std::vector<float> vpl_view_importance_in_kernels(Backend& backend, const ViewPoints& points,
