@@ -40,6 +40,7 @@ TS_ITEM_KERNEL(edge_compact_pass, ts_edge_compact_sample_item, TS_EDGE_SAMPLE_FL
  * (shared/light_path_trace.h). */
 TS_ITEM_KERNEL(light_paths_pass, ts_light_path_item, TS_LP_FLOATS)
 TS_ITEM_KERNEL(light_paths_media_pass, ts_light_path_media_item, TS_LP_MEDIA_FLOATS)
+TS_ITEM_KERNEL(light_path_gather_pass, ts_light_path_gather_item, TS_LP_GATHER_FLOATS)
 
 /* The frame's filter and composite where the kernels ran (GPU variant; shared/igi_resolve.h):
  * reads the surface and media kernels' outputs in place, writes the pass image. */

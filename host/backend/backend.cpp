@@ -152,7 +152,8 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
     // TESSERA_CL_GPU=1 runs the GPU variant on any device, TESSERA_CL_GPU=0 on none;
     // TESSERA_CL_LIGHT_PATHS=1 / 0 the light-path kernel; TESSERA_CL_LAUNCH_MS and
     // TESSERA_CL_TILE_GROUPS set the launch tiling, TESSERA_CL_IMPORTANCE_CHUNK the view
-    // importance's chunks (BackendOptions).
+    // importance's chunks, TESSERA_CL_LIGHT_PATH_GATHER=1 / 0 the light paths' gathered
+    // read-back (BackendOptions).
     BackendOptions o = options;
     const char* env = std::getenv("TESSERA_CL_PACKETS");
     o.cl_packets = options.cl_packets && !(env && std::string(env) == "0");
@@ -160,6 +161,8 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
         o.cl_gpu_variant = std::string(gpu) == "1";
     if (const char* lp = std::getenv("TESSERA_CL_LIGHT_PATHS"); lp && (std::string(lp) == "1" || std::string(lp) == "0"))
         o.cl_light_path_kernel = std::string(lp) == "1";
+    if (const char* g = std::getenv("TESSERA_CL_LIGHT_PATH_GATHER"); g && (std::string(g) == "1" || std::string(g) == "0"))
+        o.cl_light_path_gather = std::string(g) == "1";
     if (const char* ms = env_value("TESSERA_CL_LAUNCH_MS")) o.cl_launch_ms = parse_env_number("TESSERA_CL_LAUNCH_MS", ms, 1e6);
     if (const char* g = env_value("TESSERA_CL_TILE_GROUPS")) {
         const double n = parse_env_number("TESSERA_CL_TILE_GROUPS", g, 1e9);

@@ -68,6 +68,12 @@ struct BackendOptions {
     /// (vpl_view_importance_in_kernels); 0 until a GPU has timed the chunks against it
     /// (bench/results/gpu-h200/README.md).
     uint32_t cl_importance_chunk = 0;
+    /// OpenCL, where the light paths are traced in a kernel: keep the paths' output where
+    /// the kernels run and read back only its headers and the records the paths left
+    /// (KernelId::LightPathGather), not every slot (1.6 KB a path, mostly empty). The same
+    /// VPLs either way; two more waits for about a tenth of the bytes. Off until a GPU has
+    /// timed it (Backend::gathers_light_paths). TESSERA_CL_LIGHT_PATH_GATHER=1 / 0 sets it.
+    bool cl_light_path_gather = false;
 };
 
 /// Traces rays and launches the kernels of the kernel table (device/kernel_table.h);
@@ -136,6 +142,10 @@ public:
     /// in kernels (vpl_view_importance(Backend&, ...), gi/vpl_importance.h): 0, all of
     /// them, one item a view point, unless BackendOptions::cl_importance_chunk sets it.
     virtual uint32_t importance_chunk() const { return 0; }
+
+    /// Whether trace_light_paths_in_kernel reads back only the headers and records of the
+    /// paths' output (BackendOptions::cl_light_path_gather; gi/light_paths.h).
+    virtual bool gathers_light_paths() const { return false; }
 
     /// Replaces the scene the backend traces and shades, e.g. the next frame of an
     /// animation: a new BVH (built from `scene`) and new scene buffers. What does not

@@ -71,7 +71,8 @@ public:
           light_path_kernel_(o.cl_light_path_kernel.value_or(gpu_variant_)),
           launch_ms_(o.cl_launch_ms >= 0.0 ? o.cl_launch_ms : dev_.type == "CPU" ? 0.0 : kDefaultGpuLaunchMs),
           tile_groups_(o.cl_tile_groups),
-          importance_chunk_(o.cl_importance_chunk) {
+          importance_chunk_(o.cl_importance_chunk),
+          light_path_gather_(o.cl_light_path_gather) {
         if (const char* f = std::getenv("TESSERA_CL_FAIL_LAUNCH"); f && *f) fail_launch_ = std::atoi(f);
         try {
             ctx_ = cl::Context(dev_.device);
@@ -176,6 +177,7 @@ public:
     bool resolves_on_device() const override { return gpu_variant_; }
     bool traces_light_paths_in_kernel() const override { return light_path_kernel_; }
     uint32_t importance_chunk() const override { return importance_chunk_; }
+    bool gathers_light_paths() const override { return light_path_gather_; }
 
     // Closest hits go as packets whatever the order hint: since the packet traversal
     // keeps its lane masks as vectors (kernels/bvh_packet.h) it beats per-ray traversal
@@ -481,6 +483,7 @@ private:
     double launch_ms_;     // launch budget, ms (0: whole launches)
     uint32_t tile_groups_; // fixed tile size in work-groups (tests; 0: by budget)
     uint32_t importance_chunk_;  // BackendOptions::cl_importance_chunk
+    bool light_path_gather_;     // BackendOptions::cl_light_path_gather
     int fail_launch_ = 0;  // TESSERA_CL_FAIL_LAUNCH test hook: error code to inject
     cl::Context ctx_;
     cl::CommandQueue queue_;

@@ -63,6 +63,8 @@
       no_packets)                                                                                                 \
     X(LightPathsMedia, "light_paths_media_pass", "igi.cl", TS_LP_MEDIA_FLOATS, TS_LP_ITEM_WORDS,                   \
       ts_light_path_media_item, nullptr, no_packets)                                                              \
+    X(LightPathGather, "light_path_gather_pass", "igi.cl", TS_LP_GATHER_FLOATS, 1, ts_light_path_gather_item,      \
+      nullptr, no_packets)                                                                                        \
     X(IcInterpolate, "ic_interpolate", "ic.cl", TS_IC_INTERP_FLOATS, 0, ts_ic_interpolate_kernel_pixel, nullptr,   \
       no_packets)                                                                                                 \
     X(IcPair, "ic_pair_pass", "ic.cl", TS_IC_PAIR_FLOATS, TS_IC_PAIR_WORDS, ts_ic_pair_item, "ic_pair_packets",    \

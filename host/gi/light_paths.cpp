@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 
@@ -138,6 +139,56 @@ uint64_t trace_batched(Backend& backend, const SceneBuffers& scene, const LightP
     return traced;
 }
 
+// A path's part of the light-path kernel's output: its header (TS_LP_STATUS .. TS_LP_VRLS)
+// and its VPL and ray-light records, each in path order.
+struct PathOutput {
+    const float* head;
+    const float* vpls;
+    const float* vrls;
+};
+
+// The output of `paths` paths read back whole: stride floats a path, slots and all.
+std::vector<PathOutput> whole_output(const std::vector<float>& out, size_t paths, size_t stride) {
+    std::vector<PathOutput> o(paths);
+    for (size_t i = 0; i < paths; ++i) {
+        const float* at = &out[stride * i];
+        o[i] = {at, at + TS_LP_VPL, at + TS_LP_VRL};
+    }
+    return o;
+}
+
+// The output of `paths` paths (stride floats each) kept as input LightPathOut, read back by
+// KernelId::LightPathGather: the headers, then the records of the paths that did not
+// overflow (`heads` and `records` hold what was read; the spans point into them).
+std::vector<PathOutput> gathered_output(Backend& backend, const TsFrame& frame, size_t paths, size_t stride,
+                                        std::vector<float>& heads, std::vector<float>& records) {
+    std::vector<uint32_t> at(paths);
+    for (size_t i = 0; i < paths; ++i) at[i] = static_cast<uint32_t>(stride * i);
+    backend.launch_items(KernelId::LightPathGather, frame, at, heads);
+    std::vector<size_t> first(paths + 1, 0);
+    at.clear();
+    for (size_t i = 0; i < paths; ++i) {
+        const float* h = &heads[TS_LP_GATHER_FLOATS * i];
+        if (h[TS_LP_STATUS] == 0.0f) {
+            for (uint32_t v = 0; v < static_cast<uint32_t>(h[TS_LP_VPLS]); ++v)
+                at.push_back(static_cast<uint32_t>(stride * i + TS_LP_VPL + size_t(TS_VPL_FLOATS) * v));
+            for (uint32_t v = 0; v < static_cast<uint32_t>(h[TS_LP_VRLS]); ++v)
+                at.push_back(static_cast<uint32_t>(stride * i + TS_LP_VRL + size_t(TS_VRL_FLOATS) * v));
+        }
+        first[i + 1] = at.size();
+    }
+    backend.launch_items(KernelId::LightPathGather, frame, at, records);
+    // No records (paths that left none): any valid pointer, as nothing is read through it.
+    const float* base = records.empty() ? heads.data() : records.data();
+    std::vector<PathOutput> o(paths);
+    for (size_t i = 0; i < paths; ++i) {
+        const float* h = &heads[TS_LP_GATHER_FLOATS * i];
+        const float* r = base + (records.empty() ? 0 : TS_LP_GATHER_FLOATS * first[i]);
+        o[i] = {h, r, h[TS_LP_STATUS] == 0.0f ? r + size_t(TS_VPL_FLOATS) * static_cast<size_t>(h[TS_LP_VPLS]) : r};
+    }
+    return o;
+}
+
 }  // namespace
 
 uint32_t light_path_seed_mix(uint32_t seed) { return ts::ts_pcg_hash(seed) ^ ts::ts_pcg_hash(1u); }
@@ -168,23 +219,33 @@ uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene
     const bool ray_lights = settings.medium_scattering && settings.ray_lights && scene.medium[TS_MEDIUM_PRESENT] != 0.0f;
     const KernelId k = ray_lights ? KernelId::LightPathsMedia : KernelId::LightPaths;
     const size_t stride = static_cast<size_t>(kernel_info(k).out_floats);
-    backend.launch_items(k, frame, items, out);
+    // The gather's offsets are uints: a launch past 2^32 floats reads back whole.
+    const bool gather = backend.gathers_light_paths() && stride * paths.size() <= UINT32_MAX;
+    std::vector<float> heads;
+    std::vector<PathOutput> output;
+    if (gather) {
+        backend.launch_items_into(k, frame, items, KernelInput::LightPathOut);
+        output = gathered_output(backend, frame, paths.size(), stride, heads, out);
+    } else {
+        backend.launch_items(k, frame, items, out);
+        output = whole_output(out, paths.size(), stride);
+    }
     uint64_t traced = 0;
     std::vector<LightPath> again;
     std::vector<size_t> again_at;
     for (size_t i = 0; i < paths.size(); ++i) {
         LightPath& p = paths[i];
         clear(p);
-        const float* o = &out[stride * i];
-        if (o[TS_LP_STATUS] != 0.0f) {
+        const PathOutput& o = output[i];
+        if (o.head[TS_LP_STATUS] != 0.0f) {
             again.push_back(untraced(p));
             again_at.push_back(i);
             continue;
         }
-        p.light = static_cast<uint32_t>(o[TS_LP_LIGHT]);
-        traced += static_cast<uint64_t>(o[TS_LP_RAYS]);
-        p.vpls.assign(o + TS_LP_VPL, o + TS_LP_VPL + TS_VPL_FLOATS * static_cast<size_t>(o[TS_LP_VPLS]));
-        p.vrls.assign(o + TS_LP_VRL, o + TS_LP_VRL + TS_VRL_FLOATS * static_cast<size_t>(o[TS_LP_VRLS]));
+        p.light = static_cast<uint32_t>(o.head[TS_LP_LIGHT]);
+        traced += static_cast<uint64_t>(o.head[TS_LP_RAYS]);
+        p.vpls.assign(o.vpls, o.vpls + TS_VPL_FLOATS * static_cast<size_t>(o.head[TS_LP_VPLS]));
+        p.vrls.assign(o.vrls, o.vrls + TS_VRL_FLOATS * static_cast<size_t>(o.head[TS_LP_VRLS]));
     }
     if (!again.empty()) {
         LightPathSettings host = settings;

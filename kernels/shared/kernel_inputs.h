@@ -56,6 +56,8 @@
  *                    kept likewise; read only when TsFrame.igi_clamp_screen is 1
  *   LightPathTable   the light-path kernel's parameters and Halton digits
  *                    (layout_light_path.h; KernelId::LightPaths)
+ *   LightPathOut     KernelId::LightPaths' or LightPathsMedia's output kept where the
+ *                    kernels run (KernelId::LightPathGather copies from it)
  *   AisItems         TS_AIS_ITEM_FLOATS per item of the frame's AIS list, a device frame's
  *                    KernelId::AisCompactItem output kept where the kernels run
  *                    (Backend::launch_count_into)
@@ -95,6 +97,7 @@
     X(ClampRecords, clamp_records, float, "clamp records")                   \
     X(ClampResidual, clamp_residual, float, "clamp residual")               \
     X(LightPathTable, light_path_table, uint, "light path table")            \
+    X(LightPathOut, light_path_out, float, "light path output")              \
     X(AisItems, ais_items, float, "AIS items")                               \
     X(AisMasks, ais_masks, float, "AIS set masks")                           \
     X(AisTileSets, ais_tile_sets, float, "AIS tile sets")                    \

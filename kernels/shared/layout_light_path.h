@@ -41,6 +41,13 @@
 #define TS_LP_MEDIA_FLOATS (TS_LP_VRL + TS_LP_MAX_VRLS * TS_VRL_FLOATS)
 #define TS_LP_OVERFLOW 1u
 
+/* KernelId::LightPathGather (item: one uint, a float offset into the LightPathOut input,
+ * the paths' output kept where the kernels ran) copies the TS_LP_GATHER_FLOATS floats
+ * from there: a VPL or ray-light record (both TS_VPL_FLOATS), or a path's TS_LP_VPL
+ * header floats and the first floats of its first slot. So the host reads back the
+ * headers, then the records the paths left, not every empty slot. */
+#define TS_LP_GATHER_FLOATS TS_VPL_FLOATS
+
 /* The light-path table (uint words): TS_LPT_SCRAMBLE the Halton digits' and medium
  * events' scramble (host/gi/light_paths.h), TS_LPT_MAX_BOUNCES segments per path,
  * TS_LPT_FLAGS TS_LPT_MEDIUM_SCATTERING | TS_LPT_RAY_LIGHTS, TS_LPT_INV_PATHS (float bits)
@@ -52,5 +59,11 @@
 #define TS_LPT_HALTON 4
 #define TS_LPT_MEDIUM_SCATTERING 1u
 #define TS_LPT_RAY_LIGHTS 2u
+
+#ifdef __cplusplus
+static_assert(TS_LP_VPL <= TS_LP_GATHER_FLOATS && TS_VRL_FLOATS == TS_LP_GATHER_FLOATS &&
+                  TS_LP_GATHER_FLOATS <= TS_LP_FLOATS,
+              "layout_light_path.h: a gather takes a header, a VPL or a ray light, inside a path's output");
+#endif
 
 #endif /* TS_LAYOUT_LIGHT_PATH_H */

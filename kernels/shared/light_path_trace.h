@@ -76,5 +76,15 @@ TS_INLINE void ts_light_path_media_item(const TsSceneView* sv, const TsTracer* t
     ts_light_path_trace(sv, tracer, i, TS_LP_MAX_VRLS, out);
 }
 
+/* KernelId::LightPathGather: item i's TS_LP_GATHER_FLOATS floats of the paths' kept
+ * output from the float offset sv->items[i] (layout_light_path.h). */
+TS_INLINE void ts_light_path_gather_item(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f, uint i,
+                                         float* out) {
+    (void)tracer;
+    (void)f;
+    TS_GLOBAL const float* from = sv->light_path_out + sv->items[i];
+    for (int k = 0; k < TS_LP_GATHER_FLOATS; ++k) out[k] = from[k];
+}
+
 TS_NAMESPACE_END
 #endif /* TS_LIGHT_PATH_TRACE_H */

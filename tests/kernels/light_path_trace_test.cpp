@@ -155,6 +155,50 @@ TEST(LightPathKernel, PathsPastItsSlotsAreTracedAgainOnTheHost) {
     EXPECT_EQ(kernel.rays, host.rays);
 }
 
+// The paths' output read back whole and by KernelId::LightPathGather (headers, then the
+// records left): the same paths bit for bit, as the gather only copies; paths that overflow
+// the slots are traced again on the host either way.
+void expect_gather_matches_whole(const Scene& scene, const LightPathSettings& ls, uint32_t count,
+                                 size_t min_overflows) {
+    const SceneBuffers buffers = make_scene_buffers(scene);
+    const EffectPlan plan = plan_effects(scene);
+    BackendOptions o{BackendKind::OpenCL, ""};
+    o.cl_gpu_variant = true;
+    auto whole = make_backend(o, buffers, plan);
+    o.cl_light_path_gather = true;
+    auto gathered = make_backend(o, buffers, plan);
+    ASSERT_TRUE(gathered->gathers_light_paths());
+    ASSERT_FALSE(whole->gathers_light_paths());
+    const Traced a = trace(*whole, buffers, ls, true, count), b = trace(*gathered, buffers, ls, true, count);
+    EXPECT_EQ(gathered->dispatch_count(KernelId::LightPathGather), 2u) << "the headers, then the records";
+    EXPECT_EQ(whole->dispatch_count(KernelId::LightPathGather), 0u);
+    EXPECT_EQ(b.rays, a.rays);
+    size_t vpls = 0, vrls = 0, overflows = 0;
+    for (size_t j = 0; j < a.paths.size(); ++j) {
+        EXPECT_EQ(b.paths[j].vpls, a.paths[j].vpls) << "path " << j;
+        EXPECT_EQ(b.paths[j].vrls, a.paths[j].vrls) << "path " << j;
+        EXPECT_EQ(b.paths[j].light, a.paths[j].light) << "path " << j;
+        vpls += a.paths[j].vpls.size() / TS_VPL_FLOATS;
+        vrls += a.paths[j].vrls.size() / TS_VRL_FLOATS;
+        overflows += a.paths[j].vpls.size() > size_t(TS_LP_MAX_VPLS) * TS_VPL_FLOATS;
+    }
+    EXPECT_GT(vpls, size_t(count)) << "paths bounce";
+    if (ls.ray_lights) {
+        EXPECT_GT(vrls, size_t(count)) << "paths cross the fog";
+    }
+    EXPECT_GE(overflows, min_overflows);
+}
+
+TEST(LightPathKernel, GatheredReadBackLeavesTheSamePaths) {
+    expect_gather_matches_whole(test::cornell_box(), media_settings(false), 256, 0);
+    expect_gather_matches_whole(test::shipped_scene("cornell-box-fog.json"), media_settings(true), 256, 0);
+    // A white furnace: paths past the slots (traced again on the host) among gathered ones.
+    const Scene furnace = test::closed_box({0, 0, 0}, {1, 1, 1}, glm::vec3(1.0f), glm::vec3(1.0f), 0.2f);
+    LightPathSettings ls = media_settings(false);
+    ls.max_bounces = TS_LP_MAX_VPLS + 8;
+    expect_gather_matches_whole(furnace, ls, 32, 4);
+}
+
 TEST(LightPathKernel, TheTableCrossesOnceWhileItsSettingsHold) {
     // The Halton table is the same frame after frame: it is stored once, and again only
     // when a setting it holds changes (the seed's scramble), and the paths traced with the
