@@ -76,6 +76,28 @@ Traced trace(Backend& backend, const SceneBuffers& buffers, const LightPathSetti
     return t;
 }
 
+// What `want`'s paths left: VPLs, ray lights, and paths with more VPLs than the kernel's slots.
+struct Left {
+    size_t vpls = 0, vrls = 0, overflows = 0;
+};
+
+// `got`'s paths equal `want`'s bit for bit (VPLs, ray lights, lights and rays); returns
+// what want's paths left.
+Left expect_same_paths(const Traced& got, const Traced& want) {
+    Left left;
+    EXPECT_EQ(got.paths.size(), want.paths.size());
+    for (size_t j = 0; j < want.paths.size() && j < got.paths.size(); ++j) {
+        EXPECT_EQ(got.paths[j].vpls, want.paths[j].vpls) << "path " << j;
+        EXPECT_EQ(got.paths[j].vrls, want.paths[j].vrls) << "path " << j;
+        EXPECT_EQ(got.paths[j].light, want.paths[j].light) << "path " << j;
+        left.vpls += want.paths[j].vpls.size() / TS_VPL_FLOATS;
+        left.vrls += want.paths[j].vrls.size() / TS_VRL_FLOATS;
+        left.overflows += want.paths[j].vpls.size() > size_t(TS_LP_MAX_VPLS) * TS_VPL_FLOATS;
+    }
+    EXPECT_EQ(got.rays, want.rays);
+    return left;
+}
+
 // The kernel's paths against the host's on Embree (bits) and on OpenCL (rounding).
 void expect_kernel_matches_host(const Scene& scene, bool medium) {
     const SceneBuffers buffers = make_scene_buffers(scene);
@@ -85,21 +107,13 @@ void expect_kernel_matches_host(const Scene& scene, bool medium) {
     const LightPathSettings ls = media_settings(medium);
     const Traced host = trace(*embree, buffers, ls, false, 256);
     const Traced kernel = trace(*embree, buffers, ls, true, 256);
-    size_t vpls = 0, vrls = 0;
-    for (size_t j = 0; j < host.paths.size(); ++j) {
-        EXPECT_EQ(kernel.paths[j].vpls, host.paths[j].vpls) << "path " << j;
-        EXPECT_EQ(kernel.paths[j].vrls, host.paths[j].vrls) << "path " << j;
-        EXPECT_EQ(kernel.paths[j].light, host.paths[j].light) << "path " << j;
-        vpls += host.paths[j].vpls.size() / TS_VPL_FLOATS;
-        vrls += host.paths[j].vrls.size() / TS_VRL_FLOATS;
-    }
-    EXPECT_EQ(kernel.rays, host.rays);
+    const Left left = expect_same_paths(kernel, host);
     // Ray-light slots only where paths leave ray lights.
     EXPECT_EQ(embree->dispatch_count(KernelId::LightPathsMedia), medium ? 1u : 0u);
     EXPECT_EQ(embree->dispatch_count(KernelId::LightPaths), medium ? 0u : 1u);
-    EXPECT_GT(vpls, 256u) << "paths bounce";
+    EXPECT_GT(left.vpls, 256u) << "paths bounce";
     if (medium) {
-        EXPECT_GT(vrls, 256u) << "paths cross the fog";
+        EXPECT_GT(left.vrls, 256u) << "paths cross the fog";
     }
 
     BackendOptions o{BackendKind::OpenCL, ""};
@@ -172,21 +186,12 @@ void expect_gather_matches_whole(const Scene& scene, const LightPathSettings& ls
     const Traced a = trace(*whole, buffers, ls, true, count), b = trace(*gathered, buffers, ls, true, count);
     EXPECT_EQ(gathered->dispatch_count(KernelId::LightPathGather), 2u) << "the headers, then the records";
     EXPECT_EQ(whole->dispatch_count(KernelId::LightPathGather), 0u);
-    EXPECT_EQ(b.rays, a.rays);
-    size_t vpls = 0, vrls = 0, overflows = 0;
-    for (size_t j = 0; j < a.paths.size(); ++j) {
-        EXPECT_EQ(b.paths[j].vpls, a.paths[j].vpls) << "path " << j;
-        EXPECT_EQ(b.paths[j].vrls, a.paths[j].vrls) << "path " << j;
-        EXPECT_EQ(b.paths[j].light, a.paths[j].light) << "path " << j;
-        vpls += a.paths[j].vpls.size() / TS_VPL_FLOATS;
-        vrls += a.paths[j].vrls.size() / TS_VRL_FLOATS;
-        overflows += a.paths[j].vpls.size() > size_t(TS_LP_MAX_VPLS) * TS_VPL_FLOATS;
-    }
-    EXPECT_GT(vpls, size_t(count)) << "paths bounce";
+    const Left left = expect_same_paths(b, a);
+    EXPECT_GT(left.vpls, size_t(count)) << "paths bounce";
     if (ls.ray_lights) {
-        EXPECT_GT(vrls, size_t(count)) << "paths cross the fog";
+        EXPECT_GT(left.vrls, size_t(count)) << "paths cross the fog";
     }
-    EXPECT_GE(overflows, min_overflows);
+    EXPECT_GE(left.overflows, min_overflows);
 }
 
 TEST(LightPathKernel, GatheredReadBackLeavesTheSamePaths) {
