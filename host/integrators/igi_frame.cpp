@@ -307,13 +307,14 @@ std::string IgiFrame::describe() const {
     char buf[520], view[64] = "", paths_kernel[32] = "", select_kernels[32] = "", resolve_kernels[32] = "";
     if (settings_.vpl_importance > 1)
         std::snprintf(view, sizeof view, ", kept for the view from %ux", settings_.vpl_importance);
-    // A GPU's VPL stage is mostly waits and transfers around short kernels: their share.
-    if (stats_.paths_kernel_seconds > 0.0)
-        std::snprintf(paths_kernel, sizeof paths_kernel, " (kernel %.2f)", 1e3 * stats_.paths_kernel_seconds);
-    if (stats_.select_kernel_seconds > 0.0)
-        std::snprintf(select_kernels, sizeof select_kernels, " (kernels %.2f)", 1e3 * stats_.select_kernel_seconds);
-    if (stats_.resolve_kernel_seconds > 0.0)
-        std::snprintf(resolve_kernels, sizeof resolve_kernels, " (kernels %.2f)", 1e3 * stats_.resolve_kernel_seconds);
+    // Where a part ran kernels on the device, their share of its wall time: the rest is
+    // transfers and waits, which is what a GPU's stage times leave open.
+    auto kernel_share = [](char (&note)[32], const char* label, double seconds) {
+        if (seconds > 0.0) std::snprintf(note, sizeof note, " (%s %.2f)", label, 1e3 * seconds);
+    };
+    kernel_share(paths_kernel, "kernel", stats_.paths_kernel_seconds);
+    kernel_share(select_kernels, "kernels", stats_.select_kernel_seconds);
+    kernel_share(resolve_kernels, "kernels", stats_.resolve_kernel_seconds);
     std::snprintf(buf, sizeof buf,
                   "igi: tile %ux%u, %zu VPLs from %u paths per set%s (%llu light-path rays), G clamp %.4g, "
                   "last frame: VPLs %.1f ms (view points %.1f, paths %.1f%s, selection %.1f%s), surface %.1f ms, "
