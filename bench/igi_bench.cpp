@@ -33,9 +33,9 @@ struct Row {
 };
 
 Row measure(const Scene& scene, const SceneBuffers& b, BackendKind kind, const std::string& device, int size,
-            int frames) {
+            int frames, bool pass_aovs) {
     auto be = make_backend({kind, device}, b, plan_effects(scene));
-    const bench::IgiTiming t = bench::time_igi_frames(*be, scene, b, IgiSettings{}, size, frames);
+    const bench::IgiTiming t = bench::time_igi_frames(*be, scene, b, IgiSettings{}, size, frames, false, pass_aovs);
     return {scene.name, kind == BackendKind::OpenCL ? "opencl" : "embree", 1e3 * t.frame, 1e3 * t.vpl,
             1e3 * t.surface, 1e3 * t.media, 1e3 * t.filter, double(t.last.vpl_rays + t.last.pixel_rays)};
 }
@@ -53,6 +53,10 @@ int main(int argc, char** argv) {
     app.add_option("--frames", frames, "timed frames per scene and backend")->capture_default_str();
     app.add_option("--device", device);
     app.add_option("--out", out_dir)->capture_default_str();
+    bool pass_aovs = false;
+    app.add_flag("--pass-aovs", pass_aovs,
+                 "read back the whole pass image (albedo, normal, depth too), as `render` does; default: the "
+                 "radiance alone, as the viewer (IgiSettings::pass_aovs; only frames resolved on the device differ)");
     CLI11_PARSE(app, argc, argv);
 
     nlohmann::json j;
@@ -65,7 +69,8 @@ int main(int argc, char** argv) {
                     ", " + std::to_string(defaults.paths_per_set) + " VPL paths per set, " +
                     std::to_string(defaults.set_shadow_samples) + " light samples per pixel, " +
                     std::to_string(defaults.march_steps) + " march steps, clamp c = " + clamp_c +
-                    " (pass 0 of its decay)";
+                    " (pass 0 of its decay), " +
+                    (pass_aovs ? "the whole pass read back" : "a device-resolved frame's radiance alone read back");
     std::string md = "# IGI frame time, " + std::to_string(size) + "x" + std::to_string(size) + ", median of " +
                      std::to_string(frames) + " frames\n\nMachine: " + bench::machine_description() + ". " +
                      j["settings"].get<std::string>() +
@@ -76,8 +81,8 @@ int main(int argc, char** argv) {
     for (const std::string& path : scenes) {
         Scene scene = load_scene(path, make_data_path(std::nullopt));
         SceneBuffers b = make_scene_buffers(scene);
-        Row cl = measure(scene, b, BackendKind::OpenCL, device, size, frames);
-        Row em = measure(scene, b, BackendKind::Embree, device, size, frames);
+        Row cl = measure(scene, b, BackendKind::OpenCL, device, size, frames, pass_aovs);
+        Row em = measure(scene, b, BackendKind::Embree, device, size, frames, pass_aovs);
         for (int k = 0; k < 2; ++k) {
             const Row& r = k == 0 ? cl : em;
             char buf[400];

@@ -38,12 +38,17 @@ struct IgiTiming {
     IgiFrameStats last;
 };
 
-/// `adaptive`: AIS (AisFrame, mode is.ais_mode) instead of plain IGI.
+/// `adaptive`: AIS (AisFrame, mode is.ais_mode) instead of plain IGI. `pass_aovs`
+/// (IgiSettings::pass_aovs) false by default, as the viewer showing radiance: a frame
+/// resolved on the device reads back its radiance alone; `render` reads back the whole pass
+/// for its checkpoint. Frames reconstructed on the host are the same either way.
 inline IgiTiming time_igi_frames(Backend& be, const Scene& scene, const SceneBuffers& b, const IgiSettings& is,
-                                 int size, int frames, bool adaptive = false) {
+                                 int size, int frames, bool adaptive = false, bool pass_aovs = false) {
+    IgiSettings shown = is;
+    shown.pass_aovs = pass_aovs;
     const std::unique_ptr<IgiFrame> frame_ptr =
-        adaptive ? std::make_unique<AisFrame>(be, b, plan_effects(scene), is)
-                 : std::make_unique<IgiFrame>(be, b, plan_effects(scene), is);
+        adaptive ? std::make_unique<AisFrame>(be, b, plan_effects(scene), shown)
+                 : std::make_unique<IgiFrame>(be, b, plan_effects(scene), shown);
     IgiFrame& igi = *frame_ptr;
     TsFrame f = make_frame(scene.camera, size, size, is.set_shadow_samples, 1, b.light_count);
     f.light_power = b.light_power;

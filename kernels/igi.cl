@@ -11,6 +11,7 @@
 #include "tracer.h"
 #include "shared/igi.h"
 #include "shared/igi_resolve.h"
+#include "shared/pass_radiance.h"
 #include "shared/edge_samples.h"
 #include "shared/light_path_trace.h"
 #include "shared/vpl_importance_items.h"
@@ -60,6 +61,12 @@ TS_PIXEL_KERNEL(edge_schedule_pass, ts_edge_schedule_pixel, 1)
 
 /* An AIS frame's edge samples merged into its resolved pass image (shared/igi_resolve.h). */
 TS_PIXEL_KERNEL(ais_edge_merge_pass, ts_ais_edge_merge_pixel, TS_PASS_FLOATS)
+
+/* Radiance-only passes (shared/pass_radiance.h): the two above keeping the radiance alone,
+ * and the radiance of a resolved pass kept on the device. */
+TS_PIXEL_KERNEL(igi_resolve_radiance_pass, ts_igi_resolve_radiance_pixel, TS_PASS_RADIANCE_FLOATS)
+TS_PIXEL_KERNEL(ais_edge_merge_radiance_pass, ts_ais_edge_merge_radiance_pixel, TS_PASS_RADIANCE_FLOATS)
+TS_PIXEL_KERNEL(pass_radiance_pass, ts_pass_radiance_pixel, TS_PASS_RADIANCE_FLOATS)
 
 /* The clamp's screen-space compensation before the resolve (shared/igi_clamp_screen.h):
  * the pixels' records, then the gather at the even grid's pixels. */

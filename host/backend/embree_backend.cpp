@@ -38,6 +38,7 @@
 #include "kernels/shared/ic.h"
 #include "kernels/shared/igi.h"
 #include "kernels/shared/igi_resolve.h"
+#include "kernels/shared/pass_radiance.h"
 #include "kernels/shared/pt.h"
 #include "kernels/shared/vpl_importance_items.h"
 

@@ -32,12 +32,18 @@
     X(IgiMedia, "igi_media_pass", "igi.cl", TS_IGI_MEDIA_FLOATS, 0, ts_igi_media_pixel, "igi_media_packets",       \
       igi_media_packets)                                                                                          \
     X(IgiResolve, "igi_resolve_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_igi_resolve_pixel, nullptr, no_packets)     \
+    X(IgiResolveRadiance, "igi_resolve_radiance_pass", "igi.cl", TS_PASS_RADIANCE_FLOATS, 0,                      \
+      ts_igi_resolve_radiance_pixel, nullptr, no_packets)                                                         \
     X(AisSchedule, "ais_schedule_pass", "igi.cl", TS_AIS_MASK_FLOATS, 0, ts_ais_schedule_pixel, nullptr,         \
       no_packets)                                                                                                 \
     X(EdgeRowSums, "edge_row_sums_pass", "igi.cl", TS_EDGE_ROW_FLOATS, 1, ts_edge_row_sum_item, nullptr,          \
       no_packets)                                                                                                 \
     X(EdgeSchedule, "edge_schedule_pass", "igi.cl", 1, 0, ts_edge_schedule_pixel, nullptr, no_packets)            \
     X(AisEdgeMerge, "ais_edge_merge_pass", "igi.cl", TS_PASS_FLOATS, 0, ts_ais_edge_merge_pixel, nullptr,         \
+      no_packets)                                                                                                 \
+    X(AisEdgeMergeRadiance, "ais_edge_merge_radiance_pass", "igi.cl", TS_PASS_RADIANCE_FLOATS, 0,                \
+      ts_ais_edge_merge_radiance_pixel, nullptr, no_packets)                                                      \
+    X(PassRadiance, "pass_radiance_pass", "igi.cl", TS_PASS_RADIANCE_FLOATS, 0, ts_pass_radiance_pixel, nullptr,  \
       no_packets)                                                                                                 \
     X(IgiClampRecords, "igi_clamp_records_pass", "igi.cl", TS_CLAMP_SCREEN_FLOATS, 0, ts_igi_clamp_records_pixel,  \
       nullptr, no_packets)                                                                                        \

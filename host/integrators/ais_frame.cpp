@@ -235,10 +235,12 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     stats_.edge_samples = 0;
     stats_.edge_flagged = stats_.edge_seconds = stats_.edge_schedule_seconds = stats_.edge_kernel_seconds = 0.0;
     stats_.edge_schedule_kernel_seconds = 0.0;
+    // With edges the whole pass stays on the device: the edge schedule reads its radiance.
+    const KernelId resolve = bits & TS_COMPONENT_EDGE ? KernelId::IgiResolve : resolve_kernel();
     if (!(bits & TS_COMPONENT_EDGE)) {
-        backend_.launch(KernelId::IgiResolve, ais, out);
+        backend_.launch(resolve, ais, out);
     } else {
-        backend_.launch_into(KernelId::IgiResolve, ais, KernelInput::IgiPass);
+        backend_.launch_into(resolve, ais, KernelInput::IgiPass);
         edges_on_device(frame, ais, out);
     }
     const double wall = since(t0);
@@ -253,7 +255,7 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     // The rest of the wall time: the clamp's and the resolve's kernels, the edges, the
     // read-backs and the gaps.
     stats_.filter_seconds = std::max(0.0, wall - stats_.surface_seconds - stats_.media_seconds - stats_.ais_seconds);
-    stats_.resolve_kernel_seconds = resolve_kernels_seconds(ais);
+    stats_.resolve_kernel_seconds = resolve_kernels_seconds(ais, resolve);
 }
 
 void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::vector<float>& out) {
@@ -277,12 +279,17 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
     host_seconds += since(t_host);
     const auto t_read = Clock::now();
     double read_seconds = 0.0;
+    const KernelId merge = settings_.pass_aovs ? KernelId::AisEdgeMerge : KernelId::AisEdgeMergeRadiance;
     if (edge_offsets_.samples() > 0) {
         backend_.launch_count_into(KernelId::EdgeCompactSample, frame, edge_offsets_.samples(),
                                    KernelInput::EdgeSamples);
-        backend_.launch(KernelId::AisEdgeMerge, ais, out);
+        backend_.launch(merge, ais, out);
     } else {
-        backend_.read_input(KernelInput::IgiPass, out);
+        // Nothing to merge: the resolved pass as it lies, or its radiance.
+        if (settings_.pass_aovs)
+            backend_.read_input(KernelInput::IgiPass, out);
+        else
+            backend_.launch(KernelId::PassRadiance, ais, out);
         read_seconds = since(t_read);
     }
     stats_.edge_schedule_kernel_seconds = backend_.kernel_seconds(KernelId::EdgeRowSums) +
@@ -290,7 +297,7 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
                                           backend_.kernel_seconds(KernelId::EdgeSegmentCounts);
     stats_.edge_schedule_seconds = stats_.edge_schedule_kernel_seconds + host_seconds;
     stats_.edge_kernel_seconds = edge_offsets_.samples() > 0 ? backend_.kernel_seconds(KernelId::EdgeCompactSample) +
-                                                                   backend_.kernel_seconds(KernelId::AisEdgeMerge)
+                                                                   backend_.kernel_seconds(merge)
                                                              : read_seconds;
     stats_.edge_seconds = stats_.edge_schedule_seconds + stats_.edge_kernel_seconds;
 }

@@ -207,16 +207,16 @@ void IgiFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
         backend_.launch_into(KernelId::IgiClampRecords, frame, KernelInput::ClampRecords);
         backend_.launch_into(KernelId::IgiClampGather, frame, KernelInput::ClampResidual);
     }
-    backend_.launch(KernelId::IgiResolve, frame, out);
+    backend_.launch(resolve_kernel(), frame, out);
     stats_.surface_seconds = backend_.kernel_seconds(KernelId::IgiSurface);
     stats_.media_seconds = media ? backend_.kernel_seconds(KernelId::IgiMedia) : 0.0;
     // The rest of the wall time: the filter's kernels, the read-back and the gaps.
     stats_.filter_seconds = std::max(0.0, since(t0) - stats_.surface_seconds - stats_.media_seconds);
-    stats_.resolve_kernel_seconds = resolve_kernels_seconds(frame);
+    stats_.resolve_kernel_seconds = resolve_kernels_seconds(frame, resolve_kernel());
 }
 
-double IgiFrame::resolve_kernels_seconds(const TsFrame& frame) {
-    double s = backend_.kernel_seconds(KernelId::IgiResolve);
+double IgiFrame::resolve_kernels_seconds(const TsFrame& frame, KernelId resolve) {
+    double s = backend_.kernel_seconds(resolve);
     if (frame.igi_clamp_screen)
         s += backend_.kernel_seconds(KernelId::IgiClampRecords) + backend_.kernel_seconds(KernelId::IgiClampGather);
     return s;

@@ -84,6 +84,12 @@ struct IgiSettings {
     /// back only the pass image (AIS: also each pixel's set masks and edge-sample count); ic
     /// always reconstructs on the host.
     bool component_aovs = false;
+    /// A frame resolved on the device (Backend::resolves_on_device) brings back the whole
+    /// pass image, TS_PASS_FLOATS a pixel. false: the radiance alone, TS_PASS_RADIANCE_FLOATS
+    /// a pixel (kernels/shared/pass_radiance.h; the same radiance bits), for a consumer that
+    /// reads no albedo, normal or depth: 3.1 MB to read back at 512² instead of 10.5 MB.
+    /// Frames reconstructed on the host always write the whole pass.
+    bool pass_aovs = true;
     /// Adaptive Interleaved Sampling (AisFrame, ais_schedule.h): the mode and thresholds.
     AisMode ais_mode = AisMode::A;
     AisThresholds ais;
@@ -155,7 +161,9 @@ public:
     /// into TS_PASS_FLOATS per pixel (layout_pass.h). Fills frame's igi fields itself. Filter
     /// and composite run on the host, or, where reconstructs_on_host() is false, as
     /// KernelId::IgiResolve where the kernels ran, after IgiClampRecords and IgiClampGather
-    /// when the frame compensates the clamp (same formula and sums, same image).
+    /// when the frame compensates the clamp (same formula and sums, same image); there,
+    /// without IgiSettings::pass_aovs, `out` is TS_PASS_RADIANCE_FLOATS per pixel
+    /// (KernelId::IgiResolveRadiance: the same radiance).
     void render_pass(const TsFrame& frame, std::vector<float>& out) override;
 
     /// Per-component AOVs summed over the frames rendered so far, divided by `frames`:
@@ -234,9 +242,15 @@ protected:
     /// The kernels' outputs stay where they ran; IgiResolve filters and composites there
     /// (AisFrame: its schedule's extra sets and edge samples too).
     virtual void resolve_on_device(const TsFrame& frame, const TsFrame& surface_frame, std::vector<float>& out);
-    /// The device time of the last resolve of `frame` (IgiResolve) and, where the frame
-    /// compensates the clamp, of its two kernels: IgiFrameStats::resolve_kernel_seconds.
-    double resolve_kernels_seconds(const TsFrame& frame);
+    /// The device time of the last resolve of `frame` (kernel `resolve`: IgiResolve or
+    /// IgiResolveRadiance) and, where the frame compensates the clamp, of its two kernels:
+    /// IgiFrameStats::resolve_kernel_seconds.
+    double resolve_kernels_seconds(const TsFrame& frame, KernelId resolve);
+    /// The resolve that writes the frame's read-back: IgiResolve, or IgiResolveRadiance
+    /// without the pass's AOVs (IgiSettings::pass_aovs).
+    KernelId resolve_kernel() const {
+        return settings_.pass_aovs ? KernelId::IgiResolve : KernelId::IgiResolveRadiance;
+    }
     /// raw_, transmittance_ and geometry_ from the surface and media kernels' outputs.
     void extract(int width, const std::vector<float>& surf, const std::vector<float>& media);
 

@@ -21,7 +21,9 @@ public:
     virtual ~Integrator() = default;
 
     /// Renders pass frame.pass of `frame` into TS_PASS_FLOATS per pixel (layout_pass.h),
-    /// row-major from the top-left pixel; the frame loop accumulates the passes.
+    /// row-major from the top-left pixel; the frame loop accumulates the passes. An igi-
+    /// family integrator told to leave the AOVs out (IgiSettings::pass_aovs false) may write
+    /// TS_PASS_RADIANCE_FLOATS per pixel instead; Accumulator::add takes either.
     virtual void render_pass(const TsFrame& frame, std::vector<float>& out) = 0;
 
     /// One line for the log about the last pass ("" for none).

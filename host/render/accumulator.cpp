@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "kernels/shared/layout_pass.h"
@@ -17,6 +18,10 @@ Accumulator::Accumulator(int width, int height)
 
 void Accumulator::add(const std::vector<float>& pass) {
     const size_t n = size_t(width_) * height_;
+    if (pass.size() == n * TS_PASS_RADIANCE_FLOATS && pass.size() != n * TS_PASS_FLOATS) return add_radiance(pass);
+    if (pass.size() != n * TS_PASS_FLOATS)
+        throw std::invalid_argument("Accumulator::add: a pass of " + std::to_string(pass.size()) + " floats for " +
+                                    std::to_string(width_) + "x" + std::to_string(height_) + " pixels");
     for (size_t p = 0; p < n; ++p) {
         const float* in = &pass[p * TS_PASS_FLOATS];
         double* s = &sum_[p * TS_PASS_FLOATS];
@@ -26,6 +31,18 @@ void Accumulator::add(const std::vector<float>& pass) {
             ++hits_[p];
         }
         for (int c = 0; c < 3; ++c) sum_sq_[3 * p + c] += double(in[TS_PASS_RADIANCE + c]) * in[TS_PASS_RADIANCE + c];
+    }
+    ++passes_;
+}
+
+void Accumulator::add_radiance(const std::vector<float>& pass) {
+    const size_t n = size_t(width_) * height_;
+    for (size_t p = 0; p < n; ++p) {
+        for (int c = 0; c < TS_PASS_RADIANCE_FLOATS; ++c) {
+            const double v = pass[p * TS_PASS_RADIANCE_FLOATS + c];
+            sum_[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] += v;
+            sum_sq_[3 * p + c] += v * v;
+        }
     }
     ++passes_;
 }

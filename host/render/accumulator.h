@@ -13,7 +13,11 @@ class Accumulator {
 public:
     Accumulator(int width, int height);
 
-    /// Adds one pass: width × height × TS_PASS_FLOATS floats (layout_pass.h).
+    /// Adds one pass: width × height × TS_PASS_FLOATS floats (layout_pass.h), or a
+    /// radiance-only pass of width × height × TS_PASS_RADIANCE_FLOATS (IgiSettings::pass_aovs
+    /// false), which adds to the radiance sums alone: the AOV channels of mean_image are
+    /// then meaningful only where every pass carried them. Throws std::invalid_argument
+    /// for any other size.
     void add(const std::vector<float>& pass);
 
     uint32_t passes() const { return passes_; }
@@ -41,6 +45,8 @@ public:
     Image mean_image(bool aovs, bool variance) const;
 
 private:
+    void add_radiance(const std::vector<float>& pass);
+
     int width_, height_;
     uint32_t passes_ = 0;
     std::vector<double> sum_;      // TS_PASS_FLOATS per pixel; Z summed only over hits

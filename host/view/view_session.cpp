@@ -80,6 +80,10 @@ void ViewSession::restart() {
     // while they are not shown, and cycle_aov restarts the accumulation into or out of them.
     if (method_info(s.method).adaptive && (!backend_->resolves_on_device() || schedule_aov(aov_)))
         is.igi.component_aovs = true;
+    // A frame resolved on the device brings back its radiance alone unless the display
+    // shows the pass's albedo, normal or depth or screenshots keep them (IgiSettings::
+    // pass_aovs; cycle_aov restarts the accumulation into or out of them).
+    is.igi.pass_aovs = s.aovs || pass_aov(aov_);
     // One history of view points across restarts: moving frames keep the VPL selection's
     // points while the camera moves a little (docs/viewer.md, temporal stability).
     is.igi.view_history = view_history_;
@@ -170,6 +174,10 @@ bool ViewSession::schedule_aov(Aov aov) {
     return aov >= Aov::GuidanceSS && aov <= Aov::SetsPM;
 }
 
+bool ViewSession::pass_aov(Aov aov) {
+    return aov == Aov::Albedo || aov == Aov::Normal || aov == Aov::Depth;
+}
+
 void ViewSession::cycle_aov(int step) {
     const int n = static_cast<int>(Aov::Error) + 1;
     int a = static_cast<int>(aov_);
@@ -179,6 +187,9 @@ void ViewSession::cycle_aov(int step) {
     if (backend_->resolves_on_device() && method_info(settings_.method).adaptive &&
         schedule_aov(next) != schedule_aov(aov_))
         dirty_ = true;  // the schedule's sums start (or stop) with the next accumulation
+    if (backend_->resolves_on_device() && method_info(settings_.method).igi_family &&
+        pass_aov(next) != pass_aov(aov_))
+        dirty_ = true;  // the passes' albedo, normal and depth start (or stop) coming back
     aov_ = next;
 }
 

@@ -150,6 +150,9 @@ private:
     /// Whether `aov` shows the AIS schedule (guidance, sets), whose sums only the host
     /// path keeps (IgiSettings::component_aovs).
     static bool schedule_aov(Aov aov);
+    /// Whether `aov` shows the pass image's albedo, normal or depth, which a frame resolved
+    /// on the device brings back only while shown (IgiSettings::pass_aovs).
+    static bool pass_aov(Aov aov);
     RenderSettings pass_settings() const;
     Image aov_image() const;
     Image to_window(Image image) const;

@@ -14,6 +14,10 @@
 #define TS_PASS_NORMAL 6
 #define TS_PASS_DEPTH 9
 
+/* A radiance-only pass (IgiSettings::pass_aovs false, on a frame resolved on the device;
+ * shared/pass_radiance.h): TS_PASS_RADIANCE_FLOATS floats per pixel, the radiance alone. */
+#define TS_PASS_RADIANCE_FLOATS 3
+
 #ifdef __cplusplus
 /* Compile-time checks of the layouts above (shared/layout_check.h). */
 #include "shared/layout_check.h"

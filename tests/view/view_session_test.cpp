@@ -384,5 +384,35 @@ TEST(ViewSession, AisOnTheDeviceRestartsForItsGuidanceAov) {
     EXPECT_LT(dark, rgba.size() / 4);  // and some penumbra
 }
 
+// igi resolved on the device brings back the radiance alone while the radiance shows
+// (IgiSettings::pass_aovs), the host path's radiance bit for bit; the albedo AOV restarts
+// the accumulation with the whole pass, whose albedo it then shows.
+TEST(ViewSession, IgiOnTheDeviceRestartsForThePassAovs) {
+    const Scene scene = cornell();
+    ViewOptions o = options(Method::Igi, 4);
+    o.backend = {BackendKind::OpenCL, ""};
+    o.backend.cl_packets = false;
+    o.backend.cl_light_path_kernel = false;  // both trace the light paths on the host: the same VPLs
+    o.backend.cl_gpu_variant = true;
+    ViewSession device(scene, o);
+    o.backend.cl_gpu_variant = false;
+    ViewSession host(scene, o);
+    device.advance(0);
+    host.advance(0);
+    test::expect_images_identical(device.accumulation(), host.accumulation());
+    device.handle({InputEvent::Kind::Press, 'V'});  // albedo
+    device.handle({InputEvent::Kind::Release, 'V'});
+    std::vector<uint8_t> rgba;
+    device.display(rgba);  // radiance-only passes so far: no albedo to show
+    for (size_t p = 0; p < rgba.size() / 4; ++p) ASSERT_EQ(rgba[4 * p], 0) << p;
+    const FrameReport r = device.advance(0);  // the restart, with the whole pass from here on
+    EXPECT_TRUE(r.moving);
+    EXPECT_EQ(r.passes, 1u);
+    device.display(rgba);
+    size_t bright = 0;  // red albedo 0.63-0.78 but on the green wall (scenes/cornell-box.mtl)
+    for (size_t p = 0; p < rgba.size() / 4; ++p) bright += rgba[4 * p] > 100;
+    EXPECT_GT(bright, rgba.size() / 8);
+}
+
 }  // namespace
 }  // namespace tessera::view
