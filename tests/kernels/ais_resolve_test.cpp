@@ -29,11 +29,7 @@ namespace tessera {
 namespace {
 
 std::unique_ptr<Backend> opencl(const SceneBuffers& buffers, const Scene& scene, bool gpu_variant) {
-    BackendOptions o{BackendKind::OpenCL, ""};
-    o.cl_packets = false;
-    o.cl_gpu_variant = gpu_variant;
-    o.cl_light_path_kernel = false;
-    return make_backend(o, buffers, plan_effects(scene));
+    return make_backend(test::opencl_per_ray(gpu_variant, false), buffers, plan_effects(scene));
 }
 
 struct DeviceCase {

@@ -20,6 +20,7 @@
 #include "render/accumulator.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
+#include "support/render_helpers.h"
 
 namespace tessera {
 namespace {
@@ -27,10 +28,7 @@ namespace {
 constexpr int kWidth = 41, kHeight = 33;  // not multiples of any tile: windows cross the borders
 
 std::unique_ptr<Backend> gpu_variant(const SceneBuffers& b, const Scene& s) {
-    BackendOptions o{BackendKind::OpenCL, ""};
-    o.cl_packets = false;
-    o.cl_gpu_variant = true;
-    return make_backend(o, b, plan_effects(s));
+    return make_backend(test::opencl_per_ray(true), b, plan_effects(s));
 }
 
 struct RadianceCase {

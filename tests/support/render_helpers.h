@@ -27,6 +27,19 @@ inline Scene shipped_scene(const char* file) {
     return load_scene(default_scene_path().parent_path() / file, make_data_path(std::nullopt));
 }
 
+/// OpenCL on the default device, one ray per work item (no 16-ray packets): with
+/// `gpu_variant` the GPU variant (short stack, frames resolved on the device), forced on
+/// whatever device this is, else its per-ray CPU twin, which reconstructs on the host.
+/// `light_path_kernel` false: both trace the light paths on the host, so their VPLs are
+/// the same bits (BackendOptions::cl_light_path_kernel).
+inline BackendOptions opencl_per_ray(bool gpu_variant, bool light_path_kernel = true) {
+    BackendOptions o{BackendKind::OpenCL, ""};
+    o.cl_packets = false;
+    o.cl_gpu_variant = gpu_variant;
+    o.cl_light_path_kernel = light_path_kernel;
+    return o;
+}
+
 inline Image render_with(BackendKind kind, const Scene& scene, const RenderSettings& settings) {
     SceneBuffers buffers = make_scene_buffers(scene);
     auto backend = make_backend(BackendOptions{kind, ""}, buffers, plan_effects(scene));

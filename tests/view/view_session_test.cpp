@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -347,23 +348,28 @@ TEST(ViewSession, AovKeyCyclesThroughWhatTheMethodProduces) {
     EXPECT_EQ(seen, expected);
 }
 
+// A session of `method` (4 spp) on the GPU variant, here on PoCL, after its first pass,
+// which must be the host path's image bit for bit (both trace the light paths on the host).
+std::unique_ptr<ViewSession> first_pass_on_the_device(const Scene& scene, Method method) {
+    ViewOptions o = options(method, 4);
+    o.backend = test::opencl_per_ray(true, false);
+    auto device = std::make_unique<ViewSession>(scene, o);
+    o.backend = test::opencl_per_ray(false, false);
+    ViewSession host(scene, o);
+    device->advance(0);
+    host.advance(0);
+    test::expect_images_identical(device->accumulation(), host.accumulation());
+    return device;
+}
+
 // Where AIS is scheduled and resolved on the device (the GPU variant, here on PoCL) the
 // viewer keeps the frame there while the radiance shows (no schedule sums on the host),
 // the host path's image bit for bit. A guidance AOV restarts the accumulation on the
 // host's schedule, whose sums it then shows.
 TEST(ViewSession, AisOnTheDeviceRestartsForItsGuidanceAov) {
     const Scene scene = cornell();
-    ViewOptions o = options(Method::Ais, 4);
-    o.backend = {BackendKind::OpenCL, ""};
-    o.backend.cl_packets = false;
-    o.backend.cl_light_path_kernel = false;
-    o.backend.cl_gpu_variant = true;
-    ViewSession device(scene, o);
-    o.backend.cl_gpu_variant = false;
-    ViewSession host(scene, o);
-    device.advance(0);
-    host.advance(0);
-    test::expect_images_identical(device.accumulation(), host.accumulation());
+    const std::unique_ptr<ViewSession> session = first_pass_on_the_device(scene, Method::Ais);
+    ViewSession& device = *session;
     for (int i = 0; i < 4; ++i) {  // albedo, normal, depth, guidance.SS
         device.handle({InputEvent::Kind::Press, 'V'});
         device.handle({InputEvent::Kind::Release, 'V'});
@@ -389,17 +395,8 @@ TEST(ViewSession, AisOnTheDeviceRestartsForItsGuidanceAov) {
 // the accumulation with the whole pass, whose albedo it then shows.
 TEST(ViewSession, IgiOnTheDeviceRestartsForThePassAovs) {
     const Scene scene = cornell();
-    ViewOptions o = options(Method::Igi, 4);
-    o.backend = {BackendKind::OpenCL, ""};
-    o.backend.cl_packets = false;
-    o.backend.cl_light_path_kernel = false;  // both trace the light paths on the host: the same VPLs
-    o.backend.cl_gpu_variant = true;
-    ViewSession device(scene, o);
-    o.backend.cl_gpu_variant = false;
-    ViewSession host(scene, o);
-    device.advance(0);
-    host.advance(0);
-    test::expect_images_identical(device.accumulation(), host.accumulation());
+    const std::unique_ptr<ViewSession> session = first_pass_on_the_device(scene, Method::Igi);
+    ViewSession& device = *session;
     device.handle({InputEvent::Kind::Press, 'V'});  // albedo
     device.handle({InputEvent::Kind::Release, 'V'});
     std::vector<uint8_t> rgba;
