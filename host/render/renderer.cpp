@@ -79,7 +79,12 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     std::unique_ptr<Integrator> integrator;
     auto set_up = [&] {
         first = session.restore(acc);
-        integrator = make_integrator(backend, scene, buffers, integrator_settings(settings, w, h));
+        IntegratorSettings is = integrator_settings(settings, w, h);
+        // The pass's albedo, normal and depth come back only where something reads them:
+        // the image's AOVs, a checkpoint (a run resumed with --aov needs every pass's),
+        // and MPI's passes, which are whole.
+        is.igi.pass_aovs = settings.aovs || checkpoint != nullptr || distributed;
+        integrator = make_integrator(backend, scene, buffers, is);
     };
     if (distributed) {
         uint64_t mine = 0;

@@ -54,7 +54,9 @@ TsFrame make_render_frame(const Camera& camera, int width, int height, const Sce
 /// naming the option and value, e.g. "--spp 0: must be in 1..1000000"), then renders. `buffers` are the
 /// SceneBuffers the backend was made from. With `checkpoint`, the render resumes from
 /// and saves checkpoints (see CheckpointSession) and throws Interrupted on SIGINT or
-/// SIGTERM; stats then count only the passes rendered in this call.
+/// SIGTERM; stats then count only the passes rendered in this call. A frame resolved on
+/// the device reads back its radiance alone unless settings.aovs, `checkpoint` or a
+/// cluster needs the whole pass (IgiSettings::pass_aovs).
 ///
 /// With a `cluster` of more than one rank (docs/distributed.md) every rank calls it with
 /// the same settings: the ranks render disjoint passes (render/cluster.h, pass_owner) and

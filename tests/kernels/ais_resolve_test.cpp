@@ -65,15 +65,23 @@ TEST_P(AisDeviceFrame, EqualsTheHostFrame) {
     ASSERT_TRUE(device->resolves_on_device());
     const Image a = render_frame(*host, scene, buffers, rs), b = render_frame(*device, scene, buffers, rs);
     // The device path ran (the extra sets kept there and, with edges, merged there), and
-    // the host's did not.
-    EXPECT_GT(device->dispatch_count(KernelId::IgiResolve), 0u);
+    // the host's did not. render_frame without AOVs, checkpoint or cluster reads back the
+    // radiance alone (IgiSettings::pass_aovs): with edges the whole pass stays on the
+    // device for their schedule, and the merge (or, without samples, a copy) keeps the
+    // radiance; without, the resolve itself does.
+    const bool edges = c.components & TS_COMPONENT_EDGE;
+    EXPECT_EQ(device->dispatch_count(edges ? KernelId::IgiResolve : KernelId::IgiResolveRadiance), 2u);
+    EXPECT_EQ(device->dispatch_count(edges ? KernelId::IgiResolveRadiance : KernelId::IgiResolve), 0u);
+    EXPECT_EQ(device->dispatch_count(KernelId::AisEdgeMerge), 0u);
     EXPECT_GT(device->dispatch_count(KernelId::AisSchedule), 0u);  // the set masks, not the G-buffer
     EXPECT_EQ(host->dispatch_count(KernelId::AisSchedule), 0u);
-    EXPECT_EQ(device->dispatch_count(KernelId::EdgeSchedule), c.components & TS_COMPONENT_EDGE ? 2u : 0u);
+    EXPECT_EQ(device->dispatch_count(KernelId::EdgeSchedule), edges ? 2u : 0u);
     EXPECT_EQ(host->dispatch_count(KernelId::IgiResolve), 0u);
-    EXPECT_EQ(host->dispatch_count(KernelId::AisEdgeMerge), 0u);
-    if (c.components & TS_COMPONENT_EDGE) {
-        EXPECT_GT(device->dispatch_count(KernelId::AisEdgeMerge), 0u);
+    EXPECT_EQ(host->dispatch_count(KernelId::AisEdgeMergeRadiance), 0u);
+    if (edges) {
+        EXPECT_GT(device->dispatch_count(KernelId::AisEdgeMergeRadiance), 0u);
+        EXPECT_EQ(device->dispatch_count(KernelId::AisEdgeMergeRadiance) + device->dispatch_count(KernelId::PassRadiance),
+                  2u);
     }
     // The device listed nothing: its extra sets and edge samples ran from its compact
     // tables (shared/ais_compact.h) as often as the host's lists ran theirs.

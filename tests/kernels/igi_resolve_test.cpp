@@ -242,7 +242,7 @@ TEST(IgiResolve, CompensatedFloatSumsMatchDoubleSumsWithinSevenUlps) {
     EXPECT_GT(lit, size_t(kWidth * kHeight) / 10) << "a black frame would make the comparison vacuous";
 }
 
-// render --aov keeps the components on the host (integrator_settings), so a device that
+// render --aov keeps the components on the host (integrator_settings), so a backend that
 // resolves on the device still writes the SS/ID/PM channels.
 TEST(IgiResolve, ComponentAovsBringTheComponentsBack) {
     const Scene s = scene_file("cornell-box-fog.json");
@@ -256,7 +256,10 @@ TEST(IgiResolve, ComponentAovsBringTheComponentsBack) {
         EXPECT_NE(with.find(ch), nullptr) << ch;
     rs.aovs = false;
     const Image without = render_frame(*be, s, b, rs);
-    EXPECT_EQ(be->dispatch_count(KernelId::IgiResolve), rs.spp);
+    // Resolved on the device, and with no AOVs, checkpoint or cluster to feed, read back as
+    // radiance alone (IgiSettings::pass_aovs).
+    EXPECT_EQ(be->dispatch_count(KernelId::IgiResolveRadiance), rs.spp);
+    EXPECT_EQ(be->dispatch_count(KernelId::IgiResolve), 0u);
     EXPECT_EQ(without.find("SS_filtered.R"), nullptr);
     EXPECT_EQ(be->dispatch_count(KernelId::IgiClampGather), rs.spp) << "the compensation runs on the device too";
     // The same image up to the transmittance's exp rounding (expect_same_or_exp_rounding).
