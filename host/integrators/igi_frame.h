@@ -111,7 +111,8 @@ struct IgiFrameStats {
     double paths_kernel_seconds = 0, select_kernel_seconds = 0;
     /// Of filter_seconds, on a frame resolved on the device: the device time of the resolve
     /// and the clamp compensation's kernels (the rest: the image's read-back, TS_PASS_FLOATS
-    /// a pixel, and the gaps); 0 on the host path.
+    /// a pixel or, without IgiSettings::pass_aovs, TS_PASS_RADIANCE_FLOATS, and the gaps);
+    /// 0 on the host path.
     double resolve_kernel_seconds = 0;
     size_t vpls = 0;
     uint64_t vpl_rays = 0;   ///< light-path rays
