@@ -18,30 +18,23 @@ Accumulator::Accumulator(int width, int height)
 
 void Accumulator::add(const std::vector<float>& pass) {
     const size_t n = size_t(width_) * height_;
-    if (pass.size() == n * TS_PASS_RADIANCE_FLOATS && pass.size() != n * TS_PASS_FLOATS) return add_radiance(pass);
-    if (pass.size() != n * TS_PASS_FLOATS)
+    // A whole pass, or (n > 0) a radiance-only one: the same radiance sums either way.
+    const size_t stride = pass.size() == n * TS_PASS_FLOATS ? TS_PASS_FLOATS : TS_PASS_RADIANCE_FLOATS;
+    if (pass.size() != n * stride)
         throw std::invalid_argument("Accumulator::add: a pass of " + std::to_string(pass.size()) + " floats for " +
                                     std::to_string(width_) + "x" + std::to_string(height_) + " pixels");
     for (size_t p = 0; p < n; ++p) {
-        const float* in = &pass[p * TS_PASS_FLOATS];
+        const float* in = &pass[p * stride];
         double* s = &sum_[p * TS_PASS_FLOATS];
-        for (int k = 0; k < TS_PASS_DEPTH; ++k) s[k] += in[k];
+        for (int c = 0; c < 3; ++c) {
+            s[TS_PASS_RADIANCE + c] += in[TS_PASS_RADIANCE + c];
+            sum_sq_[3 * p + c] += double(in[TS_PASS_RADIANCE + c]) * in[TS_PASS_RADIANCE + c];
+        }
+        if (stride == TS_PASS_RADIANCE_FLOATS) continue;
+        for (int k = TS_PASS_ALBEDO; k < TS_PASS_DEPTH; ++k) s[k] += in[k];
         if (std::isfinite(in[TS_PASS_DEPTH])) {
             s[TS_PASS_DEPTH] += in[TS_PASS_DEPTH];
             ++hits_[p];
-        }
-        for (int c = 0; c < 3; ++c) sum_sq_[3 * p + c] += double(in[TS_PASS_RADIANCE + c]) * in[TS_PASS_RADIANCE + c];
-    }
-    ++passes_;
-}
-
-void Accumulator::add_radiance(const std::vector<float>& pass) {
-    const size_t n = size_t(width_) * height_;
-    for (size_t p = 0; p < n; ++p) {
-        for (int c = 0; c < TS_PASS_RADIANCE_FLOATS; ++c) {
-            const double v = pass[p * TS_PASS_RADIANCE_FLOATS + c];
-            sum_[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] += v;
-            sum_sq_[3 * p + c] += v * v;
         }
     }
     ++passes_;

@@ -45,8 +45,6 @@ public:
     Image mean_image(bool aovs, bool variance) const;
 
 private:
-    void add_radiance(const std::vector<float>& pass);
-
     int width_, height_;
     uint32_t passes_ = 0;
     std::vector<double> sum_;      // TS_PASS_FLOATS per pixel; Z summed only over hits

@@ -17,7 +17,6 @@
 #include "device/scene_buffers.h"
 #include "integrators/ais_frame.h"
 #include "kernels/shared/layout_pass.h"
-#include "render/accumulator.h"
 #include "render/renderer.h"
 #include "scene/loader.h"
 #include "support/render_helpers.h"
