@@ -1,5 +1,5 @@
 /* Instant Global Illumination and Adaptive Interleaved Sampling on OpenCL devices
- * (shared/igi.h): the surface kernel (G-buffer, direct light of the pixel's sample set,
+ * (shared/igi.h, igi_media.h, ais_item.h): the surface kernel (G-buffer, direct light of the pixel's sample set,
  * indirect light from the set's VPLs), the AIS extra kernel (further sets for scheduled
  * pixels), the resolve kernel (filter and composite without a read-back) with the clamp
  * compensation's two kernels before it, and the media kernel (single-scattering ray march), dispatched only when the
@@ -9,7 +9,7 @@
 #include "shared/layout_igi.h"
 #include "shared/layout_pass.h"
 #include "tracer.h"
-#include "shared/igi.h"
+#include "shared/ais_item.h"
 #include "shared/igi_resolve.h"
 #include "shared/pass_radiance.h"
 #include "shared/edge_samples.h"

@@ -20,7 +20,7 @@
 #define TS_IGI_PACKETS_H
 #include "bvh_packet_query.h"
 #include "tracer.h"
-#include "shared/igi.h"
+#include "shared/ais_item.h"
 
 /* 16 lanes, each a surface seen through a pixel and the links it gathers. */
 typedef struct TsIgiPacket {

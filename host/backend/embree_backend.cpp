@@ -36,7 +36,7 @@
 #include "kernels/shared/edge_samples.h"
 #include "kernels/shared/light_path_trace.h"
 #include "kernels/shared/ic.h"
-#include "kernels/shared/igi.h"
+#include "kernels/shared/ais_item.h"
 #include "kernels/shared/igi_resolve.h"
 #include "kernels/shared/pass_radiance.h"
 #include "kernels/shared/pt.h"

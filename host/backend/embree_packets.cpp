@@ -15,7 +15,7 @@
 #include "bvh/embree_device.h"
 
 // After the tracer (embree_packets.h includes it): the shared code calls it.
-#include "kernels/shared/igi.h"
+#include "kernels/shared/ais_item.h"
 #include "kernels/shared/igi_gather16.h"
 #include "kernels/shared/igi_march16.h"
 #include "kernels/shared/igi_view16.h"

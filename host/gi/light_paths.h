@@ -89,7 +89,7 @@ uint32_t light_path_seed_mix(uint32_t seed);
 /// continues with probability q = min(1, luminance(ρ)) in a cosine direction, α ← α·ρ/q.
 /// Mirrors reflect (α ← α·Ks); dielectrics reflect or refract by Fresnel; neither stores
 /// a VPL. With a medium every segment attenuates α by its transmittance (the
-/// single-scattering model of shared/igi.h), or with settings.medium_scattering samples a
+/// single-scattering model of shared/igi_media.h), or with settings.medium_scattering samples a
 /// free-flight distance and may scatter in the medium, leaving a medium VPL (layout_igi.h). Halton dimensions: 0 light, 1-2 point,
 /// 3-4 direction, then per bounce 2 for the direction and 1 for roulette/Fresnel.
 /// Without settings.segments, on a backend whose traces_light_paths_in_kernel() is true,

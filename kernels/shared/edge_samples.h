@@ -6,6 +6,7 @@
  * on the same surface (host/gi/ais_edges.h), so a sample costs its camera path only. */
 #ifndef TS_EDGE_SAMPLES_H
 #define TS_EDGE_SAMPLES_H
+#include "shared/ais_compact.h"
 #include "shared/igi.h"
 
 TS_NAMESPACE_BEGIN

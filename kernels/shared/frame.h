@@ -48,12 +48,12 @@ typedef struct TsFrame {
     float igi_filter_cos;        /* igi resolve: the filter's normal threshold (cos) */
     float igi_filter_depth;      /* igi resolve: the filter's plane distance, relative to depth */
     unsigned int igi_equiangular; /* igi: 1 = the ray march's light samples at equiangular
-                                     distances, MIS with the march's (shared/igi.h); 0 = at
+                                     distances, MIS with the march's (shared/igi_march.h); 0 = at
                                      the march's own points */
     float igi_march_rotation;     /* igi: per-frame Cranley–Patterson shift of the ray march's
                                      points, apart from igi_rotation: one shared shift would tie
                                      each step's distance to its light sample's position
-                                     (shared/igi.h, ts_igi_march_t) */
+                                     (shared/igi_march.h, ts_igi_march_t) */
     unsigned int igi_clamp_screen; /* igi resolve: 1 = E_id gains the clamp's screen-space
                                       compensation, TsSceneView.clamp_residual
                                       (shared/igi_clamp_screen.h); 0 = none */

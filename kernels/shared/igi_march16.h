@@ -1,7 +1,7 @@
 /* The igi ray march of up to 16 pixels side by side (docs/ray-batches.md §2, §4), for the
  * backends that trace 16-ray packets: the Embree backend
  * (host/backend/embree_media_packets.cpp) and the OpenCL CPU kernels
- * (kernels/igi_packets.h). Each lane computes what ts_igi_media_set (shared/igi.h)
+ * (kernels/igi_packets.h). Each lane computes what ts_igi_media_set (shared/igi_media.h)
  * computes, through the same functions, in the same order for its own sums; where
  * ts_igi_media_set traces one shadow ray, the lanes of one sample set trace theirs
  * together, since at step i they all meet the same light sample and the same VPL share.
@@ -20,7 +20,7 @@
  * link's lanes function, up to 1.2 KB of the lanes' link values (ts_igi_march_vrl_links16). */
 #ifndef TS_IGI_MARCH16_H
 #define TS_IGI_MARCH16_H
-#include "shared/igi.h"
+#include "shared/igi_media.h"
 
 TS_NAMESPACE_BEGIN
 

@@ -10,7 +10,7 @@
  * power, at a uniform point y0 (area pdf p_A including the selection) in a
  * cosine-distributed direction, with weight α = Le·π / p_A (the cosine of the emission
  * cancels the cosine pdf). Each segment attenuates α by the medium's transmittance (the
- * single-scattering model of shared/igi.h), or, for multiple scattering, samples a
+ * single-scattering model of shared/igi_media.h), or, for multiple scattering, samples a
  * free-flight distance and may scatter there (ts_light_path_medium). At a diffuse hit y with
  * albedo ρ the path leaves a VPL of flux weight C = α·ρ/π · inv_paths, then continues
  * with probability q = min(1, luminance(ρ)) in a cosine direction, α ← α·ρ/q. Mirrors and

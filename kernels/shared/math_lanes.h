@@ -1,7 +1,7 @@
 /* Arctangent, tangent and exponential in float without branches, for loops over 16 lanes
  * that GCC vectorises (the ray lights' links of the media march, shared/igi_march16.h),
  * and for the one-lane code that must give those lanes' numbers bit for bit (both call
- * ts_igi_march_vrl_weight, shared/igi.h). The equiangular sampler (shared/medium.h) takes
+ * ts_igi_march_vrl_weight, shared/igi_ray_lights.h). The equiangular sampler (shared/medium.h) takes
  * its arctangent and tangent from here, for every caller. libm's forms are calls GCC cannot vectorise, and
  * glibc's vector forms (libmvec) are reached only with finite-math flags, which must stay
  * off here (NaN and Inf are caught). The methods and coefficients are Cephes' single

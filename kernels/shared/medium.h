@@ -91,7 +91,7 @@ TS_INLINE float ts_medium_sample_distance(const TsMedium* m, float len, float u_
  * extent from the origin, so that a point on the line gives a finite (narrow) density,
  * not a NaN. A larger floor only widens the density (any D > 0 gives an unbiased
  * estimate): callers whose integrand is clamped near p set d_min to the clamp's radius,
- * where 1/distance^2 stops describing it (shared/igi.h, ts_igi_march_vpl_link). */
+ * where 1/distance^2 stops describing it (shared/igi_march.h, ts_igi_march_vpl_link). */
 typedef struct TsEquiangular {
     float delta, D, theta_a, theta_b;
 } TsEquiangular;

@@ -20,7 +20,7 @@
  * cosθ_y/d² is not tempered by any cosine at the scattering point.)
  *   max_scatter = 0: full multiple scattering.
  *   max_scatter = 1: single scattering, the transport model of the interactive methods
- *     (IGI's PM component, shared/igi.h): the camera segment may scatter once, where the
+ *     (IGI's PM component, shared/igi_media.h): the camera segment may scatter once, where the
  *     path connects to the lights by next-event estimation (then at full weight) and
  *     ends; every later segment is only attenuated (Beer–Lambert, no scattering).
  *     Surface transport is unchanged.

@@ -1,4 +1,4 @@
-// kernels/shared/igi.h ts_igi_may_meet_emitter: the box test that lets the ray march skip
+// kernels/shared/igi_emitters.h ts_igi_may_meet_emitter: the box test that lets the ray march skip
 // tracing phase-sampled rays that cannot reach a light. It must be conservative (every
 // ray whose closest hit is an emitter passes it, so images do not change) and it must
 // cull (most directions from inside the Cornell box miss its small ceiling light). Its
@@ -16,7 +16,7 @@
 #include "support/render_helpers.h"
 
 // After the tracer (embree_tracer.h): the shared code calls it.
-#include "kernels/shared/igi.h"
+#include "kernels/shared/igi_emitters.h"
 #include "kernels/shared/igi_march16.h"
 
 namespace tessera {

@@ -1,4 +1,4 @@
-// kernels/shared/igi.h ts_igi_march_vrl_link: a virtual ray light's link from the ray
+// kernels/shared/igi_ray_lights.h ts_igi_march_vrl_link: a virtual ray light's link from the ray
 // march (docs/igi.md §6). Summed over a march's steps and the link's two numbers, it must
 // give the double integral of the light the ray light scatters toward the camera segment
 // (quadrature), in both march modes; and its terms must stay bounded as the ray light
@@ -10,7 +10,7 @@
 
 // The tracer first (embree_tracer.h): the shared code calls it.
 #include "backend/embree_tracer.h"
-#include "kernels/shared/igi.h"
+#include "kernels/shared/igi_media.h"
 
 namespace tessera {
 namespace {

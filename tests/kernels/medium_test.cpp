@@ -149,7 +149,7 @@ TEST(Medium, EquiangularStaysFiniteForAPointOnTheRay) {
     // A light or VPL exactly on the camera ray's line (D = 0) would give 0/0 angles and an
     // infinite density at its projection: the rounding floor keeps D > 0, so samples and
     // densities stay finite; d_min widens the density to the given distance (the VPL
-    // clamp's radius in shared/igi.h).
+    // clamp's radius in shared/igi_march.h).
     const ts::float3 org = make_float3(0, 0, 0), dir = make_float3(0, 0, 1), p = make_float3(0, 0, 3);
     ts::TsEquiangular e = ts::ts_equiangular_angles(ts::ts_equiangular_setup(org, dir, 10.0f, p, 0.0f), 0.0f, 10.0f);
     EXPECT_GT(e.D, 0.0f);
