@@ -174,8 +174,8 @@ void read_material_tracks(const JsonField& j, Scene& scene, int frames) {
         for_each_key(list, frames, {"frame", "albedo", "emission"}, [&](const JsonField& key, int frame) {
             MaterialKey k;
             k.frame = frame;
-            if (auto a = key.find("albedo")) k.albedo = scene_detail::read_colour(*a, true);
-            if (auto e = key.find("emission")) k.emission = scene_detail::read_colour(*e, false);
+            if (auto a = key.find("albedo")) k.albedo = scene_detail::read_colour(*a, scene_detail::Colour::Albedo);
+            if (auto e = key.find("emission")) k.emission = scene_detail::read_colour(*e, scene_detail::Colour::Radiance);
             track.keys.push_back(k);
         });
         // Values between keys are convex combinations of key values: the keys bound them.

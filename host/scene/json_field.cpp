@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera::scene_detail {
 
@@ -136,11 +137,14 @@ glm::vec3 JsonField::vec3() const {
     return {at(0).number(), at(1).number(), at(2).number()};
 }
 
-glm::vec3 read_colour(const JsonField& j, bool at_most_one) {
+glm::vec3 read_colour(const JsonField& j, Colour kind) {
     const glm::vec3 c = j.vec3();
     for (int i = 0; i < 3; ++i) {
         if (c[i] < 0.0f) j.fail("colour components must be >= 0");
-        if (at_most_one && c[i] > 1.0f) j.fail("albedo components must be <= 1 (in [0, 1])");
+        if (kind == Colour::Albedo && c[i] > 1.0f) j.fail("albedo components must be <= 1 (in [0, 1])");
+        if (kind == Colour::Radiance && c[i] > limits::kMaxRadiance)
+            j.fail("radiance components must be <= " + limits::shown_limit(limits::kMaxRadiance) +
+                   " W/(sr·m²) (brighter overflows the estimators' float sums)");
     }
     return c;
 }

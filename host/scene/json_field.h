@@ -66,9 +66,16 @@ bool is_comment_key(std::string_view key);
 /// max(2, half the longer word) edits, i.e. close enough to be a likely typo.
 std::string closest_match(std::string_view word, std::initializer_list<std::string_view> candidates);
 
-/// An [r, g, b] colour with every channel >= 0, and also <= 1 when `at_most_one` (an
-/// albedo). Throws InputError naming the key otherwise.
-glm::vec3 read_colour(const JsonField& j, bool at_most_one);
+/// What an [r, g, b] triple holds, which sets its upper bound.
+enum class Colour {
+    Albedo,       ///< reflectance, in [0, 1]
+    Radiance,     ///< emitted radiance, W/(sr·m²), <= limits::kMaxRadiance
+    Coefficient,  ///< a medium's σ per scene unit; bounded with the scene (read_medium)
+};
+
+/// An [r, g, b] triple with every channel >= 0 and within `kind`'s bound. Throws
+/// InputError naming the key and the value otherwise.
+glm::vec3 read_colour(const JsonField& j, Colour kind);
 
 /// Checks a pinhole view (the `camera` block or an animation key, named by `where`):
 /// look_at − position must be non-zero and finite, and not parallel to `up` (nor `up`

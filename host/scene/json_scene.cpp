@@ -9,6 +9,7 @@
 #include "scene/texture_file.h"
 #include "scene/transform.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera {
 
@@ -136,8 +137,8 @@ void apply_material_overrides(const JsonField& overrides, Scene& scene) {
         for (auto& m : scene.materials) {
             if (m.name != name) continue;
             found = true;
-            if (auto a = o.find("albedo")) m.albedo = read_colour(*a, true);
-            if (auto e = o.find("emission")) m.emission = read_colour(*e, false);
+            if (auto a = o.find("albedo")) m.albedo = read_colour(*a, scene_detail::Colour::Albedo);
+            if (auto e = o.find("emission")) m.emission = read_colour(*e, scene_detail::Colour::Radiance);
         }
         if (!found) o.fail("no loaded MTL material is named '" + name + "'");
     }
@@ -159,9 +160,27 @@ void read_lights(const JsonField& lights, Scene& scene) {
                 l.fail("a corner of the quad overflows a float");
         const auto first = static_cast<uint32_t>(scene.triangle_count());
         scene_detail::append_quad_light(scene, l["corner"].vec3(), e1, e2,
-                                        read_colour(l["radiance"], false),
+                                        read_colour(l["radiance"], scene_detail::Colour::Radiance),
                                         "json-light-" + std::to_string(i));
         scene.objects.push_back({"json-light-" + std::to_string(i), first, 2u});
+    }
+}
+
+// The medium's optical depth over the scene's diagonal, (σ_a + σ_s)·D per channel in
+// double, against limits::kMaxOpticalDepth; D from the geometry and lights loaded so far
+// (everything but the medium). A scene of one point (D = 0) has no depth to bound.
+void check_optical_depth(const JsonField& j, const Scene& scene) {
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::vec3& p : scene.positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
+    const double d = scene.positions.empty() ? 0.0 : glm::length(hi - lo);
+    const Medium& m = scene.medium;
+    for (int c = 0; c < 3; ++c) {
+        const double tau = (double(m.sigma_a[c]) + double(m.sigma_s[c])) * d;
+        if (tau > limits::kMaxOpticalDepth)
+            j.fail("sigma_a + sigma_s = " + limits::shown_limit(double(m.sigma_a[c]) + double(m.sigma_s[c])) +
+                   " per scene unit gives an optical depth of " + limits::shown_limit(tau) +
+                   " over the scene's diagonal (" + limits::shown_limit(d) + " scene units); the limit is " +
+                   limits::shown_limit(limits::kMaxOpticalDepth) + ", already opaque past 1e-7 of it");
     }
 }
 
@@ -170,8 +189,9 @@ void read_lights(const JsonField& lights, Scene& scene) {
 void read_medium(const JsonField& j, Scene& scene) {
     j.require_known_keys({"sigma_a", "sigma_s", "g", "box"});
     Medium& m = scene.medium;
-    m.sigma_a = read_colour(j["sigma_a"], false);
-    m.sigma_s = read_colour(j["sigma_s"], false);
+    m.sigma_a = read_colour(j["sigma_a"], scene_detail::Colour::Coefficient);
+    m.sigma_s = read_colour(j["sigma_s"], scene_detail::Colour::Coefficient);
+    check_optical_depth(j, scene);
     if (auto g = j.find("g")) {
         m.g = g->number();
         if (!(m.g > -1.0f && m.g < 1.0f)) g->fail("must lie in (-1, 1)");
@@ -188,13 +208,23 @@ void read_medium(const JsonField& j, Scene& scene) {
 }
 
 // emission_max, not emission: a light that is dark in the rest pose but lit in some
-// frame makes a valid scene; one that is dark in every frame does not.
+// frame makes a valid scene; one that is dark in every frame does not. A light is an
+// emissive triangle of non-zero area, as the light list counts it (add_lights,
+// device/scene_buffers.cpp); an emitter whose area overflows a float is refused.
 bool has_emitter(const Scene& scene) {
-    for (const uint32_t m : scene.material) {
-        const glm::vec3 e = scene.materials[m].emission_max;
-        if (e.x > 0.0f || e.y > 0.0f || e.z > 0.0f) return true;
+    bool any = false;
+    for (uint32_t i = 0; i < scene.triangle_count(); ++i) {
+        const Material& m = scene.materials[scene.material[i]];
+        const glm::vec3 e = m.emission_max;
+        if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) continue;
+        const glm::vec3 p0 = scene.positions[3 * i];
+        const float area = 0.5f * glm::length(glm::cross(scene.positions[3 * i + 1] - p0, scene.positions[3 * i + 2] - p0));
+        if (!std::isfinite(area))
+            throw InputError(scene.source.string() + ": emissive triangle " + std::to_string(i) + " (material '" +
+                             m.name + "') has an area that overflows a float");
+        any = any || area > 0.0f;
     }
-    return false;
+    return any;
 }
 
 }  // namespace
@@ -221,7 +251,7 @@ Scene load_scene(const fs::path& scene_file, const DataPath& data) {
     if (auto a = root.find("animation")) scene_detail::read_animation(*a, scene);
     if (!has_emitter(scene))
         throw InputError(scene_file.string() + ": scene " + scene.name +
-                         " has no lights (no MTL Ke and no JSON light)");
+                         " has no lights (no MTL Ke and no JSON light, or only emitters of zero area)");
     return scene;
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "scene/obj_text.h"
+#include "util/input_limits.h"
 
 namespace tessera::scene_detail {
 
@@ -78,9 +79,14 @@ private:
         if (values.size() != 3)
             fail(l.number, std::string(key) + " needs 3 numbers (r g b), got " + in_quotes(l.text) +
                                " (spectral and xyz forms are not supported)");
-        for (const auto v : values)
-            if (number(l, key, v) < 0.0)
-                fail(l.number, std::string(key) + " value " + in_quotes(v) + " is negative (must be >= 0)");
+        for (const auto v : values) {
+            const double d = number(l, key, v);
+            if (d < 0.0) fail(l.number, std::string(key) + " value " + in_quotes(v) + " is negative (must be >= 0)");
+            if (key == "Ke" && static_cast<float>(d) > limits::kMaxRadiance)
+                fail(l.number, "Ke value " + in_quotes(v) + " exceeds the limit of " +
+                                   limits::shown_limit(limits::kMaxRadiance) +
+                                   " W/(sr·m²) (brighter overflows the estimators' float sums)");
+        }
     }
 
     void ior(const TextLine& l) {

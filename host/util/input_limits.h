@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 
 #include "util/error.h"
@@ -45,6 +46,26 @@ constexpr std::size_t kPathEntries = 1000000;
 /// stay below this: the same 10^6 as kPathEntries, so a script cannot ask the headless
 /// viewer for days of frames before its first event.
 constexpr int kViewFrames = 1000000;
+
+/// Emitted radiance per channel, W/(sr·m²) (MTL Ke, JSON emission and light radiance).
+/// The Sun's disc is about 2·10^7. The estimators multiply radiance by factors (1/pdf,
+/// a VPL's flux, the instant cache's sums) that took an emission of 10^36 past the float
+/// range (ic and tic wrote Inf; 3·10^38 gave NaN in igi); 10^15 leaves 10^23 of room.
+constexpr float kMaxRadiance = 1e15f;
+
+/// A medium's optical depth over the scene's diagonal D, (σ_a + σ_s)·D per channel.
+/// Transmittance exp(−τ) is 0 in float past τ ≈ 104, so at 10^9 the medium is opaque
+/// past 10^-7 of the diagonal and any denser one renders the same; the ray march's
+/// products of σ with distances and radiance then stay far from the float range
+/// (σ_s = 5·10^37 on the Cornell box gave NaN pixels in every igi-family method).
+constexpr double kMaxOpticalDepth = 1e9;
+
+/// A limit as messages show it: "%g" ("1e+15").
+inline std::string shown_limit(double limit) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", limit);
+    return text;
+}
 
 /// Throws InputError "<file>: <what> of <w>x<h> pixels exceeds ..." when an image header
 /// asks for more than kImageSide per side or (with `channels` > 0) kImageFloats values,

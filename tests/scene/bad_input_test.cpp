@@ -62,7 +62,7 @@ TEST(BadInput, MissingTextureNamesTheTexture) {
 TEST(BadInput, SceneWithoutLights) {
     // quad.mtl defines an emissive material, but no face uses it.
     const std::string e = load_error(fixture("no_lights.json"));
-    EXPECT_CONTAINS(e, "scene fixture-dark has no lights (no MTL Ke and no JSON light)");
+    EXPECT_CONTAINS(e, "scene fixture-dark has no lights (no MTL Ke and no JSON light,");
 }
 
 TEST(BadInput, UnknownMaterialOverrideNamesTheKey) {
@@ -181,7 +181,49 @@ INSTANTIATE_TEST_SUITE_P(
                R"(, "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,-1,1]}]})",
                "lights[0].radiance"},
         BadKey{"{" CAM_OK ", " OBJ_OK ", " LIGHT_OK R"(, "materials": {"grey": {"albedo": [2, 0, 0]}}})",
-               "materials.grey.albedo"}));
+               "materials.grey.albedo"},
+        // Radiance above limits::kMaxRadiance (ic wrote Inf pixels at 1e36), as a light's and
+        // as a material's emission.
+        BadKey{"{" CAM_OK ", " OBJ_OK
+               R"(, "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1.1e15,1]}]})",
+               "lights[0].radiance"},
+        BadKey{"{" CAM_OK ", " OBJ_OK ", " LIGHT_OK R"(, "materials": {"grey": {"emission": [1e36, 0, 0]}}})",
+               "radiance components must be <= 1e+15"},
+        // A medium whose optical depth over the scene passes limits::kMaxOpticalDepth
+        // (sigma_s = 5e37 gave NaN pixels): the quad's diagonal with the light's is about 2.4.
+        BadKey{"{" CAM_OK ", " OBJ_OK ", " LIGHT_OK R"(, "medium": {"sigma_a": [0,0,0], "sigma_s": [1,1e9,1]}})",
+               "optical depth of"},
+        BadKey{"{" CAM_OK ", " OBJ_OK ", " LIGHT_OK R"(, "medium": {"sigma_a": [3e38,0,0], "sigma_s": [3e38,0,0]}})",
+               "sigma_a + sigma_s = 6e+38"}));
+
+// The limits' boundaries load: radiance 1e15 and a medium of optical depth just under 1e9.
+TEST(BadInput, RadianceAndOpticalDepthAtTheLimitsLoad) {
+    const auto dir = test::unique_temp_dir("tessera_limits");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "ok.json") << R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]},
+        "objects": [{"mesh": ")" << fixture("quad.obj").string() << R"("}],
+        "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1e15,0,1]}],
+        "medium": {"sigma_a": [0,0,0], "sigma_s": [1e8,0,0]}})";
+    const Scene s = load_scene(dir / "ok.json", DataPath{});
+    EXPECT_EQ(s.medium.sigma_s.x, 1e8f);
+    std::filesystem::remove_all(dir);
+}
+
+// A scene whose only emitter has zero area has no lights (the light list drops it).
+TEST(BadInput, SceneWhoseOnlyEmitterHasZeroAreaHasNoLights) {
+    const auto dir = test::unique_temp_dir("tessera_zero_area_light");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "l.mtl") << "newmtl w\nKd .5 .5 .5\nnewmtl l\nKe 10 10 10\n";
+    std::ofstream(dir / "l.obj") << "mtllib l.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 2 2\n"
+                                    "usemtl w\nf 1 2 3\nusemtl l\nf 4 4 4\n";
+    std::ofstream(dir / "s.json") << R"({"camera": {"position": [0.3,0.3,-2], "look_at": [0.3,0.3,0]},
+                                         "objects": [{"mesh": "l.obj"}]})";
+    const std::string e = load_error(dir / "s.json");
+    EXPECT_CONTAINS(e, "s.json");
+    EXPECT_CONTAINS(e, "has no lights");
+    EXPECT_CONTAINS(e, "only emitters of zero area");
+    std::filesystem::remove_all(dir);
+}
 
 }  // namespace
 }  // namespace tessera

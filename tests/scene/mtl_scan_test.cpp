@@ -61,6 +61,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadMtl{"KeInf", "newmtl m\nKe inf 1 1\n", "m.mtl:2:", "'inf'", "Ke value 'inf' is not a number"},
         BadMtl{"KeOverflow", "newmtl m\nKe 1e40 1 1\n", "m.mtl:2:", "'1e40'", "not finite"},
         BadMtl{"KeNegative", "newmtl m\nKe -5 0 0\n", "m.mtl:2:", "'-5'", "negative"},
+        BadMtl{"KeAboveTheLimit", "newmtl m\nKe 1 2e15 1\n", "m.mtl:2:", "'2e15'", "exceeds the limit of 1e+15 W/(sr"},
         BadMtl{"KeTwoNumbers", "newmtl m\nKe 1 1\n", "m.mtl:2:", "'Ke 1 1'", "needs 3 numbers"},
         // Ni: one finite number >= 0, and > 0 in a dielectric (illum 7), before or after illum.
         BadMtl{"NiNan", "newmtl m\nNi nan\n", "m.mtl:2:", "'nan'", "Ni value 'nan' is not a number"},
@@ -110,7 +111,7 @@ TEST_F(MtlInput, BoundaryValuesLoad) {
                                      "newmtl m\r\n"
                                      "\tKd 0 0.5 1.5   # blue above 1: clamped\r\n"
                                      "\tKs 0 0 0\r\n"
-                                     "\tKe 0 1e30 2\r\n"
+                                     "\tKe 0 1e15 2\r\n"  // limits::kMaxRadiance, the brightest accepted
                                      "\tNi 1e-3\r\n"
                                      "\tillum 7\r\n"
                                      "\tNs 1e999\r\n"  // not read: not checked
@@ -120,7 +121,7 @@ TEST_F(MtlInput, BoundaryValuesLoad) {
     const Material& m = s.materials[s.material[0]];
     EXPECT_EQ(m.name, "m");
     EXPECT_EQ(m.albedo, glm::vec3(0.0f, 0.5f, 1.0f));
-    EXPECT_EQ(m.emission, glm::vec3(0.0f, 1e30f, 2.0f));
+    EXPECT_EQ(m.emission, glm::vec3(0.0f, 1e15f, 2.0f));
     EXPECT_EQ(m.illum, 7);
     EXPECT_FLOAT_EQ(m.ior, 1e-3f);
 }
