@@ -53,7 +53,10 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        return fail(std::string(e.what()) + " (see --help)", e.get_exit_code() ? e.get_exit_code() : 2);
+        // CLI11's own codes (105-120) would say nothing a script can use: every parse error
+        // is bad input, exit 2 as docs/input-limits.md says. A "success" (help) exits 0.
+        if (e.get_exit_code() == 0) return app.exit(e);
+        return fail(std::string(e.what()) + " (see --help)", 2);
     } catch (const tessera::RankFailure& e) {
         // A distributed render (render/cluster.h): rank 0 gives the one message, naming the
         // rank that failed; the other ranks exit with the same status and say nothing.

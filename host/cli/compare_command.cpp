@@ -19,6 +19,7 @@
 #include "metrics/flip.h"
 #include "metrics/image_metrics.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera::cli {
 namespace fs = std::filesystem;
@@ -39,6 +40,8 @@ void check_compare_options(const CompareArgs& a, const CLI::App& cmd) {
     reject_empty_values(cmd);
     if (a.cvvdp) metrics::check_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), "--cvvdp");
     if (a.hdrvdp) metrics::check_hdrvdp(metrics::hdrvdp_tool(), "--hdrvdp");
+    if (a.no_flip && !a.flip_map.empty())
+        throw InputError("--flip-map " + a.flip_map + ": FLIP writes it, and --no-flip skips FLIP");
     std::vector<OutputFile> maps;
     if (!a.map.empty()) maps.push_back({a.map, "--map"});
     if (!a.flip_map.empty()) maps.push_back({a.flip_map, "--flip-map"});
@@ -54,7 +57,7 @@ void check_compare_options(const CompareArgs& a, const CLI::App& cmd) {
         for (const OutputFile& m : maps)
             if (fs::exists(image) && fs::equivalent(image, m.path, ec))
                 throw InputError(m.role + " " + m.path.string() + ": is the " + role + " image");
-    prepare_output_directories(maps);
+    check_output_directories(maps);
 }
 
 // The two images cover the same pixels: the same size and the same data window origin
@@ -85,14 +88,18 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
     const double rel = metrics::rel_mse(ref, test);
     const double rmse = metrics::rmse(ref, test);
     const double psnr = metrics::psnr_tonemapped(ref, test, a.exposure);
-    if (!a.map.empty())
-        metrics::write_error_map_png(a.map, ref.width, ref.height, metrics::rel_se_map(ref, test));
     metrics::FlipResult flip;
     if (a.no_flip)
         flip.reason = "disabled by --no-flip";
     else
         flip = metrics::compute_flip(a.ref, a.test,
                                      a.flip_map.empty() ? std::nullopt : std::optional<fs::path>(a.flip_map));
+    // Without --flip-map an unavailable FLIP is reported in the output; a map asked for
+    // and not written fails the run, before --map is written (a failing run writes nothing).
+    if (!flip.available && !a.flip_map.empty())
+        throw RuntimeError("--flip-map " + a.flip_map + ": not written: FLIP did not run (" + flip.reason + ")");
+    if (!a.map.empty())
+        metrics::write_error_map_png(a.map, ref.width, ref.height, metrics::rel_se_map(ref, test));
     std::optional<metrics::CvvdpResult> cvvdp;
     if (a.cvvdp)
         cvvdp = metrics::compute_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), a.ref, a.test,
@@ -174,7 +181,7 @@ void add_compare_command(CLI::App& app) {
     cmd->add_option("--flip-map", args->flip_map, "Write the FLIP error map (magma) as PNG");
     cmd->add_option("--exposure", args->exposure, "Exposure in stops before the PSNR tone map")
         ->capture_default_str()
-        ->check(finite_number("--exposure"));
+        ->check(finite_number_in("--exposure", -limits::kExposureStops, limits::kExposureStops, false));
     cmd->add_flag("--json", args->json, "Print the metrics as JSON");
     cmd->add_flag("--no-flip", args->no_flip, "Skip FLIP (no Python subprocess)");
     CLI::Option* cvvdp = cmd->add_flag(

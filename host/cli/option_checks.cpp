@@ -120,18 +120,24 @@ void check_outputs(const std::vector<OutputFile>& outputs, const fs::path& input
     }
 }
 
-void prepare_output_directories(const std::vector<OutputFile>& outputs) {
+void check_output_directories(const std::vector<OutputFile>& outputs) {
     std::set<fs::path> done;
     for (const OutputFile& o : outputs) {
         const fs::path dir = o.path.parent_path().empty() ? fs::path(".") : o.path.parent_path();
         if (!done.insert(dir).second) continue;
         const std::string name = o.role + " " + o.path.string();
+        // The directory, or the nearest ancestor that exists, where the writer will make it
+        // (check_outputs has made sure that one is a directory).
         std::error_code ec;
-        fs::create_directories(dir, ec);
-        if (ec) throw RuntimeError(name + ": cannot create the directory " + dir.string() + ": " + ec.message());
-        std::string probe = (dir / ".tessera-write-test.XXXXXX").string();
+        fs::path existing = dir;
+        while (!fs::exists(existing, ec) && existing != existing.parent_path())
+            existing = existing.has_parent_path() ? existing.parent_path() : fs::path(".");
+        const std::string missing = existing == dir ? "" : "cannot create the directory " + dir.string() + ": ";
+        std::string probe = (existing / ".tessera-write-test.XXXXXX").string();
         const int fd = ::mkstemp(probe.data());
-        if (fd < 0) throw RuntimeError(name + ": cannot write in " + dir.string() + ": " + std::strerror(errno));
+        if (fd < 0)
+            throw RuntimeError(name + ": " + missing + "cannot write in " + existing.string() + ": " +
+                               std::strerror(errno));
         ::close(fd);
         ::unlink(probe.c_str());
     }

@@ -43,8 +43,11 @@ struct OutputFile {
 /// InputError "<role> <path>: is a directory". Creates nothing.
 void check_outputs(const std::vector<OutputFile>& outputs, const std::filesystem::path& input);
 
-/// Makes the outputs' directories and checks each is writable by creating and removing
-/// a temporary file there. RuntimeError naming the output, the directory and the OS reason.
-void prepare_output_directories(const std::vector<OutputFile>& outputs);
+/// Checks that each output's directory is writable, or, where it does not exist yet, its
+/// nearest existing ancestor (so that it can be made), by creating and removing a
+/// temporary file there. Creates no directory: the writers make them when they first
+/// write (image/atomic_file.h), so a run that fails before it writes leaves nothing
+/// behind. RuntimeError naming the output, the directory and the OS reason.
+void check_output_directories(const std::vector<OutputFile>& outputs);
 
 }  // namespace tessera::cli

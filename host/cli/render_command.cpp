@@ -25,6 +25,7 @@
 #include "render/sequence.h"
 #include "scene/loader.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 #include <nlohmann/json.hpp>
 
@@ -221,12 +222,13 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
         check_scene_options(settings, scene, scene_path);
+        if (a.resume) require_checkpoint(checkpoint_path_for(out));  // before the scene's banner
         if (lead) {  // only rank 0 writes
             // Every output before the first ray: a run that cannot write its results does no work.
             const std::vector<OutputFile> files = outputs_of(a, out, frames);
             check_outputs(files, scene_path);
             stop_if_interrupted("while loading the scene");
-            prepare_output_directories(files);  // checkpoints are written there during the render too
+            check_output_directories(files);  // checkpoints are written there during the render too
         }
     });
     if (frames) return run_sequence(a, scene, *frames, out, bo, settings);
@@ -291,7 +293,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--out", args->out, "Output EXR (default out/<scene>.exr); a PNG preview is written beside it");
     cmd->add_option("--exposure", args->exposure, "PNG preview exposure in stops")
         ->capture_default_str()
-        ->check(finite_number("--exposure"));
+        ->check(finite_number_in("--exposure", -limits::kExposureStops, limits::kExposureStops, false));
     cmd->add_flag("--resume", args->resume,
                   "Continue from the checkpoint beside --out (<out>.ckpt) left by an interrupted render");
     cmd->add_option("--frames", args->frames,

@@ -215,6 +215,9 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
         throw InputError("--pareto " + a.pareto + ": is read only with --target-fps (the frame budget it feeds)");
     if (a.record && a.camera_path.empty()) throw InputError("--record needs --camera-path FILE.json to record into");
     if (a.record && a.headless) throw InputError("--record records a windowed session; it cannot be used with --headless");
+    if (a.headless && !a.screenshot_window.empty())
+        throw InputError("--screenshot-window " + a.screenshot_window +
+                         ": a headless run has no window to capture (--frame-images writes its frames)");
     if (a.headless && a.camera_path.empty() && a.input_script.empty())
         throw InputError("--headless needs --camera-path or --input-script (there is no one to steer it)");
     WindowModule window;
@@ -258,7 +261,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (!a.frame_images.empty()) files.push_back({fs::path(a.frame_images) / "frame.0000.exr", "--frame-images"});
     check_outputs(files, scene_path);
     if (!a.frame_images.empty()) check_frame_images(a.frame_images, lo);
-    prepare_output_directories(files);
+    check_output_directories(files);
 
     ViewSession session(scene, o);
     std::fprintf(stderr, "tessera view: %s, %zu triangles, %dx%d, %s on %s\n", scene.name.c_str(),
@@ -290,7 +293,7 @@ void add_view_command(CLI::App& app) {
     add_parameter_options(*cmd, args->settings);  // --spp is the passes accumulated at rest
     cmd->add_option("--exposure", args->exposure, "Display and PNG exposure in stops ([ and ] change it)")
         ->capture_default_str()
-        ->check(finite_number("--exposure"));
+        ->check(finite_number_in("--exposure", -limits::kExposureStops, limits::kExposureStops, false));
     cmd->add_option("--frames", args->frames, "Animated scene: the frames A:B that T plays");
     cmd->add_flag("--headless", args->headless, "No window: run --camera-path / --input-script and report frame times");
     cmd->add_option("--camera-path", args->camera_path, "Fly-through JSON to replay (or to record with --record)");

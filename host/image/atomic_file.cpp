@@ -72,6 +72,13 @@ int make_temp(const fs::path& target, fs::path& temp) {
     if (target.filename().empty())
         throw RuntimeError("cannot write '" + target.string() + "': not a file name");
     fs::path dir = target.parent_path();
+    // The run's output directories are made here, at its first write, not when its options
+    // are checked: a run that fails before writing leaves no directory behind.
+    std::error_code ec;
+    if (!dir.empty() && !fs::is_directory(dir, ec)) {
+        fs::create_directories(dir, ec);
+        if (ec) fail(target, "cannot create the directory '" + dir.string() + "'", ec.value());
+    }
     std::string pattern =
         (dir.empty() ? fs::path(".") : dir).string() + "/." + target.filename().string() +
         ".tmp.XXXXXX";

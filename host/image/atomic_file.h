@@ -1,5 +1,7 @@
 // Atomic file replacement: content goes to a unique temporary file in the target's
-// directory, which is renamed over the target only after a complete, synced write.
+// directory, which is renamed over the target only after a complete, synced write. A
+// missing directory is made at that first write (the CLI's checks make none, so a run
+// that fails before it writes leaves nothing behind).
 #pragma once
 #include <cstddef>
 #include <filesystem>

@@ -19,12 +19,16 @@ CheckpointSession::CheckpointSession(const CheckpointOptions* options, const Sce
 
 CheckpointSession::~CheckpointSession() = default;
 
+void require_checkpoint(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        throw InputError("--resume: no checkpoint " + path.string() +
+                         " (it is written beside --out when a render is interrupted)");
+}
+
 uint32_t CheckpointSession::restore(Accumulator& acc) {
     if (!options_ || !options_->resume) return 0;
-    std::error_code ec;
-    if (!std::filesystem::exists(options_->path, ec))
-        throw InputError("--resume: no checkpoint " + options_->path.string() +
-                         " (it is written beside --out when a render is interrupted)");
+    require_checkpoint(options_->path);
     const uint32_t passes = load_checkpoint(options_->path, id_, acc);
     if (passes > spp_)
         throw InputError("checkpoint " + options_->path.string() + " already holds " + std::to_string(passes) +

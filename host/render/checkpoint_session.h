@@ -28,6 +28,10 @@ struct CheckpointOptions {
     bool resume = false;                      ///< continue from `path` (InputError if it is missing)
 };
 
+/// Throws InputError "--resume: no checkpoint <path> ..." when `path` does not exist: the
+/// render command asks before it prints the scene, a session again before it restores.
+void require_checkpoint(const std::filesystem::path& path);
+
 class CheckpointSession {
 public:
     /// Does nothing at all (no signal handlers, no files) when `options` is null.

@@ -60,6 +60,12 @@ constexpr float kMaxRadiance = 1e15f;
 /// (σ_s = 5·10^37 on the Cornell box gave NaN pixels in every igi-family method).
 constexpr double kMaxOpticalDepth = 1e9;
 
+/// Exposure in stops (render's PNG preview, compare's tone map, the viewer's display): the
+/// image is scaled by 2^exposure in float, and 2^128 overflows it. ±64 stops scale the
+/// brightest radiance accepted (kMaxRadiance, 2^50) to 2^114 or the dimmest normal float
+/// up to 2^-62, both finite; 64 stops are far more than any display's range.
+constexpr double kExposureStops = 64.0;
+
 /// A limit as messages show it: "%g" ("1e+15").
 inline std::string shown_limit(double limit) {
     char text[32];

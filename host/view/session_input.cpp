@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "util/input_limits.h"
 #include "view/camera_control.h"
 
 namespace tessera::view {
@@ -47,8 +48,9 @@ void ViewSession::handle(const InputEvent& e) {
         case '4': toggle_component(TS_COMPONENT_EDGE); break;
         case 'V': cycle_aov(1); break;
         case 'B': cycle_aov(-1); break;
-        case '[': exposure_ -= kExposureStep; break;
-        case ']': exposure_ += kExposureStep; break;
+        // Kept within the --exposure range (limits::kExposureStops), where 2^exposure is finite.
+        case '[': exposure_ = std::max(exposure_ - kExposureStep, float(-limits::kExposureStops)); break;
+        case ']': exposure_ = std::min(exposure_ + kExposureStep, float(limits::kExposureStops)); break;
         case ' ': paused_ = !paused_; break;
         case 'T': playing_ = !playing_ && options_.last_frame > options_.first_frame; break;
         case 'H': hud_visible_ = !hud_visible_; break;

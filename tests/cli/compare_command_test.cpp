@@ -213,6 +213,28 @@ TEST_F(CompareCli, FlipUnavailableKeepsOtherMetrics) {
         << text.output;
 }
 
+// A FLIP map asked for and not written fails the run (exit 1), and leaves --map unwritten
+// too; asked for with --no-flip it is refused before any work (exit 2).
+TEST_F(CompareCli, FlipMapThatCannotBeWrittenFailsTheRun) {
+    const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
+    const fs::path flip_map = dir_ / "f.png", map = dir_ / "m.png";
+    CliResult r = run_compare(a + " " + b + " --flip-map " + flip_map.string() + " --map " + map.string(),
+                              "TESSERA_FLIP_SCRIPT=/nonexistent/flip_metric.py");
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("tessera: error: --flip-map " + flip_map.string() +
+                            ": not written: FLIP did not run (script /nonexistent/flip_metric.py not found)"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(flip_map));
+    EXPECT_FALSE(fs::exists(map));
+    r = run_compare(a + " " + b + " --no-flip --flip-map " + flip_map.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--flip-map " + flip_map.string() + ": FLIP writes it, and --no-flip skips FLIP"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(flip_map));
+}
+
 // The mean FLIP `tessera compare` reports must be what the reference implementation gives
 // when called directly on the same pixels, passed as raw floats (so this also checks that
 // the EXR loader the script uses reads R, G, B and not, say, variance.R).

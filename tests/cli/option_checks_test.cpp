@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -91,9 +92,14 @@ TEST_F(ContractCli, BadOptionValuesAreRejectedBeforeAnyWork) {
         {kRender + "--clamp inf" + kOut, "--clamp inf: must be a finite number >= 0"},
         {kRender + "--ic-error nan" + kOut, "--ic-error nan: must be a finite number in [0.001, 2]"},
         {kRender + "--checkpoint-interval -1" + kOut, "--checkpoint-interval -1: must be >= 0"},
-        {kRender + "--exposure nan" + kOut, "--exposure nan: must be a finite number"},
-        {kRender + "--exposure inf" + kOut, "--exposure inf: must be a finite number"},
-        {kRender + "--exposure ''" + kOut, "--exposure '': must be a finite number"},
+        {kRender + "--exposure nan" + kOut, "--exposure nan: must be a finite number >= -64 and <= 64"},
+        {kRender + "--exposure inf" + kOut, "--exposure inf: must be a finite number >= -64 and <= 64"},
+        {kRender + "--exposure ''" + kOut, "--exposure '': must be a finite number >= -64 and <= 64"},
+        // 2^1e39 overflows the preview's float scale (it failed at the PNG, after the render).
+        {kRender + "--exposure 1e39" + kOut, "--exposure 1e39: must be a finite number >= -64 and <= 64"},
+        {kRender + "--exposure -64.5" + kOut, "--exposure -64.5: must be a finite number >= -64 and <= 64"},
+        // A parse error is bad input: exit 2, not CLI11's own code (109).
+        {kRender + "--bogus" + kOut, "The following argument was not expected: --bogus (see --help)"},
         {kRender + "--out ''", "--out '': must not be empty"},
         {kRender + "--stats-json ''" + kOut, "--stats-json '': must not be empty"},
         {kRender + "--data-dir ''" + kOut, "--data-dir '': must not be empty"},
@@ -110,7 +116,8 @@ TEST_F(ContractCli, BadOptionValuesAreRejectedBeforeAnyWork) {
          "give at least 1 step"},
         {"info ''", "scene '': must not be empty"},
         {"info " + kData + "/light.json --data-dir $D/nowhere", "--data-dir $D/nowhere: no such directory"},
-        {"compare $D/img.exr $D/img.exr --exposure nan", "--exposure nan: must be a finite number"},
+        {"compare $D/img.exr $D/img.exr --exposure nan", "--exposure nan: must be a finite number >= -64 and <= 64"},
+        {"compare $D/img.exr $D/img.exr --exposure 1e39", "--exposure 1e39: must be a finite number >= -64 and <= 64"},
         {"compare $D/img.exr $D/img.exr --map ''", "--map '': must not be empty"},
     };
     for (const Case& c : cases) expect_rejected(c);
@@ -142,8 +149,30 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
         {anim, "frame 1 of --out $D/anim.0001.exr: is a directory", 2, mkdir("anim.0001.exr")},
         {anim, "the PNG preview of frame 2 $D/anim.0002.png: is a directory", 2, mkdir("anim.0002.png")},
         {"compare " + kData + "/x.exr " + kData + "/y.exr --map $D/sub", "--map $D/sub: is a directory", 2, mkdir("sub")},
+        // Failures found after the outputs are checked make no directory for them (the
+        // writers make it at their first write): a missing checkpoint, an unknown device.
+        {kRender + "--resume --out $D/new/img.exr",
+         "--resume: no checkpoint $D/new/img.ckpt (it is written beside --out when a render is interrupted)"},
     };
     for (const Case& c : cases) expect_rejected(c);
+}
+
+// Failures of the OpenCL set-up come after the outputs are checked: they too leave no
+// directory behind (the writers make it at their first write): an unknown device, a
+// kernel build failure.
+TEST_F(ContractCli, OpenClSetUpFailuresMakeNoOutputDirectory) {
+    const std::string render = "render " + kData + "/light.json --backend opencl --spp 1 --width 8 --height 8 ";
+    const fs::path out = dir_ / "new" / "img.exr";
+    for (const auto& [args, env, message] :
+         {std::tuple{std::string("--device no-such-device"), std::string(), std::string("--device no-such-device")},
+          std::tuple{std::string(), std::string("TESSERA_CL_OPTIONS=-cl-no-such-option"), std::string("-cl-no-such-option")}}) {
+        SCOPED_TRACE(args + env);
+        const CliResult r = run_tessera(render + args + " --out " + out.string(), env);
+        EXPECT_EQ(r.exit_code, 1) << r.output;
+        EXPECT_NE(r.output.find("tessera: error: "), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(dir_ / "new")) << r.output;
+    }
 }
 
 // The viewer's options and files, --components and compare's maps: rejected with the
@@ -188,6 +217,9 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
          "--components ss: --method pt has no components (they select what igi, ais, ais-max, ic and tic compute)"},
         {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},
         {"compare $D/img.exr $D/img.exr --flip-map $D/f.exr", "--flip-map $D/f.exr: the map is written as PNG; name it .png"},
+        {view + "--screenshot-window $D/w.png",
+         "--screenshot-window $D/w.png: a headless run has no window to capture (--frame-images writes its frames)", 2,
+         files},
     };
     for (const Case& c : cases) expect_rejected(c);
 }
