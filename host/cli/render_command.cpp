@@ -131,6 +131,16 @@ void check_scene_options(const RenderSettings& s, const Scene& scene, const fs::
         throw InputError("--march-steps 0: scene " + scene_path.string() +
                          " has a medium, which --method " + method_name(s.method) +
                          " ray-marches; give at least 1 step");
+    // Components the scene does not call for are skipped (docs/ais.md); where that leaves
+    // none of the light's, the image would be the emitters alone.
+    if (igi_family(s.method) && !(s.igi.components & (TS_COMPONENT_SS | TS_COMPONENT_ID)) &&
+        !plan_effects(scene).medium) {
+        std::string given;
+        for (const auto& [bit, name] : {std::pair{TS_COMPONENT_PM, "pm"}, std::pair{TS_COMPONENT_EDGE, "edge"}})
+            if (s.igi.components & bit) given += (given.empty() ? "" : ",") + std::string(name);
+        throw InputError("--components " + given + ": scene " + scene_path.string() +
+                         " has no medium, so these compute nothing there; add ss or id");
+    }
 }
 
 void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, const fs::path& out,

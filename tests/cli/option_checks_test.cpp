@@ -213,6 +213,11 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {kRender + "--method igi --components ss,edge" + kOut,
          "--components ss,edge: edge samples are an AIS component (--method ais or ais-max), not --method igi"},
         {kRender + "--method ais --ais-edge-samples 16" + kOut, "--ais-edge-samples 16: must be in 1..15"},
+        // Only components a scene without a medium skips: the image would be black.
+        {kRender + "--method igi --components pm" + kOut,
+         "--components pm: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
+        {kRender + "--method ais --components edge,pm" + kOut,
+         "--components pm,edge: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
         {kRender + "--method pt --components ss" + kOut,
          "--components ss: --method pt has no components (they select what igi, ais, ais-max, ic and tic compute)"},
         {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},
