@@ -103,7 +103,14 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
                 if (m.texture >= 0) {
                     const fs::path& tex = entry.mesh.texture_files[size_t(m.texture)];
                     auto [t, added] = texture_ids.try_emplace(tex, int(scene.textures.size()));
-                    if (added) scene.textures.push_back(scene_detail::load_texture(tex));
+                    if (added) {
+                        try {
+                            scene.textures.push_back(scene_detail::load_texture(tex));
+                        } catch (const InputError& e) {  // the file's own message, then where it is named
+                            throw InputError(std::string(e.what()) + " (" +
+                                             entry.mesh.texture_roles[size_t(m.texture)] + ")");
+                        }
+                    }
                     m.texture = t->second;
                 }
                 scene.materials.push_back(m);

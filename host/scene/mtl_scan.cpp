@@ -32,10 +32,14 @@ public:
 
     void statement(const TextLine& l) {
         const std::string_view k = l.tokens[0];
-        if (k == "newmtl") begin(l);
-        else if (k == "Kd" || k == "Ks" || k == "Ke") colour(l, k);
+        if (k == "newmtl") return begin(l);
+        const bool read = k == "Kd" || k == "Ks" || k == "Ke" || k == "Ni" || k == "illum" || k == "map_Kd";
+        if (read && cur_.name.empty())
+            fail(l.number, std::string(k) + " belongs to no material (the loader would drop it)");
+        if (k == "Kd" || k == "Ks" || k == "Ke") colour(l, k);
         else if (k == "Ni") ior(l);
         else if (k == "illum") illum(l);
+        else if (k == "map_Kd") map_kd(l);
     }
 
     // A dielectric's Ni is only known to be bad once its illum is known, which may come
@@ -97,6 +101,12 @@ private:
         cur_.ni = d;
         cur_.ni_text = std::string(values[0]);
         cur_.ni_line = l.number;
+    }
+
+    // The file name is the statement's last token (options such as -s come before it).
+    void map_kd(const TextLine& l) {
+        if (value_tokens(l).empty()) fail(l.number, "map_Kd needs a texture file name");
+        defined_[cur_.name].map_kd_line = l.number;
     }
 
     void illum(const TextLine& l) {

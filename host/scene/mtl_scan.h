@@ -14,7 +14,8 @@ namespace tessera::scene_detail {
 /// Where a material is defined.
 struct MtlDefinition {
     std::filesystem::path file;
-    size_t line = 0;
+    size_t line = 0;         ///< its newmtl
+    size_t map_kd_line = 0;  ///< its map_Kd, 0 for none
 };
 
 /// Scans the text of `mtl` and adds each `newmtl` name to `defined`. Throws InputError
@@ -26,6 +27,9 @@ struct MtlDefinition {
 /// - illum not one integer in 0..10 (the models the MTL format defines);
 /// - a material name defined twice in the MTL files of one OBJ (`defined` holds the
 ///   earlier ones), since tinyobjloader would give usemtl the first and overrides both;
+/// - map_Kd without a file name;
+/// - a statement the loader reads (Kd, Ks, Ke, Ni, illum, map_Kd) before any newmtl,
+///   which tinyobjloader would drop;
 /// - a NUL byte.
 /// Other statements (Ka, Ns, d, Tr, Tf, map_* but map_Kd, ...) are not read by the loader
 /// and not checked.

@@ -82,7 +82,8 @@ void check_triangle_count(const fs::path& obj, const ObjScan& scan, const tinyob
 
 Material convert_material(const tinyobj::material_t& m, const fs::path& obj,
                           const std::map<std::string, MtlDefinition>& defined,
-                          std::map<fs::path, int>& texture_index, std::vector<fs::path>& texture_files) {
+                          std::map<fs::path, int>& texture_index, std::vector<fs::path>& texture_files,
+                          std::vector<std::string>& texture_roles) {
     const auto def = defined.find(m.name);
     const std::string where =
         (def == defined.end() ? obj.string() : def->second.file.string() + ":" + std::to_string(def->second.line)) +
@@ -106,9 +107,14 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& obj,
     if (!m.diffuse_texname.empty()) {
         // map_Kd is relative to the MTL, which is beside the OBJ (scan_obj).
         const fs::path file = (obj.parent_path() / m.diffuse_texname).lexically_normal();
-        require_regular_file(file, "texture (map_Kd of " + where + ")");
+        const std::string role =
+            "map_Kd of " + (def == defined.end() || def->second.map_kd_line == 0
+                                ? where
+                                : def->second.file.string() + ":" + std::to_string(def->second.map_kd_line) +
+                                      ": material '" + m.name + "'");
+        require_regular_file(file, "texture (" + role + ")");
         auto [it, added] = texture_index.try_emplace(file, static_cast<int>(texture_files.size()));
-        if (added) texture_files.push_back(file);
+        if (added) texture_files.push_back(file), texture_roles.push_back(role);
         out.texture = it->second;
     }
     return out;
@@ -157,7 +163,8 @@ ObjMesh load_obj_mesh(const fs::path& obj_file) {
     ObjMesh mesh;
     std::map<fs::path, int> texture_index;
     for (const auto& m : reader.GetMaterials())
-        mesh.materials.push_back(convert_material(m, obj_file, defined, texture_index, mesh.texture_files));
+        mesh.materials.push_back(
+            convert_material(m, obj_file, defined, texture_index, mesh.texture_files, mesh.texture_roles));
     const auto default_material = static_cast<uint32_t>(mesh.materials.size());
     bool uses_default = false;
 

@@ -22,6 +22,9 @@ struct ObjMesh {
     std::vector<uint32_t> material;
     std::vector<Material> materials;
     std::vector<std::filesystem::path> texture_files;
+    /// Where each of texture_files is named: "map_Kd of <mtl>:<line>: material '<name>'"
+    /// (the first material that names it), for a message about the texture's content.
+    std::vector<std::string> texture_roles;
 };
 
 /// Loads `obj_file` with tinyobjloader (quads split along the shorter diagonal, larger

@@ -78,6 +78,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadMtl{"IllumWord", "newmtl m\nillum glass\n", "m.mtl:2:", "'illum glass'", "illum needs 1 integer"},
         BadMtl{"IllumOverflow", "newmtl m\nillum 99999999999999999999\n", "m.mtl:2:", "'99999999999999999999'",
                "0..10"},
+        // map_Kd: a file name (tinyobjloader took the bare statement as no texture).
+        BadMtl{"MapKdWithoutFile", "newmtl m\nKd 1 1 1\nmap_Kd # none\n", "m.mtl:3:", "map_Kd",
+               "map_Kd needs a texture file name"},
         // Names.
         BadMtl{"DefinedTwice", "newmtl m\nKd 1 1 1\nnewmtl m\nKd 0 0 0\n", "m.mtl:3:", "first at",
                "m.mtl:1)"}),
@@ -102,6 +105,27 @@ TEST_F(MtlInput, MtlThatIsADirectory) {
     const std::string e = test::load_error(dir_ / "s.json");
     EXPECT_CONTAINS(e, (dir_ / "m.mtl").string() + ": MTL file");
     EXPECT_CONTAINS(e, "is a directory");
+}
+
+// A statement the loader reads that comes before any newmtl belongs to no material:
+// tinyobjloader dropped it without a word.
+TEST_F(MtlInput, StatementBeforeAnyNewmtlIsRejected) {
+    for (const char* statement : {"Kd 1 1 1", "Ke 1 1 1", "Ni 1.5", "illum 2", "map_Kd t.png"}) {
+        const std::string e = test::load_error(write(std::string(statement) + "\nnewmtl m\nKd 1 1 1\n"));
+        EXPECT_CONTAINS(e, "m.mtl:1: before any newmtl: ");
+        EXPECT_CONTAINS(e, "belongs to no material");
+    }
+}
+
+// A texture whose content is refused is named with the map_Kd line that names it.
+TEST_F(MtlInput, TextureContentErrorNamesTheMapKdLine) {
+    std::ofstream(dir_ / "bad.png") << "not an image";
+    const std::string e = test::load_error(write("newmtl m\nKd 1 1 1\nmap_Kd bad.png\n"));
+    EXPECT_CONTAINS(e, "bad.png: texture is not a PNG or JPEG image");
+    EXPECT_CONTAINS(e, "(map_Kd of ");
+    EXPECT_CONTAINS(e, "m.mtl:3: material 'm')");
+    std::filesystem::remove(dir_ / "bad.png");
+    EXPECT_CONTAINS(test::load_error(write("newmtl m\nKd 1 1 1\nmap_Kd bad.png\n")), "m.mtl:3: material 'm')");
 }
 
 // The boundaries of each range are valid, and values are read as written (Kd and Ks

@@ -99,9 +99,10 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return std::string(info.param.name); });
 
 // The map_Kd message also says which MTL line and material named the texture.
+// The line is map_Kd's (line 3), where the file is named, not newmtl's.
 TEST_F(TextureFiles, MapKdMessageNamesTheMaterial) {
     const std::string e = test::load_error(write_scene());
-    EXPECT_CONTAINS(e, "map_Kd of " + (dir_ / "m.mtl").string() + ":1: material 'm'");
+    EXPECT_CONTAINS(e, "map_Kd of " + (dir_ / "m.mtl").string() + ":3: material 'm'");
 }
 
 // JPEG textures decode through libjpeg-turbo: two 8x8 blocks of one colour each (quality
