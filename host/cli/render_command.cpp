@@ -126,6 +126,16 @@ void check_render_options(const RenderArgs& a, const CLI::App& cmd, const Backen
 }
 
 // Settings that make no sense for this scene.
+// A setting the method does not read is left as given, with a note: it changes nothing
+// (a script may pass one set of options to every method), but a user who expected it to
+// should hear so.
+void note_ignored_parameters(const CLI::App& cmd, Method method, const std::string& method_text) {
+    for (const Parameter& p : render_parameters())
+        if (cmd.count(p.option) && !parameter_applies(p, method))
+            std::fprintf(stderr, "tessera: note: %s is read by %s; --method %s ignores it\n", p.option,
+                         parameter_scope_text(p), method_text.c_str());
+}
+
 void check_scene_options(const RenderSettings& s, const Scene& scene, const fs::path& scene_path) {
     if (igi_family(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
         throw InputError("--march-steps 0: scene " + scene_path.string() +
@@ -221,6 +231,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
             throw InputError("--components " + a.components + ": edge samples are an AIS component (--method ais or "
                              "ais-max), not --method " + a.method);
         validate_settings(settings);  // before the scene loads: a bad option fails at once
+        if (lead) note_ignored_parameters(cmd, settings.method, a.method);
         check_render_options(a, cmd, bo);
         check_distributed_options(a, settings, cluster);
         if (method_info(settings.method).temporal && a.resume)

@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "integrators/method.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -36,61 +37,61 @@ const Parameter kParameters[] = {
      .min = 0, .max = kNoMax, .unit = "s",
      .doc = "Seconds between checkpoints (0: only when interrupted by SIGINT/SIGTERM)"},
     {.option = "--max-depth", .value_name = "N", .field = TS_SETTING(max_depth), .min = 1, .max = 100000,
-     .unit = "vertices", .doc = "pt: path vertices before a path is cut"},
+     .unit = "vertices", .doc = "pt: path vertices before a path is cut", .scope = ParameterScope::Pt},
     {.option = "--max-scatter", .value_name = "N", .field = TS_SETTING(max_scatter), .min = 0, .max = kNoMax,
-     .unit = "vertices", .doc = "pt: medium scattering vertices per path (1: single scattering, 0: unlimited)"},
+     .unit = "vertices", .doc = "pt: medium scattering vertices per path (1: single scattering, 0: unlimited)", .scope = ParameterScope::Pt},
     {.option = "--tile", .value_name = "N", .field = TS_SETTING(igi.tile), .min = 1, .max = 8, .unit = "px",
-     .doc = "igi: interleave tile edge n (n² sample sets)"},
+     .doc = "igi: interleave tile edge n (n² sample sets)", .scope = ParameterScope::IgiFamily},
     {.option = "--vpl-paths", .value_name = "N", .field = TS_SETTING(igi.paths_per_set), .min = 1, .max = 65536,
-     .unit = "paths", .doc = "igi: light paths per sample set"},
+     .unit = "paths", .doc = "igi: light paths per sample set", .scope = ParameterScope::IgiFamily},
     {.option = "--vpl-importance", .value_name = "K", .field = TS_SETTING(igi.vpl_importance), .min = 1, .max = 64,
-     .unit = "x", .doc = "igi/ais: trace K× the light paths and keep a budget of VPLs by their importance for the view (1: off)"},
+     .unit = "x", .doc = "igi/ais: trace K× the light paths and keep a budget of VPLs by their importance for the view (1: off)", .scope = ParameterScope::IgiFamily},
     {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = kNoMax,
-     .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables"},
+     .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables", .scope = ParameterScope::IgiFamily},
     {.option = "--clamp-decay", .value_name = "A", .field = TS_SETTING(igi.clamp_decay), .min = 0, .max = 1,
-     .doc = "igi: pass p clamps with c·(p+1)^-A, so accumulated passes converge to the unclamped image; 0: fixed"},
+     .doc = "igi: pass p clamps with c·(p+1)^-A, so accumulated passes converge to the unclamped image; 0: fixed", .scope = ParameterScope::IgiFamily},
     {.option = "--march-steps", .value_name = "N", .field = TS_SETTING(igi.march_steps), .min = 0, .max = kNoMax,
-     .unit = "steps", .doc = "igi: medium ray-march steps per pixel (0: none, an error on a scene with a medium)"},
+     .unit = "steps", .doc = "igi: medium ray-march steps per pixel (0: none, an error on a scene with a medium)", .scope = ParameterScope::IgiFamily},
     {.option = "--no-filter", .value_name = "", .field = TS_SETTING(igi.filter), .negated = true,
-     .doc = "igi: skip the discontinuity filter"},
+     .doc = "igi: skip the discontinuity filter", .scope = ParameterScope::IgiFamily},
     {.option = "--single-scattering", .value_name = "", .field = TS_SETTING(igi.multiple_scattering), .negated = true,
-     .doc = "igi family: media: single scattering from the lights only (default: also VPLs at scattering events in the medium)"},
+     .doc = "igi family: media: single scattering from the lights only (default: also VPLs at scattering events in the medium)", .scope = ParameterScope::IgiFamily},
     {.option = "--point-medium-vpls", .value_name = "", .field = TS_SETTING(igi.ray_lights), .negated = true,
-     .doc = "igi family: media: the ray march gathers the medium VPLs as points, clamped (default: a virtual ray light per light-path segment in the medium, unclamped)"},
+     .doc = "igi family: media: the ray march gathers the medium VPLs as points, clamped (default: a virtual ray light per light-path segment in the medium, unclamped)", .scope = ParameterScope::IgiFamily},
     {.option = "--uniform-march", .value_name = "", .field = TS_SETTING(igi.equiangular), .negated = true,
-     .doc = "igi family: media: light samples and VPLs gathered at the ray march's stratified points (default: at equiangular distances toward each)"},
+     .doc = "igi family: media: light samples and VPLs gathered at the ray march's stratified points (default: at equiangular distances toward each)", .scope = ParameterScope::IgiFamily},
     {.option = "--no-mipmaps", .value_name = "", .field = TS_SETTING(texture_filter), .negated = true,
      .doc = "textures at camera hits from the finest mip level, not the pixel's ray-cone level (pt always)"},
     {.option = "--ais-ss-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.ss_trigger), .min = 0, .max = 1,
-     .doc = "ais: SS guidance trigger (flag where the light-visibility range exceeds it)"},
+     .doc = "ais: SS guidance trigger (flag where the light-visibility range exceeds it)", .scope = ParameterScope::Ais},
     {.option = "--ais-id-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.id_trigger), .min = 0, .max = 1,
-     .doc = "ais: ID guidance trigger"},
+     .doc = "ais: ID guidance trigger", .scope = ParameterScope::Ais},
     {.option = "--ais-id-cov", .value_name = "C", .field = TS_SETTING(igi.ais.id_cov), .min = 0, .max = kNoMax,
-     .min_exclusive = true, .doc = "ais: coefficient of variation of indirect light that saturates ID guidance"},
+     .min_exclusive = true, .doc = "ais: coefficient of variation of indirect light that saturates ID guidance", .scope = ParameterScope::Ais},
     {.option = "--ais-pm-trigger", .value_name = "T", .field = TS_SETTING(igi.ais.pm_trigger), .min = 0, .max = 1,
-     .doc = "ais: PM guidance trigger"},
+     .doc = "ais: PM guidance trigger", .scope = ParameterScope::Ais},
     {.option = "--ais-pm-cov", .value_name = "C", .field = TS_SETTING(igi.ais.pm_cov), .min = 0, .max = kNoMax,
-     .doc = "ais: coefficient of variation of in-scattered light that saturates PM guidance (0: off)"},
+     .doc = "ais: coefficient of variation of in-scattered light that saturates PM guidance (0: off)", .scope = ParameterScope::Ais},
     {.option = "--ais-complete", .value_name = "N", .field = TS_SETTING(igi.ais.complete_sets), .min = 0, .max = 64,
-     .unit = "sets", .doc = "ais: distinct sets a flagged edge pixel completes its window to (0: ⌈N/2⌉, N: all)"},
+     .unit = "sets", .doc = "ais: distinct sets a flagged edge pixel completes its window to (0: ⌈N/2⌉, N: all)", .scope = ParameterScope::Ais},
     {.option = "--ais-graded-sets", .value_name = "G", .field = TS_SETTING(igi.ais.graded_sets), .min = 0, .max = 64,
-     .unit = "sets", .doc = "ais: A gives a flagged pixel ⌈a·(min(G, N)−1)⌉ sets graded by its guidance a (0: G = N)"},
+     .unit = "sets", .doc = "ais: A gives a flagged pixel ⌈a·(min(G, N)−1)⌉ sets graded by its guidance a (0: G = N)", .scope = ParameterScope::Ais},
     {.option = "--ais-edge-samples", .value_name = "N", .field = TS_SETTING(igi.edges.samples), .min = 1, .max = 15,
-     .unit = "samples", .doc = "ais: extra camera samples an edge pixel takes at most (ais-max: all)"},
+     .unit = "samples", .doc = "ais: extra camera samples an edge pixel takes at most (ais-max: all)", .scope = ParameterScope::Ais},
     {.option = "--ais-edge-trigger", .value_name = "T", .field = TS_SETTING(igi.edges.trigger), .min = 0, .max = 1,
-     .doc = "ais: edge guidance trigger (flag where the contrast across a geometric edge exceeds it)"},
+     .doc = "ais: edge guidance trigger (flag where the contrast across a geometric edge exceeds it)", .scope = ParameterScope::Ais},
     {.option = "--ic-paths", .value_name = "N", .field = TS_SETTING(ic.paths), .min = 1, .max = 65536,
-     .unit = "paths", .doc = "ic/tic: light paths N_p a record gathers from"},
+     .unit = "paths", .doc = "ic/tic: light paths N_p a record gathers from", .scope = ParameterScope::Ic},
     {.option = "--ic-subsets", .value_name = "M", .field = TS_SETTING(ic.subsets), .min = 0, .max = 64,
-     .unit = "subsets", .doc = "ic/tic: a pass draws M·N_p paths in M subsets, each record gathering from one (0: 1 below 4 spp, 2 below 16, else 16 from 256² pixels, 4 below)"},
+     .unit = "subsets", .doc = "ic/tic: a pass draws M·N_p paths in M subsets, each record gathering from one (0: 1 below 4 spp, 2 below 16, else 16 from 256² pixels, 4 below)", .scope = ParameterScope::Ic},
     {.option = "--ic-importance", .value_name = "K", .field = TS_SETTING(ic.path_importance), .min = 1, .max = 64,
-     .unit = "x", .doc = "ic/tic: trace K× the light paths and keep N_p paths' worth of VPLs, whole paths, by their importance for the view (1: off)"},
+     .unit = "x", .doc = "ic/tic: trace K× the light paths and keep N_p paths' worth of VPLs, whole paths, by their importance for the view (1: off)", .scope = ParameterScope::Ic},
     {.option = "--ic-view-rays", .value_name = "S", .field = TS_SETTING(ic.view_rays), .min = 0, .max = 64,
-     .unit = "rays", .doc = "ic/tic: shadow rays a candidate VPL traces toward the view points it lights, so unseen light weighs nothing in the choice (0: off)"},
+     .unit = "rays", .doc = "ic/tic: shadow rays a candidate VPL traces toward the view points it lights, so unseen light weighs nothing in the choice (0: off)", .scope = ParameterScope::Ic},
     {.option = "--ic-error", .value_name = "A", .field = TS_SETTING(ic.error_bound), .min = 0.001, .max = 2,
-     .doc = "ic/tic: Ward's error bound a"},
+     .doc = "ic/tic: Ward's error bound a", .scope = ParameterScope::Ic},
     {.option = "--no-clamp-compensation", .value_name = "", .field = TS_SETTING(igi.clamp_compensation), .negated = true,
-     .doc = "igi family: skip the estimate of the light the VPL clamp removed (igi/ais: from the screen; ic/tic: up to two rays a pixel and pass)"},
+     .doc = "igi family: skip the estimate of the light the VPL clamp removed (igi/ais: from the screen; ic/tic: up to two rays a pixel and pass)", .scope = ParameterScope::IgiFamily},
 };
 
 #undef TS_SETTING
@@ -133,6 +134,29 @@ std::string value_text(const Parameter& p, const RenderSettings& s) {
 }  // namespace
 
 std::span<const Parameter> render_parameters() { return kParameters; }
+
+bool parameter_applies(const Parameter& p, Method method) {
+    const MethodInfo& m = method_info(method);
+    switch (p.scope) {
+    case ParameterScope::All: return true;
+    case ParameterScope::Pt: return method == Method::PathTrace;
+    case ParameterScope::IgiFamily: return m.igi_family;
+    case ParameterScope::Ais: return m.adaptive;
+    case ParameterScope::Ic: return method == Method::Ic || method == Method::Tic;
+    }
+    return true;
+}
+
+const char* parameter_scope_text(const Parameter& p) {
+    switch (p.scope) {
+    case ParameterScope::All: return "every method";
+    case ParameterScope::Pt: return "pt";
+    case ParameterScope::IgiFamily: return "igi, ais, ais-max, ic and tic";
+    case ParameterScope::Ais: return "ais and ais-max";
+    case ParameterScope::Ic: return "ic and tic";
+    }
+    return "";
+}
 
 const Parameter* find_parameter(const std::string& option) {
     for (const Parameter& p : kParameters)

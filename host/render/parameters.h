@@ -21,6 +21,15 @@ using ParameterField = std::variant<uint32_t& (*)(RenderSettings&), int& (*)(Ren
                                     float& (*)(RenderSettings&), double& (*)(RenderSettings&),
                                     bool& (*)(RenderSettings&)>;
 
+/// The methods that read a parameter (the prefix of its doc line says the same in words).
+enum class ParameterScope {
+    All,        ///< every method
+    Pt,         ///< pt
+    IgiFamily,  ///< igi, ais, ais-max, ic, tic (not direct, not pt)
+    Ais,        ///< ais, ais-max
+    Ic,         ///< ic, tic
+};
+
 /// One user-settable render setting. A bool field is a flag: giving the option sets the
 /// field to !negated.
 struct Parameter {
@@ -35,10 +44,17 @@ struct Parameter {
                                  ///< a value given on the command line must be in [min, max]
     const char* unit = "";       ///< e.g. "px", "s"; "" for a plain count or ratio
     const char* doc = "";        ///< one line; "method: ..." when only some methods read it
+    ParameterScope scope = ParameterScope::All;  ///< the methods that read it
 };
 
 /// Every parameter, in the order of `tessera render --help` and README's table.
 std::span<const Parameter> render_parameters();
+
+/// Whether `method` reads p (p.scope).
+bool parameter_applies(const Parameter& p, Method method);
+
+/// The methods of p.scope in words, e.g. "igi, ais, ais-max, ic and tic".
+const char* parameter_scope_text(const Parameter& p);
 
 /// The parameter named `option` ("--tile"); nullptr when none is.
 const Parameter* find_parameter(const std::string& option);

@@ -64,6 +64,24 @@ TEST_F(RenderCli, UnwritableOutputKeepsNothingBehind) {
     EXPECT_NE(r.output.find("/proc/tessera-no"), std::string::npos) << r.output;
 }
 
+// A setting the method does not read renders as without it, with one note naming the
+// option, the methods that read it and the method given; one it reads gets no note.
+TEST_F(RenderCli, SettingsTheMethodIgnoresGetANote) {
+    const std::string base = "render " + kData + "/light.json --spp 1 --width 8 --height 8 --backend embree --out ";
+    const CliResult plain = run_tessera(base + (dir_ / "a.exr").string() + " --method pt");
+    const CliResult noted = run_tessera(base + (dir_ / "b.exr").string() + " --method pt --tile 4 --ic-paths 9");
+    ASSERT_EQ(plain.exit_code, 0) << plain.output;
+    ASSERT_EQ(noted.exit_code, 0) << noted.output;
+    EXPECT_NE(noted.output.find("tessera: note: --tile is read by igi, ais, ais-max, ic and tic; --method pt ignores it\n"),
+              std::string::npos) << noted.output;
+    EXPECT_NE(noted.output.find("tessera: note: --ic-paths is read by ic and tic; --method pt ignores it\n"),
+              std::string::npos) << noted.output;
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "a.exr"), tessera::test::file_bytes(dir_ / "b.exr"));
+    const CliResult read = run_tessera(base + (dir_ / "c.exr").string() + " --method igi --tile 4 --vpl-paths 2");
+    ASSERT_EQ(read.exit_code, 0) << read.output;
+    EXPECT_EQ(read.output.find("tessera: note:"), std::string::npos) << read.output;
+}
+
 TEST_F(RenderCli, RendersExrAndPngOnBothBackends) {
     for (const char* backend : {"embree", "opencl"}) {
         const fs::path out = dir_ / (std::string(backend) + ".exr");

@@ -214,6 +214,33 @@ TEST(Parameters, MessagesNameOptionValueAndRange) {
 }
 
 // README.md's options table is options_markdown() verbatim, between its markers.
+// Each parameter's scope (the methods that read it, behind render's "is ignored" note)
+// agrees with the prefix its doc line gives users, and decides by method as it says.
+TEST(Parameters, ScopeMatchesTheDocPrefix) {
+    for (const Parameter& p : render_parameters()) {
+        SCOPED_TRACE(p.option);
+        const std::string doc = p.doc;
+        ParameterScope expected = ParameterScope::All;
+        if (doc.rfind("pt:", 0) == 0) expected = ParameterScope::Pt;
+        else if (doc.rfind("ais:", 0) == 0) expected = ParameterScope::Ais;
+        else if (doc.rfind("ic/tic:", 0) == 0) expected = ParameterScope::Ic;
+        else if (doc.rfind("igi", 0) == 0) expected = ParameterScope::IgiFamily;
+        EXPECT_EQ(p.scope, expected) << doc;
+    }
+    const Parameter& tile = *find_parameter("--tile");
+    EXPECT_FALSE(parameter_applies(tile, Method::Direct));
+    EXPECT_FALSE(parameter_applies(tile, Method::PathTrace));
+    for (Method m : {Method::Igi, Method::Ais, Method::AisMax, Method::Ic, Method::Tic})
+        EXPECT_TRUE(parameter_applies(tile, m));
+    EXPECT_TRUE(parameter_applies(*find_parameter("--max-depth"), Method::PathTrace));
+    EXPECT_FALSE(parameter_applies(*find_parameter("--max-depth"), Method::Igi));
+    EXPECT_TRUE(parameter_applies(*find_parameter("--ais-edge-samples"), Method::AisMax));
+    EXPECT_FALSE(parameter_applies(*find_parameter("--ais-edge-samples"), Method::Igi));
+    EXPECT_TRUE(parameter_applies(*find_parameter("--ic-paths"), Method::Tic));
+    EXPECT_FALSE(parameter_applies(*find_parameter("--ic-paths"), Method::Ais));
+    EXPECT_TRUE(parameter_applies(*find_parameter("--spp"), Method::Direct));
+}
+
 TEST(Parameters, ReadmeTableMatchesTheDeclarations) {
     std::ifstream in(std::string(TESSERA_SOURCE_DIR) + "/README.md");
     ASSERT_TRUE(in) << "README.md not found";
