@@ -125,7 +125,6 @@ void check_render_options(const RenderArgs& a, const CLI::App& cmd, const Backen
         throw InputError("--frames cannot be combined with --stats-json (it describes one still frame)");
 }
 
-// Settings that make no sense for this scene.
 // A setting the method does not read is left as given, with a note: it changes nothing
 // (a script may pass one set of options to every method), but a user who expected it to
 // should hear so.
@@ -136,6 +135,7 @@ void note_ignored_parameters(const CLI::App& cmd, Method method, const std::stri
                          parameter_scope_text(p), method_text.c_str());
 }
 
+// Settings that make no sense for this scene.
 void check_scene_options(const RenderSettings& s, const Scene& scene, const fs::path& scene_path) {
     if (igi_family(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
         throw InputError("--march-steps 0: scene " + scene_path.string() +
