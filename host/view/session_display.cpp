@@ -12,6 +12,7 @@
 #include "image/resample.h"
 #include "metrics/image_metrics.h"
 #include "render/sequence.h"
+#include "util/error.h"
 
 namespace tessera::view {
 namespace {
@@ -57,6 +58,7 @@ Image ViewSession::accumulation() const {
 }
 
 std::filesystem::path ViewSession::save_screenshot() {
+    if (!acc_ || acc_->passes() == 0) throw RuntimeError("screenshot: no pass accumulated yet");
     const std::filesystem::path exr = frame_output_path(options_.screenshot, screenshots_);
     std::filesystem::path png = exr;
     png.replace_extension(".png");

@@ -39,7 +39,7 @@ void ViewSession::handle(const InputEvent& e) {
     switch (e.key) {
         case 'R': camera_ = home_camera_; break;
         case 'C': std::printf("%s\n", camera_json(camera_).c_str()), std::fflush(stdout); break;
-        case 'P': std::printf("%s\n", save_screenshot().c_str()), std::fflush(stdout); break;
+        case 'P': screenshot_pending_ = true, take_pending_screenshot(); break;
         case 'M': switch_method(1); break;
         case 'N': switch_method(-1); break;
         case '1': toggle_component(TS_COMPONENT_SS); break;

@@ -250,7 +250,17 @@ FrameReport ViewSession::advance(double dt) {
     }
     report.passes = acc_->passes();
     report.stages = last_;
+    take_pending_screenshot();
     return report;
+}
+
+// A screenshot asked for (P) is of the accumulation as it is; before the first pass there
+// is none (a P on frame 0 crashed the viewer), so it is taken after that pass (advance).
+void ViewSession::take_pending_screenshot() {
+    if (!screenshot_pending_ || !acc_ || acc_->passes() == 0) return;
+    screenshot_pending_ = false;
+    std::printf("%s\n", save_screenshot().c_str());
+    std::fflush(stdout);
 }
 
 // Records a budgeted moving frame's time and choice, and says once when even the cheapest

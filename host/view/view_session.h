@@ -125,6 +125,7 @@ public:
     /// screenshot path; returns the EXR path. Prints the EXR path on stdout and the pass
     /// count on stderr ("tessera view: screenshot of N passes: PATH").
     std::filesystem::path save_screenshot();
+    void take_pending_screenshot();  ///< P: now, or after the first pass when there is none yet
 
     /// The selected AOV tone-mapped for display: width × height × 4 bytes (RGBA, sRGB,
     /// alpha 255), row 0 at the top.
@@ -171,6 +172,7 @@ private:
     bool acc_budgeted_ = false;   // the accumulation uses the budget's settings, not settings_
     Aov aov_ = Aov::Radiance;
     int screenshots_ = 0;
+    bool screenshot_pending_ = false;  // P before the first pass: taken once one is accumulated
     std::optional<Image> reference_;
     EffectPlan plan_;
     std::unique_ptr<SceneBuffers> buffers_;

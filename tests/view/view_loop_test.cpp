@@ -91,5 +91,21 @@ TEST_F(ViewLoopTest, ScriptedEventsArriveAtTheirFramesAndTheHeadlessRunStopsAfte
     EXPECT_TRUE(std::filesystem::exists(dir_ / "shot.0000.png"));
 }
 
+// P before the first pass (frame 0) has no accumulation to write: the screenshot is taken
+// once the frame's pass is in (it crashed the viewer), and holds that one pass.
+TEST_F(ViewLoopTest, ScreenshotOnFrameZeroIsTakenAfterItsPass) {
+    ViewSession session(scene_, options());
+    LoopOptions lo;
+    lo.headless = true;
+    lo.fixed_dt = true;
+    lo.script = {{0, {InputEvent::Kind::Press, 'P'}}};
+    ViewLoop loop(session, lo);
+    while (!loop.done()) loop.step(0.0);
+    ASSERT_TRUE(std::filesystem::exists(dir_ / "shot.0000.exr"));
+    EXPECT_TRUE(std::filesystem::exists(dir_ / "shot.0000.png"));
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "shot.0001.exr"));
+    EXPECT_EQ(loop.times()[0].report.passes, 1u);
+}
+
 }  // namespace
 }  // namespace tessera::view
