@@ -67,8 +67,9 @@ mode_t current_umask() {
     return 022;
 }
 
-/// Creates the temporary file beside `target`; returns its open descriptor.
-int make_temp(const fs::path& target, fs::path& temp) {
+/// Creates the temporary file beside `target`; returns its open descriptor. Where the
+/// target's directory had to be made, *made (when given) is the outermost one made.
+int make_temp(const fs::path& target, fs::path& temp, fs::path* made = nullptr) {
     if (target.filename().empty())
         throw RuntimeError("cannot write '" + target.string() + "': not a file name");
     fs::path dir = target.parent_path();
@@ -76,8 +77,13 @@ int make_temp(const fs::path& target, fs::path& temp) {
     // are checked: a run that fails before writing leaves no directory behind.
     std::error_code ec;
     if (!dir.empty() && !fs::is_directory(dir, ec)) {
+        fs::path outermost = dir;
+        while (outermost.has_parent_path() && outermost.parent_path() != outermost &&
+               !fs::exists(outermost.parent_path(), ec))
+            outermost = outermost.parent_path();
         fs::create_directories(dir, ec);
         if (ec) fail(target, "cannot create the directory '" + dir.string() + "'", ec.value());
+        if (made) *made = outermost;
     }
     std::string pattern =
         (dir.empty() ? fs::path(".") : dir).string() + "/." + target.filename().string() +
@@ -153,12 +159,22 @@ CommitGroup::~CommitGroup() {
         if (!e.renamed) fs::remove(e.temp, ec);
         if (!e.backup.empty()) fs::remove(e.backup, ec);
     }
+    // A directory the group made for its targets goes too when nothing landed in it (the
+    // group failed): a failing run leaves no directory behind. Newest first.
+    for (auto d = made_dirs_.rbegin(); d != made_dirs_.rend(); ++d) {
+        bool empty = true;
+        for (auto it = fs::recursive_directory_iterator(*d, ec); empty && !ec && it != fs::recursive_directory_iterator();
+             it.increment(ec))
+            empty = it->is_directory(ec);
+        if (empty && !ec) fs::remove_all(*d, ec);
+    }
 }
 
 fs::path CommitGroup::add(const fs::path& target) {
-    fs::path temp;
-    const int fd = make_temp(target, temp);
+    fs::path temp, made;
+    const int fd = make_temp(target, temp, &made);
     ::close(fd);
+    if (!made.empty()) made_dirs_.push_back(made);
     entries_.push_back({target, temp, {}});
     return temp;
 }

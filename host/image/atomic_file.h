@@ -25,7 +25,8 @@ void replace_file_atomic(const std::filesystem::path& path,
 /// The outputs of one run, written as one unit: each is filled in a temporary beside
 /// its target (add), and commit() renames them all over their targets only once every
 /// one is complete. A failing run (an exception before commit) leaves no new file and
-/// changes no existing one: the destructor removes every temporary.
+/// changes no existing one: the destructor removes every temporary, and the directories
+/// add() made for them where nothing else landed.
 class CommitGroup {
 public:
     CommitGroup() = default;
@@ -52,6 +53,7 @@ private:
     };
     void roll_back();
     std::vector<Entry> entries_;
+    std::vector<std::filesystem::path> made_dirs_;  // outermost directories add() made
 };
 
 }  // namespace tessera

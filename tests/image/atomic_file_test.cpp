@@ -78,6 +78,26 @@ TEST_F(CommitGroupTest, AddNamesTheTargetWhenNoTemporaryCanBeMade) {
     }
 }
 
+// A group that fails (destroyed before commit) takes away the directories it made, unless
+// something else was written there meanwhile: an interrupted `render --frames` into a new
+// directory left it behind, empty.
+TEST_F(CommitGroupTest, FailedGroupRemovesTheDirectoriesItMade) {
+    {
+        CommitGroup g;
+        std::ofstream(g.add(dir_ / "new" / "deeper" / "a")) << "A";
+        std::ofstream(g.add(dir_ / "new" / "b")) << "B";
+        EXPECT_TRUE(fs::is_directory(dir_ / "new" / "deeper"));
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "new"));
+    {
+        CommitGroup g;
+        std::ofstream(g.add(dir_ / "kept" / "a")) << "A";
+        std::ofstream(dir_ / "kept" / "other") << "written by someone else";
+    }
+    EXPECT_TRUE(fs::exists(dir_ / "kept" / "other"));
+    EXPECT_FALSE(fs::exists(dir_ / "kept" / "a"));
+}
+
 // A target's missing directory is made at its first write (the CLI checks make none, so a
 // run that fails before it writes leaves nothing behind), and the commit lands there.
 TEST_F(CommitGroupTest, AddMakesAMissingDirectory) {
