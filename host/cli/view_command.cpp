@@ -21,6 +21,7 @@
 #include "cli/parameter_options.h"
 #include "image/atomic_file.h"
 #include "integrators/method.h"
+#include "render/interrupt.h"
 #include "render/parameters.h"
 #include "render/sequence.h"
 #include "scene/loader.h"
@@ -268,13 +269,20 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
                  scene.triangle_count(), session.width(), session.height(), method_name(session.method()),
                  session.backend_description().c_str());
     ViewLoop loop(session, lo);
+    const InterruptScope interrupts;  // a signal ends the loop after its frame (ViewLoop::done)
     if (a.headless) {
         while (!loop.done()) loop.step(0.0);
     } else {
         for (const std::string& line : ViewSession::key_help()) std::fprintf(stderr, "  %s\n", line.c_str());
         run_window(window, session, loop, a);
     }
-    loop.finish(scene.name);
+    {
+        const InterruptDeferral writing;  // --times and --record are written whole
+        loop.finish(scene.name);
+    }
+    if (interrupt_signal())
+        throw Interrupted("interrupted after " + std::to_string(loop.frame()) +
+                          " viewer frames; their times, recorded path and frame images are written");
 }
 
 }  // namespace

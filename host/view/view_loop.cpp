@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "image/atomic_file.h"
+#include "render/interrupt.h"
 #include "render/sequence.h"
 
 namespace tessera::view {
@@ -17,7 +18,9 @@ constexpr double kFixedDt = 1.0 / 30.0;  // seconds per frame of scripted and re
 ViewLoop::ViewLoop(ViewSession& session, LoopOptions options) : session_(session), options_(std::move(options)) {}
 
 bool ViewLoop::done() const {
-    if (session_.quit_requested()) return true;
+    // SIGINT/SIGTERM inside the command's InterruptScope end the run like Esc, after the
+    // frame in progress: the frames so far keep their times and images.
+    if (session_.quit_requested() || interrupt_signal()) return true;
     if (!options_.path.empty()) return frame_ >= static_cast<int>(options_.path.size());
     if (options_.headless) return options_.script.empty() || frame_ > options_.script.back().frame;
     return false;

@@ -4,6 +4,8 @@
 // OpenGL (skipped when this build has no window module or Xvfb is missing): the same
 // screenshot and fly-through checks through the window, keys sent by an input script and
 // by xdotool, and a window without a display fails with one line suggesting render.
+#include <signal.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -136,6 +138,38 @@ TEST_F(ViewCli, HeadlessFlyThroughWritesTimesAndImages) {
         EXPECT_TRUE(fs::exists(tessera::frame_output_path(dir_ / "frames/frame.exr", i)));
     }
     EXPECT_NE(r.output.find("5 frames, 2 moving"), std::string::npos) << r.output;
+}
+
+// SIGINT ends the run as Esc does, after the frame in progress: exit 130, one line, and
+// --times and --frame-images hold every frame rendered (before, the signal killed the
+// process, leaving frame images and no times).
+TEST_F(ViewCli, SignalEndsTheRunKeepingItsFrames) {
+    std::string cams;
+    for (int i = 0; i < 3000; ++i)  // far longer than the test waits
+        cams += std::string(i ? "," : "") + "{\"position\": [0.278, 0.273, " + std::to_string(-0.8 + 1e-4 * i) +
+                "], \"look_at\": [0.278, 0.273, 0.0], \"up\": [0, 1, 0], \"vfov\": 39.3077}";
+    const fs::path path = write("long.json", "{\"cameras\": [" + cams + "]}");
+    bool sent = false;
+    const CliResult r = tessera::test::run_watched(
+        {TESSERA_EXE, "view", "--headless", "--backend", "embree", "--method", "igi", "--width", "16", "--height", "16",
+         "--camera-path", path.string(), "--times", (dir_ / "times.json").string(), "--frame-images",
+         (dir_ / "frames").string()},
+        true, [&](pid_t pid, const std::string& out) {
+            if (!sent && out.find("tessera view: cornell-box") != std::string::npos) ::kill(pid, SIGINT), sent = true;
+        });
+    ASSERT_TRUE(sent) << r.output;
+    EXPECT_EQ(r.exit_code, 130) << r.output;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m, std::regex("tessera: interrupted after ([0-9]+) viewer frames"))) << r.output;
+    const size_t frames = std::stoul(m[1]);
+    EXPECT_LT(frames, 3000u);
+    std::ifstream in(dir_ / "times.json");
+    ASSERT_TRUE(in) << r.output;
+    EXPECT_EQ(nlohmann::json::parse(in)["frames"].size(), frames);
+    size_t images = 0;  // the signal may come before the first frame: then no directory either
+    if (fs::exists(dir_ / "frames"))
+        for (const auto& e : fs::directory_iterator(dir_ / "frames")) images += e.path().extension() == ".exr";
+    EXPECT_EQ(images, frames);
 }
 
 // Six cameras, each moved: every frame a moving frame.
