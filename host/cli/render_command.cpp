@@ -243,7 +243,8 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
         check_scene_options(settings, scene, scene_path);
-        if (a.resume) require_checkpoint(checkpoint_path_for(out));  // before the scene's banner
+        // Before the scene's banner; rank 0 alone reads the checkpoint (render_frame).
+        if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));
         if (lead) {  // only rank 0 writes
             // Every output before the first ray: a run that cannot write its results does no work.
             const std::vector<OutputFile> files = outputs_of(a, out, frames);
