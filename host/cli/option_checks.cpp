@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera::cli {
 namespace fs = std::filesystem;
@@ -26,17 +27,6 @@ CLI::Validator finite_number(const std::string& option) {
     }, "");
 }
 
-namespace {
-
-// %g of a bound: "0", "1e+12", "240".
-std::string bound_text(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%g", v);
-    return buf;
-}
-
-}  // namespace
-
 CLI::Validator finite_number_in(const std::string& option, double lo, double hi, bool lo_open) {
     return CLI::Validator([=](std::string& text) {
         double v = 0;
@@ -44,7 +34,7 @@ CLI::Validator finite_number_in(const std::string& option, double lo, double hi,
         const bool number = !text.empty() && r.ec == std::errc() && r.ptr == text.data() + text.size();
         if (!number || !std::isfinite(v) || (lo_open ? !(v > lo) : !(v >= lo)) || !(v <= hi))
             throw InputError(option + " " + (text.empty() ? "''" : text) + ": must be a finite number " +
-                             (lo_open ? "> " : ">= ") + bound_text(lo) + " and <= " + bound_text(hi));
+                             (lo_open ? "> " : ">= ") + limits::shown_limit(lo) + " and <= " + limits::shown_limit(hi));
         return std::string();
     }, "");
 }

@@ -81,7 +81,7 @@ void add_lights(const Scene& scene, SceneBuffers& b) {
         if (!(weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f)) continue;
         glm::vec3 p0 = scene.positions[3 * i], e1 = scene.positions[3 * i + 1] - p0,
                   e2 = scene.positions[3 * i + 2] - p0;
-        float area = 0.5f * glm::length(glm::cross(e1, e2));
+        const float area = scene.triangle_area(i);
         if (!(area > 0.0f)) continue;  // a zero-area emitter carries no power
         float f[TS_LIGHT_FLOATS] = {};
         put3(f + TS_LIGHT_P0, p0);

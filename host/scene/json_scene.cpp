@@ -177,9 +177,7 @@ void read_lights(const JsonField& lights, Scene& scene) {
 // double, against limits::kMaxOpticalDepth; D from the geometry and lights loaded so far
 // (everything but the medium). A scene of one point (D = 0) has no depth to bound.
 void check_optical_depth(const JsonField& j, const Scene& scene) {
-    glm::dvec3 lo(INFINITY), hi(-INFINITY);
-    for (const glm::vec3& p : scene.positions) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
-    const double d = scene.positions.empty() ? 0.0 : glm::length(hi - lo);
+    const double d = scene.diagonal();
     const Medium& m = scene.medium;
     for (int c = 0; c < 3; ++c) {
         const double tau = (double(m.sigma_a[c]) + double(m.sigma_s[c])) * d;
@@ -224,8 +222,7 @@ bool has_emitter(const Scene& scene) {
         const Material& m = scene.materials[scene.material[i]];
         const glm::vec3 e = m.emission_max;
         if (!(e.x > 0.0f || e.y > 0.0f || e.z > 0.0f)) continue;
-        const glm::vec3 p0 = scene.positions[3 * i];
-        const float area = 0.5f * glm::length(glm::cross(scene.positions[3 * i + 1] - p0, scene.positions[3 * i + 2] - p0));
+        const float area = scene.triangle_area(i);
         if (!std::isfinite(area))
             throw InputError(scene.source.string() + ": emissive triangle " + std::to_string(i) + " (material '" +
                              m.name + "') has an area that overflows a float");

@@ -4,6 +4,7 @@
 // load). Units are the scene's own ("scene units"); radiance values (emission) are in
 // W/(sr·m²) with m read as scene units. The y axis is up by convention of the data.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -101,6 +102,19 @@ struct Scene {
     Medium medium;
 
     size_t triangle_count() const { return material.size(); }
+
+    /// Triangle i's area in scene units² (float, as the light list weighs emitters).
+    float triangle_area(size_t i) const {
+        const glm::vec3 p0 = positions[3 * i];
+        return 0.5f * glm::length(glm::cross(positions[3 * i + 1] - p0, positions[3 * i + 2] - p0));
+    }
+
+    /// The diagonal of the positions' bounding box in scene units; 0 with no positions.
+    float diagonal() const {
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        return positions.empty() ? 0.0f : glm::length(hi - lo);
+    }
 };
 
 }  // namespace tessera

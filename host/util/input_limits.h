@@ -66,7 +66,7 @@ constexpr double kMaxOpticalDepth = 1e9;
 /// up to 2^-62, both finite; 64 stops are far more than any display's range.
 constexpr double kExposureStops = 64.0;
 
-/// A limit as messages show it: "%g" ("1e+15").
+/// A limit or bound as messages show it: "%g" ("0", "240", "1e+12").
 inline std::string shown_limit(double limit) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", limit);

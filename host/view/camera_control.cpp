@@ -56,14 +56,6 @@ std::string camera_json(const Camera& c) {
     return buf;
 }
 
-float default_speed(const Scene& scene) {
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const glm::vec3& p : scene.positions) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
-    const float diagonal = scene.positions.empty() ? 1.0f : glm::length(hi - lo);
-    return 0.25f * diagonal;
-}
+float default_speed(const Scene& scene) { return 0.25f * (scene.positions.empty() ? 1.0f : scene.diagonal()); }
 
 }  // namespace tessera::view
