@@ -136,7 +136,8 @@ void note_ignored_parameters(const CLI::App& cmd, Method method, const std::stri
 }
 
 // Settings that make no sense for this scene.
-void check_scene_options(const RenderSettings& s, const Scene& scene, const fs::path& scene_path) {
+void check_scene_options(const RenderSettings& s, const std::string& components, const Scene& scene,
+                         const fs::path& scene_path) {
     if (igi_family(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
         throw InputError("--march-steps 0: scene " + scene_path.string() +
                          " has a medium, which --method " + method_name(s.method) +
@@ -144,13 +145,9 @@ void check_scene_options(const RenderSettings& s, const Scene& scene, const fs::
     // Components the scene does not call for are skipped (docs/ais.md); where that leaves
     // none of the light's, the image would be the emitters alone.
     if (igi_family(s.method) && !(s.igi.components & (TS_COMPONENT_SS | TS_COMPONENT_ID)) &&
-        !plan_effects(scene).medium) {
-        std::string given;
-        for (const auto& [bit, name] : {std::pair{TS_COMPONENT_PM, "pm"}, std::pair{TS_COMPONENT_EDGE, "edge"}})
-            if (s.igi.components & bit) given += (given.empty() ? "" : ",") + std::string(name);
-        throw InputError("--components " + given + ": scene " + scene_path.string() +
+        !plan_effects(scene).medium)
+        throw InputError("--components " + components + ": scene " + scene_path.string() +
                          " has no medium, so these compute nothing there; add ss or id");
-    }
 }
 
 void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, const fs::path& out,
@@ -242,7 +239,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
         if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
-        check_scene_options(settings, scene, scene_path);
+        check_scene_options(settings, a.components, scene, scene_path);
         // Before the scene's banner; rank 0 alone reads the checkpoint (render_frame).
         if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));
         if (lead) {  // only rank 0 writes

@@ -217,7 +217,7 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {kRender + "--method igi --components pm" + kOut,
          "--components pm: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
         {kRender + "--method ais --components edge,pm" + kOut,
-         "--components pm,edge: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
+         "--components edge,pm: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
         {kRender + "--method pt --components ss" + kOut,
          "--components ss: --method pt has no components (they select what igi, ais, ais-max, ic and tic compute)"},
         {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},
