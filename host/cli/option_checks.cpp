@@ -120,8 +120,10 @@ void check_output_directories(const std::vector<OutputFile>& outputs) {
         // (check_outputs has made sure that one is a directory).
         std::error_code ec;
         fs::path existing = dir;
-        while (!fs::exists(existing, ec) && existing != existing.parent_path())
-            existing = existing.has_parent_path() ? existing.parent_path() : fs::path(".");
+        for (fs::path next; !fs::exists(existing, ec); existing = next) {
+            next = existing.has_parent_path() ? existing.parent_path() : fs::path(".");
+            if (next == existing) break;  // "/" or "." itself missing: the probe below says so
+        }
         const std::string missing = existing == dir ? "" : "cannot create the directory " + dir.string() + ": ";
         std::string probe = (existing / ".tessera-write-test.XXXXXX").string();
         const int fd = ::mkstemp(probe.data());
