@@ -103,7 +103,8 @@ private:
         cur_.ni_line = l.number;
     }
 
-    // The file name is the statement's last token (options such as -s come before it).
+    // A map_Kd with no token after it names no texture (tinyobjloader took it as none); the
+    // line is kept so that the texture's own errors can name it (scene/obj_mesh.cpp).
     void map_kd(const TextLine& l) {
         if (value_tokens(l).empty()) fail(l.number, "map_Kd needs a texture file name");
         defined_[cur_.name].map_kd_line = l.number;
