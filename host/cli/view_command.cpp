@@ -264,12 +264,14 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (!a.frame_images.empty()) check_frame_images(a.frame_images, lo);
     check_output_directories(files);
 
+    // Installed before the banner: a signal sent once the banner shows (a user's Ctrl-C, a
+    // script waiting for it) ends the loop after its frame (ViewLoop::done), never the process.
+    const InterruptScope interrupts;
     ViewSession session(scene, o);
     std::fprintf(stderr, "tessera view: %s, %zu triangles, %dx%d, %s on %s\n", scene.name.c_str(),
                  scene.triangle_count(), session.width(), session.height(), method_name(session.method()),
                  session.backend_description().c_str());
     ViewLoop loop(session, lo);
-    const InterruptScope interrupts;  // a signal ends the loop after its frame (ViewLoop::done)
     if (a.headless) {
         while (!loop.done()) loop.step(0.0);
     } else {
