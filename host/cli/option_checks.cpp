@@ -11,6 +11,7 @@
 #include <set>
 #include <system_error>
 
+#include "image/atomic_file.h"
 #include "util/error.h"
 #include "util/input_limits.h"
 
@@ -86,9 +87,7 @@ void check_output(const OutputFile& o) {
     if (fs::is_directory(st)) throw InputError(name + ": is a directory");
     if (fs::exists(st) && !fs::is_regular_file(st)) throw InputError(name + ": not a regular file");
     // The directory: the nearest existing ancestor must be a directory (the rest is made).
-    fs::path dir = o.path.parent_path();
-    if (dir.empty()) dir = ".";
-    while (!fs::exists(dir, ec) && dir.has_parent_path() && dir.parent_path() != dir) dir = dir.parent_path();
+    const fs::path dir = existing_ancestor(o.path.parent_path());
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
         throw InputError(name + ": " + dir.string() + " is not a directory");
 }
@@ -117,13 +116,9 @@ void check_output_directories(const std::vector<OutputFile>& outputs) {
         if (!done.insert(dir).second) continue;
         const std::string name = o.role + " " + o.path.string();
         // The directory, or the nearest ancestor that exists, where the writer will make it
-        // (check_outputs has made sure that one is a directory).
-        std::error_code ec;
-        fs::path existing = dir;
-        for (fs::path next; !fs::exists(existing, ec); existing = next) {
-            next = existing.has_parent_path() ? existing.parent_path() : fs::path(".");
-            if (next == existing) break;  // "/" or "." itself missing: the probe below says so
-        }
+        // (check_outputs has made sure that one is a directory; where "/" or "." itself is
+        // missing, the probe below says so).
+        const fs::path existing = existing_ancestor(dir);
         const std::string missing = existing == dir ? "" : "cannot create the directory " + dir.string() + ": ";
         std::string probe = (existing / ".tessera-write-test.XXXXXX").string();
         const int fd = ::mkstemp(probe.data());

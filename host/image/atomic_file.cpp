@@ -77,9 +77,11 @@ int make_temp(const fs::path& target, fs::path& temp, fs::path* made = nullptr) 
     // are checked: a run that fails before writing leaves no directory behind.
     std::error_code ec;
     if (!dir.empty() && !fs::is_directory(dir, ec)) {
+        // The outermost directory to be made: the one just below the existing ancestor.
+        const fs::path existing = existing_ancestor(dir);
         fs::path outermost = dir;
-        while (outermost.has_parent_path() && outermost.parent_path() != outermost &&
-               !fs::exists(outermost.parent_path(), ec))
+        while (outermost.has_parent_path() && outermost.parent_path() != existing &&
+               outermost.parent_path() != outermost)
             outermost = outermost.parent_path();
         fs::create_directories(dir, ec);
         if (ec) fail(target, "cannot create the directory '" + dir.string() + "'", ec.value());
@@ -120,6 +122,16 @@ void sync_and_rename(const fs::path& target, TempGuard& guard) {
 }
 
 }  // namespace
+
+fs::path existing_ancestor(const fs::path& dir) {
+    std::error_code ec;
+    fs::path at = dir.empty() ? fs::path(".") : dir;
+    for (fs::path next; !fs::exists(at, ec); at = next) {
+        next = at.has_parent_path() ? at.parent_path() : fs::path(".");
+        if (next == at) break;  // "/" or "." itself missing
+    }
+    return at;
+}
 
 void write_file_atomic(const fs::path& path, const void* data, std::size_t size) {
     fs::path temp;

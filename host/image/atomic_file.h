@@ -10,6 +10,12 @@
 
 namespace tessera {
 
+/// The directory a missing one would be made in: `dir` itself where it exists, else its
+/// nearest existing ancestor; "." for an empty `dir` and for a relative one none of whose
+/// ancestors exists. Only where "/" or "." itself is missing is the result missing too.
+/// The CLI's checks probe it before a run; the writer makes the directories below it.
+std::filesystem::path existing_ancestor(const std::filesystem::path& dir);
+
 /// Writes `size` bytes atomically to `path`. Throws RuntimeError naming `path` and the
 /// OS reason on failure; an existing file at `path` is then left untouched.
 void write_file_atomic(const std::filesystem::path& path, const void* data, std::size_t size);

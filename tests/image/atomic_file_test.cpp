@@ -109,5 +109,20 @@ TEST_F(CommitGroupTest, AddMakesAMissingDirectory) {
     EXPECT_EQ(tessera::test::file_bytes(target), "A");
 }
 
+class ExistingAncestorTest : public test::ScratchDirTest {};
+
+TEST_F(ExistingAncestorTest, IsTheNearestDirectoryThatExists) {
+    fs::create_directories(dir_ / "a");
+    EXPECT_EQ(existing_ancestor(dir_ / "a"), dir_ / "a");
+    EXPECT_EQ(existing_ancestor(dir_ / "a" / "b" / "c"), dir_ / "a");
+    EXPECT_EQ(existing_ancestor(fs::path("/")), fs::path("/"));
+    // Relative: "." stands for the working directory, also past the first missing part.
+    EXPECT_EQ(existing_ancestor(fs::path()), fs::path("."));
+    EXPECT_EQ(existing_ancestor(fs::path("no-such-dir-for-tessera/x")), fs::path("."));
+    // A file on the way is what exists there: the callers refuse it as "not a directory".
+    std::ofstream(dir_ / "file") << "x";
+    EXPECT_EQ(existing_ancestor(dir_ / "file" / "d"), dir_ / "file");
+}
+
 }  // namespace
 }  // namespace tessera
