@@ -143,8 +143,7 @@ glm::vec3 read_colour(const JsonField& j, Colour kind) {
         if (c[i] < 0.0f) j.fail("colour components must be >= 0");
         if (kind == Colour::Albedo && c[i] > 1.0f) j.fail("albedo components must be <= 1 (in [0, 1])");
         if (kind == Colour::Radiance && c[i] > limits::kMaxRadiance)
-            j.fail("radiance components must be <= " + limits::shown_limit(limits::kMaxRadiance) +
-                   " W/(sr·m²) (brighter overflows the estimators' float sums)");
+            j.fail("radiance components must be <= " + limits::shown_radiance_limit());
     }
     return c;
 }

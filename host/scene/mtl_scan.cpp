@@ -87,9 +87,7 @@ private:
             const double d = number(l, key, v);
             if (d < 0.0) fail(l.number, std::string(key) + " value " + in_quotes(v) + " is negative (must be >= 0)");
             if (key == "Ke" && static_cast<float>(d) > limits::kMaxRadiance)
-                fail(l.number, "Ke value " + in_quotes(v) + " exceeds the limit of " +
-                                   limits::shown_limit(limits::kMaxRadiance) +
-                                   " W/(sr·m²) (brighter overflows the estimators' float sums)");
+                fail(l.number, "Ke value " + in_quotes(v) + " exceeds the limit of " + limits::shown_radiance_limit());
         }
     }
 

@@ -73,6 +73,11 @@ inline std::string shown_limit(double limit) {
     return text;
 }
 
+/// kMaxRadiance as the scene loaders' messages state it, with its unit and reason.
+inline std::string shown_radiance_limit() {
+    return shown_limit(kMaxRadiance) + " W/(sr·m²) (brighter overflows the estimators' float sums)";
+}
+
 /// Throws InputError "<file>: <what> of <w>x<h> pixels exceeds ..." when an image header
 /// asks for more than kImageSide per side or (with `channels` > 0) kImageFloats values,
 /// before anything is allocated. `what` names the role ("texture", "EXR image").
