@@ -161,7 +161,9 @@ def write_png(path, rgb01):
     """Writes an HxWx3 array in [0, 1] (already display-encoded) as an 8-bit PNG."""
     import numpy as np
     from PIL import Image  # a dependency of matplotlib, which cvvdp requires
-    Image.fromarray((np.clip(rgb01, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8), "RGB").save(path)
+    # format given: `tessera compare` passes a temporary name (.map.png.tmp.XXXXXX) that it
+    # renames over the map once every output is written, and PIL guesses from the extension.
+    Image.fromarray((np.clip(rgb01, 0.0, 1.0) * 255.0 + 0.5).astype(np.uint8), "RGB").save(path, format="PNG")
 
 
 def main():

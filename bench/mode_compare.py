@@ -43,7 +43,10 @@ def render(binary, scene, args, size, out, key="seconds"):
 def compare(binary, ref, test):
     r = subprocess.run([binary, "compare", str(ref), str(test), "--json"], check=True, capture_output=True, text=True)
     d = json.loads(r.stdout)
-    return {"relmse": d["relmse"], "flip_gt_0_1": d["flip"]["p_gt_0_1"], "flip_mean": d["flip"]["mean"]}
+    out = {"relmse": d["relmse"]}
+    if "mean" in d["flip"]:  # without flip-evaluator compare reports {"unavailable": why}: a "—" cell
+        out.update(flip_gt_0_1=d["flip"]["p_gt_0_1"], flip_mean=d["flip"]["mean"])
+    return out
 
 
 def hdrvdp(pairs, tool):
@@ -148,7 +151,7 @@ class Comparison:
             f = res["floor"]
             if f:
                 lines.append(f"| {res['scene']} | pt {res['reference_spp']} spp | pt {f['spp']} spp | "
-                             f"{f['relmse']:.5f} | {f['flip_gt_0_1']:.2f}% | {fmt(f.get('p_ge_75'), '.2f')}% / "
+                             f"{f['relmse']:.5f} | {fmt(f.get('flip_gt_0_1'), '.2f')}% | {fmt(f.get('p_ge_75'), '.2f')}% / "
                              f"{fmt(f.get('p_ge_95'), '.2f')}% |")
         return "\n".join(lines) + "\n"
 

@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/option_checks.h"
+#include "image/atomic_file.h"
 #include "image/image_io.h"
 #include "metrics/cvvdp.h"
 #include "metrics/hdrvdp.h"
@@ -88,24 +89,29 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
     const double rel = metrics::rel_mse(ref, test);
     const double rmse = metrics::rmse(ref, test);
     const double psnr = metrics::psnr_tonemapped(ref, test, a.exposure);
+    // The maps land together at the end, or none does (a failing run writes nothing): each
+    // is written to a temporary beside it, the missing directories made at that write.
+    CommitGroup maps;
+    const auto map_temp = [&maps](const std::string& target) {
+        return target.empty() ? std::nullopt : std::optional<fs::path>(maps.add(target));
+    };
     metrics::FlipResult flip;
     if (a.no_flip)
         flip.reason = "disabled by --no-flip";
     else
-        flip = metrics::compute_flip(a.ref, a.test,
-                                     a.flip_map.empty() ? std::nullopt : std::optional<fs::path>(a.flip_map));
+        flip = metrics::compute_flip(a.ref, a.test, map_temp(a.flip_map));
     // Without --flip-map an unavailable FLIP is reported in the output; a map asked for
-    // and not written fails the run, before --map is written (a failing run writes nothing).
+    // and not written fails the run.
     if (!flip.available && !a.flip_map.empty())
         throw RuntimeError("--flip-map " + a.flip_map + ": not written: FLIP did not run (" + flip.reason + ")");
-    if (!a.map.empty())
-        metrics::write_error_map_png(a.map, ref.width, ref.height, metrics::rel_se_map(ref, test));
+    if (const auto temp = map_temp(a.map))
+        metrics::write_error_map_png(*temp, ref.width, ref.height, metrics::rel_se_map(ref, test));
     std::optional<metrics::CvvdpResult> cvvdp;
     if (a.cvvdp)
-        cvvdp = metrics::compute_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), a.ref, a.test,
-                                       a.cvvdp_map.empty() ? std::nullopt : std::optional<fs::path>(a.cvvdp_map));
+        cvvdp = metrics::compute_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), a.ref, a.test, map_temp(a.cvvdp_map));
     std::optional<metrics::HdrvdpResult> hdrvdp;
     if (a.hdrvdp) hdrvdp = metrics::compute_hdrvdp(metrics::hdrvdp_tool(), a.ref, a.test);
+    maps.commit();
 
     if (a.json) {
         nlohmann::json j = {

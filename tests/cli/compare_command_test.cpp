@@ -123,9 +123,11 @@ TEST_F(CompareCli, KnownPerturbation) {
     EXPECT_EQ(j["flip"]["unavailable"], "disabled by --no-flip");
 }
 
+// Into directories that do not exist yet: made at the write, as every output's (before,
+// FLIP's own writer failed on a missing directory and failed the run).
 TEST_F(CompareCli, WritesErrorMaps) {
     const std::string a = write("a.exr", pattern(16, 16, 0.0f, 1)), b = write("b.exr", pattern(16, 16, 0.3f, 2));
-    const fs::path map = dir_ / "map.png", fmap = dir_ / "flip.png";
+    const fs::path map = dir_ / "maps" / "map.png", fmap = dir_ / "maps" / "flip" / "flip.png";
     CliResult r = run_compare(a + " " + b + " --map " + map.string() + " --flip-map " + fmap.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     ASSERT_TRUE(fs::exists(map));
@@ -214,10 +216,10 @@ TEST_F(CompareCli, FlipUnavailableKeepsOtherMetrics) {
 }
 
 // A FLIP map asked for and not written fails the run (exit 1), and leaves --map unwritten
-// too; asked for with --no-flip it is refused before any work (exit 2).
+// too (and their new directory unmade); asked for with --no-flip it is refused before any work (exit 2).
 TEST_F(CompareCli, FlipMapThatCannotBeWrittenFailsTheRun) {
     const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
-    const fs::path flip_map = dir_ / "f.png", map = dir_ / "m.png";
+    const fs::path flip_map = dir_ / "new" / "f.png", map = dir_ / "new" / "m.png";
     CliResult r = run_compare(a + " " + b + " --flip-map " + flip_map.string() + " --map " + map.string(),
                               "TESSERA_FLIP_SCRIPT=/nonexistent/flip_metric.py");
     EXPECT_EQ(r.exit_code, 1) << r.output;
@@ -225,8 +227,7 @@ TEST_F(CompareCli, FlipMapThatCannotBeWrittenFailsTheRun) {
                             ": not written: FLIP did not run (script /nonexistent/flip_metric.py not found)"),
               std::string::npos)
         << r.output;
-    EXPECT_FALSE(fs::exists(flip_map));
-    EXPECT_FALSE(fs::exists(map));
+    EXPECT_FALSE(fs::exists(dir_ / "new"));  // nor the directory the maps would be in
     r = run_compare(a + " " + b + " --no-flip --flip-map " + flip_map.string());
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("--flip-map " + flip_map.string() + ": FLIP writes it, and --no-flip skips FLIP"),
