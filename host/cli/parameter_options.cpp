@@ -15,8 +15,9 @@ std::string parameter_help(const Parameter& p) {
     return help;
 }
 
-void add_parameter_options(CLI::App& cmd, RenderSettings& settings) {
+void add_parameter_options(CLI::App& cmd, RenderSettings& settings, bool for_view) {
     for (const Parameter& p : render_parameters()) {
+        if (for_view && p.render_only) continue;
         std::visit([&](auto get) {
             auto& field = get(settings);
             if constexpr (std::is_same_v<decltype(field), bool&>)

@@ -14,7 +14,9 @@ namespace tessera::cli {
 /// (the field's value in `settings` at registration). Each given value is checked as text
 /// by check_parameter_text while parsing (InputError naming option and value, thrown out
 /// of CLI::App::parse); validate_settings still runs after parsing (render_frame runs it too).
-void add_parameter_options(CLI::App& cmd, RenderSettings& settings);
+/// `for_view`: the viewer's options, without those it does not read (Parameter::render_only),
+/// so that giving one is refused as an unknown option.
+void add_parameter_options(CLI::App& cmd, RenderSettings& settings, bool for_view = false);
 
 /// The option's help line: "igi: light paths per sample set; 1..65536 paths".
 std::string parameter_help(const Parameter& p);

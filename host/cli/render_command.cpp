@@ -316,7 +316,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_flag("--resume", args->resume,
                   "Continue from the checkpoint beside --out (<out>.ckpt) left by an interrupted render");
     cmd->add_option("--frames", args->frames,
-                    "Animated scene: render frames A..B (inclusive) to <out stem>.####.exr (+ .png)");
+                    "Animated scene: render frames A:B (A to B inclusive) to <out stem>.####.exr (+ .png)");
     cmd->add_option("--stats-json", args->stats_json,
                     "Write timing as JSON: {median_pass_seconds, passes, seconds, ...} (seconds exclude set-up)");
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");

@@ -300,7 +300,7 @@ void add_view_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--components", args->components, "igi/ais: starting components (1/2/3/4 toggle)")
         ->capture_default_str();
-    add_parameter_options(*cmd, args->settings);  // --spp is the passes accumulated at rest
+    add_parameter_options(*cmd, args->settings, true);  // --spp is the passes accumulated at rest
     cmd->add_option("--exposure", args->exposure, "Display and PNG exposure in stops ([ and ] change it)")
         ->capture_default_str()
         ->check(finite_number_in("--exposure", -limits::kExposureStops, limits::kExposureStops, false));

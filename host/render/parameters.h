@@ -45,6 +45,7 @@ struct Parameter {
     const char* unit = "";       ///< e.g. "px", "s"; "" for a plain count or ratio
     const char* doc = "";        ///< one line; "method: ..." when only some methods read it
     ParameterScope scope = ParameterScope::All;  ///< the methods that read it
+    bool render_only = false;    ///< `tessera render` reads it and `view` has no such option
 };
 
 /// Every parameter, in the order of `tessera render --help` and README's table.

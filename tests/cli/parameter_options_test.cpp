@@ -92,6 +92,21 @@ TEST(ParameterOptions, NoOptionsLeaveTheStructDefaults) {
         EXPECT_EQ(parameter_value(p, s), parameter_value(p, defaults)) << p.option;
 }
 
+// The viewer writes no checkpoint: `view --checkpoint-interval` is refused as unknown, not
+// accepted and ignored; every other render setting is the viewer's too.
+TEST(ParameterOptions, ViewerOptionsLeaveOutTheRenderOnlyOnes) {
+    CLI::App app;
+    RenderSettings s;
+    add_parameter_options(app, s, true);
+    EXPECT_THROW(app.parse("--checkpoint-interval 5", false), CLI::ExtrasError);
+    size_t render_only = 0;
+    for (const Parameter& p : render_parameters()) {
+        EXPECT_EQ(app.get_option_no_throw(p.option) == nullptr, p.render_only) << p.option;
+        render_only += p.render_only;
+    }
+    EXPECT_EQ(render_only, 1u);
+}
+
 TEST(ParameterOptions, OptionsSetTheirFields) {
     CLI::App app;
     RenderSettings s;
