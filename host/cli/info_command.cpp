@@ -53,7 +53,11 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     for (const auto& line : plan.describe()) std::printf("  %s\n", line.c_str());
     std::string defs;
     for (const auto& d : plan.cl_defines()) defs += " " + d;
-    std::printf("OpenCL plan: direct.cl / pt.cl (per --method) built with -cl-std=CL1.2%s\n", defs.c_str());
+    // The programs each method builds (host/device/kernel_table.h; trace.cl: the batches of
+    // rays the host traces), all with the same options.
+    std::printf("OpenCL programs, built with -cl-std=CL1.2%s:\n", defs.c_str());
+    std::printf("  direct: direct.cl; pt: pt.cl; igi, ais, ais-max: igi.cl, trace.cl; ic, tic: igi.cl, ic.cl, "
+                "trace.cl\n");
 }
 }  // namespace
 
