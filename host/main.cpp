@@ -4,6 +4,7 @@
 // distributed render (mpirun) only rank 0 prints, naming the rank that failed.
 #include <cstdio>
 #include <exception>
+#include <regex>
 #include <string>
 #include <unistd.h>
 
@@ -36,6 +37,15 @@ int fail(const std::string& message, int code) {
     return print(message, code);
 }
 
+// CLI11's message for an option given more times than it takes, "<option>: At Most 1
+// required but received <n>", in the words of the problem; any other message as it is.
+std::string parse_message(const std::string& what) {
+    static const std::regex twice("^(-[^:]*): At Most 1 required but received ([0-9]+)$");
+    std::smatch m;
+    if (!std::regex_match(what, m, twice)) return what;
+    return m[1].str() + ": given " + m[2].str() + " times; give it once";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,6 +62,9 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
+    } catch (const CLI::ArgumentMismatch& e) {
+        // An option given twice: CLI11 says "--spp: At Most 1 required but received 2".
+        return fail(parse_message(e.what()) + " (see --help)", 2);
     } catch (const CLI::ParseError& e) {
         // CLI11's own codes (105-120) would say nothing a script can use: every parse error
         // is bad input, exit 2 as docs/input-limits.md says. A "success" (help) exits 0.
