@@ -14,7 +14,7 @@ script):
   small  the scene JSON files and their OBJ/MTL meshes under standins/ (committed, a few
          hundred kB in all);
   large  generated/subdivided-knot.{obj,mtl}: the 221,184-triangle Loop-subdivided knot of
-         the subdivided scenes (about 19 MB, not committed: CMake runs `--what large` at
+         the subdivided scenes (about 15 MB, not committed: CMake runs `--what large` at
          build time; scenes/generated/ is in .gitignore).
 
 Usage: standins.py [--out DIR] [--what small|large|all]
