@@ -6,11 +6,13 @@
 #include <exception>
 #include <regex>
 #include <string>
+#include <vector>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "cli/option_checks.h"
 #include "render/cluster.h"
 #include "util/error.h"
 #include "util/heap.h"
@@ -59,6 +61,7 @@ int main(int argc, char** argv) {
     tessera::cli::add_options_command(app);
     tessera::cli::add_view_command(app);
     try {
+        tessera::cli::reject_options_as_values(app, std::vector<std::string>(argv + 1, argv + argc));
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);

@@ -62,6 +62,24 @@ void reject_empty_values(const CLI::App& cmd) {
     }
 }
 
+void reject_options_as_values(const CLI::App& app, const std::vector<std::string>& args) {
+    const CLI::App* cmd = nullptr;
+    for (size_t i = 0; i < args.size(); ++i) {
+        if (!cmd) {
+            for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+                if (sub->get_name() == args[i]) cmd = sub;
+            continue;
+        }
+        if (args[i] == "--") return;  // the rest are positionals
+        if (args[i].rfind("--", 0) != 0 || args[i].find('=') != std::string::npos || i + 1 == args.size()) continue;
+        const CLI::Option* o = cmd->get_option_no_throw(args[i]);
+        const std::string& next = args[i + 1];
+        if (o && o->get_expected_min() > 0 && next.rfind("--", 0) == 0 &&
+            cmd->get_option_no_throw(next.substr(0, next.find('='))))
+            throw InputError(args[i] + ": needs a value (the next word, " + next + ", is an option)");
+    }
+}
+
 void check_data_dir(const std::string& data_dir) {
     if (data_dir.empty()) return;
     std::error_code ec;

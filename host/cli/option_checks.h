@@ -27,6 +27,12 @@ CLI::Validator integer_in(const std::string& option, long long lo, long long hi)
 /// "--out '': must not be empty".
 void reject_empty_values(const CLI::App& cmd);
 
+/// Before parsing the command line `args` (argv without the program name): an option of
+/// the named subcommand of `app` that takes a value, followed by another of its options,
+/// throws InputError "--stats-json: needs a value (the next word, --out, is an option)".
+/// CLI11 would take the option name as the value, and the word after it as the scene.
+void reject_options_as_values(const CLI::App& app, const std::vector<std::string>& args);
+
 /// --data-dir, when given (not empty), must name an existing directory.
 void check_data_dir(const std::string& data_dir);
 

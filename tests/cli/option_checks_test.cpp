@@ -100,6 +100,9 @@ TEST_F(ContractCli, BadOptionValuesAreRejectedBeforeAnyWork) {
         {kRender + "--exposure -64.5" + kOut, "--exposure -64.5: must be a finite number >= -64 and <= 64"},
         // A parse error is bad input: exit 2, not CLI11's own code (109).
         {kRender + "--bogus" + kOut, "The following argument was not expected: --bogus (see --help)"},
+        // A value left out: CLI11 took "--out" as the file and the path after it as the scene.
+        {kRender + "--stats-json" + kOut, "--stats-json: needs a value (the next word, --out, is an option)"},
+        {"compare $D/img.exr $D/img.exr --map --no-flip", "--map: needs a value (the next word, --no-flip, is an option)"},
         // Given more than once (kRender has one): CLI11 said "--spp: At Most 1 required but
         // received 3".
         {kRender + "--spp 2 --spp 3" + kOut, "--spp: given 3 times; give it once (see --help)"},
