@@ -32,10 +32,11 @@ std::string type_name(cl_device_type t) {
     return "other";
 }
 
+// "[0] Portable Computing Language: pthread-...; [1] ...": one line, as every error is.
 std::string device_list_text(const std::vector<ClDeviceInfo>& devs) {
     std::string s;
     for (const auto& d : devs)
-        s += "\n  [" + std::to_string(d.index) + "] " + d.platform_name + ": " + d.name;
+        s += (s.empty() ? "" : "; ") + ("[" + std::to_string(d.index) + "] " + d.platform_name + ": " + d.name);
     return s;
 }
 
@@ -116,8 +117,8 @@ ClDeviceInfo select_cl_device(const std::string& spec) {
         for (const auto& d : devs)
             if (lower(d.platform_name + ": " + d.name).find(lower(spec)) != std::string::npos) return d;
     }
-    throw RuntimeError("--device " + spec + ": no such OpenCL device; available:" +
-                       device_list_text(devs) + "\n(or use --backend embree)");
+    throw RuntimeError("--device " + spec + ": no such OpenCL device; available: " + device_list_text(devs) +
+                       " (or use --backend embree)");
 }
 
 }  // namespace tessera

@@ -117,6 +117,17 @@ TEST(DevicesCli, ListsPocl) {
     EXPECT_NE(r.output.find("[0]"), std::string::npos) << r.output;
 }
 
+// A device that is not there: one line naming it and listing those that are.
+TEST(DevicesCli, UnknownDeviceIsOneLineListingTheDevices) {
+    CliResult r = run_tessera("render --backend opencl --device no-such-device --spp 1 --width 8 --height 8");
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    const std::string start = "tessera: error: --device no-such-device: no such OpenCL device; available: [0] ";
+    const size_t at = r.output.find(start);
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const size_t end = r.output.find('\n', at);
+    EXPECT_NE(r.output.substr(at, end - at).find(" (or use --backend embree)"), std::string::npos) << r.output;
+}
+
 }  // namespace
 
 // --stats-json: the timing the accuracy sweeps read (bench/accuracy). No --method: the
