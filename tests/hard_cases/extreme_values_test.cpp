@@ -1,4 +1,4 @@
-// Hard case: extreme values. Emission 2^20, 2^49 and 1e15 (the loader's limit) with albedo 0.99; very dense (optical depth
+// Hard case: extreme values. Emission 2^49 and 1e15 (the loader's limit) with albedo 0.99; very dense (optical depth
 // 1e3) and very thin (1e-6) media; Henyey–Greenstein g = ±0.999.
 #include "hard_cases/hard_case.h"
 #include "util/input_limits.h"
@@ -8,44 +8,39 @@ namespace {
 
 class ExtremeValues : public HardCase {};
 
-// Emission scaled by powers of two up to the largest the scene loader accepts
-// (limits::kMaxRadiance, 1e15: beyond about 1e36 ic wrote Inf), in a box of albedo 0.99.
-// Scaling every emitter by 2^k scales every float the estimators form from it by exactly
-// 2^k (no rounding changes while nothing overflows or falls to a denormal), so every
-// decision is the same and every pixel is exactly 2^k times the unscaled one: any overflow,
-// absolute epsilon or clamp that does not scale with the emission shows as a pixel off.
-TEST_P(ExtremeValues, EmissionScaledByPowersOfTwoScalesEveryPixelExactly) {
-    const Scene one = closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.99f), glm::vec3(1.0f), 0.3f);
-    const Image a = render(one, 16);
-    ASSERT_TRUE(all_finite(a));
-    // 2^20, and 2^49 (5.6e14): the largest power of two within the limit.
-    const int top = int(std::floor(std::log2(double(limits::kMaxRadiance))));
-    for (const int k : {20, top}) {
-        SCOPED_TRACE(k);
-        Scene big = one;
-        big.materials[1].emission = glm::vec3(std::ldexp(1.0f, k));
-        const Image b = render(big, 16);
-        const auto &ra = a.find("G")->data, &rb = b.find("G")->data;
-        size_t off = 0, first = ra.size();
-        for (size_t i = 0; i < ra.size(); ++i)
-            if (rb[i] != std::ldexp(ra[i], k)) first = std::min(first, i), ++off;
-        EXPECT_EQ(off, 0u) << "first pixel off: " << first;
-        for (const char* c : {"variance.R", "variance.G", "variance.B"})
-            EXPECT_TRUE(std::isfinite(channel_max(b, c)));
-    }
-}
-
-// At the limit itself, 1e15 (not a power of two): the flux of every VPL and path rounds
-// otherwise than at 1, so an estimator's discrete choices may differ. ic and tic keep each
-// VPL with a probability from its importance, in steps of 1/64, by one systematic draw
+// Emission scaled up to the largest the scene loader accepts (limits::kMaxRadiance, 1e15:
+// beyond about 1e36 ic wrote Inf), in a box of albedo 0.99.
+//
+// 2^49 (5.6e14, the largest power of two within the limit): scaling every emitter by 2^k
+// scales every float the estimators form from it by exactly 2^k (no rounding changes while
+// nothing overflows or falls to a denormal), so every decision is the same and every pixel
+// is exactly 2^k times the unscaled one: any overflow, absolute epsilon or clamp that does
+// not scale with the emission shows as a pixel off.
+//
+// 1e15 itself (not a power of two): the flux of every VPL and path rounds otherwise than at
+// 1, so an estimator's discrete choices may differ. ic and tic keep each VPL with a
+// probability from its importance, in steps of 1/64, by one systematic draw
 // (host/gi/vpl_importance.cpp: keep_probabilities, systematic_sample): an importance that
 // rounds across a step, or a running sum across the draw's point, flips a choice. At 1e15
 // (also 5e14, 2e15 and 7e9; not 1e14 or 7e14) one flips on Embree and about 50 pixels move
 // by up to 1.4e-3 (measured; with --ic-importance 1, no selection, none move). Every other
 // method holds a few ulps per vertex (< 1e-4 relative after 128 vertices; measured < 3e-7).
-TEST_P(ExtremeValues, EmissionAtTheLimitIsFiniteAndLinear) {
+TEST_P(ExtremeValues, EmissionScalesLinearlyUpToTheLimit) {
     const Scene one = closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.99f), glm::vec3(1.0f), 0.3f);
     const Image a = render(one, 16);
+    ASSERT_TRUE(all_finite(a));
+    const auto& ra = a.find("G")->data;
+    {
+        const int k = int(std::floor(std::log2(double(limits::kMaxRadiance))));
+        Scene big = one;
+        big.materials[1].emission = glm::vec3(std::ldexp(1.0f, k));
+        const Image b = render(big, 16);
+        const auto& rb = b.find("G")->data;
+        size_t off = 0, first = ra.size();
+        for (size_t i = 0; i < ra.size(); ++i)
+            if (rb[i] != std::ldexp(ra[i], k)) first = std::min(first, i), ++off;
+        EXPECT_EQ(off, 0u) << "2^" << k << ": first pixel off: " << first;
+    }
     const double scale = double(limits::kMaxRadiance);
     Scene big = one;
     big.materials[1].emission = glm::vec3(limits::kMaxRadiance);
@@ -53,7 +48,7 @@ TEST_P(ExtremeValues, EmissionAtTheLimitIsFiniteAndLinear) {
     ASSERT_TRUE(all_finite(b));
     const bool selects = method().method == Method::Ic || method().method == Method::Tic;
     const double tolerance = selects ? 3e-3 : 1e-4;
-    const auto &ra = a.find("G")->data, &rb = b.find("G")->data;
+    const auto& rb = b.find("G")->data;
     for (size_t i = 0; i < ra.size(); ++i)
         EXPECT_NEAR(rb[i], scale * double(ra[i]), tolerance * scale * double(ra[i]) + 1e-30) << "pixel " << i;
     EXPECT_NEAR(radiance_mean(b) / radiance_mean(a), scale, scale * 1e-5);
@@ -79,14 +74,15 @@ Scene furnace_with_medium(float sigma_s, float g) {
 }
 
 TEST_P(ExtremeValues, HenyeyGreensteinNearPlusMinusOne) {
-    for (float g : {0.999f, -0.999f}) {
+    for (float g : {0.4f, 0.999f, -0.999f}) {
         const Image img = render(furnace_with_medium(0.8f, g), 128);
         ASSERT_TRUE(all_finite(img)) << "g " << g;
         // Every method sees radiance 2 in every direction in the furnace, whatever the
         // medium does (a method that ignores media: the walls' 1 + 0.5 · 2); 256 pixels
-        // x 128 spp give a standard error < 0.5% (measured 0.1–0.2%): 3% is generous.
-        if (method().single_scatter) {  // finite (above), positive, and within the bound
-            EXPECT_GT(radiance_mean(img), 0.0) << "g " << g;
+        // x 128 spp give a standard error < 0.5% (measured 0.1–0.2%): 3% is generous. At
+        // g = 0.4 it also tells multiple scattering from single (igi --single-scattering
+        // renders 0.61) and from none.
+        if (method().peaked_phase_limit && std::abs(g) > 0.9f) {  // finite (above) and within the bound
             EXPECT_LE(radiance_max(img), radiance_bound(method().transport, 1.0, 0.5)) << "g " << g;
             continue;
         }
@@ -102,9 +98,9 @@ TEST(ExtremeValuesRayLights, HenyeyGreensteinNearPlusMinusOne) {
     // values of a link peak near 1e5 when the ray light runs along the camera ray. In the
     // furnace every pixel must stay finite and within the energy bound (radiance 2 there,
     // the bound's extremal case), on both backends, for igi and ais. (The igi family's
-    // mean is ~0.64-0.79 here with point VPLs and ray lights alike, measured: in a box 2
-    // wide the geometry clamp removes most of the near field, so only the bound is asked,
-    // as for every igi-family method in HenyeyGreensteinNearPlusMinusOne.)
+    // mean is ~0.64-0.79 here with point VPLs and ray lights alike, measured, and 0.80 /
+    // 1.15 without the geometry clamp: the links cannot carry the phase function's spike,
+    // HardCaseMethod::peaked_phase_limit, so only the bound is asked.)
     for (BackendKind kind : kHardCaseBackends)
         for (Method m : {Method::Igi, Method::Ais})
             for (float g : {0.999f, -0.999f}) {
