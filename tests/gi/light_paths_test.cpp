@@ -101,6 +101,13 @@ TEST(LightPaths, RayLightsFollowTheSegmentsInTheMediumAndChangeNoVpl) {
         return paths;
     };
     const std::vector<LightPath> plain = trace(false), with = trace(true);
+    double area = 0.0;
+    for (uint32_t i = 0; i < buffers.light_count; ++i) area += buffers.lights[i * TS_LIGHT_FLOATS + TS_LIGHT_AREA];
+    float first_flux[3];
+    for (int c = 0; c < 3; ++c) {
+        ASSERT_EQ(buffers.lights[TS_LIGHT_RADIANCE + c], buffers.lights[TS_LIGHT_FLOATS + TS_LIGHT_RADIANCE + c]);
+        first_flux[c] = float(buffers.lights[TS_LIGHT_RADIANCE + c] * M_PI * area / 64.0);
+    }
     size_t rays = 0, crossing = 0;
     for (size_t j = 0; j < with.size(); ++j) {
         EXPECT_TRUE(plain[j].vrls.empty());
@@ -128,8 +135,10 @@ TEST(LightPaths, RayLightsFollowTheSegmentsInTheMediumAndChangeNoVpl) {
         rays += with[j].vrls.size() / TS_VRL_FLOATS;
         if (!with[j].vrls.empty()) {
             EXPECT_EQ(with[j].vrls.size() / TS_VRL_FLOATS, r) << "path " << j;
-            // The first ray light carries the light's weight; it is positive and finite.
-            for (int c = 0; c < 3; ++c) EXPECT_TRUE(with[j].vrls[TS_VRL_FLUX + c] > 0.0f);
+            // The first ray light carries the light's weight Le·π/p_A / paths: both light
+            // triangles have one Le, and p_A = 1 / (their total area) on either.
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(with[j].vrls[TS_VRL_FLUX + c], first_flux[c], 1e-5f * first_flux[c]) << "path " << j;
         }
     }
     EXPECT_GT(rays, 64u) << "the fog fills the box: every path crosses it";
