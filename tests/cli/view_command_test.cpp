@@ -284,7 +284,7 @@ TEST_F(ViewWindowCli, XdotoolKeysMoveAndScreenshot) {
     const std::string view = std::string(TESSERA_EXE) + " view --backend embree --width 32 --height 32 --spp 6 --seed 3" +
                              " --screenshot " + (dir_ / "key.exr").string();
     const std::string keys =
-        "id=$(xdotool search --sync --name 'Tessera') && xdotool windowfocus --sync $id && "
+        "id=$(xdotool search --sync --onlyvisible --name 'Tessera') && xdotool windowfocus --sync $id && "
         "xdotool keydown w && sleep 0.3 && xdotool keyup w && sleep 1 && xdotool key c && xdotool key p && "
         "sleep 0.5 && xdotool key Escape";
     const std::string script = write("keys.sh", "#!/bin/sh\n" + view + " &\npid=$!\n(" + keys + ")\nwait $pid\n").string();
