@@ -217,7 +217,7 @@ def main(argv=None):
     ap.add_argument("--spp", type=int, default=256, help="Tessera passes (default 256)")
     ap.add_argument("--shadow-samples", type=int, default=8, help="Tessera shadow samples (default 8)")
     ap.add_argument("--max-depth", type=int, default=128,
-                    help="Tessera --max-depth (path vertices; default 128, Tessera's default); "
+                    help="Tessera --max-depth (scattering vertices per path; default 128, Tessera's default); "
                          "Cycles gets max bounces = this − 1 in every category")
     ap.add_argument("--cycles-spp", type=int, default=1024)
     ap.add_argument("--cycles-batches", type=int, default=16,

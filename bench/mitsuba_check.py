@@ -246,7 +246,9 @@ def run_tessera(args, scene_file: Path, exp: Export, out: Path):
     if args.data_dir:
         cmd += ["--data-dir", args.data_dir]
     if args.integrator == "path" and args.max_depth >= 0 and args.pass_max_depth:
-        cmd += ["--max-depth", str(args.max_depth)]
+        # Mitsuba's max_depth counts segments (2: direct light); Tessera's, the vertices
+        # that connect to a light (1: direct light).
+        cmd += ["--max-depth", str(args.max_depth - 1)]
     print("+ " + " ".join(cmd), flush=True)
     t0 = time.time()
     r = subprocess.run(cmd, capture_output=True, text=True)
@@ -274,7 +276,7 @@ def main(argv=None):
                     help="Mitsuba integrator for --integrator path (and for direct with a medium)")
     ap.add_argument("--max-depth", type=int, default=-1, help="Mitsuba path/volpath max_depth (-1: unlimited)")
     ap.add_argument("--pass-max-depth", action="store_true",
-                    help="also pass --max-depth to tessera (when its pt method supports it)")
+                    help="also pass max_depth - 1 to tessera --max-depth (the same paths)")
     ap.add_argument("--width", type=int)
     ap.add_argument("--height", type=int)
     ap.add_argument("--spp", type=int, default=64, help="Tessera passes (default 64)")
@@ -288,6 +290,8 @@ def main(argv=None):
     cc.add_common_arguments(ap, "Mitsuba")
     args = ap.parse_args(argv)
 
+    if args.pass_max_depth and args.integrator == "path" and 0 <= args.max_depth < 2:
+        fail(f"--max-depth {args.max_depth} with --pass-max-depth: Tessera's pt needs at least 2 (direct light)")
     scene_file = Path(args.scene).resolve()
     if not scene_file.is_file():
         fail(f"scene {args.scene} not found")

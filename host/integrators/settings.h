@@ -15,7 +15,7 @@ namespace tessera {
 /// The method and its settings (the part of RenderSettings below the frame loop).
 struct IntegratorSettings {
     Method method = Method::Direct;
-    uint32_t max_depth = 128;       ///< pt: path vertices before a path is cut
+    uint32_t max_depth = 128;       ///< pt: scattering vertices per path (1: direct lighting)
     uint32_t max_scatter = 0;       ///< pt: medium scattering vertices per path, 0 = unlimited
     IgiSettings igi;                ///< igi (set_shadow_samples comes from shadow_samples)
     IcSettings ic;                  ///< ic, tic (temporal is set from the method)

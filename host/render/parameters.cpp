@@ -38,7 +38,7 @@ const Parameter kParameters[] = {
      .doc = "Seconds between checkpoints (0: only when interrupted by SIGINT/SIGTERM)",
      .render_only = true},  // the viewer writes no checkpoint
     {.option = "--max-depth", .value_name = "N", .field = TS_SETTING(max_depth), .min = 1, .max = 100000,
-     .unit = "vertices", .doc = "pt: path vertices before a path is cut", .scope = ParameterScope::Pt},
+     .unit = "vertices", .doc = "pt: scattering vertices per path, each lit by the lights (1: direct lighting)", .scope = ParameterScope::Pt},
     {.option = "--max-scatter", .value_name = "N", .field = TS_SETTING(max_scatter), .min = 0, .max = kNoMax,
      .unit = "vertices", .doc = "pt: medium scattering vertices per path (1: single scattering, 0: unlimited)", .scope = ParameterScope::Pt},
     {.option = "--tile", .value_name = "N", .field = TS_SETTING(igi.tile), .min = 1, .max = 8, .unit = "px",

@@ -26,7 +26,7 @@ typedef struct TsFrame {
     unsigned int shadow_samples; /* area-light samples per camera hit */
     unsigned int seed;
     unsigned int light_count;
-    unsigned int max_depth;      /* pt: path vertices (surface or medium) before stopping */
+    unsigned int max_depth;      /* pt: scattering vertices (surface or medium) per path; 1 = direct lighting */
     unsigned int max_scatter;    /* pt: medium scattering vertices per path; 0 = unlimited */
     float light_power;           /* sum over lights of selection luminance × area (for pdfs) */
     unsigned int igi_tile;       /* igi: interleave tile edge n (n² sample sets) */

@@ -24,8 +24,13 @@
  *     path connects to the lights by next-event estimation (then at full weight) and
  *     ends; every later segment is only attenuated (Beer–Lambert, no scattering).
  *     Surface transport is unchanged.
- * Paths end after max_depth vertices or by Russian roulette from the fourth vertex on,
- * with survival probability min(1, max(throughput)) but at least 0.05.
+ * A path has at most max_depth scattering vertices (surface or medium), each connected
+ * to the lights, so it counts every light path of up to max_depth + 1 segments: the
+ * continuation from the last vertex is still traced, for the emitter it hits (the other
+ * half of that vertex's MIS pair, or the light behind a mirror), and ends there
+ * (pbrt-v4's maxDepth; Mitsuba 3's max_depth is ours + 1). max_depth = 1 is direct
+ * lighting. Paths also end by Russian roulette from the fourth vertex on, with survival
+ * probability min(1, max(throughput)) but at least 0.05.
  *
  * Uses the tracer interface documented in shared/direct.h.
  */
@@ -102,7 +107,8 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
     for (int i = 0; i < TS_PASS_DEPTH; ++i) out[i] = 0.0f;
     out[TS_PASS_DEPTH] = TS_INF;
 
-    for (uint depth = 0u; depth < f->max_depth; ++depth) {
+    /* depth == max_depth: the continuation's hit, which only adds the emitter's share. */
+    for (uint depth = 0u; depth <= f->max_depth; ++depth) {
         TsHit hit = ts_trace_closest(tracer, ray);
 #ifdef TS_HAS_MEDIUM
         float t0 = ray.tmin, t1 = hit.prim == TS_NO_HIT ? TS_INF : hit.t;
@@ -119,6 +125,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                 if (!scattered && !isfinite(t1)) break; /* lost in an unbounded medium */
                 beta = beta * w;
                 if (scattered) {
+                    if (depth == f->max_depth) break; /* a vertex past the limit */
                     float3 x = ray.org + ray.dir * t;
                     int last = f->max_scatter > 0u && ++scatters >= f->max_scatter;
                     TsLightConnection c = ts_connect_light(sv, tracer, &med, x, x, &rng);
@@ -162,6 +169,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                 L += beta * le * ts_power_heuristic(prev_pdf, pl);
             }
         }
+        if (depth == f->max_depth) break;
         uint kind = as_uint(M[TS_MAT_KIND]);
         float3 ng = s.geo_normal;
         if (ts_is_specular(kind)) {

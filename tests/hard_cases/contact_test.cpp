@@ -68,40 +68,67 @@ WallMean wall_mean(const Image& img, const Image& mask) {
     return w;
 }
 
-// The lit walls, where the light meets them, against pt (Embree, 1,024 spp): the bound
-// above would pass a renderer that drew the emitter alone. Methods of global transport
-// only: pt has no direct-only mode to compare `direct` with (with two vertices its second
-// light sample is one bounce of indirect light: 0.2715 against direct's 0.2124 here).
-class ContactGlobal : public HardCase {};
-
-TEST_P(ContactGlobal, LitWallsMatchThePathTracer) {
-    const Scene s = contact_corner();
+// The lit walls' mean against pt (Embree, 1,024 spp, at most `max_depth` scattering
+// vertices), with the standard error of the difference.
+struct WallComparison {
+    WallMean test, reference;
+    double se = 0.0;
+};
+WallComparison compare_walls_with_pt(const Image& img, const Scene& s, uint32_t max_depth) {
     RenderSettings rs;
     rs.method = Method::PathTrace;
     rs.spp = 1024;
     rs.seed = 7;
     rs.aovs = true;
+    rs.max_depth = max_depth;
     const Image ref = render_with(BackendKind::Embree, s, rs);
+    WallComparison c{wall_mean(img, ref), wall_mean(ref, ref)};
+    c.se = std::hypot(c.reference.stderr_, c.test.stderr_);
+    std::printf("  walls: %.5f against pt %.5f (ratio %.4f, %.1f standard errors)\n", c.test.mean, c.reference.mean,
+                c.test.mean / c.reference.mean, (c.test.mean - c.reference.mean) / c.se);
+    return c;
+}
+
+// The lit walls, where the light meets them, against pt: the bound above would pass a
+// renderer that drew the emitter alone. Global methods against pt's default depth.
+class ContactGlobal : public HardCase {};
+
+TEST_P(ContactGlobal, LitWallsMatchThePathTracer) {
+    const Scene s = contact_corner();
     const Image img = render(s, 64);
-    const WallMean r = wall_mean(ref, ref), m = wall_mean(img, ref);
-    ASSERT_GT(r.pixels, 3u * 32 * 32 / 4) << "the walls fill most of the view";
-    const double se = std::hypot(r.stderr_, m.stderr_);
-    std::printf("  walls: %.5f against pt %.5f (ratio %.4f, %.1f standard errors)\n", m.mean, r.mean, m.mean / r.mean,
-                (m.mean - r.mean) / se);
+    const WallComparison c = compare_walls_with_pt(img, s, RenderSettings{}.max_depth);
+    ASSERT_GT(c.reference.pixels, 3u * 32 * 32 / 4) << "the walls fill most of the view";
     // Four standard errors, and 1.5% for the igi family's clamp and its compensation, which
     // meet their worst case in these corners (measured: igi +0.4%, ic +0.9%). Without the
     // indirect light the walls are 22% darker.
-    EXPECT_NEAR(m.mean, r.mean, 4.0 * se + 0.015 * r.mean);
+    EXPECT_NEAR(c.test.mean, c.reference.mean, 4.0 * c.se + 0.015 * c.reference.mean);
 }
 
-std::vector<HardCaseParam> global_transport_params() {
+// `direct` against pt with one scattering vertex, direct lighting by other means: a
+// power-sampled light per vertex with no stratification, and the continuation's emitter
+// hits, MIS-weighted. Four standard errors and nothing more: no clamp, no compensation.
+// (With two vertices pt adds one bounce of indirect light: 0.2715 against direct's 0.2124.)
+class ContactDirect : public HardCase {};
+
+TEST_P(ContactDirect, LitWallsMatchThePathTracerAtOneVertex) {
+    const Scene s = contact_corner();
+    const Image img = render(s, 64);
+    const WallComparison c = compare_walls_with_pt(img, s, 1);
+    ASSERT_GT(c.reference.pixels, 3u * 32 * 32 / 4) << "the walls fill most of the view";
+    EXPECT_NEAR(c.test.mean, c.reference.mean, 4.0 * c.se);
+}
+
+std::vector<HardCaseParam> transport_params(Transport t) {
     std::vector<HardCaseParam> out;
     for (const HardCaseParam& p : hard_case_params())
-        if (p.method.transport == Transport::Global) out.push_back(p);
+        if (p.method.transport == t) out.push_back(p);
     return out;
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, ContactGlobal, ::testing::ValuesIn(global_transport_params()), hard_case_name);
+INSTANTIATE_TEST_SUITE_P(Methods, ContactGlobal, ::testing::ValuesIn(transport_params(Transport::Global)),
+                         hard_case_name);
+INSTANTIATE_TEST_SUITE_P(Methods, ContactDirect, ::testing::ValuesIn(transport_params(Transport::Direct)),
+                         hard_case_name);
 
 INSTANTIATE_TEST_SUITE_P(Methods, Contact, ::testing::ValuesIn(hard_case_params()), hard_case_name);
 
