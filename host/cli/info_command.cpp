@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "kernels/shared/layout_scene.h"
+#include "device/coincident_emitters.h"
 #include "device/effect_plan.h"
 #include "device/scene_buffers.h"
 #include "scene/loader.h"
@@ -40,6 +41,9 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     std::printf("scene:      %s (%s)\n", s.name.c_str(), s.source.c_str());
     std::printf("triangles:  %zu\n", s.triangle_count());
     std::printf("lights:     %u emissive triangles, %.4g scene units^2\n", b.light_count, light_area);
+    if (b.separated_emitters > 0)
+        std::printf("            %u of them lay on another surface: moved off it by %g ulps (docs/ray-tracing.md §4)\n",
+                    b.separated_emitters, double(kCoincidentEmitterUlps));
     std::printf("materials:  %zu, textures: %zu\n", s.materials.size(), s.textures.size());
     std::printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     std::printf("camera:     %dx%d, vfov %g, at (%g, %g, %g)\n", s.camera.width, s.camera.height,

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "device/coincident_emitters.h"
 #include "device/texture_mips.h"
 #include "kernels/shared/layout_scene.h"
 #include "kernels/shared/sampling.h"
@@ -68,7 +69,8 @@ void add_textures(const Scene& scene, SceneBuffers& b) {
     }
 }
 
-void add_lights(const Scene& scene, SceneBuffers& b) {
+// `positions`: the scene's, with coincident emitters separated (the BVHs' geometry).
+void add_lights(const Scene& scene, const std::vector<glm::vec3>& positions, SceneBuffers& b) {
     double total = 0.0;
     std::vector<double> power;
     for (uint32_t i = 0; i < scene.triangle_count(); ++i) {
@@ -79,8 +81,7 @@ void add_lights(const Scene& scene, SceneBuffers& b) {
         // (light paths keep their light index) and a light dimmed to zero keeps its place.
         const glm::vec3 weight = selection_emission(m);
         if (!(weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f)) continue;
-        glm::vec3 p0 = scene.positions[3 * i], e1 = scene.positions[3 * i + 1] - p0,
-                  e2 = scene.positions[3 * i + 2] - p0;
+        glm::vec3 p0 = positions[3 * i], e1 = positions[3 * i + 1] - p0, e2 = positions[3 * i + 2] - p0;
         const float area = scene.triangle_area(i);
         if (!(area > 0.0f)) continue;  // a zero-area emitter carries no power
         float f[TS_LIGHT_FLOATS] = {};
@@ -120,15 +121,17 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
     b.tri_pos.reserve(9 * n);
     b.tri_nrm.reserve(9 * n);
     b.tri_uv.reserve(6 * n);
+    std::vector<glm::vec3> positions = scene.positions;
+    b.separated_emitters = static_cast<uint32_t>(separate_coincident_emitters(scene, positions));
     for (size_t i = 0; i < 3 * n; ++i) {
-        push3(b.tri_pos, scene.positions[i]);
+        push3(b.tri_pos, positions[i]);
         push3(b.tri_nrm, scene.normals[i]);
         b.tri_uv.insert(b.tri_uv.end(), {scene.uvs[i].x, scene.uvs[i].y});
     }
     b.tri_mat = scene.material;
     add_materials(scene, b);
     add_textures(scene, b);
-    add_lights(scene, b);
+    add_lights(scene, positions, b);
     add_medium(scene, b);
     for (auto* v : {&b.tri_pos, &b.tri_nrm, &b.tri_uv, &b.materials, &b.lights, &b.light_cdf})
         ensure_nonempty(*v);

@@ -26,6 +26,7 @@ struct SceneBuffers {
     uint32_t triangle_count = 0;
     uint32_t light_count = 0;
     float light_power = 0.0f;        ///< Σ luminance(Le_max) × area over lights (the pick weights)
+    uint32_t separated_emitters = 0; ///< emitters moved off a coincident surface (coincident_emitters.h)
 };
 
 /// TS_MAT_* for a material: MTL illum 3 and 5 are mirrors, illum 7 a dielectric
@@ -41,8 +42,10 @@ uint32_t material_kind(const Material& m);
 /// light_power is the total luminance(Le_max) × area; each material stores its
 /// luminance(Le_max) (materials TS_MAT_SELECTION), so the kernels' MIS weight for an emitter hit by a
 /// BSDF sample uses the exact pick pdf luminance(Le_max) / light_power in every frame,
-/// however the lights dim. Buffers that would be empty get one zero element, so every
-/// device buffer can be created.
+/// however the lights dim. An emitter lying on another surface, overlapping it, is moved
+/// off it by a few ulps first (separate_coincident_emitters), in the geometry and the
+/// light list alike. Buffers that would be empty get one zero element, so every device
+/// buffer can be created.
 SceneBuffers make_scene_buffers(const Scene& scene);
 
 /// Axis-aligned bounds of every triangle vertex, scene units (lo > hi without triangles).
