@@ -87,6 +87,11 @@ size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& 
     for (size_t i = 0; i < n; ++i) (emits(scene.materials[scene.material[i]]) ? emitters : walls).push_back(i);
     if (emitters.empty() || walls.empty()) return 0;
     constexpr float kUlp = 0x1p-23f;  // float epsilon: one ulp of a coordinate in [1, 2)
+    // In the plane: the computed distance of a vertex from the other's plane is within
+    // about an ulp of the coordinates when the two were placed in one plane. No more: a
+    // light deliberately 2 ulps off its ceiling (Scale.*: 1e-3 of the box's size at 1e4
+    // from the origin) already renders the same on both backends and must stay put.
+    constexpr float kCoplanarUlps = 1.0f;
     size_t moved = 0;
     for (size_t ei : emitters) {
         Tri e = triangle(positions, ei);
@@ -94,14 +99,12 @@ size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& 
         const float len = glm::length(c);
         if (!(len > 0.0f)) continue;  // zero area: not a light
         const glm::vec3 normal = c / len;
-        // Coplanar within a few ulps of the coordinates (a file's vertices are rounded).
-        const float tol = 4.0f * kUlp * std::max(max_abs(e), 1.0f);
-        const Box eb = box_of(e, tol);
+        const Box eb = box_of(e, kCoplanarUlps * kUlp * max_abs(e));
         for (size_t wi : walls) {
             const Tri w = triangle(positions, wi);
             if (!boxes_overlap(eb, box_of(w, 0.0f))) continue;
             const float scale = std::max({max_abs(e), max_abs(w), 1e-30f});
-            if (!coincide(e, normal, w, 4.0f * kUlp * scale)) continue;
+            if (!coincide(e, normal, w, kCoplanarUlps * kUlp * scale)) continue;
             const glm::vec3 shift = normal * (kCoincidentEmitterUlps * kUlp * scale);
             for (int k = 0; k < 3; ++k) positions[3 * ei + k] += shift;
             ++moved;

@@ -10,7 +10,8 @@
 namespace tessera {
 
 /// Moves every emissive triangle (a light of make_scene_buffers) that lies in the plane
-/// of a non-emissive triangle, their interiors overlapping, off that plane along its
+/// of a non-emissive triangle (within 1 ulp of the coordinates), their interiors
+/// overlapping, off that plane along its
 /// emitting normal (cross(e1, e2), the side it lights) by kCoincidentEmitterUlps ulps of
 /// the pair's largest coordinate. `positions` is 3 per triangle, the scene's posed
 /// vertices, changed in place; returns how many triangles moved.
