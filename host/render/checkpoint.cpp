@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
+#include <utility>
 #include <system_error>
 #include <type_traits>
 #include <vector>
@@ -19,7 +21,9 @@ static_assert(std::endian::native == std::endian::little, "the checkpoint format
 namespace {
 
 constexpr char kMagic[8] = {'T', 'S', 'C', 'K', 'P', 'T', '0', '1'};
-constexpr uint32_t kVersion = 1;
+// 2: the method's other settings in the identity (2026-11-29); pt's --max-depth counts
+// one more emitter hit.
+constexpr uint32_t kVersion = 2;
 constexpr uint32_t kMaxString = 1u << 16;
 
 /// Bytes in memory (the identity record), in the file's encoding.
@@ -50,6 +54,7 @@ Bytes identity_bytes(const RunIdentity& id) {
     r.put(id.width);
     r.put(id.height);
     r.put(id.backend);
+    r.put(id.method_settings);
     return r;
 }
 
@@ -102,6 +107,26 @@ void check_sums(const Reader& r, int32_t width, const std::vector<double>& v, st
         }
 }
 
+// RunIdentity::method_settings as (option, value) pairs.
+std::vector<std::pair<std::string, std::string>> setting_pairs(const std::string& text) {
+    std::vector<std::pair<std::string, std::string>> out;
+    std::istringstream in(text);
+    std::string option, value;
+    while (in >> option >> value) out.emplace_back(option, value);
+    return out;
+}
+
+// "<head>--tile 3, this run has --tile 5" for the first method setting that differs.
+std::string differs_in_settings(const std::string& head, const std::string& saved, const std::string& now) {
+    if (saved == now) return "";
+    const auto a = setting_pairs(saved), b = setting_pairs(now);
+    for (const auto& [option, value] : a)
+        for (const auto& [option_now, value_now] : b)
+            if (option == option_now && value != value_now)
+                return head + option + " " + value + ", this run has " + option + " " + value_now;
+    return head + "the settings \"" + saved + "\", this run has \"" + now + "\"";
+}
+
 /// "checkpoint X was made with --seed 1, this run has --seed 2" for the first field of
 /// the identity that differs ("" if none does).
 std::string describe_difference(const std::string& name, const RunIdentity& saved, const RunIdentity& now) {
@@ -131,7 +156,7 @@ std::string describe_difference(const std::string& name, const RunIdentity& save
                                  differs("--height", saved.height, now.height),
                                  differs("--backend", saved.backend, now.backend)})
         if (!s.empty()) return s;
-    return "";
+    return differs_in_settings(head, saved.method_settings, now.method_settings);
 }
 
 }  // namespace
@@ -211,6 +236,7 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
     saved.width = r.get<int32_t>();
     saved.height = r.get<int32_t>();
     saved.backend = r.str();
+    saved.method_settings = r.str();
 
     const std::size_t n = std::size_t(w) * std::size_t(h);
     const uintmax_t expected = uintmax_t(r.in.tellg()) + n * (TS_PASS_FLOATS * 8 + 3 * 8 + 4) + 8;

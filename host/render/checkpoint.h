@@ -5,12 +5,12 @@
 // seed, pixel and pass, kernels/shared/rng.h): restoring the Accumulator bit for bit and
 // adding passes N, N+1, ... in order gives the same double sums as never stopping.
 //
-// File format, version 1. All integers and doubles are little-endian (the host's own
+// File format, version 2. All integers and doubles are little-endian (the host's own
 // byte order; big-endian hosts are rejected at compile time). Strings are a u32 byte
 // count followed by the bytes (no terminator).
 //
 //   char[8]  magic "TSCKPT01"
-//   u32      format version (1)
+//   u32      format version (2; 1 lacked the method's settings)
 //   u32      floats per pixel and pass (TS_PASS_FLOATS, 10)
 //   i32      width, i32 height
 //   u32      passes done (N: passes 0..N-1 are in the sums)
@@ -23,6 +23,7 @@
 //     string method, u32 seed, u32 shadow samples, u32 max depth, u32 max scatter,
 //     i32 width, i32 height,
 //     string backend ("opencl" or "embree")
+//     string the method's other settings ("--tile 3 --vpl-paths 64 ...": RunIdentity)
 //   f64[width·height·TS_PASS_FLOATS]  sums per pixel (Accumulator::sums)
 //   f64[width·height·3]               sums of squared radiance
 //   u32[width·height]                 hit counts

@@ -23,14 +23,15 @@ namespace {
 
 // What a distributed render's ranks must agree on for their passes to fit together: the
 // checkpoint identity (scene file and data, method, seed, shadow samples, depths, size,
-// backend) but the scene's path, which may differ between machines, plus --spp.
+// backend, the method's other settings) but the scene's path, which may differ between
+// machines, plus --spp.
 uint64_t render_fingerprint(const Scene& scene, const RenderSettings& settings, int w, int h, BackendKind backend) {
     const RunIdentity id = make_run_identity(scene, settings, w, h, backend);
     const std::string key = std::to_string(id.scene_file_hash) + " " + std::to_string(id.scene_data_hash) + " " +
                             id.method + " " + std::to_string(id.seed) + " " + std::to_string(id.shadow_samples) + " " +
                             std::to_string(id.max_depth) + " " + std::to_string(id.max_scatter) + " " +
                             std::to_string(id.width) + " " + std::to_string(id.height) + " " + id.backend + " " +
-                            std::to_string(settings.spp);
+                            std::to_string(settings.spp) + " " + id.method_settings;
     return fnv1a64(key.data(), key.size());
 }
 

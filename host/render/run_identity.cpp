@@ -1,11 +1,18 @@
 #include "render/run_identity.h"
 
+#include <cstdio>
 #include <fstream>
 #include <iterator>
+#include <set>
+#include <utility>
 #include <system_error>
 #include <vector>
 
+#include "integrators/method.h"
+#include "kernels/shared/layout_igi.h"
 #include "render/checkpoint.h"
+#include "render/parameters.h"
+#include "render/renderer.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -23,7 +30,11 @@ uint64_t scene_data_hash(const Scene& s) {
     h = hash_vec(s.uvs, h);
     h = hash_vec(s.material, h);
     for (const Material& m : s.materials) {
-        const float f[7] = {m.albedo.x, m.albedo.y, m.albedo.z, m.emission.x, m.emission.y, m.emission.z, m.ior};
+        // emission_max: the light list and its pick weights (scene_buffers.h); specular: a
+        // mirror's or a dielectric's reflectance (MTL Ks).
+        const float f[13] = {m.albedo.x,       m.albedo.y,       m.albedo.z,       m.emission.x, m.emission.y,
+                             m.emission.z,     m.ior,            m.emission_max.x, m.emission_max.y,
+                             m.emission_max.z, m.specular.x,     m.specular.y,     m.specular.z};
         const int32_t i[2] = {m.texture, m.illum};
         h = fnv1a64(f, sizeof f, h);
         h = fnv1a64(i, sizeof i, h);
@@ -37,6 +48,44 @@ uint64_t scene_data_hash(const Scene& s) {
     const float cam[10] = {c.position.x, c.position.y, c.position.z, c.look_at.x, c.look_at.y,
                            c.look_at.z,  c.up.x,       c.up.y,       c.up.z,        c.vfov_deg};
     return fnv1a64(cam, sizeof cam, h);
+}
+
+// The settings of RunIdentity's own fields, and those that do not change the image's
+// pixels: the pass count (--spp may be raised on resume), --aov (its channels come from
+// the same passes), the checkpoint interval.
+bool identity_field_or_no_effect(const std::string& option) {
+    static const std::set<std::string> kSkip = {"--spp",       "--shadow-samples", "--width",     "--height",
+                                                "--seed",      "--max-depth",      "--max-scatter", "--aov",
+                                                "--checkpoint-interval"};
+    return kSkip.count(option) > 0;
+}
+
+// "ss,id,pm,edge" for a TS_COMPONENT_* mask, as --components takes it.
+std::string components_text(uint32_t mask) {
+    std::string out;
+    const std::pair<uint32_t, const char*> names[] = {
+        {TS_COMPONENT_SS, "ss"}, {TS_COMPONENT_ID, "id"}, {TS_COMPONENT_PM, "pm"}, {TS_COMPONENT_EDGE, "edge"}};
+    for (const auto& [bit, name] : names)
+        if (mask & bit) out += (out.empty() ? "" : ",") + std::string(name);
+    return out.empty() ? "none" : out;
+}
+
+std::string method_settings_text(const RenderSettings& settings, int width, int height) {
+    RenderSettings resolved = settings;
+    resolve_ic_subsets(resolved, width, height);
+    std::string text;
+    for (const Parameter& p : render_parameters()) {
+        if (identity_field_or_no_effect(p.option) || !parameter_applies(p, settings.method)) continue;
+        const double v = parameter_value(p, resolved);
+        char value[32];
+        if (*p.value_name == '\0')  // a flag: whether it was given
+            std::snprintf(value, sizeof value, "%s", (p.negated ? v == 0 : v != 0) ? "given" : "absent");
+        else
+            std::snprintf(value, sizeof value, "%.9g", v);
+        text += (text.empty() ? "" : " ") + std::string(p.option) + " " + value;
+    }
+    if (igi_family(settings.method)) text += " --components " + components_text(settings.igi.components);
+    return text;
 }
 
 }  // namespace
@@ -62,6 +111,7 @@ RunIdentity make_run_identity(const Scene& scene, const RenderSettings& settings
     id.width = width;
     id.height = height;
     id.backend = backend == BackendKind::OpenCL ? "opencl" : "embree";
+    id.method_settings = method_settings_text(settings, width, height);
     return id;
 }
 

@@ -23,6 +23,10 @@ struct RunIdentity {
     uint32_t max_scatter = 0;
     int32_t width = 0, height = 0;
     std::string backend;
+    /// Every other setting the method reads, resolved (ic's path subsets from --spp and
+    /// the image size), as "--option value" pairs in the order of render_parameters(),
+    /// then --components for the igi family: the text names the setting that differs.
+    std::string method_settings;
 
     bool operator==(const RunIdentity&) const = default;
 };

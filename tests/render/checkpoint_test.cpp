@@ -20,6 +20,8 @@
 #include "util/error.h"
 
 #include "support/render_helpers.h"
+#include "support/test_scenes.h"
+#include "kernels/shared/layout_igi.h"
 
 namespace tessera {
 namespace {
@@ -199,6 +201,58 @@ TEST_F(Checkpoint, DifferentSettingsAreNamed) {
     id = some_identity(w, h);
     id.scene_path = "/other.json";
     expect_input_error(load_with(id), {file.string(), "/scenes/box.json", "/other.json"});
+}
+
+// Every setting a method reads is in the identity, and is named when it differs: a
+// resume that mixed passes of --tile 3 and --tile 5 (or of two path-subset counts, or of
+// a changed mirror reflectance) would give neither run's image.
+TEST_F(Checkpoint, MethodSettingsAndMaterialsAreNamed) {
+    const int w = 4, h = 4;
+    const Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(1.0f), 0.3f);
+    RenderSettings igi;
+    igi.method = Method::Igi;
+    igi.spp = 16;
+    const RunIdentity saved = make_run_identity(s, igi, w, h, BackendKind::Embree);
+    Accumulator a(w, h);
+    a.add(synthetic_pass(w, h, 0));
+    const fs::path file = dir_ / "x.ckpt";
+    save_checkpoint(file, saved, 16, a);
+    auto load_with = [&](const Scene& scene, const RenderSettings& rs) {
+        const RunIdentity id = make_run_identity(scene, rs, w, h, BackendKind::Embree);
+        return [&file, id] {
+            Accumulator b(id.width, id.height);
+            load_checkpoint(file, id, b);
+        };
+    };
+    RenderSettings more = igi;
+    more.spp = 64;  // raising --spp is what resuming is for
+    EXPECT_NO_THROW(load_with(s, more)());
+    RenderSettings rs = igi;
+    rs.igi.tile = 5;
+    expect_input_error(load_with(s, rs), {file.string(), "made with --tile 3, this run has --tile 5"});
+    rs = igi;
+    rs.igi.filter = false;
+    expect_input_error(load_with(s, rs), {"made with --no-filter absent, this run has --no-filter given"});
+    rs = igi;
+    rs.igi.clamp_c = 0.5f;
+    expect_input_error(load_with(s, rs), {"this run has --clamp 0.5"});
+    rs = igi;
+    rs.igi.components = TS_COMPONENT_SS | TS_COMPONENT_ID;
+    expect_input_error(load_with(s, rs), {"made with --components ss,id,pm,edge, this run has --components ss,id"});
+    Scene mirror = s;
+    mirror.materials[0].specular = glm::vec3(0.9f);  // MTL Ks: a mirror's reflectance
+    expect_input_error(load_with(mirror, igi), {"a mesh, material or texture has changed"});
+
+    // ic's path subsets follow --spp unless given: 8 passes draw 2, 64 draw 4.
+    RenderSettings ic;
+    ic.method = Method::Ic;
+    ic.spp = 8;
+    save_checkpoint(file, make_run_identity(s, ic, w, h, BackendKind::Embree), 8, a);
+    rs = ic;
+    rs.spp = 64;
+    expect_input_error(load_with(s, rs), {"made with --ic-subsets 2, this run has --ic-subsets 4"});
+    rs.ic.subsets = 2;
+    EXPECT_NO_THROW(load_with(s, rs)());
 }
 
 // Renders the Cornell box with checkpoints; `interrupt_at` > 0 raises SIGINT from the
