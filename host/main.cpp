@@ -48,6 +48,19 @@ std::string parse_message(const std::string& what) {
     return m[1].str() + ": given " + m[2].str() + " times; give it once";
 }
 
+// "unknown command 'rnder'; the commands are render, devices, ..." when the first
+// argument is not an option and names no subcommand ("" when it does): CLI11 says only
+// that a subcommand is required.
+std::string unknown_command(CLI::App& app, int argc, char** argv) {
+    if (argc < 2 || argv[1][0] == '-') return "";
+    std::string names;
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+        if (sub->get_name() == argv[1]) return "";
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    return std::string("unknown command '") + argv[1] + "'; the commands are " + names;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -60,6 +73,7 @@ int main(int argc, char** argv) {
     tessera::cli::add_compare_command(app);
     tessera::cli::add_options_command(app);
     tessera::cli::add_view_command(app);
+    if (const std::string bad = unknown_command(app, argc, argv); !bad.empty()) return fail(bad + " (see --help)", 2);
     try {
         tessera::cli::reject_options_as_values(app, std::vector<std::string>(argv + 1, argv + argc));
         app.parse(argc, argv);

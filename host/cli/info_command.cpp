@@ -37,7 +37,10 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     }
     double light_area = 0.0;
     for (uint32_t i = 0; i < b.light_count; ++i) light_area += b.lights[i * TS_LIGHT_FLOATS + TS_LIGHT_AREA];
-    const EffectPlan plan = plan_effects(s);
+    // Over the whole animation: a light dark at rest but lit in later frames is a light.
+    Scene lit = s;
+    for (Material& m : lit.materials) m.emission = glm::max(m.emission, m.emission_max);
+    const EffectPlan plan = plan_effects(lit);
     std::printf("scene:      %s (%s)\n", s.name.c_str(), s.source.c_str());
     std::printf("triangles:  %zu\n", s.triangle_count());
     std::printf("lights:     %u emissive triangles, %.4g scene units^2\n", b.light_count, light_area);

@@ -106,20 +106,27 @@ void check_output(const OutputFile& o) {
     if (fs::exists(st) && !fs::is_regular_file(st)) throw InputError(name + ": not a regular file");
     // The directory: the nearest existing ancestor must be a directory (the rest is made).
     const fs::path dir = existing_ancestor(o.path.parent_path());
-    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    const fs::file_status target = fs::status(dir, ec);  // through links
+    if (!fs::exists(target) && fs::is_symlink(fs::symlink_status(dir, ec)))
+        throw InputError(name + ": " + dir.string() + " is a symbolic link to nothing (a missing target or a loop)");
+    if (fs::exists(target) && !fs::is_directory(target))
         throw InputError(name + ": " + dir.string() + " is not a directory");
 }
 
 }  // namespace
 
-void check_outputs(const std::vector<OutputFile>& outputs, const fs::path& input) {
-    const fs::path in = input.empty() ? fs::path() : identity(input);
+void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<fs::path>& inputs) {
+    std::vector<fs::path> in;
+    for (const fs::path& p : inputs) in.push_back(identity(p));
     std::vector<fs::path> seen;
     for (size_t i = 0; i < outputs.size(); ++i) {
         check_output(outputs[i]);
         const fs::path id = identity(outputs[i].path);
-        if (!in.empty() && id == in)
-            throw InputError(outputs[i].role + " " + outputs[i].path.string() + ": is the scene file");
+        for (size_t k = 0; k < in.size(); ++k)
+            if (id == in[k])
+                throw InputError(outputs[i].role + " " + outputs[i].path.string() +
+                                 (k == 0 ? std::string(": is the scene file")
+                                        : ": would replace an input of this run, " + inputs[k].string()));
         for (size_t j = 0; j < i; ++j)
             if (seen[j] == id)
                 throw InputError(outputs[i].role + " " + outputs[i].path.string() + ": is also " + outputs[j].role);

@@ -45,9 +45,11 @@ struct OutputFile {
 
 /// Checks every output before any work: a file name; not a directory or other
 /// non-regular file; its directory exists or can be made (the nearest existing ancestor
-/// is a directory); no two outputs the same file, and none of them `input` (the scene).
-/// InputError "<role> <path>: is a directory". Creates nothing.
-void check_outputs(const std::vector<OutputFile>& outputs, const std::filesystem::path& input);
+/// is a directory); no two outputs the same file, and none of them one of `inputs` (the
+/// scene file first, then the files it loads: Scene::inputs; a command's other inputs).
+/// InputError "<role> <path>: is a directory", "...: is the scene file", "...: would
+/// replace an input of this run, <file>". Creates nothing.
+void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<std::filesystem::path>& inputs);
 
 /// Checks that each output's directory is writable, or, where it does not exist yet, its
 /// nearest existing ancestor (so that it can be made), by creating and removing a

@@ -245,7 +245,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (lead) {  // only rank 0 writes
             // Every output before the first ray: a run that cannot write its results does no work.
             const std::vector<OutputFile> files = outputs_of(a, out, frames);
-            check_outputs(files, scene_path);
+            check_outputs(files, scene.inputs);
             stop_if_interrupted("while loading the scene");
             check_output_directories(files);  // checkpoints are written there during the render too
         }

@@ -260,7 +260,10 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (a.record) files.push_back({a.camera_path, "--camera-path (recording)"});
     if (!a.screenshot_window.empty()) files.push_back({a.screenshot_window, "--screenshot-window"});
     if (!a.frame_images.empty()) files.push_back({fs::path(a.frame_images) / "frame.0000.exr", "--frame-images"});
-    check_outputs(files, scene_path);
+    std::vector<fs::path> inputs = scene.inputs;
+    for (const std::string& in : {a.reference, a.input_script, a.record ? std::string() : a.camera_path})
+        if (!in.empty()) inputs.push_back(in);
+    check_outputs(files, inputs);
     if (!a.frame_images.empty()) check_frame_images(a.frame_images, lo);
     check_output_directories(files);
 

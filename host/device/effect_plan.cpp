@@ -32,7 +32,7 @@ std::vector<std::string> EffectPlan::describe() const {
         "area lights (SS):     " + yn(area_lights),
         "textures:             " + yn(textures),
         "indirect diffuse (ID): " + yn(indirect) + (indirect ? "" : " (no reflecting surface or no light)"),
-        "medium (PM):          " + yn(medium) + (medium ? "" : " (scene declares none)"),
+        "medium (PM):          " + yn(medium) + (medium ? "" : " (none declared, or its coefficients are all zero)"),
     };
 }
 

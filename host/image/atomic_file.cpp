@@ -126,7 +126,9 @@ void sync_and_rename(const fs::path& target, TempGuard& guard) {
 fs::path existing_ancestor(const fs::path& dir) {
     std::error_code ec;
     fs::path at = dir.empty() ? fs::path(".") : dir;
-    for (fs::path next; !fs::exists(at, ec); at = next) {
+    // symlink_status: a link to nothing is where creating the directory would fail, so
+    // the walk stops there and the caller can name it.
+    for (fs::path next; !fs::exists(fs::symlink_status(at, ec)); at = next) {
         next = at.has_parent_path() ? at.parent_path() : fs::path(".");
         if (next == at) break;  // "/" or "." itself missing
     }

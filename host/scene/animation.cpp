@@ -200,7 +200,8 @@ void read_camera_track(const JsonField& list, Scene& scene, int frames) {
     // Two valid keys can still interpolate to a degenerate view in between.
     for (int f = 0; f < frames; ++f) {
         const Camera c = camera_at(scene.camera, scene.animation.camera, f);
-        scene_detail::check_camera_view(list, c.position, c.look_at, c.up);
+        scene_detail::check_camera_view(list, c.position, c.look_at, c.up,
+                                        "at frame " + std::to_string(f) + ", between its keys: ");
     }
 }
 

@@ -148,15 +148,16 @@ glm::vec3 read_colour(const JsonField& j, Colour kind) {
     return c;
 }
 
-void check_camera_view(const JsonField& where, glm::vec3 position, glm::vec3 look_at, glm::vec3 up) {
+void check_camera_view(const JsonField& where, glm::vec3 position, glm::vec3 look_at, glm::vec3 up,
+                       const std::string& when) {
     const glm::vec3 view = look_at - position;
     const float view2 = glm::dot(view, view);
-    if (!std::isfinite(view2)) where.fail("look_at - position overflows a float");
-    if (view2 == 0.0f) where.fail("look_at equals position");
+    if (!std::isfinite(view2)) where.fail(when + "look_at - position overflows a float");
+    if (view2 == 0.0f) where.fail(when + "look_at equals position");
     const glm::vec3 side = glm::cross(view, up);
     const float side2 = glm::dot(side, side);
-    if (!std::isfinite(side2)) where.fail("the view direction times up overflows a float");
-    if (side2 == 0.0f) where.fail("up is zero or parallel to the view direction");
+    if (!std::isfinite(side2)) where.fail(when + "the view direction times up overflows a float");
+    if (side2 == 0.0f) where.fail(when + "up is zero or parallel to the view direction");
 }
 
 }  // namespace tessera::scene_detail

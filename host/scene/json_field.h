@@ -80,7 +80,8 @@ glm::vec3 read_colour(const JsonField& j, Colour kind);
 /// Checks a pinhole view (the `camera` block or an animation key, named by `where`):
 /// look_at − position must be non-zero and finite, and not parallel to `up` (nor `up`
 /// zero), with a finite cross product. Throws InputError naming `where` otherwise.
-void check_camera_view(const JsonField& where, glm::vec3 position, glm::vec3 look_at, glm::vec3 up);
+void check_camera_view(const JsonField& where, glm::vec3 position, glm::vec3 look_at, glm::vec3 up,
+                       const std::string& when = "");
 
 /// Reads and parses a JSON file; `what` names its role in messages ("scene file", "camera
 /// path"). Throws InputError naming the file if it is missing, a directory, unreadable or

@@ -73,6 +73,13 @@ scene_detail::Transform read_transform(const std::optional<JsonField>& j) {
     return transform;
 }
 
+// One key for every spelling of a file ("a.obj", "./a.obj", "../d/a.obj", a link to it).
+fs::path same_file_key(const fs::path& p) {
+    std::error_code ec;
+    const fs::path c = fs::weakly_canonical(p, ec);
+    return ec ? fs::absolute(p).lexically_normal() : c;
+}
+
 // Loads each OBJ once (instancing a mesh twice shares its materials and textures).
 struct MeshEntry {
     scene_detail::ObjMesh mesh;
@@ -88,6 +95,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
         obj.require_known_keys({"name", "mesh", "transform"});
         const JsonField mesh_key = obj["mesh"];
         const std::string rel = mesh_key.string();
+        if (rel.empty()) mesh_key.fail("must name an OBJ file, not be empty");
         fs::path file;
         try {
             file = data.resolve(rel, scene.source);
@@ -95,14 +103,18 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
             throw InputError(std::string(e.what()) + " (key '" + mesh_key.key() + "')");
         }
         const auto transform = read_transform(obj.find("transform"));
-        auto it = meshes.find(file);
+        const fs::path key = same_file_key(file);  // "a.obj", "./a.obj": one mesh
+        auto it = meshes.find(key);
         if (it == meshes.end()) {
             MeshEntry entry{scene_detail::load_obj_mesh(file),
                             static_cast<uint32_t>(scene.materials.size())};
+            scene.inputs.push_back(file);
+            for (const fs::path& mtl : entry.mesh.mtl_files) scene.inputs.push_back(mtl);
+            for (const fs::path& tex : entry.mesh.texture_files) scene.inputs.push_back(tex);
             for (Material m : entry.mesh.materials) {
                 if (m.texture >= 0) {
                     const fs::path& tex = entry.mesh.texture_files[size_t(m.texture)];
-                    auto [t, added] = texture_ids.try_emplace(tex, int(scene.textures.size()));
+                    auto [t, added] = texture_ids.try_emplace(same_file_key(tex), int(scene.textures.size()));
                     if (added) {
                         try {
                             scene.textures.push_back(scene_detail::load_texture(tex));
@@ -115,7 +127,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
                 }
                 scene.materials.push_back(m);
             }
-            it = meshes.emplace(file, std::move(entry)).first;
+            it = meshes.emplace(key, std::move(entry)).first;
         }
         const size_t first = scene.positions.size();
         std::string name = rel + "#" + std::to_string(i);
@@ -240,6 +252,7 @@ Scene load_scene(const fs::path& scene_file, const DataPath& data) {
         {"name", "stands_in_for", "camera", "objects", "lights", "materials", "medium", "animation"});
     Scene scene;
     scene.source = scene_file;
+    scene.inputs.push_back(scene_file);
     scene.name = scene_file.stem().string();
     if (auto name = root.find("name")) scene.name = name->string();
     if (auto s = root.find("stands_in_for")) (void)s->string();  // free text, type-checked only

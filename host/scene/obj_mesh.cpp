@@ -161,6 +161,7 @@ ObjMesh load_obj_mesh(const fs::path& obj_file) {
         if (!std::isfinite(t)) obj_error(obj_file, "a texture coordinate (vt) is not finite");
 
     ObjMesh mesh;
+    for (const MtlLibLine& lib : scan.mtllibs) mesh.mtl_files.push_back(lib.file);
     std::map<fs::path, int> texture_index;
     for (const auto& m : reader.GetMaterials())
         mesh.materials.push_back(

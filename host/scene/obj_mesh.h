@@ -22,6 +22,7 @@ struct ObjMesh {
     std::vector<uint32_t> material;
     std::vector<Material> materials;
     std::vector<std::filesystem::path> texture_files;
+    std::vector<std::filesystem::path> mtl_files;  ///< the MTL files it read (mtllib), in order
     /// Where each of texture_files is named: "map_Kd of <mtl>:<line>: material '<name>'"
     /// (the first material that names it), for a message about the texture's content.
     std::vector<std::string> texture_roles;

@@ -85,6 +85,9 @@ struct SceneObject {
 struct Scene {
     std::string name;
     std::filesystem::path source;   ///< the scene file it came from ("" for built-in)
+    /// Every file the loader read: the scene file, then each OBJ, its MTL files and their
+    /// textures, as resolved (empty for a scene built in code). No output may be one.
+    std::vector<std::filesystem::path> inputs;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;

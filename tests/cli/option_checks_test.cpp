@@ -30,11 +30,14 @@ using tessera::test::CliResult;
 using tessera::test::run_shell;
 using tessera::test::run_tessera;
 
-// Every file under `dir` with its bytes (directories as "<dir>").
+// Every file under `dir` with its bytes (directories as "<dir>", symbolic links as
+// "<link>": some lead nowhere).
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
     std::map<std::string, std::string> files;
     for (const auto& e : fs::recursive_directory_iterator(dir))
-        files[fs::relative(e.path(), dir).string()] = e.is_directory() ? "<dir>" : tessera::test::file_bytes(e.path());
+        files[e.path().lexically_relative(dir).string()] = e.is_symlink()     ? "<link>"
+                                                      : e.is_directory() ? "<dir>"
+                                                                         : tessera::test::file_bytes(e.path());
     return files;
 }
 
@@ -76,6 +79,12 @@ protected:
 };
 
 const std::string kRender = "render " + kData + "/light.json --backend embree --spp 1 ";
+
+// tests/data's textured scene (JSON, OBJ, MTL, PNG) copied into the scratch directory.
+void copy_textured_scene(const fs::path& d) {
+    for (const char* f : {"textured.json", "textured.obj", "textured.mtl", "checker.png"})
+        fs::copy_file(fs::path(kData) / f, d / f, fs::copy_options::overwrite_existing);
+}
 const std::string kOut = " --out $D/img.exr";
 
 // Option values out of range, not finite, empty or meaningless here.
@@ -121,6 +130,8 @@ TEST_F(ContractCli, BadOptionValuesAreRejectedBeforeAnyWork) {
          "--march-steps 0: scene " + kScenes + "/cornell-box-fog.json has a medium, which --method igi ray-marches; "
          "give at least 1 step"},
         {"info ''", "scene '': must not be empty"},
+        {"rendr " + kData + "/light.json",
+         "unknown command 'rendr'; the commands are render, devices, info, compare, options, view (see --help)"},
         {"info " + kData + "/light.json --data-dir $D/nowhere", "--data-dir $D/nowhere: no such directory"},
         {"compare $D/img.exr $D/img.exr --exposure nan", "--exposure nan: must be a finite number >= -64 and <= 64"},
         {"compare $D/img.exr $D/img.exr --exposure 1e39", "--exposure 1e39: must be a finite number >= -64 and <= 64"},
@@ -155,6 +166,24 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
         {anim, "frame 1 of --out $D/anim.0001.exr: is a directory", 2, mkdir("anim.0001.exr")},
         {anim, "the PNG preview of frame 2 $D/anim.0002.png: is a directory", 2, mkdir("anim.0002.png")},
         {"compare " + kData + "/x.exr " + kData + "/y.exr --map $D/sub", "--map $D/sub: is a directory", 2, mkdir("sub")},
+        // The files the scene reads are inputs too: a texture, an OBJ, an MTL.
+        {"render $D/textured.json --backend embree --spp 1 --out $D/checker.exr",
+         "the PNG preview beside --out $D/checker.png: would replace an input of this run, $D/checker.png", 2,
+         copy_textured_scene},
+        {"render $D/textured.json --backend embree --spp 1" + kOut + " --stats-json $D/textured.obj",
+         "--stats-json $D/textured.obj: would replace an input of this run, $D/textured.obj", 2, copy_textured_scene},
+        {"render $D/textured.json --backend embree --spp 1" + kOut + " --stats-json $D/textured.mtl",
+         "--stats-json $D/textured.mtl: would replace an input of this run, $D/textured.mtl", 2, copy_textured_scene},
+        {"render $D/textured.json --backend embree --spp 1" + kOut + " --stats-json $D/textured.json",
+         "--stats-json $D/textured.json: is the scene file", 2,
+         copy_textured_scene},
+        // A directory that is a link to nothing: found now, not when the image is written.
+        {kRender + "--out $D/gone/img.exr", "--out $D/gone/img.exr: $D/gone is a symbolic link to nothing (a missing "
+                                            "target or a loop)", 2,
+         [](const fs::path& d) { fs::create_directory_symlink(d / "nowhere", d / "gone"); }},
+        {kRender + "--out $D/loop/sub/img.exr", "--out $D/loop/sub/img.exr: $D/loop is a symbolic link to nothing (a "
+                                                "missing target or a loop)", 2,
+         [](const fs::path& d) { fs::create_directory_symlink(d / "loop", d / "loop"); }},
         // Failures found after the outputs are checked make no directory for them (the
         // writers make it at their first write): a missing checkpoint, an unknown device.
         {kRender + "--resume --out $D/new/img.exr",

@@ -111,6 +111,29 @@ TEST(InfoCli, DescribesAnAnimation) {
     EXPECT_NE(r.output.find("animation:  30 frames; tracks: 1 objects, 2 materials"), std::string::npos) << r.output;
 }
 
+// What a scene calls for over its whole animation: a light dark in the rest pose and lit
+// by a key later is a light. One OBJ named by two spellings is loaded once.
+TEST_F(RenderCli, InfoCountsLightsOfTheAnimationAndEachFileOnce) {
+    for (const char* f : {"textured.obj", "textured.mtl", "checker.png"})
+        fs::copy_file(fs::path(kData) / f, dir_ / f);
+    std::ofstream(dir_ / "scene.json") << R"({
+      "camera": {"position": [0, 2, 3], "look_at": [0, 0, 0]},
+      "objects": [{"mesh": "textured.obj"}, {"mesh": "./textured.obj", "transform": {"translate": [0, 0, 2]}}],
+      "lights": [{"type": "quad", "corner": [0, 5, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 1],
+                  "radiance": [0, 0, 0]}],
+      "animation": {"frames": 4, "materials": {"json-light-0": [{"frame": 0, "emission": [0, 0, 0]},
+                                                        {"frame": 3, "emission": [20, 20, 20]}]}}
+    })";
+    const CliResult r = run_tessera("info " + (dir_ / "scene.json").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("area lights (SS):     yes"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("indirect diffuse (ID): yes"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(", textures: 1\n"), std::string::npos) << r.output;
+    const CliResult once = run_tessera("info " + std::string(kData) + "/textured.json");
+    const auto materials = [](const std::string& out) { return out.substr(out.find("materials:"), 16); };
+    EXPECT_EQ(materials(r.output), materials(once.output)) << r.output << once.output;
+}
+
 TEST(DevicesCli, ListsPocl) {
     CliResult r = run_tessera("devices");
     EXPECT_EQ(r.exit_code, 0) << r.output;

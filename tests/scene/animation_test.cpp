@@ -297,7 +297,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadAnimation{R"({"frames": 3, "camera": [{"frame": 0, "position": [0.5, 0, 0.5]}]})", "animation.camera[0]",
                      "look_at equals position"},
         BadAnimation{R"({"frames": 3, "camera": [{"frame": 0, "position": [0.5, 1, 0.5]}]})", "animation.camera[0]",
-                     "parallel"}));
+                     "parallel"},
+        // Two valid keys whose interpolation passes through look_at: the frame is named.
+        BadAnimation{R"({"frames": 3, "camera": [{"frame": 0, "position": [0, 0.5, -1], "look_at": [0, 0.5, 0]},
+                                                 {"frame": 2, "position": [0, 0.5, 1], "look_at": [0, 0.5, 0]}]})",
+                     "animation.camera", "at frame 1, between its keys: look_at equals position"}));
 
 // ---- the shipped scenes ----
 

@@ -168,6 +168,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadKey{"{" CAM_OK R"(, "objects": {"mesh": "%M"}})", "objects"},
         BadKey{"{" CAM_OK R"(, "objects": []})", "objects"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": 3}]})", "objects[0].mesh"},
+        BadKey{"{" CAM_OK R"(, "objects": [{"mesh": ""}]})", "objects[0].mesh' = \"\": must name an OBJ file"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"scale": [1, 0, 1]}}], )" LIGHT_OK "}",
                "objects[0].transform.scale"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"rotate": [{"axis": [0,1,0]}]}}])"
