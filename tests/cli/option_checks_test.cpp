@@ -257,6 +257,7 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
          "--components ss: --method pt has no components (they select what igi, ais, ais-max, ic and tic compute)"},
         {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},
         {"compare $D/img.exr $D/img.exr --flip-map $D/f.exr", "--flip-map $D/f.exr: the map is written as PNG; name it .png"},
+        {view + "--times $D/s.json", "--times $D/s.json: would replace an input of this run, $D/s.json", 2, files},
         {view + "--screenshot-window $D/w.png",
          "--screenshot-window $D/w.png: a headless run has no window to capture (--frame-images writes its frames)", 2,
          files},
