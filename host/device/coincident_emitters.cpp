@@ -9,6 +9,13 @@ namespace {
 
 using Tri = std::array<glm::vec3, 3>;
 
+constexpr float kUlp = 0x1p-23f;  // float epsilon: one ulp of a coordinate in [1, 2)
+// In the plane: the computed distance of a vertex from the other's plane is within about
+// an ulp of the coordinates when the two were placed in one plane. No more: a light
+// deliberately 2 ulps off its ceiling (Scale.*: 1e-3 of the box's size at 1e4 from the
+// origin) already renders the same on both backends and must stay put.
+constexpr float kCoplanarUlps = 1.0f;
+
 Tri triangle(const std::vector<glm::vec3>& p, size_t i) { return {p[3 * i], p[3 * i + 1], p[3 * i + 2]}; }
 
 bool emits(const Material& m) {
@@ -25,7 +32,10 @@ float max_abs(const Tri& t) {
 struct Box {
     glm::vec3 lo, hi;
 };
-Box box_of(const Tri& t, float pad) {
+// The triangle's bounds, widened by the coplanarity tolerance of its coordinates: two
+// triangles within the tolerance of a plane have overlapping boxes.
+Box box_of(const Tri& t) {
+    const float pad = kCoplanarUlps * kUlp * max_abs(t);
     return {glm::min(glm::min(t[0], t[1]), t[2]) - pad, glm::max(glm::max(t[0], t[1]), t[2]) + pad};
 }
 bool boxes_overlap(const Box& a, const Box& b) {
@@ -86,23 +96,25 @@ size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& 
     std::vector<size_t> emitters;
     for (size_t i = 0; i < n; ++i) (emits(scene.materials[scene.material[i]]) ? emitters : walls).push_back(i);
     if (emitters.empty() || walls.empty()) return 0;
-    constexpr float kUlp = 0x1p-23f;  // float epsilon: one ulp of a coordinate in [1, 2)
-    // In the plane: the computed distance of a vertex from the other's plane is within
-    // about an ulp of the coordinates when the two were placed in one plane. No more: a
-    // light deliberately 2 ulps off its ceiling (Scale.*: 1e-3 of the box's size at 1e4
-    // from the origin) already renders the same on both backends and must stay put.
-    constexpr float kCoplanarUlps = 1.0f;
+    // Only surfaces within the emitters' joint box can meet one: an emissive mesh of many
+    // triangles in a small part of a large scene then tests few pairs.
+    Box all{glm::vec3(INFINITY), glm::vec3(-INFINITY)};
+    for (size_t ei : emitters) {
+        const Box b = box_of(triangle(positions, ei));
+        all = {glm::min(all.lo, b.lo), glm::max(all.hi, b.hi)};
+    }
+    std::erase_if(walls, [&](size_t wi) { return !boxes_overlap(all, box_of(triangle(positions, wi))); });
     size_t moved = 0;
     for (size_t ei : emitters) {
-        Tri e = triangle(positions, ei);
+        const Tri e = triangle(positions, ei);
         const glm::vec3 c = glm::cross(e[1] - e[0], e[2] - e[0]);
         const float len = glm::length(c);
         if (!(len > 0.0f)) continue;  // zero area: not a light
         const glm::vec3 normal = c / len;
-        const Box eb = box_of(e, kCoplanarUlps * kUlp * max_abs(e));
+        const Box eb = box_of(e);
         for (size_t wi : walls) {
             const Tri w = triangle(positions, wi);
-            if (!boxes_overlap(eb, box_of(w, 0.0f))) continue;
+            if (!boxes_overlap(eb, box_of(w))) continue;
             const float scale = std::max({max_abs(e), max_abs(w), 1e-30f});
             if (!coincide(e, normal, w, kCoplanarUlps * kUlp * scale)) continue;
             const glm::vec3 shift = normal * (kCoincidentEmitterUlps * kUlp * scale);
