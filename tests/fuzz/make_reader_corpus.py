@@ -38,9 +38,9 @@ def checkpoint(passes=2, nan_at=None):
     def string(s):
         return struct.pack("<I", len(s)) + s.encode()
     ident = (string("/scenes/box.json") + struct.pack("<QQ", 42, 43) + string("direct") +
-             struct.pack("<IIIIii", 1, 8, 0, 0, 4, 3) + string("embree"))
+             struct.pack("<IIIIii", 1, 8, 0, 0, 4, 3) + string("embree") + string(""))  # no method settings
     n, floats = 12, 10  # pixels, TS_PASS_FLOATS
-    head = (b"TSCKPT01" + struct.pack("<IIiiIIQ", 1, floats, 4, 3, passes, 4, fnv1a64(ident)) + ident)
+    head = (b"TSCKPT01" + struct.pack("<IIiiIIQ", 2, floats, 4, 3, passes, 4, fnv1a64(ident)) + ident)  # version 2
     sums = [0.25 * (i % 7) * passes for i in range(n * floats)]
     if nan_at is not None:
         sums[nan_at] = math.nan
