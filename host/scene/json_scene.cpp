@@ -83,8 +83,17 @@ fs::path same_file_key(const fs::path& p) {
 // Loads each OBJ once (instancing a mesh twice shares its materials and textures).
 struct MeshEntry {
     scene_detail::ObjMesh mesh;
-    uint32_t material_base;
+    std::vector<uint32_t> material_index;  ///< scene.materials index of each mesh.materials entry
 };
+
+// The index of `m` in scene.materials, appending it unless an equal one is there: two
+// OBJs that read one MTL file (or both fall back to the default grey) share its materials.
+uint32_t find_or_add_material(Scene& scene, const Material& m) {
+    for (size_t j = 0; j < scene.materials.size(); ++j)
+        if (scene.materials[j] == m) return static_cast<uint32_t>(j);
+    scene.materials.push_back(m);
+    return static_cast<uint32_t>(scene.materials.size() - 1);
+}
 
 void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
                   std::map<fs::path, int>& texture_ids) {
@@ -106,8 +115,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
         const fs::path key = same_file_key(file);  // "a.obj", "./a.obj": one mesh
         auto it = meshes.find(key);
         if (it == meshes.end()) {
-            MeshEntry entry{scene_detail::load_obj_mesh(file),
-                            static_cast<uint32_t>(scene.materials.size())};
+            MeshEntry entry{scene_detail::load_obj_mesh(file), {}};
             scene.inputs.push_back(file);
             for (const fs::path& mtl : entry.mesh.mtl_files) scene.inputs.push_back(mtl);
             for (const fs::path& tex : entry.mesh.texture_files) scene.inputs.push_back(tex);
@@ -125,7 +133,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
                     }
                     m.texture = t->second;
                 }
-                scene.materials.push_back(m);
+                entry.material_index.push_back(find_or_add_material(scene, m));
             }
             it = meshes.emplace(key, std::move(entry)).first;
         }
@@ -133,7 +141,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
         std::string name = rel + "#" + std::to_string(i);
         if (auto n = obj.find("name")) name = n->string();
         scene.objects.push_back({name, static_cast<uint32_t>(scene.triangle_count()), 0u});
-        scene_detail::append_mesh(scene, it->second.mesh, transform, it->second.material_base);
+        scene_detail::append_mesh(scene, it->second.mesh, transform, it->second.material_index);
         // A finite vertex times a finite transform can still overflow (scale 3e38 and a
         // translation of 3e38): infinite positions would poison the BVH and every pixel.
         for (size_t v = first; v < scene.positions.size(); ++v) {

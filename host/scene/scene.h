@@ -41,6 +41,8 @@ struct Material {
     glm::vec3 specular{0.0f};    ///< Ks, each channel in [0, 1]: mirror reflectance (illum 3, 5)
     int illum = 2;               ///< MTL illumination model, 0..10: 3, 5 mirror; 7 dielectric; else Lambertian
     float ior = 1.0f;            ///< MTL Ni, the dielectric's index of refraction (illum 7): finite, >= 0 (> 0 for illum 7)
+
+    bool operator==(const Material&) const = default;
 };
 
 /// A homogeneous participating medium. Coefficients are per scene unit (1/length);

@@ -34,7 +34,7 @@ glm::vec3 geometric_normal(glm::vec3 p0, glm::vec3 p1, glm::vec3 p2) {
 
 }  // namespace
 
-void append_mesh(Scene& scene, const ObjMesh& mesh, const Transform& t, uint32_t material_base) {
+void append_mesh(Scene& scene, const ObjMesh& mesh, const Transform& t, const std::vector<uint32_t>& material_index) {
     const size_t tris = mesh.material.size();
     scene.positions.reserve(scene.positions.size() + 3 * tris);
     scene.normals.reserve(scene.normals.size() + 3 * tris);
@@ -55,7 +55,7 @@ void append_mesh(Scene& scene, const ObjMesh& mesh, const Transform& t, uint32_t
             scene.normals.push_back(usable(n[k]) ? glm::normalize(n[k]) : ng);
             scene.uvs.push_back(mesh.uvs[3 * i + o[k]]);
         }
-        scene.material.push_back(material_base + mesh.material[i]);
+        scene.material.push_back(material_index[mesh.material[i]]);
     }
 }
 

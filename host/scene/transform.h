@@ -26,12 +26,12 @@ struct Transform {
 Transform make_transform(glm::vec3 scale, const std::vector<Rotation>& rotations,
                          glm::vec3 translate);
 
-/// Appends `mesh` transformed by `t` to `scene`; triangle materials are offset by
-/// `material_base` (the index of mesh.materials[0] in scene.materials). A mirroring
+/// Appends `mesh` transformed by `t` to `scene`; a triangle of mesh material k gets
+/// scene material `material_index[k]` (one per mesh.materials entry). A mirroring
 /// transform gets corners 1 and 2 swapped so cross(p1 - p0, p2 - p0) keeps facing the
 /// same side of the surface. Missing, zero or non-finite normals become the geometric
 /// normal (or +y for a degenerate triangle, whose normal is undefined).
-void append_mesh(Scene& scene, const ObjMesh& mesh, const Transform& t, uint32_t material_base);
+void append_mesh(Scene& scene, const ObjMesh& mesh, const Transform& t, const std::vector<uint32_t>& material_index);
 
 /// Appends the parallelogram light corner + [0,1]·edge1 + [0,1]·edge2 as two triangles
 /// with a new material (albedo 0, emission `radiance`). It emits from the side of

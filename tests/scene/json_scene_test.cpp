@@ -142,6 +142,29 @@ TEST_F(SceneJson, SyntaxErrorGivesLineAndColumnOnce) {
     EXPECT_EQ(rest.find("byte"), std::string::npos) << e;
 }
 
+// Two OBJs that read one MTL file share its materials, and one OBJ named two ways is
+// loaded once: the scene holds each material and each file once. A material of the same
+// name but other values (another MTL) stays apart.
+TEST_F(SceneJson, SharedMtlAndRespelledObjLoadOnce) {
+    const std::string quad = test::read_bytes(test::fixture("quad.obj"));
+    std::filesystem::copy_file(test::fixture("quad.mtl"), dir_ / "quad.mtl");
+    std::ofstream(dir_ / "a.obj") << quad;
+    std::ofstream(dir_ / "b.obj") << quad;
+    std::ofstream(dir_ / "c.obj") << "mtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nusemtl grey\nf 1 3 2\n";
+    std::ofstream(dir_ / "c.mtl") << "newmtl grey\nKd 0.9 0.9 0.9\n";
+    const Scene s = load_scene(write(R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]},
+        "objects": [{"mesh": "a.obj"}, {"mesh": "b.obj"}, {"mesh": "./a.obj"}, {"mesh": "c.obj"}],
+        "lights": [{"type": "quad", "corner": [0,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1]}]})"),
+                               DataPath{});
+    // quad.mtl's grey and lamp once, c.mtl's grey, the JSON light.
+    ASSERT_EQ(s.materials.size(), 4u);
+    EXPECT_EQ(s.material[0], s.material[2]) << "a.obj and b.obj share quad.mtl's grey";
+    EXPECT_EQ(s.material[0], s.material[4]) << "./a.obj is a.obj";
+    EXPECT_NE(s.material[0], s.material[6]) << "c.mtl's grey is another material";
+    // bad.json; a.obj and b.obj, each with quad.mtl; c.obj with c.mtl (./a.obj is a.obj).
+    EXPECT_EQ(s.inputs.size(), 7u);
+}
+
 // Comment keys are allowed everywhere: "comment" and keys starting with '_', also among
 // names (materials, animation tracks), with any value.
 TEST_F(SceneJson, CommentKeysAreIgnored) {
