@@ -255,13 +255,16 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     lo.fixed_dt = a.fixed_dt || !lo.script.empty() || !lo.path.empty();
 
     // Every output before the first ray (screenshots: the first one's files).
-    std::vector<OutputFile> files = {{frame_output_path(o.screenshot, 0), "--screenshot"}};
+    const fs::path first_screenshot = frame_output_path(o.screenshot, 0);
+    std::vector<OutputFile> files = {{first_screenshot, "--screenshot"},
+                                     {fs::path(first_screenshot).replace_extension(".png"), "the PNG beside --screenshot"}};
     if (!a.times.empty()) files.push_back({a.times, "--times"});
     if (a.record) files.push_back({a.camera_path, "--camera-path (recording)"});
     if (!a.screenshot_window.empty()) files.push_back({a.screenshot_window, "--screenshot-window"});
     if (!a.frame_images.empty()) files.push_back({fs::path(a.frame_images) / "frame.0000.exr", "--frame-images"});
     std::vector<fs::path> inputs = scene.inputs;
-    for (const std::string& in : {a.reference, a.input_script, a.record ? std::string() : a.camera_path})
+    for (const std::string& in : {a.reference, a.input_script, a.record ? std::string() : a.camera_path,
+                                  a.pareto})
         if (!in.empty()) inputs.push_back(in);
     check_outputs(files, inputs);
     if (!a.frame_images.empty()) check_frame_images(a.frame_images, lo);

@@ -100,7 +100,8 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
             if (mine != lead_fingerprint)
                 throw InputError("its scene file, scene data or settings differ from rank 0's (every rank must "
                                  "render the same scene data with the same --method, --spp, --seed, "
-                                 "--shadow-samples, --max-depth, --max-scatter, --width, --height and --backend)");
+                                 "--shadow-samples, --max-depth, --max-scatter, --width, --height, --backend "
+                                 "and the method's other settings)");
         });
         if (!lead) {
             run_worker(*cluster, *integrator, frame, first, settings.spp);

@@ -50,13 +50,16 @@ uint64_t scene_data_hash(const Scene& s) {
     return fnv1a64(cam, sizeof cam, h);
 }
 
-// The settings of RunIdentity's own fields, and those that do not change the image's
-// pixels: the pass count (--spp may be raised on resume), --aov (its channels come from
-// the same passes), the checkpoint interval.
-bool identity_field_or_no_effect(const std::string& option) {
-    static const std::set<std::string> kSkip = {"--spp",       "--shadow-samples", "--width",     "--height",
-                                                "--seed",      "--max-depth",      "--max-scatter", "--aov",
-                                                "--checkpoint-interval"};
+// The settings of RunIdentity's own fields, and those that do not change what `method`
+// accumulates: the pass count (--spp may be raised on resume), the checkpoint interval,
+// --aov but for the igi family (direct's and pt's albedo, normal and depth are in every
+// pass; the igi family's per-component channels are summed only with --aov), and
+// --no-mipmaps for pt, which always reads the finest level.
+bool identity_field_or_no_effect(const std::string& option, Method method) {
+    static const std::set<std::string> kSkip = {"--spp",  "--shadow-samples", "--width",       "--height",
+                                                "--seed", "--max-depth",      "--max-scatter", "--checkpoint-interval"};
+    if (option == "--aov") return !igi_family(method);
+    if (option == "--no-mipmaps") return method == Method::PathTrace;
     return kSkip.count(option) > 0;
 }
 
@@ -75,7 +78,7 @@ std::string method_settings_text(const RenderSettings& settings, int width, int 
     resolve_ic_subsets(resolved, width, height);
     std::string text;
     for (const Parameter& p : render_parameters()) {
-        if (identity_field_or_no_effect(p.option) || !parameter_applies(p, settings.method)) continue;
+        if (identity_field_or_no_effect(p.option, settings.method) || !parameter_applies(p, settings.method)) continue;
         const double v = parameter_value(p, resolved);
         char value[32];
         if (*p.value_name == '\0')  // a flag: whether it was given
@@ -84,7 +87,11 @@ std::string method_settings_text(const RenderSettings& settings, int width, int 
             std::snprintf(value, sizeof value, "%.9g", v);
         text += (text.empty() ? "" : " ") + std::string(p.option) + " " + value;
     }
-    if (igi_family(settings.method)) text += " --components " + components_text(settings.igi.components);
+    if (igi_family(settings.method)) {
+        // Edge samples are AIS's (--ais-edge-samples); the other methods drop the bit.
+        const bool edges = parameter_applies(*find_parameter("--ais-edge-samples"), settings.method);
+        text += " --components " + components_text(settings.igi.components & (edges ? ~0u : ~TS_COMPONENT_EDGE));
+    }
     return text;
 }
 

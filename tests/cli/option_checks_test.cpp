@@ -258,6 +258,8 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},
         {"compare $D/img.exr $D/img.exr --flip-map $D/f.exr", "--flip-map $D/f.exr: the map is written as PNG; name it .png"},
         {view + "--times $D/s.json", "--times $D/s.json: would replace an input of this run, $D/s.json", 2, files},
+        {view + "--screenshot $D/shot.exr --times $D/shot.0000.png",
+         "--times $D/shot.0000.png: is also the PNG beside --screenshot", 2, files},
         {view + "--screenshot-window $D/w.png",
          "--screenshot-window $D/w.png: a headless run has no window to capture (--frame-images writes its frames)", 2,
          files},

@@ -238,7 +238,12 @@ TEST_F(Checkpoint, MethodSettingsAndMaterialsAreNamed) {
     expect_input_error(load_with(s, rs), {"this run has --clamp 0.5"});
     rs = igi;
     rs.igi.components = TS_COMPONENT_SS | TS_COMPONENT_ID;
-    expect_input_error(load_with(s, rs), {"made with --components ss,id,pm,edge, this run has --components ss,id"});
+    expect_input_error(load_with(s, rs), {"made with --components ss,id,pm, this run has --components ss,id"});
+    rs.igi.components = TS_COMPONENT_SS | TS_COMPONENT_ID | TS_COMPONENT_PM;  // igi has no edge samples
+    EXPECT_NO_THROW(load_with(s, rs)());
+    rs = igi;
+    rs.aovs = true;  // the per-component channels would hold only the resumed passes
+    expect_input_error(load_with(s, rs), {"made with --aov absent, this run has --aov given"});
     Scene mirror = s;
     mirror.materials[0].specular = glm::vec3(0.9f);  // MTL Ks: a mirror's reflectance
     expect_input_error(load_with(mirror, igi), {"a mesh, material or texture has changed"});
@@ -252,6 +257,17 @@ TEST_F(Checkpoint, MethodSettingsAndMaterialsAreNamed) {
     rs.spp = 64;
     expect_input_error(load_with(s, rs), {"made with --ic-subsets 2, this run has --ic-subsets 4"});
     rs.ic.subsets = 2;
+    EXPECT_NO_THROW(load_with(s, rs)());
+
+    // Settings a method does not read: pt's albedo, normal and depth are in every pass,
+    // and it always reads the finest mip level.
+    RenderSettings pt;
+    pt.method = Method::PathTrace;
+    save_checkpoint(file, make_run_identity(s, pt, w, h, BackendKind::Embree), 8, a);
+    rs = pt;
+    rs.aovs = true;
+    rs.texture_filter = false;
+    rs.igi.tile = 5;
     EXPECT_NO_THROW(load_with(s, rs)());
 }
 
