@@ -45,7 +45,7 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     std::printf("triangles:  %zu\n", s.triangle_count());
     std::printf("lights:     %u emissive triangles, %.4g scene units^2\n", b.light_count, light_area);
     if (b.separated_emitters > 0)
-        std::printf("            %u of them lay on another surface: moved off it by %g ulps (docs/ray-tracing.md §4)\n",
+        std::printf("            %u of them lay on another surface: moved %g ulps in front of it (docs/ray-tracing.md §4)\n",
                     b.separated_emitters, double(kCoincidentEmitterUlps));
     std::printf("materials:  %zu, textures: %zu\n", s.materials.size(), s.textures.size());
     std::printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);

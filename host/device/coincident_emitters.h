@@ -10,26 +10,38 @@
 namespace tessera {
 
 /// Moves every emissive triangle (a light of make_scene_buffers) that lies in the plane
-/// of a non-emissive triangle (within 1 ulp of the coordinates), their interiors
-/// overlapping, off that plane along its
-/// emitting normal (cross(e1, e2), the side it lights) by kCoincidentEmitterUlps ulps of
-/// the pair's largest coordinate. `positions` is 3 per triangle, the scene's posed
-/// vertices, changed in place; returns how many triangles moved.
+/// of another triangle, their interiors overlapping, off that plane along its emitting
+/// normal (cross(e1, e2), the side it lights), so that its nearest vertex lies
+/// kCoincidentEmitterUlps ulps of the pair's largest absolute coordinate in front. "In the plane": every vertex of the emitter within
+/// kCoplanarEmitterUlps such ulps of the other's plane (measured in double), the normals
+/// parallel. The other triangle is any surface, or a light facing the other way (a
+/// two-sided light made of two back to back); a light facing the same way would move as
+/// far and is left. `positions` is 3 per triangle, the scene's posed vertices, changed in
+/// place; every test reads them as given, so the order of the triangles does not matter.
+/// Returns how many emissive triangles moved.
 ///
 /// Why: every ray that reaches such a pair meets both at the same distance, and the
 /// backends break that tie differently (our traversal keeps the first triangle tested,
 /// Embree's robust intersector the last) and round t differently, so on one backend the
-/// light shows and on the other the wall does; pt's and igi's images then differ by
+/// light shows and on the other the surface does; pt's and igi's images then differ by
 /// 10-200% (docs/ray-tracing.md §4). A light placed flat on a ceiling is the usual case.
-/// Moved by a distance far above both intersectors' rounding, the emitter is strictly
-/// nearer from the side it lights and hidden from the other on both. Triangles that
-/// only touch (a light filling a hole in the ceiling) are left as they are, as is every
-/// scene without such a pair (bit for bit). Cost: O(emitters × triangles) box tests.
+/// Moved by a distance above both intersectors' rounding, the emitter is strictly nearer
+/// from the side it lights and hidden from the other on both. Triangles that only touch
+/// (a light filling a hole in the ceiling) are left as they are, as is every scene
+/// without such a pair (bit for bit). Cost: a uniform grid over the emitters' boxes, so
+/// about linear in the triangles that come near an emitter.
 size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& positions);
 
-/// The separation, in ulps of the largest absolute coordinate of the pair: 2 ulps was
-/// measured to be enough for axis-aligned and rotated pairs alike; 64 leaves a wide margin
-/// and is still 8e-6 of the coordinates (0.04 mm at 5 m).
-inline constexpr float kCoincidentEmitterUlps = 64.0f;
+/// The coplanarity tolerance, in ulps of the pair's largest absolute coordinate: a light
+/// modelled in a wall's plane and written with 6 decimals, or rotated at load, lies up to
+/// about 2.4 of them off the plane (measured); 4 covers that. A light set on purpose that
+/// close to a surface is within the intersectors' rounding of it and moves too.
+inline constexpr double kCoplanarEmitterUlps = 4.0;
+
+/// The separation a moved light ends at, in the same ulps: beyond the tolerance, so the
+/// light is clear of it, and three times the 2 ulps that already made the images of both
+/// backends agree bit for bit; 7·10⁻⁷ of the coordinates (3.6 mm at 5 km). A light just in
+/// front of a surface moves only the rest of the way, so a scene's image barely changes.
+inline constexpr double kCoincidentEmitterUlps = 6.0;
 
 }  // namespace tessera
