@@ -108,7 +108,8 @@ public:
         for (const Box& b : boxes) all_ = {glm::min(all_.lo, b.lo), glm::max(all_.hi, b.hi)};
         // About 8 cells per emitter, at most 64 per axis (262,144 cells).
         res_ = std::clamp(int(2.0 * std::cbrt(double(boxes.size()))), 1, 64);
-        const glm::vec3 extent = glm::max(all_.hi - all_.lo, glm::vec3(std::numeric_limits<float>::min()));
+        // A flat grid keeps a finite 1/cell (64/1e-30): ±inf, never NaN, in cell_of.
+        const glm::vec3 extent = glm::max(all_.hi - all_.lo, glm::vec3(1e-30f));
         inv_cell_ = float(res_) / extent;
         cells_.resize(size_t(res_) * res_ * res_);
         for (uint32_t i = 0; i < boxes.size(); ++i) visit(boxes[i], [&](std::vector<uint32_t>& c) { c.push_back(i); });
@@ -124,8 +125,9 @@ public:
 
 private:
     glm::ivec3 cell_of(const glm::vec3& p) const {
-        const glm::vec3 c = glm::floor((p - all_.lo) * inv_cell_);
-        return glm::clamp(glm::ivec3(c), glm::ivec3(0), glm::ivec3(res_ - 1));
+        // Clamped before the conversion: a box far outside a flat grid gives ±inf here.
+        const glm::vec3 c = glm::clamp(glm::floor((p - all_.lo) * inv_cell_), glm::vec3(0.0f), glm::vec3(float(res_ - 1)));
+        return glm::ivec3(c);
     }
     Box all_;
     int res_ = 1;
