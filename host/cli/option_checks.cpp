@@ -1,4 +1,5 @@
 #include "cli/option_checks.h"
+#include "scene/loader.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -89,13 +90,6 @@ void check_data_dir(const std::string& data_dir) {
 
 namespace {
 
-// The file `p` names, for comparing outputs with each other and with the input.
-fs::path identity(const fs::path& p) {
-    std::error_code ec;
-    const fs::path c = fs::weakly_canonical(p, ec);
-    return ec ? fs::absolute(p).lexically_normal() : c;
-}
-
 void check_output(const OutputFile& o) {
     const std::string name = o.role + " " + o.path.string();
     const std::string file = o.path.filename().string();
@@ -117,11 +111,11 @@ void check_output(const OutputFile& o) {
 
 void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<fs::path>& inputs) {
     std::vector<fs::path> in;
-    for (const fs::path& p : inputs) in.push_back(identity(p));
+    for (const fs::path& p : inputs) in.push_back(same_file(p));
     std::vector<fs::path> seen;
     for (size_t i = 0; i < outputs.size(); ++i) {
         check_output(outputs[i]);
-        const fs::path id = identity(outputs[i].path);
+        const fs::path id = same_file(outputs[i].path);
         for (size_t k = 0; k < in.size(); ++k)
             if (id == in[k])
                 throw InputError(outputs[i].role + " " + outputs[i].path.string() +

@@ -11,7 +11,8 @@
 namespace tessera {
 
 /// The directory a missing one would be made in: `dir` itself where it exists, else its
-/// nearest existing ancestor (a symbolic link counts as existing, even one to nothing); "." for an empty `dir` and for a relative one none of whose
+/// nearest existing ancestor (a symbolic link counts as existing, even one to nothing);
+/// "." for an empty `dir` and for a relative one none of whose
 /// ancestors exists. Only where "/" or "." itself is missing is the result missing too.
 /// The CLI's checks probe it before a run; the writer makes the directories below it.
 std::filesystem::path existing_ancestor(const std::filesystem::path& dir);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "kernels/shared/layout_igi.h"
 #include "util/error.h"
@@ -31,17 +32,21 @@ std::string method_names() {
 
 bool igi_family(Method m) { return method_info(m).igi_family; }
 
+namespace {
+// --components' names, in the order components_text lists them.
+constexpr std::pair<uint32_t, const char*> kComponentNames[] = {
+    {TS_COMPONENT_SS, "ss"}, {TS_COMPONENT_ID, "id"}, {TS_COMPONENT_PM, "pm"}, {TS_COMPONENT_EDGE, "edge"}};
+}  // namespace
+
 uint32_t parse_components(const std::string& list) {
     uint32_t bits = 0;
     size_t start = 0;
     while (start <= list.size()) {
         const size_t end = std::min(list.find(',', start), list.size());
         const std::string c = list.substr(start, end - start);
-        const uint32_t bit = c == "ss"     ? TS_COMPONENT_SS
-                             : c == "id"   ? TS_COMPONENT_ID
-                             : c == "pm"   ? TS_COMPONENT_PM
-                             : c == "edge" ? TS_COMPONENT_EDGE
-                                           : 0;
+        uint32_t bit = 0;
+        for (const auto& [b, name] : kComponentNames)
+            if (c == name) bit = b;
         if (bit == 0)
             throw InputError("--components " + list + ": expected a comma-separated list of ss, id, pm, edge" +
                              (c.empty() ? " (an entry is empty)" : ", got '" + c + "'"));
@@ -50,6 +55,13 @@ uint32_t parse_components(const std::string& list) {
         start = end + 1;
     }
     return bits;
+}
+
+std::string components_text(uint32_t mask) {
+    std::string out;
+    for (const auto& [bit, name] : kComponentNames)
+        if (mask & bit) out += (out.empty() ? "" : ",") + std::string(name);
+    return out.empty() ? "none" : out;
 }
 
 }  // namespace tessera

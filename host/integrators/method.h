@@ -76,4 +76,7 @@ bool igi_family(Method m);
 /// listed twice ("ss,ss").
 uint32_t parse_components(const std::string& list);
 
+/// The --components list of a TS_COMPONENT_* mask, e.g. "ss,id,pm" ("none" for 0).
+std::string components_text(uint32_t mask);
+
 }  // namespace tessera

@@ -13,6 +13,7 @@
 #include "render/checkpoint.h"
 #include "render/parameters.h"
 #include "render/renderer.h"
+#include "scene/loader.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -63,16 +64,6 @@ bool identity_field_or_no_effect(const std::string& option, Method method) {
     return kSkip.count(option) > 0;
 }
 
-// "ss,id,pm,edge" for a TS_COMPONENT_* mask, as --components takes it.
-std::string components_text(uint32_t mask) {
-    std::string out;
-    const std::pair<uint32_t, const char*> names[] = {
-        {TS_COMPONENT_SS, "ss"}, {TS_COMPONENT_ID, "id"}, {TS_COMPONENT_PM, "pm"}, {TS_COMPONENT_EDGE, "edge"}};
-    for (const auto& [bit, name] : names)
-        if (mask & bit) out += (out.empty() ? "" : ",") + std::string(name);
-    return out.empty() ? "none" : out;
-}
-
 std::string method_settings_text(const RenderSettings& settings, int width, int height) {
     RenderSettings resolved = settings;
     resolve_ic_subsets(resolved, width, height);
@@ -101,9 +92,7 @@ RunIdentity make_run_identity(const Scene& scene, const RenderSettings& settings
                               BackendKind backend) {
     RunIdentity id;
     if (!scene.source.empty()) {
-        std::error_code ec;
-        fs::path p = fs::weakly_canonical(fs::absolute(scene.source), ec);
-        id.scene_path = (ec ? fs::absolute(scene.source).lexically_normal() : p).string();
+        id.scene_path = same_file(scene.source).string();
         std::ifstream in(scene.source, std::ios::binary);
         std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         if (!in.eof() && !in) throw InputError(scene.source.string() + ": cannot read scene file");

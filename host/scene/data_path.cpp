@@ -36,6 +36,12 @@ fs::path DataPath::resolve(const std::string& rel, const fs::path& scene_file) c
                      "' not found; directories tried: " + tried);
 }
 
+fs::path same_file(const fs::path& p) {
+    std::error_code ec;
+    const fs::path c = fs::weakly_canonical(fs::absolute(p), ec);
+    return ec ? fs::absolute(p).lexically_normal() : c;
+}
+
 DataPath make_data_path(const std::optional<fs::path>& data_dir) {
     DataPath data;
     if (data_dir && !data_dir->empty()) {

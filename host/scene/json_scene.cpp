@@ -73,13 +73,6 @@ scene_detail::Transform read_transform(const std::optional<JsonField>& j) {
     return transform;
 }
 
-// One key for every spelling of a file ("a.obj", "./a.obj", "../d/a.obj", a link to it).
-fs::path same_file_key(const fs::path& p) {
-    std::error_code ec;
-    const fs::path c = fs::weakly_canonical(p, ec);
-    return ec ? fs::absolute(p).lexically_normal() : c;
-}
-
 // Loads each OBJ once (instancing a mesh twice shares its materials and textures).
 struct MeshEntry {
     scene_detail::ObjMesh mesh;
@@ -112,7 +105,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
             throw InputError(std::string(e.what()) + " (key '" + mesh_key.key() + "')");
         }
         const auto transform = read_transform(obj.find("transform"));
-        const fs::path key = same_file_key(file);  // "a.obj", "./a.obj": one mesh
+        const fs::path key = same_file(file);  // "a.obj", "./a.obj": one mesh
         auto it = meshes.find(key);
         if (it == meshes.end()) {
             MeshEntry entry{scene_detail::load_obj_mesh(file), {}};
@@ -122,7 +115,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
             for (Material m : entry.mesh.materials) {
                 if (m.texture >= 0) {
                     const fs::path& tex = entry.mesh.texture_files[size_t(m.texture)];
-                    auto [t, added] = texture_ids.try_emplace(same_file_key(tex), int(scene.textures.size()));
+                    auto [t, added] = texture_ids.try_emplace(same_file(tex), int(scene.textures.size()));
                     if (added) {
                         try {
                             scene.textures.push_back(scene_detail::load_texture(tex));

@@ -26,6 +26,11 @@ struct DataPath {
                                   const std::filesystem::path& scene_file) const;
 };
 
+/// The file `p` names, as one path for all its spellings ("a.obj", "./a.obj", a link
+/// to it): absolute, symbolic links resolved as far as they exist, normalised. For
+/// comparing files (meshes loaded once, outputs against inputs, checkpoint scenes).
+std::filesystem::path same_file(const std::filesystem::path& p);
+
 /// Builds the data path from the --data-dir option (may be empty) and the environment.
 DataPath make_data_path(const std::optional<std::filesystem::path>& data_dir);
 
