@@ -39,7 +39,7 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     for (uint32_t i = 0; i < b.light_count; ++i) light_area += b.lights[i * TS_LIGHT_FLOATS + TS_LIGHT_AREA];
     // Over the whole animation: a light dark at rest but lit in later frames is a light.
     Scene lit = s;
-    for (Material& m : lit.materials) m.emission = glm::max(m.emission, m.emission_max);
+    for (Material& m : lit.materials) m.emission = m.emission_bound();
     const EffectPlan plan = plan_effects(lit);
     std::printf("scene:      %s (%s)\n", s.name.c_str(), s.source.c_str());
     std::printf("triangles:  %zu\n", s.triangle_count());

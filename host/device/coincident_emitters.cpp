@@ -15,11 +15,6 @@ constexpr double kUlp = 0x1p-23;  // float epsilon: one ulp of a coordinate in [
 
 Tri triangle(const std::vector<glm::vec3>& p, size_t i) { return {p[3 * i], p[3 * i + 1], p[3 * i + 2]}; }
 
-bool emits(const Material& m) {
-    const glm::vec3 e = glm::max(m.emission, m.emission_max);  // as add_lights picks lights
-    return e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
-}
-
 double max_abs(const Tri& t) {
     float m = 0.0f;
     for (const glm::vec3& v : t) m = std::max({m, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
@@ -143,7 +138,7 @@ size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& 
     std::vector<Box> boxes;
     std::vector<glm::dvec3> normals;
     for (size_t i = 0; i < n; ++i) {
-        if (!emits(scene.materials[scene.material[i]])) continue;
+        if (!scene.materials[scene.material[i]].may_emit()) continue;
         const Tri e = triangle(positions, i);
         const glm::dvec3 ne = unit_normal(e);
         if (ne == glm::dvec3(0.0)) continue;  // zero area: not a light
@@ -161,7 +156,7 @@ size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& 
         const Tri w = triangle(positions, wi);
         const Box wb = box_of(w);
         if (!boxes_overlap(wb, grid.bounds())) continue;
-        const bool w_emits = emits(scene.materials[scene.material[wi]]);
+        const bool w_emits = scene.materials[scene.material[wi]].may_emit();
         glm::dvec3 nw(0.0);  // computed once, on the first candidate
         grid.visit(wb, [&](const std::vector<uint32_t>& cell) {
             for (uint32_t k : cell) {

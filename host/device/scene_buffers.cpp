@@ -12,10 +12,6 @@ namespace {
 
 float luminance_of(const glm::vec3& c) { return ts::ts_luminance(ts::make_float3(c.x, c.y, c.z)); }
 
-// emission_max covers emission in a loaded scene; a scene built in code may have set
-// only emission.
-glm::vec3 selection_emission(const Material& m) { return glm::max(m.emission, m.emission_max); }
-
 void push3(std::vector<float>& v, const glm::vec3& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
 void put3(float* f, const glm::vec3& a) { f[0] = a.x, f[1] = a.y, f[2] = a.z; }
 
@@ -48,7 +44,7 @@ void add_materials(const Scene& scene, SceneBuffers& b) {
         put3(f + TS_MAT_EMISSION, m.emission);
         put3(f + TS_MAT_SPECULAR, ks);
         f[TS_MAT_IOR] = m.ior > 0.0f ? m.ior : 1.0f;
-        f[TS_MAT_SELECTION] = luminance_of(selection_emission(m));
+        f[TS_MAT_SELECTION] = luminance_of(m.emission_bound());
         int tex = m.texture;
         std::memcpy(&f[TS_MAT_TEXTURE], &tex, 4);
         std::memcpy(&f[TS_MAT_KIND], &kind, 4);
@@ -79,8 +75,8 @@ void add_lights(const Scene& scene, const std::vector<glm::vec3>& positions, Sce
         // Which triangles are lights, and how often each is picked, follow the animation's
         // maximum, not this frame's emission: the list is then the same in every frame
         // (light paths keep their light index) and a light dimmed to zero keeps its place.
-        const glm::vec3 weight = selection_emission(m);
-        if (!(weight.x > 0.0f || weight.y > 0.0f || weight.z > 0.0f)) continue;
+        const glm::vec3 weight = m.emission_bound();
+        if (!m.may_emit()) continue;
         glm::vec3 p0 = positions[3 * i], e1 = positions[3 * i + 1] - p0, e2 = positions[3 * i + 2] - p0;
         const float area = scene.triangle_area(i);
         if (!(area > 0.0f)) continue;  // a zero-area emitter carries no power

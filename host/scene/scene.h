@@ -42,6 +42,15 @@ struct Material {
     int illum = 2;               ///< MTL illumination model, 0..10: 3, 5 mirror; 7 dielectric; else Lambertian
     float ior = 1.0f;            ///< MTL Ni, the dielectric's index of refraction (illum 7): finite, >= 0 (> 0 for illum 7)
 
+    /// The emission lights are chosen and weighed by: the animation's maximum, or
+    /// `emission` where a scene built in code left emission_max zero.
+    glm::vec3 emission_bound() const { return glm::max(emission, emission_max); }
+    /// Whether it emits in some frame, which makes its triangles lights.
+    bool may_emit() const {
+        const glm::vec3 e = emission_bound();
+        return e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
+    }
+
     bool operator==(const Material&) const = default;
 };
 

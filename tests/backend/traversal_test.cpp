@@ -38,10 +38,7 @@ std::vector<float> random_rays(const Scene& s, uint32_t seed) {
     return rays;
 }
 
-bool emits(const Scene& s, uint32_t prim) {
-    const glm::vec3 e = glm::max(s.materials[s.material[prim]].emission, s.materials[s.material[prim]].emission_max);
-    return e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
-}
+bool emits(const Scene& s, uint32_t prim) { return s.materials[s.material[prim]].may_emit(); }
 
 uint32_t prim_of(const std::vector<float>& hits, size_t i) {
     uint32_t p;
