@@ -14,7 +14,9 @@ EffectPlan plan_effects(const Scene& scene) {
         if (m.texture >= 0) p.textures = true;
         if (m.albedo.x > 0.0f || m.albedo.y > 0.0f || m.albedo.z > 0.0f) reflects = true;
     }
+    p.reflects = reflects;
     p.indirect = p.area_lights && reflects;
+    p.medium_declared = scene.has_medium;
     p.medium = scene.has_medium && (scene.medium.sigma_a != glm::vec3(0.0f) || scene.medium.sigma_s != glm::vec3(0.0f));
     return p;
 }
@@ -28,11 +30,14 @@ std::vector<std::string> EffectPlan::cl_defines() const {
 
 std::vector<std::string> EffectPlan::describe() const {
     auto yn = [](bool b) { return b ? std::string("yes") : std::string("no"); };
+    // The reason names the one cause that holds, so a user knows what to change.
+    const std::string no_indirect = !area_lights ? " (no light)" : !reflects ? " (no reflecting surface)" : "";
+    const std::string no_medium = medium_declared ? " (declared, but sigma_a and sigma_s are zero)" : " (none declared)";
     return {
         "area lights (SS):     " + yn(area_lights),
         "textures:             " + yn(textures),
-        "indirect diffuse (ID): " + yn(indirect) + (indirect ? "" : " (no reflecting surface or no light)"),
-        "medium (PM):          " + yn(medium) + (medium ? "" : " (none declared, or its coefficients are all zero)"),
+        "indirect diffuse (ID): " + yn(indirect) + no_indirect,
+        "medium (PM):          " + yn(medium) + (medium ? "" : no_medium),
     };
 }
 

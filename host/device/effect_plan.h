@@ -14,6 +14,8 @@ struct EffectPlan {
     bool textures = false;     ///< some material has map_Kd: texture lookups compiled in
     bool indirect = false;     ///< lights and a non-black surface: indirect diffuse (ID)
     bool medium = false;       ///< a medium with non-zero coefficients is declared (PM)
+    bool reflects = false;     ///< some used material has albedo > 0 (for describe()'s reason)
+    bool medium_declared = false;  ///< the scene declares a medium, zero or not (for describe())
 
     /// OpenCL build options that follow from the plan, e.g. "-DTS_HAS_TEXTURES".
     std::vector<std::string> cl_defines() const;

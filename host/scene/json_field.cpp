@@ -129,7 +129,11 @@ int JsonField::integer() const {
 
 std::string JsonField::string() const {
     if (!value_->is_string()) fail(std::string("expected a string, got ") + value_->type_name());
-    return value_->get<std::string>();
+    std::string text = value_->get<std::string>();
+    // JSON may spell a NUL ("\u0000"); a path or name holding one would be cut short by
+    // the operating system and by every message that quotes it.
+    if (text.find('\0') != std::string::npos) fail("must not contain a NUL character (\\u0000)");
+    return text;
 }
 
 glm::vec3 JsonField::vec3() const {

@@ -30,7 +30,7 @@ public:
 
     float number() const;        ///< a finite number
     int integer() const;         ///< an integer that fits an int
-    std::string string() const;  ///< a string
+    std::string string() const;  ///< a string; one holding a NUL character fails
     glm::vec3 vec3() const;      ///< an array of exactly 3 finite numbers
     void require_object() const; ///< throws unless this is a JSON object
 

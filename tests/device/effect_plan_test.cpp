@@ -40,5 +40,25 @@ TEST(EffectPlan, BlackSurfacesNeedNoIndirectLight) {
     EXPECT_FALSE(plan_effects(s).indirect);
 }
 
+// describe() names the one reason that holds, so `tessera info` tells the user what to change.
+TEST(EffectPlan, DescribeNamesTheReasonThatHolds) {
+    const auto line = [](const EffectPlan& p, const std::string& head) {
+        for (const std::string& l : p.describe())
+            if (l.rfind(head, 0) == 0) return l;
+        return std::string("(no line)");
+    };
+    Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(5.0f), 0.3f);
+    EXPECT_EQ(line(plan_effects(s), "medium"), "medium (PM):          no (none declared)");
+    s.has_medium = true;
+    EXPECT_EQ(line(plan_effects(s), "medium"), "medium (PM):          no (declared, but sigma_a and sigma_s are zero)");
+    s.medium.sigma_a = glm::vec3(0.1f);
+    EXPECT_EQ(line(plan_effects(s), "medium"), "medium (PM):          yes");
+    EXPECT_EQ(line(plan_effects(s), "indirect"), "indirect diffuse (ID): yes");
+    Scene black = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
+    EXPECT_EQ(line(plan_effects(black), "indirect"), "indirect diffuse (ID): no (no reflecting surface)");
+    Scene dark = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(0.0f), 0.3f);
+    EXPECT_EQ(line(plan_effects(dark), "indirect"), "indirect diffuse (ID): no (no light)");
+}
+
 }  // namespace
 }  // namespace tessera

@@ -169,6 +169,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadKey{"{" CAM_OK R"(, "objects": []})", "objects"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": 3}]})", "objects[0].mesh"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": ""}]})", "objects[0].mesh' = \"\": must name an OBJ file"},
+        // A NUL ends the path for the OS and the message for the terminal: the whole
+        // string is refused, shown escaped.
+        BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "a\u0000b.obj"}]})",
+               "objects[0].mesh' = \"a\\u0000b.obj\": must not contain a NUL character"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"scale": [1, 0, 1]}}], )" LIGHT_OK "}",
                "objects[0].transform.scale"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"rotate": [{"axis": [0,1,0]}]}}])"
