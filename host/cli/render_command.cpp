@@ -267,6 +267,10 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
             if (cluster.size() > 1) std::fprintf(stderr, ", %d MPI ranks", cluster.size());
             std::fprintf(stderr, "\n");
             for (const auto& line : plan.describe()) std::fprintf(stderr, "  %s\n", line.c_str());
+            if (buffers.stacked_emitters > 0)
+                std::fprintf(stderr, "tessera: note: %u emissive triangles lie on another light facing the same way "
+                             "(a light listed twice?): both are sampled, so where they overlap their light counts twice\n",
+                             buffers.stacked_emitters);
         }
         stop_if_interrupted("before the first pass");
     });

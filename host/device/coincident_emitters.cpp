@@ -132,7 +132,7 @@ private:
 
 }  // namespace
 
-size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& positions) {
+CoincidentEmitters separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& positions) {
     const size_t n = positions.size() / 3;
     std::vector<uint32_t> emitters;  // triangle indices
     std::vector<Box> boxes;
@@ -146,12 +146,13 @@ size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& 
         boxes.push_back(box_of(e));
         normals.push_back(ne);
     }
-    if (emitters.empty()) return 0;
+    if (emitters.empty()) return {};
     EmitterGrid grid(boxes);
     // Every test reads the positions as given, so the result does not depend on order: of
     // two lights back to back in one plane (a two-sided light), both move, apart.
     std::vector<double> shift(emitters.size(), 0.0);  // scene units along the normal; 0: stays
     std::vector<uint32_t> tested_with(emitters.size(), UINT32_MAX);
+    std::vector<bool> stacked(emitters.size(), false);  // on a light facing the same way
     for (uint32_t wi = 0; wi < n; ++wi) {
         const Tri w = triangle(positions, wi);
         const Box wb = box_of(w);
@@ -160,31 +161,39 @@ size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& 
         glm::dvec3 nw(0.0);  // computed once, on the first candidate
         grid.visit(wb, [&](const std::vector<uint32_t>& cell) {
             for (uint32_t k : cell) {
-                if (emitters[k] == wi || tested_with[k] == wi || shift[k] > 0.0) continue;
+                if (emitters[k] == wi || tested_with[k] == wi) continue;
+                // Nothing left to learn: moved already, and w can only move it or stack it.
+                if (shift[k] > 0.0 && (!w_emits || stacked[k])) continue;
                 tested_with[k] = wi;
                 if (!boxes_overlap(boxes[k], wb)) continue;
                 if (nw == glm::dvec3(0.0)) nw = unit_normal(w);
-                // Another light facing the same way would move as far: no separation.
-                if (nw == glm::dvec3(0.0) || (w_emits && glm::dot(normals[k], nw) > 0.0)) continue;
+                if (nw == glm::dvec3(0.0)) continue;
+                // Another light facing the same way would move as far: no separation, but
+                // the pair is counted for the caller to report.
+                const bool same_way = w_emits && glm::dot(normals[k], nw) > 0.0;
+                if (same_way ? bool(stacked[k]) : shift[k] > 0.0) continue;
                 const Tri e = triangle(positions, emitters[k]);
                 const double scale = std::max(max_abs(e), max_abs(w));
                 const double gap = coincident_gap(e, normals[k], w, nw, kCoplanarEmitterUlps * kUlp * scale);
+                if (gap != gap) continue;
+                if (same_way) stacked[k] = true;
                 // To kCoincidentEmitterUlps in front: a light already part of the way
                 // there moves less (Scale.*'s, 1.7 ulps under its ceiling, moves 4.3).
-                if (gap == gap) shift[k] = std::max(kCoincidentEmitterUlps * kUlp * scale - gap, 1e-300);
+                else shift[k] = std::max(kCoincidentEmitterUlps * kUlp * scale - gap, 1e-300);
             }
         });
     }
-    size_t moved = 0;
+    CoincidentEmitters result;
+    result.stacked = size_t(std::count(stacked.begin(), stacked.end(), true));
     for (size_t k = 0; k < emitters.size(); ++k) {
         if (!(shift[k] > 0.0)) continue;
         for (int v = 0; v < 3; ++v) {
             glm::vec3& p = positions[3 * size_t(emitters[k]) + v];
             p = glm::vec3(glm::dvec3(p) + normals[k] * shift[k]);
         }
-        ++moved;
+        ++result.moved;
     }
-    return moved;
+    return result;
 }
 
 }  // namespace tessera

@@ -9,6 +9,15 @@
 
 namespace tessera {
 
+/// What separate_coincident_emitters found, in emissive triangles.
+struct CoincidentEmitters {
+    size_t moved = 0;    ///< moved off another surface's plane
+    /// Lying on a light that faces the same way, their interiors overlapping (a light
+    /// listed twice): both are sampled, so their light counts twice where they overlap,
+    /// while a ray that meets them sees one. Left in place; reported by `info` and `render`.
+    size_t stacked = 0;
+};
+
 /// Moves every emissive triangle (a light of make_scene_buffers) that lies in the plane
 /// of another triangle, their interiors overlapping, off that plane along its emitting
 /// normal (cross(e1, e2), the side it lights), so that its nearest vertex lies
@@ -16,9 +25,9 @@ namespace tessera {
 /// kCoplanarEmitterUlps such ulps of the other's plane (measured in double), the normals
 /// parallel. The other triangle is any surface, or a light facing the other way (a
 /// two-sided light made of two back to back); a light facing the same way would move as
-/// far and is left. `positions` is 3 per triangle, the scene's posed vertices, changed in
+/// far and is left, counted as stacked. `positions` is 3 per triangle, the scene's posed vertices, changed in
 /// place; every test reads them as given, so the order of the triangles does not matter.
-/// Returns how many emissive triangles moved.
+/// Returns how many emissive triangles moved and how many are stacked.
 ///
 /// Why: every ray that reaches such a pair meets both at the same distance, and the
 /// backends break that tie differently (our traversal keeps the first triangle tested,
@@ -30,7 +39,7 @@ namespace tessera {
 /// (a light filling a hole in the ceiling) are left as they are, as is every scene
 /// without such a pair (bit for bit). Cost: a uniform grid over the emitters' boxes, so
 /// about linear in the triangles that come near an emitter.
-size_t separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& positions);
+CoincidentEmitters separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& positions);
 
 /// The coplanarity tolerance, in ulps of the pair's largest absolute coordinate: a light
 /// modelled in a wall's plane and written with 6 decimals, or rotated at load, lies up to

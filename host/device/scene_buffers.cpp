@@ -118,7 +118,9 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
     b.tri_nrm.reserve(9 * n);
     b.tri_uv.reserve(6 * n);
     std::vector<glm::vec3> positions = scene.positions;
-    b.separated_emitters = static_cast<uint32_t>(separate_coincident_emitters(scene, positions));
+    const CoincidentEmitters coincident = separate_coincident_emitters(scene, positions);
+    b.separated_emitters = static_cast<uint32_t>(coincident.moved);
+    b.stacked_emitters = static_cast<uint32_t>(coincident.stacked);
     for (size_t i = 0; i < 3 * n; ++i) {
         push3(b.tri_pos, positions[i]);
         push3(b.tri_nrm, scene.normals[i]);

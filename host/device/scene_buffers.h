@@ -27,6 +27,7 @@ struct SceneBuffers {
     uint32_t light_count = 0;
     float light_power = 0.0f;        ///< Σ luminance(Le_max) × area over lights (the pick weights)
     uint32_t separated_emitters = 0; ///< emitters moved off a coincident surface (coincident_emitters.h)
+    uint32_t stacked_emitters = 0;   ///< emitters on a light facing the same way (coincident_emitters.h)
 };
 
 /// TS_MAT_* for a material: MTL illum 3 and 5 are mirrors, illum 7 a dielectric

@@ -39,7 +39,7 @@ size_t triangles_changed(const std::vector<glm::vec3>& a, const std::vector<glm:
 TEST(CoincidentEmitters, LightInAWallMovesOffItTowardsTheSideItLights) {
     const Scene s = light_in_the_back_wall();
     std::vector<glm::vec3> p = s.positions;
-    EXPECT_EQ(separate_coincident_emitters(s, p), 2u);
+    EXPECT_EQ(separate_coincident_emitters(s, p).moved, 2u);
     EXPECT_EQ(triangles_changed(s.positions, p), 2u) << "only the light's two triangles move";
     // To 6 ulps of the pair's largest coordinate, 2 (the wall's top), in front: 12 · 2^-23.
     const size_t first = p.size() - 6;
@@ -65,7 +65,7 @@ TEST(CoincidentEmitters, LightsApartFromOrOnlyTouchingASurfaceStay) {
     // A light 1e-4 in front of the back wall: apart, by far more than the tolerance.
     test::add_quad(s, {-0.5f, 1.2f, -0.9999f}, {0.5f, 0, 0}, {0, 0.5f, 0}, light);
     std::vector<glm::vec3> p = s.positions;
-    EXPECT_EQ(separate_coincident_emitters(s, p), 0u);
+    EXPECT_EQ(separate_coincident_emitters(s, p).moved, 0u);
     EXPECT_TRUE(p == s.positions);
 }
 
@@ -74,13 +74,13 @@ TEST(CoincidentEmitters, LightFacingIntoTheWallMovesBehindIt) {
     const uint32_t light = test::add_material(s, glm::vec3(0.0f), glm::vec3(kLe));
     test::add_quad(s, {-0.3f, 0.7f, -1.0f}, {0, 0.6f, 0}, {0.6f, 0, 0}, light);  // faces -z
     std::vector<glm::vec3> p = s.positions;
-    EXPECT_EQ(separate_coincident_emitters(s, p), 2u);
+    EXPECT_EQ(separate_coincident_emitters(s, p).moved, 2u);
     for (size_t i = p.size() - 6; i < p.size(); ++i) EXPECT_LT(p[i].z, -1.0f);
 }
 
 // A two-sided light: two lights back to back in one plane. Both move, each towards the
 // side it lights, whatever their order; two lights facing the same way stay (they would
-// move as far).
+// move as far) and are counted as stacked.
 TEST(CoincidentEmitters, BackToBackLightsMoveApartAndTwinsStay) {
     for (bool down_first : {false, true}) {
         Scene s;
@@ -93,7 +93,12 @@ TEST(CoincidentEmitters, BackToBackLightsMoveApartAndTwinsStay) {
         test::add_quad(s, c + glm::vec3(0, 0.5f, 0), z, x, light);   // twins facing +y
         test::add_quad(s, c + glm::vec3(0, 0.5f, 0), z, x, other);
         std::vector<glm::vec3> p = s.positions;
-        EXPECT_EQ(separate_coincident_emitters(s, p), 4u) << "the back-to-back pair's four triangles";
+        const CoincidentEmitters found = separate_coincident_emitters(s, p);
+        EXPECT_EQ(found.moved, 4u) << "the back-to-back pair's four triangles";
+        // Each twin triangle lies on its twin (not on its quad's other half, which it only
+        // touches): counted, so info and render can say their light counts twice.
+        EXPECT_EQ(found.stacked, 4u) << "the twins' four triangles";
+        EXPECT_EQ(make_scene_buffers(s).stacked_emitters, 4u);
         for (size_t i = 0; i < 12; ++i) {
             const float n = glm::cross(s.positions[3 * (i / 3) + 1] - s.positions[3 * (i / 3)],
                                        s.positions[3 * (i / 3) + 2] - s.positions[3 * (i / 3)]).y;
@@ -123,7 +128,7 @@ TEST(CoincidentEmitters, RotatedAndRoundedLightInAWallMoves) {
             test::add_quad(s, q0, q1 - q0, q3 - q0, m);
         }
         std::vector<glm::vec3> p = s.positions;
-        moved += separate_coincident_emitters(s, p);
+        moved += separate_coincident_emitters(s, p).moved;
         lights += 2;
     }
     EXPECT_EQ(moved, lights) << "every light triangle of the 20 placements";
