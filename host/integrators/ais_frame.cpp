@@ -351,4 +351,10 @@ void AisFrame::add_aov_channels(Image& image, uint32_t frames) const {
         for (int i = 6; i < 8; ++i) append_channels(image, guidance_sums_[i], names[i], 1, frames);
 }
 
+std::vector<std::vector<double>*> AisFrame::aov_sums() {
+    std::vector<std::vector<double>*> sums = IgiFrame::aov_sums();
+    for (auto& s : guidance_sums_) sums.push_back(&s);
+    return sums;
+}
+
 }  // namespace tessera

@@ -20,6 +20,7 @@ public:
     /// IgiFrame's AOVs, then each component's guidance map and sample-set count
     /// (guidance.SS, sets.SS, ...), summed over the frames and divided by `frames`.
     void add_aov_channels(Image& image, uint32_t frames) const override;
+    std::vector<std::vector<double>*> aov_sums() override;
 
     /// IgiFrame's line and the last frame's flagged fractions, extra sets and time.
     std::string describe() const override;

@@ -340,6 +340,12 @@ void IgiFrame::add_aov_channels(Image& image, uint32_t frames) const {
         if (bits & (1u << (i / 2))) append_channels(image, component_sums_[i], names[i], 3, frames);
 }
 
+std::vector<std::vector<double>*> IgiFrame::aov_sums() {
+    std::vector<std::vector<double>*> sums;
+    for (auto& s : component_sums_) sums.push_back(&s);
+    return sums;
+}
+
 void IgiFrame::append_channels(Image& image, const std::vector<double>& sum, const std::string& name, int channels,
                                uint32_t frames) {
     static const char* rgb[3] = {"R", "G", "B"};

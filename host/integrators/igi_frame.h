@@ -171,6 +171,7 @@ public:
     /// SS, ID (irradiance / π) and, when the scene has a medium, PM (radiance), each
     /// before and after filtering (channels SS.R, SS_filtered.R, ...).
     void add_aov_channels(Image& image, uint32_t frames) const override;
+    std::vector<std::vector<double>*> aov_sums() override;
 
     const IgiFrameStats& stats() const { return stats_; }
 

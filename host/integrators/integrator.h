@@ -39,6 +39,11 @@ public:
         (void)image;
         (void)passes;
     }
+
+    /// The sums add_aov_channels reads, in a fixed order, for a checkpoint to save and
+    /// restore (render/checkpoint.h, MethodSums); none by default. Each is empty or holds
+    /// 1 or 3 doubles per pixel.
+    virtual std::vector<std::vector<double>*> aov_sums() { return {}; }
 };
 
 }  // namespace tessera

@@ -22,9 +22,10 @@ namespace {
 
 constexpr char kMagic[8] = {'T', 'S', 'C', 'K', 'P', 'T', '0', '1'};
 // 2: the method's other settings in the identity (2026-11-29); pt's --max-depth counts
-// one more emitter hit.
-constexpr uint32_t kVersion = 2;
+// one more emitter hit. 3: the method's own sums (the igi family's --aov channels).
+constexpr uint32_t kVersion = 3;
 constexpr uint32_t kMaxString = 1u << 16;
+constexpr uint32_t kMaxMethodSums = 64;  // AIS keeps 14; a bound for a corrupt count
 
 /// Bytes in memory (the identity record), in the file's encoding.
 struct Bytes {
@@ -96,8 +97,7 @@ struct Reader {
 /// A checksum only says the file is what was written; the sums must also be finite (a
 /// NaN or Inf would reach every pixel written from them) and the squares non-negative.
 void check_sums(const Reader& r, int32_t width, const std::vector<double>& v, std::size_t per_pixel,
-                const char* what) {
-    const bool squares = per_pixel == 3;
+                const char* what, bool squares = false) {
     for (std::size_t i = 0; i < v.size(); ++i)
         if (!std::isfinite(v[i]) || (squares && v[i] < 0.0)) {
             const std::size_t pixel = i / per_pixel;
@@ -175,7 +175,8 @@ fs::path checkpoint_path_for(const fs::path& out) {
     return p.replace_extension(".ckpt");
 }
 
-void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_target, const Accumulator& acc) {
+void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_target, const Accumulator& acc,
+                     const std::vector<const std::vector<double>*>& method_sums) {
     Bytes head;
     head.raw(kMagic, sizeof kMagic);
     head.put(kVersion);
@@ -187,6 +188,8 @@ void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_t
     head.put(identity_hash(id));
     const Bytes ident = identity_bytes(id);
     head.raw(ident.b.data(), ident.b.size());
+    head.put(uint32_t(method_sums.size()));
+    for (const std::vector<double>* m : method_sums) head.put(uint64_t(m->size()));
 
     replace_file_atomic(path, [&](const fs::path& temp) {
         std::ofstream out(temp, std::ios::binary | std::ios::trunc);
@@ -199,13 +202,14 @@ void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_t
         write(acc.sums().data(), acc.sums().size() * sizeof(double));
         write(acc.sums_of_squares().data(), acc.sums_of_squares().size() * sizeof(double));
         write(acc.hit_counts().data(), acc.hit_counts().size() * sizeof(uint32_t));
+        for (const std::vector<double>* m : method_sums) write(m->data(), m->size() * sizeof(double));
         out.write(reinterpret_cast<const char*>(&h), sizeof h);
         out.close();
         if (!out) throw RuntimeError("cannot write checkpoint " + path.string() + ": write failed");
     });
 }
 
-uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulator& acc) {
+uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulator& acc, MethodSums* method_sums) {
     Reader r{std::ifstream(path, std::ios::binary), path.string()};
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !r.in) r.fail("cannot be read (missing or not a file)");
@@ -239,19 +243,32 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
     saved.method_settings = r.str();
 
     const std::size_t n = std::size_t(w) * std::size_t(h);
-    const uintmax_t expected = uintmax_t(r.in.tellg()) + n * (TS_PASS_FLOATS * 8 + 3 * 8 + 4) + 8;
+    const uint32_t method_count = r.get<uint32_t>();
+    if (method_count > kMaxMethodSums) r.fail("corrupt (" + std::to_string(method_count) + " method sum arrays)");
+    std::vector<uint64_t> method_lengths(method_count);
+    uintmax_t method_bytes = 0;
+    for (uint64_t& len : method_lengths) {
+        len = r.get<uint64_t>();
+        // One or three values a pixel (guidance, components), or none yet.
+        if (len != 0 && len != n && len != 3 * n) r.fail("corrupt (a method sum of " + std::to_string(len) + " values)");
+        method_bytes += len * 8;
+    }
+    const uintmax_t expected = uintmax_t(r.in.tellg()) + n * (TS_PASS_FLOATS * 8 + 3 * 8 + 4) + method_bytes + 8;
     if (ec || file_size != expected)
         r.fail("truncated or corrupt (" + std::to_string(file_size) + " bytes, expected " + std::to_string(expected) +
                " for " + std::to_string(w) + "x" + std::to_string(h) + ")");
     std::vector<double> sums = r.array<double>(n * TS_PASS_FLOATS);
     std::vector<double> sums_sq = r.array<double>(n * 3);
     std::vector<uint32_t> hits = r.array<uint32_t>(n);
+    MethodSums method;
+    for (uint64_t len : method_lengths) method.push_back(r.array<double>(std::size_t(len)));
     const uint64_t computed = r.hash;
     if (r.get<uint64_t>() != computed) r.fail("corrupt (checksum mismatch)");
     if (saved.width != w || saved.height != h || settings_hash != identity_hash(saved))
         r.fail("corrupt (header fields disagree)");
     check_sums(r, w, sums, TS_PASS_FLOATS, "sum");
-    check_sums(r, w, sums_sq, 3, "sum of squares");
+    check_sums(r, w, sums_sq, 3, "sum of squares", true);
+    for (const std::vector<double>& m : method) check_sums(r, w, m, m.size() / n, "method sum");
     for (std::size_t i = 0; i < n; ++i)
         if (hits[i] > passes)
             r.fail("corrupt (pixel (" + std::to_string(i % std::size_t(w)) + ", " + std::to_string(i / std::size_t(w)) +
@@ -263,6 +280,7 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
     }
     if (acc.width() != w || acc.height() != h) r.fail("image size differs from the accumulator's");
     acc.restore(passes, std::move(sums), std::move(sums_sq), std::move(hits));
+    if (method_sums) *method_sums = std::move(method);
     return passes;
 }
 

@@ -5,12 +5,12 @@
 // seed, pixel and pass, kernels/shared/rng.h): restoring the Accumulator bit for bit and
 // adding passes N, N+1, ... in order gives the same double sums as never stopping.
 //
-// File format, version 2. All integers and doubles are little-endian (the host's own
+// File format, version 3. All integers and doubles are little-endian (the host's own
 // byte order; big-endian hosts are rejected at compile time). Strings are a u32 byte
 // count followed by the bytes (no terminator).
 //
 //   char[8]  magic "TSCKPT01"
-//   u32      format version (2; 1 lacked the method's settings)
+//   u32      format version (3; 2 lacked the method's sums, 1 also the method's settings)
 //   u32      floats per pixel and pass (TS_PASS_FLOATS, 10)
 //   i32      width, i32 height
 //   u32      passes done (N: passes 0..N-1 are in the sums)
@@ -24,9 +24,12 @@
 //     i32 width, i32 height,
 //     string backend ("opencl" or "embree")
 //     string the method's other settings ("--tile 3 --vpl-paths 64 ...": RunIdentity)
+//   u32      K, the method's own sum arrays (MethodSums; 0 for most runs, at most 64)
+//   u64[K]   their lengths in doubles, each 0, width·height or 3·width·height
 //   f64[width·height·TS_PASS_FLOATS]  sums per pixel (Accumulator::sums)
 //   f64[width·height·3]               sums of squared radiance
 //   u32[width·height]                 hit counts
+//   f64[length k] for each of the K    the method's sums, in its order
 //   u64      checksum: FNV-1a 64 over every byte before it
 //
 // The identity is stored field by field as well as hashed, so that a mismatch can name
@@ -35,11 +38,18 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "render/accumulator.h"
 #include "render/run_identity.h"
 
 namespace tessera {
+
+/// The sums a method keeps beside the accumulator for its own AOV channels
+/// (Integrator::aov_sums: the igi family's components and AIS's guidance with --aov), in
+/// the method's order. A checkpoint holds them so a resumed render's channels cover every
+/// pass, as the uninterrupted render's do.
+using MethodSums = std::vector<std::vector<double>>;
 
 /// 64-bit FNV-1a of `size` bytes, continuing from `h` (the offset basis by default).
 uint64_t fnv1a64(const void* data, std::size_t size, uint64_t h = 0xcbf29ce484222325ull);
@@ -47,15 +57,18 @@ uint64_t fnv1a64(const void* data, std::size_t size, uint64_t h = 0xcbf29ce48422
 /// The checkpoint path for an output image: `out` with its extension replaced by .ckpt.
 std::filesystem::path checkpoint_path_for(const std::filesystem::path& out);
 
-/// Writes `acc` with `id` to `path` atomically (image/atomic_file.h): a failed or
-/// interrupted write leaves any previous checkpoint intact. Throws RuntimeError.
+/// Writes `acc` and the method's sums (pointers, none null) with `id` to `path`
+/// atomically (image/atomic_file.h): a failed or interrupted write leaves any previous
+/// checkpoint intact. Throws RuntimeError.
 void save_checkpoint(const std::filesystem::path& path, const RunIdentity& id, uint32_t spp_target,
-                     const Accumulator& acc);
+                     const Accumulator& acc, const std::vector<const std::vector<double>*>& method_sums = {});
 
 /// Reads `path` into `acc` (which must be sized id.width × id.height) after checking the
 /// magic, version, sizes, checksum and that it was made by a run with identity `id`.
-/// Returns the number of passes restored. Throws InputError naming `path` and what is
-/// wrong (missing, truncated, corrupt, or which setting differs).
-uint32_t load_checkpoint(const std::filesystem::path& path, const RunIdentity& id, Accumulator& acc);
+/// The method's sums go to `method_sums` when given (replacing its contents), else are
+/// checked and dropped. Returns the number of passes restored. Throws InputError naming
+/// `path` and what is wrong (missing, truncated, corrupt, or which setting differs).
+uint32_t load_checkpoint(const std::filesystem::path& path, const RunIdentity& id, Accumulator& acc,
+                         MethodSums* method_sums = nullptr);
 
 }  // namespace tessera

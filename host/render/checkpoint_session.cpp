@@ -29,11 +29,21 @@ void require_checkpoint(const std::filesystem::path& path) {
 uint32_t CheckpointSession::restore(Accumulator& acc) {
     if (!options_ || !options_->resume) return 0;
     require_checkpoint(options_->path);
-    const uint32_t passes = load_checkpoint(options_->path, id_, acc);
+    const uint32_t passes = load_checkpoint(options_->path, id_, acc, &restored_);
     if (passes > spp_)
         throw InputError("checkpoint " + options_->path.string() + " already holds " + std::to_string(passes) +
                          " passes, more than --spp " + std::to_string(spp_));
     return passes;
+}
+
+void CheckpointSession::keep_method_sums(const std::vector<std::vector<double>*>& sums) {
+    if (!options_) return;
+    if (options_->resume && restored_.size() != sums.size())
+        throw InputError("checkpoint " + options_->path.string() + " holds " + std::to_string(restored_.size()) +
+                         " method sum arrays, this method keeps " + std::to_string(sums.size()));
+    for (size_t k = 0; k < restored_.size(); ++k) *sums[k] = std::move(restored_[k]);
+    restored_.clear();
+    kept_.assign(sums.begin(), sums.end());
 }
 
 void CheckpointSession::after_pass(const Accumulator& acc) {
@@ -43,7 +53,7 @@ void CheckpointSession::after_pass(const Accumulator& acc) {
     if (interrupted) interrupt(acc);
     if (interval_s_ > 0 && std::chrono::duration<double>(now - last_save_).count() >= interval_s_) {
         const InterruptDeferral defer;
-        save_checkpoint(options_->path, id_, spp_, acc);
+        save_checkpoint(options_->path, id_, spp_, acc, kept_);
         last_save_ = std::chrono::steady_clock::now();
     }
 }
@@ -54,7 +64,7 @@ void CheckpointSession::interrupt(const Accumulator& acc) {
                           " passes; no checkpoint written (this render keeps none)");
     const InterruptDeferral defer;  // a second signal must not cut the checkpoint short
     try {
-        save_checkpoint(options_->path, id_, spp_, acc);
+        save_checkpoint(options_->path, id_, spp_, acc, kept_);
     } catch (const std::exception& e) {
         throw Interrupted("interrupted after " + std::to_string(acc.passes()) + " of " + std::to_string(spp_) +
                           " spp; no checkpoint written: " + e.what());

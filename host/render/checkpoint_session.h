@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "backend/backend.h"
 #include "render/accumulator.h"
@@ -42,8 +43,15 @@ public:
     CheckpointSession& operator=(const CheckpointSession&) = delete;
 
     /// On resume, loads the checkpoint into `acc` and returns its pass count (InputError
-    /// if it exceeds the spp target, or see load_checkpoint); otherwise returns 0.
+    /// if it exceeds the spp target, or see load_checkpoint); otherwise returns 0. The
+    /// method's sums wait for keep_method_sums.
     uint32_t restore(Accumulator& acc);
+
+    /// The method's own sums (Integrator::aov_sums), saved with every checkpoint from now
+    /// on; on resume first filled from the checkpoint. InputError if the checkpoint holds
+    /// a different number of them (a checkpoint of another build's method). The pointers
+    /// must outlive the session.
+    void keep_method_sums(const std::vector<std::vector<double>*>& sums);
 
     /// Called after each pass is added. Saves a checkpoint when the interval has run
     /// out, or when a signal arrived, and then throws Interrupted (its message says
@@ -64,6 +72,8 @@ private:
     double interval_s_ = 0.0;
     std::chrono::steady_clock::time_point last_save_;
     std::optional<InterruptScope> interrupts_;
+    MethodSums restored_;                          // from the checkpoint, until kept
+    std::vector<const std::vector<double>*> kept_;  // the integrator's, saved each time
 };
 
 }  // namespace tessera

@@ -86,6 +86,7 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
         // and MPI's passes, which are whole.
         is.igi.pass_aovs = settings.aovs || checkpoint != nullptr || distributed;
         integrator = make_integrator(backend, scene, buffers, is);
+        session.keep_method_sums(integrator->aov_sums());
     };
     if (distributed) {
         uint64_t mine = 0;
@@ -144,7 +145,8 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     }
     if (stats) integrator->report(*stats);
     Image image = acc.mean_image(settings.aovs, settings.variance);
-    if (settings.aovs) integrator->add_aov_channels(image, settings.spp - first);
+    // The method's sums hold every pass: a resumed render's were restored with the rest.
+    if (settings.aovs) integrator->add_aov_channels(image, settings.spp);
     return image;
 }
 

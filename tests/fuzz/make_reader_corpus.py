@@ -40,7 +40,8 @@ def checkpoint(passes=2, nan_at=None):
     ident = (string("/scenes/box.json") + struct.pack("<QQ", 42, 43) + string("direct") +
              struct.pack("<IIIIii", 1, 8, 0, 0, 4, 3) + string("embree") + string(""))  # no method settings
     n, floats = 12, 10  # pixels, TS_PASS_FLOATS
-    head = (b"TSCKPT01" + struct.pack("<IIiiIIQ", 2, floats, 4, 3, passes, 4, fnv1a64(ident)) + ident)  # version 2
+    head = (b"TSCKPT01" + struct.pack("<IIiiIIQ", 3, floats, 4, 3, passes, 4, fnv1a64(ident)) + ident +
+            struct.pack("<I", 0))  # version 3; no method sums (direct keeps none)
     sums = [0.25 * (i % 7) * passes for i in range(n * floats)]
     if nan_at is not None:
         sums[nan_at] = math.nan

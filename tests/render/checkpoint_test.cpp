@@ -93,6 +93,34 @@ TEST_F(Checkpoint, RoundTripIsBitIdenticalAndContinues) {
     expect_bit_identical(a.mean_image(true, true), b.mean_image(true, true));
 }
 
+// The method's sums come back as saved; a checkpoint without them restores none.
+TEST_F(Checkpoint, MethodSumsRoundTrip) {
+    const int w = 4, h = 3;
+    Accumulator a(w, h);
+    a.add(synthetic_pass(w, h, 0));
+    const std::vector<double> components{0.5, 1.25, 3.0, 0.0, 7.5, 1e-300, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0,
+                                         0.5, 1.25, 3.0, 0.0, 7.5, 1e-300, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0,
+                                         1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0, 12.0};
+    const std::vector<double> none, guidance(size_t(w) * h, 0.25);
+    const fs::path file = dir_ / "x.ckpt";
+    save_checkpoint(file, some_identity(w, h), 4, a, {&components, &none, &guidance});
+    Accumulator b(w, h);
+    MethodSums restored{{9.0}};
+    EXPECT_EQ(load_checkpoint(file, some_identity(w, h), b, &restored), 1u);
+    ASSERT_EQ(restored.size(), 3u);
+    EXPECT_EQ(restored[0], components);
+    EXPECT_TRUE(restored[1].empty());
+    EXPECT_EQ(restored[2], guidance);
+    save_checkpoint(file, some_identity(w, h), 4, a);
+    EXPECT_EQ(load_checkpoint(file, some_identity(w, h), b, &restored), 1u);
+    EXPECT_TRUE(restored.empty());
+    // A method sum that is not 1 or 3 values a pixel is corrupt.
+    const std::vector<double> odd(5, 1.0);
+    save_checkpoint(file, some_identity(w, h), 4, a, {&odd});
+    expect_input_error([&] { load_checkpoint(file, some_identity(w, h), b, &restored); },
+                       {file.string(), "a method sum of 5 values"});
+}
+
 TEST_F(Checkpoint, CorruptTruncatedOrMissingFileIsInputErrorNamingIt) {
     const int w = 4, h = 4;
     Accumulator a(w, h);
@@ -346,6 +374,33 @@ TEST_P(ResumeCornell, IntervalCheckpointsResumeToTheSameImage) {
     ASSERT_TRUE(fs::exists(ck.path));
     Accumulator acc(16, 16);
     EXPECT_EQ(load_checkpoint(ck.path, make_run_identity(scene, rs, 16, 16, GetParam()), acc), 4u);
+    ck.resume = true;
+    RenderStats stats;
+    const Image resumed = render_frame(*backend, scene, buffers, rs, &stats, {}, &ck);
+    EXPECT_EQ(stats.passes, 1u);
+    expect_bit_identical(whole, resumed);
+}
+
+// The igi family's own AOV channels (components before and after the filter, AIS's
+// guidance and sets) are sums the method keeps beside the accumulator: the checkpoint
+// holds them too, so a resumed --aov render has every channel of the uninterrupted one,
+// bit for bit. Before they were saved, the resumed channels averaged only the passes
+// rendered after the resume (SS, ID and guidance.* differed; R, G, B did not).
+TEST_P(ResumeCornell, MethodAovChannelsResumeBitIdentical) {
+    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
+    SceneBuffers buffers = make_scene_buffers(scene);
+    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
+    RenderSettings rs;
+    rs.method = Method::Ais;
+    rs.width = rs.height = 16;
+    rs.spp = 5;
+    rs.shadow_samples = 2;
+    rs.aovs = true;
+    rs.checkpoint_interval_s = 1e-9;  // after every pass but the last
+    CheckpointOptions ck{dir_ / "cornell.ckpt", GetParam(), false};
+    const Image whole = render_ckpt(*backend, scene, buffers, rs, ck);
+    ASSERT_NE(whole.find("guidance.ID"), nullptr);
+    ASSERT_NE(whole.find("ID_filtered.R"), nullptr);
     ck.resume = true;
     RenderStats stats;
     const Image resumed = render_frame(*backend, scene, buffers, rs, &stats, {}, &ck);
