@@ -184,18 +184,12 @@ double pareto_pixels(const ViewArgs& a, const Scene& scene) {
 // The frames a headless run or a replayed path will write under --frame-images: none of
 // their files may be a directory or other non-file, checked before frame 0 is written
 // (check_outputs has checked frame 0 and the directory itself).
-void check_frame_images(const fs::path& dir, const LoopOptions& lo) {
-    const int frames = !lo.path.empty()                     ? static_cast<int>(lo.path.size())
-                       : (lo.headless && !lo.script.empty()) ? lo.script.back().frame + 1
-                                                             : 1;
-    std::error_code ec;
-    for (int i = 1; i < frames; ++i) {
-        const fs::path f = frame_output_path(dir / "frame.exr", i);
-        const fs::file_status st = fs::symlink_status(f, ec);
-        if (fs::exists(st) && !fs::is_regular_file(fs::status(f, ec)))
-            throw InputError("--frame-images " + dir.string() + ": " + f.filename().string() + " (frame " +
-                             std::to_string(i) + ") exists and is not a regular file");
-    }
+// The frames --frame-images writes: one per camera-path frame, per frame of a headless
+// script, else (a window, ended by the user) only the first is known.
+int frame_image_count(const LoopOptions& lo) {
+    return !lo.path.empty()                     ? static_cast<int>(lo.path.size())
+           : (lo.headless && !lo.script.empty()) ? lo.script.back().frame + 1
+                                                 : 1;
 }
 
 void run_view(const ViewArgs& a, const CLI::App& cmd) {
@@ -261,14 +255,20 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (!a.times.empty()) files.push_back({a.times, "--times"});
     if (a.record) files.push_back({a.camera_path, "--camera-path (recording)"});
     if (!a.screenshot_window.empty()) files.push_back({a.screenshot_window, "--screenshot-window"});
-    if (!a.frame_images.empty()) files.push_back({fs::path(a.frame_images) / "frame.0000.exr", "--frame-images"});
+    if (!a.frame_images.empty())
+        for (int i = 0, n = frame_image_count(lo); i < n; ++i)
+            files.push_back({frame_output_path(fs::path(a.frame_images) / "frame.exr", i),
+                             "--frame-images (frame " + std::to_string(i) + ")"});
     std::vector<fs::path> inputs = scene.inputs;
     for (const std::string& in : {a.reference, a.input_script, a.record ? std::string() : a.camera_path,
                                   a.pareto})
         if (!in.empty()) inputs.push_back(in);
     check_outputs(files, inputs);
-    if (!a.frame_images.empty()) check_frame_images(a.frame_images, lo);
     check_output_directories(files);
+    // Later screenshots (numbered on from 0001) step over every file the run reads or
+    // writes otherwise, so P never replaces the reference or a frame image.
+    for (const fs::path& in : inputs) o.reserved.push_back(same_file(in));
+    for (size_t i = 2; i < files.size(); ++i) o.reserved.push_back(same_file(files[i].path));
 
     // Installed before the banner: a signal sent once the banner shows (a user's Ctrl-C, a
     // script waiting for it) ends the loop after its frame (ViewLoop::done), never the process.

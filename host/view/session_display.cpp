@@ -12,6 +12,7 @@
 #include "image/resample.h"
 #include "metrics/image_metrics.h"
 #include "render/sequence.h"
+#include "scene/loader.h"
 #include "util/error.h"
 
 namespace tessera::view {
@@ -59,9 +60,18 @@ Image ViewSession::accumulation() const {
 
 std::filesystem::path ViewSession::save_screenshot() {
     if (!acc_ || acc_->passes() == 0) throw RuntimeError("screenshot: no pass accumulated yet");
-    const std::filesystem::path exr = frame_output_path(options_.screenshot, screenshots_);
-    std::filesystem::path png = exr;
-    png.replace_extension(".png");
+    std::filesystem::path exr, png;
+    for (;; ++screenshots_) {
+        exr = frame_output_path(options_.screenshot, screenshots_);
+        png = std::filesystem::path(exr).replace_extension(".png");
+        const auto& r = options_.reserved;
+        const auto taken = [&](const std::filesystem::path& p) {
+            return std::find(r.begin(), r.end(), same_file(p)) != r.end();
+        };
+        if (!taken(exr) && !taken(png)) break;
+        std::fprintf(stderr, "tessera view: screenshot %d skipped: %s is a file this run reads or writes\n",
+                     screenshots_, (taken(exr) ? exr : png).c_str());
+    }
     const Image image = accumulation();
     CommitGroup outputs;  // both files or neither, like render
     write_exr(outputs.add(exr), image);

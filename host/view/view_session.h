@@ -43,6 +43,9 @@ struct ViewOptions {
     int last_frame = 0;
     std::filesystem::path reference;   ///< EXR of the same size for the error AOV ("" for none)
     std::filesystem::path screenshot;  ///< screenshot n goes to frame_output_path(screenshot, n) (+ .png)
+    /// Files (same_file() keys) a screenshot must not replace: the run's inputs and its
+    /// other outputs. A screenshot number whose EXR or PNG is one of them is skipped.
+    std::vector<std::filesystem::path> reserved;
     double target_fps = 0.0;           ///< > 0: moving frames follow the frame-time budget
     std::vector<BudgetPoint> pareto;   ///< candidate settings for the budget (frame_budget.h)
     double pareto_pixels = 0.0;        ///< pixels of the sweep's images (0: unknown), for the first prediction

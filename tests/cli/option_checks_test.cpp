@@ -236,7 +236,7 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {view + "--pareto $D/none.csv", "--pareto $D/none.csv: is read only with --target-fps (the frame budget it feeds)",
          2, files},
         {view + "--frame-images $D/frames",
-         "--frame-images $D/frames: frame.0002.exr (frame 2) exists and is not a regular file", 2, files},
+         "--frame-images (frame 2) $D/frames/frame.0002.exr: is a directory", 2, files},
         {"view --backend embree --headless --width 8 --height 8 --camera-path $D/path.json --frame-images $D/out",
          "--camera-path $D/path.json: key 'cameras[2]' = {\"look_at\":[0,1,0],\"position\":[0,0,0],\"up\":[0,1,0],\"vfov\"...: "
          "up is zero or parallel to the view direction",
@@ -258,6 +258,9 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},
         {"compare $D/img.exr $D/img.exr --flip-map $D/f.exr", "--flip-map $D/f.exr: the map is written as PNG; name it .png"},
         {view + "--times $D/s.json", "--times $D/s.json: would replace an input of this run, $D/s.json", 2, files},
+        // Every frame the script's run writes is checked, not only the first.
+        {view + "--frame-images $D/fi --times $D/fi/frame.0003.exr",
+         "--frame-images (frame 3) $D/fi/frame.0003.exr: is also --times", 2, files},
         {view + "--screenshot $D/shot.exr --times $D/shot.0000.png",
          "--times $D/shot.0000.png: is also the PNG beside --screenshot", 2, files},
         {view + "--screenshot-window $D/w.png",

@@ -140,6 +140,37 @@ TEST_F(ViewCli, HeadlessFlyThroughWritesTimesAndImages) {
     EXPECT_NE(r.output.find("5 frames, 2 moving"), std::string::npos) << r.output;
 }
 
+std::string file_bytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Screenshots are numbered from 0000 in every session, so an earlier session's screenshot
+// given as --reference would be replaced by the second P: that number is skipped (said on
+// stderr), the reference is left as it was, and a --times file of a screenshot's name too.
+TEST_F(ViewCli, LaterScreenshotsStepOverTheRunsOtherFiles) {
+    const std::string common = " --headless --width 16 --height 16 --method direct --spp 2 --backend embree";
+    const fs::path ref = dir_ / "shot.0001.exr";
+    ASSERT_EQ(run_tessera("render" + common.substr(11) + " --out " + ref.string()).exit_code, 0);
+    const std::string before = file_bytes(ref);
+    const fs::path script =
+        write("s.json", R"({"events": [{"frame": 3, "tap": "p"}, {"frame": 4, "tap": "p"}, {"frame": 5, "tap": "p"}, )"
+                        R"({"frame": 6, "quit": true}]})");
+    const CliResult r = run_tessera("view" + common + " --reference " + ref.string() + " --input-script " +
+                                    script.string() + " --times " + (dir_ / "shot.0002.png").string() +
+                                    " --screenshot " + (dir_ / "shot.exr").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(file_bytes(ref), before) << "the reference was replaced";
+    EXPECT_NE(r.output.find("screenshot 1 skipped: " + ref.string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("screenshot 2 skipped: " + (dir_ / "shot.0002.png").string()), std::string::npos)
+        << r.output;
+    for (const char* shot : {"shot.0000.exr", "shot.0003.exr", "shot.0004.exr"})
+        EXPECT_TRUE(fs::exists(dir_ / shot)) << shot << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "shot.0002.exr"));
+    EXPECT_TRUE(nlohmann::json::parse(file_bytes(dir_ / "shot.0002.png")).contains("frames"))
+        << "--times holds its JSON, not a screenshot";
+}
+
 // SIGINT ends the run as Esc does, after the frame in progress: exit 130, one line, and
 // --times and --frame-images hold every frame rendered (before, the signal killed the
 // process, leaving frame images and no times).
