@@ -123,6 +123,8 @@ void check_render_options(const RenderArgs& a, const CLI::App& cmd, const Backen
         throw InputError("--frames cannot be combined with --resume (checkpoints hold one still frame)");
     if (!a.frames.empty() && !a.stats_json.empty())
         throw InputError("--frames cannot be combined with --stats-json (it describes one still frame)");
+    if (!a.frames.empty() && cmd.count("--checkpoint-interval"))
+        throw InputError("--frames cannot be combined with --checkpoint-interval (a sequence keeps no checkpoint)");
 }
 
 // A setting the method does not read is left as given, with a note: it changes nothing
@@ -234,6 +236,9 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (method_info(settings.method).temporal && a.resume)
             throw InputError("--method " + a.method + " cannot be combined with --resume (a checkpoint does not hold "
                              "its state, tic's cache, so a resumed render would differ from the uninterrupted one)");
+        if (method_info(settings.method).temporal && cmd.count("--checkpoint-interval"))
+            throw InputError("--method " + a.method + " cannot be combined with --checkpoint-interval (it keeps no "
+                             "checkpoint: one would not hold its state, tic's cache, so it could not be resumed)");
         const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
         scene = load_scene(scene_path, data);
         out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
@@ -254,8 +259,9 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     cluster.step([&] {
         // A still of an animated scene is its frame 0 (the rest pose with frame 0's keys).
         if (scene.animation.animated()) scene = scene_at_frame(scene, 0);
-        ckpt = CheckpointOptions{checkpoint_path_for(out), bo.kind, a.resume};
-        if (lead && !a.resume && fs::exists(ckpt->path))
+        // tic keeps none: a checkpoint would not hold its cache, and --resume is refused.
+        if (!method_info(settings.method).temporal) ckpt = CheckpointOptions{checkpoint_path_for(out), bo.kind, a.resume};
+        if (lead && ckpt && !a.resume && fs::exists(ckpt->path))
             std::fprintf(stderr, "tessera: note: %s exists; starting over (it will be replaced; --resume continues it)\n",
                          ckpt->path.c_str());
         plan = plan_effects(scene);
@@ -276,7 +282,15 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     });
 
     RenderStats stats;
-    Image img = render_frame(*backend, scene, buffers, settings, &stats, print_progress, &*ckpt, &cluster);
+    // Without a checkpoint session (tic) a signal is seen here, after the pass it ended.
+    const ProgressFn progress = ckpt ? ProgressFn(print_progress)
+                                     : [&a](uint32_t done, uint32_t total, double elapsed, uint32_t restored) {
+                                           print_progress(done, total, elapsed, restored);
+                                           if (done < total)
+                                               stop_if_interrupted("after " + std::to_string(done) + " of " +
+                                                                   std::to_string(total) + " spp (" + a.method + " keeps no checkpoint)");
+                                       };
+    Image img = render_frame(*backend, scene, buffers, settings, &stats, progress, ckpt ? &*ckpt : nullptr, &cluster);
     if (!lead) return;
     const fs::path png = png_beside(out);
     CommitGroup outputs;  // all of them or none
@@ -288,7 +302,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         outputs.commit();
     }
     std::error_code ec;
-    fs::remove(ckpt->path, ec);  // the render is complete: its checkpoint is of no further use
+    if (ckpt) fs::remove(ckpt->path, ec);  // the render is complete: its checkpoint is of no further use
     if (!stats.detail.empty()) std::fprintf(stderr, "tessera: %s\n", stats.detail.c_str());
     std::fprintf(stderr, "tessera: %u spp in %.2f s (median %.1f ms per pass)", stats.passes, stats.seconds,
                  1e3 * stats.median_pass_seconds);

@@ -116,6 +116,20 @@ TEST_F(CheckpointCli, TwoSignalsAtOnceStillLeaveACheckpoint) {
     }
 }
 
+// tic keeps no checkpoint (it would not hold the cache, and --resume is refused): an
+// interrupted tic render says so and leaves no file, rather than pointing at --resume.
+TEST_F(CheckpointCli, InterruptedTicLeavesNoCheckpoint) {
+    const fs::path ckpt = dir_ / "img.ckpt";
+    std::vector<std::string> args = render_args({});
+    args[2] = "tic";
+    const CliRun r = run_tessera(args, "/50 spp");
+    ASSERT_EQ(r.exit_code, 130) << r.output;
+    EXPECT_NE(r.output.find("spp (tic keeps no checkpoint); no checkpoint written"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("--resume"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(ckpt));
+    EXPECT_FALSE(fs::exists(dir_ / "img.exr"));
+}
+
 TEST_F(CheckpointCli, ResumeWithoutCheckpointNamesTheExpectedFile) {
     CliRun r = run_tessera(render_args({"--resume"}));
     EXPECT_EQ(r.exit_code, 2) << r.output;

@@ -195,6 +195,10 @@ TEST_F(RenderCli, BadFrames) {
     expect_rejected(scene + " --frames 0:30", "--frames");
     expect_rejected(kData + "/light.json --frames 0:1", "--frames");
     expect_rejected(scene + " --frames 0:1 --resume", "--resume");
+    expect_rejected(scene + " --frames 0:1 --stats-json " + (dir_ / "s.json").string(), "--stats-json");
+    // A sequence keeps no checkpoint: an interval given for one was ignored without a word.
+    expect_rejected(scene + " --frames 0:1 --checkpoint-interval 5",
+                    "--frames cannot be combined with --checkpoint-interval");
 }
 
 TEST_F(RenderCli, TicSequenceLogsTheCacheAndRefusesResume) {
