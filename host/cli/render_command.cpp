@@ -236,9 +236,11 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (method_info(settings.method).temporal && a.resume)
             throw InputError("--method " + a.method + " cannot be combined with --resume (a checkpoint does not hold "
                              "its state, tic's cache, so a resumed render would differ from the uninterrupted one)");
-        if (method_info(settings.method).temporal && cmd.count("--checkpoint-interval"))
-            throw InputError("--method " + a.method + " cannot be combined with --checkpoint-interval (it keeps no "
-                             "checkpoint: one would not hold its state, tic's cache, so it could not be resumed)");
+        // A note, not an error, as for the settings a method does not read: a script may pass
+        // one set of options to every method (bench/accuracy does).
+        if (lead && method_info(settings.method).temporal && cmd.count("--checkpoint-interval"))
+            std::fprintf(stderr, "tessera: note: --checkpoint-interval: --method %s keeps no checkpoint (one would not "
+                         "hold its state, tic's cache, so it could not be resumed); ignored\n", a.method.c_str());
         const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
         scene = load_scene(scene_path, data);
         out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);

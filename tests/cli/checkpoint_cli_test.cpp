@@ -128,6 +128,13 @@ TEST_F(CheckpointCli, InterruptedTicLeavesNoCheckpoint) {
     EXPECT_EQ(r.output.find("--resume"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(ckpt));
     EXPECT_FALSE(fs::exists(dir_ / "img.exr"));
+    // An interval given for it is ignored, saying so, and still no checkpoint is written.
+    args[6] = "2";  // --spp
+    args.insert(args.end(), {"--checkpoint-interval", "1e-9"});
+    const CliRun ok = run_tessera(args);
+    ASSERT_EQ(ok.exit_code, 0) << ok.output;
+    EXPECT_NE(ok.output.find("--checkpoint-interval: --method tic keeps no checkpoint"), std::string::npos) << ok.output;
+    EXPECT_FALSE(fs::exists(ckpt));
 }
 
 TEST_F(CheckpointCli, ResumeWithoutCheckpointNamesTheExpectedFile) {

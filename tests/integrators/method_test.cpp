@@ -93,7 +93,6 @@ TEST_P(MethodRowsCli, CommandRefusesWhatTheRowLacks) {
     if (!row.igi_family) refused("--components ss", "has no components");
     if (row.igi_family && !row.adaptive) refused("--components ss,edge", "edge samples are an AIS component");
     if (row.temporal) refused("--resume", "cannot be combined with --resume");
-    if (row.temporal) refused("--checkpoint-interval 5", "cannot be combined with --checkpoint-interval");
     refused("--spp 0", "--spp 0");  // and every row refuses an out-of-range option
 }
 
