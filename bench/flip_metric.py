@@ -13,13 +13,15 @@ Prints one JSON object on stdout:
    "width": W, "height": H, "implementation": "flip-evaluator <version>"}
 `--map FILE.png` also writes the FLIP error map (magma colour map, as the FLIP tool does).
 
-Exit status: 0 on success; 3 if `flip_evaluator` (or numpy) cannot be imported (the
+Exit status: 0 on success; 3 if `flip_evaluator` (or numpy, OpenEXR) cannot be imported (the
 message says so: `tessera compare` then reports FLIP as unavailable); 2 for bad input.
 `tessera compare` runs this script (TESSERA_SOURCE_DIR/bench/flip_metric.py).
 """
 import argparse
 import json
 import sys
+
+from cvvdp_metric import BadInput, read_rgb  # the one EXR reader of the metric scripts
 
 
 def main():
@@ -40,30 +42,33 @@ def main():
     except Exception:
         impl = "flip-evaluator"
 
-    imgs = []
-    for path in (args.reference, args.test):
-        try:
-            # The package's own loader (tinyexr); it reads the R, G, B channels by name.
-            img = np.asarray(flip.load(path), dtype=np.float32)[:, :, :3]
-        except Exception as e:
-            print(f"flip_metric: cannot read {path}: {e}", file=sys.stderr)
-            return 2
-        if not np.all(np.isfinite(img)):
-            print(f"flip_metric: {path}: NaN or infinite values", file=sys.stderr)
-            return 2
-        # HDR-FLIP expects non-negative radiance; tiny negatives would come only from rounding.
-        imgs.append(np.maximum(img, 0.0))
-    ref, test = imgs
+    # Read with OpenEXR, as tessera and the cvvdp script read them: the package's own loader
+    # (tinyexr) returns a DECREASING_Y file upside down (FLIP 0.65 for an image against
+    # itself) and refuses B44, DWAA and PXR24.
+    try:
+        import OpenEXR
+        ref, test = (read_rgb(path, np, OpenEXR) for path in (args.reference, args.test))
+    except ImportError as e:
+        print(f"flip_metric: {e} (install with: python3 -m pip install OpenEXR)", file=sys.stderr)
+        return 3
+    except BadInput as e:
+        print(f"flip_metric: {e}", file=sys.stderr)
+        return 2
     if ref.shape != test.shape:
         print(f"flip_metric: image sizes differ: {ref.shape[1]}x{ref.shape[0]} vs {test.shape[1]}x{test.shape[0]}",
               file=sys.stderr)
         return 2
-
-    errmap, mean, _params = flip.evaluate(ref, test, "HDR", applyMagma=False)
-    errmap = np.asarray(errmap).reshape(ref.shape[0], ref.shape[1], -1)[:, :, 0]
-    if args.map:
-        magma, _, _ = flip.evaluate(ref, test, "HDR", applyMagma=True, computeMeanError=False)
-        write_png(args.map, np.asarray(magma))
+    if not np.any(ref > 0.0):
+        # HDR-FLIP takes its exposure range from the reference's luminance: none for black.
+        if np.any(test > 0.0):
+            print("flip_metric: the reference is black everywhere: HDR-FLIP takes its exposure range from the "
+                  "reference, so it has none to compare with", file=sys.stderr)
+            return 2
+        errmap, mean = np.zeros(ref.shape[:2]), 0.0  # black against black: no difference
+        if args.map:
+            write_png(args.map, np.zeros(ref.shape))
+    else:
+        errmap, mean = evaluate(flip, np, ref, test, args.map)
     print(json.dumps({
         "mean": float(mean),
         "p_gt_0_1": 100.0 * float(np.mean(errmap > 0.1)),
@@ -72,6 +77,16 @@ def main():
         "implementation": impl,
     }))
     return 0
+
+
+def evaluate(flip, np, ref, test, map_path):
+    """(HxW FLIP error map, mean) of HDR-FLIP; writes the magma map to map_path if given."""
+    errmap, mean, _params = flip.evaluate(ref, test, "HDR", applyMagma=False)
+    errmap = np.asarray(errmap).reshape(ref.shape[0], ref.shape[1], -1)[:, :, 0]
+    if map_path:
+        magma, _, _ = flip.evaluate(ref, test, "HDR", applyMagma=True, computeMeanError=False)
+        write_png(map_path, np.asarray(magma))
+    return errmap, mean
 
 
 def write_png(path, rgb01):

@@ -73,8 +73,9 @@ void check_comparable(const Image& ref, const Image& test, const CompareArgs& a)
             for (size_t i = 0; i < c->data.size(); ++i)
                 if (c->data[i] < 0.0f)
                     throw InputError("reference " + a.ref + ": negative value " + std::to_string(c->data[i]) +
-                                     " in channel " + name + " at pixel (" + std::to_string(i % size_t(ref.width)) +
-                                     ", " + std::to_string(i / size_t(ref.width)) +
+                                     " in channel " + name + " at pixel (" +
+                                     std::to_string(ref.x0 + int(i % size_t(ref.width))) + ", " +
+                                     std::to_string(ref.y0 + int(i / size_t(ref.width))) +
                                      "); a reference is radiance, which is >= 0");
 }
 

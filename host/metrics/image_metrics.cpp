@@ -21,8 +21,9 @@ RgbImage rgb_for_metrics(const Image& image, const std::filesystem::path& path) 
             const float v = ch[c]->data[i];
             if (!std::isfinite(v))
                 throw InputError(path.string() + ": " + (std::isnan(v) ? "NaN" : "infinite") + " value in channel " +
-                                 std::string(1, "RGB"[c]) + " at pixel (" + std::to_string(i % image.width) + ", " +
-                                 std::to_string(i / image.width) + ")");
+                                 std::string(1, "RGB"[c]) + " at pixel (" +
+                                 std::to_string(image.x0 + int(i % image.width)) + ", " +
+                                 std::to_string(image.y0 + int(i / image.width)) + ")");  // the file's coordinates
             out.rgb[3 * i + c] = v;
         }
     return out;

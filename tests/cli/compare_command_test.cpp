@@ -177,6 +177,48 @@ TEST_F(CompareCli, NegativeReference) {
     EXPECT_EQ(run_compare(a + " " + n + " --no-flip").exit_code, 0) << "a test image may be negative (a denoiser's)";
 }
 
+// Pixels are named in the file's own coordinates, which start at its data window's origin
+// (the data-window message above uses them; the value checks counted from 0).
+TEST_F(CompareCli, PixelsAreNamedInTheDataWindowsCoordinates) {
+    Image ref = constant(8, 8, 1.f), test = constant(8, 8, 1.f);
+    ref.x0 = test.x0 = 10;
+    ref.y0 = test.y0 = 20;
+    ref.channels[1].data[9] = -0.5f;
+    test.channels[0].data[9] = std::nanf("");
+    const std::string r = write("ref.exr", ref), t = write("test.exr", test);
+    expect_error(r + " " + t + " --no-flip", "test.exr: NaN value in channel R at pixel (11, 21)");
+    test.channels[0].data[9] = 1.0f;
+    expect_error(r + " " + write("test2.exr", test) + " --no-flip",
+                 "negative value -0.500000 in channel G at pixel (11, 21)");
+}
+
+// FLIP sees the pixels tessera reads: the package's own EXR loader returned a valid file
+// written bottom row first (lineOrder DECREASING_Y) upside down, FLIP 0.65 for an image
+// against itself. A black reference gives HDR-FLIP no exposure range: 0 against black,
+// otherwise unavailable with that reason (it was "exited with status 255").
+TEST_F(CompareCli, FlipReadsWhatTesseraReadsAndNamesABlackReference) {
+    if (!python_imports("flip_evaluator, numpy, OpenEXR")) GTEST_SKIP() << "flip-evaluator, numpy or OpenEXR missing";
+    const std::string a = write("a.exr", pattern(32, 24, 0.0f, 1)), flipped = (dir_ / "a_decreasing_y.exr").string();
+    ASSERT_EQ(run_shell("python3 -c \"import OpenEXR, sys\n"
+                        "ch = OpenEXR.File(sys.argv[1], separate_channels=True).channels()\n"
+                        "h = {'compression': OpenEXR.ZIP_COMPRESSION, 'type': OpenEXR.scanlineimage, "
+                        "'lineOrder': OpenEXR.DECREASING_Y}\n"
+                        "OpenEXR.File(h, {c: ch[c].pixels for c in 'RGB'}).write(sys.argv[2])\" " +
+                        a + " " + flipped)
+                  .exit_code,
+              0);
+    nlohmann::json j = compare_json(a, flipped);
+    ASSERT_TRUE(j["flip"].contains("mean")) << j.dump();
+    EXPECT_EQ(j["flip"]["mean"].get<double>(), 0.0);
+    const std::string black = write("black.exr", constant(32, 24, 0.f));
+    j = compare_json(black, black);
+    ASSERT_TRUE(j["flip"].contains("mean")) << j.dump();
+    EXPECT_EQ(j["flip"]["mean"].get<double>(), 0.0);
+    j = compare_json(black, a);
+    EXPECT_NE(j["flip"]["unavailable"].get<std::string>().find("the reference is black everywhere"), std::string::npos)
+        << j.dump();
+}
+
 // Each map is a PNG: a map named .exr would hold PNG bytes under an EXR name.
 TEST_F(CompareCli, MapsMustBePng) {
     const std::string a = write("a.exr", constant(8, 8, 1.f));
