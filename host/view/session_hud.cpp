@@ -2,6 +2,7 @@
 #include "view/view_session.h"
 
 #include <cstdio>
+#include <string>
 
 namespace tessera::view {
 
@@ -11,12 +12,17 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
     std::vector<std::string> lines;
     char buf[256];
     const double ms = 1e3 * last_.total;
-    const double mrays = last_.rays && last_.total > 0 ? last_.rays / last_.total * 1e-6 : 0.0;
+    // The igi family counts its rays; direct and pt trace theirs inside one kernel, so
+    // their rate is in camera samples (one a pixel and pass), not a made-up 0 rays.
+    const bool counts_rays = igi_family(settings_.method);
+    const double per_pass = counts_rays ? double(last_.rays) : double(width_) * height_;
+    const double rate = per_pass > 0 && last_.total > 0 ? per_pass / last_.total * 1e-6 : 0.0;
+    const char* unit = counts_rays ? "Mrays/s" : "Msamples/s";
     if (last_rendered_)
-        std::snprintf(buf, sizeof buf, "%.1f fps, pass %.1f ms, %.2f Mrays/s", fps, ms, mrays);
+        std::snprintf(buf, sizeof buf, "%.1f fps, pass %.1f ms, %.2f %s", fps, ms, rate, unit);
     else  // nothing rendered: the window's rate says nothing about the renderer
-        std::snprintf(buf, sizeof buf, "idle (%s), last pass %.1f ms, %.2f Mrays/s",
-                      paused_ ? "paused" : "all passes accumulated", ms, mrays);
+        std::snprintf(buf, sizeof buf, "idle (%s), last pass %.1f ms, %.2f %s",
+                      paused_ ? "paused" : "all passes accumulated", ms, rate, unit);
     lines.push_back(buf);
     if (igi_family(settings_.method)) {
         std::snprintf(buf, sizeof buf, "VPLs %.1f | SS+ID %.1f | PM %.1f | filter %.1f | AIS %.1f | cache %.1f ms",
@@ -32,10 +38,12 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
                   paused_ ? " (paused)" : "", playing_ ? " (playing)" : "", width_, height_, anim_frame_);
     lines.push_back(buf);
     const uint32_t c = settings_.igi.components;
-    std::snprintf(buf, sizeof buf, "components %s%s%s%s | AOV %s | exposure %+.1f | speed %.3g/s",
-                  c & TS_COMPONENT_SS ? "SS " : "", c & TS_COMPONENT_ID ? "ID " : "",
-                  c & TS_COMPONENT_PM ? "PM " : "", c & TS_COMPONENT_EDGE ? "edge" : "", aov_name(aov_), exposure_,
-                  speed_);
+    std::string components;  // only the igi family has them (direct and pt: no such line part)
+    if (counts_rays)
+        components = std::string("components ") + (c & TS_COMPONENT_SS ? "SS " : "") + (c & TS_COMPONENT_ID ? "ID " : "") +
+                     (c & TS_COMPONENT_PM ? "PM " : "") + (c & TS_COMPONENT_EDGE ? "edge" : "") + " | ";
+    std::snprintf(buf, sizeof buf, "%sAOV %s | exposure %+.1f | speed %.3g/s", components.c_str(), aov_name(aov_),
+                  exposure_, speed_);
     lines.push_back(buf);
     if (budget_ && last_budget_.applied) {  // what the last moving frame used
         const BudgetReport& b = last_budget_;

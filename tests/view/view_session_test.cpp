@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include <gtest/gtest.h>
@@ -326,6 +327,27 @@ TEST(ViewSession, DisplayIsThePngToneMap) {
             worst = std::max(worst, std::abs(int(rgba[4 * p + c]) - expected));
         }
     EXPECT_LE(worst, 1);  // the table quantises to 1/16384 of the unit range
+}
+
+// The HUD's rate is in what the method counts: rays for the igi family, camera samples
+// for direct and pt (which trace inside one kernel; their rays showed as 0.00 Mrays/s),
+// and only the igi family has a components part.
+TEST(ViewSession, HudRateAndComponentsFollowTheMethod) {
+    const Scene scene = cornell();
+    for (Method m : {Method::Direct, Method::PathTrace, Method::Igi}) {
+        ViewSession session(scene, options(m, 2));
+        session.advance(0);
+        const std::vector<std::string> hud = session.hud_lines(0);
+        const bool igi = m == Method::Igi;
+        double rate = 0.0;
+        char unit[16] = "";
+        ASSERT_EQ(std::sscanf(hud[0].c_str() + hud[0].find(" ms, ") + 5, "%lf %15s", &rate, unit), 2) << hud[0];
+        EXPECT_STREQ(unit, igi ? "Mrays/s" : "Msamples/s") << method_name(m);
+        EXPECT_GT(rate, 0.0) << method_name(m) << ": " << hud[0];
+        bool components = false;
+        for (const std::string& line : hud) components |= line.find("components ") != std::string::npos;
+        EXPECT_EQ(components, igi) << method_name(m);
+    }
 }
 
 TEST(ViewSession, AovKeyCyclesThroughWhatTheMethodProduces) {
