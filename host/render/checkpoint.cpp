@@ -24,6 +24,7 @@ constexpr char kMagic[8] = {'T', 'S', 'C', 'K', 'P', 'T', '0', '1'};
 // 2: the method's other settings in the identity (2026-11-29); pt's --max-depth counts
 // one more emitter hit. 3: the method's own sums (the igi family's --aov channels).
 constexpr uint32_t kVersion = 3;
+constexpr uint32_t kOldestVersion = 2;  // read too: the same but for the method's sums
 constexpr uint32_t kMaxString = 1u << 16;
 constexpr uint32_t kMaxMethodSums = 64;  // AIS keeps 14; a bound for a corrupt count
 
@@ -209,7 +210,8 @@ void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_t
     });
 }
 
-uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulator& acc, MethodSums* method_sums) {
+uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulator& acc, MethodSums* method_sums,
+                         uint32_t* format_version) {
     Reader r{std::ifstream(path, std::ios::binary), path.string()};
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !r.in) r.fail("cannot be read (missing or not a file)");
@@ -219,9 +221,10 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
     r.raw(magic, sizeof magic);
     if (std::memcmp(magic, kMagic, 6) != 0) r.fail("not a Tessera checkpoint (bad magic)");
     const uint32_t version = r.get<uint32_t>();
-    if (std::memcmp(magic, kMagic, sizeof magic) != 0 || version != kVersion)
-        r.fail("format version " + std::to_string(version) + " is not supported (this build reads version " +
-               std::to_string(kVersion) + ")");
+    if (std::memcmp(magic, kMagic, sizeof magic) != 0 || version < kOldestVersion || version > kVersion)
+        r.fail("format version " + std::to_string(version) + " is not supported (this build reads versions " +
+               std::to_string(kOldestVersion) + " to " + std::to_string(kVersion) + ")");
+    if (format_version) *format_version = version;
     if (r.get<uint32_t>() != TS_PASS_FLOATS) r.fail("corrupt (floats per pixel differ from this build's)");
     const int32_t w = r.get<int32_t>(), h = r.get<int32_t>();
     if (w < 1 || h < 1 || w > 16384 || h > 16384) r.fail("corrupt (image size out of range)");
@@ -243,7 +246,7 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
     saved.method_settings = r.str();
 
     const std::size_t n = std::size_t(w) * std::size_t(h);
-    const uint32_t method_count = r.get<uint32_t>();
+    const uint32_t method_count = version >= 3 ? r.get<uint32_t>() : 0;
     if (method_count > kMaxMethodSums) r.fail("corrupt (" + std::to_string(method_count) + " method sum arrays)");
     std::vector<uint64_t> method_lengths(method_count);
     uintmax_t method_bytes = 0;

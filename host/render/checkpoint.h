@@ -10,7 +10,8 @@
 // count followed by the bytes (no terminator).
 //
 //   char[8]  magic "TSCKPT01"
-//   u32      format version (3; 2 lacked the method's sums, 1 also the method's settings)
+//   u32      format version (3; 2, still read, lacks K and the method's sums; 1 also
+//            lacked the method's settings)
 //   u32      floats per pixel and pass (TS_PASS_FLOATS, 10)
 //   i32      width, i32 height
 //   u32      passes done (N: passes 0..N-1 are in the sums)
@@ -66,9 +67,10 @@ void save_checkpoint(const std::filesystem::path& path, const RunIdentity& id, u
 /// Reads `path` into `acc` (which must be sized id.width × id.height) after checking the
 /// magic, version, sizes, checksum and that it was made by a run with identity `id`.
 /// The method's sums go to `method_sums` when given (replacing its contents), else are
-/// checked and dropped. Returns the number of passes restored. Throws InputError naming
+/// checked and dropped; the file's format version to `format_version` when given (2 has
+/// no method sums). Returns the number of passes restored. Throws InputError naming
 /// `path` and what is wrong (missing, truncated, corrupt, or which setting differs).
 uint32_t load_checkpoint(const std::filesystem::path& path, const RunIdentity& id, Accumulator& acc,
-                         MethodSums* method_sums = nullptr);
+                         MethodSums* method_sums = nullptr, uint32_t* format_version = nullptr);
 
 }  // namespace tessera

@@ -12,6 +12,7 @@ CheckpointSession::CheckpointSession(const CheckpointOptions* options, const Sce
     if (!options_) return;
     id_ = make_run_identity(scene, settings, width, height, options_->backend);
     spp_ = settings.spp;
+    aovs_ = settings.aovs;
     interval_s_ = settings.checkpoint_interval_s;
     last_save_ = std::chrono::steady_clock::now();
     interrupts_.emplace();
@@ -29,7 +30,7 @@ void require_checkpoint(const std::filesystem::path& path) {
 uint32_t CheckpointSession::restore(Accumulator& acc) {
     if (!options_ || !options_->resume) return 0;
     require_checkpoint(options_->path);
-    const uint32_t passes = load_checkpoint(options_->path, id_, acc, &restored_);
+    const uint32_t passes = load_checkpoint(options_->path, id_, acc, &restored_, &restored_version_);
     if (passes > spp_)
         throw InputError("checkpoint " + options_->path.string() + " already holds " + std::to_string(passes) +
                          " passes, more than --spp " + std::to_string(spp_));
@@ -38,7 +39,13 @@ uint32_t CheckpointSession::restore(Accumulator& acc) {
 
 void CheckpointSession::keep_method_sums(const std::vector<std::vector<double>*>& sums) {
     if (!options_) return;
-    if (options_->resume && restored_.size() != sums.size())
+    // A format-2 checkpoint has no method sums: enough where the method keeps none
+    // without --aov (its sums stay empty), not where the resumed channels would need them.
+    const bool older_without_sums = restored_version_ < 3 && restored_.empty() && !aovs_;
+    if (options_->resume && restored_version_ < 3 && !older_without_sums && !sums.empty())
+        throw InputError("checkpoint " + options_->path.string() + " has format 2, which does not hold the method's "
+                         "--aov sums; delete it to render from the start");
+    if (options_->resume && restored_.size() != sums.size() && !older_without_sums)
         throw InputError("checkpoint " + options_->path.string() + " holds " + std::to_string(restored_.size()) +
                          " method sum arrays, this method keeps " + std::to_string(sums.size()));
     for (size_t k = 0; k < restored_.size(); ++k) *sums[k] = std::move(restored_[k]);

@@ -73,6 +73,8 @@ private:
     std::chrono::steady_clock::time_point last_save_;
     std::optional<InterruptScope> interrupts_;
     MethodSums restored_;                          // from the checkpoint, until kept
+    uint32_t restored_version_ = 3;                // its format (2: no method sums)
+    bool aovs_ = false;                            // --aov: the method's sums are written
     std::vector<const std::vector<double>*> kept_;  // the integrator's, saved each time
 };
 

@@ -93,6 +93,41 @@ TEST_F(Checkpoint, RoundTripIsBitIdenticalAndContinues) {
     expect_bit_identical(a.mean_image(true, true), b.mean_image(true, true));
 }
 
+// Rewrites a format-3 checkpoint of `pixels` pixels saved without method sums (K = 0, no
+// lengths) as the format-2 file an older build wrote: version 2, no K, re-signed.
+void to_format_2(const fs::path& file, size_t pixels) {
+    std::ifstream in(file, std::ios::binary);
+    std::vector<char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    const size_t k_at = b.size() - 8 - pixels * (TS_PASS_FLOATS * 8 + 3 * 8 + 4) - 4;
+    uint32_t k = 1, version = 2;
+    std::memcpy(&k, b.data() + k_at, 4);
+    ASSERT_EQ(k, 0u) << "only a checkpoint without method sums has a format-2 twin";
+    b.erase(b.begin() + std::ptrdiff_t(k_at), b.begin() + std::ptrdiff_t(k_at) + 4);
+    std::memcpy(b.data() + 8, &version, 4);
+    const uint64_t sum = fnv1a64(b.data(), b.size() - 8);
+    std::memcpy(b.data() + b.size() - 8, &sum, 8);
+    std::ofstream(file, std::ios::binary | std::ios::trunc).write(b.data(), std::streamsize(b.size()));
+}
+
+// A format-2 checkpoint (before the method's sums were kept) still loads: the same sums,
+// no method sums, its version said.
+TEST_F(Checkpoint, Format2StillLoads) {
+    const int w = 4, h = 3;
+    Accumulator a(w, h);
+    a.add(synthetic_pass(w, h, 0));
+    const fs::path file = dir_ / "x.ckpt";
+    save_checkpoint(file, some_identity(w, h), 4, a);
+    to_format_2(file, size_t(w) * h);
+    Accumulator b(w, h);
+    MethodSums restored{{1.0}};
+    uint32_t version = 0;
+    EXPECT_EQ(load_checkpoint(file, some_identity(w, h), b, &restored, &version), 1u);
+    EXPECT_EQ(version, 2u);
+    EXPECT_TRUE(restored.empty());
+    EXPECT_EQ(b.sums(), a.sums());
+}
+
 // The method's sums come back as saved; a checkpoint without them restores none.
 TEST_F(Checkpoint, MethodSumsRoundTrip) {
     const int w = 4, h = 3;
@@ -406,6 +441,39 @@ TEST_P(ResumeCornell, MethodAovChannelsResumeBitIdentical) {
     const Image resumed = render_frame(*backend, scene, buffers, rs, &stats, {}, &ck);
     EXPECT_EQ(stats.passes, 1u);
     expect_bit_identical(whole, resumed);
+}
+
+// A format-2 checkpoint resumes where the method keeps no sums (here igi without --aov)
+// to the same image; with --aov, whose channels would lack its passes, it is refused.
+TEST_P(ResumeCornell, Format2CheckpointResumesWithoutMethodSums) {
+    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
+    SceneBuffers buffers = make_scene_buffers(scene);
+    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
+    RenderSettings rs;
+    rs.method = Method::Igi;
+    rs.width = rs.height = 16;
+    rs.spp = 4;
+    rs.shadow_samples = 2;
+    rs.checkpoint_interval_s = 1e-9;
+    CheckpointOptions ck{dir_ / "cornell.ckpt", GetParam(), false};
+    for (bool aovs : {false, true}) {
+        SCOPED_TRACE(aovs ? "--aov" : "no --aov");
+        rs.aovs = aovs;
+        ck.resume = false;
+        const Image whole = render_ckpt(*backend, scene, buffers, rs, ck);
+        // igi keeps 6 sums (empty without --aov): the older build's file had none.
+        Accumulator acc(16, 16);
+        load_checkpoint(ck.path, make_run_identity(scene, rs, 16, 16, GetParam()), acc);
+        save_checkpoint(ck.path, make_run_identity(scene, rs, 16, 16, GetParam()), 4, acc);
+        to_format_2(ck.path, 16 * 16);
+        ck.resume = true;
+        if (aovs) {
+            expect_input_error([&] { render_frame(*backend, scene, buffers, rs, nullptr, {}, &ck); },
+                               {ck.path.string(), "has format 2", "--aov sums"});
+            continue;
+        }
+        expect_bit_identical(whole, render_frame(*backend, scene, buffers, rs, nullptr, {}, &ck));
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ResumeCornell, ::testing::Values(BackendKind::Embree, BackendKind::OpenCL));
