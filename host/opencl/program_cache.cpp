@@ -6,7 +6,11 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
 
 #include "kernels/shared/frame.h"
 #include "opencl/kernel_source.h"
@@ -28,30 +32,90 @@ std::string hex(uint64_t v) {
     return b;
 }
 
-std::vector<unsigned char> read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    if (!in) return {};
-    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
+// A cache entry: "TSCLBIN1", then u64 FNV-1a of the cache key's text, u64 byte count and
+// u64 FNV-1a of the binary, then the binary. PoCL crashes on a truncated binary (a short
+// file left by a crash: the writes are atomic but not synced), and a damaged one fails
+// only at launch, so every entry is checked whole before the driver sees it.
+constexpr char kEntryMagic[8] = {'T', 'S', 'C', 'L', 'B', 'I', 'N', '1'};
+constexpr size_t kEntryHeader = sizeof kEntryMagic + 3 * sizeof(uint64_t);
+
+uint64_t fnv1a_bytes(const std::vector<unsigned char>& b, size_t from) {
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = from; i < b.size(); ++i) h = (h ^ b[i]) * 1099511628211ull;
+    return h;
 }
 
-// Best effort: a cache that cannot be written only costs a rebuild next time.
+std::vector<unsigned char> entry_bytes(uint64_t key, const std::vector<unsigned char>& binary) {
+    const uint64_t head[3] = {key, uint64_t(binary.size()), fnv1a_bytes(binary, 0)};
+    std::vector<unsigned char> e(kEntryHeader + binary.size());
+    std::memcpy(e.data(), kEntryMagic, sizeof kEntryMagic);
+    std::memcpy(e.data() + sizeof kEntryMagic, head, sizeof head);
+    std::copy(binary.begin(), binary.end(), e.begin() + kEntryHeader);
+    return e;
+}
+
+// The binary of the entry at `p` for `key`; empty when it is missing, unreadable, of
+// another key, or not whole (any of which rebuilds it).
+std::vector<unsigned char> read_entry(const fs::path& p, uint64_t key) {
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) return {};
+    std::vector<unsigned char> e;
+    try {
+        std::ifstream in(p, std::ios::binary);
+        if (!in) return {};
+        e.assign(std::istreambuf_iterator<char>(in), {});
+    } catch (const std::exception&) {
+        return {};
+    }
+    uint64_t head[3];
+    if (e.size() < kEntryHeader || !std::equal(kEntryMagic, kEntryMagic + sizeof kEntryMagic, e.begin())) return {};
+    std::memcpy(head, e.data() + sizeof kEntryMagic, sizeof head);
+    if (head[0] != key || head[1] != e.size() - kEntryHeader || head[2] != fnv1a_bytes(e, kEntryHeader)) return {};
+    e.erase(e.begin(), e.begin() + kEntryHeader);
+    return e;
+}
+
+// Best effort: a cache that cannot be written only costs a rebuild next time, said once.
 void write_file_atomic(const fs::path& p, const std::vector<unsigned char>& data) {
+    static bool told = false;
+    const auto fail = [&](const std::string& why) {
+        if (!told) std::fprintf(stderr, "tessera: note: OpenCL program cache %s not written (%s); later runs build "
+                                        "again\n", p.parent_path().c_str(), why.c_str());
+        told = true;
+    };
     std::error_code ec;
     fs::create_directories(p.parent_path(), ec);
+    if (ec) return fail(ec.message());
     fs::path tmp = p;
     tmp += ".tmp." + std::to_string(::getpid());
     {
         std::ofstream out(tmp, std::ios::binary);
-        if (!out) return;
+        if (!out) return fail("cannot create " + tmp.filename().string());
         out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
         if (!out) {
             out.close();
             fs::remove(tmp, ec);
-            return;
+            return fail("write failed");
         }
     }
     fs::rename(tmp, p, ec);
-    if (ec) fs::remove(tmp, ec);
+    if (ec) {
+        fail(ec.message());
+        fs::remove(tmp, ec);
+    }
+}
+
+// The shared temporary directory's cache is per user, made private, and used only while
+// it is still ours and writable by us alone: a file another user put there would be run.
+bool private_to_us(const fs::path& dir) {
+    std::error_code ec;
+    if (!fs::exists(dir, ec)) {
+        fs::create_directories(dir, ec);
+        fs::permissions(dir, fs::perms::owner_all, ec);
+    }
+    struct stat st {};
+    return ::lstat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == ::geteuid() &&
+           (st.st_mode & (S_IWGRP | S_IWOTH)) == 0;
 }
 
 std::string build_log(const cl::Program& program, const cl::Device& device) {
@@ -91,7 +155,11 @@ fs::path program_cache_dir() {
     if (const char* d = std::getenv("TESSERA_CACHE_DIR"); d && *d) return d;
     if (const char* d = std::getenv("XDG_CACHE_HOME"); d && *d) return fs::path(d) / "tessera";
     if (const char* d = std::getenv("HOME"); d && *d) return fs::path(d) / ".cache" / "tessera";
-    return fs::temp_directory_path() / "tessera-cache";
+    std::error_code ec;
+    fs::path tmp = fs::temp_directory_path(ec);  // $TMPDIR; a bad one is not this run's problem
+    if (ec) tmp = "/tmp";
+    const fs::path dir = tmp / ("tessera-cache-" + std::to_string(::geteuid()));
+    return private_to_us(dir) ? dir : fs::path();
 }
 
 ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, const std::string& name,
@@ -106,9 +174,11 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
     for (const auto& d : defines) out.options += " " + d;
     const std::string key_text = source + "\n" + out.options + "\n" + dev.platform_name + "\n" +
                                  dev.name + "\n" + dev.version + "\n" + dev.driver;
-    const fs::path cached = program_cache_dir() / (name + "-" + hex(fnv1a(key_text)) + ".bin");
+    const uint64_t key = fnv1a(key_text);
+    const fs::path dir = program_cache_dir();
+    const fs::path cached = dir.empty() ? fs::path() : dir / (name + "-" + hex(key) + ".bin");
 
-    std::vector<unsigned char> binary = read_file(cached);
+    std::vector<unsigned char> binary = cached.empty() ? std::vector<unsigned char>() : read_entry(cached, key);
     if (!binary.empty()) {
         try {
             cl::Program::Binaries bins{binary};
@@ -129,7 +199,7 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
                            " with options \"" + out.options + "\":\n" + build_log(p, dev.device));
     try {
         auto bins = p.getInfo<CL_PROGRAM_BINARIES>();
-        if (!bins.empty() && !bins[0].empty()) write_file_atomic(cached, bins[0]);
+        if (!cached.empty() && !bins.empty() && !bins[0].empty()) write_file_atomic(cached, entry_bytes(key, bins[0]));
     } catch (const cl::Error&) {
         // Some drivers cannot return binaries; caching is then skipped.
     }

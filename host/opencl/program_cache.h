@@ -11,7 +11,9 @@
 namespace tessera {
 
 /// Cache directory: $TESSERA_CACHE_DIR, else $XDG_CACHE_HOME/tessera, else
-/// ~/.cache/tessera, else a "tessera-cache" directory in the system temp directory.
+/// ~/.cache/tessera, else "tessera-cache-<uid>" in $TMPDIR (or /tmp), made mode 0700 and
+/// used only while this user owns it and no one else may write to it; empty (no cache)
+/// otherwise. Each entry is checked whole (length, checksum, key) before it is used.
 std::filesystem::path program_cache_dir();
 
 struct ProgramBuild {

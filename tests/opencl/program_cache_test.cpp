@@ -75,6 +75,35 @@ TEST(ProgramCache, CorruptEntryIsRebuilt) {
     EXPECT_NO_THROW(cl::Kernel(again.program, "trace_closest"));
 }
 
+// An entry that is whole in form but not in content (cut short by a crash: PoCL crashed
+// on it; bytes flipped: the launch failed; another program's entry under this name: the
+// kernel was missing) is rebuilt and replaced, every case, before the driver sees it.
+TEST(ProgramCache, DamagedOrForeignEntryIsRebuiltAndReplaced) {
+    ScopedDirEnv cache("TESSERA_CACHE_DIR", "cache-damaged");
+    ClDeviceInfo dev = select_cl_device("");
+    cl::Context ctx(dev.device);
+    build_program(ctx, dev, "trace.cl", {});
+    build_program(ctx, dev, "direct.cl", {});
+    fs::path trace, direct;
+    for (const auto& e : fs::directory_iterator(cache.dir()))
+        (e.path().filename().string().rfind("trace.cl", 0) == 0 ? trace : direct) = e.path();
+    ASSERT_FALSE(trace.empty() || direct.empty());
+    const auto bytes = [](const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const std::string good = bytes(trace);
+    std::string flipped = good;
+    for (size_t i = 100; i < flipped.size(); i += 97) flipped[i] ^= 0x55;
+    for (const std::string& damaged : {good.substr(0, good.size() / 4), good.substr(0, 200), flipped, bytes(direct)}) {
+        std::ofstream(trace, std::ios::binary | std::ios::trunc) << damaged;
+        const ProgramBuild again = build_program(ctx, dev, "trace.cl", {});
+        EXPECT_FALSE(again.from_cache) << damaged.size() << " bytes";
+        EXPECT_NO_THROW(cl::Kernel(again.program, "trace_closest"));
+        EXPECT_TRUE(build_program(ctx, dev, "trace.cl", {}).from_cache) << "the entry is replaced by the rebuilt one";
+    }
+}
+
 TEST(ProgramCache, BuildFailureReportsTheLog) {
     ScopedDirEnv kernels("TESSERA_KERNEL_DIR", "broken-kernels");
     ScopedDirEnv cache("TESSERA_CACHE_DIR", "cache-broken");
