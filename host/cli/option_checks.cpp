@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <set>
 #include <system_error>
 
@@ -110,21 +111,19 @@ void check_output(const OutputFile& o) {
 }  // namespace
 
 void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<fs::path>& inputs) {
-    std::vector<fs::path> in;
-    for (const fs::path& p : inputs) in.push_back(same_file(p));
-    std::vector<fs::path> seen;
+    // Keyed lookups, not pairs: a viewer script's --frame-images may name a million files.
+    std::map<fs::path, size_t> in, seen;  // same_file key -> index (the first, for inputs)
+    for (size_t k = 0; k < inputs.size(); ++k) in.emplace(same_file(inputs[k]), k);
     for (size_t i = 0; i < outputs.size(); ++i) {
         check_output(outputs[i]);
         const fs::path id = same_file(outputs[i].path);
-        for (size_t k = 0; k < in.size(); ++k)
-            if (id == in[k])
-                throw InputError(outputs[i].role + " " + outputs[i].path.string() +
-                                 (k == 0 ? std::string(": is the scene file")
-                                        : ": would replace an input of this run, " + inputs[k].string()));
-        for (size_t j = 0; j < i; ++j)
-            if (seen[j] == id)
-                throw InputError(outputs[i].role + " " + outputs[i].path.string() + ": is also " + outputs[j].role);
-        seen.push_back(id);
+        if (const auto k = in.find(id); k != in.end())
+            throw InputError(outputs[i].role + " " + outputs[i].path.string() +
+                             (k->second == 0 ? std::string(": is the scene file")
+                                             : ": would replace an input of this run, " + inputs[k->second].string()));
+        if (const auto j = seen.find(id); j != seen.end())
+            throw InputError(outputs[i].role + " " + outputs[i].path.string() + ": is also " + outputs[j->second].role);
+        seen.emplace(id, i);
     }
 }
 

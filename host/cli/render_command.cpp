@@ -113,9 +113,10 @@ void stop_if_interrupted(const std::string& when) {
         throw Interrupted("interrupted " + when + "; no checkpoint written (nothing of this run is saved)");
 }
 
-// For a RuntimeError: PoCL's LLVM puts its own SIGINT/SIGTERM handlers in front of ours
+// For a BuildError: PoCL's LLVM puts its own SIGINT/SIGTERM handlers in front of ours
 // while it compiles; they delete its temporary files and pass the signal on, so a Ctrl-C
-// during a kernel build fails the build. That is the interrupt, not a build error.
+// during a kernel build fails the build. That is the interrupt, not a build error. (A
+// checkpoint saved before is kept: programs are built at first use, in the first pass.)
 void stop_if_interrupted_build() { stop_if_interrupted("during an OpenCL kernel build (it stopped the build)"); }
 
 // Option combinations and values the settings table does not check, before any work.
@@ -265,7 +266,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     if (frames) {
         try {
             return run_sequence(a, scene, *frames, out, bo, settings);
-        } catch (const RuntimeError&) {
+        } catch (const BuildError&) {
             stop_if_interrupted_build();
             throw;
         }
@@ -282,7 +283,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         buffers = make_scene_buffers(scene);
         try {
             backend = make_backend(bo, buffers, plan);
-        } catch (const RuntimeError&) {
+        } catch (const BuildError&) {
             stop_if_interrupted_build();
             throw;
         }
@@ -312,7 +313,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     Image img;
     try {  // the integrators build their programs at first use, in the first pass
         img = render_frame(*backend, scene, buffers, settings, &stats, progress, ckpt ? &*ckpt : nullptr, &cluster);
-    } catch (const RuntimeError&) {
+    } catch (const BuildError&) {
         stop_if_interrupted_build();
         throw;
     }

@@ -255,20 +255,21 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (!a.times.empty()) files.push_back({a.times, "--times"});
     if (a.record) files.push_back({a.camera_path, "--camera-path (recording)"});
     if (!a.screenshot_window.empty()) files.push_back({a.screenshot_window, "--screenshot-window"});
-    if (!a.frame_images.empty())
-        for (int i = 0, n = frame_image_count(lo); i < n; ++i)
-            files.push_back({frame_output_path(fs::path(a.frame_images) / "frame.exr", i),
-                             "--frame-images (frame " + std::to_string(i) + ")"});
     std::vector<fs::path> inputs = scene.inputs;
     for (const std::string& in : {a.reference, a.input_script, a.record ? std::string() : a.camera_path,
                                   a.pareto})
         if (!in.empty()) inputs.push_back(in);
-    check_outputs(files, inputs);
-    check_output_directories(files);
-    // Later screenshots (numbered on from 0001) step over every file the run reads or
-    // writes otherwise, so P never replaces the reference or a frame image.
+    // Later screenshots (numbered on from 0001), and a window's frame images (not known
+    // before), step over every file the run reads or writes otherwise, so they never
+    // replace the reference or --times.
     for (const fs::path& in : inputs) o.reserved.push_back(same_file(in));
     for (size_t i = 2; i < files.size(); ++i) o.reserved.push_back(same_file(files[i].path));
+    if (!a.frame_images.empty())
+        for (int i = 0, n = frame_image_count(lo); i < n; ++i)
+            files.push_back({frame_output_path(fs::path(a.frame_images) / "frame.exr", i),
+                             "--frame-images (frame " + std::to_string(i) + ")"});
+    check_outputs(files, inputs);
+    check_output_directories(files);
 
     // Installed before the banner: a signal sent once the banner shows (a user's Ctrl-C, a
     // script waiting for it) ends the loop after its frame (ViewLoop::done), never the process.

@@ -195,7 +195,7 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
 
     cl::Program p(ctx, source);
     if (!try_build(p, dev.device, out.options))
-        throw RuntimeError("OpenCL build of kernels/" + name + " failed on " + dev.name +
+        throw BuildError("OpenCL build of kernels/" + name + " failed on " + dev.name +
                            " with options \"" + out.options + "\":\n" + build_log(p, dev.device));
     try {
         auto bins = p.getInfo<CL_PROGRAM_BINARIES>();

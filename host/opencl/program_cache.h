@@ -27,8 +27,8 @@ struct ProgramBuild {
 /// survive) and "-cl-fp32-correctly-rounded-divide-sqrt" where the device supports it
 /// (else -DTS_INEXACT_DIV_SQRT, which widens the traversal's box bound). The cache key is a 64-bit FNV-1a hash of the expanded source, the options
 /// and the platform, device and driver names and versions. A stale or corrupt cache
-/// entry is ignored and rebuilt. Throws RuntimeError with the full build log on a
-/// compile error.
+/// entry is ignored and rebuilt. Throws BuildError (util/error.h) with the full build log
+/// on a compile error.
 ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, const std::string& name,
                            const std::vector<std::string>& defines);
 

@@ -19,6 +19,14 @@ struct RuntimeError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+/// An OpenCL program that did not build (the message holds the build log). Its own type
+/// because PoCL's LLVM handles SIGINT/SIGTERM first while it compiles, deleting its
+/// temporary files, so a Ctrl-C during a build fails it: the command reports that as the
+/// interrupt it is.
+struct BuildError : RuntimeError {
+    using RuntimeError::RuntimeError;
+};
+
 /// A render stopped by SIGINT or SIGTERM, after its state was saved to a checkpoint
 /// (render/checkpoint.h) or with a message saying why none was. main() prints "tessera: <what>" and exits with status 130.
 struct Interrupted : std::runtime_error {

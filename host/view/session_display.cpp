@@ -58,19 +58,20 @@ Image ViewSession::accumulation() const {
     return to_window(std::move(image));
 }
 
+bool ViewSession::reserved(const std::filesystem::path& file) const {
+    const auto& r = options_.reserved;
+    return std::find(r.begin(), r.end(), same_file(file)) != r.end();
+}
+
 std::filesystem::path ViewSession::save_screenshot() {
     if (!acc_ || acc_->passes() == 0) throw RuntimeError("screenshot: no pass accumulated yet");
     std::filesystem::path exr, png;
     for (;; ++screenshots_) {
         exr = frame_output_path(options_.screenshot, screenshots_);
         png = std::filesystem::path(exr).replace_extension(".png");
-        const auto& r = options_.reserved;
-        const auto taken = [&](const std::filesystem::path& p) {
-            return std::find(r.begin(), r.end(), same_file(p)) != r.end();
-        };
-        if (!taken(exr) && !taken(png)) break;
+        if (!reserved(exr) && !reserved(png)) break;
         std::fprintf(stderr, "tessera view: screenshot %d skipped: %s is a file this run reads or writes\n",
-                     screenshots_, (taken(exr) ? exr : png).c_str());
+                     screenshots_, (reserved(exr) ? exr : png).c_str());
     }
     const Image image = accumulation();
     CommitGroup outputs;  // both files or neither, like render

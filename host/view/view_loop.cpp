@@ -41,8 +41,16 @@ void ViewLoop::step(double wall_dt) {
     t.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     times_.push_back(t);
     if (!options_.record.empty()) recorded_.push_back({session_.camera(), session_.animation_frame()});
-    if (!options_.frame_images.empty())
-        write_exr(frame_output_path(options_.frame_images / "frame.exr", frame_), session_.accumulation());
+    if (!options_.frame_images.empty()) {
+        // A window's frames are not known at the start, so each is checked as it comes
+        // (a headless run's were checked before the first frame).
+        const std::filesystem::path image = frame_output_path(options_.frame_images / "frame.exr", frame_);
+        if (session_.reserved(image))
+            std::fprintf(stderr, "tessera view: frame image %d skipped: %s is a file this run reads or writes\n",
+                         frame_, image.c_str());
+        else
+            write_exr(image, session_.accumulation());
+    }
     ++frame_;
 }
 

@@ -295,6 +295,23 @@ TEST_F(ViewWindowCli, ScreenshotKeyEqualsRender) {
     }
 }
 
+// A window's frames are not known at the start: a frame image that is the run's
+// --reference is skipped, said on stderr, and the reference is left as it was.
+TEST_F(ViewWindowCli, FrameImagesStepOverTheReference) {
+    const std::string common = " --width 16 --height 16 --method direct --spp 2 --backend embree";
+    fs::create_directories(dir_ / "fi");
+    const fs::path ref = dir_ / "fi" / "frame.0002.exr";
+    ASSERT_EQ(run_tessera("render" + common + " --out " + ref.string()).exit_code, 0);
+    const std::string before = file_bytes(ref);
+    const fs::path script = write("s.json", R"({"events": [{"frame": 4, "quit": true}]})");
+    const CliResult r = run_shell(under_xvfb("view" + common + " --reference " + ref.string() + " --input-script " +
+                                             script.string() + " --frame-images " + (dir_ / "fi").string()));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(file_bytes(ref), before) << "the reference was replaced";
+    EXPECT_NE(r.output.find("frame image 2 skipped: " + ref.string()), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir_ / "fi" / "frame.0003.exr")) << r.output;
+}
+
 TEST_F(ViewWindowCli, FlyThroughGivesTheHeadlessImages) {
     const fs::path path = write("path.json", fly_through());
     const std::string common = "view --backend embree --width 32 --height 32 --camera-path " + path.string();
