@@ -39,6 +39,17 @@ public:
             case json::parse_event_t::key: {
                 Frame& f = frames_.back();
                 f.key = parsed.get<std::string>();
+                // A NUL would end the key in every message that names it (as for values,
+                // JsonField::string): refused here, shown escaped.
+                if (f.key.find('\0') != std::string::npos) {
+                    const std::string key = json(f.key).dump();
+                    f.key.clear();  // the path of the object that holds it
+                    std::string in = current_path();
+                    if (!in.empty() && in.back() == '.') in.pop_back();
+                    throw InputError(file_.string() + ": key " + key + " in " +
+                                     (in.empty() ? std::string("the top level") : "'" + in + "'") +
+                                     ": must not contain a NUL character (\\u0000)");
+                }
                 if (!f.keys.insert(f.key).second)
                     throw InputError(file_.string() + ": duplicate key '" + current_path() +
                                      "' (a key may appear once in an object)");

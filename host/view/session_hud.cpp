@@ -15,7 +15,7 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
     // The igi family counts its rays; direct and pt trace theirs inside one kernel, so
     // their rate is in camera samples (one a pixel and pass), not a made-up 0 rays.
     const bool counts_rays = igi_family(settings_.method);
-    const double per_pass = counts_rays ? double(last_.rays) : double(width_) * height_;
+    const double per_pass = counts_rays ? double(last_.rays) : double(render_width_) * render_height_;
     const double rate = per_pass > 0 && last_.total > 0 ? per_pass / last_.total * 1e-6 : 0.0;
     const char* unit = counts_rays ? "Mrays/s" : "Msamples/s";
     if (last_rendered_)

@@ -173,6 +173,9 @@ INSTANTIATE_TEST_SUITE_P(
         // string is refused, shown escaped.
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "a\u0000b.obj"}]})",
                "objects[0].mesh' = \"a\\u0000b.obj\": must not contain a NUL character"},
+        BadKey{"{" CAM_OK R"(, "objects": [{"mesh\u0000evil": "%M"}]})",
+               "key \"mesh\\u0000evil\" in 'objects[0]': must not contain a NUL character"},
+        BadKey{R"({"a\u0000": 1, )" CAM_OK ", " OBJ_OK "}", "key \"a\\u0000\" in the top level"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"scale": [1, 0, 1]}}], )" LIGHT_OK "}",
                "objects[0].transform.scale"},
         BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"rotate": [{"axis": [0,1,0]}]}}])"
