@@ -21,8 +21,6 @@ import argparse
 import json
 import sys
 
-from cvvdp_metric import BadInput, read_rgb  # the one EXR reader of the metric scripts
-
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -33,6 +31,9 @@ def main():
     try:
         import numpy as np
         import flip_evaluator as flip
+        # The one EXR reader of the metric scripts; in the try: a copy of this script
+        # elsewhere ($TESSERA_FLIP_SCRIPT) without it beside reports FLIP unavailable.
+        from cvvdp_metric import BadInput, read_rgb
     except ImportError as e:
         print(f"flip_metric: {e} (install with: python3 -m pip install flip-evaluator)", file=sys.stderr)
         return 3
