@@ -27,6 +27,15 @@ double parse_env_number(const char* name, const char* value, double max) {
     return v;
 }
 
+// An on/off switch from environment variable `name`: unset or empty: `otherwise`; "0" or
+// "1"; anything else throws InputError naming the variable and its value.
+bool env_switch(const char* name, bool otherwise) {
+    const char* v = env_value(name);
+    if (!v) return otherwise;
+    if (std::string(v) == "0" || std::string(v) == "1") return std::string(v) == "1";
+    throw InputError(std::string(name) + "=" + v + ": expected 0 or 1");
+}
+
 }  // namespace
 
 BackendKind parse_backend_kind(const std::string& s) {
@@ -144,9 +153,7 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
     if (options.kind == BackendKind::Embree) {
         // TESSERA_EMBREE_PACKETS=0 turns packets off for a whole run (benchmarks compare
         // the two tracers with one binary; the images are the same either way).
-        const char* env = std::getenv("TESSERA_EMBREE_PACKETS");
-        const bool packets = options.embree_packets && !(env && std::string(env) == "0");
-        return make_embree_backend(scene, packets);
+        return make_embree_backend(scene, options.embree_packets && env_switch("TESSERA_EMBREE_PACKETS", true));
     }
     // TESSERA_CL_PACKETS=0 likewise turns the OpenCL CPU packet kernels off;
     // TESSERA_CL_GPU=1 runs the GPU variant on any device, TESSERA_CL_GPU=0 on none;
@@ -155,14 +162,11 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
     // importance's chunks, TESSERA_CL_LIGHT_PATH_GATHER=1 / 0 the light paths' gathered
     // read-back (BackendOptions).
     BackendOptions o = options;
-    const char* env = std::getenv("TESSERA_CL_PACKETS");
-    o.cl_packets = options.cl_packets && !(env && std::string(env) == "0");
-    if (const char* gpu = std::getenv("TESSERA_CL_GPU"); gpu && (std::string(gpu) == "1" || std::string(gpu) == "0"))
-        o.cl_gpu_variant = std::string(gpu) == "1";
-    if (const char* lp = std::getenv("TESSERA_CL_LIGHT_PATHS"); lp && (std::string(lp) == "1" || std::string(lp) == "0"))
-        o.cl_light_path_kernel = std::string(lp) == "1";
-    if (const char* g = std::getenv("TESSERA_CL_LIGHT_PATH_GATHER"); g && (std::string(g) == "1" || std::string(g) == "0"))
-        o.cl_light_path_gather = std::string(g) == "1";
+    o.cl_packets = options.cl_packets && env_switch("TESSERA_CL_PACKETS", true);
+    if (env_value("TESSERA_CL_GPU")) o.cl_gpu_variant = env_switch("TESSERA_CL_GPU", false);
+    if (env_value("TESSERA_CL_LIGHT_PATHS")) o.cl_light_path_kernel = env_switch("TESSERA_CL_LIGHT_PATHS", false);
+    if (env_value("TESSERA_CL_LIGHT_PATH_GATHER"))
+        o.cl_light_path_gather = env_switch("TESSERA_CL_LIGHT_PATH_GATHER", false);
     if (const char* ms = env_value("TESSERA_CL_LAUNCH_MS")) o.cl_launch_ms = parse_env_number("TESSERA_CL_LAUNCH_MS", ms, 1e6);
     if (const char* g = env_value("TESSERA_CL_TILE_GROUPS")) {
         const double n = parse_env_number("TESSERA_CL_TILE_GROUPS", g, 1e9);

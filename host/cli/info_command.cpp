@@ -65,8 +65,10 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     std::string defs;
     for (const auto& d : plan.cl_defines()) defs += " " + d;
     // The programs each method builds (host/device/kernel_table.h; trace.cl: the batches of
-    // rays the host traces), all with the same options.
-    std::printf("OpenCL programs, built with -cl-std=CL1.2%s:\n", defs.c_str());
+    // rays the host traces), all with the same options: those the scene decides here, and
+    // those of the device and the environment (host/opencl/program_cache.h).
+    std::printf("OpenCL programs, built with -cl-std=CL1.2%s (and the device's division option, a GPU's "
+                "traversal define, $TESSERA_CL_OPTIONS):\n", defs.c_str());
     std::printf("  direct: direct.cl; pt: pt.cl; igi, ais, ais-max: igi.cl, trace.cl; ic, tic: igi.cl, ic.cl, "
                 "trace.cl\n");
 }

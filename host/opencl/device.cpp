@@ -1,5 +1,7 @@
 #include "opencl/device.h"
 
+#include <cerrno>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -75,10 +77,13 @@ std::vector<ClDeviceInfo> list_cl_devices() {
                 (d.getInfo<CL_DEVICE_SINGLE_FP_CONFIG>() & CL_FP_CORRECTLY_ROUNDED_DIVIDE_SQRT) != 0;
             // TESSERA_CL_MAX_ALLOC (bytes) lowers the limit, to try a small device's
             // limit on a large one (tests/cli/opencl_failure_test.cpp uses it).
-            if (const char* cap = std::getenv("TESSERA_CL_MAX_ALLOC")) {
+            if (const char* cap = std::getenv("TESSERA_CL_MAX_ALLOC"); cap && *cap) {
                 char* end = nullptr;
+                errno = 0;
                 const unsigned long long v = std::strtoull(cap, &end, 10);
-                if (end != cap && *end == '\0') i.max_alloc = std::min(i.max_alloc, v);
+                if (end == cap || *end != '\0' || errno == ERANGE || !std::isdigit(static_cast<unsigned char>(cap[0])))
+                    throw InputError(std::string("TESSERA_CL_MAX_ALLOC=") + cap + ": expected a whole number of bytes");
+                i.max_alloc = std::min(i.max_alloc, v);
             }
             out.push_back(std::move(i));
         }
@@ -111,11 +116,24 @@ ClDeviceInfo select_cl_device(const std::string& spec) {
             "use --backend embree to render on the CPU without OpenCL");
     if (spec.empty()) return devs[rank_cl_devices(devs).front()];
     if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); })) {
-        size_t i = std::stoul(spec);
-        if (i < devs.size()) return devs[i];
+        // Digits only: an index (a run of them too long for one is out of range, not a crash).
+        const size_t digits = spec.size() - std::min(spec.find_first_not_of('0'), spec.size());
+        if (digits <= 9) {
+            const size_t i = std::stoul(spec);
+            if (i < devs.size()) return devs[i];
+        }
     } else {
-        for (const auto& d : devs)
-            if (lower(d.platform_name + ": " + d.name).find(lower(spec)) != std::string::npos) return d;
+        std::vector<size_t> matches;
+        for (size_t i = 0; i < devs.size(); ++i)
+            if (lower(devs[i].platform_name + ": " + devs[i].name).find(lower(spec)) != std::string::npos)
+                matches.push_back(i);
+        if (matches.size() == 1) return devs[matches[0]];
+        if (matches.size() > 1) {  // which one was meant is not ours to guess
+            std::string names;
+            for (size_t i : matches) names += (names.empty() ? "" : ", ") + std::string("[") + std::to_string(i) + "] " + devs[i].name;
+            throw RuntimeError("--device " + spec + ": names " + std::to_string(matches.size()) + " OpenCL devices (" +
+                               names + "); give its index or more of its name");
+        }
     }
     throw RuntimeError("--device " + spec + ": no such OpenCL device; available: " + device_list_text(devs) +
                        " (or use --backend embree)");

@@ -170,8 +170,10 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
     // The traversal's conservative box test assumes correctly rounded division
     // (kernels/bvh_traverse.h); where the device cannot, it widens its bound instead.
     out.options += dev.correctly_rounded_div_sqrt ? " -cl-fp32-correctly-rounded-divide-sqrt" : " -DTS_INEXACT_DIV_SQRT";
-    if (const char* extra = std::getenv("TESSERA_CL_OPTIONS"); extra && *extra) out.options += std::string(" ") + extra;
     for (const auto& d : defines) out.options += " " + d;
+    // The user's options last: one that takes an argument ("-I" at the end) cannot
+    // swallow a define the scene needs (that rendered Sibenik untextured).
+    if (const char* extra = std::getenv("TESSERA_CL_OPTIONS"); extra && *extra) out.options += std::string(" ") + extra;
     const std::string key_text = source + "\n" + out.options + "\n" + dev.platform_name + "\n" +
                                  dev.name + "\n" + dev.version + "\n" + dev.driver;
     const uint64_t key = fnv1a(key_text);

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -118,6 +119,30 @@ TEST_F(OpenCLFailureCli, BadImportanceChunkIsNamed) {
         EXPECT_NE(r.output.find(std::string("tessera: error: ") + env + ": expected a"), std::string::npos) << r.output;
         EXPECT_FALSE(fs::exists(out));
     }
+}
+
+// The on/off switches and the allocation cap take only what they document: "off" or
+// "false" was read as on, and a cap of "1kB" as no cap, without a word.
+TEST_F(OpenCLFailureCli, BadSwitchOrAllocationCapIsNamed) {
+    const fs::path out = dir_ / "img.exr";
+    for (const auto& [backend, env, message] :
+         {std::tuple{"opencl", "TESSERA_CL_PACKETS=off", "TESSERA_CL_PACKETS=off: expected 0 or 1"},
+          std::tuple{"opencl", "TESSERA_CL_GPU=yes", "TESSERA_CL_GPU=yes: expected 0 or 1"},
+          std::tuple{"opencl", "TESSERA_CL_LIGHT_PATHS=2", "TESSERA_CL_LIGHT_PATHS=2: expected 0 or 1"},
+          std::tuple{"embree", "TESSERA_EMBREE_PACKETS=false", "TESSERA_EMBREE_PACKETS=false: expected 0 or 1"},
+          std::tuple{"opencl", "TESSERA_CL_MAX_ALLOC=1kB", "TESSERA_CL_MAX_ALLOC=1kB: expected a whole number of bytes"},
+          std::tuple{"opencl", "TESSERA_CL_MAX_ALLOC=-1", "TESSERA_CL_MAX_ALLOC=-1: expected a whole number of bytes"}}) {
+        const CliResult r = run_tessera("render " + kScene + " --backend " + backend +
+                                            " --spp 1 --width 8 --height 8 --out " + out.string(),
+                                        env);
+        EXPECT_EQ(r.exit_code, 2) << env << ": " << r.output;
+        EXPECT_NE(r.output.find(std::string("tessera: error: ") + message), std::string::npos) << r.output;
+        EXPECT_FALSE(fs::exists(out));
+    }
+    // A device index too long for a number is out of range, said as such (it was "stoul").
+    const CliResult r = run_tessera("render " + kScene + " --backend opencl --device 99999999999999999999 --spp 1 "
+                                    "--width 8 --height 8 --out " + out.string());
+    EXPECT_NE(r.output.find("--device 99999999999999999999: no such OpenCL device"), std::string::npos) << r.output;
 }
 
 }  // namespace
