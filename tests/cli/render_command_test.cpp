@@ -105,6 +105,15 @@ TEST(InfoCli, ListsEffectsOfTheDefaultScene) {
     EXPECT_NE(r.output.find("igi, ais, ais-max: igi.cl, trace.cl;"), std::string::npos) << r.output;
 }
 
+// A $TESSERA_DATA that is not a directory is said (--data-dir of the same is an error);
+// the run goes on, since a scene may not need it.
+TEST(InfoCli, DataPathThatIsNotADirectoryIsSaid) {
+    const CliResult r = run_tessera("info", "TESSERA_DATA=/no/such/tessera-data");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("tessera: note: TESSERA_DATA=/no/such/tessera-data is not a directory"), std::string::npos)
+        << r.output;
+}
+
 TEST(InfoCli, DescribesAnAnimation) {
     CliResult r = run_tessera("info " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-animated.json");
     EXPECT_EQ(r.exit_code, 0) << r.output;
