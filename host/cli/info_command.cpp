@@ -47,10 +47,7 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     if (b.separated_emitters > 0)
         std::printf("            %u of them lay on another surface: moved %g ulps in front of it (docs/ray-tracing.md §4)\n",
                     b.separated_emitters, double(kCoincidentEmitterUlps));
-    if (b.stacked_emitters > 0)
-        std::printf("            %u of them lie on another light facing the same way (a light listed twice?): "
-                    "both are sampled, so where they overlap their light counts twice\n",
-                    b.stacked_emitters);
+    if (b.stacked_emitters > 0) std::printf("            %s\n", stacked_emitters_text(b.stacked_emitters).c_str());
     std::printf("materials:  %zu, textures: %zu\n", s.materials.size(), s.textures.size());
     std::printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     std::printf("camera:     %dx%d, vfov %g, at (%g, %g, %g)\n", s.camera.width, s.camera.height,

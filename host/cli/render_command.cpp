@@ -16,6 +16,7 @@
 #include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
 #include "render/cluster.h"
+#include "device/coincident_emitters.h"
 #include "device/effect_plan.h"
 #include "integrators/method.h"
 #include "render/interrupt.h"
@@ -162,6 +163,12 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
                   const BackendOptions& bo, RenderSettings& settings) {
     std::fprintf(stderr, "tessera: %s, %zu triangles, frames %d..%d\n", scene.name.c_str(), scene.triangle_count(),
                  frames.first, frames.last);
+    {  // said once, of the first frame (animation moves objects, rarely onto each other)
+        const Scene first = scene_at_frame(scene, frames.first);
+        std::vector<glm::vec3> positions = first.positions;
+        if (const size_t n = separate_coincident_emitters(first, positions).stacked)
+            std::fprintf(stderr, "tessera: note: %s\n", stacked_emitters_text(n).c_str());
+    }
     CommitGroup outputs;  // no frame is written unless every frame is
     std::string written;
     int frame_now = frames.first;
@@ -294,9 +301,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
             std::fprintf(stderr, "\n");
             for (const auto& line : plan.describe()) std::fprintf(stderr, "  %s\n", line.c_str());
             if (buffers.stacked_emitters > 0)
-                std::fprintf(stderr, "tessera: note: %u emissive triangles lie on another light facing the same way "
-                             "(a light listed twice?): both are sampled, so where they overlap their light counts twice\n",
-                             buffers.stacked_emitters);
+                std::fprintf(stderr, "tessera: note: %s\n", stacked_emitters_text(buffers.stacked_emitters).c_str());
         }
         stop_if_interrupted("before the first pass");
     });

@@ -19,6 +19,7 @@
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "cli/parameter_options.h"
+#include "device/coincident_emitters.h"
 #include "image/atomic_file.h"
 #include "integrators/method.h"
 #include "render/interrupt.h"
@@ -278,6 +279,8 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     std::fprintf(stderr, "tessera view: %s, %zu triangles, %dx%d, %s on %s\n", scene.name.c_str(),
                  scene.triangle_count(), session.width(), session.height(), method_name(session.method()),
                  session.backend_description().c_str());
+    if (session.stacked_emitters() > 0)
+        std::fprintf(stderr, "tessera view: note: %s\n", stacked_emitters_text(session.stacked_emitters()).c_str());
     ViewLoop loop(session, lo);
     if (a.headless) {
         while (!loop.done()) loop.step(0.0);

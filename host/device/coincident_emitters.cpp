@@ -196,4 +196,9 @@ CoincidentEmitters separate_coincident_emitters(const Scene& scene, std::vector<
     return result;
 }
 
+std::string stacked_emitters_text(size_t stacked) {
+    return std::to_string(stacked) + " emissive triangles lie on another light facing the same way (a light listed "
+           "twice?): both are sampled, so where they overlap their light counts twice";
+}
+
 }  // namespace tessera

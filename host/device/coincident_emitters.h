@@ -1,6 +1,7 @@
 // Emitters that lie in the plane of another surface, overlapping it.
 #pragma once
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -40,6 +41,10 @@ struct CoincidentEmitters {
 /// without such a pair (bit for bit). Cost: a uniform grid over the emitters' boxes, so
 /// about linear in the triangles that come near an emitter.
 CoincidentEmitters separate_coincident_emitters(const Scene& scene, std::vector<glm::vec3>& positions);
+
+/// What `info`, `render` and `view` say of `stacked` (CoincidentEmitters::stacked > 0):
+/// "N emissive triangles lie on another light facing the same way (...)".
+std::string stacked_emitters_text(size_t stacked);
 
 /// The coplanarity tolerance, in ulps of the pair's largest absolute coordinate: a light
 /// modelled in a wall's plane and written with 6 decimals, or rotated at load, lies up to

@@ -128,6 +128,8 @@ public:
     /// screenshot path; returns the EXR path. Prints the EXR path on stdout and the pass
     /// count on stderr ("tessera view: screenshot of N passes: PATH").
     std::filesystem::path save_screenshot();
+    /// Emissive triangles on a light facing the same way (SceneBuffers::stacked_emitters).
+    uint32_t stacked_emitters() const { return buffers_->stacked_emitters; }
     /// Whether `file` is one of ViewOptions::reserved (a file the run reads or writes).
     bool reserved(const std::filesystem::path& file) const;
     void take_pending_screenshot();  ///< P: now, or after the first pass when there is none yet

@@ -198,6 +198,29 @@ TEST_F(RenderCli, FramesWritesOneFilePerFrame) {
     EXPECT_EQ(img.width, 16);
 }
 
+// The Cornell box's mesh loaded twice: its light is listed twice, and info, a still, a
+// sequence and the viewer each say so once.
+TEST_F(RenderCli, ALightListedTwiceIsSaidEverywhere) {
+    const std::string obj = std::string(TESSERA_SCENES_DIR) + "/cornell-box.obj";
+    const fs::path scene = dir_ / "twice.json";
+    std::ofstream(scene) << R"({"camera": {"position": [0.278, 0.273, -0.8], "look_at": [0.278, 0.273, 0]},
+        "objects": [{"mesh": ")" << obj << R"(", "transform": {"scale": 0.001}},
+                    {"mesh": ")" << obj << R"(", "transform": {"scale": 0.001}}]})";
+    const std::string note = "4 emissive triangles lie on another light facing the same way";
+    const std::string small = " --width 8 --height 8 --spp 1 --method direct --backend embree";
+    const fs::path quit = dir_ / "quit.json";
+    std::ofstream(quit) << R"({"events": [{"frame": 1, "quit": true}]})";
+    for (const std::string& args :
+         {"info " + scene.string(), "render " + scene.string() + small + " --out " + (dir_ / "a.exr").string(),
+          "render " + scene.string() + small + " --frames 0:0 --out " + (dir_ / "b.exr").string(),
+          "view " + scene.string() + small + " --headless --input-script " + quit.string()}) {
+        const CliResult r = run_tessera(args);
+        EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find(note), std::string::npos) << args << "\n" << r.output;
+        EXPECT_EQ(r.output.find(note), r.output.rfind(note)) << "said once: " << args;
+    }
+}
+
 TEST_F(RenderCli, BadFrames) {
     const std::string scene = std::string(TESSERA_SCENES_DIR) + "/cornell-box-animated.json";
     expect_rejected(scene + " --frames 0-1", "--frames");
