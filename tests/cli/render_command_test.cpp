@@ -144,6 +144,25 @@ TEST_F(RenderCli, InfoCountsLightsOfTheAnimationAndEachFileOnce) {
     EXPECT_EQ(materials(r.output), materials(once.output)) << r.output << once.output;
 }
 
+// Likewise a surface black at rest and coloured by a later key reflects: info said "no
+// reflecting surface" while frame 2 has indirect light.
+TEST_F(RenderCli, InfoCountsSurfacesTheAnimationColours) {
+    std::ofstream(dir_ / "floor.mtl") << "newmtl black\nKd 0 0 0\n";
+    std::ofstream(dir_ / "floor.obj") << "mtllib floor.mtl\nusemtl black\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\n"
+                                         "f 1 4 3\nf 1 3 2\n";
+    std::ofstream(dir_ / "scene.json") << R"({
+      "camera": {"position": [0, 2, 3], "look_at": [0, 0, 0]},
+      "objects": [{"mesh": "floor.obj"}],
+      "lights": [{"type": "quad", "corner": [0, 1, 0], "edge1": [0.2, 0, 0], "edge2": [0, 0, 0.2],
+                  "radiance": [5, 5, 5]}],
+      "animation": {"frames": 3, "materials": {"black": [{"frame": 0, "albedo": [0, 0, 0]},
+                                                      {"frame": 2, "albedo": [0.5, 0.5, 0.5]}]}}
+    })";
+    const CliResult r = run_tessera("info " + (dir_ / "scene.json").string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("indirect diffuse (ID): yes"), std::string::npos) << r.output;
+}
+
 TEST(DevicesCli, ListsPocl) {
     CliResult r = run_tessera("devices");
     EXPECT_EQ(r.exit_code, 0) << r.output;
