@@ -1,5 +1,6 @@
 // `tessera info [SCENE]`: what a scene contains and which effects it calls for.
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -29,6 +30,13 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     const fs::path path = a.scene.empty() ? default_scene_path() : fs::path(a.scene);
     Scene s = load_scene(path, make_data_path(a.data_dir.empty() ? std::nullopt
                                                                  : std::optional<fs::path>(a.data_dir)));
+    // Searched all the same (a scene may not need it; scripts/reference makes it later),
+    // but said here, where a user looks: a missing file's error lists it among the
+    // directories tried. (--data-dir of the same is an error.)
+    if (const char* env = std::getenv("TESSERA_DATA"); env && *env) {
+        std::error_code ec;
+        if (!fs::is_directory(env, ec)) std::fprintf(stderr, "tessera: note: TESSERA_DATA=%s is not a directory\n", env);
+    }
     SceneBuffers b = make_scene_buffers(s);
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const auto& p : s.positions) {

@@ -123,12 +123,16 @@ ClDeviceInfo select_cl_device(const std::string& spec) {
             if (i < devs.size()) return devs[i];
         }
     } else {
+        const auto full = [&](size_t i) { return lower(devs[i].platform_name + ": " + devs[i].name); };
         std::vector<size_t> matches;
         for (size_t i = 0; i < devs.size(); ++i)
-            if (lower(devs[i].platform_name + ": " + devs[i].name).find(lower(spec)) != std::string::npos)
-                matches.push_back(i);
-        if (matches.size() == 1) return devs[matches[0]];
-        if (matches.size() > 1) {  // which one was meant is not ours to guess
+            if (full(i) == lower(spec) || lower(devs[i].name) == lower(spec)) return devs[i];  // exact: first
+        for (size_t i = 0; i < devs.size(); ++i)
+            if (full(i).find(lower(spec)) != std::string::npos) matches.push_back(i);
+        // Devices of one name (identical GPUs) are as good as each other: the first.
+        const bool one_name = std::all_of(matches.begin(), matches.end(), [&](size_t i) { return full(i) == full(matches[0]); });
+        if (!matches.empty() && one_name) return devs[matches[0]];
+        if (matches.size() > 1) {  // different devices: which one was meant is not ours to guess
             std::string names;
             for (size_t i : matches) names += (names.empty() ? "" : ", ") + std::string("[") + std::to_string(i) + "] " + devs[i].name;
             throw RuntimeError("--device " + spec + ": names " + std::to_string(matches.size()) + " OpenCL devices (" +

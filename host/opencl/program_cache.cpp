@@ -109,13 +109,12 @@ void write_file_atomic(const fs::path& p, const std::vector<unsigned char>& data
 // it is still ours and writable by us alone: a file another user put there would be run.
 bool private_to_us(const fs::path& dir) {
     std::error_code ec;
-    if (!fs::exists(dir, ec)) {
-        fs::create_directories(dir, ec);
-        fs::permissions(dir, fs::perms::owner_all, ec);
-    }
+    if (!fs::exists(dir, ec)) fs::create_directories(dir, ec);
     struct stat st {};
-    return ::lstat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == ::geteuid() &&
-           (st.st_mode & (S_IWGRP | S_IWOTH)) == 0;
+    if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::geteuid()) return false;
+    // Ours (not through a link): made private if it is not, e.g. by an older build.
+    if ((st.st_mode & (S_IRWXG | S_IRWXO)) != 0) fs::permissions(dir, fs::perms::owner_all, ec);
+    return ::lstat(dir.c_str(), &st) == 0 && (st.st_mode & (S_IWGRP | S_IWOTH)) == 0;
 }
 
 std::string build_log(const cl::Program& program, const cl::Device& device) {
@@ -159,7 +158,13 @@ fs::path program_cache_dir() {
     fs::path tmp = fs::temp_directory_path(ec);  // $TMPDIR; a bad one is not this run's problem
     if (ec) tmp = "/tmp";
     const fs::path dir = tmp / ("tessera-cache-" + std::to_string(::geteuid()));
-    return private_to_us(dir) ? dir : fs::path();
+    if (private_to_us(dir)) return dir;
+    static bool told = false;
+    if (!told)
+        std::fprintf(stderr, "tessera: note: OpenCL program cache %s is not a private directory of this user; no "
+                             "programs are cached (set TESSERA_CACHE_DIR)\n", dir.c_str());
+    told = true;
+    return {};
 }
 
 ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, const std::string& name,
@@ -178,7 +183,9 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
                                  dev.name + "\n" + dev.version + "\n" + dev.driver;
     const uint64_t key = fnv1a(key_text);
     const fs::path dir = program_cache_dir();
-    const fs::path cached = dir.empty() ? fs::path() : dir / (name + "-" + hex(key) + ".bin");
+    // ".e1": the entry format, so a build that wrote raw binaries and this one, sharing a
+    // cache, do not rebuild each other's entries on every run.
+    const fs::path cached = dir.empty() ? fs::path() : dir / (name + "-" + hex(key) + ".e1.bin");
 
     std::vector<unsigned char> binary = cached.empty() ? std::vector<unsigned char>() : read_entry(cached, key);
     if (!binary.empty()) {

@@ -1,5 +1,4 @@
 // DataPath lookup and the default scene location (declared in scene/loader.h).
-#include <cstdio>
 #include <cstdlib>
 #include <system_error>
 
@@ -52,14 +51,7 @@ DataPath make_data_path(const std::optional<fs::path>& data_dir) {
                              "' does not exist or is not a directory");
         data.roots.push_back(*data_dir);
     }
-    if (const char* env = std::getenv("TESSERA_DATA"); env && *env) {
-        // Searched all the same (a scene may not need it; a script may make it later), but
-        // said: --data-dir of the same value is an error, this should not pass unseen.
-        std::error_code ec;
-        if (!fs::is_directory(env, ec))
-            std::fprintf(stderr, "tessera: note: TESSERA_DATA=%s is not a directory\n", env);
-        data.roots.emplace_back(env);
-    }
+    if (const char* env = std::getenv("TESSERA_DATA"); env && *env) data.roots.emplace_back(env);
     data.roots.emplace_back(TESSERA_DEFAULT_DATA_DIR);
     return data;
 }

@@ -169,6 +169,22 @@ TEST(DevicesCli, ListsPocl) {
     EXPECT_NE(r.output.find("[0]"), std::string::npos) << r.output;
 }
 
+// A name substring: devices of one name (identical GPUs) take the first; a substring of
+// different devices' names is refused, listing them (it took the lowest index unsaid).
+TEST_F(RenderCli, DeviceNameOfSeveralDevices) {
+    const std::string render = "render --backend opencl --spp 1 --width 8 --height 8 --method direct --out " +
+                               (dir_ / "d.exr").string();
+    CliResult twins = run_tessera("devices", "POCL_DEVICES='pthread pthread'");
+    if (twins.output.find("[1]") == std::string::npos) GTEST_SKIP() << "PoCL offers no second device here";
+    CliResult r = run_tessera(render + " --device pthread", "POCL_DEVICES='pthread pthread'");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    CliResult mixed = run_tessera("devices", "POCL_DEVICES='pthread basic'");
+    if (mixed.output.find("basic") == std::string::npos) GTEST_SKIP() << "PoCL has no basic device here";
+    r = run_tessera(render + " --device portable", "POCL_DEVICES='pthread basic'");
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("--device portable: names 2 OpenCL devices ("), std::string::npos) << r.output;
+}
+
 // A device that is not there: one line naming it and listing those that are.
 TEST(DevicesCli, UnknownDeviceIsOneLineListingTheDevices) {
     CliResult r = run_tessera("render --backend opencl --device no-such-device --spp 1 --width 8 --height 8");

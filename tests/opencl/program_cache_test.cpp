@@ -5,9 +5,12 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "opencl/kernel_source.h"
+#include "support/scoped_env.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -102,6 +105,26 @@ TEST(ProgramCache, DamagedOrForeignEntryIsRebuiltAndReplaced) {
         EXPECT_NO_THROW(cl::Kernel(again.program, "trace_closest"));
         EXPECT_TRUE(build_program(ctx, dev, "trace.cl", {}).from_cache) << "the entry is replaced by the rebuilt one";
     }
+}
+
+// Without $TESSERA_CACHE_DIR, $XDG_CACHE_HOME and $HOME the cache is a per-user directory
+// in $TMPDIR, private (an older build's 0755 one is made 0700), and none at all where it
+// is not ours: a link to elsewhere (another user's planted binary would be run).
+TEST(ProgramCache, TemporaryFallbackIsPrivateToTheUser) {
+    ScopedDirEnv tmp("TMPDIR", "cache-tmpdir");
+    const test::ScopedEnv no_cache("TESSERA_CACHE_DIR", nullptr), no_xdg("XDG_CACHE_HOME", nullptr),
+        no_home("HOME", nullptr);
+    const fs::path expected = tmp.dir() / ("tessera-cache-" + std::to_string(::geteuid()));
+    EXPECT_EQ(program_cache_dir(), expected);
+    const auto mode = [&] { return fs::status(expected).permissions() & fs::perms::mask; };
+    EXPECT_EQ(mode(), fs::perms::owner_all);
+    fs::permissions(expected, fs::perms::all);
+    EXPECT_EQ(program_cache_dir(), expected);
+    EXPECT_EQ(mode(), fs::perms::owner_all) << "made private again";
+    fs::remove_all(expected);
+    fs::create_directories(tmp.dir() / "elsewhere");
+    fs::create_directory_symlink(tmp.dir() / "elsewhere", expected);
+    EXPECT_EQ(program_cache_dir(), fs::path()) << "a link is not the user's own directory";
 }
 
 TEST(ProgramCache, BuildFailureReportsTheLog) {
