@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -344,13 +345,24 @@ Image render_ckpt(Backend& backend, const Scene& scene, const SceneBuffers& ligh
     return render_frame(backend, scene, lights, rs, nullptr, progress, &ck);
 }
 
-class ResumeCornell : public tessera::test::ScratchDirTest, public ::testing::WithParamInterface<BackendKind> {};
+// The Cornell box on the parameter's backend, and small settings for `method`.
+class ResumeCornell : public tessera::test::ScratchDirTest, public ::testing::WithParamInterface<BackendKind> {
+protected:
+    RenderSettings small(Method method, uint32_t spp) const {
+        RenderSettings rs;
+        rs.method = method;
+        rs.width = rs.height = 16;
+        rs.spp = spp;
+        rs.shadow_samples = 2;
+        return rs;
+    }
+    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
+    SceneBuffers buffers = make_scene_buffers(scene);
+    std::unique_ptr<Backend> backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
+};
 
 TEST_P(ResumeCornell, InterruptedAndResumedRenderIsBitIdentical) {
     const fs::path& dir = dir_;
-    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
-    SceneBuffers buffers = make_scene_buffers(scene);
-    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
     RenderSettings rs;
     rs.width = rs.height = 16;
     rs.spp = 7;
@@ -396,9 +408,6 @@ TEST_P(ResumeCornell, InterruptedAndResumedRenderIsBitIdentical) {
 
 TEST_P(ResumeCornell, IntervalCheckpointsResumeToTheSameImage) {
     const fs::path& dir = dir_;
-    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
-    SceneBuffers buffers = make_scene_buffers(scene);
-    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
     RenderSettings rs;
     rs.width = rs.height = 16;
     rs.spp = 5;
@@ -422,14 +431,7 @@ TEST_P(ResumeCornell, IntervalCheckpointsResumeToTheSameImage) {
 // bit for bit. Before they were saved, the resumed channels averaged only the passes
 // rendered after the resume (SS, ID and guidance.* differed; R, G, B did not).
 TEST_P(ResumeCornell, MethodAovChannelsResumeBitIdentical) {
-    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
-    SceneBuffers buffers = make_scene_buffers(scene);
-    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
-    RenderSettings rs;
-    rs.method = Method::Ais;
-    rs.width = rs.height = 16;
-    rs.spp = 5;
-    rs.shadow_samples = 2;
+    RenderSettings rs = small(Method::Ais, 5);
     rs.aovs = true;
     rs.checkpoint_interval_s = 1e-9;  // after every pass but the last
     CheckpointOptions ck{dir_ / "cornell.ckpt", GetParam(), false};
@@ -446,14 +448,7 @@ TEST_P(ResumeCornell, MethodAovChannelsResumeBitIdentical) {
 // A format-2 checkpoint resumes where the method keeps no sums (here igi without --aov)
 // to the same image; with --aov, whose channels would lack its passes, it is refused.
 TEST_P(ResumeCornell, Format2CheckpointResumesWithoutMethodSums) {
-    const Scene scene = load_scene(default_scene_path(), make_data_path(std::nullopt));
-    SceneBuffers buffers = make_scene_buffers(scene);
-    auto backend = make_backend(BackendOptions{GetParam(), ""}, buffers, plan_effects(scene));
-    RenderSettings rs;
-    rs.method = Method::Igi;
-    rs.width = rs.height = 16;
-    rs.spp = 4;
-    rs.shadow_samples = 2;
+    RenderSettings rs = small(Method::Igi, 4);
     rs.checkpoint_interval_s = 1e-9;
     CheckpointOptions ck{dir_ / "cornell.ckpt", GetParam(), false};
     for (bool aovs : {false, true}) {
