@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "render/cluster.h"
+#include "render/interrupt.h"
 #include "util/error.h"
 #include "util/heap.h"
 
@@ -97,6 +98,13 @@ int main(int argc, char** argv) {
         return fail(e.what(), 130);
     } catch (const tessera::InputError& e) {
         return fail(e.what(), 2);
+    } catch (const tessera::BuildError& e) {
+        // PoCL's LLVM puts its own SIGINT/SIGTERM handlers in front of ours while it
+        // compiles; they delete its temporary files and pass the signal on, so a Ctrl-C
+        // during a kernel build fails the build. That is the interrupt, for every command.
+        if (tessera::interrupt_signal())
+            return fail("interrupted during an OpenCL kernel build (it stopped the build); no checkpoint written", 130);
+        return fail(e.what(), 1);
     } catch (const std::exception& e) {
         return fail(e.what(), 1);
     }

@@ -114,12 +114,6 @@ void stop_if_interrupted(const std::string& when) {
         throw Interrupted("interrupted " + when + "; no checkpoint written (nothing of this run is saved)");
 }
 
-// For a BuildError: PoCL's LLVM puts its own SIGINT/SIGTERM handlers in front of ours
-// while it compiles; they delete its temporary files and pass the signal on, so a Ctrl-C
-// during a kernel build fails the build. That is the interrupt, not a build error. (A
-// checkpoint saved before is kept: programs are built at first use, in the first pass.)
-void stop_if_interrupted_build() { stop_if_interrupted("during an OpenCL kernel build (it stopped the build)"); }
-
 // Option combinations and values the settings table does not check, before any work.
 void check_render_options(const RenderArgs& a, const CLI::App& cmd, const BackendOptions& bo) {
     check_data_dir(a.data_dir);
@@ -270,14 +264,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
             check_output_directories(files);  // checkpoints are written there during the render too
         }
     });
-    if (frames) {
-        try {
-            return run_sequence(a, scene, *frames, out, bo, settings);
-        } catch (const BuildError&) {
-            stop_if_interrupted_build();
-            throw;
-        }
-    }
+    if (frames) return run_sequence(a, scene, *frames, out, bo, settings);
     cluster.step([&] {
         // A still of an animated scene is its frame 0 (the rest pose with frame 0's keys).
         if (scene.animation.animated()) scene = scene_at_frame(scene, 0);
@@ -288,12 +275,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
                          ckpt->path.c_str());
         plan = plan_effects(scene);
         buffers = make_scene_buffers(scene);
-        try {
-            backend = make_backend(bo, buffers, plan);
-        } catch (const BuildError&) {
-            stop_if_interrupted_build();
-            throw;
-        }
+        backend = make_backend(bo, buffers, plan);
         if (lead) {
             std::fprintf(stderr, "tessera: %s, %zu triangles, %u lights, on %s", scene.name.c_str(),
                          scene.triangle_count(), buffers.light_count, backend->description().c_str());
@@ -315,13 +297,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
                                                stop_if_interrupted("after " + std::to_string(done) + " of " +
                                                                    std::to_string(total) + " spp (" + a.method + " keeps no checkpoint)");
                                        };
-    Image img;
-    try {  // the integrators build their programs at first use, in the first pass
-        img = render_frame(*backend, scene, buffers, settings, &stats, progress, ckpt ? &*ckpt : nullptr, &cluster);
-    } catch (const BuildError&) {
-        stop_if_interrupted_build();
-        throw;
-    }
+    Image img = render_frame(*backend, scene, buffers, settings, &stats, progress, ckpt ? &*ckpt : nullptr, &cluster);
     if (!lead) return;
     const fs::path png = png_beside(out);
     CommitGroup outputs;  // all of them or none
