@@ -15,16 +15,12 @@
 #include "kernels/shared/frame.h"
 #include "opencl/kernel_source.h"
 #include "util/error.h"
+#include "util/hash.h"
 
 namespace tessera {
 namespace fs = std::filesystem;
 
 namespace {
-
-uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
-    for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-    return h;
-}
 
 std::string hex(uint64_t v) {
     char b[17];
@@ -39,14 +35,8 @@ std::string hex(uint64_t v) {
 constexpr char kEntryMagic[8] = {'T', 'S', 'C', 'L', 'B', 'I', 'N', '1'};
 constexpr size_t kEntryHeader = sizeof kEntryMagic + 3 * sizeof(uint64_t);
 
-uint64_t fnv1a_bytes(const std::vector<unsigned char>& b, size_t from) {
-    uint64_t h = 1469598103934665603ull;
-    for (size_t i = from; i < b.size(); ++i) h = (h ^ b[i]) * 1099511628211ull;
-    return h;
-}
-
 std::vector<unsigned char> entry_bytes(uint64_t key, const std::vector<unsigned char>& binary) {
-    const uint64_t head[3] = {key, uint64_t(binary.size()), fnv1a_bytes(binary, 0)};
+    const uint64_t head[3] = {key, uint64_t(binary.size()), fnv1a64(binary.data(), binary.size())};
     std::vector<unsigned char> e(kEntryHeader + binary.size());
     std::memcpy(e.data(), kEntryMagic, sizeof kEntryMagic);
     std::memcpy(e.data() + sizeof kEntryMagic, head, sizeof head);
@@ -70,7 +60,8 @@ std::vector<unsigned char> read_entry(const fs::path& p, uint64_t key) {
     uint64_t head[3];
     if (e.size() < kEntryHeader || !std::equal(kEntryMagic, kEntryMagic + sizeof kEntryMagic, e.begin())) return {};
     std::memcpy(head, e.data() + sizeof kEntryMagic, sizeof head);
-    if (head[0] != key || head[1] != e.size() - kEntryHeader || head[2] != fnv1a_bytes(e, kEntryHeader)) return {};
+    const size_t size = e.size() - kEntryHeader;
+    if (head[0] != key || head[1] != size || head[2] != fnv1a64(e.data() + kEntryHeader, size)) return {};
     e.erase(e.begin(), e.begin() + kEntryHeader);
     return e;
 }
@@ -181,7 +172,7 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
     if (const char* extra = std::getenv("TESSERA_CL_OPTIONS"); extra && *extra) out.options += std::string(" ") + extra;
     const std::string key_text = source + "\n" + out.options + "\n" + dev.platform_name + "\n" +
                                  dev.name + "\n" + dev.version + "\n" + dev.driver;
-    const uint64_t key = fnv1a(key_text);
+    const uint64_t key = fnv1a64(key_text.data(), key_text.size());
     const fs::path dir = program_cache_dir();
     // ".e1": the entry format, so a build that wrote raw binaries and this one, sharing a
     // cache, do not rebuild each other's entries on every run.

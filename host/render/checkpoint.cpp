@@ -162,15 +162,6 @@ std::string describe_difference(const std::string& name, const RunIdentity& save
 
 }  // namespace
 
-uint64_t fnv1a64(const void* data, std::size_t size, uint64_t h) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < size; ++i) {
-        h ^= p[i];
-        h *= 0x100000001b3ull;
-    }
-    return h;
-}
-
 fs::path checkpoint_path_for(const fs::path& out) {
     fs::path p = out;
     return p.replace_extension(".ckpt");

@@ -43,6 +43,7 @@
 
 #include "render/accumulator.h"
 #include "render/run_identity.h"
+#include "util/hash.h"
 
 namespace tessera {
 
@@ -52,8 +53,6 @@ namespace tessera {
 /// pass, as the uninterrupted render's do.
 using MethodSums = std::vector<std::vector<double>>;
 
-/// 64-bit FNV-1a of `size` bytes, continuing from `h` (the offset basis by default).
-uint64_t fnv1a64(const void* data, std::size_t size, uint64_t h = 0xcbf29ce484222325ull);
 
 /// The checkpoint path for an output image: `out` with its extension replaced by .ckpt.
 std::filesystem::path checkpoint_path_for(const std::filesystem::path& out);
