@@ -1,6 +1,7 @@
 #include "backend/backend.h"
 
 #include <chrono>
+#include <cerrno>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -25,6 +26,18 @@ double parse_env_number(const char* name, const char* value, double max) {
         throw InputError(std::string(name) + "=" + value + ": expected a number from 0 to " +
                          std::to_string(static_cast<long long>(max)));
     return v;
+}
+
+// An OpenCL error code from environment variable `name`: a whole number from -9999 to 0
+// (the codes are negative; 0: none); anything else throws InputError naming the variable
+// and its value.
+int32_t parse_env_cl_error(const char* name, const char* value) {
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(value, &end, 10);
+    if (end == value || *end != '\0' || errno != 0 || v < -9999 || v > 0)
+        throw InputError(std::string(name) + "=" + value + ": expected an OpenCL error code, a whole number from -9999 to 0");
+    return static_cast<int32_t>(v);
 }
 
 // An on/off switch from environment variable `name`: unset or empty: `otherwise`; "0" or
@@ -180,6 +193,7 @@ std::unique_ptr<Backend> make_backend(const BackendOptions& options, const Scene
             throw InputError(std::string("TESSERA_CL_IMPORTANCE_CHUNK=") + c + ": expected a whole number of VPLs");
         o.cl_importance_chunk = static_cast<uint32_t>(n);
     }
+    if (const char* c = env_value("TESSERA_CL_FAIL_LAUNCH")) o.cl_fail_launch = parse_env_cl_error("TESSERA_CL_FAIL_LAUNCH", c);
     return make_opencl_backend(scene, plan, o);
 }
 

@@ -74,6 +74,9 @@ struct BackendOptions {
     /// VPLs either way; two more waits for about a tenth of the bytes. Off until a GPU has
     /// timed it (Backend::gathers_light_paths). TESSERA_CL_LIGHT_PATH_GATHER=1 / 0 sets it.
     bool cl_light_path_gather = false;
+    /// OpenCL, for tests: the OpenCL error code (negative) to inject after the first tile
+    /// of a launch (host/opencl/launch.h); 0: off. TESSERA_CL_FAIL_LAUNCH sets it per run.
+    int32_t cl_fail_launch = 0;
 };
 
 /// Traces rays and launches the kernels of the kernel table (device/kernel_table.h);

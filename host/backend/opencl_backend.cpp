@@ -72,8 +72,8 @@ public:
           launch_ms_(o.cl_launch_ms >= 0.0 ? o.cl_launch_ms : dev_.type == "CPU" ? 0.0 : kDefaultGpuLaunchMs),
           tile_groups_(o.cl_tile_groups),
           importance_chunk_(o.cl_importance_chunk),
-          light_path_gather_(o.cl_light_path_gather) {
-        if (const char* f = std::getenv("TESSERA_CL_FAIL_LAUNCH"); f && *f) fail_launch_ = std::atoi(f);
+          light_path_gather_(o.cl_light_path_gather),
+          fail_launch_(o.cl_fail_launch) {
         try {
             ctx_ = cl::Context(dev_.device);
             // Profiling: the tiles' device times size the tiles that follow, and give the

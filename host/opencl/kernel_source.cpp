@@ -31,16 +31,24 @@ std::string read_one(const std::string& name) {
     throw RuntimeError("kernel source " + name + " is not embedded in this build");
 }
 
+// A line marker: the compiler's messages name kernels/<name> and its own line numbers, not
+// a line of the expanded text in the driver's temporary file.
+void mark(const std::string& name, size_t line, std::string& out) {
+    out += "#line " + std::to_string(line) + " \"kernels/" + name + "\"\n";
+}
+
 void expand(const std::string& name, std::set<std::string>& seen, std::string& out) {
     if (!seen.insert(name).second) return;
     std::istringstream in(read_one(name));
     std::string line;
-    while (std::getline(in, line)) {
+    mark(name, 1, out);
+    for (size_t number = 1; std::getline(in, line); ++number) {
         size_t p = line.find_first_not_of(" \t");
         if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
             size_t a = line.find('"', p), b = line.find('"', a + 1);
             if (a != std::string::npos && b != std::string::npos) {
                 expand(line.substr(a + 1, b - a - 1), seen, out);
+                mark(name, number + 1, out);
                 continue;
             }
         }

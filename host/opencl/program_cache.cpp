@@ -116,6 +116,19 @@ std::string build_log(const cl::Program& program, const cl::Device& device) {
     }
 }
 
+// The build log's first line that reports an error, trimmed; empty if none does. It leads
+// the failure's message: the whole log (warnings, the driver's own lines) follows.
+std::string first_error(const std::string& log) {
+    std::istringstream in(log);
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.find("error") == std::string::npos) continue;
+        const size_t a = line.find_first_not_of(" \t"), b = line.find_last_not_of(" \t\r");
+        return line.substr(a, b - a + 1);
+    }
+    return "";
+}
+
 bool try_build(cl::Program& program, const cl::Device& device, const std::string& options) {
     try {
         program.build({device}, options.c_str());
@@ -195,8 +208,12 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
 
     cl::Program p(ctx, source);
     if (!try_build(p, dev.device, out.options))
+    {
+        const std::string log = build_log(p, dev.device), first = first_error(log);
         throw BuildError("OpenCL build of kernels/" + name + " failed on " + dev.name +
-                           " with options \"" + out.options + "\":\n" + build_log(p, dev.device));
+                         (first.empty() ? "" : ": " + first) + "\n  options: " + out.options + "\n  build log:\n" +
+                         log);
+    }
     try {
         auto bins = p.getInfo<CL_PROGRAM_BINARIES>();
         if (!cached.empty() && !bins.empty() && !bins[0].empty()) write_file_atomic(cached, entry_bytes(key, bins[0]));

@@ -121,7 +121,7 @@ TEST_F(OpenCLFailureCli, BadImportanceChunkIsNamed) {
     }
 }
 
-// The on/off switches and the allocation cap take only what they document: "off" or
+// The on/off switches, the allocation cap and the injected error code take only what they document: "off" or
 // "false" was read as on, and a cap of "1kB" as no cap, without a word.
 TEST_F(OpenCLFailureCli, BadSwitchOrAllocationCapIsNamed) {
     const fs::path out = dir_ / "img.exr";
@@ -131,7 +131,11 @@ TEST_F(OpenCLFailureCli, BadSwitchOrAllocationCapIsNamed) {
           std::tuple{"opencl", "TESSERA_CL_LIGHT_PATHS=2", "TESSERA_CL_LIGHT_PATHS=2: expected 0 or 1"},
           std::tuple{"embree", "TESSERA_EMBREE_PACKETS=false", "TESSERA_EMBREE_PACKETS=false: expected 0 or 1"},
           std::tuple{"opencl", "TESSERA_CL_MAX_ALLOC=1kB", "TESSERA_CL_MAX_ALLOC=1kB: expected a whole number of bytes"},
-          std::tuple{"opencl", "TESSERA_CL_MAX_ALLOC=-1", "TESSERA_CL_MAX_ALLOC=-1: expected a whole number of bytes"}}) {
+          std::tuple{"opencl", "TESSERA_CL_MAX_ALLOC=-1", "TESSERA_CL_MAX_ALLOC=-1: expected a whole number of bytes"},
+          // atoi read "-5x" as -5 and "oom" as 0 (no failure injected), without a word.
+          std::tuple{"opencl", "TESSERA_CL_FAIL_LAUNCH=-5x", "TESSERA_CL_FAIL_LAUNCH=-5x: expected an OpenCL error code"},
+          std::tuple{"opencl", "TESSERA_CL_FAIL_LAUNCH=oom", "TESSERA_CL_FAIL_LAUNCH=oom: expected an OpenCL error code"},
+          std::tuple{"opencl", "TESSERA_CL_FAIL_LAUNCH=5", "TESSERA_CL_FAIL_LAUNCH=5: expected an OpenCL error code"}}) {
         const CliResult r = run_tessera("render " + kScene + " --backend " + backend +
                                             " --spp 1 --width 8 --height 8 --out " + out.string(),
                                         env);

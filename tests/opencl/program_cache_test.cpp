@@ -140,6 +140,31 @@ TEST(ProgramCache, BuildFailureReportsTheLog) {
         const std::string msg = e.what();
         EXPECT_NE(msg.find("broken.cl"), std::string::npos) << msg;
         EXPECT_NE(msg.find("undefined_name"), std::string::npos) << "build log missing:\n" << msg;
+        // The first line names the error where it is: the file as the user knows it and its
+        // own line (the expanded source's #line markers), not the driver's temporary file.
+        const std::string first = msg.substr(0, msg.find('\n'));
+        EXPECT_NE(first.find("kernels/broken.cl:1:"), std::string::npos) << first;
+        EXPECT_NE(first.find("undefined_name"), std::string::npos) << first;
+    }
+}
+
+// An error in an included header is reported at that header's own line.
+TEST(ProgramCache, BuildErrorNamesTheIncludedHeaderAndItsLine) {
+    ScopedDirEnv kernels("TESSERA_KERNEL_DIR", "broken-header");
+    ScopedDirEnv cache("TESSERA_CACHE_DIR", "cache-broken-header");
+    std::ofstream(kernels.dir() / "fine.h") << "#define FINE 1\n";
+    std::ofstream(kernels.dir() / "bad.h") << "#include \"fine.h\"\n\nfloat f(void) { return missing_name; }\n";
+    std::ofstream(kernels.dir() / "main.cl") << "#include \"fine.h\"\n#include \"bad.h\"\n\n__kernel void k(__global float* "
+                                                "x) { x[0] = f() + no_such; }\n";
+    ClDeviceInfo dev = select_cl_device("");
+    cl::Context ctx(dev.device);
+    try {
+        build_program(ctx, dev, "main.cl", {});
+        FAIL() << "expected a build failure";
+    } catch (const RuntimeError& e) {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("kernels/bad.h:3:"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("kernels/main.cl:4:"), std::string::npos) << msg;
     }
 }
 
