@@ -67,8 +67,8 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
     for (size_t p = 0; p < pixels; ++p) y[p] = ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
     const float eps = edge_epsilon(radiance, g.width, dark);
     // The frame's precomputed masks (discontinuity_precompute) hold the test's answers for
-    // every window that covers this 3×3 one (tile 3, and every tile from 4 on): bit
-    // (dy − lo)·n + (dx − lo). The test per pair took 6 ms of a 256² frame at tile 3 and
+    // every window that covers the ±1 offsets of neighbouring ring pixels (tile 3, and
+    // every tile from 4 on): bit (dy − lo)·n + (dx − lo). The test per pair took 6 ms of a 256² frame at tile 3 and
     // 12 ms of a 512² frame at tile 8; the masks give the same bits.
     int lo = 0, hi = 0;
     discontinuity_window(s.tile, &lo, &hi);
@@ -78,19 +78,24 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
     std::vector<float> out(pixels, 0.0f);
     parallel_rows(g.height, [&](int py) {
         for (int px = 0; px < g.width; ++px) {
-            const size_t p = size_t(py) * g.width + px;
             float best = 0.0f;
-            for (int i = 1; i < 9; ++i) {
-                const int qx = px + kWindow[i][0], qy = py + kWindow[i][1];
-                if (qx < 0 || qy < 0 || qx >= g.width || qy >= g.height) continue;
-                const size_t q = size_t(qy) * g.width + qx;
-                const bool accepted = masks ? (g.accepted[p] >> ((kWindow[i][1] - lo) * s.tile + kWindow[i][0] - lo)) & 1u
-                                            : discontinuity_accepts(g, s, p, q);
-                const bool light_edge = !emitter.empty() && (emitter[p] != 0) != (emitter[q] != 0);
+            // Each neighbour against the next around the ring (ts_edge_ring): a pair the
+            // first's discontinuity test rejects, or on either side of a light's edge.
+            for (int i = 0; i < 8; ++i) {
+                const auto& a = ts::ts_edge_ring[i];
+                const auto& b = ts::ts_edge_ring[(i + 1) % 8];
+                const int ax = px + a[0], ay = py + a[1], bx = px + b[0], by = py + b[1];
+                if (std::min({ax, ay, bx, by}) < 0 || std::max(ax, bx) >= g.width || std::max(ay, by) >= g.height)
+                    continue;
+                const size_t qa = size_t(ay) * g.width + ax, qb = size_t(by) * g.width + bx;
+                const bool accepted =
+                    masks ? (g.accepted[qa] >> ((b[1] - a[1] - lo) * s.tile + b[0] - a[0] - lo)) & 1u
+                          : discontinuity_accepts(g, s, qa, qb);
+                const bool light_edge = !emitter.empty() && (emitter[qa] != 0) != (emitter[qb] != 0);
                 if (accepted && !light_edge) continue;
-                best = ts::ts_edge_max(best, ts::ts_edge_contrast(y[p], y[q], eps));
+                best = ts::ts_edge_max(best, ts::ts_edge_contrast(y[qa], y[qb], eps));
             }
-            out[p] = best;
+            out[size_t(py) * g.width + px] = best;
         }
     });
     return out;

@@ -26,8 +26,8 @@ struct Texture {
     std::vector<uint32_t> rgba8;
 };
 
-/// A material. Only the Lambertian part is used by the `direct` method; `illum`
-/// and `ior` are kept for the specular cases the path tracer adds (MTL illum 5, 7).
+/// A material: Lambertian, or by `illum` a mirror or a smooth dielectric, which every
+/// method's camera path follows to a diffuse surface (MTL illum 3, 5, 7).
 struct Material {
     std::string name;
     glm::vec3 albedo{0.5f};      ///< diffuse reflectance Kd, each channel in [0, 1]

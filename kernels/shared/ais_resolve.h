@@ -171,26 +171,28 @@ TS_INLINE void ts_edge_schedule_pixel(const TsSceneView* sv, const TsTracer* tra
     (void)tracer;
     TS_GLOBAL const uint* table = sv->ais_schedule_table;
     const int w = (int)f->width, h = (int)f->height;
-    const size_t p = (size_t)y * (size_t)w + x;
-    TS_GLOBAL const float* sp = sv->igi_surface + p * TS_IGI_SURF_FLOATS;
-    const float yp = ts_luminance(ts_f3_load(sv->igi_pass + p * TS_PASS_FLOATS + TS_PASS_RADIANCE));
     const float eps = as_float(table[TS_AIS_TABLE_EDGE_EPSILON]);
-    const int emitter = sp[TS_IGI_SURF_EMISSION] + sp[TS_IGI_SURF_EMISSION + 1] + sp[TS_IGI_SURF_EMISSION + 2] > 0.0f;
     float best = 0.0f;
-    for (int i = 1; i < 9; ++i) {
-        const int qx = (int)x + ts_edge_window[i][0], qy = (int)y + ts_edge_window[i][1];
-        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-        const size_t q = (size_t)qy * (size_t)w + (size_t)qx;
-        TS_GLOBAL const float* sq = sv->igi_surface + q * TS_IGI_SURF_FLOATS;
+    /* Each ring neighbour against the next (ts_edge_ring), never p itself. */
+    for (int i = 0; i < 8; ++i) {
+        const int ax = (int)x + ts_edge_ring[i][0], ay = (int)y + ts_edge_ring[i][1];
+        const int bx = (int)x + ts_edge_ring[(i + 1) % 8][0], by = (int)y + ts_edge_ring[(i + 1) % 8][1];
+        if (ax < 0 || ay < 0 || bx < 0 || by < 0 || ax >= w || bx >= w || ay >= h || by >= h) continue;
+        const size_t qa = (size_t)ay * (size_t)w + (size_t)ax, qb = (size_t)by * (size_t)w + (size_t)bx;
+        TS_GLOBAL const float* sa = sv->igi_surface + qa * TS_IGI_SURF_FLOATS;
+        TS_GLOBAL const float* sb = sv->igi_surface + qb * TS_IGI_SURF_FLOATS;
         const int accepted = ts_discontinuity_accepts(
-            sp[TS_IGI_SURF_DISTANCE], ts_f3_load(sp + TS_IGI_SURF_NORMAL), ts_f3_load(sp + TS_IGI_SURF_POSITION),
-            sq[TS_IGI_SURF_DISTANCE], ts_f3_load(sq + TS_IGI_SURF_NORMAL), ts_f3_load(sq + TS_IGI_SURF_POSITION), 1,
+            sa[TS_IGI_SURF_DISTANCE], ts_f3_load(sa + TS_IGI_SURF_NORMAL), ts_f3_load(sa + TS_IGI_SURF_POSITION),
+            sb[TS_IGI_SURF_DISTANCE], ts_f3_load(sb + TS_IGI_SURF_NORMAL), ts_f3_load(sb + TS_IGI_SURF_POSITION), 1,
             f->igi_filter_cos, f->igi_filter_depth);
-        const int emitter_q =
-            sq[TS_IGI_SURF_EMISSION] + sq[TS_IGI_SURF_EMISSION + 1] + sq[TS_IGI_SURF_EMISSION + 2] > 0.0f;
-        if (accepted && emitter == emitter_q) continue;
-        const float yq = ts_luminance(ts_f3_load(sv->igi_pass + q * TS_PASS_FLOATS + TS_PASS_RADIANCE));
-        best = ts_edge_max(best, ts_edge_contrast(yp, yq, eps));
+        const int emitter_a =
+            sa[TS_IGI_SURF_EMISSION] + sa[TS_IGI_SURF_EMISSION + 1] + sa[TS_IGI_SURF_EMISSION + 2] > 0.0f;
+        const int emitter_b =
+            sb[TS_IGI_SURF_EMISSION] + sb[TS_IGI_SURF_EMISSION + 1] + sb[TS_IGI_SURF_EMISSION + 2] > 0.0f;
+        if (accepted && emitter_a == emitter_b) continue;
+        const float ya = ts_luminance(ts_f3_load(sv->igi_pass + qa * TS_PASS_FLOATS + TS_PASS_RADIANCE));
+        const float yb = ts_luminance(ts_f3_load(sv->igi_pass + qb * TS_PASS_FLOATS + TS_PASS_RADIANCE));
+        best = ts_edge_max(best, ts_edge_contrast(ya, yb, eps));
     }
     out[0] = (float)ts_edge_sample_count(best, as_float(table[TS_AIS_TABLE_EDGE_TRIGGER]),
                                          as_float(table[TS_AIS_TABLE_EDGE_FULL]), table[TS_AIS_TABLE_EDGE_SAMPLES],

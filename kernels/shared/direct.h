@@ -1,5 +1,6 @@
 /* The `direct` method: emission plus direct illumination from area lights (the SS
- * component of the seed thesis), estimated at the first camera hit with
+ * component of the seed thesis), estimated at the first diffuse surface of the camera
+ * path (mirrors and dielectrics followed as igi follows them, shared/camera_path.h) with
  * `shadow_samples` stratified light samples per pass.
  *
  * Estimator (area form of the rendering equation, Lambertian BRDF albedo/π):
@@ -16,6 +17,7 @@
  */
 #ifndef TS_DIRECT_H
 #define TS_DIRECT_H
+#include "shared/camera_path.h"
 #include "shared/compat.h"
 #include "shared/geometry.h"
 #include "shared/frame.h"
@@ -69,20 +71,23 @@ TS_INLINE void ts_direct_pixel(const TsSceneView* sv, const TsTracer* tracer, co
     TsRng rng = ts_rng_seed(f->seed, py * f->width + px, f->pass);
     float jx = ts_rng_next(&rng), jy = ts_rng_next(&rng);
     TsRay ray = ts_camera_ray(f, px, py, jx, jy);
-    TsHit hit = ts_trace_closest(tracer, ray);
+    float3 throughput;
+    float distance;
+    TsHit hit = ts_find_diffuse(sv, tracer, &ray, ts_trace_closest(tracer, ray), &throughput, &distance, &rng);
     for (int i = 0; i < TS_PASS_DEPTH; ++i) out[i] = 0.0f;
     out[TS_PASS_DEPTH] = TS_INF;
     if (hit.prim == TS_NO_HIT) return;
     TsSurface s = ts_surface_at(sv, ray, hit);
-    if (f->pixel_cone > 0.0f) ts_surface_cone(sv, &s, hit.prim, ray.dir, hit.t * ts_pass_cone(f));
+    /* The cone spreads over the whole path, as igi's (ts_igi_view_from). */
+    if (f->pixel_cone > 0.0f) ts_surface_cone(sv, &s, hit.prim, ray.dir, distance * ts_pass_cone(f));
     float3 albedo = ts_material_albedo(sv, &s);
     float3 L = ts_material_emission(sv, &s);
     if (albedo.x + albedo.y + albedo.z > 0.0f && sv->light_count > 0u)
         L += albedo * ts_direct_irradiance(sv, tracer, &s, f->shadow_samples, &rng);
-    ts_f3_store(out + TS_PASS_RADIANCE, L);
+    ts_f3_store(out + TS_PASS_RADIANCE, throughput * L);
     ts_f3_store(out + TS_PASS_ALBEDO, albedo);
     ts_f3_store(out + TS_PASS_NORMAL, s.shading_normal);
-    out[TS_PASS_DEPTH] = hit.t;
+    out[TS_PASS_DEPTH] = distance;
 }
 
 TS_NAMESPACE_END

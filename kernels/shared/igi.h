@@ -29,6 +29,7 @@
 #ifndef TS_IGI_H
 #define TS_IGI_H
 #include "shared/bsdf.h"
+#include "shared/camera_path.h"
 #include "shared/compat.h"
 #include "shared/direct.h"
 #include "shared/geometry.h"
@@ -149,28 +150,6 @@ TS_INLINE void ts_igi_gather_end(const TsIgiGather* g, const TsFrame* f, float3*
     *visible = (m - (float)(g->facing - g->seen)) / m;
 }
 
-/* Follows mirror and dielectric bounces from the camera (at most 5) to the first
- * diffuse surface, `hit` being the closest hit of *ray (already traced); *throughput
- * collects their reflectances. Dielectrics pick reflection or refraction by Fresnel with
- * `u`. Returns the hit (TS_NO_HIT if the path escapes). */
-TS_INLINE TsHit ts_igi_find_diffuse(const TsSceneView* sv, const TsTracer* tracer, TsRay* ray, TsHit hit,
-                                    float3* throughput, float* distance, TsRng* rng) {
-    *throughput = make_float3(1.0f, 1.0f, 1.0f);
-    *distance = 0.0f;
-    for (int bounce = 0; bounce < 6; ++bounce) {
-        if (bounce > 0) hit = ts_trace_closest(tracer, *ray);
-        if (hit.prim == TS_NO_HIT) return hit;
-        *distance += hit.t;
-        TS_GLOBAL const float* M = sv->materials + TS_MATERIAL_FLOATS * sv->tri_mat[hit.prim];
-        uint kind = as_uint(M[TS_MAT_KIND]);
-        if (kind == TS_MAT_DIFFUSE || bounce == 5) return hit;
-        TsSurface s = ts_surface_at(sv, *ray, hit);
-        float u = kind == TS_MAT_MIRROR ? 0.0f : ts_rng_next(rng); /* the dielectric's Fresnel choice */
-        (void)ts_specular_bounce(M, kind, &s, u, ray, throughput);
-    }
-    return hit;
-}
-
 /* The camera ray of pixel (px, py), jittered within the pixel by the pixel's own random
  * stream, like the path tracer's. (A ray through the pixel centre would hit edges of
  * axis-aligned geometry exactly in symmetric views, leaving the choice of surface to a
@@ -203,7 +182,7 @@ TS_INLINE TsIgiView ts_igi_view_from(const TsSceneView* sv, const TsTracer* trac
                                      TsHit first, TsRng* rng) {
     TsIgiView v;
     v.ray = ray;
-    v.hit = ts_igi_find_diffuse(sv, tracer, &v.ray, first, &v.throughput, &v.distance, rng);
+    v.hit = ts_find_diffuse(sv, tracer, &v.ray, first, &v.throughput, &v.distance, rng);
     if (v.hit.prim != TS_NO_HIT) {
         v.s = ts_surface_at(sv, v.ray, v.hit);
         /* The cone spreads over the whole path (flat mirrors keep its angle). */

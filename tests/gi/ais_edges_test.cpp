@@ -107,6 +107,28 @@ TEST(AisEdgeGuidance, ALightInItsHoldersPlaneIsAnEdge) {
         }
 }
 
+TEST(AisEdgeGuidance, APixelsOwnSampleDoesNotFlagIt) {
+    // One wall, but pixel (2, 2)'s sample met something else (a bright bar thinner than a
+    // pixel, nearer): its neighbours, whose rings it lies on, are flagged; it is not, for
+    // the merge would average its own sample away (docs/ais.md §9).
+    GeometryBuffer g = two_walls(2.0f);
+    const size_t p = 2 * W + 2;
+    g.depth[p] = 1.0f, g.position[3 * p + 2] = -1.0f;
+    std::vector<float> img = pass_image(0.25f, 0.25f);
+    for (int c = 0; c < 3; ++c) img[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] = 1.0f;
+    for (bool masks : {false, true}) {
+        if (masks) discontinuity_precompute(g, kFilter);
+        const std::vector<float> guidance = edge_guidance(g, kFilter, img, 0.01f);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                SCOPED_TRACE(testing::Message() << "pixel " << x << "," << y << (masks ? ", masks" : ""));
+                const bool ring = std::abs(x - 2) <= 1 && std::abs(y - 2) <= 1 && !(x == 2 && y == 2);
+                if (ring) EXPECT_GT(guidance[size_t(y) * W + x], 0.5f);
+                else EXPECT_EQ(guidance[size_t(y) * W + x], 0.0f);
+            }
+    }
+}
+
 TEST(AisEdgeGuidance, EscapedRaysAreAnEdgeAndDarkDifferencesAreNot) {
     GeometryBuffer g = two_walls(kInf);  // right half: the camera rays escaped
     std::vector<float> guidance = edge_guidance(g, kFilter, pass_image(1.0f, 0.0f), 0.01f);

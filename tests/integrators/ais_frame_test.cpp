@@ -238,5 +238,38 @@ TEST(Ais, EdgeSamplesConvergeToPixelCoverage) {
     }
 }
 
+// A light smaller than a pixel, inside pixel (16, 16) of a 32² view: only that pixel's
+// samples can meet it. Its edge guidance compares its neighbours with each other, never
+// with its own sample, so a hit does not flag it, and its value stays the base sample's
+// (an unbiased estimate of its coverage). Flagged by its own sample, it was averaged with
+// edge samples that mostly miss the light: 1/(n + 1) of the light's share, the same at
+// any spp (a fifth here, where the contrast gives n = 4).
+TEST(Ais, EdgeSamplesKeepASubpixelLightsCoverage) {
+    Scene s = tilted_emitter();
+    s.positions.clear(), s.normals.clear(), s.uvs.clear(), s.material.clear();
+    // Pixels are 2·5·tan 20° / 32 = 0.11374 wide; (16, 16)'s centre is (+½, −½) of one.
+    const float pixel = 10.0f * std::tan(glm::radians(20.0f)) / 32.0f, side = 0.06f;
+    const glm::vec3 centre(0.5f * pixel, -0.5f * pixel, 0.0f);
+    test::add_quad(s, centre - glm::vec3(0.5f * side, 0.5f * side, 0.0f), {side, 0, 0}, {0, side, 0}, 0);
+    const double coverage = double(side) * side / (double(pixel) * pixel);  // 0.278 of the pixel
+    for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
+        double sum[2] = {0.0, 0.0};
+        for (int edges : {0, 1}) {
+            RenderSettings rs;
+            rs.method = Method::Ais;
+            rs.width = rs.height = 32;
+            rs.spp = 256;
+            rs.seed = 5;
+            rs.igi.components = TS_COMPONENT_SS | TS_COMPONENT_ID | (edges ? TS_COMPONENT_EDGE : 0u);
+            sum[edges] = test::channel_mean(test::render_with(kind, s, rs), "R") * 32.0 * 32.0;
+        }
+        std::printf("  %s: light's radiance summed over the image %.4f without edge samples, %.4f with "
+                    "(coverage %.4f)\n", name(kind), sum[0], sum[1], coverage);
+        // 256 binomial samples of p = 0.278: standard error 0.028; 4 of them.
+        EXPECT_NEAR(sum[0], coverage, 0.11) << name(kind);
+        EXPECT_NEAR(sum[1], sum[0], 1e-6) << name(kind);
+    }
+}
+
 }  // namespace
 }  // namespace tessera
