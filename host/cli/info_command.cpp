@@ -61,11 +61,22 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
         std::printf("            %u of them lay on another surface: moved %g ulps in front of it (docs/ray-tracing.md §4)\n",
                     b.separated_emitters, double(kCoincidentEmitterUlps));
     if (b.stacked_emitters > 0) std::printf("            %s\n", stacked_emitters_text(b.stacked_emitters).c_str());
-    std::printf("materials:  %zu, textures: %zu\n", s.materials.size(), s.textures.size());
+    size_t mirrors = 0, dielectrics = 0;
+    for (const Material& m : s.materials) {
+        mirrors += m.is_mirror();
+        dielectrics += m.is_dielectric();
+    }
+    std::printf("materials:  %zu", s.materials.size());
+    if (mirrors + dielectrics > 0) std::printf(" (%zu mirror, %zu dielectric)", mirrors, dielectrics);
+    std::printf(", textures: %zu\n", s.textures.size());
     std::printf("bounds:     (%g, %g, %g) .. (%g, %g, %g)\n", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     std::printf("camera:     %dx%d, vfov %g, at (%g, %g, %g)\n", s.camera.width, s.camera.height,
                 s.camera.vfov_deg, s.camera.position.x, s.camera.position.y, s.camera.position.z);
-    std::printf("objects:    %zu\n", s.objects.size());
+    size_t json_lights = 0;
+    for (const SceneObject& o : s.objects) json_lights += o.json_light;
+    std::printf("objects:    %zu", s.objects.size() - json_lights);
+    if (json_lights > 0) std::printf(" and %zu quad light%s of the scene file", json_lights, json_lights == 1 ? "" : "s");
+    std::printf("\n");
     if (s.animation.animated())
         std::printf("animation:  %d frames; tracks: %zu objects, %zu materials, camera %s\n",
                     s.animation.frame_count, s.animation.objects.size(), s.animation.materials.size(),

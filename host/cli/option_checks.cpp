@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <charconv>
 #include <cerrno>
 #include <cmath>
@@ -80,6 +81,17 @@ void reject_options_as_values(const CLI::App& app, const std::vector<std::string
             cmd->get_option_no_throw(next.substr(0, next.find('='))))
             throw InputError(args[i] + ": needs a value (the next word, " + next + ", is an option)");
     }
+}
+
+void require_exr_name(const std::string& option, const std::filesystem::path& path) {
+    const std::string ext = path.extension().string(), name = path.filename().string();
+    if (ext == ".exr") return;
+    std::string lower = ext;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string why = lower == ".exr" ? "must end in .exr (lower case)"
+                            : name == ".exr" ? "needs a file name before .exr"
+                                             : "must end in .exr";
+    throw InputError(option + " " + path.string() + ": " + why);
 }
 
 void check_data_dir(const std::string& data_dir) {

@@ -36,6 +36,12 @@ void reject_options_as_values(const CLI::App& app, const std::vector<std::string
 /// --data-dir, when given (not empty), must name an existing directory.
 void check_data_dir(const std::string& data_dir);
 
+/// An EXR output path given to `option` ("--out", "--screenshot") must name a file whose
+/// extension is ".exr", in lower case. InputError "--out x.EXR: must end in .exr (lower
+/// case)", or for "dir/.exr" (a hidden name, no extension) "...: needs a file name before
+/// .exr".
+void require_exr_name(const std::string& option, const std::filesystem::path& path);
+
 /// An output file of the run, with what the messages call it ("--out", "--stats-json",
 /// "the PNG preview beside --out", "the checkpoint beside --out").
 struct OutputFile {

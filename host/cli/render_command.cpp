@@ -153,6 +153,17 @@ void check_scene_options(const RenderSettings& s, const std::string& components,
                          " has no medium, so these compute nothing there; add ss or id");
 }
 
+// The medium's settings on a scene without one: a note, as for a setting the method does
+// not read (the same script may render foggy and clear scenes).
+void note_medium_options(const CLI::App& cmd, const Scene& scene, const fs::path& scene_path) {
+    if (plan_effects(scene).medium) return;
+    for (const char* option : {"--max-scatter", "--march-steps", "--single-scattering", "--point-medium-vpls",
+                               "--uniform-march", "--ais-pm-trigger", "--ais-pm-cov"})
+        if (cmd.count(option))
+            std::fprintf(stderr, "tessera: note: %s: scene %s has no medium; it changes nothing\n", option,
+                         scene_path.string().c_str());
+}
+
 void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, const fs::path& out,
                   const BackendOptions& bo, RenderSettings& settings) {
     std::fprintf(stderr, "tessera: %s, %zu triangles, frames %d..%d\n", scene.name.c_str(), scene.triangle_count(),
@@ -251,9 +262,10 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
         scene = load_scene(scene_path, data);
         out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
-        if (out.extension() != ".exr") throw InputError("--out " + out.string() + ": must end in .exr");
+        require_exr_name("--out", out);
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
         check_scene_options(settings, a.components, scene, scene_path);
+        if (lead) note_medium_options(cmd, scene, scene_path);
         // Before the scene's banner; rank 0 alone reads the checkpoint (render_frame).
         if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));
         if (lead) {  // only rank 0 writes

@@ -227,7 +227,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     o.exposure = a.exposure;
     o.reference = a.reference;
     o.screenshot = a.screenshot.empty() ? fs::path("out") / (scene.name + "-view.exr") : fs::path(a.screenshot);
-    if (o.screenshot.extension() != ".exr") throw InputError("--screenshot " + o.screenshot.string() + ": must end in .exr");
+    require_exr_name("--screenshot", o.screenshot);
     o.target_fps = a.target_fps;
     o.speed = a.speed;
     o.min_scale = a.min_scale;

@@ -105,8 +105,8 @@ void add_lights(const Scene& scene, const std::vector<glm::vec3>& positions, Sce
 }  // namespace
 
 uint32_t material_kind(const Material& m) {
-    if (m.illum == 3 || m.illum == 5) return TS_MAT_MIRROR;
-    if (m.illum == 7) return TS_MAT_DIELECTRIC;
+    if (m.is_mirror()) return TS_MAT_MIRROR;
+    if (m.is_dielectric()) return TS_MAT_DIELECTRIC;
     return TS_MAT_DIFFUSE;
 }
 

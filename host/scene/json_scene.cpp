@@ -182,7 +182,7 @@ void read_lights(const JsonField& lights, Scene& scene) {
         scene_detail::append_quad_light(scene, l["corner"].vec3(), e1, e2,
                                         read_colour(l["radiance"], scene_detail::Colour::Radiance),
                                         "json-light-" + std::to_string(i));
-        scene.objects.push_back({"json-light-" + std::to_string(i), first, 2u});
+        scene.objects.push_back({"json-light-" + std::to_string(i), first, 2u, true});
     }
 }
 

@@ -45,6 +45,9 @@ struct Material {
     /// The emission lights are chosen and weighed by: the animation's maximum, or
     /// `emission` where a scene built in code left emission_max zero.
     glm::vec3 emission_bound() const { return glm::max(emission, emission_max); }
+    /// The specular kinds of `illum` (MTL): 3 and 5 a mirror, 7 a smooth dielectric.
+    bool is_mirror() const { return illum == 3 || illum == 5; }
+    bool is_dielectric() const { return illum == 7; }
     /// Whether it emits in some frame, which makes its triangles lights.
     bool may_emit() const {
         const glm::vec3 e = emission_bound();
@@ -85,6 +88,7 @@ struct SceneObject {
     std::string name;          ///< the JSON "name", else "<mesh file>#<index>" or "json-light-<i>"
     uint32_t first_triangle = 0;
     uint32_t triangle_count = 0;
+    bool json_light = false;   ///< a quad of the scene file's "lights", not a mesh
 };
 
 /// The loaded scene. Per-triangle arrays are parallel: triangle i has vertices

@@ -163,6 +163,8 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
          "--stats-json /proc/tessera/stats.json: cannot create the directory /proc/tessera", 1},
         {kRender + kOut + " --stats-json /dev/null", "--stats-json /dev/null: not a regular file"},
         {kRender + "--out $D/", "--out $D/: must end in .exr"},
+        {kRender + "--out $D/img.EXR", "--out $D/img.EXR: must end in .exr (lower case)"},
+        {kRender + "--out $D/.exr", "--out $D/.exr: needs a file name before .exr"},
         {anim, "frame 1 of --out $D/anim.0001.exr: is a directory", 2, mkdir("anim.0001.exr")},
         {anim, "the PNG preview of frame 2 $D/anim.0002.png: is a directory", 2, mkdir("anim.0002.png")},
         {"compare " + kData + "/x.exr " + kData + "/y.exr --map $D/sub", "--map $D/sub: is a directory", 2, mkdir("sub")},

@@ -82,6 +82,28 @@ TEST_F(RenderCli, SettingsTheMethodIgnoresGetANote) {
     EXPECT_EQ(read.output.find("tessera: note:"), std::string::npos) << read.output;
 }
 
+// The medium's settings on a clear scene change nothing; each given one gets a note (they
+// were taken without a word). On a foggy scene they are read, without a note.
+TEST_F(RenderCli, MediumSettingsOnAClearSceneGetANote) {
+    const std::string base = "render " + kData + "/light.json --spp 1 --width 8 --height 8 --backend embree --method igi";
+    const CliResult plain = run_tessera(base + " --out " + (dir_ / "a.exr").string());
+    const CliResult noted =
+        run_tessera(base + " --out " + (dir_ / "b.exr").string() + " --uniform-march --march-steps 3 --single-scattering");
+    ASSERT_EQ(plain.exit_code, 0) << plain.output;
+    ASSERT_EQ(noted.exit_code, 0) << noted.output;
+    for (const char* option : {"--uniform-march", "--march-steps", "--single-scattering"})
+        EXPECT_NE(noted.output.find(std::string("tessera: note: ") + option + ": scene " + kData +
+                                    "/light.json has no medium; it changes nothing\n"),
+                  std::string::npos)
+            << noted.output;
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "a.exr"), tessera::test::file_bytes(dir_ / "b.exr"));
+    const CliResult fog = run_tessera("render " + std::string(TESSERA_SCENES_DIR) +
+                                      "/cornell-box-fog.json --spp 1 --width 8 --height 8 --backend embree --method igi "
+                                      "--uniform-march --out " + (dir_ / "c.exr").string());
+    ASSERT_EQ(fog.exit_code, 0) << fog.output;
+    EXPECT_EQ(fog.output.find("has no medium"), std::string::npos) << fog.output;
+}
+
 TEST_F(RenderCli, RendersExrAndPngOnBothBackends) {
     for (const char* backend : {"embree", "opencl"}) {
         const fs::path out = dir_ / (std::string(backend) + ".exr");
@@ -112,6 +134,23 @@ TEST(InfoCli, DataPathThatIsNotADirectoryIsSaid) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("tessera: note: TESSERA_DATA=/no/such/tessera-data is not a directory"), std::string::npos)
         << r.output;
+}
+
+// Meshes and the scene file's quad lights are counted apart (Sibenik's one mesh and four
+// lights were "objects: 5"), and mirrors and dielectrics are named among the materials.
+TEST_F(RenderCli, InfoCountsMeshesLightsAndSpecularMaterials) {
+    fs::copy_file(fs::path(TESSERA_SCENES_DIR) / "cube.obj", dir_ / "cube.obj");
+    std::ofstream(dir_ / "cube.mtl") << "newmtl cube\nKd 0.5 0.5 0.5\nKs 1 1 1\nNi 1.5\nillum 7\n";
+    std::ofstream(dir_ / "scene.json") << R"({
+      "camera": {"position": [0, 2, 3], "look_at": [0, 0, 0]},
+      "objects": [{"mesh": "cube.obj"}],
+      "lights": [{"type": "quad", "corner": [-1, 3, -1], "edge1": [2, 0, 0], "edge2": [0, 0, 2], "radiance": [1, 1, 1]},
+                 {"type": "quad", "corner": [-1, 4, -1], "edge1": [2, 0, 0], "edge2": [0, 0, 2], "radiance": [1, 1, 1]}]
+    })";
+    const CliResult r = run_tessera("info " + (dir_ / "scene.json").string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("objects:    1 and 2 quad lights of the scene file\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(0 mirror, 1 dielectric)"), std::string::npos) << r.output;
 }
 
 TEST(InfoCli, DescribesAnAnimation) {
