@@ -67,30 +67,29 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
     for (size_t p = 0; p < pixels; ++p) y[p] = ts::ts_luminance(ts::ts_f3_load(&radiance[p * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
     const float eps = edge_epsilon(radiance, g.width, dark);
     // The frame's precomputed masks (discontinuity_precompute) hold the test's answers for
-    // every window that covers the ±1 offsets of neighbouring ring pixels (tile 3, and
-    // every tile from 4 on): bit (dy − lo)·n + (dx − lo). The test per pair took 6 ms of a 256² frame at tile 3 and
-    // 12 ms of a 512² frame at tile 8; the masks give the same bits.
+    // a pair whose offset lies in the filter's window (every ring pair from tile 3 on, the
+    // straight-through pairs from tile 5): bit (dy − lo)·n + (dx − lo). The test per pair
+    // took 6 ms of a 256² frame at tile 3 and 12 ms of a 512² frame at tile 8; the masks
+    // give the same bits.
     int lo = 0, hi = 0;
     discontinuity_window(s.tile, &lo, &hi);
-    const bool masks = lo <= -1 && hi >= 1 && s.tile <= 8 && g.accepted.size() == pixels &&
-                       g.accepted_for.tile == s.tile && g.accepted_for.normal_cos == s.normal_cos &&
-                       g.accepted_for.depth_rel == s.depth_rel;
+    const bool masks = s.tile <= 8 && g.accepted.size() == pixels && g.accepted_for.tile == s.tile &&
+                       g.accepted_for.normal_cos == s.normal_cos && g.accepted_for.depth_rel == s.depth_rel;
     std::vector<float> out(pixels, 0.0f);
     parallel_rows(g.height, [&](int py) {
         for (int px = 0; px < g.width; ++px) {
             float best = 0.0f;
-            // Each neighbour against the next around the ring (ts_edge_ring): a pair the
-            // first's discontinuity test rejects, or on either side of a light's edge.
-            for (int i = 0; i < 8; ++i) {
-                const auto& a = ts::ts_edge_ring[i];
-                const auto& b = ts::ts_edge_ring[(i + 1) % 8];
-                const int ax = px + a[0], ay = py + a[1], bx = px + b[0], by = py + b[1];
+            // The neighbour pairs of ts_edge_pairs: a pair the first's discontinuity test
+            // rejects, or on either side of a light's edge.
+            for (const auto& pair : ts::ts_edge_pairs) {
+                const int ax = px + pair[0], ay = py + pair[1], bx = px + pair[2], by = py + pair[3];
                 if (std::min({ax, ay, bx, by}) < 0 || std::max(ax, bx) >= g.width || std::max(ay, by) >= g.height)
                     continue;
                 const size_t qa = size_t(ay) * g.width + ax, qb = size_t(by) * g.width + bx;
-                const bool accepted =
-                    masks ? (g.accepted[qa] >> ((b[1] - a[1] - lo) * s.tile + b[0] - a[0] - lo)) & 1u
-                          : discontinuity_accepts(g, s, qa, qb);
+                const int dx = pair[2] - pair[0], dy = pair[3] - pair[1];
+                const bool in_mask = masks && dx >= lo && dx <= hi && dy >= lo && dy <= hi;
+                const bool accepted = in_mask ? (g.accepted[qa] >> ((dy - lo) * s.tile + dx - lo)) & 1u
+                                              : discontinuity_accepts(g, s, qa, qb);
                 const bool light_edge = !emitter.empty() && (emitter[qa] != 0) != (emitter[qb] != 0);
                 if (accepted && !light_edge) continue;
                 best = ts::ts_edge_max(best, ts::ts_edge_contrast(y[qa], y[qb], eps));

@@ -17,10 +17,11 @@ namespace tessera {
 
 /// Edge settings (ours; docs/ais.md §9 gives how each was chosen).
 struct EdgeSettings {
-    /// Flag a pixel when the contrast across one of its edges exceeds this. Contrast is
-    /// |Y_p − Y_q| / (Y_p + Y_q + ε) (Michelson's, in [0, 1]) for a neighbour q that p's
-    /// discontinuity test rejects; 0.05 is a luminance ratio of 1.1, about the visible step
-    /// of a flat edge in HDR-VDP-3's model at our display luminances.
+    /// Flag a pixel when the contrast across an edge in its 3×3 window exceeds this.
+    /// Contrast is |Y_a − Y_b| / (Y_a + Y_b + ε) (Michelson's, in [0, 1]) for a pair of
+    /// p's neighbours that a's discontinuity test rejects (edge_guidance); 0.05 is a
+    /// luminance ratio of 1.1, about the visible step of a flat edge in HDR-VDP-3's model
+    /// at our display luminances.
     float trigger = 0.05f;
     /// Contrast at which A gives a flagged pixel all `samples` (ratio 3:1); below it A
     /// grades the count linearly from the trigger.
@@ -36,15 +37,17 @@ struct EdgeSettings {
     float dark = 0.01f;
 };
 
-/// Per pixel (row-major width × height) the largest contrast across its edges, in
-/// [0, 1]: over the 8 neighbours q (inside the image) that p's discontinuity test `s`
-/// rejects (normals, plane distance, escaped rays), or that differ from p in `emitter`,
-/// |Y_p − Y_q| / (Y_p + Y_q + ε) with Y the luminance of `radiance` (TS_PASS_FLOATS per
-/// pixel, its TS_PASS_RADIANCE) and ε = `dark` × the frame's mean Y. 0 where every
-/// neighbour is on p's surface. `emitter` (one byte a pixel, nonzero where the camera
-/// path ends on an emitter; empty: none) adds the edges of lights that lie in the plane of
-/// what holds them, which geometry does not show: a ceiling panel's edge, pixels a fraction
-/// of whose footprint is a light thousands of times brighter (docs/ais.md §9).
+/// Per pixel (row-major width × height) the largest contrast across an edge in its 3×3
+/// window, in [0, 1]: over the pairs a, b of p's neighbours in ts_edge_pairs (both inside
+/// the image; never p itself, whose own sample the merge averages) where a's
+/// discontinuity test `s` rejects b (normals, plane distance, escaped rays) or the two
+/// differ in `emitter`, |Y_a − Y_b| / (Y_a + Y_b + ε) with Y the luminance of `radiance`
+/// (TS_PASS_FLOATS per pixel, its TS_PASS_RADIANCE) and ε = `dark` × the frame's mean Y.
+/// 0 where all of p's neighbours lie on one surface. `emitter` (one byte a pixel, nonzero
+/// where the camera path ends on an emitter; empty: none) adds the edges of lights that
+/// lie in the plane of what holds them, which geometry does not show: a ceiling panel's
+/// edge, pixels a fraction of whose footprint is a light thousands of times brighter
+/// (docs/ais.md §9).
 std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySettings& s,
                                  const std::vector<float>& radiance, float dark,
                                  const std::vector<uint8_t>& emitter = {});

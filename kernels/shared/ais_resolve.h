@@ -173,10 +173,10 @@ TS_INLINE void ts_edge_schedule_pixel(const TsSceneView* sv, const TsTracer* tra
     const int w = (int)f->width, h = (int)f->height;
     const float eps = as_float(table[TS_AIS_TABLE_EDGE_EPSILON]);
     float best = 0.0f;
-    /* Each ring neighbour against the next (ts_edge_ring), never p itself. */
-    for (int i = 0; i < 8; ++i) {
-        const int ax = (int)x + ts_edge_ring[i][0], ay = (int)y + ts_edge_ring[i][1];
-        const int bx = (int)x + ts_edge_ring[(i + 1) % 8][0], by = (int)y + ts_edge_ring[(i + 1) % 8][1];
+    /* The neighbour pairs of ts_edge_pairs, never p itself. */
+    for (int i = 0; i < 10; ++i) {
+        const int ax = (int)x + ts_edge_pairs[i][0], ay = (int)y + ts_edge_pairs[i][1];
+        const int bx = (int)x + ts_edge_pairs[i][2], by = (int)y + ts_edge_pairs[i][3];
         if (ax < 0 || ay < 0 || bx < 0 || by < 0 || ax >= w || bx >= w || ay >= h || by >= h) continue;
         const size_t qa = (size_t)ay * (size_t)w + (size_t)ax, qb = (size_t)by * (size_t)w + (size_t)bx;
         TS_GLOBAL const float* sa = sv->igi_surface + qa * TS_IGI_SURF_FLOATS;

@@ -15,14 +15,16 @@ TS_NAMESPACE_BEGIN
 TS_CONSTANT_TABLE int ts_edge_window[9][2] = {{0, 0},  {-1, 0}, {1, 0},  {0, -1}, {0, 1},
                                               {-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
 
-/* The ring of p's 8 neighbours, in order around p: the guidance compares each with the
- * next (ts_edge_ring[i], ts_edge_ring[(i + 1) % 8]), never with p itself. A flag that
- * read p's own sample would be biased: the merge averages that sample with the edge
+/* The pairs of p's neighbours the guidance compares, as offsets (ax, ay, bx, by) from p:
+ * each of the 8 around p with the next on the ring, then left with right and above with
+ * below (the only pairs an image one pixel wide or high has). Never p itself: a flag that
+ * read p's own sample would be biased, for the merge averages that sample with the edge
  * samples, so a sample that alone met something (a light or a bar thinner than a pixel,
- * a reflection a dielectric chose) was flagged, and its share of the pixel fell to
- * 1/(n + 1) (docs/ais.md §9). The neighbours' samples are independent of p's. Any edge
- * across p's 3×3 window parts the ring. */
-TS_CONSTANT_TABLE int ts_edge_ring[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}};
+ * a reflection a dielectric chose) flagged its pixel, and its share of the pixel fell to
+ * 1/(n + 1) (docs/ais.md §9). Any edge across p's 3×3 window parts the ring. */
+TS_CONSTANT_TABLE int ts_edge_pairs[10][4] = {{-1, -1, 0, -1}, {0, -1, 1, -1}, {1, -1, 1, 0}, {1, 0, 1, 1},
+                                              {1, 1, 0, 1},    {0, 1, -1, 1},  {-1, 1, -1, 0}, {-1, 0, -1, -1},
+                                              {-1, 0, 1, 0},   {0, -1, 0, 1}};
 
 /* The contrast across the edge between luminances yp and yq (Michelson's with ε `eps`,
  * in [0, 1]); 0 where the denominator is not positive. */

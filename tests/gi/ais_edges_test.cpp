@@ -129,6 +129,31 @@ TEST(AisEdgeGuidance, APixelsOwnSampleDoesNotFlagIt) {
     }
 }
 
+TEST(AisEdgeGuidance, AnImageOnePixelWideOrHighFindsItsEdges) {
+    // A column (and a row) of 6 pixels: a near wall for the first 3, a far one behind.
+    // Their neighbours lie above and below (left and right) only, never next to each other
+    // on the ring; the straight-through pairs find the edge beside pixels 2 and 3.
+    for (bool column : {true, false}) {
+        SCOPED_TRACE(column ? "column" : "row");
+        GeometryBuffer g;
+        g.width = column ? 1 : 6;
+        g.height = column ? 6 : 1;
+        std::vector<float> img(6 * TS_PASS_FLOATS, 0.0f);
+        for (int i = 0; i < 6; ++i) {
+            const float z = i < 3 ? 2.0f : 4.0f;
+            g.normal.insert(g.normal.end(), {0.0f, 0.0f, 1.0f});
+            g.position.insert(g.position.end(), {column ? 0.0f : 0.1f * i, column ? 0.1f * i : 0.0f, -z});
+            g.depth.push_back(z);
+            for (int c = 0; c < 3; ++c) img[i * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] = i < 3 ? 1.0f : 0.25f;
+        }
+        const std::vector<float> guidance = edge_guidance(g, kFilter, img, 0.01f);
+        for (int i = 0; i < 6; ++i) {
+            if (i == 2 || i == 3) EXPECT_GT(guidance[i], 0.5f) << i;
+            else EXPECT_EQ(guidance[i], 0.0f) << i;
+        }
+    }
+}
+
 TEST(AisEdgeGuidance, EscapedRaysAreAnEdgeAndDarkDifferencesAreNot) {
     GeometryBuffer g = two_walls(kInf);  // right half: the camera rays escaped
     std::vector<float> guidance = edge_guidance(g, kFilter, pass_image(1.0f, 0.0f), 0.01f);
