@@ -117,14 +117,18 @@ std::string build_log(const cl::Program& program, const cl::Device& device) {
 }
 
 // The build log's first line that reports an error, trimmed; empty if none does. It leads
-// the failure's message: the whole log (warnings, the driver's own lines) follows.
+// the failure's message: the whole log (warnings, the driver's own lines) follows. Clang's
+// form, "error:", first (PoCL's and NVIDIA's logs use it; a warning's text may say
+// "errors"), else any line that says "error".
 std::string first_error(const std::string& log) {
-    std::istringstream in(log);
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.find("error") == std::string::npos) continue;
-        const size_t a = line.find_first_not_of(" \t"), b = line.find_last_not_of(" \t\r");
-        return line.substr(a, b - a + 1);
+    for (const char* mark : {"error:", "error"}) {
+        std::istringstream in(log);
+        std::string line;
+        while (std::getline(in, line)) {
+            if (line.find(mark) == std::string::npos) continue;
+            const size_t a = line.find_first_not_of(" \t"), b = line.find_last_not_of(" \t\r");
+            return line.substr(a, b - a + 1);
+        }
     }
     return "";
 }
