@@ -116,11 +116,22 @@ std::string build_log(const cl::Program& program, const cl::Device& device) {
     }
 }
 
+bool try_build(cl::Program& program, const cl::Device& device, const std::string& options) {
+    try {
+        program.build({device}, options.c_str());
+        return true;
+    } catch (const cl::Error&) {
+        return false;
+    }
+}
+
+}  // namespace
+
 // The build log's first line that reports an error, trimmed; empty if none does. It leads
 // the failure's message: the whole log (warnings, the driver's own lines) follows. Clang's
 // form, "error:", first (PoCL's and NVIDIA's logs use it; a warning's text may say
 // "errors"), else any line that says "error".
-std::string first_error(const std::string& log) {
+std::string build_log_first_error(const std::string& log) {
     for (const char* mark : {"error:", "error"}) {
         std::istringstream in(log);
         std::string line;
@@ -132,17 +143,6 @@ std::string first_error(const std::string& log) {
     }
     return "";
 }
-
-bool try_build(cl::Program& program, const cl::Device& device, const std::string& options) {
-    try {
-        program.build({device}, options.c_str());
-        return true;
-    } catch (const cl::Error&) {
-        return false;
-    }
-}
-
-}  // namespace
 
 std::string kernel_limit_problem(const std::string& kernel, const std::string& device, size_t limit,
                                  size_t required) {
@@ -213,7 +213,7 @@ ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, cons
     cl::Program p(ctx, source);
     if (!try_build(p, dev.device, out.options))
     {
-        const std::string log = build_log(p, dev.device), first = first_error(log);
+        const std::string log = build_log(p, dev.device), first = build_log_first_error(log);
         throw BuildError("OpenCL build of kernels/" + name + " failed on " + dev.name +
                          (first.empty() ? "" : ": " + first) + "\n  options: " + out.options + "\n  build log:\n" +
                          log);

@@ -32,6 +32,11 @@ struct ProgramBuild {
 ProgramBuild build_program(const cl::Context& ctx, const ClDeviceInfo& dev, const std::string& name,
                            const std::vector<std::string>& defines);
 
+/// The first line of an OpenCL build log that reports an error, trimmed: clang's form,
+/// "error:", first, else any line that says "error"; "" if none does. A build failure's
+/// message leads with it (the whole log follows).
+std::string build_log_first_error(const std::string& log);
+
 /// The problem with running kernel `kernel` on device `device` at work-group size
 /// `required` (TS_WORKGROUP_SIZE, fixed: the kernels declare reqd_work_group_size) when
 /// the device allows at most `limit` work-items for it (CL_KERNEL_WORK_GROUP_SIZE, which

@@ -130,8 +130,6 @@ TEST(ProgramCache, TemporaryFallbackIsPrivateToTheUser) {
 TEST(ProgramCache, BuildFailureReportsTheLog) {
     ScopedDirEnv kernels("TESSERA_KERNEL_DIR", "broken-kernels");
     ScopedDirEnv cache("TESSERA_CACHE_DIR", "cache-broken");
-    // A warning whose text says "errors" comes first in the log; the message must still
-    // lead with the error.
     std::ofstream(kernels.dir() / "broken.cl") << "#warning no errors here\n"
                                                   "__kernel void k(__global float* x) { x[0] = undefined_name; }\n";
     ClDeviceInfo dev = select_cl_device("");
@@ -149,6 +147,16 @@ TEST(ProgramCache, BuildFailureReportsTheLog) {
         EXPECT_NE(first.find("kernels/broken.cl:2:"), std::string::npos) << first;
         EXPECT_NE(first.find("undefined_name"), std::string::npos) << first;
     }
+}
+
+// PoCL lists errors first; another driver may put a warning first, whose text can say
+// "errors": the line in clang's "error:" form is the one the message leads with.
+TEST(ProgramCache, FirstErrorOfABuildLog) {
+    EXPECT_EQ(build_log_first_error("warning: a.cl:1:2: no errors here\n  a.cl:2:5: error: use of undeclared x \n"),
+              "a.cl:2:5: error: use of undeclared x");
+    EXPECT_EQ(build_log_first_error("Device X failed: 3 errors\n"), "Device X failed: 3 errors");
+    EXPECT_EQ(build_log_first_error("warning: unused\n"), "");
+    EXPECT_EQ(build_log_first_error(""), "");
 }
 
 // An error in an included header is reported at that header's own line.
