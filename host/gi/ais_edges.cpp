@@ -81,11 +81,10 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
             float best = 0.0f;
             // The neighbour pairs of ts_edge_pairs: a pair the first's discontinuity test
             // rejects, or on either side of a light's edge.
-            for (const auto& pair : ts::ts_edge_pairs) {
-                const int ax = px + pair[0], ay = py + pair[1], bx = px + pair[2], by = py + pair[3];
-                if (std::min({ax, ay, bx, by}) < 0 || std::max(ax, bx) >= g.width || std::max(ay, by) >= g.height)
-                    continue;
-                const size_t qa = size_t(ay) * g.width + ax, qb = size_t(by) * g.width + bx;
+            for (int i = 0; i < 10; ++i) {
+                size_t qa, qb;
+                if (!ts::ts_edge_pair_pixels(px, py, g.width, g.height, i, &qa, &qb)) continue;
+                const auto& pair = ts::ts_edge_pairs[i];
                 const int dx = pair[2] - pair[0], dy = pair[3] - pair[1];
                 const bool in_mask = masks && dx >= lo && dx <= hi && dy >= lo && dy <= hi;
                 const bool accepted = in_mask ? (g.accepted[qa] >> ((dy - lo) * s.tile + dx - lo)) & 1u

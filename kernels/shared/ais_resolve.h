@@ -175,10 +175,8 @@ TS_INLINE void ts_edge_schedule_pixel(const TsSceneView* sv, const TsTracer* tra
     float best = 0.0f;
     /* The neighbour pairs of ts_edge_pairs, never p itself. */
     for (int i = 0; i < 10; ++i) {
-        const int ax = (int)x + ts_edge_pairs[i][0], ay = (int)y + ts_edge_pairs[i][1];
-        const int bx = (int)x + ts_edge_pairs[i][2], by = (int)y + ts_edge_pairs[i][3];
-        if (ax < 0 || ay < 0 || bx < 0 || by < 0 || ax >= w || bx >= w || ay >= h || by >= h) continue;
-        const size_t qa = (size_t)ay * (size_t)w + (size_t)ax, qb = (size_t)by * (size_t)w + (size_t)bx;
+        size_t qa, qb;
+        if (!ts_edge_pair_pixels((int)x, (int)y, w, h, i, &qa, &qb)) continue;
         TS_GLOBAL const float* sa = sv->igi_surface + qa * TS_IGI_SURF_FLOATS;
         TS_GLOBAL const float* sb = sv->igi_surface + qb * TS_IGI_SURF_FLOATS;
         const int accepted = ts_discontinuity_accepts(

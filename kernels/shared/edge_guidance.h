@@ -26,6 +26,17 @@ TS_CONSTANT_TABLE int ts_edge_pairs[10][4] = {{-1, -1, 0, -1}, {0, -1, 1, -1}, {
                                               {1, 1, 0, 1},    {0, 1, -1, 1},  {-1, 1, -1, 0}, {-1, 0, -1, -1},
                                               {-1, 0, 1, 0},   {0, -1, 0, 1}};
 
+/* Pair i of ts_edge_pairs around pixel (x, y) of a w × h image: 0 when a member lies
+ * outside the image; else 1, with the members' row-major indices *qa and *qb. */
+TS_INLINE int ts_edge_pair_pixels(int x, int y, int w, int h, int i, size_t* qa, size_t* qb) {
+    const int ax = x + ts_edge_pairs[i][0], ay = y + ts_edge_pairs[i][1];
+    const int bx = x + ts_edge_pairs[i][2], by = y + ts_edge_pairs[i][3];
+    if (ax < 0 || ay < 0 || bx < 0 || by < 0 || ax >= w || bx >= w || ay >= h || by >= h) return 0;
+    *qa = (size_t)ay * (size_t)w + (size_t)ax;
+    *qb = (size_t)by * (size_t)w + (size_t)bx;
+    return 1;
+}
+
 /* The contrast across the edge between luminances yp and yq (Michelson's with ε `eps`,
  * in [0, 1]); 0 where the denominator is not positive. */
 TS_INLINE float ts_edge_contrast(float yp, float yq, float eps) {
