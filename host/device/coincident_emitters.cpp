@@ -178,7 +178,8 @@ CoincidentEmitters separate_coincident_emitters(const Scene& scene, std::vector<
                 if (gap != gap) continue;
                 if (same_way) stacked[k] = true;
                 // To kCoincidentEmitterUlps in front: a light already part of the way
-                // there moves less (Scale.*'s, 1.7 ulps under its ceiling, moves 4.3).
+                // there moves less (one 2e-3 under a ceiling 1e4 from the origin, 1.7
+                // ulps, moves 4.3).
                 else shift[k] = std::max(kCoincidentEmitterUlps * kUlp * scale - gap, 1e-300);
             }
         });
