@@ -68,11 +68,10 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
     const float eps = edge_epsilon(radiance, g.width, dark);
     // The frame's precomputed masks (discontinuity_precompute) hold the test's answers for
     // a pair whose offset lies in the filter's window (every ring pair from tile 3 on, the
-    // straight-through pairs from tile 5): bit (dy − lo)·n + (dx − lo). The test per pair
+    // straight-through pairs from tile 5; ts_discontinuity_position: a window moved in at the
+    // border may not hold them). The test per pair
     // took 6 ms of a 256² frame at tile 3 and 12 ms of a 512² frame at tile 8; the masks
     // give the same bits.
-    int lo = 0, hi = 0;
-    discontinuity_window(s.tile, &lo, &hi);
     const bool masks = s.tile <= 8 && g.accepted.size() == pixels && g.accepted_for.tile == s.tile &&
                        g.accepted_for.normal_cos == s.normal_cos && g.accepted_for.depth_rel == s.depth_rel;
     std::vector<float> out(pixels, 0.0f);
@@ -86,9 +85,10 @@ std::vector<float> edge_guidance(const GeometryBuffer& g, const DiscontinuitySet
                 if (!ts::ts_edge_pair_pixels(px, py, g.width, g.height, i, &qa, &qb)) continue;
                 const auto& pair = ts::ts_edge_pairs[i];
                 const int dx = pair[2] - pair[0], dy = pair[3] - pair[1];
-                const bool in_mask = masks && dx >= lo && dx <= hi && dy >= lo && dy <= hi;
-                const bool accepted = in_mask ? (g.accepted[qa] >> ((dy - lo) * s.tile + dx - lo)) & 1u
-                                              : discontinuity_accepts(g, s, qa, qb);
+                const int bit = masks ? ts::ts_discontinuity_position(int(qa % g.width), int(qa / g.width), g.width,
+                                                                      g.height, s.tile, dx, dy)
+                                      : -1;
+                const bool accepted = bit >= 0 ? (g.accepted[qa] >> bit) & 1u : discontinuity_accepts(g, s, qa, qb);
                 const bool light_edge = !emitter.empty() && (emitter[qa] != 0) != (emitter[qb] != 0);
                 if (accepted && !light_edge) continue;
                 best = ts::ts_edge_max(best, ts::ts_edge_contrast(y[qa], y[qb], eps));

@@ -27,7 +27,8 @@ void ais_reconstruct(const GeometryBuffer& g, const DiscontinuitySettings& s, co
                 int count = std::popcount(mask);
                 // The set held by window position (row r, column c) is set_col[c] +
                 // set_row[r]: the window's first position holds set column sx and row sy.
-                const int sx = ts::ts_ais_window_origin(x, n), sy = ts::ts_ais_window_origin(y, n);
+                const int sx = ts::ts_ais_window_origin(x, w, n), sy = ts::ts_ais_window_origin(y, h, n);
+                const ptrdiff_t shift = ts::ts_discontinuity_shift(x, y, w, h, n);  // moved in at the border
                 int set_col[8], set_row[8];
                 for (int k = 0; k < n; ++k) {
                     set_col[k] = (sx + k) % n;
@@ -37,7 +38,7 @@ void ais_reconstruct(const GeometryBuffer& g, const DiscontinuitySettings& s, co
                 for (uint64_t b = discontinuity_window_mask(g, s, x, y); b; b &= b - 1) {
                     const int i = std::countr_zero(b);
                     if (mask >> (set_col[i % n] + set_row[i / n]) & 1) continue;  // p has its own
-                    const size_t q = static_cast<size_t>(static_cast<ptrdiff_t>(p) + offset[i]);
+                    const size_t q = static_cast<size_t>(static_cast<ptrdiff_t>(p) + shift + offset[i]);
                     for (int j = 0; j < 3; ++j) sum[j] += base[3 * q + j];
                     ++count;
                 }

@@ -144,40 +144,53 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
     const ts::TsAisGuideView view = guide_view(base, filter);
     const ts::TsAisParams params = params_of(t, AisMode::A, filter.tile);
     const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(filter.tile, w);
+    const int n = filter.tile;
+    int lo, hi;
+    discontinuity_window(n, &lo, &hi);
     const bool ss = !out.g[kAisSS].empty(), id = !out.g[kAisID].empty();
     tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& rows) {
         std::vector<uint64_t> masks(w);
         WindowRow vis, ind;
         for (int y = rows.begin(); y < rows.end(); ++y) {
             for (int x = 0; x < w; ++x) masks[x] = discontinuity_window_mask(base.geometry, filter, x, y);
-            if (ss) window_row(base.visibility.data(), masks.data(), y, w, h, filter.tile, offset.data(), true, false, vis);
-            if (id) window_row(base.indirect.data(), masks.data(), y, w, h, filter.tile, offset.data(), false, true, ind);
-            const int sy = ts::ts_ais_window_origin(y, filter.tile);
-            int sx = ts::ts_ais_window_origin(0, filter.tile);  // advanced with x (no division per pixel)
-            for (int x = 0; x < w; ++x, sx = sx + 1 == filter.tile ? 0 : sx + 1) {
+            // The rows' SIMD sums hold for the centred windows; a window moved in at the
+            // border (ts_discontinuity_lo_at) takes the per-pixel functions, as the device.
+            const bool row_moved = ts::ts_discontinuity_lo_at(y, h, n) != lo;
+            if (ss && !row_moved) window_row(base.visibility.data(), masks.data(), y, w, h, n, offset.data(), true, false, vis);
+            if (id && !row_moved) window_row(base.indirect.data(), masks.data(), y, w, h, n, offset.data(), false, true, ind);
+            const int sy = ts::ts_ais_window_origin(y, h, n);
+            for (int x = 0; x < w; ++x) {
                 const size_t p = size_t(y) * w + x;
-                const uint64_t in_image = ts::ts_ais_in_image(x, y, w, h, filter.tile);
+                const bool moved = row_moved || ts::ts_discontinuity_lo_at(x, w, n) != lo;
+                long moved_offset[64];
+                if (moved) ts::ts_discontinuity_offsets_at(x, y, w, h, n, moved_offset);
+                const long* off = moved ? moved_offset : offset.data();
+                const uint64_t in_image = ts::ts_ais_in_image(x, y, w, h, n);
                 const uint64_t accepted = masks[x];
                 uint64_t missing, held;
-                ts::ts_ais_window_sets(in_image, accepted, sx, sy, filter.tile, &missing, &held);
+                ts::ts_ais_window_sets(in_image, accepted, ts::ts_ais_window_origin(x, w, n), sy, n, &missing, &held);
                 out.missing[p] = missing;
                 out.held[p] = held;
                 // SS and ID are 0 where the camera ray escaped (ts_ais_guidance).
                 const bool surface = std::isfinite(base.geometry.depth[p]);
                 if (ss && surface) {
-                    const ts::TsAisValue v = ts::ts_ais_ss_value(vis.lo[x], vis.hi[x], base.visibility[p], in_image,
-                                                                 accepted, params.min_accepted);
+                    const ts::TsAisValue v =
+                        moved ? ts::ts_ais_ss(&view, &params, off, in_image, accepted, p)
+                              : ts::ts_ais_ss_value(vis.lo[x], vis.hi[x], base.visibility[p], in_image, accepted,
+                                                    params.min_accepted);
                     out.g[kAisSS][p] = v.g, out.grade[kAisSS][p] = v.grade;
                 }
                 if (id && surface) {
-                    const float var = ts::ts_ais_cov_of_sums(ind.sum[x], ind.sum2[x], std::popcount(accepted),
-                                                             params.id_cov);
-                    const ts::TsAisValue v = ts::ts_ais_id_value(&view, &params, var, in_image, accepted, x, y);
+                    const ts::TsAisValue v =
+                        moved ? ts::ts_ais_id(&view, &params, off, in_image, accepted, x, y)
+                              : ts::ts_ais_id_value(&view, &params,
+                                                    ts::ts_ais_cov_of_sums(ind.sum[x], ind.sum2[x],
+                                                                           std::popcount(accepted), params.id_cov),
+                                                    in_image, accepted, x, y);
                     out.g[kAisID][p] = v.g, out.grade[kAisID][p] = v.grade;
                 }
                 if (!out.g[kAisPM].empty()) {
-                    const ts::TsAisValue v =
-                        ts::ts_ais_guidance(&view, &params, offset.data(), kAisPM, in_image, accepted, x, y);
+                    const ts::TsAisValue v = ts::ts_ais_guidance(&view, &params, off, kAisPM, in_image, accepted, x, y);
                     out.g[kAisPM][p] = v.g, out.grade[kAisPM][p] = v.grade;
                 }
             }

@@ -288,7 +288,10 @@ void filter_rows(const GeometryBuffer& g, const DiscontinuitySettings& s, bool p
                 continue;
             }
             const uint64_t bits = precomputed ? g.accepted[p] : compute_window_mask(g, s, x, y);
-            ts::ts_discontinuity_mean(in, C, C, p, offset.data(), bits, out + p * C);
+            // A border pixel's window is moved inward (ts_discontinuity_lo_at): its positions
+            // lie `shift` pixels from the centred window's.
+            const size_t base = size_t(ptrdiff_t(p) + ts::ts_discontinuity_shift(x, y, w, h, n));
+            ts::ts_discontinuity_mean(in, C, C, base, offset.data(), bits, out + p * C);
             if (accepted) accepted[p] = static_cast<uint8_t>(std::popcount(bits));
             ++x;
         }
@@ -308,6 +311,12 @@ void discontinuity_precompute(GeometryBuffer& g, const DiscontinuitySettings& s)
         std::vector<uint32_t> row_bits(w);
         for (int y = rows.begin(); y < rows.end(); ++y) {
             uint64_t* bits = &g.accepted[size_t(y) * w];
+            // Windows moved in at the border (ts_discontinuity_lo_at): a whole row near the
+            // top or bottom, else the columns near the sides, tested pixel by pixel.
+            const bool row_moved = ts::ts_discontinuity_lo_at(y, h, n) != lo;
+            for (int x = 0; x < w; ++x)
+                if (row_moved || ts::ts_discontinuity_lo_at(x, w, n) != lo) bits[x] = compute_window_mask(g, s, x, y);
+            if (row_moved) continue;
             for (int dy = lo; dy <= hi; ++dy) {
                 if (y + dy < 0 || y + dy >= h) continue;
                 std::fill(row_bits.begin(), row_bits.end(), 0u);
@@ -324,7 +333,8 @@ void discontinuity_precompute(GeometryBuffer& g, const DiscontinuitySettings& s)
                         window_bits_run<true>(arrays, s, w, y, x0, x1, dx, dy, col, row_bits.data());
                 }
                 const int shift = (dy - lo) * n;
-                for (int x = 0; x < w; ++x) bits[x] |= uint64_t(row_bits[x]) << shift;
+                for (int x = 0; x < w; ++x)
+                    if (ts::ts_discontinuity_lo_at(x, w, n) == lo) bits[x] |= uint64_t(row_bits[x]) << shift;
             }
         }
     });

@@ -53,28 +53,27 @@ typedef struct TsAisValue {
     float g, grade;
 } TsAisValue;
 
-/* Pixel (x, y)'s window positions inside the w × h image. */
+/* Pixel (x, y)'s window positions inside the w × h image (all of them unless the image is
+ * narrower or lower than the window: ts_discontinuity_lo_at moves a window in at the
+ * border). */
 TS_INLINE ulong ts_ais_in_image(int x, int y, int w, int h, int n) {
-    int lo, hi;
-    ts_discontinuity_window(n, &lo, &hi);
     const ulong all = n * n == 64 ? ~(ulong)0 : ((ulong)1 << (n * n)) - (ulong)1;
-    if (x + lo >= 0 && y + lo >= 0 && x + hi < w && y + hi < h) return all;
+    if (w >= n && h >= n) return all;
+    const int lx = ts_discontinuity_lo_at(x, w, n), ly = ts_discontinuity_lo_at(y, h, n);
     ulong bits = 0;
     int i = 0;
-    for (int dy = lo; dy <= hi; ++dy)
-        for (int dx = lo; dx <= hi; ++dx, ++i) {
+    for (int dy = ly; dy < ly + n; ++dy)
+        for (int dx = lx; dx < lx + n; ++dx, ++i) {
             const int qx = x + dx, qy = y + dy;
             if (qx >= 0 && qy >= 0 && qx < w && qy < h) bits |= (ulong)1 << i;
         }
     return bits;
 }
 
-/* The set column and row held by the first position (lo, lo) of pixel (x, y)'s window,
- * tile edge n (x + lo >= -n). */
-TS_INLINE int ts_ais_window_origin(int v, int n) {
-    int lo, hi;
-    ts_discontinuity_window(n, &lo, &hi);
-    return (v + lo + n) % n;
+/* The set column (or row) held by the first position of the window of pixel coordinate v
+ * on an axis `size` pixels long, tile edge n (ts_discontinuity_lo_at's window). */
+TS_INLINE int ts_ais_window_origin(int v, int size, int n) {
+    return (v + ts_discontinuity_lo_at(v, size, n)) % n;
 }
 
 /* The interleave sets held by a pixel's window positions, its window's first position
@@ -171,15 +170,14 @@ TS_INLINE TsAisValue ts_ais_ss(const TsAisGuideView* v, const TsAisParams* t, co
 }
 
 /* Whether a pixel of p's 3×3 neighbourhood (in the image) lies across p's discontinuity
- * test: read from the window masks where the window holds the 3×3 (n ≥ 3), else tested. */
+ * test: read from the window masks where the window holds the 3×3 (n ≥ 3, off the image's border), else tested. */
 TS_INLINE int ts_ais_geometric_edge(const TsAisGuideView* v, ulong in_image, ulong accepted, int x, int y) {
     const int n = v->tile;
-    int lo, hi;
-    ts_discontinuity_window(n, &lo, &hi);
-    if (lo <= -1 && hi >= 1) {
+    if (ts_discontinuity_position(x, y, v->width, v->height, n, -1, -1) >= 0 &&
+        ts_discontinuity_position(x, y, v->width, v->height, n, 1, 1) >= 0) {
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
-                const ulong bit = (ulong)1 << ((dy - lo) * n + (dx - lo));
+                const ulong bit = (ulong)1 << ts_discontinuity_position(x, y, v->width, v->height, n, dx, dy);
                 if ((in_image & bit) && !(accepted & bit)) return 1;
             }
         return 0;

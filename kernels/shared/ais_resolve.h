@@ -78,7 +78,7 @@ TS_INLINE void ts_ais_sum_mean(const TsAisSum* a, int count, float* out) {
  * host's own_sum), plus, for each set it did not evaluate, the base estimate of the
  * neighbour in its filter window that holds it, if the filter accepts it (`accepted`, the
  * window's bits as ts_discontinuity_mask gives them for window edge n, `offset` their pixel
- * offsets), over the number of terms. Writes out (3 floats) and returns 1; returns 0 where
+ * offsets from p, ts_discontinuity_offsets_at's), over the number of terms. Writes out (3 floats) and returns 1; returns 0 where
  * the pixel evaluated its own set only (the filter's value stands). The pixel's sets are
  * its masks (sv->ais_masks), its items found by ts_ais_compact_index. */
 TS_INLINE int ts_ais_mean(const TsSceneView* sv, const TsFrame* f, uint x, uint y, int c, int n, ulong accepted,
@@ -99,11 +99,10 @@ TS_INLINE int ts_ais_mean(const TsSceneView* sv, const TsFrame* f, uint x, uint 
     }
     int count = ts_popcount64(mask);
     if (count < 2) return 0;
-    int lo, hi;
-    ts_discontinuity_window(n, &lo, &hi);
+    const int lx = ts_discontinuity_lo_at((int)x, (int)f->width, n), ly = ts_discontinuity_lo_at((int)y, (int)f->height, n);
     for (int i = 0; i < n * n; ++i) {
         if (!((accepted >> i) & 1ul)) continue;  /* outside the image, or rejected */
-        const uint qx = (uint)((int)x + lo + i % n), qy = (uint)((int)y + lo + i / n);
+        const uint qx = (uint)((int)x + lx + i % n), qy = (uint)((int)y + ly + i / n);
         if ((mask >> ts_igi_set(qx, qy, tile)) & 1ul) continue;  /* p has its own */
         ts_ais_sum_add(&sum, ts_ais_base(sv, c, (size_t)((long)p + offset[i])));
         ++count;
@@ -140,12 +139,12 @@ TS_INLINE void ts_ais_schedule_pixel(const TsSceneView* sv, const TsTracer* trac
     v.width = w, v.height = h, v.tile = n;
     v.cos_min = f->igi_filter_cos, v.depth_rel = f->igi_filter_depth;
     long offset[64];
-    for (int i = 0; i < sets; ++i) offset[i] = ts_discontinuity_offset(n, w, i);
+    ts_discontinuity_offsets_at((int)x, (int)y, w, h, n, offset);
     const ulong in_image = ts_ais_in_image((int)x, (int)y, w, h, n);
     const ulong accepted = ts_discontinuity_mask((int)x, (int)y, w, h, n, v.depth, v.normal, v.position,
                                                  TS_IGI_SURF_FLOATS, TS_IGI_SURF_FLOATS, 1, v.cos_min, v.depth_rel);
     ulong missing, held;
-    ts_ais_window_sets(in_image, accepted, ts_ais_window_origin((int)x, n), ts_ais_window_origin((int)y, n), n,
+    ts_ais_window_sets(in_image, accepted, ts_ais_window_origin((int)x, w, n), ts_ais_window_origin((int)y, h, n), n,
                        &missing, &held);
     TS_GLOBAL const uint* order = table + TS_AIS_TABLE_ORDER + (size_t)own * (size_t)(sets - 1);
     uint flags = 0u;

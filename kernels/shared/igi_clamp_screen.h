@@ -39,7 +39,7 @@ TS_INLINE void ts_igi_filtered_means(const TsSceneView* sv, const TsFrame* frame
                                              sv->igi_surface + TS_IGI_SURF_POSITION, TS_IGI_SURF_FLOATS,
                                              TS_IGI_SURF_FLOATS, 1, frame->igi_filter_cos, frame->igi_filter_depth);
     long offset[64];
-    for (int i = 0; i < n * n; ++i) offset[i] = ts_discontinuity_offset(n, w, i);
+    ts_discontinuity_offsets_at((int)x, (int)y, w, h, n, offset);
     for (int i = 0; i < 9; ++i) e[i] = 0.0f;
     ts_discontinuity_mean(sv->igi_surface + TS_IGI_SURF_E_SS, TS_IGI_SURF_FLOATS, 6, p, offset, bits, e);
     if (pm)

@@ -54,6 +54,46 @@ TEST(DiscontinuityFilter, RemovesInterleavingNoiseWithinASurface) {
         for (int x = 1; x < 11; ++x) ASSERT_FLOAT_EQ(out[y * 12 + x], 4.0f);
 }
 
+// The border too: a window that would cross the image's edge is moved inward
+// (ts_discontinuity_lo_at), so the border rows, columns and corners average every set as
+// the interior does. A window clipped by the image averaged 6 of 9 sets there (4 at a
+// corner): 3.5 at (0, 0) against 4 here, which left a frame's border rows bright or dark
+// (docs/igi.md §8). Tiles 2 to 8 on an image no tile divides, with precomputed masks and
+// without; an image narrower than the tile keeps the window the image clips.
+TEST(DiscontinuityFilter, ABorderPixelsWindowHoldsEverySet) {
+    for (int n : {2, 3, 4, 5, 8}) {
+        for (bool precomputed : {false, true}) {
+            SCOPED_TRACE(testing::Message() << "tile " << n << (precomputed ? ", precomputed masks" : ""));
+            const int w = 23, h = 17;
+            GeometryBuffer g = two_regions(w, h, 2.0f, 1.0f);
+            const DiscontinuitySettings s{n, 0.9f, 0.05f};
+            if (precomputed) discontinuity_precompute(g, s);
+            std::vector<float> in(size_t(w) * h), out;
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) in[size_t(y) * w + x] = float((x % n) + n * (y % n));
+            std::vector<uint8_t> count;
+            discontinuity_filter(g, s, 1, in, out, &count);
+            const float mean = float(n * n - 1) / 2.0f;  // of the sets 0 .. n² − 1
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    ASSERT_FLOAT_EQ(out[size_t(y) * w + x], mean) << x << "," << y;
+                    ASSERT_EQ(count[size_t(y) * w + x], n * n) << x << "," << y;
+                }
+        }
+    }
+    // 2 pixels wide, tile 3: each pixel's window is the image's 2 columns by 3 rows.
+    GeometryBuffer g = two_regions(2, 6, 2.0f, 1.0f);
+    std::vector<float> in(12), out;
+    for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 2; ++x) in[size_t(y) * 2 + x] = float(x + 3 * (y % 3));
+    std::vector<uint8_t> count;
+    discontinuity_filter(g, DiscontinuitySettings{3, 0.9f, 0.05f}, 1, in, out, &count);
+    for (int p = 0; p < 12; ++p) {
+        EXPECT_FLOAT_EQ(out[p], 3.5f) << p;  // sets 0, 1, 3, 4, 6, 7
+        EXPECT_EQ(count[p], 6) << p;
+    }
+}
+
 void expect_no_mixing(float right_depth, float right_nz) {
     GeometryBuffer g = two_regions(10, 6, right_depth, right_nz);
     std::vector<float> in, out;
@@ -157,14 +197,14 @@ TEST(DiscontinuityFilter, PrecomputedMasksMatchThePairwiseTest) {
             discontinuity_filter(g, s, 3, in, masked, &count_masked);
             ASSERT_EQ(std::memcmp(tested.data(), masked.data(), tested.size() * 4), 0);
             EXPECT_EQ(count_tested, count_masked);
-            int lo, hi;
-            discontinuity_window(n, &lo, &hi);
             size_t accepted = 0, pairs = 0;
             for (int y = 0; y < 17; ++y)
                 for (int x = 0; x < 23; ++x) {
                     const uint64_t m = g.accepted[size_t(y) * 23 + x];
+                    // The window's first position, moved in at the border.
+                    const int lx = ts::ts_discontinuity_lo_at(x, 23, n), ly = ts::ts_discontinuity_lo_at(y, 17, n);
                     for (int i = 0; i < n * n; ++i) {
-                        const int qx = x + lo + i % n, qy = y + lo + i / n;
+                        const int qx = x + lx + i % n, qy = y + ly + i / n;
                         const bool inside = qx >= 0 && qy >= 0 && qx < 23 && qy < 17;
                         const size_t p = size_t(y) * 23 + x, q = size_t(qy) * 23 + qx;
                         const bool want = inside && (p == q || discontinuity_accepts(g, s, p, q));
@@ -208,13 +248,14 @@ TEST(DiscontinuityFilter, FourPixelSumsEqualThePerPixelMean) {
                 std::vector<float> out;
                 std::vector<uint8_t> count;
                 discontinuity_filter(g, s, channels, in, out, &count);
-                const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, 29);
                 for (int y = 0; y < 19; ++y)
                     for (int x = 0; x < 29; ++x) {
                         const size_t p = size_t(y) * 29 + x;
                         const uint64_t bits = discontinuity_window_mask(g, s, x, y);
+                        long offset[64];
+                        ts::ts_discontinuity_offsets_at(x, y, 29, 19, n, offset);
                         float want[3];
-                        ts::ts_discontinuity_mean(in.data(), channels, channels, p, offset.data(), bits, want);
+                        ts::ts_discontinuity_mean(in.data(), channels, channels, p, offset, bits, want);
                         ASSERT_EQ(std::memcmp(&out[p * channels], want, 4 * channels), 0) << x << "," << y;
                         ASSERT_EQ(count[p], std::popcount(bits)) << x << "," << y;
                     }
@@ -250,12 +291,13 @@ TEST(DiscontinuityFilter, ColumnSumsEqualTheWindowOrderSums) {
                 std::vector<float> in(size_t(w) * h * channels), out;
                 for (float& v : in) v = draws[d]();
                 discontinuity_filter(g, s, channels, in, out);
-                const std::array<ptrdiff_t, 64> offset = discontinuity_window_offsets(n, w);
                 for (int y = 0; y < h; ++y)
                     for (int x = 0; x < w; ++x) {
                         const size_t p = size_t(y) * w + x;
+                        long offset[64];
+                        ts::ts_discontinuity_offsets_at(x, y, w, h, n, offset);
                         float want[3];
-                        ts::ts_discontinuity_mean(in.data(), channels, channels, p, offset.data(),
+                        ts::ts_discontinuity_mean(in.data(), channels, channels, p, offset,
                                                   discontinuity_window_mask(g, s, x, y), want);
                         for (int c = 0; c < channels; ++c) {
                             // A NaN's sign and payload depend on the operands' order in
