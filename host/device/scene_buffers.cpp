@@ -1,6 +1,11 @@
 #include "device/scene_buffers.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <utility>
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include "device/coincident_emitters.h"
 #include "device/texture_mips.h"
@@ -135,6 +140,46 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
         ensure_nonempty(*v);
     for (auto* v : {&b.tri_mat, &b.tex_info, &b.tex_texels}) ensure_nonempty(*v);
     return b;
+}
+
+float clamp_extent(const SceneBuffers& b) {
+    const SceneBounds full = scene_bounds(b);
+    const float whole = full.lo.x <= full.hi.x ? glm::length(full.hi - full.lo) : 0.0f;
+    const size_t n = b.tri_pos.size() / 9;
+    std::vector<double> area(n);
+    double total = 0.0;
+    auto vertex = [&](size_t t, int k) { return glm::dvec3(glm::make_vec3(&b.tri_pos[9 * t + 3 * k])); };
+    for (size_t t = 0; t < n; ++t) {
+        area[t] = 0.5 * glm::length(glm::cross(vertex(t, 1) - vertex(t, 0), vertex(t, 2) - vertex(t, 0)));
+        total += area[t];
+    }
+    if (!(total > 0.0) || !std::isfinite(total)) return whole;
+    // The first coordinate, in sort order, past which more than 10^-4 of the area lies.
+    const double trim = 1e-4 * total;
+    auto trimmed_end = [&](std::vector<std::pair<float, double>>& ends, bool descending) {
+        std::sort(ends.begin(), ends.end(), [&](const auto& a, const auto& c) {
+            return descending ? a.first > c.first : a.first < c.first;
+        });
+        double passed = 0.0;
+        for (const auto& [v, a] : ends) {
+            if (passed + a > trim) return v;
+            passed += a;
+        }
+        return ends.back().first;
+    };
+    glm::vec3 lo, hi;
+    std::vector<std::pair<float, double>> lows(n), highs(n);
+    for (int a = 0; a < 3; ++a) {
+        for (size_t t = 0; t < n; ++t) {
+            const float* p = &b.tri_pos[9 * t + a];
+            lows[t] = {std::min({p[0], p[3], p[6]}), area[t]};
+            highs[t] = {std::max({p[0], p[3], p[6]}), area[t]};
+        }
+        lo[a] = trimmed_end(lows, false);
+        hi[a] = trimmed_end(highs, true);
+    }
+    const float d = glm::length(glm::max(hi - lo, glm::vec3(0.0f)));
+    return d > 0.0f ? d : whole;
 }
 
 SceneBounds scene_bounds(const SceneBuffers& b) {

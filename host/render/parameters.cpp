@@ -47,7 +47,10 @@ const Parameter kParameters[] = {
      .unit = "paths", .doc = "igi: light paths per sample set", .scope = ParameterScope::IgiFamily},
     {.option = "--vpl-importance", .value_name = "K", .field = TS_SETTING(igi.vpl_importance), .min = 1, .max = 64,
      .unit = "x", .doc = "igi/ais: trace K× the light paths and keep a budget of VPLs by their importance for the view (1: off)", .scope = ParameterScope::IgiFamily},
-    {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = kNoMax,
+    // At most 1: no two points of the scene lie farther apart than D, so c = 1 clamps every
+    // VPL already, and a larger c only lowers b towards 0 (1e30 underflowed to b = 0 and
+    // took all indirect light away, the opposite of what 0 means).
+    {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = 1,
      .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables", .scope = ParameterScope::IgiFamily},
     {.option = "--clamp-decay", .value_name = "A", .field = TS_SETTING(igi.clamp_decay), .min = 0, .max = 1,
      .doc = "igi: pass p clamps with c·(p+1)^-A, so accumulated passes converge to the unclamped image; 0: fixed", .scope = ParameterScope::IgiFamily},

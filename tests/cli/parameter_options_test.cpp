@@ -136,7 +136,8 @@ TEST(ParameterOptions, OutOfRangeValuesAreRejectedNamingOptionAndValue) {
         {"--width 0", "--width 0: must be in 1..16384 (leave the option out for the scene camera's)"},
         {"--spp -1", "--spp -1: must be in 1..1000000"},
         {"--ais-complete 65", "--ais-complete 65: must be in 0..64"},
-        {"--clamp -1", "--clamp -1: must be >= 0"},
+        {"--clamp -1", "--clamp -1: must be in [0, 1]"},
+        {"--clamp 2", "--clamp 2: must be in [0, 1]"},
         {"--ais-ss-trigger 1.5", "--ais-ss-trigger 1.5: must be in [0, 1]"},
         {"--vpl-paths 70000", "--vpl-paths 70000: must be in 1..65536"},
     };

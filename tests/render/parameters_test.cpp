@@ -97,7 +97,7 @@ TEST(Parameters, KnownDefaultsAndRanges) {
     };
     check("--spp", "16", "1..1000000");
     check("--tile", "3", "1..8");
-    check("--clamp", "0.1", ">= 0");
+    check("--clamp", "0.1", "[0, 1]");
     check("--clamp-decay", "0.25", "[0, 1]");
     check("--ic-error", "0.3", "[0.001, 2]");
     check("--ais-id-cov", "2", "> 0");
@@ -165,10 +165,12 @@ TEST(Parameters, CommandLineTextIsCheckedBeforeConversion) {
               "--width 0: must be in 1..16384 (leave the option out for the scene camera's)");
     EXPECT_EQ(text_rejection("--seed", "-1"), "--seed -1: must be >= 0");
     EXPECT_EQ(text_rejection("--seed", "99999999999"), "--seed 99999999999: must be in 0..4294967295");
-    EXPECT_EQ(text_rejection("--clamp", "inf"), "--clamp inf: must be a finite number >= 0");
-    EXPECT_EQ(text_rejection("--clamp", "nan"), "--clamp nan: must be a finite number >= 0");
-    EXPECT_EQ(text_rejection("--clamp", "1e400"), "--clamp 1e400: must be a finite number >= 0");
-    EXPECT_EQ(text_rejection("--clamp", "1e39"), "--clamp 1e39: must be in [0, 3.4028234663852886e+38]");
+    EXPECT_EQ(text_rejection("--clamp", "inf"), "--clamp inf: must be a finite number in [0, 1]");
+    EXPECT_EQ(text_rejection("--clamp", "nan"), "--clamp nan: must be a finite number in [0, 1]");
+    EXPECT_EQ(text_rejection("--clamp", "1e400"), "--clamp 1e400: must be a finite number in [0, 1]");
+    // Above 1 every VPL is clamped already; 1e30 made b = 1/(c·D)² underflow to 0.
+    EXPECT_EQ(text_rejection("--clamp", "1e30"), "--clamp 1e30: must be in [0, 1]");
+    EXPECT_EQ(text_rejection("--clamp", "1"), "");
     EXPECT_EQ(text_rejection("--ic-error", "0.5x"), "--ic-error 0.5x: must be a number in [0.001, 2]");
     EXPECT_EQ(text_rejection("--checkpoint-interval", "-0.5"), "--checkpoint-interval -0.5: must be >= 0");
     EXPECT_EQ(text_rejection("--spp", "1000000"), "");
@@ -196,7 +198,7 @@ TEST(Parameters, MessagesNameOptionValueAndRange) {
     EXPECT_EQ(rejection(s), "--ic-error 2.5: must be in [0.001, 2]");
     s = {};
     s.igi.clamp_c = -0.5f;
-    EXPECT_EQ(rejection(s), "--clamp -0.5: must be >= 0");
+    EXPECT_EQ(rejection(s), "--clamp -0.5: must be in [0, 1]");
     s = {};
     s.checkpoint_interval_s = -1;
     EXPECT_EQ(rejection(s), "--checkpoint-interval -1: must be >= 0");

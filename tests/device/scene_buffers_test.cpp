@@ -1,0 +1,75 @@
+// The length the VPL clamps are relative to (clamp_extent): the bounds' diagonal, with
+// outlying bits of surface left out.
+#include "device/scene_buffers.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "scene/loader.h"
+#include "support/data_files.h"
+#include "support/test_scenes.h"
+
+namespace tessera {
+namespace {
+
+float bounds_diagonal(const SceneBuffers& b) {
+    const SceneBounds s = scene_bounds(b);
+    return glm::length(s.hi - s.lo);
+}
+
+// The Cornell-sized box alone, and with a 1 cm triangle 1 km away (out of every view):
+// the whole bounds' diagonal grows about 1,000 times, the clamp's length not at all, so
+// b = 1/(c·D)² and the image stay as they were (a stray vertex of an imported mesh).
+TEST(ClampExtent, AStrayTriangleFarAwayIsLeftOut) {
+    Scene s = test::closed_box({0, 0, 0}, {0.556f, 0.549f, 0.559f}, glm::vec3(0.5f), glm::vec3(5.0f), 0.1f);
+    const float box = bounds_diagonal(make_scene_buffers(s));
+    EXPECT_FLOAT_EQ(clamp_extent(make_scene_buffers(s)), box);
+    test::add_quad(s, {1000.0f, 0.0f, 0.0f}, {0.01f, 0.0f, 0.0f}, {0.0f, 0.01f, 0.0f}, s.material[0]);
+    const SceneBuffers far = make_scene_buffers(s);
+    EXPECT_GT(bounds_diagonal(far), 1000.0f);
+    EXPECT_FLOAT_EQ(clamp_extent(far), box);
+}
+
+// Scene-relative: the box at 10⁻³ and 10⁴ times its size gives D times that (the same c
+// the same image at any scale).
+TEST(ClampExtent, ScalesWithTheScene) {
+    for (float k : {1e-3f, 1.0f, 1e4f}) {
+        Scene s = test::closed_box({0, 0, 0}, {2 * k, k, 3 * k}, glm::vec3(0.5f), glm::vec3(5.0f), 0.2f * k);
+        test::add_quad(s, {1000 * k, 0, 0}, {0.01f * k, 0, 0}, {0, 0.01f * k, 0}, s.material[0]);
+        EXPECT_NEAR(clamp_extent(make_scene_buffers(s)), std::sqrt(14.0f) * k, 1e-6f * k) << k;
+    }
+}
+
+// Every shipped scene (those whose data is on the data path): the trimmed bounds are the
+// whole bounds, as their walls and floors each hold more than 1% of the area, so D is the
+// bounding box's diagonal as before.
+TEST(ClampExtent, IsTheBoundsDiagonalOfTheShippedScenes) {
+    const DataPath data = make_data_path(std::nullopt);
+    int loaded = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(TESSERA_SCENES_DIR)) {
+        if (entry.path().extension() != ".json") continue;
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("sibenik", 0) == 0 && !test::on_data_path(data, "sibenik/sibenik.obj")) continue;
+        const SceneBuffers b = make_scene_buffers(load_scene(entry.path(), data));
+        EXPECT_FLOAT_EQ(clamp_extent(b), bounds_diagonal(b)) << name;
+        ++loaded;
+    }
+    EXPECT_GE(loaded, 10);
+}
+
+// A scene without area (one degenerate triangle) keeps the bounds' diagonal.
+TEST(ClampExtent, ASceneWithoutAreaKeepsTheBoundsDiagonal) {
+    Scene s;
+    const uint32_t m = test::add_material(s, glm::vec3(0.5f));
+    for (glm::vec3 p : {glm::vec3(0, 0, 0), glm::vec3(1, 2, 2), glm::vec3(2, 4, 4)}) {
+        s.positions.push_back(p);
+        s.normals.push_back({0, 0, 1});
+        s.uvs.push_back({0, 0});
+    }
+    s.material.push_back(m);
+    EXPECT_FLOAT_EQ(clamp_extent(make_scene_buffers(s)), 6.0f);
+}
+
+}  // namespace
+}  // namespace tessera
