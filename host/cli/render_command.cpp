@@ -1,4 +1,5 @@
 // `tessera render [SCENE] [options]`: renders a scene to EXR (+ PNG preview).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -164,6 +165,17 @@ void note_medium_options(const CLI::App& cmd, const Scene& scene, const fs::path
                          scene_path.string().c_str());
 }
 
+// A strongly forward or backward scattering medium with an igi-family method: a note, as
+// these methods return only part of its multiple scattering (docs/igi.md §6, "Limit").
+void note_peaked_phase(const RenderSettings& s, const Scene& scene) {
+    if (!igi_family(s.method) || !plan_effects(scene).medium || !(std::fabs(scene.medium.g) > 0.9f)) return;
+    std::fprintf(stderr,
+                 "tessera: note: the medium's g = %g: --method %s returns only part of the multiple scattering of "
+                 "a medium this peaked (about 2/3 of pt's radiance at |g| = 0.99 in the foggy Cornell box; "
+                 "docs/igi.md §6); --method pt is unbiased\n",
+                 double(scene.medium.g), method_info(s.method).name);
+}
+
 void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, const fs::path& out,
                   const BackendOptions& bo, RenderSettings& settings) {
     std::fprintf(stderr, "tessera: %s, %zu triangles, frames %d..%d\n", scene.name.c_str(), scene.triangle_count(),
@@ -266,6 +278,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
         check_scene_options(settings, a.components, scene, scene_path);
         if (lead) note_medium_options(cmd, scene, scene_path);
+        if (lead) note_peaked_phase(settings, scene);
         // Before the scene's banner; rank 0 alone reads the checkpoint (render_frame).
         if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));
         if (lead) {  // only rank 0 writes

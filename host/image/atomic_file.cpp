@@ -105,6 +105,25 @@ int make_temp(const fs::path& target, fs::path& temp, fs::path* made = nullptr) 
     return fd;
 }
 
+/// The file a write to `target` replaces: where `target` is a symbolic link to an existing
+/// file, that file (renaming over the link would turn it into a plain file and leave the
+/// file it pointed to as it was); else `target`.
+fs::path through_link(const fs::path& target) {
+    std::error_code ec;
+    if (!fs::is_symlink(fs::symlink_status(target, ec))) return target;
+    const fs::path real = fs::canonical(target, ec);
+    return ec ? target : real;
+}
+
+/// Gives the temporary the permission bits of the file it is about to replace, so that a
+/// replaced image stays as private, or as read-only, as it was (mkstemp's file has the
+/// umask's mode); nothing where no file is there yet. Just before the rename: a read-only
+/// mode earlier would stop a writer that reopens the temporary by name.
+void keep_mode(const fs::path& target, const fs::path& temp) {
+    struct stat st;
+    if (::stat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode)) ::chmod(temp.c_str(), st.st_mode & 07777);
+}
+
 void sync_and_rename(const fs::path& target, TempGuard& guard) {
     int fd = ::open(guard.path.c_str(), O_RDONLY);
     if (fd < 0) fail(target, "cannot reopen the temporary file", errno);
@@ -114,6 +133,7 @@ void sync_and_rename(const fs::path& target, TempGuard& guard) {
         fail(target, "fsync failed", err);
     }
     if (::close(fd) != 0) fail(target, "close failed", errno);
+    keep_mode(target, guard.path);
     std::error_code ec;
     fs::rename(guard.path, target, ec);
     if (ec) fail(target, "rename failed", ec.value());
@@ -135,7 +155,8 @@ fs::path existing_ancestor(const fs::path& dir) {
     return at;
 }
 
-void write_file_atomic(const fs::path& path, const void* data, std::size_t size) {
+void write_file_atomic(const fs::path& link, const void* data, std::size_t size) {
+    const fs::path path = through_link(link);
     fs::path temp;
     int fd = make_temp(path, temp);
     TempGuard guard{temp};
@@ -150,6 +171,7 @@ void write_file_atomic(const fs::path& path, const void* data, std::size_t size)
         fail(path, "fsync failed", err);
     }
     if (::close(fd) != 0) fail(path, "close failed", errno);
+    keep_mode(path, temp);
     std::error_code ec;
     fs::rename(temp, path, ec);
     if (ec) fail(path, "rename failed", ec.value());
@@ -157,8 +179,9 @@ void write_file_atomic(const fs::path& path, const void* data, std::size_t size)
     sync_directory(path);
 }
 
-void replace_file_atomic(const fs::path& path,
+void replace_file_atomic(const fs::path& link,
                          const std::function<void(const fs::path& temp)>& write) {
+    const fs::path path = through_link(link);
     fs::path temp;
     int fd = make_temp(path, temp);
     TempGuard guard{temp};
@@ -184,7 +207,8 @@ CommitGroup::~CommitGroup() {
     }
 }
 
-fs::path CommitGroup::add(const fs::path& target) {
+fs::path CommitGroup::add(const fs::path& link) {
+    const fs::path target = through_link(link);
     fs::path temp, made;
     const int fd = make_temp(target, temp, &made);
     ::close(fd);
@@ -205,6 +229,7 @@ void CommitGroup::commit() {
         if (::link(e.target.c_str(), link.c_str()) == 0) e.backup = link;  // else: no roll-back for this one
     }
     for (Entry& e : entries_) {
+        keep_mode(e.target, e.temp);
         std::error_code ec;
         fs::rename(e.temp, e.target, ec);
         if (ec) {

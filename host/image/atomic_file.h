@@ -1,7 +1,9 @@
 // Atomic file replacement: content goes to a unique temporary file in the target's
 // directory, which is renamed over the target only after a complete, synced write. A
 // missing directory is made at that first write (the CLI's checks make none, so a run
-// that fails before it writes leaves nothing behind).
+// that fails before it writes leaves nothing behind). A replaced file keeps its
+// permission bits, and a target that is a symbolic link to a file replaces that file
+// (the link stays a link).
 #pragma once
 #include <cstddef>
 #include <filesystem>

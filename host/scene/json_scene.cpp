@@ -41,6 +41,22 @@ Camera read_camera(const JsonField& j) {
     return cam;
 }
 
+// Whether every coordinate of p lies within ±limits::kMaxCoordinate.
+bool inside_coordinate_limit(glm::vec3 p) {
+    return std::fabs(p.x) <= limits::kMaxCoordinate && std::fabs(p.y) <= limits::kMaxCoordinate &&
+           std::fabs(p.z) <= limits::kMaxCoordinate;
+}
+
+std::string shown_point(glm::vec3 p) {
+    return "(" + limits::shown_limit(p.x) + ", " + limits::shown_limit(p.y) + ", " + limits::shown_limit(p.z) + ")";
+}
+
+std::string coordinate_limit_text() {
+    return "beyond the limit of ±" + limits::shown_limit(limits::kMaxCoordinate) +
+           " scene units on each axis (farther, areas and the lights' power leave the float range, or the "
+           "floats lose the shape)";
+}
+
 scene_detail::Transform read_transform(const std::optional<JsonField>& j) {
     glm::vec3 scale(1.0f), translate(0.0f);
     std::vector<scene_detail::Rotation> rotations;
@@ -142,6 +158,15 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                 obj.fail("the transformed mesh '" + rel + "' has a vertex coordinate that overflows a float");
         }
+        for (size_t v = first; v < scene.positions.size(); ++v) {
+            const glm::vec3 p = scene.positions[v];
+            if (!inside_coordinate_limit(p)) {
+                // The transform's key where there is one (it put the vertex there), else the object's.
+                const std::optional<JsonField> t = obj.find("transform");
+                (t ? *t : obj).fail("the transformed mesh '" + rel + "' has a vertex at " + shown_point(p) + ", " +
+                                    coordinate_limit_text());
+            }
+        }
         scene.objects.back().triangle_count =
             static_cast<uint32_t>(scene.triangle_count()) - scene.objects.back().first_triangle;
     }
@@ -178,6 +203,9 @@ void read_lights(const JsonField& lights, Scene& scene) {
         for (const glm::vec3 p : {corner + e1, corner + e2, corner + e1 + e2})
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                 l.fail("a corner of the quad overflows a float");
+        for (const glm::vec3 p : {corner, corner + e1, corner + e2, corner + e1 + e2})
+            if (!inside_coordinate_limit(p)) l.fail("a corner of the quad lies at " + shown_point(p) + ", " +
+                                                    coordinate_limit_text());
         const auto first = static_cast<uint32_t>(scene.triangle_count());
         scene_detail::append_quad_light(scene, l["corner"].vec3(), e1, e2,
                                         read_colour(l["radiance"], scene_detail::Colour::Radiance),

@@ -53,6 +53,15 @@ constexpr int kViewFrames = 1000000;
 /// range (ic and tic wrote Inf; 3·10^38 gave NaN in igi); 10^15 leaves 10^23 of room.
 constexpr float kMaxRadiance = 1e15f;
 
+/// Scene coordinates, scene units: every vertex of a mesh (after its object's transform)
+/// and every corner of a JSON light lies within ±10^10 of the origin (in metres, 70 times
+/// the Earth–Sun distance). Squared distances and areas (up to about 10^21) times the
+/// brightest radiance (kMaxRadiance) stay far inside the float range. Past it, a scale of
+/// 10^30 overflowed the emitters' areas (an error that named no key, or blamed the
+/// medium), and a translation of 3·10^38 collapsed a room onto one float and dropped its
+/// lamp without a word.
+constexpr float kMaxCoordinate = 1e10f;
+
 /// A medium's optical depth over the scene's diagonal D, (σ_a + σ_s)·D per channel.
 /// Transmittance exp(−τ) is 0 in float past τ ≈ 104, so at 10^9 the medium is opaque
 /// past 10^-7 of the diagonal and any denser one renders the same; the ray march's

@@ -104,6 +104,35 @@ TEST_F(RenderCli, MediumSettingsOnAClearSceneGetANote) {
     EXPECT_EQ(fog.output.find("has no medium"), std::string::npos) << fog.output;
 }
 
+// A medium of |g| > 0.9 with an igi-family method gets a note that these methods return
+// only part of its multiple scattering (docs/igi.md §6); pt, and g = 0.9, get none.
+TEST_F(RenderCli, APeakedPhaseFunctionGetsANoteWithTheIgiFamily) {
+    const std::string scene = tessera::test::file_bytes(fs::path(TESSERA_SCENES_DIR) / "cornell-box-fog.json");
+    auto with_g = [&](const std::string& g) {
+        std::string text = scene;
+        const size_t at = text.find("\"g\": 0.3");
+        text.replace(at, 8, "\"g\": " + g);
+        const size_t mesh = text.find("\"cornell-box.obj\"");
+        text.replace(mesh, 17, "\"" + std::string(TESSERA_SCENES_DIR) + "/cornell-box.obj\"");
+        const fs::path file = dir_ / ("g" + g + ".json");
+        std::ofstream(file) << text;
+        return file.string();
+    };
+    const std::string args = " --spp 1 --width 8 --height 8 --backend embree --out " + (dir_ / "x.exr").string();
+    const CliResult ais = run_tessera("render " + with_g("-0.99") + args);
+    ASSERT_EQ(ais.exit_code, 0) << ais.output;
+    EXPECT_NE(ais.output.find("tessera: note: the medium's g = -0.99: --method ais returns only part of the multiple "
+                              "scattering"),
+              std::string::npos)
+        << ais.output;
+    for (const std::string& other : {"render " + with_g("0.99") + args + " --method pt",
+                                     "render " + with_g("0.9") + args + " --method igi"}) {
+        const CliResult r = run_tessera(other);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_EQ(r.output.find("tessera: note: the medium's g"), std::string::npos) << other << ": " << r.output;
+    }
+}
+
 TEST_F(RenderCli, RendersExrAndPngOnBothBackends) {
     for (const char* backend : {"embree", "opencl"}) {
         const fs::path out = dir_ / (std::string(backend) + ".exr");

@@ -35,6 +35,47 @@ TEST_F(CommitGroupTest, CommitReplacesAndCreatesEveryTarget) {
     EXPECT_EQ(entries(dir_), 2u);  // no temporary, no backup left
 }
 
+// A replaced file keeps its permission bits: a private image stays private (0640 did
+// become the umask's 0644), a read-only one read-only; a new file gets the umask's.
+TEST_F(CommitGroupTest, AReplacedFileKeepsItsPermissionBits) {
+    const auto perms = [](const fs::path& p) { return fs::status(p).permissions() & fs::perms::mask; };
+    using P = fs::perms;
+    std::ofstream(dir_ / "private") << "old";
+    fs::permissions(dir_ / "private", P::owner_read | P::owner_write | P::group_read);
+    std::ofstream(dir_ / "read-only") << "old";
+    fs::permissions(dir_ / "read-only", P::owner_read | P::group_read | P::others_read);
+    {
+        CommitGroup g;
+        std::ofstream(g.add(dir_ / "private")) << "new";
+        std::ofstream(g.add(dir_ / "new")) << "new";
+        g.commit();
+    }
+    write_file_atomic(dir_ / "read-only", "new", 3);
+    EXPECT_EQ(perms(dir_ / "private"), P::owner_read | P::owner_write | P::group_read);
+    EXPECT_EQ(perms(dir_ / "read-only"), P::owner_read | P::group_read | P::others_read);
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "read-only"), "new");
+    EXPECT_TRUE((perms(dir_ / "new") & P::owner_write) == P::owner_write);
+}
+
+// A target that is a symbolic link to a file replaces that file; the link stays a link
+// (a rename over it made it a plain file and left the file it pointed to as it was).
+TEST_F(CommitGroupTest, ALinkToAFileReplacesTheFileItPointsTo) {
+    fs::create_directory(dir_ / "real");
+    std::ofstream(dir_ / "real" / "image") << "old";
+    fs::create_symlink(dir_ / "real" / "image", dir_ / "link");
+    {
+        CommitGroup g;
+        std::ofstream(g.add(dir_ / "link")) << "new";
+        g.commit();
+    }
+    EXPECT_TRUE(fs::is_symlink(dir_ / "link"));
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "real" / "image"), "new");
+    write_file_atomic(dir_ / "link", "newer", 5);
+    EXPECT_TRUE(fs::is_symlink(dir_ / "link"));
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "real" / "image"), "newer");
+    EXPECT_EQ(entries(dir_ / "real"), 1u);  // no temporary left beside the file
+}
+
 TEST_F(CommitGroupTest, NoCommitLeavesEverythingAsItWas) {
     std::ofstream(dir_ / "a") << "old a";
     {

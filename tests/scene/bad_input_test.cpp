@@ -202,9 +202,20 @@ INSTANTIATE_TEST_SUITE_P(
         BadKey{"{" CAM_OK ", " OBJ_OK ", " LIGHT_OK R"(, "medium": {"sigma_a": [0,0,0], "sigma_s": [1,1e9,1]}})",
                "optical depth of"},
         BadKey{"{" CAM_OK ", " OBJ_OK ", " LIGHT_OK R"(, "medium": {"sigma_a": [3e38,0,0], "sigma_s": [3e38,0,0]}})",
-               "sigma_a + sigma_s = 6e+38"}));
+               "sigma_a + sigma_s = 6e+38"},
+        // Coordinates past limits::kMaxCoordinate (1e10): a scale of 1e30 overflowed the
+        // emitters' areas with an error naming no key; a light at 3e38 lost its area in float
+        // and was dropped without a word. The key is the transform's, or the light's.
+        BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"scale": 1e30}}], )" LIGHT_OK "}",
+               "objects[0].transform"},
+        BadKey{"{" CAM_OK R"(, "objects": [{"mesh": "%M", "transform": {"translate": [0, -2e10, 0]}}], )" LIGHT_OK "}",
+               "beyond the limit of ±1e+10 scene units"},
+        BadKey{"{" CAM_OK ", " OBJ_OK
+               R"(, "lights": [{"type": "quad", "corner": [3e38,2,0], "edge1": [1,0,0], "edge2": [0,0,1], "radiance": [1,1,1]}]})",
+               "lights[0]"}));
 
-// The limits' boundaries load: radiance 1e15 and a medium of optical depth just under 1e9.
+// The limits' boundaries load: radiance 1e15, a medium of optical depth just under 1e9,
+// coordinates of 1e10.
 TEST(BadInput, RadianceAndOpticalDepthAtTheLimitsLoad) {
     const auto dir = test::unique_temp_dir("tessera_limits");
     std::filesystem::create_directories(dir);
@@ -214,6 +225,11 @@ TEST(BadInput, RadianceAndOpticalDepthAtTheLimitsLoad) {
         "medium": {"sigma_a": [0,0,0], "sigma_s": [1e8,0,0]}})";
     const Scene s = load_scene(dir / "ok.json", DataPath{});
     EXPECT_EQ(s.medium.sigma_s.x, 1e8f);
+    // Coordinates at limits::kMaxCoordinate load (the quad moved to 1e10, the light too).
+    std::ofstream(dir / "far.json") << R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]},
+        "objects": [{"mesh": ")" << fixture("quad.obj").string() << R"(", "transform": {"translate": [0, 0, -9.9e9]}}],
+        "lights": [{"type": "quad", "corner": [0,2,-1e10], "edge1": [1e3,0,0], "edge2": [0,0,1e3], "radiance": [1,1,1]}]})";
+    EXPECT_EQ(load_scene(dir / "far.json", DataPath{}).triangle_count(), 4u);
     std::filesystem::remove_all(dir);
 }
 
