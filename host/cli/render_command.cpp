@@ -92,11 +92,12 @@ fs::path png_beside(const fs::path& exr) {
 }
 
 // Every file the run writes, checkpoint included, with the names messages give them.
-std::vector<OutputFile> outputs_of(const RenderArgs& a, const fs::path& out, const std::optional<FrameRange>& frames) {
+std::vector<OutputFile> outputs_of(const RenderArgs& a, const fs::path& out, const std::optional<FrameRange>& frames,
+                                   int digits) {
     std::vector<OutputFile> files;
     if (frames) {
         for (int f = frames->first; f <= frames->last; ++f) {
-            const fs::path exr = frame_output_path(out, f);
+            const fs::path exr = frame_output_path(out, f, digits);
             files.push_back({exr, "frame " + std::to_string(f) + " of --out"});
             files.push_back({png_beside(exr), "the PNG preview of frame " + std::to_string(f)});
         }
@@ -196,7 +197,7 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
                                 std::to_string(total) + " spp (--frames renders keep no checkpoint; no frame written)");
     };
     render_sequence(scene, frames, bo, settings, [&](int frame, const Image& img, const RenderStats& stats, double seconds) {
-        const fs::path exr = frame_output_path(out, frame);
+        const fs::path exr = frame_output_path(out, frame, frame_number_digits(scene));
         const fs::path png = png_beside(exr);
         write_exr(outputs.add(exr), img);
         write_png(outputs.add(png), img, a.exposure);
@@ -283,7 +284,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));
         if (lead) {  // only rank 0 writes
             // Every output before the first ray: a run that cannot write its results does no work.
-            const std::vector<OutputFile> files = outputs_of(a, out, frames);
+            const std::vector<OutputFile> files = outputs_of(a, out, frames, frame_number_digits(scene));
             check_outputs(files, scene.inputs);
             stop_if_interrupted("while loading the scene");
             check_output_directories(files);  // checkpoints are written there during the render too

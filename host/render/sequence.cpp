@@ -1,5 +1,6 @@
 #include "render/sequence.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -39,9 +40,14 @@ FrameRange parse_frame_range(const std::string& text, const Scene& scene) {
     return r;
 }
 
-fs::path frame_output_path(const fs::path& out, int frame) {
-    char number[16];
-    std::snprintf(number, sizeof number, ".%04d", frame);
+int frame_number_digits(const Scene& scene) {
+    const int last = scene.animation.animated() ? scene.animation.frame_count - 1 : 0;
+    return std::max(4, static_cast<int>(std::to_string(last).size()));
+}
+
+fs::path frame_output_path(const fs::path& out, int frame, int digits) {
+    char number[32];
+    std::snprintf(number, sizeof number, ".%0*d", digits, frame);
     fs::path p = out;
     p.replace_filename(out.stem().string() + number + out.extension().string());
     return p;

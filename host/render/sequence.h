@@ -23,9 +23,14 @@ struct FrameRange {
 FrameRange parse_frame_range(const std::string& text, const Scene& scene);
 
 /// The file frame `frame` of a sequence is written to: `out` with the frame number,
-/// zero-padded to 4 digits, inserted before the extension (out/box.exr, frame 7 →
-/// out/box.0007.exr).
-std::filesystem::path frame_output_path(const std::filesystem::path& out, int frame);
+/// zero-padded to `digits` (default 4), inserted before the extension (out/box.exr, frame
+/// 7 → out/box.0007.exr).
+std::filesystem::path frame_output_path(const std::filesystem::path& out, int frame, int digits = 4);
+
+/// The digits a sequence of `scene` numbers its frames with: 4, or as many as its last
+/// frame has, so that every name of one animation has as many digits and they sort in
+/// frame order (frame 9999 and 10000 of a 100,000-frame scene: .09999 and .10000).
+int frame_number_digits(const Scene& scene);
 
 /// Called after each frame with the frame number, its image, its render statistics and
 /// the frame's wall time in seconds including posing, flattening and backend set-up.

@@ -48,6 +48,17 @@ TEST(Sequence, FrameOutputPath) {
     EXPECT_EQ(frame_output_path("out/box.exr", 7), std::filesystem::path("out/box.0007.exr"));
     EXPECT_EQ(frame_output_path("a.b/c.d.exr", 123), std::filesystem::path("a.b/c.d.0123.exr"));
     EXPECT_EQ(frame_output_path("box.exr", 12345), std::filesystem::path("box.12345.exr"));
+    EXPECT_EQ(frame_output_path("box.exr", 9999, 5), std::filesystem::path("box.09999.exr"));
+}
+
+// A scene of more than 10,000 frames numbers every frame with as many digits as its last,
+// so that the names sort in frame order (.9999 sorted after .10000); 4 digits otherwise.
+TEST(Sequence, FrameNumbersHaveTheLastFramesDigits) {
+    EXPECT_EQ(frame_number_digits(with_frames(0)), 4);
+    EXPECT_EQ(frame_number_digits(with_frames(30)), 4);
+    EXPECT_EQ(frame_number_digits(with_frames(10000)), 4);  // frames 0..9999
+    EXPECT_EQ(frame_number_digits(with_frames(10001)), 5);
+    EXPECT_EQ(frame_number_digits(with_frames(100000)), 5);
 }
 
 TEST(Sequence, RendersEachFrameInOrder) {
