@@ -1,4 +1,6 @@
 // Reading a scene file into a JSON document (declared in scene/json_field.h).
+#include <cctype>
+#include <cstdio>
 #include <set>
 #include <vector>
 
@@ -101,6 +103,31 @@ std::string parse_error_reason(const std::string& what) {
     return colon == std::string::npos ? what : what.substr(colon + 2);
 }
 
+// `text` with every byte outside printable ASCII written \xNN: the parser quotes what it
+// last read, and a raw byte of invalid UTF-8 would reach the terminal as it is.
+std::string printable(const std::string& text) {
+    std::string out;
+    for (const unsigned char c : text) {
+        if (c >= 0x20 && c < 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", c);
+            out += hex;
+        }
+    }
+    return out;
+}
+
+// A hint where the file is a mesh, not a scene: its name ends in .obj or .mtl.
+std::string mesh_hint(const std::filesystem::path& file) {
+    std::string ext = file.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext != ".obj" && ext != ".mtl") return "";
+    return " (" + file.filename().string() +
+           " is a mesh file: a scene is a JSON file that names its meshes under \"objects\", scenes/README.md)";
+}
+
 }  // namespace
 
 json parse_json_file(const std::filesystem::path& file, const std::string& what) {
@@ -119,7 +146,7 @@ json parse_json_file(const std::filesystem::path& file, const std::string& what)
             if (s[i] == '\n') { ++line; col = 1; } else { ++col; }
         }
         throw InputError(file.string() + ":" + std::to_string(line) + ":" + std::to_string(col) +
-                         ": malformed JSON: " + parse_error_reason(e.what()));
+                         ": malformed JSON: " + printable(parse_error_reason(e.what())) + mesh_hint(file));
     } catch (const json::out_of_range& e) {
         // A number literal too large for a double (1e999): nlohmann::json reports
         // "number overflow parsing '<literal>'" (out_of_range.406) without a place.
@@ -130,7 +157,8 @@ json parse_json_file(const std::filesystem::path& file, const std::string& what)
         throw InputError(file.string() + ": " + (key.empty() ? "top level" : "key '" + key + "'") +
                          ": number" + literal + " overflows a double (numbers must be finite)");
     } catch (const json::exception& e) {
-        throw InputError(file.string() + ": malformed JSON: " + parse_error_reason(e.what()));
+        throw InputError(file.string() + ": malformed JSON: " + printable(parse_error_reason(e.what())) +
+                         mesh_hint(file));
     }
 }
 

@@ -36,6 +36,22 @@ TEST(BadInput, MalformedJsonNamesFileAndLine) {
     EXPECT_CONTAINS(e, "malformed JSON");
 }
 
+// An OBJ given as the scene file gets a hint (it was "malformed JSON ... '#'" alone), and
+// a byte of invalid UTF-8 that the parser quotes is written \xNN, not sent to the terminal.
+TEST(BadInput, MalformedJsonHintsAtAMeshAndShowsRawBytesEscaped) {
+    const std::string mesh = load_error(fixture("quad.obj"));
+    EXPECT_CONTAINS(mesh, "quad.obj:1:1: malformed JSON");
+    EXPECT_CONTAINS(mesh, "quad.obj is a mesh file: a scene is a JSON file that names its meshes under \"objects\"");
+    const auto dir = test::unique_temp_dir("tessera_utf8");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "bad.json") << "{\"my\xff\": 1}";
+    const std::string bytes = load_error(dir / "bad.json");
+    EXPECT_CONTAINS(bytes, "\\xff");
+    EXPECT_EQ(bytes.find('\xff'), std::string::npos) << bytes;
+    EXPECT_EQ(bytes.find("mesh file"), std::string::npos) << bytes;
+    std::filesystem::remove_all(dir);
+}
+
 TEST(BadInput, OutOfRangeFaceIndex) {
     const std::string e = load_error(fixture("bad_index.json"));
     EXPECT_CONTAINS(e, "bad_index.obj");
