@@ -43,7 +43,7 @@ void check_data_dir(const std::string& data_dir);
 void require_exr_name(const std::string& option, const std::filesystem::path& path);
 
 /// An output file of the run, with what the messages call it ("--out", "--stats-json",
-/// "the PNG preview beside --out", "the checkpoint beside --out").
+/// "--out's PNG preview", "--out's checkpoint").
 struct OutputFile {
     std::filesystem::path path;
     std::string role;

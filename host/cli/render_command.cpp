@@ -104,8 +104,8 @@ std::vector<OutputFile> outputs_of(const RenderArgs& a, const fs::path& out, con
         return files;
     }
     files.push_back({out, "--out"});
-    files.push_back({png_beside(out), "the PNG preview beside --out"});
-    files.push_back({checkpoint_path_for(out), "the checkpoint beside --out"});
+    files.push_back({png_beside(out), "--out's PNG preview"});
+    files.push_back({checkpoint_path_for(out), "--out's checkpoint"});
     if (!a.stats_json.empty()) files.push_back({a.stats_json, "--stats-json"});
     return files;
 }

@@ -151,12 +151,12 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
     const std::string anim = "render " + kScenes + "/cornell-box-animated.json --backend embree --spp 1 "
                              "--width 8 --height 8 --frames 0:2 --out $D/anim.exr";
     const std::vector<Case> cases = {
-        {kRender + kOut, "the PNG preview beside --out $D/img.png: is a directory", 2, mkdir("img.png")},
+        {kRender + kOut, "--out's PNG preview $D/img.png: is a directory", 2, mkdir("img.png")},
         {kRender + "--out $D/dir.exr", "--out $D/dir.exr: is a directory", 2, mkdir("dir.exr")},
-        {kRender + kOut, "the checkpoint beside --out $D/img.ckpt: is a directory", 2, mkdir("img.ckpt")},
+        {kRender + kOut, "--out's checkpoint $D/img.ckpt: is a directory", 2, mkdir("img.ckpt")},
         {kRender + "--out $D/stats.json/img.exr", "--out $D/stats.json/img.exr: $D/stats.json is not a directory"},
         {kRender + kOut + " --stats-json $D/sub", "--stats-json $D/sub: is a directory", 2, mkdir("sub")},
-        {kRender + kOut + " --stats-json $D/img.png", "--stats-json $D/img.png: is also the PNG preview beside --out"},
+        {kRender + kOut + " --stats-json $D/img.png", "--stats-json $D/img.png: is also --out's PNG preview"},
         {kRender + kOut + " --stats-json /proc/tessera-stats.json", "--stats-json /proc/tessera-stats.json: cannot write "
                                                                     "in /proc", 1},
         {kRender + kOut + " --stats-json /proc/tessera/stats.json",
@@ -170,7 +170,7 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
         {"compare " + kData + "/x.exr " + kData + "/y.exr --map $D/sub", "--map $D/sub: is a directory", 2, mkdir("sub")},
         // The files the scene reads are inputs too: a texture, an OBJ, an MTL.
         {"render $D/textured.json --backend embree --spp 1 --out $D/checker.exr",
-         "the PNG preview beside --out $D/checker.png: would replace an input of this run, $D/checker.png", 2,
+         "--out's PNG preview $D/checker.png: would replace an input of this run, $D/checker.png", 2,
          copy_textured_scene},
         {"render $D/textured.json --backend embree --spp 1" + kOut + " --stats-json $D/textured.obj",
          "--stats-json $D/textured.obj: would replace an input of this run, $D/textured.obj", 2, copy_textured_scene},
