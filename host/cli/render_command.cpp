@@ -187,14 +187,32 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
         if (const size_t n = separate_coincident_emitters(first, positions).stacked)
             std::fprintf(stderr, "tessera: note: %s\n", stacked_emitters_text(n).c_str());
     }
-    CommitGroup outputs;  // no frame is written unless every frame is
+    // A failing sequence writes no frame (every frame is renamed into place at the end). An
+    // interrupted one (a signal) keeps the frames it finished, as a still render keeps its
+    // checkpoint: they are complete, and --frames from the next one continues the animation.
+    CommitGroup outputs;
     std::string written;
     int frame_now = frames.first;
+    auto stop_keeping_finished = [&](const std::string& when) {
+        if (!interrupt_signal()) return;
+        const std::string rest = "--frames " + std::to_string(frame_now) + ":" + std::to_string(frames.last);
+        if (frame_now == frames.first)
+            throw Interrupted("interrupted " + when + "; no frame finished, none written (" + rest +
+                              " renders a sequence from the start; it keeps no checkpoint)");
+        {
+            const InterruptDeferral defer;
+            outputs.commit();
+        }
+        std::fputs(written.c_str(), stdout);
+        throw Interrupted("interrupted " + when + "; frames " + std::to_string(frames.first) + ".." +
+                          std::to_string(frame_now - 1) + " are written, continue with " + rest +
+                          (method_info(settings.method).temporal ? " (tic's cache then starts afresh)" : ""));
+    };
     auto progress = [&](uint32_t done, uint32_t total, double elapsed, uint32_t restored) {
         print_progress(done, total, elapsed, restored);
         if (done < total)
-            stop_if_interrupted("in frame " + std::to_string(frame_now) + " after " + std::to_string(done) + " of " +
-                                std::to_string(total) + " spp (--frames renders keep no checkpoint; no frame written)");
+            stop_keeping_finished("in frame " + std::to_string(frame_now) + " after " + std::to_string(done) + " of " +
+                                  std::to_string(total) + " spp");
     };
     render_sequence(scene, frames, bo, settings, [&](int frame, const Image& img, const RenderStats& stats, double seconds) {
         const fs::path exr = frame_output_path(out, frame, frame_number_digits(scene));
@@ -206,7 +224,7 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
         if (!stats.detail.empty()) std::fprintf(stderr, "  %s\n", stats.detail.c_str());
         written += exr.string() + "\n" + png.string() + "\n";
         frame_now = frame + 1;
-        if (frame < frames.last) stop_if_interrupted("after frame " + std::to_string(frame) + " (no frame written)");
+        if (frame < frames.last) stop_keeping_finished("after frame " + std::to_string(frame));
     }, progress);
     {
         const InterruptDeferral defer;

@@ -52,6 +52,26 @@ protected:
     }
 };
 
+// A --frames sequence interrupted in frame 1 keeps frame 0, which it finished, and says
+// how to continue; frames 1 and 2 are not written, and no temporary is left. (Before, an
+// interrupted sequence wrote no frame, and a long animation stopped late lost them all.)
+TEST_F(CheckpointCli, AnInterruptedSequenceKeepsTheFramesItFinished) {
+    const std::vector<std::string> args{"render", std::string(TESSERA_SCENES_DIR) + "/cornell-box-animated.json",
+                                        "--method", "direct", "--backend", "embree", "--spp", "50", "--width", "96",
+                                        "--height", "96", "--shadow-samples", "48", "--frames", "0:2", "--out",
+                                        (dir_ / "seq.exr").string()};
+    CliRun r = run_tessera(args, "tessera: frame 0:");
+    ASSERT_EQ(r.exit_code, 130) << r.output;
+    EXPECT_NE(r.output.find("frames 0..0 are written, continue with --frames 1:2"), std::string::npos) << r.output;
+    EXPECT_GT(fs::file_size(dir_ / "seq.0000.exr"), 0u);
+    EXPECT_GT(fs::file_size(dir_ / "seq.0000.png"), 0u);
+    EXPECT_FALSE(fs::exists(dir_ / "seq.0001.exr"));
+    EXPECT_FALSE(fs::exists(dir_ / "seq.0002.exr"));
+    size_t files = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();
+    EXPECT_EQ(files, 2u) << "frame 0's EXR and PNG, no temporary";
+}
+
 TEST_F(CheckpointCli, InterruptThenResume) {
     const fs::path exr = dir_ / "img.exr", png = dir_ / "img.png", ckpt = dir_ / "img.ckpt";
     CliRun r = run_tessera(render_args({}), "/50 spp");
