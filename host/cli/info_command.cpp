@@ -37,6 +37,7 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
         std::error_code ec;
         if (!fs::is_directory(env, ec)) std::fprintf(stderr, "tessera: note: TESSERA_DATA=%s is not a directory\n", env);
     }
+    print_scene_notes(s.notes);
     SceneBuffers b = make_scene_buffers(s);
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const auto& p : s.positions) {

@@ -94,6 +94,10 @@ void require_exr_name(const std::string& option, const std::filesystem::path& pa
     throw InputError(option + " " + path.string() + ": " + why);
 }
 
+void print_scene_notes(const std::vector<std::string>& notes) {
+    for (const std::string& n : notes) std::fprintf(stderr, "tessera: note: %s\n", n.c_str());
+}
+
 void check_data_dir(const std::string& data_dir) {
     if (data_dir.empty()) return;
     std::error_code ec;
@@ -142,7 +146,9 @@ void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<fs:
 void check_output_directories(const std::vector<OutputFile>& outputs) {
     std::set<fs::path> done;
     for (const OutputFile& o : outputs) {
-        const fs::path dir = o.path.parent_path().empty() ? fs::path(".") : o.path.parent_path();
+        // Where the writer puts it: a symbolic link's file (output_target).
+        const fs::path target = output_target(o.path);
+        const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
         if (!done.insert(dir).second) continue;
         const std::string name = o.role + " " + o.path.string();
         // The directory, or the nearest ancestor that exists, where the writer will make it

@@ -36,6 +36,10 @@ void reject_options_as_values(const CLI::App& app, const std::vector<std::string
 /// --data-dir, when given (not empty), must name an existing directory.
 void check_data_dir(const std::string& data_dir);
 
+/// Prints each of the scene loader's notes (Scene::notes: what it changed without an
+/// error, such as an MTL Kd above 1 clamped) to stderr as "tessera: note: <note>".
+void print_scene_notes(const std::vector<std::string>& notes);
+
 /// An EXR output path given to `option` ("--out", "--screenshot") must name a file whose
 /// extension is ".exr", in lower case. InputError "--out x.EXR: must end in .exr (lower
 /// case)", or for "dir/.exr" (a hidden name, no extension) "...: needs a file name before

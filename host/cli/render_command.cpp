@@ -298,6 +298,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         check_scene_options(settings, a.components, scene, scene_path);
         if (lead) note_medium_options(cmd, scene, scene_path);
         if (lead) note_peaked_phase(settings, scene);
+        if (lead) print_scene_notes(scene.notes);
         // Before the scene's banner; rank 0 alone reads the checkpoint (render_frame).
         if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));
         if (lead) {  // only rank 0 writes

@@ -220,6 +220,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (!a.headless) window = load_window_module();
     const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
     const Scene scene = load_scene(scene_path, data);
+    print_scene_notes(scene.notes);
     if (!a.frames.empty()) {
         const FrameRange r = parse_frame_range(a.frames, scene);
         o.first_frame = r.first, o.last_frame = r.last;
@@ -265,9 +266,11 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     // replace the reference or --times.
     for (const fs::path& in : inputs) o.reserved.push_back(same_file(in));
     for (size_t i = 2; i < files.size(); ++i) o.reserved.push_back(same_file(files[i].path));
+    // As many digits as the last frame's (a window session's count is not known: 4).
+    lo.frame_image_digits = frame_digits(frame_image_count(lo) - 1);
     if (!a.frame_images.empty())
         for (int i = 0, n = frame_image_count(lo); i < n; ++i)
-            files.push_back({frame_output_path(fs::path(a.frame_images) / "frame.exr", i),
+            files.push_back({frame_output_path(fs::path(a.frame_images) / "frame.exr", i, lo.frame_image_digits),
                              "--frame-images (frame " + std::to_string(i) + ")"});
     check_outputs(files, inputs);
     check_output_directories(files);

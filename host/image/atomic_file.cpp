@@ -105,16 +105,6 @@ int make_temp(const fs::path& target, fs::path& temp, fs::path* made = nullptr) 
     return fd;
 }
 
-/// The file a write to `target` replaces: where `target` is a symbolic link to an existing
-/// file, that file (renaming over the link would turn it into a plain file and leave the
-/// file it pointed to as it was); else `target`.
-fs::path through_link(const fs::path& target) {
-    std::error_code ec;
-    if (!fs::is_symlink(fs::symlink_status(target, ec))) return target;
-    const fs::path real = fs::canonical(target, ec);
-    return ec ? target : real;
-}
-
 /// Gives the temporary the permission bits of the file it is about to replace, so that a
 /// replaced image stays as private, or as read-only, as it was (mkstemp's file has the
 /// umask's mode); nothing where no file is there yet. Just before the rename: a read-only
@@ -143,6 +133,18 @@ void sync_and_rename(const fs::path& target, TempGuard& guard) {
 
 }  // namespace
 
+fs::path output_target(const fs::path& path) {
+    std::error_code ec;
+    fs::path p = path;
+    // 40 links at most, as the kernel's path resolution (ELOOP): a loop ends here.
+    for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+        const fs::path next = fs::read_symlink(p, ec);
+        if (ec) return path;
+        p = next.is_absolute() ? next : p.parent_path() / next;
+    }
+    return p;
+}
+
 fs::path existing_ancestor(const fs::path& dir) {
     std::error_code ec;
     fs::path at = dir.empty() ? fs::path(".") : dir;
@@ -156,7 +158,7 @@ fs::path existing_ancestor(const fs::path& dir) {
 }
 
 void write_file_atomic(const fs::path& link, const void* data, std::size_t size) {
-    const fs::path path = through_link(link);
+    const fs::path path = output_target(link);
     fs::path temp;
     int fd = make_temp(path, temp);
     TempGuard guard{temp};
@@ -181,7 +183,7 @@ void write_file_atomic(const fs::path& link, const void* data, std::size_t size)
 
 void replace_file_atomic(const fs::path& link,
                          const std::function<void(const fs::path& temp)>& write) {
-    const fs::path path = through_link(link);
+    const fs::path path = output_target(link);
     fs::path temp;
     int fd = make_temp(path, temp);
     TempGuard guard{temp};
@@ -208,7 +210,7 @@ CommitGroup::~CommitGroup() {
 }
 
 fs::path CommitGroup::add(const fs::path& link) {
-    const fs::path target = through_link(link);
+    const fs::path target = output_target(link);
     fs::path temp, made;
     const int fd = make_temp(target, temp, &made);
     ::close(fd);

@@ -19,6 +19,12 @@ namespace tessera {
 /// The CLI's checks probe it before a run; the writer makes the directories below it.
 std::filesystem::path existing_ancestor(const std::filesystem::path& dir);
 
+/// The file a write to `path` replaces: where `path` is a symbolic link (to a file, or to
+/// nothing yet), the file it names, followed through further links; else `path`.
+/// Renaming over the link would turn it into a plain file and leave the file it names as
+/// it was. The CLI's checks probe this file's directory.
+std::filesystem::path output_target(const std::filesystem::path& path);
+
 /// Writes `size` bytes atomically to `path`. Throws RuntimeError naming `path` and the
 /// OS reason on failure; an existing file at `path` is then left untouched.
 void write_file_atomic(const std::filesystem::path& path, const void* data, std::size_t size);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "image/atomic_file.h"
+#include "integrators/method.h"
 #include "kernels/shared/layout_pass.h"
 #include "util/error.h"
 
@@ -23,7 +24,11 @@ namespace {
 constexpr char kMagic[8] = {'T', 'S', 'C', 'K', 'P', 'T', '0', '1'};
 // 2: the method's other settings in the identity (2026-11-29); pt's --max-depth counts
 // one more emitter hit. 3: the method's own sums (the igi family's --aov channels).
-constexpr uint32_t kVersion = 3;
+// 4: the same layout; the igi family's passes changed (the filter's window at the image
+// border, the clamp's length D), so their older checkpoints are refused (pt's and
+// direct's still load).
+constexpr uint32_t kVersion = 4;
+constexpr uint32_t kIgiFamilyVersion = 4;  // the oldest an igi-family run resumes from
 constexpr uint32_t kOldestVersion = 2;  // read too: the same but for the method's sums
 constexpr uint32_t kMaxString = 1u << 16;
 constexpr uint32_t kMaxMethodSums = 64;  // AIS keeps 14; a bound for a corrupt count
@@ -268,6 +273,10 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
             r.fail("corrupt (pixel (" + std::to_string(i % std::size_t(w)) + ", " + std::to_string(i / std::size_t(w)) +
                    ") has more hits than passes); delete it to render from the start");
 
+    if (version < kIgiFamilyVersion && saved.method == id.method && igi_family(parse_method(id.method)))
+        throw InputError("checkpoint " + r.name + " was made by an older build, whose --method " + id.method +
+                         " passes differ from this build's (the filter at the image border, the VPL clamp's "
+                         "length): delete it to render from the start");
     if (settings_hash != identity_hash(id) || !(saved == id)) {
         const std::string what = describe_difference(r.name, saved, id);
         throw InputError(what.empty() ? "checkpoint " + r.name + " was made with different settings" : what);

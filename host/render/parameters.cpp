@@ -51,7 +51,7 @@ const Parameter kParameters[] = {
     // VPL already, and a larger c only lowers b towards 0 (1e30 underflowed to b = 0 and
     // took all indirect light away, the opposite of what 0 means).
     {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = 1,
-     .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene diagonal; 0 disables", .scope = ParameterScope::IgiFamily},
+     .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene's extent (its bounds' diagonal, specks left out); 0 disables", .scope = ParameterScope::IgiFamily},
     {.option = "--clamp-decay", .value_name = "A", .field = TS_SETTING(igi.clamp_decay), .min = 0, .max = 1,
      .doc = "igi: pass p clamps with c·(p+1)^-A, so accumulated passes converge to the unclamped image; 0: fixed", .scope = ParameterScope::IgiFamily},
     {.option = "--march-steps", .value_name = "N", .field = TS_SETTING(igi.march_steps), .min = 0, .max = kNoMax,

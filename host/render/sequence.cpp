@@ -40,9 +40,10 @@ FrameRange parse_frame_range(const std::string& text, const Scene& scene) {
     return r;
 }
 
+int frame_digits(int last) { return std::max(4, static_cast<int>(std::to_string(std::max(last, 0)).size())); }
+
 int frame_number_digits(const Scene& scene) {
-    const int last = scene.animation.animated() ? scene.animation.frame_count - 1 : 0;
-    return std::max(4, static_cast<int>(std::to_string(last).size()));
+    return frame_digits(scene.animation.animated() ? scene.animation.frame_count - 1 : 0);
 }
 
 fs::path frame_output_path(const fs::path& out, int frame, int digits) {

@@ -27,9 +27,12 @@ FrameRange parse_frame_range(const std::string& text, const Scene& scene);
 /// 7 → out/box.0007.exr).
 std::filesystem::path frame_output_path(const std::filesystem::path& out, int frame, int digits = 4);
 
-/// The digits a sequence of `scene` numbers its frames with: 4, or as many as its last
-/// frame has, so that every name of one animation has as many digits and they sort in
-/// frame order (frame 9999 and 10000 of a 100,000-frame scene: .09999 and .10000).
+/// The digits a sequence whose last frame is `last` numbers its frames with: 4, or as many
+/// as `last` has, so that every name of one sequence has as many digits and they sort in
+/// frame order (frames 9999 and 10000 of 100,000: .09999 and .10000).
+int frame_digits(int last);
+
+/// frame_digits of the last frame of `scene`'s animation (frame 0 for a static scene).
 int frame_number_digits(const Scene& scene);
 
 /// Called after each frame with the frame number, its image, its render statistics and

@@ -7,6 +7,7 @@
 #include "scene/json_field.h"
 #include "scene/scene.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera {
 namespace {
@@ -63,6 +64,17 @@ bool key_pose_is_finite(const Scene& s, const SceneObject& o, const ObjectKey& k
         finite = finite && std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
     });
     return finite;
+}
+
+// Whether every posed vertex lies within limits::kMaxCoordinate, as the rest pose must:
+// a key that moved a room 3e20 away collapsed it and lost its lamp without a word.
+bool key_pose_is_inside_limit(const Scene& s, const SceneObject& o, const ObjectKey& k) {
+    bool inside = true;
+    pose_positions(s, o, k, [&](size_t, glm::vec3 p) {
+        inside = inside && std::fabs(p.x) <= limits::kMaxCoordinate && std::fabs(p.y) <= limits::kMaxCoordinate &&
+                 std::fabs(p.z) <= limits::kMaxCoordinate;
+    });
+    return inside;
 }
 
 ObjectKey object_key_at(const std::vector<ObjectKey>& keys, int frame) {
@@ -156,6 +168,8 @@ void read_object_tracks(const JsonField& j, Scene& scene, int frames) {
             for (const uint32_t o : track.objects)
                 if (!key_pose_is_finite(scene, scene.objects[o], track.keys.back()))
                     key.fail("the posed object has a vertex coordinate that overflows a float");
+                else if (!key_pose_is_inside_limit(scene, scene.objects[o], track.keys.back()))
+                    key.fail("the posed object has a vertex beyond " + limits::shown_coordinate_limit());
         });
         scene.animation.objects.push_back(std::move(track));
     }

@@ -51,11 +51,7 @@ std::string shown_point(glm::vec3 p) {
     return "(" + limits::shown_limit(p.x) + ", " + limits::shown_limit(p.y) + ", " + limits::shown_limit(p.z) + ")";
 }
 
-std::string coordinate_limit_text() {
-    return "beyond the limit of ±" + limits::shown_limit(limits::kMaxCoordinate) +
-           " scene units on each axis (farther, areas and the lights' power leave the float range, or the "
-           "floats lose the shape)";
-}
+std::string coordinate_limit_text() { return "beyond " + limits::shown_coordinate_limit(); }
 
 scene_detail::Transform read_transform(const std::optional<JsonField>& j) {
     glm::vec3 scale(1.0f), translate(0.0f);
@@ -126,6 +122,7 @@ void read_objects(const JsonField& objects, const DataPath& data, Scene& scene,
         if (it == meshes.end()) {
             MeshEntry entry{scene_detail::load_obj_mesh(file), {}};
             scene.inputs.push_back(file);
+            scene.notes.insert(scene.notes.end(), entry.mesh.notes.begin(), entry.mesh.notes.end());
             for (const fs::path& mtl : entry.mesh.mtl_files) scene.inputs.push_back(mtl);
             for (const fs::path& tex : entry.mesh.texture_files) scene.inputs.push_back(tex);
             for (Material m : entry.mesh.materials) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <sstream>
 
@@ -83,7 +84,7 @@ void check_triangle_count(const fs::path& obj, const ObjScan& scan, const tinyob
 Material convert_material(const tinyobj::material_t& m, const fs::path& obj,
                           const std::map<std::string, MtlDefinition>& defined,
                           std::map<fs::path, int>& texture_index, std::vector<fs::path>& texture_files,
-                          std::vector<std::string>& texture_roles) {
+                          std::vector<std::string>& texture_roles, std::vector<std::string>& notes) {
     const auto def = defined.find(m.name);
     const std::string where =
         (def == defined.end() ? obj.string() : def->second.file.string() + ":" + std::to_string(def->second.line)) +
@@ -100,6 +101,15 @@ Material convert_material(const tinyobj::material_t& m, const fs::path& obj,
         out.emission[c] = static_cast<float>(m.emission[c]);
         out.specular[c] = std::min(static_cast<float>(m.specular[c]), 1.0f);
     }
+    auto note_clamped = [&](const char* statement, const tinyobj::real_t* v) {
+        if (v[0] <= 1 && v[1] <= 1 && v[2] <= 1) return;
+        char text[96];
+        std::snprintf(text, sizeof text, "%s %g %g %g clamped to 1 per channel", statement, double(v[0]),
+                      double(v[1]), double(v[2]));
+        notes.push_back(where + ": " + text + " (above 1 the surface would reflect more light than it receives)");
+    };
+    note_clamped("Kd", m.diffuse);
+    note_clamped("Ks", m.specular);
     out.illum = m.illum;
     out.ior = static_cast<float>(m.ior);
     if (!(std::isfinite(out.ior) && out.ior >= 0.0f) || (out.illum == 7 && out.ior == 0.0f))
@@ -165,7 +175,8 @@ ObjMesh load_obj_mesh(const fs::path& obj_file) {
     std::map<fs::path, int> texture_index;
     for (const auto& m : reader.GetMaterials())
         mesh.materials.push_back(
-            convert_material(m, obj_file, defined, texture_index, mesh.texture_files, mesh.texture_roles));
+            convert_material(m, obj_file, defined, texture_index, mesh.texture_files, mesh.texture_roles,
+                             mesh.notes));
     const auto default_material = static_cast<uint32_t>(mesh.materials.size());
     bool uses_default = false;
 

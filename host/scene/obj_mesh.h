@@ -26,6 +26,8 @@ struct ObjMesh {
     /// Where each of texture_files is named: "map_Kd of <mtl>:<line>: material '<name>'"
     /// (the first material that names it), for a message about the texture's content.
     std::vector<std::string> texture_roles;
+    /// What loading changed without an error (Scene::notes): a Kd or Ks above 1 clamped.
+    std::vector<std::string> notes;
 };
 
 /// Loads `obj_file` with tinyobjloader (quads split along the shorter diagonal, larger

@@ -103,6 +103,9 @@ struct Scene {
     /// Every file the loader read: the scene file, then each OBJ, its MTL files and their
     /// textures, as resolved (empty for a scene built in code). No output may be one.
     std::vector<std::filesystem::path> inputs;
+    /// What the loader changed without an error, one sentence each naming the file, line
+    /// and value (an MTL Kd above 1 clamped to 1); render, info and view print them as notes.
+    std::vector<std::string> notes;
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;
     std::vector<glm::vec2> uvs;

@@ -82,6 +82,13 @@ inline std::string shown_limit(double limit) {
     return text;
 }
 
+/// kMaxCoordinate as the scene loaders' messages state it, with its unit and reason.
+inline std::string shown_coordinate_limit() {
+    return "the limit of ±" + shown_limit(kMaxCoordinate) +
+           " scene units on each axis (farther, areas and the lights' power leave the float range, or the floats "
+           "lose the shape)";
+}
+
 /// kMaxRadiance as the scene loaders' messages state it, with its unit and reason.
 inline std::string shown_radiance_limit() {
     return shown_limit(kMaxRadiance) + " W/(sr·m²) (brighter overflows the estimators' float sums)";

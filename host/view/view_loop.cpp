@@ -44,7 +44,8 @@ void ViewLoop::step(double wall_dt) {
     if (!options_.frame_images.empty()) {
         // A window's frames are not known at the start, so each is checked as it comes
         // (a headless run's were checked before the first frame).
-        const std::filesystem::path image = frame_output_path(options_.frame_images / "frame.exr", frame_);
+        const std::filesystem::path image = frame_output_path(options_.frame_images / "frame.exr", frame_,
+                                                                      options_.frame_image_digits);
         if (session_.reserved(image))
             std::fprintf(stderr, "tessera view: frame image %d skipped: %s is a file this run reads or writes\n",
                          frame_, image.c_str());

@@ -19,6 +19,7 @@ struct LoopOptions {
     std::vector<PathFrame> path;              ///< --camera-path to replay (empty: none)
     std::filesystem::path record;             ///< --camera-path to record into ("" : none)
     std::filesystem::path frame_images;       ///< directory for frame.####.exr of each frame ("" : none)
+    int frame_image_digits = 4;               ///< digits of their numbers (frame_digits of the last one)
     std::filesystem::path times;              ///< per-frame times as JSON ("" : none)
     bool fixed_dt = false;                    ///< move by 1/30 s per frame (scripts, replays) instead of wall time
     bool headless = false;                    ///< stop after the last scripted event when there is no path

@@ -76,6 +76,17 @@ TEST_F(CommitGroupTest, ALinkToAFileReplacesTheFileItPointsTo) {
     EXPECT_EQ(entries(dir_ / "real"), 1u);  // no temporary left beside the file
 }
 
+// A link to nothing yet (a relative one) gets its file made where it points, directory
+// included, and stays a link (it became a plain file).
+TEST_F(CommitGroupTest, ALinkToNothingYetMakesTheFileItNames) {
+    fs::create_symlink("sub/final", dir_ / "dangling");
+    EXPECT_EQ(output_target(dir_ / "dangling"), dir_ / "sub/final");
+    write_file_atomic(dir_ / "dangling", "new", 3);
+    EXPECT_TRUE(fs::is_symlink(dir_ / "dangling"));
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "sub" / "final"), "new");
+    EXPECT_EQ(output_target(dir_ / "plain"), dir_ / "plain");
+}
+
 TEST_F(CommitGroupTest, NoCommitLeavesEverythingAsItWas) {
     std::ofstream(dir_ / "a") << "old a";
     {

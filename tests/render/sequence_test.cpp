@@ -59,6 +59,8 @@ TEST(Sequence, FrameNumbersHaveTheLastFramesDigits) {
     EXPECT_EQ(frame_number_digits(with_frames(10000)), 4);  // frames 0..9999
     EXPECT_EQ(frame_number_digits(with_frames(10001)), 5);
     EXPECT_EQ(frame_number_digits(with_frames(100000)), 5);
+    EXPECT_EQ(frame_digits(-1), 4);  // no frames (a window session's unknown count)
+    EXPECT_EQ(frame_digits(123456), 6);
 }
 
 TEST(Sequence, RendersEachFrameInOrder) {

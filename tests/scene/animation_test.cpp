@@ -284,6 +284,9 @@ INSTANTIATE_TEST_SUITE_P(
                      "animation.materials.grey[0].emission[1]", "not finite"},
         BadAnimation{R"({"frames": 3, "objects": {"floor": [{"frame": 0, "translate": [3e38, 0, 0], "scale": 1e38}]}})",
                      "animation.objects.floor[0]", "overflows a float"},
+        // Within the float range but past limits::kMaxCoordinate, as the rest pose may not be.
+        BadAnimation{R"({"frames": 3, "objects": {"floor": [{"frame": 0}, {"frame": 2, "translate": [3e20, 0, 0]}]}})",
+                     "animation.objects.floor[1]", "beyond the limit of ±1e+10 scene units"},
         BadAnimation{R"({"frames": 3, "objects": {"floor": [{"frame": 0, "rotate": {"axis": [0, 0, 0], "degrees": 5}}]}})",
                      "animation.objects.floor[0].rotate.axis", "axis is zero"},
         BadAnimation{R"({"frames": 3, "objects": {"floor": [{"frame": 0, "scale": 0}]}})",

@@ -265,5 +265,24 @@ TEST(BadInput, SceneWhoseOnlyEmitterHasZeroAreaHasNoLights) {
     std::filesystem::remove_all(dir);
 }
 
+// An MTL Kd above 1 is clamped to 1 (documented), and now said: one note naming the MTL,
+// its line, the material and the values as written; a Kd within [0, 1] gets none.
+TEST(BadInput, AKdAboveOneIsClampedWithANote) {
+    const auto dir = test::unique_temp_dir("tessera_kd_note");
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "k.mtl") << "newmtl ok\nKd .5 .5 .5\nnewmtl hot\nKd 5 0.5 0.4\nnewmtl l\nKe 10 10 10\n";
+    std::ofstream(dir / "k.obj") << "mtllib k.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\n"
+                                    "usemtl ok\nf 1 2 3\nusemtl hot\nf 4 5 6\nusemtl l\nf 3 2 1\n";
+    std::ofstream(dir / "s.json") << R"({"camera": {"position": [0.3,0.3,-2], "look_at": [0.3,0.3,0]},
+                                         "objects": [{"mesh": "k.obj"}]})";
+    const Scene s = load_scene(dir / "s.json", DataPath{});
+    ASSERT_EQ(s.notes.size(), 1u);
+    EXPECT_CONTAINS(s.notes[0], "k.mtl:3: material 'hot': Kd 5 0.5 0.4 clamped to 1 per channel");
+    bool clamped = false;
+    for (const Material& m : s.materials) clamped |= m.name == "hot" && m.albedo == glm::vec3(1.0f, 0.5f, 0.4f);
+    EXPECT_TRUE(clamped);
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace tessera
