@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <iterator>
 #include <limits>
@@ -94,21 +95,28 @@ TEST_F(Checkpoint, RoundTripIsBitIdenticalAndContinues) {
     expect_bit_identical(a.mean_image(true, true), b.mean_image(true, true));
 }
 
-// Rewrites a format-3 checkpoint of `pixels` pixels saved without method sums (K = 0, no
-// lengths) as the format-2 file an older build wrote: version 2, no K, re-signed.
-void to_format_2(const fs::path& file, size_t pixels) {
+// Applies `edit` to a checkpoint's bytes, then re-signs it (the checksum of the rest).
+void rewrite(const fs::path& file, const std::function<void(std::vector<char>&)>& edit) {
     std::ifstream in(file, std::ios::binary);
     std::vector<char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     in.close();
-    const size_t k_at = b.size() - 8 - pixels * (TS_PASS_FLOATS * 8 + 3 * 8 + 4) - 4;
-    uint32_t k = 1, version = 2;
-    std::memcpy(&k, b.data() + k_at, 4);
-    ASSERT_EQ(k, 0u) << "only a checkpoint without method sums has a format-2 twin";
-    b.erase(b.begin() + std::ptrdiff_t(k_at), b.begin() + std::ptrdiff_t(k_at) + 4);
-    std::memcpy(b.data() + 8, &version, 4);
+    edit(b);
     const uint64_t sum = fnv1a64(b.data(), b.size() - 8);
     std::memcpy(b.data() + b.size() - 8, &sum, 8);
     std::ofstream(file, std::ios::binary | std::ios::trunc).write(b.data(), std::streamsize(b.size()));
+}
+
+// Rewrites a format-3 checkpoint of `pixels` pixels saved without method sums (K = 0, no
+// lengths) as the format-2 file an older build wrote: version 2, no K, re-signed.
+void to_format_2(const fs::path& file, size_t pixels) {
+    rewrite(file, [&](std::vector<char>& b) {
+        const size_t k_at = b.size() - 8 - pixels * (TS_PASS_FLOATS * 8 + 3 * 8 + 4) - 4;
+        uint32_t k = 1, version = 2;
+        std::memcpy(&k, b.data() + k_at, 4);
+        ASSERT_EQ(k, 0u) << "only a checkpoint without method sums has a format-2 twin";
+        b.erase(b.begin() + std::ptrdiff_t(k_at), b.begin() + std::ptrdiff_t(k_at) + 4);
+        std::memcpy(b.data() + 8, &version, 4);
+    });
 }
 
 // A format-2 checkpoint (before the method's sums were kept) still loads: the same sums,
@@ -129,16 +137,9 @@ TEST_F(Checkpoint, Format2StillLoads) {
     EXPECT_EQ(b.sums(), a.sums());
 }
 
-// Rewrites a checkpoint's format version as `version` (the layout of 3 and 4 is the same),
-// re-signed.
+// Rewrites a checkpoint's format version as `version` (the layout of 3 and 4 is the same).
 void set_version(const fs::path& file, uint32_t version) {
-    std::ifstream in(file, std::ios::binary);
-    std::vector<char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    in.close();
-    std::memcpy(b.data() + 8, &version, 4);
-    const uint64_t sum = fnv1a64(b.data(), b.size() - 8);
-    std::memcpy(b.data() + b.size() - 8, &sum, 8);
-    std::ofstream(file, std::ios::binary | std::ios::trunc).write(b.data(), std::streamsize(b.size()));
+    rewrite(file, [&](std::vector<char>& b) { std::memcpy(b.data() + 8, &version, 4); });
 }
 
 // A format-3 checkpoint holds passes of the igi family from before its filter's border
