@@ -60,10 +60,20 @@ double keep_threshold(const std::vector<double>& a, const std::vector<double>& w
     return hi;
 }
 
-// p rounded up to a multiple of 1/kSteps: the backends trace the view points with their
-// own rounding, and an importance that differs in its last bits must not change a
-// weight 1/p (or the image would differ between backends in every pixel it lights).
-double stepped(double p) { return std::min(1.0, std::ceil(p * kSteps) / kSteps); }
+// How far (in steps) above a step p may lie and still take that step.
+constexpr double kStepSlack = 1e-7;
+
+// p rounded up to a multiple of 1/kSteps (at least one step): the backends trace the view
+// points with their own rounding, and an importance that differs in its last bits must
+// not change a weight 1/p (or the image would differ between backends in every pixel it
+// lights). A p within kStepSlack of a step takes that step: in a set where no p reaches
+// 1, τ = 2K·mean, so every VPL of importance 0 gets exactly 1/(2K), itself a step, and
+// τ's last bit (the other VPLs' importance, traced with each backend's rounding) would
+// otherwise decide between that step and the next. A p can still cross a step, but only
+// when its own value lies within 1e-7 of one by chance.
+double stepped(double p) {
+    return std::min(1.0, std::max(1.0, std::ceil(p * kSteps - kStepSlack)) / kSteps);
+}
 
 }  // namespace
 

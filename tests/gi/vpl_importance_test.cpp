@@ -3,6 +3,7 @@
 #include <cmath>
 #include <array>
 #include <cstring>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -185,14 +186,37 @@ TEST(KeepProbabilities, MeetTheBudgetFavourImportanceAndBoundTheWeight) {
     EXPECT_GE(sum, 200.0 / k - 1e-9);
     EXPECT_LE(sum, 200.0 / k + 200.0 / 64.0);
     // In proportion to Φ + ε Φ̄ (Φ̄ = 13233.5 here), each rounded up by less than 1/64: the
-    // last VPL is about 4× as likely as the first (3.99 before rounding).
+    // last VPL is about 4× as likely as the first (3.99 before rounding; the first, of
+    // Φ = 0, sits on its step 1/(2K), and the last rounds up to 32/64).
+    EXPECT_EQ(p[0], 0.5 / k);
     EXPECT_GT(p[199] / p[0], 3.0);
-    EXPECT_LT(p[199] / p[0], 4.0);
+    EXPECT_LE(p[199] / p[0], 4.0);
     for (int i = 200; i < 220; ++i) EXPECT_EQ(p[i], 1.0 / k) << "medium VPLs: uniform";
     // Without any importance every VPL is kept with 1/K.
     const std::vector<double> flat = keep_probabilities(std::vector<float>(10, 0.0f), std::vector<bool>(10, false), k);
     ASSERT_EQ(flat.size(), 10u);
     for (double q : flat) EXPECT_EQ(q, 1.0 / k);
+}
+
+// In a set where no p reaches 1, τ = 2K·mean, so a VPL that lights no view point
+// (Φ = 0) gets p = 1/(2K) = 8/64 at K = 4, a step of the rounding. Nudging another VPL's
+// importance by one float ulp (a backend's rounding) moves τ in its last bits; p must
+// stay 8/64 whichever way, or the VPL's weight (8 or 7.1) and its keep decision would
+// differ between backends.
+TEST(KeepProbabilities, ZeroImportanceStaysOnItsStepWhateverTheLastBits) {
+    const uint32_t k = 4;
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(1.0f, 2.0f);
+    for (int trial = 0; trial < 64; ++trial) {
+        std::vector<float> importance(40, 0.0f);
+        for (size_t i = 10; i < importance.size(); ++i) importance[i] = u(rng);  // all within 2× (none capped)
+        const std::vector<bool> medium(importance.size(), false);
+        for (int nudge = 0; nudge < 2; ++nudge) {
+            if (nudge) importance[20] = std::nextafter(importance[20], 3.0f);
+            const std::vector<double> p = keep_probabilities(importance, medium, k);
+            for (size_t i = 0; i < 10; ++i) EXPECT_EQ(p[i], 8.0 / 64.0) << "trial " << trial << ", nudged " << nudge;
+        }
+    }
 }
 
 TEST(SelectVpls, KeepsTheFluxInExpectation) {
