@@ -26,14 +26,16 @@
 #include "shared/material.h"
 #include "shared/rng.h"
 #include "shared/sampling.h"
+#include "shared/spherical_triangle.h"
 
 TS_NAMESPACE_BEGIN
 
-/* Unoccluded contribution Le cosθx cosθy / (d² p) of one light sample at surface s, and
- * the shadow ray that decides its visibility. Returns 0 when the light faces away; the
- * shadow ray is set in either case (use it only for a nonzero contribution). Branch-free
- * for the reason ts_vpl_geometry (shared/vpl.h) is: the Embree packets run it over 16
- * pixels in SIMD. */
+/* Unoccluded contribution of one light sample at surface s, and the shadow ray that
+ * decides its visibility: Le cosθx cosθy / (d² p_area) for a point sampled by area, and
+ * Le cosθx / p_solid_angle for one ts_light_sample_from drew in solid angle. Returns 0
+ * when the light faces away; the shadow ray is set in either case (use it only for a
+ * nonzero contribution). Branch-free for the reason ts_vpl_geometry (shared/vpl.h) is:
+ * the Embree packets run it over 16 pixels in SIMD. */
 TS_INLINE float3 ts_light_contribution(const TsSurface* s, TsLightSample ls, TsRay* shadow) {
     float3 d = ls.position - s->position;
     float dist2 = dot(d, d);
@@ -43,8 +45,16 @@ TS_INLINE float3 ts_light_contribution(const TsSurface* s, TsLightSample ls, TsR
     int faces = (cos_x > 0.0f) & (cos_y > 0.0f) & (dot(s->geo_normal, wi) > 0.0f);
     *shadow = ts_shadow_ray(ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale), ls.position, ls.normal,
                             ls.pos_scale);
-    float w = faces ? cos_x * cos_y / (dist2 * ls.pdf_area) : 0.0f;
+    float w_area = cos_x * cos_y / (dist2 * ls.pdf_area), w_solid_angle = cos_x * ls.inv_pdf_solid_angle;
+    float w = faces ? (ls.inv_pdf_solid_angle > 0.0f ? w_solid_angle : w_area) : 0.0f;
     return ls.radiance * w;
+}
+
+/* ts_light_contribution of light sample ls as seen from s (ts_light_sample_from: drawn
+ * in solid angle where s is near the light). */
+TS_INLINE float3 ts_light_contribution_from(TS_GLOBAL const float* lights, const TsSurface* s, TsLightSample ls,
+                                           TsRay* shadow) {
+    return ts_light_contribution(s, ts_light_sample_from(lights, ls, s->position), shadow);
 }
 
 /* Direct irradiance / π (the quantity albedo multiplies) at s from m light samples. */
@@ -58,7 +68,7 @@ TS_INLINE float3 ts_direct_irradiance(const TsSceneView* sv, const TsTracer* tra
         float v = ts_rotate01(ts_radical_inverse2(j), r2);
         TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, us, u, v);
         TsRay shadow;
-        float3 c = ts_light_contribution(s, ls, &shadow);
+        float3 c = ts_light_contribution_from(sv->lights, s, ls, &shadow);
         if (c.x + c.y + c.z > 0.0f && !ts_trace_occluded(tracer, shadow)) sum += c;
     }
     return sum * (TS_INV_PI / (float)m);

@@ -37,7 +37,7 @@ TS_INLINE float3 ts_ic_residual_direct(const TsSceneView* sv, const TsTracer* tr
     if (sv->light_count == 0u) return make_float3(0.0f, 0.0f, 0.0f);
     TsLightSample ls = ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, u3.x, u3.y, u3.z);
     TsRay shadow;
-    float3 c = ts_light_contribution(y, ls, &shadow);
+    float3 c = ts_light_contribution_from(sv->lights, y, ls, &shadow);
     if (!(c.x + c.y + c.z > 0.0f) || ts_trace_occluded(tracer, shadow)) return make_float3(0.0f, 0.0f, 0.0f);
     return c * ts_shadow_transmittance(med, shadow) * TS_INV_PI;
 }

@@ -87,7 +87,8 @@ TS_INLINE uint ts_igi_link_count(const TsSceneView* sv, const TsFrame* f, uint k
     return ts_igi_light_links(sv, f, mask) + vpls;
 }
 
-/* Light sample j (j < m) of set k: the same point on the lights for every pixel of the set. */
+/* Light sample j (j < m) of set k: the same point on the lights for every pixel of the set
+ * (the same parameters (u, v), for surfaces near the light, ts_light_sample_from). */
 TS_INLINE TsLightSample ts_igi_light_sample(const TsSceneView* sv, const TsFrame* f, uint k, uint j) {
     float3 q = ts_igi_light_point(f, k * f->shadow_samples + j);
     return ts_sample_light(sv->lights, sv->light_cdf, sv->light_count, q.x, q.y, q.z);
@@ -105,7 +106,7 @@ TS_INLINE int ts_igi_link(const TsSceneView* sv, const TsFrame* f, const TsSurfa
     l->g = 0.0f;
     if (j < m) {
         l->vpl = TS_NO_HIT;
-        l->c = ts_light_contribution(s, ts_igi_light_sample(sv, f, k, j), &l->shadow);
+        l->c = ts_light_contribution_from(sv->lights, s, ts_igi_light_sample(sv, f, k, j), &l->shadow);
         return ts_igi_light_link_traced(l->c);
     }
     l->vpl = sv->vpl_set_start[k] + (j - m);

@@ -90,19 +90,48 @@ TS_INLINE void ts_igi_lanes_set(TsIgiLanes* ls, int i, const TsSurface* s) {
  * with the clamp off, cosθ cosθ' / d² at d > 0). */
 TS_INLINE float ts_lanes_masked(float x, int mask) { return as_float(as_int(x) & mask); }
 
+/* Whether any lane's surface is near light sample q's triangle (ts_light_near), so that
+ * its sample is drawn in solid angle. */
+TS_INLINE int ts_igi_lanes_light_near(TS_GLOBAL const float* lights, const TsIgiLanes* TS_RESTRICT ls,
+                                      TsLightSample q) {
+    TS_GLOBAL const float* Lq = lights + q.light * TS_LIGHT_FLOATS;
+    const float3 p0 = ts_f3_load(Lq + TS_LIGHT_P0), e1 = ts_f3_load(Lq + TS_LIGHT_E1), e2 = ts_f3_load(Lq + TS_LIGHT_E2);
+    int near = 0;
+    for (int i = 0; i < TS_PACKET_LANES; ++i)
+        near |= ts_light_near(p0, e1, e2, make_float3(ls->position[0][i], ls->position[1][i], ls->position[2][i]));
+    return near;
+}
+
+/* Lane i's light-sample link: contribution ci and shadow ray sh. */
+TS_INLINE void ts_igi_lanes_light_put(TsIgiLinkLanes* TS_RESTRICT L, TsRayLanes* TS_RESTRICT r, int i, float3 ci,
+                                      TsRay sh) {
+    L->c[0][i] = ci.x;
+    L->c[1][i] = ci.y;
+    L->c[2][i] = ci.z;
+    L->traced[i] = (ts_igi_light_link_traced(ci) ? -1 : 0) & L->in_ss[i];
+    ts_ray_lanes_put(r, i, sh);
+}
+
 /* Light sample q against every lane: L->c and the shadow rays in r; L->traced[i] = -1
- * where lane i takes part (L->in_ss) and the ray must be traced (ts_igi_light_link_traced). */
-TS_INLINE void ts_igi_lanes_light_links(const TsIgiLanes* TS_RESTRICT ls, TsLightSample q,
-                                         TsIgiLinkLanes* TS_RESTRICT L, TsRayLanes* TS_RESTRICT r) {
+ * where lane i takes part (L->in_ss) and the ray must be traced (ts_igi_light_link_traced).
+ * The lanes share q's point (one SIMD loop) unless one is near the light; then each lane
+ * takes q as seen from it (ts_light_contribution_from). */
+TS_INLINE void ts_igi_lanes_light_links(TS_GLOBAL const float* lights, const TsIgiLanes* TS_RESTRICT ls,
+                                         TsLightSample q, TsIgiLinkLanes* TS_RESTRICT L,
+                                         TsRayLanes* TS_RESTRICT r) {
+    TsRay sh;
+    if (!ts_igi_lanes_light_near(lights, ls, q)) {
+        for (int i = 0; i < TS_PACKET_LANES; ++i) {
+            const TsSurface s = ts_igi_lanes_surface(ls, i);
+            const float3 ci = ts_light_contribution(&s, q, &sh);
+            ts_igi_lanes_light_put(L, r, i, ci, sh);
+        }
+        return;
+    }
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         const TsSurface s = ts_igi_lanes_surface(ls, i);
-        TsRay sh;
-        const float3 ci = ts_light_contribution(&s, q, &sh);
-        L->c[0][i] = ci.x;
-        L->c[1][i] = ci.y;
-        L->c[2][i] = ci.z;
-        L->traced[i] = (ts_igi_light_link_traced(ci) ? -1 : 0) & L->in_ss[i];
-        ts_ray_lanes_put(r, i, sh);
+        const float3 ci = ts_light_contribution_from(lights, &s, q, &sh);
+        ts_igi_lanes_light_put(L, r, i, ci, sh);
     }
 }
 
@@ -213,7 +242,7 @@ TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer
     }
     ts_ray_lanes_init(&r);
     for (uint j = 0u; any_ss && j < f->shadow_samples; ++j) {
-        ts_igi_lanes_light_links(&ls, ts_igi_light_sample(sv, f, k, j), &L, &r);
+        ts_igi_lanes_light_links(sv->lights, &ls, ts_igi_light_sample(sv, f, k, j), &L, &r);
         ts_trace_occluded_ray_lanes(tracer, &r, L.traced, L.visible);
         ts_igi_lanes_light_gather(&ls, &L, &med, &r);
     }

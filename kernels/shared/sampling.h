@@ -27,6 +27,12 @@ typedef struct TsLightSample {
     float3 radiance;   /* Le, W/(sr·m²) */
     float pdf_area;    /* selection probability / light area, scene units^-2 */
     float pos_scale;   /* largest absolute vertex coordinate of the light triangle */
+    uint light;        /* index of the light triangle (sv->lights) */
+    float u, v;        /* the point's coordinates on the light's parameter square */
+    /* 0 for a point sampled uniformly by area; for one ts_light_sample_from sampled
+     * uniformly in solid angle, the inverse of its pdf per steradian: Ω / selection
+     * probability (sr). */
+    float inv_pdf_solid_angle;
 } TsLightSample;
 
 /* The light `u_select` picks by inverting light_cdf (binary search). Requires
@@ -56,6 +62,10 @@ TS_INLINE TsLightSample ts_sample_light(TS_GLOBAL const float* lights,
     s.normal = normalize(cross(e1, e2));
     s.radiance = ts_f3_load(L + TS_LIGHT_RADIANCE);
     s.pdf_area = p_select / L[TS_LIGHT_AREA];
+    s.light = lo;
+    s.u = u;
+    s.v = v;
+    s.inv_pdf_solid_angle = 0.0f;
     return s;
 }
 
@@ -112,6 +122,13 @@ TS_INLINE float3 ts_from_local(float3 n, float3 v) {
 TS_INLINE float3 ts_sample_cosine_hemisphere(float u, float v) {
     float r = sqrt(u), phi = 2.0f * TS_PI * v;
     return make_float3(r * cos(phi), r * sin(phi), sqrt(fmax(0.0f, 1.0f - u)));
+}
+
+/* Uniform direction on the hemisphere around the local +z axis; pdf 1/(2π) per
+ * steradian. cosθ = 1 − u is uniform (Archimedes), in (0, 1] for u in [0, 1). */
+TS_INLINE float3 ts_sample_uniform_hemisphere(float u, float v) {
+    float z = 1.0f - u, r = sqrt(fmax(0.0f, 1.0f - z * z)), phi = 2.0f * TS_PI * v;
+    return make_float3(r * cos(phi), r * sin(phi), z);
 }
 
 /* Henyey–Greenstein phase function (per steradian) for the angle θ between the

@@ -1,6 +1,6 @@
 // The 16-lane link math of kernels/shared/igi_gather16.h, compiled as C++ with the Embree
 // tracer's packet (an RTCRay16): for every lane, bit for bit what the shared one-pixel
-// functions give (ts_light_contribution, ts_vpl_geometry, the gather terms), over lanes
+// functions give (ts_light_contribution_from, ts_vpl_geometry, the gather terms), over lanes
 // that face the link, face away, sit on the VPL itself (d = 0) or are hidden, with and
 // without a medium, with the clamp on and off. No tracing (the functions only fill and
 // read the packet), except ts_trace_occluded_ray_lanes, which traces a packet through the
@@ -108,34 +108,60 @@ TEST(IgiGather16, VplLinksEqualTheSharedGeometryTermPerLane) {
         }
 }
 
-TEST(IgiGather16, LightLinksEqualTheSharedContributionPerLane) {
-    std::mt19937 rng(5);
+// A light triangle facing -y in the plane y = 0.9, centred over the origin, of edge
+// `size`, with radiance (10, 8, 6); and a sample of it at (u, v) = (0.4, 0.6).
+struct TestLight {
+    std::array<float, TS_LIGHT_FLOATS> lights{};
+    std::array<float, 1> cdf{1.0f};
     ts::TsLightSample q;
-    q.position = ts::make_float3(0.0f, 0.9f, 0.0f);
-    q.normal = ts::make_float3(0.0f, -1.0f, 0.0f);
-    q.radiance = ts::make_float3(10.0f, 8.0f, 6.0f);
-    q.pdf_area = 4.0f;
-    q.pos_scale = 1.0f;
-    const auto s = surfaces(rng, ts::make_float3(0.0f, 0.0f, 0.0f));
-    const ts::TsIgiLanes ls = lanes_of(s);
-    ts::TsRayLanes r;
-    ts::TsIgiLinkLanes L;
-    for (int i = 0; i < kLanes; ++i) L.in_ss[i] = i == 6 ? 0 : -1;  // lane 6 takes no part
-    ts::ts_igi_lanes_light_links(&ls, q, &L, &r);
-    const auto& c = L.c;
-    const int* in = L.in_ss;
-    const int* traced = L.traced;
-    int lit = 0;
-    for (int i = 0; i < kLanes; ++i) {
-        ts::TsRay want;
-        const ts::float3 cw = ts::ts_light_contribution(&s[i], q, &want);
-        EXPECT_TRUE(same_bits(c[0][i], cw.x) && same_bits(c[1][i], cw.y) && same_bits(c[2][i], cw.z)) << "lane " << i;
-        EXPECT_EQ(traced[i], ts::ts_igi_light_link_traced(cw) && in[i] ? -1 : 0) << "lane " << i;
-        expect_ray(r, i, want);
-        lit += traced[i] != 0;
+
+    explicit TestLight(float size) {
+        const float p0[3] = {-size / 3, 0.9f, -size / 3}, e1[3] = {size, 0.0f, 0.0f}, e2[3] = {0.0f, 0.0f, size};
+        const float le[3] = {10.0f, 8.0f, 6.0f};
+        std::copy(p0, p0 + 3, lights.begin() + TS_LIGHT_P0);
+        std::copy(e1, e1 + 3, lights.begin() + TS_LIGHT_E1);
+        std::copy(e2, e2 + 3, lights.begin() + TS_LIGHT_E2);
+        std::copy(le, le + 3, lights.begin() + TS_LIGHT_RADIANCE);
+        lights[TS_LIGHT_AREA] = 0.5f * size * size;
+        q = ts::ts_sample_light(lights.data(), cdf.data(), 1u, 0.3f, 0.4f, 0.6f);
     }
-    EXPECT_GT(lit, 0);
-    EXPECT_LT(lit, kLanes);
+};
+
+// Lanes far from the light (a 0.02 triangle) share q's point; near it (a 3-unit triangle
+// over the whole box) each lane draws its own in solid angle. Either way every lane gets
+// ts_light_contribution_from's contribution and ray, bit for bit.
+TEST(IgiGather16, LightLinksEqualTheSharedContributionPerLane) {
+    for (float size : {0.02f, 3.0f}) {
+        std::mt19937 rng(5);
+        const TestLight light(size);
+        const auto s = surfaces(rng, ts::make_float3(0.0f, 0.0f, 0.0f));
+        const ts::TsIgiLanes ls = lanes_of(s);
+        ts::TsRayLanes r;
+        ts::TsIgiLinkLanes L;
+        for (int i = 0; i < kLanes; ++i) L.in_ss[i] = i == 6 ? 0 : -1;  // lane 6 takes no part
+        ts::ts_igi_lanes_light_links(light.lights.data(), &ls, light.q, &L, &r);
+        const auto& c = L.c;
+        const int* in = L.in_ss;
+        const int* traced = L.traced;
+        int lit = 0, drawn_in_solid_angle = 0;
+        for (int i = 0; i < kLanes; ++i) {
+            ts::TsRay want;
+            const ts::float3 cw = ts::ts_light_contribution_from(light.lights.data(), &s[i], light.q, &want);
+            EXPECT_TRUE(same_bits(c[0][i], cw.x) && same_bits(c[1][i], cw.y) && same_bits(c[2][i], cw.z))
+                << "lane " << i;
+            EXPECT_EQ(traced[i], ts::ts_igi_light_link_traced(cw) && in[i] ? -1 : 0) << "lane " << i;
+            expect_ray(r, i, want);
+            lit += traced[i] != 0;
+            drawn_in_solid_angle +=
+                ts::ts_light_sample_from(light.lights.data(), light.q, s[i].position).inv_pdf_solid_angle > 0.0f;
+        }
+        EXPECT_GT(lit, 0);
+        EXPECT_LT(lit, kLanes);
+        if (size > 1.0f)
+            EXPECT_GT(drawn_in_solid_angle, kLanes / 2);
+        else
+            EXPECT_EQ(drawn_in_solid_angle, 0);
+    }
 }
 
 // Sums after two VPLs and two light samples with a fixed visibility pattern equal the
@@ -150,12 +176,8 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
     ts::TsSceneView sv{};
     sv.vpls = vpl;
     std::vector<ts::TsIgiGather> want(kLanes, ts::ts_igi_gather_begin());
-    ts::TsLightSample q{};
-    q.position = ts::make_float3(0.0f, 0.9f, 0.0f);
-    q.normal = ts::make_float3(0.0f, -1.0f, 0.0f);
-    q.radiance = ts::make_float3(10.0f, 8.0f, 6.0f);
-    q.pdf_area = 4.0f;
-    q.pos_scale = 1.0f;
+    const TestLight light(0.02f);
+    const ts::TsLightSample q = light.q;
     for (int round = 0; round < 2; ++round) {
         ts::TsRayLanes r;
         ts::TsIgiLinkLanes L;
@@ -172,7 +194,7 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
             l.g = ts::ts_vpl_geometry(&s[i], vpl, 0.5f, 0.0f, &l.shadow);
             ts::ts_igi_gather_add(&want[i], &sv, &med, &l);
         }
-        ts::ts_igi_lanes_light_links(&ls, q, &L, &r);
+        ts::ts_igi_lanes_light_links(light.lights.data(), &ls, q, &L, &r);
         for (int i = 0; i < kLanes; ++i) L.visible[i] = L.traced[i] && (i + round) % 4 != 1 ? -1 : 0;
         if (round == 1) L.traced[5] = L.visible[5] = 0;  // a lane that does not face the sample
         ts::ts_igi_lanes_light_gather(&ls, &L, &med, &r);
@@ -181,7 +203,7 @@ void expect_gather_equals_one_pixel_gather(const ts::TsMedium& med) {
             if (!visible[i]) continue;
             ts::TsIgiLink l;
             l.vpl = TS_NO_HIT;
-            l.c = ts::ts_light_contribution(&s[i], q, &l.shadow);
+            l.c = ts::ts_light_contribution_from(light.lights.data(), &s[i], q, &l.shadow);
             ts::ts_igi_gather_add(&want[i], &sv, &med, &l);
         }
     }

@@ -57,6 +57,12 @@ TEST(Sampling, CosineHemisphereMatchesItsPdf) {
     EXPECT_FALSE(r.reject) << "chi2 " << r.statistic << " dof " << r.dof << " z " << r.z;
 }
 
+TEST(Sampling, UniformHemisphereMatchesItsPdf) {
+    auto r = direction_chi2([](float u, float v) { return ts::ts_sample_uniform_hemisphere(u, v); },
+                            [](float3 d) { return d.z > 0 ? 1.0 / (2 * M_PI) : 0.0; }, 3);
+    EXPECT_FALSE(r.reject) << "chi2 " << r.statistic << " dof " << r.dof << " z " << r.z;
+}
+
 TEST(Sampling, CosineHemisphereAboutATiltedNormalStaysAbove) {
     const float3 n = ts::normalize(ts::make_float3(0.3f, -0.8f, 0.5f));
     std::mt19937 rng(2);
