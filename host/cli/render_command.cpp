@@ -217,8 +217,8 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
     render_sequence(scene, frames, bo, settings, [&](int frame, const Image& img, const RenderStats& stats, double seconds) {
         const fs::path exr = frame_output_path(out, frame, frame_number_digits(scene));
         const fs::path png = png_beside(exr);
-        write_exr(outputs.add(exr), img);
-        write_png(outputs.add(png), img, a.exposure);
+        outputs.write(exr, [&](const fs::path& t) { write_exr(t, img); });
+        outputs.write(png, [&](const fs::path& t) { write_png(t, img, a.exposure); });
         std::fprintf(stderr, "tessera: frame %d: %.1f ms (%u spp in %.1f ms, the rest set-up)\n", frame, 1e3 * seconds,
                      stats.passes, 1e3 * stats.seconds);
         if (!stats.detail.empty()) std::fprintf(stderr, "  %s\n", stats.detail.c_str());
@@ -346,9 +346,12 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     if (!lead) return;
     const fs::path png = png_beside(out);
     CommitGroup outputs;  // all of them or none
-    write_exr(outputs.add(out), img);
-    write_png(outputs.add(png), img, a.exposure);
-    if (!a.stats_json.empty()) write_stats_json(outputs.add(a.stats_json), a, settings, stats, backend->description(), cluster.size());
+    outputs.write(out, [&](const fs::path& t) { write_exr(t, img); });
+    outputs.write(png, [&](const fs::path& t) { write_png(t, img, a.exposure); });
+    if (!a.stats_json.empty())
+        outputs.write(a.stats_json, [&](const fs::path& t) {
+            write_stats_json(t, a, settings, stats, backend->description(), cluster.size());
+        });
     {
         const InterruptDeferral defer;
         outputs.commit();

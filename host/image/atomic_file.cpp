@@ -219,6 +219,19 @@ fs::path CommitGroup::add(const fs::path& link) {
     return temp;
 }
 
+void CommitGroup::write(const fs::path& target, const std::function<void(const fs::path& temp)>& fill) {
+    const fs::path temp = add(target);
+    try {
+        fill(temp);
+    } catch (const RuntimeError& e) {
+        std::string message = e.what();
+        const std::string from = temp.string(), to = target.string();
+        for (size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size()))
+            message.replace(at, from.size(), to);
+        throw RuntimeError(message);
+    }
+}
+
 void CommitGroup::commit() {
     // Keep each file about to be replaced under a second name (a hard link: no copy), so
     // a later rename failing can put it back.

@@ -53,6 +53,11 @@ public:
     /// path, for the caller to fill (write_exr(temp, ...) replaces it atomically). Throws
     /// RuntimeError naming `target` when the temporary cannot be made.
     std::filesystem::path add(const std::filesystem::path& target);
+    /// add(target), then `fill(temp)` to write the temporary. A RuntimeError from `fill`
+    /// is rethrown with the temporary's path replaced by `target`, so that a write that
+    /// fails (a full disk, say) names the file the user asked for, not a hidden
+    /// `.<name>.tmp.XXXXXX`; other exceptions propagate unchanged.
+    void write(const std::filesystem::path& target, const std::function<void(const std::filesystem::path& temp)>& fill);
 
     /// Renames every temporary over its target, in the order added. If a rename fails,
     /// the targets already renamed are put back as they were (a replaced file is

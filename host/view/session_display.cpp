@@ -75,8 +75,8 @@ std::filesystem::path ViewSession::save_screenshot() {
     }
     const Image image = accumulation();
     CommitGroup outputs;  // both files or neither, like render
-    write_exr(outputs.add(exr), image);
-    write_png(outputs.add(png), image, exposure_);
+    outputs.write(exr, [&](const std::filesystem::path& t) { write_exr(t, image); });
+    outputs.write(png, [&](const std::filesystem::path& t) { write_png(t, image, exposure_); });
     outputs.commit();
     ++screenshots_;
     std::fprintf(stderr, "tessera view: screenshot of %u passes: %s\n", acc_->passes(), exr.c_str());

@@ -130,6 +130,25 @@ TEST_F(CommitGroupTest, AddNamesTheTargetWhenNoTemporaryCanBeMade) {
     }
 }
 
+// A write that fails (here as a full disk reports it) names the file asked for, not the
+// hidden temporary it was filling; the group then leaves nothing behind.
+TEST_F(CommitGroupTest, AFailedWriteNamesTheTargetNotTheTemporary) {
+    const fs::path target = dir_ / "out.exr";
+    std::string temp;
+    try {
+        CommitGroup g;
+        g.write(target, [&temp](const fs::path& t) {
+            temp = t.string();
+            throw RuntimeError("cannot write '" + temp + "': No space left on device");
+        });
+        FAIL() << "the write's error was lost";
+    } catch (const RuntimeError& e) {
+        EXPECT_EQ(std::string(e.what()), "cannot write '" + target.string() + "': No space left on device");
+    }
+    EXPECT_NE(temp, target.string());
+    EXPECT_EQ(entries(dir_), 0u);
+}
+
 // A group that fails (destroyed before commit) takes away the directories it made, unless
 // something else was written there meanwhile: an interrupted `render --frames` into a new
 // directory left it behind, empty.
