@@ -224,12 +224,16 @@ void CommitGroup::write(const fs::path& target, const std::function<void(const f
     try {
         fill(temp);
     } catch (const RuntimeError& e) {
-        std::string message = e.what();
-        const std::string from = temp.string(), to = target.string();
-        for (size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size()))
-            message.replace(at, from.size(), to);
-        throw RuntimeError(message);
+        throw RuntimeError(with_path_shown(e.what(), temp, target));
     }
+}
+
+std::string with_path_shown(std::string message, const fs::path& temp, const fs::path& shown) {
+    const std::string from = temp.string(), to = shown.string();
+    if (from.empty()) return message;
+    for (size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size()))
+        message.replace(at, from.size(), to);
+    return message;
 }
 
 void CommitGroup::commit() {

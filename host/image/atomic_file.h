@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace tessera {
@@ -24,6 +25,10 @@ std::filesystem::path existing_ancestor(const std::filesystem::path& dir);
 /// Renaming over the link would turn it into a plain file and leave the file it names as
 /// it was. The CLI's checks probe this file's directory.
 std::filesystem::path output_target(const std::filesystem::path& path);
+
+/// `message` with every occurrence of the temporary file `temp`'s path replaced by
+/// `shown`'s: a library's error about the temporary it wrote names the file asked for.
+std::string with_path_shown(std::string message, const std::filesystem::path& temp, const std::filesystem::path& shown);
 
 /// Writes `size` bytes atomically to `path`. Throws RuntimeError naming `path` and the
 /// OS reason on failure; an existing file at `path` is then left untouched.

@@ -39,7 +39,7 @@ void write_exr(const fs::path& path, const Image& image) {
             file.setFrameBuffer(frame);
             file.writePixels(image.height);  // from the data window's first row
         } catch (const std::exception& e) {
-            throw RuntimeError("cannot write '" + path.string() + "': " + e.what());
+            throw RuntimeError("cannot write '" + path.string() + "': " + with_path_shown(e.what(), temp, path));
         }
     });
 }

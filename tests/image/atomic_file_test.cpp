@@ -149,6 +149,13 @@ TEST_F(CommitGroupTest, AFailedWriteNamesTheTargetNotTheTemporary) {
     EXPECT_EQ(entries(dir_), 0u);
 }
 
+// A library's message naming the temporary twice names the file asked for twice.
+TEST(WithPathShown, ReplacesEveryMentionOfTheTemporary) {
+    EXPECT_EQ(with_path_shown("'d/.x.tmp.1' failed: 'd/.x.tmp.1' is full", "d/.x.tmp.1", "d/x"),
+              "'d/x' failed: 'd/x' is full");
+    EXPECT_EQ(with_path_shown("no mention", "d/.x.tmp.1", "d/x"), "no mention");
+}
+
 // A group that fails (destroyed before commit) takes away the directories it made, unless
 // something else was written there meanwhile: an interrupted `render --frames` into a new
 // directory left it behind, empty.
