@@ -29,6 +29,7 @@
 /* static: C99 gives a plain `inline` function no external definition, so a driver that
  * does not inline it (clang-based ones at -cl-opt-disable) fails to link. */
 #define TS_INLINE static inline
+#define TS_COLD static inline
 #define make_float3(x, y, z) ((float3)((x), (y), (z)))
 #define make_float2(x, y) ((float2)((x), (y)))
 #define TS_INF INFINITY
@@ -74,6 +75,9 @@ static inline double ts_double_of_words(uint lo, uint hi) { return as_double((ui
 #define TS_UNREACHABLE() __builtin_unreachable()
 #define TS_CONSTANT_TABLE inline constexpr
 #define TS_INLINE inline
+/* A rarely taken path kept out of its caller's body, so that it leaves the caller's
+ * inlining and register choices as they were (OpenCL C inlines it like any other). */
+#define TS_COLD [[gnu::noinline, gnu::cold]] inline
 #define TS_HAS_DOUBLE 1
 #define TS_NAMESPACE_BEGIN namespace tessera::ts {
 #define TS_NAMESPACE_END }

@@ -112,6 +112,19 @@ TS_INLINE void ts_igi_lanes_light_put(TsIgiLinkLanes* TS_RESTRICT L, TsRayLanes*
     ts_ray_lanes_put(r, i, sh);
 }
 
+/* ts_igi_lanes_light_links where a lane is near q's light: each lane takes q as seen
+ * from it (ts_light_contribution_from). */
+TS_COLD void ts_igi_lanes_light_links_near(TS_GLOBAL const float* lights, const TsIgiLanes* TS_RESTRICT ls,
+                                           TsLightSample q, TsIgiLinkLanes* TS_RESTRICT L,
+                                           TsRayLanes* TS_RESTRICT r) {
+    TsRay sh;
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        const TsSurface s = ts_igi_lanes_surface(ls, i);
+        const float3 ci = ts_light_contribution_from(lights, &s, q, &sh);
+        ts_igi_lanes_light_put(L, r, i, ci, sh);
+    }
+}
+
 /* Light sample q against every lane: L->c and the shadow rays in r; L->traced[i] = -1
  * where lane i takes part (L->in_ss) and the ray must be traced (ts_igi_light_link_traced).
  * The lanes share q's point (one SIMD loop) unless one is near the light; then each lane
@@ -119,18 +132,14 @@ TS_INLINE void ts_igi_lanes_light_put(TsIgiLinkLanes* TS_RESTRICT L, TsRayLanes*
 TS_INLINE void ts_igi_lanes_light_links(TS_GLOBAL const float* lights, const TsIgiLanes* TS_RESTRICT ls,
                                          TsLightSample q, TsIgiLinkLanes* TS_RESTRICT L,
                                          TsRayLanes* TS_RESTRICT r) {
-    TsRay sh;
-    if (!ts_igi_lanes_light_near(lights, ls, q)) {
-        for (int i = 0; i < TS_PACKET_LANES; ++i) {
-            const TsSurface s = ts_igi_lanes_surface(ls, i);
-            const float3 ci = ts_light_contribution(&s, q, &sh);
-            ts_igi_lanes_light_put(L, r, i, ci, sh);
-        }
+    if (ts_igi_lanes_light_near(lights, ls, q)) {
+        ts_igi_lanes_light_links_near(lights, ls, q, L, r);
         return;
     }
+    TsRay sh;
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         const TsSurface s = ts_igi_lanes_surface(ls, i);
-        const float3 ci = ts_light_contribution_from(lights, &s, q, &sh);
+        const float3 ci = ts_light_contribution(&s, q, &sh);
         ts_igi_lanes_light_put(L, r, i, ci, sh);
     }
 }
