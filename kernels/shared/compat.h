@@ -7,7 +7,8 @@
  *     fmin/fmax/fabs/sqrt and the helpers below;
  *   - buffers are `TS_GLOBAL const float*` / `TS_GLOBAL const uint*`; never float3 in a
  *     buffer (OpenCL pads float3 to 16 bytes, C++ does not);
- *   - functions are `TS_INLINE`; no recursion, no dynamic allocation;
+ *   - functions are `TS_INLINE` (`TS_COLD` for a rare path the C++ build keeps out of
+ *     line); no recursion, no dynamic allocation;
  *   - bit casts use as_uint()/as_float()/as_int().
  */
 #ifndef TS_COMPAT_H
