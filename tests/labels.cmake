@@ -16,7 +16,9 @@ set(tessera_statistical_tests
     "^Backends/(PtFurnace|PtMedium|PlaneUnderLight|InstantCacheOn|IcPassesOn)\\."
     "^(BackendAgreement|PtAgreement|Traversal|IgiAgreement|IgiConvergence|IgiMedia|Ais|LightSelection|PassConvergence)\\."
     "^G/HenyeyGreenstein\\.SamplesMatchThePhaseFunction/"
-    "^Sampling\\.(CosineHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
+    "^Sampling\\.(CosineHemisphereMatchesItsPdf|UniformHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
+    "^SphericalTriangle\\.SamplesAreUniformInSolidAngle$"
+    "^LightSampleFrom\\.NearALightMatchesLambertAndEachSampleIsBounded$"
     "^Medium\\.(FreeFlightDistancesAreExponential|RgbWeightsAreUnbiased|EquiangularDistancesFollowTheirPdf)$"
     "^EdgeSamples\\.EachSampleIsUniformOverThePixel$")
 list(JOIN tessera_statistical_tests "|" tessera_statistical_tests)

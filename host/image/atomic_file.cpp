@@ -224,7 +224,9 @@ void CommitGroup::write(const fs::path& target, const std::function<void(const f
     try {
         fill(temp);
     } catch (const RuntimeError& e) {
-        throw RuntimeError(with_path_shown(e.what(), temp, target));
+        std::string shown = with_path_shown(e.what(), temp, target);
+        if (shown == e.what()) throw;  // not about the temporary: as it was, type and all
+        throw RuntimeError(shown);
     }
 }
 

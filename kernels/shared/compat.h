@@ -140,7 +140,6 @@ using std::sin;
 using std::sqrt;
 using std::tan;
 using std::atan2;
-using std::asin;
 using std::asinh;
 using std::sinh;
 using std::pow;

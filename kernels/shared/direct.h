@@ -5,7 +5,9 @@
  *
  * Estimator (area form of the rendering equation, Lambertian BRDF albedo/π):
  *   L(x) = Le(x) + albedo/π · (1/m) Σ_j Le(y_j) V(x,y_j) cosθx cosθy / (|x − y_j|² p(y_j))
- * with p(y) = P(light) / area(light). The m samples are a Hammersley set
+ * with p(y) = P(light) / area(light); for x near the light, the point is drawn in the
+ * light's solid angle instead and the term is Le V cosθx Ω / P(light)
+ * (ts_light_sample_from, shared/spherical_triangle.h). The m samples are a Hammersley set
  * ((j+½)/m, φ2(j)) on the light's square parameter domain and φ3(j) for light
  * selection, Cranley–Patterson rotated per pixel and pass, so they are stratified
  * within a pixel and independent between pixels and passes.

@@ -63,7 +63,7 @@ TS_INLINE float3 ts_igi_light_point(const TsFrame* f, uint j) {
  * pixels of one set per packet, docs/ray-batches.md) while the transport stays here. */
 typedef struct TsIgiLink {
     TsRay shadow;
-    float3 c;   /* light sample: Le cosθx cosθy / (d² p), unoccluded */
+    float3 c;   /* light sample: ts_light_contribution_from, unoccluded */
     float g;    /* VPL: the clamped geometry term G' */
     uint vpl;   /* VPL index, or TS_NO_HIT for a light sample */
 } TsIgiLink;
@@ -137,8 +137,8 @@ TS_INLINE void ts_igi_gather_add(TsIgiGather* g, const TsSceneView* sv, const Ts
 
 /* E_ss = direct irradiance / π from the set's m light samples, E_id = indirect
  * irradiance / π from its VPLs (the gather sum of shared/vpl.h), and the visibility: the
- * fraction of the m samples not blocked, a sample behind the surface's plane counting as
- * not blocked. AIS's SS guidance reads it (docs/ais.md §3). Samples behind the plane are
+ * fraction of the m samples not blocked, a sample behind the surface's plane (or, near a
+ * large light, a hemisphere direction that misses it) counting as not blocked. AIS's SS guidance reads it (docs/ais.md §3). Samples behind the plane are
  * no shadow: counted as blocked, every set's visibility differed on a surface that faces
  * part of a light (each set's samples cover a different strip of it), which flagged whole
  * walls the filter cleans; and the fraction of the faced samples that are visible swings

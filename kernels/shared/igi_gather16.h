@@ -1,7 +1,8 @@
 /* The igi surface gather of 16 lanes side by side (docs/ray-batches.md §3, §4), for the
  * backends that trace 16-ray packets: the Embree backend (host/backend/embree_packets.cpp)
  * and the OpenCL CPU kernels (kernels/igi_packets.h). Set by set, each link of the set (a
- * light sample, then a VPL: the same for every lane of the set) is computed for the 16
+ * light sample, then a VPL: the same for every lane of the set, but for a light sample
+ * near a lane's surface, ts_light_sample_from) is computed for the 16
  * lanes in loops GCC vectorises, its shadow rays written straight into the tracer's
  * packet, traced as one packet and gathered per lane. A lane takes part in the light
  * links if its mask has TS_COMPONENT_SS, in the VPL links if it has TS_COMPONENT_ID: the

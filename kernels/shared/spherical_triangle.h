@@ -63,7 +63,8 @@ TS_INLINE float3 ts_sample_spherical_triangle(float3 a, float3 b, float3 c, floa
     float k1 = cos_phi + cos_alpha;
     float k2 = sin_phi - sin_alpha * dot(a, b);
     float cos_bp = (k2 + (k2 * cos_phi - k1 * sin_phi) * cos_alpha) / ((k2 * sin_phi + k1 * cos_phi) * sin_alpha);
-    cos_bp = fmin(1.0f, fmax(-1.0f, cos_bp));
+    /* A NaN (the rounding corners) must reach the result, not become −1 in the clamp. */
+    if (cos_bp == cos_bp) cos_bp = fmin(1.0f, fmax(-1.0f, cos_bp));
     float sin_bp = sqrt(fmax(0.0f, 1.0f - cos_bp * cos_bp));
     float3 cp = a * cos_bp + normalize(c - a * dot(c, a)) * sin_bp;
     float cos_t = 1.0f - v * (1.0f - dot(cp, b));
@@ -91,7 +92,7 @@ TS_INLINE int ts_triangle_barycentrics_along(float3 p0, float3 e1, float3 e2, fl
     float divisor = dot(s1, e1);
     *b1 = dot(s, s1) / divisor;
     *b2 = dot(w, cross(s, e1)) / divisor;
-    return *b1 == *b1 && *b2 == *b2 && divisor != 0.0f;
+    return isfinite(*b1) && isfinite(*b2);
 }
 
 /* Light sample ls (from ts_sample_light) as seen from surface point x. Where x is near

@@ -116,7 +116,9 @@ TEST(EmbreePackets, RaysEqualSingleRaysOnSibenik) {
 // size that is not a multiple of the tile nor of the 4×4 packet block, so packets with
 // idle lanes and sets of unequal size are covered. Fog adds the media part of AIS items,
 // medium VPLs and the per-lane transmittance of the gather; the fog-free box the
-// vectorised gather without a medium (embree_packets.cpp, vpl_gather).
+// vectorised gather without a medium (embree_packets.cpp, vpl_gather); a light crossing a
+// wall the packets whose lanes draw their own light points (igi_gather16.h,
+// ts_igi_lanes_light_links_near).
 class PacketImages : public ::testing::TestWithParam<std::tuple<Method, const char*>> {};
 
 TEST_P(PacketImages, EqualSingleRayImagesBitForBit) {
@@ -131,11 +133,14 @@ TEST_P(PacketImages, EqualSingleRayImagesBitForBit) {
 
 INSTANTIATE_TEST_SUITE_P(Methods, PacketImages,
                          ::testing::Combine(::testing::Values(Method::Igi, Method::Ais, Method::AisMax, Method::Ic),
-                                            ::testing::Values("cornell-box-fog.json", "cornell-box.json")),
+                                            ::testing::Values("cornell-box-fog.json", "cornell-box.json",
+                                                              TESSERA_TEST_DATA "/near_light.json")),
                          [](const auto& info) {
                              const std::string scene = std::get<1>(info.param);
                              return test::method_param_name(std::get<0>(info.param)) +
-                                    (scene == "cornell-box.json" ? "_Clear" : "_Fog");
+                                    (scene == "cornell-box.json"       ? "_Clear"
+                                     : scene == "cornell-box-fog.json" ? "_Fog"
+                                                                       : "_NearLight");
                          });
 
 }  // namespace

@@ -216,18 +216,26 @@ TEST(OpenCLPackets, DescriptionNamesTheTraversal) {
 // Images: igi, ais and ais-max (surface pass and AIS items go through packets) and ic
 // (the record-VPL pair rays, ic_pair_packets), at a size that is not a multiple of the
 // tile nor of the 4×4 packet block, so packets with idle lanes and sets of unequal size
-// are covered. Fog adds the media part of AIS items.
+// are covered. Fog adds the media part of AIS items; a light crossing a wall the packets
+// whose lanes draw their own light points (igi_gather16.h, ts_igi_lanes_light_links_near).
 class OpenCLPacketImages : public ::testing::TestWithParam<Method> {};
 
-TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBit) {
-    const Scene scene =
-        load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-fog.json", make_data_path(std::nullopt));
+void expect_packet_image_equals_per_ray(const std::filesystem::path& scene_file, Method method) {
+    const Scene scene = load_scene(scene_file, make_data_path(std::nullopt));
     SceneBuffers buffers = make_scene_buffers(scene);
-    const RenderSettings rs = test::packet_test_settings(GetParam());
+    const RenderSettings rs = test::packet_test_settings(method);
     auto single = opencl(buffers, scene, false), packets = opencl(buffers, scene, true);
     if (!cpu_device()) GTEST_SKIP() << "not a CPU device: " << packets->description();
     ASSERT_TRUE(runs_packets(*packets)) << packets->description();
     test::expect_images_identical(render_frame(*single, scene, buffers, rs), render_frame(*packets, scene, buffers, rs));
+}
+
+TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBit) {
+    expect_packet_image_equals_per_ray(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-fog.json", GetParam());
+}
+
+TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBitNearALight) {
+    expect_packet_image_equals_per_ray(std::filesystem::path(TESSERA_TEST_DATA) / "near_light.json", GetParam());
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, OpenCLPacketImages,

@@ -106,8 +106,10 @@ TEST(PassConvergence, ErrorAgainstPathTracerFallsWithPasses) {
             }
             std::printf("  %s %s: relMSE at 1, 4, 16 passes %.4g %.4g %.4g (reference noise %.4g)\n",
                         method_name(m), c.name, err[0], err[1], err[2], noise);
-            EXPECT_LT(err[1], err[0]) << method_name(m) << " " << c.name;
-            // Falling further, or already down to (twice) the reference's noise, where it cannot.
+            // Falling, or already down to (twice) the reference's noise, where it cannot: the
+            // checker floor lies within reach of its large light, whose samples are drawn in
+            // solid angle (docs/igi.md §5), so one pass is already at the noise there.
+            EXPECT_LT(err[1], std::max(err[0], 2.0 * noise)) << method_name(m) << " " << c.name;
             EXPECT_LT(err[2], std::max(err[1], 2.0 * noise)) << method_name(m) << " " << c.name;
             expect_mean_within_noise(c, m, ref, keep);
         }
