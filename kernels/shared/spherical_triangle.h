@@ -5,8 +5,9 @@
  * on a floor light) d² runs to 0 over the triangle and the estimator's variance has no
  * bound: single pixels come out several times brighter than the light can make them.
  * Sampling the spherical triangle the light subtends instead weighs a point by cosθx Ω,
- * at most 2π (docs/igi.md §5). Far from the light both agree within a factor 9, and area
- * sampling keeps its one point per interleave set; so only surfaces near the light switch.
+ * at most 2π (docs/igi.md §5). Farther from the light area sampling's variance is
+ * bounded and it keeps its one point per interleave set; so only surfaces near the light
+ * switch (ts_light_near).
  * This file is compiled both as OpenCL C and as C++ (shared/compat.h). */
 #ifndef TS_SPHERICAL_TRIANGLE_H
 #define TS_SPHERICAL_TRIANGLE_H
@@ -72,16 +73,23 @@ TS_INLINE float3 ts_sample_spherical_triangle(float3 a, float3 b, float3 c, floa
     return b * cos_t + normalize(cp - b * dot(cp, b)) * sin_t;
 }
 
+/* How far from a light triangle's centroid, in units of its radius r (the largest
+ * distance from the centroid to a corner), a surface point counts as near the light.
+ * Beyond, every point of the light lies between 0.25 r and 2.25 r away, so area
+ * sampling's 1/d² varies by at most 81× over it and its variance is bounded. 1.25 rather
+ * than 2 (9×): on bench/scenes/wall-touching-light.json the image's relMSE was the same
+ * (0.0026, one igi frame) and the frame 1.8-2.3× the area-sampled one's instead of 2.4-3.3×
+ * (bench/results/near_light.md). */
+#define TS_LIGHT_NEAR_REACH 1.25f
+
 /* Whether surface point x lies in front of light triangle (p0, p0 + e1, p0 + e2) (on the
- * side it emits to) and closer than twice the triangle's radius r about its centroid.
- * Beyond, the distances to the light's points lie in [d − r, d + r] with d ≥ 2r, so area
- * sampling's 1/d² varies by at most ((d + r) / (d − r))² ≤ 9 over the light and its
- * variance is bounded; behind, the light adds nothing either way. */
+ * side it emits to) and closer than TS_LIGHT_NEAR_REACH times its radius to its
+ * centroid; behind, the light adds nothing either way. */
 TS_INLINE int ts_light_near(float3 p0, float3 e1, float3 e2, float3 x) {
     float3 c = p0 + (e1 + e2) * (1.0f / 3.0f);
     float3 d0 = p0 - c, d1 = d0 + e1, d2 = d0 + e2, dx = x - c;
     float r2 = fmax(dot(d0, d0), fmax(dot(d1, d1), dot(d2, d2)));
-    return (dot(dx, dx) < 4.0f * r2) & (dot(cross(e1, e2), x - p0) > 0.0f);
+    return (dot(dx, dx) < TS_LIGHT_NEAR_REACH * TS_LIGHT_NEAR_REACH * r2) & (dot(cross(e1, e2), x - p0) > 0.0f);
 }
 
 /* Barycentrics (b1, b2) of where the ray x + t w meets the plane of triangle

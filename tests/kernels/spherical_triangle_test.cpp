@@ -160,7 +160,7 @@ TEST(LightSampleFrom, NearALightMatchesLambertAndEachSampleIsBounded) {
     }
 }
 
-// Far from the light (beyond twice its radius about its centroid) or behind it, the
+// Far from the light (beyond 1.25 times its radius about its centroid) or behind it, the
 // sample is the area sample itself, bit for bit; so are the degenerate cases: a point on
 // a vertex, and one in the light's plane, which sees no solid angle.
 TEST(LightSampleFrom, FarOrDegenerateKeepsTheAreaSample) {
