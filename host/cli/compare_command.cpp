@@ -93,30 +93,19 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
     // The maps land together at the end, or none does (a failing run writes nothing): each
     // is written to a temporary beside it, the missing directories made at that write.
     CommitGroup maps;
-    // A tool's message about the temporary it filled names the map asked for instead.
-    std::vector<std::pair<fs::path, fs::path>> temps;  // (temporary, map)
-    const auto map_temp = [&maps, &temps](const std::string& target) -> std::optional<fs::path> {
+    const auto map_temp = [&maps](const std::string& target) -> std::optional<fs::path> {
         if (target.empty()) return std::nullopt;
-        temps.emplace_back(maps.add(target), target);
-        return temps.back().first;
+        return maps.add(target);
     };
-    const auto shown = [&temps](std::string message) {
-        for (const auto& [temp, target] : temps) message = with_path_shown(std::move(message), temp, target);
-        return message;
-    };
-    // Rethrows the RuntimeError being handled, naming the maps instead of their temporaries.
-    const auto rethrow_shown = [&shown](const RuntimeError& e) {
-        const std::string message = shown(e.what());
-        if (message == e.what()) throw;
-        throw RuntimeError(message);
-    };
+    // A tool's message about the temporary it filled names the map asked for instead.
     metrics::FlipResult flip;
-    try {
+    std::optional<metrics::CvvdpResult> cvvdp;
+    maps.naming_targets([&] {
         if (a.no_flip)
             flip.reason = "disabled by --no-flip";
         else
             flip = metrics::compute_flip(a.ref, a.test, map_temp(a.flip_map));
-        flip.reason = shown(flip.reason);
+        flip.reason = maps.shown(flip.reason);
         // Without --flip-map an unavailable FLIP is reported in the output; a map asked for
         // and not written fails the run.
         if (!flip.available && !a.flip_map.empty())
@@ -125,16 +114,9 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
             maps.write(a.map, [&](const fs::path& temp) {
                 metrics::write_error_map_png(temp, ref.width, ref.height, metrics::rel_se_map(ref, test));
             });
-    } catch (const RuntimeError& e) {
-        rethrow_shown(e);
-    }
-    std::optional<metrics::CvvdpResult> cvvdp;
-    try {
         if (a.cvvdp)
             cvvdp = metrics::compute_cvvdp(metrics::cvvdp_tool(a.cvvdp_python), a.ref, a.test, map_temp(a.cvvdp_map));
-    } catch (const RuntimeError& e) {
-        rethrow_shown(e);
-    }
+    });
     std::optional<metrics::HdrvdpResult> hdrvdp;
     if (a.hdrvdp) hdrvdp = metrics::compute_hdrvdp(metrics::hdrvdp_tool(), a.ref, a.test);
     maps.commit();

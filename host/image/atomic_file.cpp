@@ -215,18 +215,27 @@ fs::path CommitGroup::add(const fs::path& link) {
     const int fd = make_temp(target, temp, &made);
     ::close(fd);
     if (!made.empty()) made_dirs_.push_back(made);
-    entries_.push_back({target, temp, {}});
+    entries_.push_back({target, temp, {}, link});
     return temp;
 }
 
 void CommitGroup::write(const fs::path& target, const std::function<void(const fs::path& temp)>& fill) {
     const fs::path temp = add(target);
+    naming_targets([&] { fill(temp); });
+}
+
+std::string CommitGroup::shown(std::string message) const {
+    for (const Entry& e : entries_) message = with_path_shown(std::move(message), e.temp, e.asked);
+    return message;
+}
+
+void CommitGroup::naming_targets(const std::function<void()>& work) const {
     try {
-        fill(temp);
+        work();
     } catch (const RuntimeError& e) {
-        std::string shown = with_path_shown(e.what(), temp, target);
-        if (shown == e.what()) throw;  // not about the temporary: as it was, type and all
-        throw RuntimeError(shown);
+        std::string message = shown(e.what());
+        if (message == e.what()) throw;  // not about a temporary: as it was, type and all
+        throw RuntimeError(message);
     }
 }
 

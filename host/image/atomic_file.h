@@ -58,11 +58,19 @@ public:
     /// path, for the caller to fill (write_exr(temp, ...) replaces it atomically). Throws
     /// RuntimeError naming `target` when the temporary cannot be made.
     std::filesystem::path add(const std::filesystem::path& target);
-    /// add(target), then `fill(temp)` to write the temporary. A RuntimeError from `fill`
-    /// is rethrown with the temporary's path replaced by `target`, so that a write that
-    /// fails (a full disk, say) names the file the user asked for, not a hidden
-    /// `.<name>.tmp.XXXXXX`; other exceptions propagate unchanged.
+    /// add(target), then `fill(temp)` to write the temporary, under naming_targets: a
+    /// write that fails (a full disk, say) names the file the user asked for, not a
+    /// hidden `.<name>.tmp.XXXXXX`.
     void write(const std::filesystem::path& target, const std::function<void(const std::filesystem::path& temp)>& fill);
+
+    /// `message` with the path of every temporary added so far replaced by its target's
+    /// as it was given to add() (with_path_shown): what a tool says about a temporary it
+    /// filled names the file asked for.
+    std::string shown(std::string message) const;
+    /// Runs `work`. A RuntimeError from it that names a temporary of the group is
+    /// rethrown as RuntimeError(shown(message)); one that names none, and every other
+    /// exception, propagates unchanged, type and all.
+    void naming_targets(const std::function<void()>& work) const;
 
     /// Renames every temporary over its target, in the order added. If a rename fails,
     /// the targets already renamed are put back as they were (a replaced file is
@@ -73,6 +81,7 @@ public:
 private:
     struct Entry {
         std::filesystem::path target, temp, backup;  // backup: empty when no old file was kept
+        std::filesystem::path asked;  // the target as given to add(), before links are followed
         bool existed = false;  // a file was at target before commit
         bool renamed = false;
     };

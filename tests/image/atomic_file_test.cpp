@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -147,6 +148,30 @@ TEST_F(CommitGroupTest, AFailedWriteNamesTheTargetNotTheTemporary) {
     }
     EXPECT_NE(temp, target.string());
     EXPECT_EQ(entries(dir_), 0u);
+}
+
+// A tool that filled two of the group's temporaries and failed names both files asked
+// for (a link as given, not the file it points to); an error naming no temporary, or of
+// another type, keeps its type and message.
+TEST_F(CommitGroupTest, NamingTargetsShowsEveryTemporaryAsItsTarget) {
+    const fs::path a = dir_ / "a.png", b = dir_ / "b.png", link = dir_ / "link.png";
+    fs::create_symlink("b.png", link);
+    CommitGroup g;
+    const fs::path ta = g.add(a), tb = g.add(link);
+    EXPECT_EQ(g.shown("wrote '" + ta.string() + "', not '" + tb.string() + "'"),
+              "wrote '" + a.string() + "', not '" + link.string() + "'");
+    try {
+        g.naming_targets([&] { throw RuntimeError("tool failed on " + tb.string() + " after " + ta.string()); });
+        FAIL() << "the error was lost";
+    } catch (const RuntimeError& e) {
+        EXPECT_EQ(std::string(e.what()), "tool failed on " + link.string() + " after " + a.string());
+    }
+    struct Other : RuntimeError {
+        using RuntimeError::RuntimeError;
+    };
+    EXPECT_THROW(g.naming_targets([] { throw Other("about nothing of the group's"); }), Other);
+    EXPECT_THROW(g.naming_targets([&] { throw std::invalid_argument(ta.string()); }), std::invalid_argument);
+    g.naming_targets([] {});
 }
 
 // A library's message naming the temporary twice names the file asked for twice.
