@@ -17,7 +17,7 @@ set(tessera_statistical_tests
     "^(BackendAgreement|PtAgreement|Traversal|IgiAgreement|IgiConvergence|IgiMedia|Ais|LightSelection|PassConvergence)\\."
     "^G/HenyeyGreenstein\\.SamplesMatchThePhaseFunction/"
     "^Sampling\\.(CosineHemisphereMatchesItsPdf|UniformHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
-    "^SphericalTriangle\\.SamplesAreUniformInSolidAngle$"
+    "^SphericalTriangle\\.(SamplesAreUniformInSolidAngle|RelabelledTrianglesAreUniformInSolidAngle)$"
     "^LightSampleFrom\\.NearALightMatchesLambertAndEachSampleIsBounded$"
     "^Medium\\.(FreeFlightDistancesAreExponential|RgbWeightsAreUnbiased|EquiangularDistancesFollowTheirPdf)$"
     "^EdgeSamples\\.EachSampleIsUniformOverThePixel$")
