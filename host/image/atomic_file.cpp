@@ -11,6 +11,7 @@
 #include <system_error>
 #include <vector>
 
+#include "image/fatal_signal_cleanup.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -23,9 +24,11 @@ namespace fs = std::filesystem;
                        std::strerror(err));
 }
 
-/// Removes the temporary file unless released after a successful rename.
+/// Removes the temporary file unless released after a successful rename; a process
+/// ended by a signal meanwhile removes it too.
 struct TempGuard {
     fs::path path;
+    RemovedOnFatalSignal on_signal{path};
     bool active = true;
     ~TempGuard() {
         if (active) {
@@ -215,7 +218,7 @@ fs::path CommitGroup::add(const fs::path& link) {
     const int fd = make_temp(target, temp, &made);
     ::close(fd);
     if (!made.empty()) made_dirs_.push_back(made);
-    entries_.push_back({target, temp, {}, link});
+    entries_.push_back({target, temp, {}, link, RemovedOnFatalSignal(temp)});
     return temp;
 }
 
@@ -268,7 +271,10 @@ void CommitGroup::commit() {
         }
         e.renamed = true;
     }
-    for (const Entry& e : entries_) sync_directory(e.target);
+    for (Entry& e : entries_) {
+        e.on_signal = {};  // its name is gone: nothing for a signal to remove
+        sync_directory(e.target);
+    }
 }
 
 void CommitGroup::roll_back() {

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "image/fatal_signal_cleanup.h"
+
 namespace tessera {
 
 /// The directory a missing one would be made in: `dir` itself where it exists, else its
@@ -46,7 +48,8 @@ void replace_file_atomic(const std::filesystem::path& path,
 /// its target (add), and commit() renames them all over their targets only once every
 /// one is complete. A failing run (an exception before commit) leaves no new file and
 /// changes no existing one: the destructor removes every temporary, and the directories
-/// add() made for them where nothing else landed.
+/// add() made for them where nothing else landed. A process ended by a signal before
+/// commit removes the temporaries too (image/fatal_signal_cleanup.h).
 class CommitGroup {
 public:
     CommitGroup() = default;
@@ -82,6 +85,7 @@ private:
     struct Entry {
         std::filesystem::path target, temp, backup;  // backup: empty when no old file was kept
         std::filesystem::path asked;  // the target as given to add(), before links are followed
+        RemovedOnFatalSignal on_signal;  // the temporary, should a signal end the process
         bool existed = false;  // a file was at target before commit
         bool renamed = false;
     };

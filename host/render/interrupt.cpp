@@ -7,6 +7,8 @@
 #include <atomic>
 #include <cstdint>
 
+#include "image/fatal_signal_cleanup.h"
+
 namespace tessera {
 namespace {
 
@@ -35,6 +37,7 @@ extern "C" void on_signal(int sig) {
     if (g_deferrals > 0 || now - g_first_ns < int64_t(kInterruptGraceSeconds * 1e9)) return;
     static const char msg[] = "\ntessera: interrupted again: stopping now, no checkpoint written\n";
     [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, msg, sizeof msg - 1);
+    remove_registered_temporaries();  // the outputs' unfinished temporaries: no destructor runs now
     ::signal(sig, SIG_DFL);
     ::raise(sig);
 }

@@ -7,7 +7,8 @@
 // comes within kInterruptGraceSeconds of the first, or while an InterruptDeferral is
 // alive (a checkpoint or the outputs being written). A further signal after that (a pass
 // that does not end, a user pressing Ctrl-C again) prints one line saying that no
-// checkpoint is written and ends the process by the signal's default action.
+// checkpoint is written, removes the outputs' temporaries (image/fatal_signal_cleanup.h)
+// and ends the process by the signal's default action.
 #pragma once
 
 namespace tessera {
