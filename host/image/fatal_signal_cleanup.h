@@ -10,8 +10,9 @@ namespace tessera {
 
 /// Registers a temporary file for removal by remove_registered_temporaries() for the
 /// object's lifetime (move-only). Best effort: when all kMaxRegisteredTemporaries slots
-/// are taken (a --frames run of over 2,000 frames keeps two temporaries per frame until
-/// its commit) the file is not registered. The path is made absolute at registration, so
+/// are taken (a --frames run keeps two temporaries per frame until its commit, so one of
+/// over 8,191 frames) the file is not registered. The file exists for a moment before it
+/// is registered (mkstemp, then this). The path is made absolute at registration, so
 /// a later change of working directory does not matter.
 class RemovedOnFatalSignal {
 public:
@@ -31,9 +32,9 @@ private:
     int slot_ = -1;
 };
 
-/// Slots for registered temporaries: 8 per frame would do for 512 frames; 4,096 pointers
-/// (32 KiB) cost nothing until used.
-inline constexpr int kMaxRegisteredTemporaries = 4096;
+/// Slots for registered temporaries: a --frames run of 8,191 frames (two each) and a
+/// checkpoint; 16,384 words (128 KiB of zero pages) cost nothing until used.
+inline constexpr int kMaxRegisteredTemporaries = 16384;
 
 /// Unlinks every registered temporary. Async-signal-safe (atomic exchanges and unlink):
 /// for a signal handler about to end the process. A registration it has taken is not

@@ -19,7 +19,7 @@ std::atomic<int> g_deferrals{0};
 static_assert(std::atomic<int>::is_always_lock_free && std::atomic<int64_t>::is_always_lock_free);
 
 int g_depth = 0;  // live InterruptScopes (one thread)
-struct sigaction g_old_int {}, g_old_term {};
+struct sigaction g_old_int {}, g_old_term {}, g_old_hup {};
 
 int64_t monotonic_ns() {
     timespec t{};
@@ -54,12 +54,15 @@ InterruptScope::InterruptScope() {
     sigaction(SIGINT, &sa, &g_old_int);
     sigaction(SIGTERM, &sa, &g_old_term);
     if (g_old_int.sa_handler == SIG_IGN) sigaction(SIGINT, &g_old_int, nullptr);
+    sigaction(SIGHUP, &sa, &g_old_hup);
+    if (g_old_hup.sa_handler == SIG_IGN) sigaction(SIGHUP, &g_old_hup, nullptr);  // nohup
 }
 
 InterruptScope::~InterruptScope() {
     if (--g_depth > 0) return;
     sigaction(SIGINT, &g_old_int, nullptr);
     sigaction(SIGTERM, &g_old_term, nullptr);
+    sigaction(SIGHUP, &g_old_hup, nullptr);
 }
 
 int interrupt_signal() { return g_signal; }

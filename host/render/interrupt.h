@@ -1,4 +1,5 @@
-// SIGINT and SIGTERM during a `tessera render` run. The handler only records the signal;
+// SIGINT, SIGTERM and SIGHUP (a closed terminal or ssh session) during a `tessera render`
+// or `tessera view` run. The handler only records the signal;
 // the render loop (CheckpointSession::after_pass) and the command check it and stop
 // cleanly: a checkpoint saved, or a message saying why none was.
 //
@@ -19,7 +20,8 @@ inline constexpr double kInterruptGraceSeconds = 2.0;
 
 /// Installs the handlers for its lifetime (the old ones are put back at its end, also by
 /// an exception). Scopes nest: only the outermost installs, clears the recorded signal
-/// and restores. A SIGINT ignored on entry (nohup, `cmd &` in a script) stays ignored.
+/// and restores. A SIGINT ignored on entry (`cmd &` in a script) stays ignored, and so
+/// does a SIGHUP (nohup).
 /// Not thread-safe: create scopes on one thread (the handler itself may run on any).
 class InterruptScope {
 public:
@@ -29,7 +31,8 @@ public:
     InterruptScope& operator=(const InterruptScope&) = delete;
 };
 
-/// The first signal received inside the outermost live InterruptScope (SIGINT or SIGTERM),
+/// The first signal received inside the outermost live InterruptScope (SIGINT, SIGTERM or
+/// SIGHUP),
 /// 0 when none was.
 int interrupt_signal();
 

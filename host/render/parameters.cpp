@@ -35,7 +35,7 @@ const Parameter kParameters[] = {
      .doc = "Also write albedo, normal and depth channels (igi family: also per-component channels)"},
     {.option = "--checkpoint-interval", .value_name = "SECONDS", .field = TS_SETTING(checkpoint_interval_s),
      .min = 0, .max = kNoMax, .unit = "s",
-     .doc = "Seconds between checkpoints (0: only when interrupted by SIGINT/SIGTERM)",
+     .doc = "Seconds between checkpoints (0: only when interrupted by SIGINT, SIGTERM or SIGHUP)",
      .render_only = true},  // the viewer writes no checkpoint
     {.option = "--max-depth", .value_name = "N", .field = TS_SETTING(max_depth), .min = 1, .max = 100000,
      .unit = "vertices", .doc = "pt: scattering vertices per path, each lit by the lights (1: direct lighting)", .scope = ParameterScope::Pt},

@@ -11,6 +11,7 @@
 #include "image/atomic_file.h"
 #include "image/resample.h"
 #include "metrics/image_metrics.h"
+#include "render/interrupt.h"
 #include "render/sequence.h"
 #include "scene/loader.h"
 #include "util/error.h"
@@ -77,7 +78,10 @@ std::filesystem::path ViewSession::save_screenshot() {
     CommitGroup outputs;  // both files or neither, like render
     outputs.write(exr, [&](const std::filesystem::path& t) { write_exr(t, image); });
     outputs.write(png, [&](const std::filesystem::path& t) { write_png(t, image, exposure_); });
-    outputs.commit();
+    {
+        const InterruptDeferral defer;  // a signal meanwhile must not leave one file renamed
+        outputs.commit();
+    }
     ++screenshots_;
     std::fprintf(stderr, "tessera view: screenshot of %u passes: %s\n", acc_->passes(), exr.c_str());
     return exr;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <thread>
 #include <utility>
 
@@ -51,19 +52,24 @@ TEST_F(FatalSignalCleanup, RemovesRegisteredFilesOnlyWhileTheyAreRegistered) {
 // of several seconds: the first Ctrl-C asks for a clean stop, a second one after the grace
 // time ends the process at once. Its temporaries must go with it.
 TEST_F(FatalSignalCleanup, ASecondSignalLeavesNoTemporaryBehind) {
-    GTEST_FLAG_SET(death_test_style, "fast");  // the child keeps this test's scratch directory
+    // SIGTERM, not SIGINT: a test run in the background of a script inherits an ignored
+    // SIGINT, which InterruptScope keeps ignored. A "fast" death test forks, so the child
+    // writes into this test's scratch directory ("threadsafe" would re-run SetUp).
+    const std::string style = GTEST_FLAG_GET(death_test_style);
+    GTEST_FLAG_SET(death_test_style, "fast");
     const fs::path out = dir_ / "frame.0001.exr";
     EXPECT_EXIT(
         {
             const InterruptScope interrupts;
             CommitGroup outputs;
             std::ofstream(outputs.add(out)) << "finished frame";
-            ::raise(SIGINT);  // recorded: the pass goes on
+            ::raise(SIGTERM);  // recorded: the pass goes on
             std::this_thread::sleep_for(std::chrono::duration<double>(kInterruptGraceSeconds + 0.2));
-            ::raise(SIGINT);  // ends the process here
+            ::raise(SIGTERM);  // ends the process here
             std::_Exit(0);
         },
-        ::testing::KilledBySignal(SIGINT), "no checkpoint written");
+        ::testing::KilledBySignal(SIGTERM), "no checkpoint written");
+    GTEST_FLAG_SET(death_test_style, style);
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 0);
 }
 

@@ -17,6 +17,9 @@ void (*current_handler(int sig))(int) {
 }
 
 TEST(Interrupt, SignalsAreRecordedAndAPairDoesNotKill) {
+    // As a terminal starts it: a test run in the background of a script inherits an
+    // ignored SIGINT, which InterruptScope keeps ignored (AnIgnoredSigintStaysIgnored).
+    const auto inherited = ::signal(SIGINT, SIG_DFL);
     const auto before = current_handler(SIGINT);
     {
         const InterruptScope scope;
@@ -33,8 +36,32 @@ TEST(Interrupt, SignalsAreRecordedAndAPairDoesNotKill) {
         EXPECT_NE(current_handler(SIGINT), before);
     }
     EXPECT_EQ(current_handler(SIGINT), before);
-    const InterruptScope fresh;
-    EXPECT_EQ(interrupt_signal(), 0);  // a new outermost scope starts clean
+    {
+        const InterruptScope fresh;
+        EXPECT_EQ(interrupt_signal(), 0);  // a new outermost scope starts clean
+    }
+    ::signal(SIGINT, inherited);
+}
+
+// A closed terminal or ssh session (SIGHUP) stops a render cleanly, as Ctrl-C does; under
+// nohup, which ignores it, it stays ignored.
+TEST(Interrupt, SighupIsRecordedUnlessIgnored) {
+    const auto inherited = ::signal(SIGHUP, SIG_DFL);  // a test run under nohup
+    const auto before = current_handler(SIGHUP);
+    {
+        const InterruptScope scope;
+        ::raise(SIGHUP);
+        EXPECT_EQ(interrupt_signal(), SIGHUP);
+    }
+    EXPECT_EQ(current_handler(SIGHUP), before);
+    ::signal(SIGHUP, SIG_IGN);
+    {
+        const InterruptScope scope;
+        EXPECT_EQ(current_handler(SIGHUP), SIG_IGN);
+        ::raise(SIGHUP);
+        EXPECT_EQ(interrupt_signal(), 0);
+    }
+    ::signal(SIGHUP, inherited);
 }
 
 TEST(Interrupt, AnIgnoredSigintStaysIgnored) {
