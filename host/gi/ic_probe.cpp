@@ -28,7 +28,7 @@ std::vector<float> ic_probe_distances(Backend& backend, const std::vector<IcReco
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 const ts::TsSurface s = ic_record_surface(records[which[begin + i]]);
                 for (uint32_t k = 0; k < TS_IC_PROBE_RAYS; ++k)
-                    store_ray(ts::ts_ic_probe_ray(&s, k, reach[begin + i]),
+                    store_ray(ts::ts_ic_probe_ray(&s, records[which[begin + i]].probe_key, k, reach[begin + i]),
                               &ray_buf[TS_RAY_FLOATS * (TS_IC_PROBE_RAYS * i + k)]);
             }
         });

@@ -441,6 +441,10 @@ void InstantCache::place(Backend& backend, const std::vector<float>& gbuffer, co
                         sizeof(float) * TS_IC_GBUF_FLOATS);
             rec.pixel_size = rec.surface[TS_IC_GBUF_DISTANCE] * footprint;
             rec.last_in_view = frame_count_;
+            // The probe's key: the pixel, pass and seed, which every backend has alike (not
+            // the position, whose last bit the backends' camera rays round differently).
+            // One placement makes at most one record a pixel (a record covers its own point).
+            rec.probe_key = ts::ts_pcg_hash(candidates[i] ^ ts::ts_pcg_hash(frame.pass ^ ts::ts_pcg_hash(frame.seed)));
             const uint32_t x = candidates[i] % frame.width / stride, y = candidates[i] / frame.width / stride;
             // The records of a level in one 16×16-pixel block of the image share a subset:
             // they are neighbours in Morton order, so the pair kernel's packets of 16 rays

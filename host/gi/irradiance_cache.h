@@ -39,6 +39,9 @@ struct IcRecord {
     /// The nearest surface its hemisphere probe found (scene units, capped at the probe's
     /// reach; gi/ic_probe.h): R_i ≤ probe / (2a), so the validity ball stays clear of it.
     float probe = INFINITY;
+    /// Seeds its probe rays (kernels/shared/ic_probe.h): a hash of the pixel, pass and seed
+    /// it was made at, the same on every backend (its position may differ in the last bit).
+    uint32_t probe_key = 0;
     uint32_t last_in_view = 0;  ///< the last frame (InstantCache's count) whose view held it
     uint32_t subset = 0;        ///< the path subset it gathers from (IcSettings::subsets)
     std::array<float, 3> e{};                         ///< irradiance / π, W/m² / π
