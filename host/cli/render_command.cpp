@@ -177,6 +177,15 @@ void note_peaked_phase(const RenderSettings& s, const Scene& scene) {
                  double(scene.medium.g), method_info(s.method).name);
 }
 
+// `direct` on a scene with a medium: a note, as it renders the scene as if clear
+// (docs/path-tracing.md §6) and nothing else in the image says so.
+void note_direct_without_medium(const RenderSettings& s, const Scene& scene) {
+    if (s.method != Method::Direct || !plan_effects(scene).medium) return;
+    std::fprintf(stderr,
+                 "tessera: note: --method direct ignores the scene's medium (no fog, no transmittance; "
+                 "docs/path-tracing.md §6); pt, igi, ais, ais-max, ic and tic render it\n");
+}
+
 void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, const fs::path& out,
                   const BackendOptions& bo, RenderSettings& settings) {
     std::fprintf(stderr, "tessera: %s, %zu triangles, frames %d..%d\n", scene.name.c_str(), scene.triangle_count(),
@@ -298,6 +307,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         check_scene_options(settings, a.components, scene, scene_path);
         if (lead) note_medium_options(cmd, scene, scene_path);
         if (lead) note_peaked_phase(settings, scene);
+        if (lead) note_direct_without_medium(settings, scene);
         if (lead) print_scene_notes(scene.notes);
         // Before the scene's banner; rank 0 alone reads the checkpoint (render_frame).
         if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));

@@ -133,6 +133,22 @@ TEST_F(RenderCli, APeakedPhaseFunctionGetsANoteWithTheIgiFamily) {
     }
 }
 
+// `direct` renders a foggy scene as if clear (docs/path-tracing.md §6): a note says so; a
+// clear scene, or another method on the foggy one, gets none.
+TEST_F(RenderCli, DirectOnAFoggySceneGetsANote) {
+    const std::string fog = std::string(TESSERA_SCENES_DIR) + "/cornell-box-fog.json";
+    const std::string args = " --spp 1 --width 8 --height 8 --backend embree --out " + (dir_ / "d.exr").string();
+    const std::string note = "tessera: note: --method direct ignores the scene's medium";
+    const CliResult direct = run_tessera("render " + fog + args + " --method direct");
+    ASSERT_EQ(direct.exit_code, 0) << direct.output;
+    EXPECT_NE(direct.output.find(note), std::string::npos) << direct.output;
+    for (const std::string& other : {"render " + fog + args + " --method igi", "render" + args + " --method direct"}) {
+        const CliResult r = run_tessera(other);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_EQ(r.output.find(note), std::string::npos) << other << ": " << r.output;
+    }
+}
+
 TEST_F(RenderCli, RendersExrAndPngOnBothBackends) {
     for (const char* backend : {"embree", "opencl"}) {
         const fs::path out = dir_ / (std::string(backend) + ".exr");
