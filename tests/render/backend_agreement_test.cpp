@@ -117,13 +117,18 @@ TEST(BackendAgreement, InstantCacheClampResidualSameSeed) {
 // samples on both backends, so they are the same records. Until the probe's rays were keyed
 // by the record's pixel, pass and seed (kernels/shared/ic_probe.h), a hash of its position's
 // bits drew other probe rays wherever the backends' camera rays rounded a hit point apart,
-// and 60% of the pixels differed by more than 1e-3 (relMSE 2e-5; 5e-12 since).
+// and 60% of the pixels differed by more than 1e-3 (relMSE 2e-5; 5e-12 since). The path
+// selection is off (K = 1): its view rays pick view points by a CDF of terms that each
+// backend traces with its own rounding, so at K > 1 a pick may flip and another set of
+// paths be kept, an estimate as good but not the same one (docs/instant-caching.md §2);
+// whether one flips depends on the machine's last bits, not on the probe tested here.
 TEST(BackendAgreement, InstantCacheSameSeed) {
     Scene s = load_scene(default_scene_path(), make_data_path(std::nullopt));
     RenderSettings rs;
     rs.method = Method::Ic;
     rs.width = rs.height = 48;
     rs.spp = 2;
+    rs.ic.path_importance = 1;
     test::expect_backends_agree(s, rs);
 }
 
