@@ -36,9 +36,9 @@ private:
 /// checkpoint; 16,384 words (128 KiB of zero pages) cost nothing until used.
 inline constexpr int kMaxRegisteredTemporaries = 16384;
 
-/// Unlinks every registered temporary. Async-signal-safe (atomic exchanges and unlink):
-/// for a signal handler about to end the process. A registration it has taken is not
-/// freed; the process is expected to end.
+/// Unlinks every registered temporary. Async-signal-safe (lock-free compare-and-swaps and
+/// unlink): for a signal handler about to end the process. A registration it has taken
+/// is not freed; the process is expected to end.
 void remove_registered_temporaries() noexcept;
 
 }  // namespace tessera
