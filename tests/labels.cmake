@@ -1,5 +1,6 @@
 # Labels every test of tessera_tests with its tier (tests/README.md, "Tiers"): exactly one
-# of unit, statistical, cli, bench; and gives the tests that start Xvfb one resource lock. Included by CTest after gtest_discover_tests' list
+# of unit, statistical, cli, bench; and gives the tests that start Xvfb one resource lock,
+# and those that run mpirun another. Included by CTest after gtest_discover_tests' list
 # (tests/CMakeLists.txt), where tessera_tests_TESTS holds every discovered test name, e.g.
 # `Methods/Contact.CornerWhereTheLightMeetsTheWallsStaysBounded/pt_Embree`.
 # A test no pattern matches is unit: a new test that renders many samples belongs in
@@ -28,6 +29,11 @@ list(JOIN tessera_statistical_tests "|" tessera_statistical_tests)
 # before it binds its own (xtrans), which could take the file from a server starting
 # beside it.
 set(tessera_xvfb_tests "^([A-Za-z]+/)?ViewWindowCli\\.")
+# Run mpirun: one lock too. Two Open MPI launches at once race on their shared session
+# directory (/tmp/ompi.<host>.<uid>): one removes it as it ends while the other is making
+# its own below it, and the second fails with "A call to mkdir was unable to create the
+# desired directory ... File exists" (seen once in a ctest -j2 run).
+set(tessera_mpi_tests "^DistributedCli\\.")
 
 foreach(test IN LISTS tessera_tests_TESTS)
   if(test MATCHES "${tessera_cli_tests}")
@@ -42,5 +48,8 @@ foreach(test IN LISTS tessera_tests_TESTS)
   set_tests_properties("${test}" PROPERTIES LABELS ${label})
   if(test MATCHES "${tessera_xvfb_tests}")
     set_tests_properties("${test}" PROPERTIES RESOURCE_LOCK xvfb)
+  endif()
+  if(test MATCHES "${tessera_mpi_tests}")
+    set_tests_properties("${test}" PROPERTIES RESOURCE_LOCK mpirun)
   endif()
 endforeach()
