@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "image/atomic_file.h"
+#include "image/fatal_signal_cleanup.h"
 #include "image/image_io.h"
 #include "metrics/cvvdp.h"
 #include "metrics/hdrvdp.h"
@@ -80,6 +81,9 @@ void check_comparable(const Image& ref, const Image& test, const CompareArgs& a)
 }
 
 void run_compare(const CompareArgs& a, const CLI::App& cmd) {
+    // Ctrl-C during a metric tool's minutes (HDR-VDP under Octave) leaves neither the maps'
+    // temporaries nor the tools' output files behind.
+    const TemporariesRemovedOnSignal on_signal;
     check_compare_options(a, cmd);
     const Image ref_image = read_exr(a.ref), test_image = read_exr(a.test);
     const metrics::RgbImage ref = metrics::rgb_for_metrics(ref_image, a.ref);

@@ -15,6 +15,7 @@
 #include <system_error>
 
 #include "image/atomic_file.h"
+#include "image/fatal_signal_cleanup.h"
 #include "util/error.h"
 #include "util/input_limits.h"
 
@@ -161,6 +162,7 @@ void check_output_directories(const std::vector<OutputFile>& outputs) {
         if (fd < 0)
             throw RuntimeError(name + ": " + missing + "cannot write in " + existing.string() + ": " +
                                std::strerror(errno));
+        const RemovedOnFatalSignal on_signal(probe);
         ::close(fd);
         ::unlink(probe.c_str());
     }

@@ -217,7 +217,16 @@ fs::path CommitGroup::add(const fs::path& link) {
     fs::path temp, made;
     const int fd = make_temp(target, temp, &made);
     ::close(fd);
-    if (!made.empty()) made_dirs_.push_back(made);
+    if (!made.empty()) {
+        made_dirs_.push_back(made);
+        // Each level, for a signal that skips the destructor (outermost first; the
+        // handler removes the empty ones innermost first).
+        std::vector<fs::path> levels;
+        for (fs::path d = target.parent_path(); !d.empty() && d != made.parent_path(); d = d.parent_path())
+            levels.push_back(d);
+        for (auto d = levels.rbegin(); d != levels.rend(); ++d)
+            made_dirs_on_signal_.push_back(RemovedOnFatalSignal::directory(*d));
+    }
     entries_.push_back({target, temp, {}, link, RemovedOnFatalSignal(temp)});
     return temp;
 }

@@ -92,6 +92,7 @@ private:
     void roll_back();
     std::vector<Entry> entries_;
     std::vector<std::filesystem::path> made_dirs_;  // outermost directories add() made
+    std::vector<RemovedOnFatalSignal> made_dirs_on_signal_;  // every level of them
 };
 
 }  // namespace tessera

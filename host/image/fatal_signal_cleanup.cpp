@@ -1,8 +1,10 @@
 #include "image/fatal_signal_cleanup.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -17,8 +19,10 @@ namespace {
 // succeeds decides, so a handler running on another thread never reads a path being
 // freed, and a marked slot is never reused. A marked path is never freed (the process is
 // ending), yet stays reachable for leak checkers: the marked pointer points into it.
+// The second bit says the path is a directory (removed by rmdir, after the files).
 std::atomic<std::uintptr_t> g_slots[kMaxRegisteredTemporaries];
-constexpr std::uintptr_t kRemovedBit = 1;
+constexpr std::uintptr_t kRemovedBit = 1, kDirectoryBit = 2, kFlags = kRemovedBit | kDirectoryBit;
+static_assert(alignof(std::max_align_t) >= 4, "new[] leaves the two low bits of a pointer free");
 static_assert(std::atomic<std::uintptr_t>::is_always_lock_free);
 
 char* copy_of(const std::string& s) {
@@ -29,13 +33,20 @@ char* copy_of(const std::string& s) {
 
 }  // namespace
 
-RemovedOnFatalSignal::RemovedOnFatalSignal(const std::filesystem::path& temp) {
+RemovedOnFatalSignal::RemovedOnFatalSignal(const std::filesystem::path& temp) : RemovedOnFatalSignal(temp, false) {}
+
+RemovedOnFatalSignal RemovedOnFatalSignal::directory(const std::filesystem::path& dir) {
+    return RemovedOnFatalSignal(dir, true);
+}
+
+RemovedOnFatalSignal::RemovedOnFatalSignal(const std::filesystem::path& temp, bool directory) {
     std::error_code ec;
     const std::filesystem::path absolute = std::filesystem::absolute(temp, ec);
     char* path = copy_of((ec ? temp : absolute).string());
+    const std::uintptr_t entry = reinterpret_cast<std::uintptr_t>(path) | (directory ? kDirectoryBit : 0);
     for (int i = 0; i < kMaxRegisteredTemporaries; ++i) {
         std::uintptr_t empty = 0;
-        if (g_slots[i].compare_exchange_strong(empty, reinterpret_cast<std::uintptr_t>(path))) {
+        if (g_slots[i].compare_exchange_strong(empty, entry)) {
             slot_ = i;
             return;
         }
@@ -48,7 +59,7 @@ RemovedOnFatalSignal::~RemovedOnFatalSignal() {
     std::uintptr_t path = g_slots[slot_].load();
     // Fails only when the handler marked the path: it is the handler's then.
     if (!(path & kRemovedBit) && g_slots[slot_].compare_exchange_strong(path, 0))
-        delete[] reinterpret_cast<char*>(path);
+        delete[] reinterpret_cast<char*>(path & ~kFlags);
 }
 
 RemovedOnFatalSignal::RemovedOnFatalSignal(RemovedOnFatalSignal&& other) noexcept : slot_(other.slot_) {
@@ -65,11 +76,52 @@ RemovedOnFatalSignal& RemovedOnFatalSignal::operator=(RemovedOnFatalSignal&& oth
 }
 
 void remove_registered_temporaries() noexcept {
+    // Taking every registration first keeps each path alive while it is used below.
     for (std::atomic<std::uintptr_t>& slot : g_slots) {
         std::uintptr_t path = slot.load();
-        if (path != 0 && !(path & kRemovedBit) && slot.compare_exchange_strong(path, path | kRemovedBit))
+        if (path != 0 && !(path & kRemovedBit) && slot.compare_exchange_strong(path, path | kRemovedBit) &&
+            !(path & kDirectoryBit))
             ::unlink(reinterpret_cast<const char*>(path));
     }
+    // A directory empties when the ones inside it go: repeat while one was removed (at
+    // most once per level of nesting). rmdir leaves a directory that is not empty.
+    for (bool removed = true; removed;) {
+        removed = false;
+        for (std::atomic<std::uintptr_t>& slot : g_slots) {
+            std::uintptr_t path = slot.load();
+            if ((path & kFlags) == kFlags && ::rmdir(reinterpret_cast<const char*>(path & ~kFlags)) == 0) {
+                removed = true;
+                slot.compare_exchange_strong(path, path & ~kDirectoryBit);  // done: not tried again
+            }
+        }
+    }
+}
+
+namespace {
+
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
+struct sigaction g_old_actions[3];
+
+extern "C" void remove_temporaries_and_end(int sig) {
+    remove_registered_temporaries();
+    ::signal(sig, SIG_DFL);
+    ::raise(sig);
+}
+
+}  // namespace
+
+TemporariesRemovedOnSignal::TemporariesRemovedOnSignal() {
+    struct sigaction sa {};
+    sa.sa_handler = remove_temporaries_and_end;
+    sigemptyset(&sa.sa_mask);
+    for (int i = 0; i < 3; ++i) {
+        sigaction(kCleanupSignals[i], &sa, &g_old_actions[i]);
+        if (g_old_actions[i].sa_handler == SIG_IGN) sigaction(kCleanupSignals[i], &g_old_actions[i], nullptr);
+    }
+}
+
+TemporariesRemovedOnSignal::~TemporariesRemovedOnSignal() {
+    for (int i = 0; i < 3; ++i) sigaction(kCleanupSignals[i], &g_old_actions[i], nullptr);
 }
 
 }  // namespace tessera

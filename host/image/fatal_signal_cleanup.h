@@ -18,6 +18,10 @@ class RemovedOnFatalSignal {
 public:
     RemovedOnFatalSignal() = default;
     explicit RemovedOnFatalSignal(const std::filesystem::path& temp);
+    /// Registers a directory the run made: removed (rmdir) only when empty once the
+    /// registered files are gone, so one that an output landed in, or that holds anything
+    /// else, stays.
+    static RemovedOnFatalSignal directory(const std::filesystem::path& dir);
     ~RemovedOnFatalSignal();
     RemovedOnFatalSignal(RemovedOnFatalSignal&& other) noexcept;
     RemovedOnFatalSignal& operator=(RemovedOnFatalSignal&& other) noexcept;
@@ -29,6 +33,7 @@ public:
     bool registered() const { return slot_ >= 0; }
 
 private:
+    RemovedOnFatalSignal(const std::filesystem::path& path, bool directory);
     int slot_ = -1;
 };
 
@@ -36,9 +41,24 @@ private:
 /// checkpoint; 16,384 words (128 KiB of zero pages) cost nothing until used.
 inline constexpr int kMaxRegisteredTemporaries = 16384;
 
-/// Unlinks every registered temporary. Async-signal-safe (lock-free compare-and-swaps and
-/// unlink): for a signal handler about to end the process. A registration it has taken
-/// is not freed; the process is expected to end.
+/// Unlinks every registered temporary, then removes the registered directories that are
+/// empty (innermost first, whatever the order of registration). Async-signal-safe
+/// (lock-free compare-and-swaps, unlink, rmdir): for a signal handler about to end the
+/// process. A registration it has taken is not freed; the process is expected to end.
 void remove_registered_temporaries() noexcept;
+
+/// For a command with no clean stop of its own (`tessera compare`): while alive, SIGINT,
+/// SIGTERM and SIGHUP remove the registered temporaries and then end the process by the
+/// signal's default action, so an interrupted run leaves none of its files behind. A
+/// signal ignored on entry (nohup, `cmd &` in a script) stays ignored; the old handlers
+/// are put back at its end. Not for use inside an InterruptScope (render/interrupt.h),
+/// which removes them itself on a second signal. Not thread-safe: create it on one thread.
+class TemporariesRemovedOnSignal {
+public:
+    TemporariesRemovedOnSignal();
+    ~TemporariesRemovedOnSignal();
+    TemporariesRemovedOnSignal(const TemporariesRemovedOnSignal&) = delete;
+    TemporariesRemovedOnSignal& operator=(const TemporariesRemovedOnSignal&) = delete;
+};
 
 }  // namespace tessera

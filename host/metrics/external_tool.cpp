@@ -13,6 +13,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "image/fatal_signal_cleanup.h"
+
 extern char** environ;
 
 namespace tessera::metrics {
@@ -25,6 +27,19 @@ std::string read_text(const fs::path& p) {
     s << f.rdbuf();
     return s.str();
 }
+
+// A tool's captured stdout or stderr file, removed when the run is done.
+struct OutputFile {
+    explicit OutputFile(const std::string& p) : path(p), on_signal(path) {}
+    ~OutputFile() {
+        std::error_code ec;
+        fs::remove(path, ec);
+    }
+    OutputFile(const OutputFile&) = delete;
+    OutputFile& operator=(const OutputFile&) = delete;
+    fs::path path;
+    RemovedOnFatalSignal on_signal;
+};
 
 }  // namespace
 
@@ -51,6 +66,9 @@ ToolRun run_tool(const std::vector<std::string>& args) {
     const fs::path tmp = fs::temp_directory_path() /
                          ("tessera-tool-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
     const std::string out_path = tmp.string() + ".out", err_path = tmp.string() + ".err";
+    // Removed on every return: a failed spawn has created them too (the file actions run
+    // before the exec that fails). And by a signal that ends `compare` during a tool's run.
+    const OutputFile out_file{out_path}, err_file{err_path};
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
@@ -68,9 +86,6 @@ ToolRun run_tool(const std::vector<std::string>& args) {
     }
     r.out = read_text(out_path);
     r.err = read_text(err_path);
-    std::error_code ec;
-    fs::remove(out_path, ec);
-    fs::remove(err_path, ec);
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
 }

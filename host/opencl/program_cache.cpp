@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "kernels/shared/frame.h"
+#include "image/fatal_signal_cleanup.h"
 #include "opencl/kernel_source.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -79,6 +80,7 @@ void write_file_atomic(const fs::path& p, const std::vector<unsigned char>& data
     if (ec) return fail(ec.message());
     fs::path tmp = p;
     tmp += ".tmp." + std::to_string(::getpid());
+    const RemovedOnFatalSignal on_signal(tmp);  // a second Ctrl-C here leaves no half-written entry
     {
         std::ofstream out(tmp, std::ios::binary);
         if (!out) return fail("cannot create " + tmp.filename().string());

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -373,6 +374,28 @@ TEST_F(CompareCli, CvvdpValuesReachTextAndJson) {
                                "cd/m^2, 32.45 pixels/degree, reference mean 100 cd/m^2)"),
               std::string::npos)
         << text.output;
+}
+
+// Ctrl-C or SIGTERM while a metric tool runs (HDR-VDP takes minutes) ends compare by the
+// signal with nothing left behind: not the map's temporary, nor the directories made for
+// it, nor the tool's captured output in $TMPDIR.
+TEST_F(CompareCli, ASignalDuringAToolLeavesNoFile) {
+    const fs::path py = dir_ / "slowpy";
+    std::ofstream(py) << "#!/bin/sh\n"
+                         "[ \"$2\" = --check ] && { echo 'cvvdp 0.5.7'; exit 0; }\n"
+                         "echo partial > \"$6\"; touch \"$(dirname \"$0\")/started\"; exec sleep 3\n";
+    ::chmod(py.c_str(), 0755);
+    const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
+    fs::create_directories(dir_ / "tmp");
+    const CliResult r = run_shell("cd " + dir_.string() + " && (TMPDIR=" + (dir_ / "tmp").string() + " " +
+                                  TESSERA_EXE + " compare " + a + " " + b + " --no-flip --cvvdp --cvvdp-python " +
+                                  py.string() + " --cvvdp-map new/deeper/m.png & pid=$!; " +
+                                  "for i in $(seq 200); do [ -e started ] && break; sleep 0.05; done; " +
+                                  "kill -TERM $pid; wait $pid; echo \"status $?\")");
+    ASSERT_TRUE(fs::exists(dir_ / "started")) << r.output;
+    EXPECT_NE(r.output.find("status 143"), std::string::npos) << r.output;  // 128 + SIGTERM
+    EXPECT_FALSE(fs::exists(dir_ / "new")) << r.output;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "tmp"), {}), 0) << r.output;
 }
 
 // The real metric (skipped where pycvvdp does not import; set TESSERA_CVVDP_PYTHON to a

@@ -48,6 +48,21 @@ TEST_F(FatalSignalCleanup, RemovesRegisteredFilesOnlyWhileTheyAreRegistered) {
     EXPECT_FALSE(fs::exists(moved));
 }
 
+// Directories registered outermost first go innermost first, and only when empty.
+TEST_F(FatalSignalCleanup, RemovesRegisteredDirectoriesThatAreLeftEmpty) {
+    const fs::path outer = dir_ / "made", inner = outer / "deeper", kept = dir_ / "holds";
+    fs::create_directories(inner);
+    fs::create_directories(kept);
+    const fs::path temp = touch("made/deeper/.x.exr.tmp.1");
+    touch("holds/finished.exr");
+    const RemovedOnFatalSignal o = RemovedOnFatalSignal::directory(outer),
+                               i = RemovedOnFatalSignal::directory(inner), k = RemovedOnFatalSignal::directory(kept),
+                               t(temp);
+    remove_registered_temporaries();
+    EXPECT_FALSE(fs::exists(outer));
+    EXPECT_TRUE(fs::exists(kept / "finished.exr"));
+}
+
 // The viewer or `render --frames` holding finished frames in a CommitGroup during a pass
 // of several seconds: the first Ctrl-C asks for a clean stop, a second one after the grace
 // time ends the process at once. Its temporaries must go with it.
@@ -57,7 +72,7 @@ TEST_F(FatalSignalCleanup, ASecondSignalLeavesNoTemporaryBehind) {
     // writes into this test's scratch directory ("threadsafe" would re-run SetUp).
     const std::string style = GTEST_FLAG_GET(death_test_style);
     GTEST_FLAG_SET(death_test_style, "fast");
-    const fs::path out = dir_ / "frame.0001.exr";
+    const fs::path out = dir_ / "frames" / "frame.0001.exr";  // the directory is the run's too
     EXPECT_EXIT(
         {
             const InterruptScope interrupts;
@@ -71,6 +86,41 @@ TEST_F(FatalSignalCleanup, ASecondSignalLeavesNoTemporaryBehind) {
         ::testing::KilledBySignal(SIGTERM), "no checkpoint written");
     GTEST_FLAG_SET(death_test_style, style);
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 0);
+}
+
+// `tessera compare` has no clean stop: one signal ends it, without the maps' temporaries
+// or the directories made for them.
+TEST_F(FatalSignalCleanup, OneSignalEndsACommandWithoutItsTemporaries) {
+    const std::string style = GTEST_FLAG_GET(death_test_style);
+    GTEST_FLAG_SET(death_test_style, "fast");
+    EXPECT_EXIT(
+        {
+            ::signal(SIGTERM, SIG_DFL);
+            const TemporariesRemovedOnSignal on_signal;
+            CommitGroup maps;
+            std::ofstream(maps.add(dir_ / "maps" / "flip.png")) << "half a map";
+            ::raise(SIGTERM);
+            std::_Exit(0);
+        },
+        ::testing::KilledBySignal(SIGTERM), "");
+    GTEST_FLAG_SET(death_test_style, style);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 0);
+}
+
+// A signal ignored on entry (nohup, a background job) stays ignored, and the old
+// handler is back at the scope's end.
+TEST_F(FatalSignalCleanup, ASignalIgnoredOnEntryStaysIgnored) {
+    struct sigaction ignore {}, old {}, during {}, after {};
+    ignore.sa_handler = SIG_IGN;
+    sigaction(SIGHUP, &ignore, &old);
+    {
+        const TemporariesRemovedOnSignal on_signal;
+        sigaction(SIGHUP, nullptr, &during);
+        ::raise(SIGHUP);  // ignored: the test goes on
+    }
+    sigaction(SIGHUP, &old, &after);
+    EXPECT_EQ(during.sa_handler, SIG_IGN);
+    EXPECT_EQ(after.sa_handler, SIG_IGN);
 }
 
 }  // namespace

@@ -1,8 +1,14 @@
 // run_tool (host/metrics/external_tool.h): exit status and both output streams of a real
-// subprocess, and a program that cannot be started.
+// subprocess, and a program that cannot be started; neither leaves its output files.
+#include <cstdlib>
+#include <filesystem>
+#include <iterator>
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "metrics/external_tool.h"
+#include "support/scratch_dir.h"
 
 using namespace tessera::metrics;
 
@@ -30,6 +36,22 @@ TEST(ExternalTool, MissingProgramIsReportedNotThrown) {
     if (!r.started) {
         EXPECT_NE(r.spawn_error.find("No such file"), std::string::npos) << r.spawn_error;
     }
+}
+
+// The captured streams go to files in $TMPDIR; a run that ran, and one whose program was
+// missing (the spawn opens them before its exec fails), both remove them.
+class ExternalToolFiles : public tessera::test::ScratchDirTest {};
+
+TEST_F(ExternalToolFiles, NoRunLeavesItsOutputFiles) {
+    const char* old = std::getenv("TMPDIR");
+    const std::string saved = old ? old : "";
+    ::setenv("TMPDIR", dir_.c_str(), 1);
+    const ToolRun ran = run_tool({"sh", "-c", "echo out; echo err >&2"});
+    const ToolRun missing = run_tool({"/nonexistent/python3", "x.py"});
+    old ? ::setenv("TMPDIR", saved.c_str(), 1) : ::unsetenv("TMPDIR");
+    EXPECT_EQ(ran.out, "out\n");
+    EXPECT_FALSE(missing.started && missing.exit_code == 0);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_), {}), 0);
 }
 
 TEST(ExternalTool, LastLineSkipsTrailingNewlines) {
