@@ -89,10 +89,18 @@ void require_exr_name(const std::string& option, const std::filesystem::path& pa
     if (ext == ".exr") return;
     std::string lower = ext;
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    const std::string why = lower == ".exr" ? "must end in .exr (lower case)"
-                            : name == ".exr" ? "needs a file name before .exr"
-                                             : "must end in .exr";
+    std::error_code ec;
+    const std::string why = lower == ".exr"                                 ? "must end in .exr (lower case)"
+                            : name == ".exr"                                ? "needs a file name before .exr"
+                            : name.empty() || fs::is_directory(path, ec) ? "is a directory; name the file, e.g. " +
+                                                                               (path / "image.exr").string()
+                                                                         : "must end in .exr";
     throw InputError(option + " " + path.string() + ": " + why);
+}
+
+fs::path default_output(const Scene& scene, const std::string& suffix) {
+    const std::string stem = scene.source.empty() ? scene.name : scene.source.stem().string();
+    return fs::path("out") / (stem + suffix);
 }
 
 void print_scene_notes(const std::vector<std::string>& notes) {

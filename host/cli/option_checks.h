@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.h"
+
 namespace tessera::cli {
 
 /// A validator for a real-valued option that must be a finite decimal number
@@ -45,6 +47,12 @@ void print_scene_notes(const std::vector<std::string>& notes);
 /// case)", or for "dir/.exr" (a hidden name, no extension) "...: needs a file name before
 /// .exr".
 void require_exr_name(const std::string& option, const std::filesystem::path& path);
+
+/// The output a command writes when its option is not given: out/<scene file's name,
+/// without .json><suffix> ("out/box.exr" for box.json and ".exr"), relative to the
+/// working directory. From the file's name, not the scene's "name" key: a copy of a scene
+/// file renders to its own image, and a key cannot send an output outside out/.
+std::filesystem::path default_output(const Scene& scene, const std::string& suffix);
 
 /// An output file of the run, with what the messages call it ("--out", "--stats-json",
 /// "--out's PNG preview", "--out's checkpoint").

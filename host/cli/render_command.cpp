@@ -301,7 +301,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
                          "hold its state, tic's cache, so it could not be resumed); ignored\n", a.method.c_str());
         const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
         scene = load_scene(scene_path, data);
-        out = a.out.empty() ? fs::path("out") / (scene.name + ".exr") : fs::path(a.out);
+        out = a.out.empty() ? default_output(scene, ".exr") : fs::path(a.out);
         require_exr_name("--out", out);
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
         check_scene_options(settings, a.components, scene, scene_path);
@@ -392,7 +392,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--components", args->components, "igi/ais: components to compute, e.g. ss,id,pm (ais: also edge)")
         ->capture_default_str();
     add_parameter_options(*cmd, args->settings);  // --spp, --tile, ...: render/parameters.cpp
-    cmd->add_option("--out", args->out, "Output EXR (default out/<scene>.exr); a PNG preview is written beside it");
+    cmd->add_option("--out", args->out, "Output EXR (default out/<scene file's name>.exr, e.g. out/box.exr for box.json); a PNG preview is written beside it");
     cmd->add_option("--exposure", args->exposure, "PNG preview exposure in stops")
         ->capture_default_str()
         ->check(finite_number_in("--exposure", -limits::kExposureStops, limits::kExposureStops, false));

@@ -227,7 +227,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     }
     o.exposure = a.exposure;
     o.reference = a.reference;
-    o.screenshot = a.screenshot.empty() ? fs::path("out") / (scene.name + "-view.exr") : fs::path(a.screenshot);
+    o.screenshot = a.screenshot.empty() ? default_output(scene, "-view.exr") : fs::path(a.screenshot);
     require_exr_name("--screenshot", o.screenshot);
     o.target_fps = a.target_fps;
     o.speed = a.speed;
@@ -326,7 +326,7 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--frame-images", args->frame_images, "Directory: write every frame's accumulation as frame.####.exr");
     cmd->add_option("--times", args->times, "Write per-frame times (ms, stages, rays, passes) as JSON");
     cmd->add_option("--screenshot", args->screenshot,
-                    "Screenshot key P writes FILE.####.exr (+ .png); default out/<scene>-view.exr");
+                    "Screenshot key P writes FILE.####.exr (+ .png); default out/<scene file's name>-view.exr");
     cmd->add_option("--screenshot-window", args->screenshot_window, "Write the window with its HUD as PNG");
     cmd->add_option("--screenshot-window-frame", args->screenshot_window_frame, "Frame after which --screenshot-window is taken")
         ->capture_default_str()

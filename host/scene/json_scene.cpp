@@ -269,6 +269,14 @@ bool has_emitter(const Scene& scene) {
     return any;
 }
 
+// A name that prints as one word of a log line and stays one component of a path.
+bool is_plain_name(const std::string& name) {
+    if (name.empty() || name == "." || name == "..") return false;
+    for (const char c : name)
+        if (c == '/' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
+    return true;
+}
+
 }  // namespace
 
 Scene load_scene(const fs::path& scene_file, const DataPath& data) {
@@ -280,7 +288,12 @@ Scene load_scene(const fs::path& scene_file, const DataPath& data) {
     scene.source = scene_file;
     scene.inputs.push_back(scene_file);
     scene.name = scene_file.stem().string();
-    if (auto name = root.find("name")) scene.name = name->string();
+    if (auto name = root.find("name")) {
+        scene.name = name->string();
+        if (!is_plain_name(scene.name))
+            name->fail("must be a plain name (not empty, no '/' or control characters, not '.' or '..'): the "
+                       "logs and the viewer's result files use it");
+    }
     if (auto s = root.find("stands_in_for")) (void)s->string();  // free text, type-checked only
     scene.camera = read_camera(root["camera"]);
     std::map<fs::path, int> texture_ids;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -158,6 +159,23 @@ TEST_F(RenderCli, RendersExrAndPngOnBothBackends) {
         EXPECT_GT(fs::file_size(out), 0u);
         EXPECT_GT(fs::file_size(dir_ / (std::string(backend) + ".png")), 0u);
     }
+}
+
+// Without --out the image is named after the scene file, in out/ under the working
+// directory: a copy of a scene renders to its own image, whatever its "name" key says.
+TEST_F(RenderCli, DefaultOutputIsNamedAfterTheSceneFile) {
+    std::ifstream in(std::string(TESSERA_SCENES_DIR) + "/cornell-box.json");
+    std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // The copy's meshes are found from its own directory: name them by absolute path.
+    for (size_t at = 0; (at = json.find("\"cornell-box.obj\"", at)) != std::string::npos;)
+        json.replace(at, 17, "\"" + std::string(TESSERA_SCENES_DIR) + "/cornell-box.obj\""), at += 17;
+    std::ofstream(dir_ / "mybox.json") << json;
+    const CliResult r = run_shell("cd " + dir_.string() + " && " + TESSERA_EXE +
+                                  " render mybox.json --spp 1 --width 8 --height 8 --backend embree");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "mybox.exr")) << r.output;
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "mybox.png")) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "cornell-box.exr")) << r.output;
 }
 
 TEST(InfoCli, ListsEffectsOfTheDefaultScene) {
