@@ -26,9 +26,11 @@ const Parameter kParameters[] = {
     {.option = "--shadow-samples", .value_name = "N", .field = TS_SETTING(shadow_samples), .min = 1, .max = 4096,
      .unit = "samples", .doc = "Area-light samples per camera hit and pass"},
     {.option = "--width", .value_name = "W", .field = TS_SETTING(width), .min = 1, .max = 16384,
-     .zero_unset = true, .unit = "px", .doc = "Image width; not given: the scene camera's"},
+     .zero_unset = true, .unit = "px",
+     .doc = "Image width; not given: the scene camera's, or with --height alone scaled to the camera's aspect ratio"},
     {.option = "--height", .value_name = "H", .field = TS_SETTING(height), .min = 1, .max = 16384,
-     .zero_unset = true, .unit = "px", .doc = "Image height; not given: the scene camera's"},
+     .zero_unset = true, .unit = "px",
+     .doc = "Image height; not given: the scene camera's, or with --width alone scaled to the camera's aspect ratio"},
     {.option = "--seed", .value_name = "S", .field = TS_SETTING(seed), .min = 0, .max = kNoMax,
      .doc = "Random seed (samples are counter-based per seed, pixel and pass)"},
     {.option = "--aov", .value_name = "", .field = TS_SETTING(aovs),
@@ -230,6 +232,16 @@ void validate_settings(const RenderSettings& s) {
 std::string range_text(const Parameter& p) {
     if (is_flag(p)) return "flag";
     const std::string lo = bound_text(p, p.min);
+    // An open range of an integer field ends at its type's largest value ("--seed" is a
+    // uint32_t: 0..4294967295).
+    if (std::isinf(p.max) && is_integer(p)) {
+        Parameter bounded = p;
+        std::visit([&](auto get) {
+            using T = std::remove_reference_t<decltype(get(std::declval<RenderSettings&>()))>;
+            bounded.max = double(std::numeric_limits<T>::max());
+        }, p.field);
+        return range_text(bounded);
+    }
     if (std::isinf(p.max)) return (p.min_exclusive ? "> " : ">= ") + lo;
     if (is_integer(p)) return lo + ".." + bound_text(p, p.max);
     return (p.min_exclusive ? "(" : "[") + lo + ", " + bound_text(p, p.max) + "]";

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <vector>
 
 #include <memory>
@@ -17,6 +18,7 @@
 #include "gi/instant_cache.h"
 #include "render/parameters.h"
 #include "util/error.h"
+#include "util/input_limits.h"
 
 namespace tessera {
 namespace {
@@ -48,7 +50,23 @@ IntegratorSettings integrator_settings(const RenderSettings& settings, int width
 }
 
 ImageSize render_image_size(const RenderSettings& settings, const Camera& camera) {
-    return {settings.width > 0 ? settings.width : camera.width, settings.height > 0 ? settings.height : camera.height};
+    ImageSize size{settings.width > 0 ? settings.width : camera.width,
+                   settings.height > 0 ? settings.height : camera.height};
+    // One side given: the other keeps the camera's aspect ratio, so the picture is scaled,
+    // not cropped (the camera keeps its vertical field of view).
+    const auto scaled = [](int given, int to, int from, const char* option, const char* other) {
+        const long long side = std::max(1LL, std::llround(double(given) * to / from));
+        if (side > limits::kImageSide)
+            throw InputError(std::string(option) + " " + std::to_string(given) + ": at the camera's aspect ratio the " +
+                             other + " would be " + std::to_string(side) + " px, above " +
+                             std::to_string(limits::kImageSide) + "; give " + other + " too");
+        return int(side);
+    };
+    if (settings.width > 0 && settings.height <= 0)
+        size.height = scaled(settings.width, camera.height, camera.width, "--width", "--height");
+    else if (settings.height > 0 && settings.width <= 0)
+        size.width = scaled(settings.height, camera.width, camera.height, "--height", "--width");
+    return size;
 }
 
 void resolve_ic_subsets(RenderSettings& settings, int width, int height) {

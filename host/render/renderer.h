@@ -30,7 +30,9 @@ class Cluster;             // render/cluster.h
 IntegratorSettings integrator_settings(const RenderSettings& settings, int width, int height);
 
 /// The image size of a render with `settings` of a scene with `camera`: --width and
-/// --height where given, else the camera's (pixels).
+/// --height where given, else the camera's (pixels); where only one is given, the other
+/// is scaled from the camera's to keep its aspect ratio (rounded, at least 1). Throws
+/// InputError naming the option when that side would exceed limits::kImageSide (16384).
 struct ImageSize {
     int width, height;
 };

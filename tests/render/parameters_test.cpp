@@ -163,7 +163,7 @@ TEST(Parameters, CommandLineTextIsCheckedBeforeConversion) {
     EXPECT_EQ(text_rejection("--spp", " 4"), "--spp  4: must be an integer in 1..1000000");
     EXPECT_EQ(text_rejection("--width", "0"),
               "--width 0: must be in 1..16384 (leave the option out for the scene camera's)");
-    EXPECT_EQ(text_rejection("--seed", "-1"), "--seed -1: must be >= 0");
+    EXPECT_EQ(text_rejection("--seed", "-1"), "--seed -1: must be in 0..4294967295");
     EXPECT_EQ(text_rejection("--seed", "99999999999"), "--seed 99999999999: must be in 0..4294967295");
     EXPECT_EQ(text_rejection("--clamp", "inf"), "--clamp inf: must be a finite number in [0, 1]");
     EXPECT_EQ(text_rejection("--clamp", "nan"), "--clamp nan: must be a finite number in [0, 1]");
