@@ -325,9 +325,12 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         if (scene.animation.animated()) scene = scene_at_frame(scene, 0);
         // tic keeps none: a checkpoint would not hold its cache, and --resume is refused.
         if (!method_info(settings.method).temporal) ckpt = CheckpointOptions{checkpoint_path_for(out), bo.kind, a.resume};
+        // An interrupted render's passes are kept until the user says what to do with them:
+        // a run of the same command without --resume would replace them at its first
+        // checkpoint. Refused, not a note (a note scrolls by; hours of passes are gone).
         if (lead && ckpt && !a.resume && fs::exists(ckpt->path))
-            std::fprintf(stderr, "tessera: note: %s exists; starting over (it will be replaced; --resume continues it)\n",
-                         ckpt->path.c_str());
+            throw InputError("--out " + out.string() + ": the checkpoint of an interrupted render is beside it, " +
+                             ckpt->path.string() + ": continue it with --resume, or remove it to start over");
         plan = plan_effects(scene);
         buffers = make_scene_buffers(scene);
         backend = make_backend(bo, buffers, plan);

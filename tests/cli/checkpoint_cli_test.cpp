@@ -91,6 +91,17 @@ TEST_F(CheckpointCli, InterruptThenResume) {
     EXPECT_TRUE(fs::exists(ckpt));
     EXPECT_FALSE(fs::exists(exr));
 
+    // The same command without --resume would replace the saved passes: refused.
+    const std::string saved = tessera::test::file_bytes(ckpt);
+    CliRun again = run_tessera(render_args({}));
+    EXPECT_EQ(again.exit_code, 2) << again.output;
+    EXPECT_NE(again.output.find("tessera: error: --out " + exr.string() + ": the checkpoint of an interrupted render "
+                                "is beside it, " + ckpt.string() + ": continue it with --resume, or remove it to "
+                                "start over"),
+              std::string::npos) << again.output;
+    EXPECT_EQ(tessera::test::file_bytes(ckpt), saved);
+    EXPECT_FALSE(fs::exists(exr));
+
     CliRun done = run_tessera(render_args({"--resume"}));
     ASSERT_EQ(done.exit_code, 0) << done.output;
     EXPECT_NE(done.output.find("50/50 spp"), std::string::npos) << done.output;
