@@ -83,7 +83,8 @@ std::filesystem::path ViewSession::save_screenshot() {
         outputs.commit();
     }
     ++screenshots_;
-    std::fprintf(stderr, "tessera view: screenshot of %u passes: %s\n", acc_->passes(), exr.c_str());
+    std::fprintf(stderr, "tessera view: screenshot of %u %s: %s\n", acc_->passes(),
+                 acc_->passes() == 1 ? "pass" : "passes", exr.c_str());
     return exr;
 }
 

@@ -81,6 +81,8 @@ void ViewLoop::finish(const std::string& scene_name) const {
                                        {"shadow_samples", b.shadow_samples}, {"out_of_reach", b.out_of_reach}};
     }
     const double moving_ms = moving ? 1e3 * moving_sum / moving : 0.0;
+    // The last frame's error against --reference: the HUD's figure, for a headless run too.
+    const double error = session_.reference_error();
     if (!options_.times.empty()) {
         const nlohmann::json j = {{"scene", scene_name},
                                   {"method", method_name(session_.method())},
@@ -92,12 +94,17 @@ void ViewLoop::finish(const std::string& scene_name) const {
                                   {"moving_frames", moving},
                                   {"mean_moving_ms", moving_ms},
                                   {"moving_fps", moving_ms > 0 ? 1e3 / moving_ms : 0.0},
-                                  {"mean_ms", times_.empty() ? 0.0 : 1e3 * all_sum / times_.size()}};
+                                  {"mean_ms", times_.empty() ? 0.0 : 1e3 * all_sum / times_.size()},
+                                  {"relmse_vs_reference", error >= 0 ? nlohmann::json(error) : nlohmann::json(nullptr)}};
         const std::string text = j.dump(1) + "\n";
         write_file_atomic(options_.times, text.data(), text.size());
     }
-    std::fprintf(stderr, "tessera view: %zu frames, %d moving: %.1f ms per moving frame (%.1f fps), %u passes at the end\n",
-                 times_.size(), moving, moving_ms, moving_ms > 0 ? 1e3 / moving_ms : 0.0, session_.passes());
+    const unsigned passes = session_.passes();
+    std::string reference;
+    if (error >= 0) reference = ", relMSE vs reference " + std::to_string(error);
+    std::fprintf(stderr, "tessera view: %zu frames, %d moving: %.1f ms per moving frame (%.1f fps), %u %s at the end%s\n",
+                 times_.size(), moving, moving_ms, moving_ms > 0 ? 1e3 / moving_ms : 0.0, passes,
+                 passes == 1 ? "pass" : "passes", reference.c_str());
 }
 
 }  // namespace tessera::view

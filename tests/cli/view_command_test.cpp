@@ -140,6 +140,33 @@ TEST_F(ViewCli, HeadlessFlyThroughWritesTimesAndImages) {
     EXPECT_NE(r.output.find("5 frames, 2 moving"), std::string::npos) << r.output;
 }
 
+std::string file_bytes(const fs::path& p);
+
+// --reference's error, the HUD's figure, also ends a headless run: on the summary line
+// and in --times (null without a reference). The view of a render's own settings is that
+// render to the bit (HeadlessScreenshotEqualsRender), so its error is 0.
+TEST_F(ViewCli, HeadlessRunReportsTheErrorAgainstTheReference) {
+    const std::string common = " --width 16 --height 16 --method direct --spp 2 --backend embree";
+    const fs::path same = dir_ / "same.exr", other = dir_ / "other.exr", times = dir_ / "t.json";
+    ASSERT_EQ(run_tessera("render" + common + " --seed 5 --out " + same.string()).exit_code, 0);
+    ASSERT_EQ(run_tessera("render" + common + " --seed 9 --out " + other.string()).exit_code, 0);
+    const fs::path script = write("quit.json", R"({"events": [{"frame": 5, "quit": true}]})");
+    const auto view = [&](const std::string& reference) {
+        const CliResult r = run_tessera("view --headless" + common + " --seed 5 --input-script " + script.string() +
+                                        reference + " --times " + times.string());
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        return std::make_pair(r.output, nlohmann::json::parse(file_bytes(times))["relmse_vs_reference"]);
+    };
+    const auto [text_same, json_same] = view(" --reference " + same.string());
+    EXPECT_NE(text_same.find("2 passes at the end, relMSE vs reference 0.000000"), std::string::npos) << text_same;
+    EXPECT_EQ(json_same.get<double>(), 0.0);
+    const auto [text_other, json_other] = view(" --reference " + other.string());
+    EXPECT_GT(json_other.get<double>(), 1e-4) << text_other;
+    const auto [text_none, json_none] = view("");
+    EXPECT_TRUE(json_none.is_null());
+    EXPECT_EQ(text_none.find("relMSE"), std::string::npos) << text_none;
+}
+
 std::string file_bytes(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -340,7 +367,7 @@ TEST_F(ViewWindowCli, XdotoolKeysMoveAndScreenshot) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     std::smatch camera, passes;
     ASSERT_TRUE(std::regex_search(r.output, camera, std::regex("\"camera\": \\{[^}]*\\}"))) << r.output;
-    ASSERT_TRUE(std::regex_search(r.output, passes, std::regex("screenshot of ([0-9]+) passes"))) << r.output;
+    ASSERT_TRUE(std::regex_search(r.output, passes, std::regex("screenshot of ([0-9]+) pass"))) << r.output;
     const nlohmann::json cam = nlohmann::json::parse("{" + camera.str() + "}")["camera"];
     EXPECT_GT(cam["position"][2].get<double>(), -0.8 + 1e-3) << "W must move the camera forward (+z)";
     // The scene file with the printed camera; its mesh is found on the data path.
