@@ -157,13 +157,21 @@ void check_scene_options(const RenderSettings& s, const std::string& components,
 
 // The medium's settings on a scene without one: a note, as for a setting the method does
 // not read (the same script may render foggy and clear scenes).
-void note_medium_options(const CLI::App& cmd, const Scene& scene, const fs::path& scene_path) {
+void note_medium_options(const CLI::App& cmd, const Scene& scene, const fs::path& scene_path, Method method) {
     if (plan_effects(scene).medium) return;
     for (const char* option : {"--max-scatter", "--march-steps", "--single-scattering", "--point-medium-vpls",
                                "--uniform-march", "--ais-pm-trigger", "--ais-pm-cov"})
         if (cmd.count(option))
             std::fprintf(stderr, "tessera: note: %s: scene %s has no medium; it changes nothing\n", option,
                          scene_path.string().c_str());
+    // ic and tic trace igi's VPL sets only for a medium's light: the cache's records
+    // gather from VPLs of their own paths (--ic-paths).
+    if (method == Method::Ic || method == Method::Tic)
+        for (const char* option : {"--vpl-paths", "--vpl-importance"})
+            if (cmd.count(option))
+                std::fprintf(stderr, "tessera: note: %s: --method %s reads it only on a scene with a medium, and "
+                                     "scene %s has none; it changes nothing (--ic-paths sets the cache's light paths)\n",
+                             option, method_info(method).name, scene_path.string().c_str());
 }
 
 // A strongly forward or backward scattering medium with an igi-family method: a note, as
@@ -305,7 +313,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         require_exr_name("--out", out);
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
         check_scene_options(settings, a.components, scene, scene_path);
-        if (lead) note_medium_options(cmd, scene, scene_path);
+        if (lead) note_medium_options(cmd, scene, scene_path, settings.method);
         if (lead) note_peaked_phase(settings, scene);
         if (lead) note_direct_without_medium(settings, scene);
         if (lead) print_scene_notes(scene.notes);

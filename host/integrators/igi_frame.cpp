@@ -317,6 +317,16 @@ std::string IgiFrame::describe() const {
     kernel_share(paths_kernel, "kernel", stats_.paths_kernel_seconds);
     kernel_share(select_kernels, "kernels", stats_.select_kernel_seconds);
     kernel_share(resolve_kernels, "kernels", stats_.resolve_kernel_seconds);
+    // No light path traced (ic or tic on a clear scene, whose cache carries the indirect
+    // light): the VPL settings were not read, so they are not shown.
+    if (stats_.vpls == 0 && stats_.vpl_rays == 0) {
+        std::snprintf(buf, sizeof buf,
+                      "igi: tile %ux%u, no VPL sets traced, last frame: surface %.1f ms, media %.1f ms%s, "
+                      "filter+composite %.1f ms%s",
+                      settings_.tile, settings_.tile, 1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds,
+                      plan_.medium ? "" : " (no medium)", 1e3 * stats_.filter_seconds, resolve_kernels);
+        return buf;
+    }
     std::snprintf(buf, sizeof buf,
                   "igi: tile %ux%u, %zu VPLs from %u paths per set%s (%llu light-path rays), G clamp %.4g, "
                   "last frame: VPLs %.1f ms (view points %.1f, paths %.1f%s, selection %.1f%s), surface %.1f ms, "

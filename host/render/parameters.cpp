@@ -46,9 +46,9 @@ const Parameter kParameters[] = {
     {.option = "--tile", .value_name = "N", .field = TS_SETTING(igi.tile), .min = 1, .max = 8, .unit = "px",
      .doc = "igi: interleave tile edge n (n² sample sets)", .scope = ParameterScope::IgiFamily},
     {.option = "--vpl-paths", .value_name = "N", .field = TS_SETTING(igi.paths_per_set), .min = 1, .max = 65536,
-     .unit = "paths", .doc = "igi: light paths per sample set", .scope = ParameterScope::IgiFamily},
+     .unit = "paths", .doc = "igi: light paths per sample set (ic/tic: for a medium's light)", .scope = ParameterScope::IgiFamily},
     {.option = "--vpl-importance", .value_name = "K", .field = TS_SETTING(igi.vpl_importance), .min = 1, .max = 64,
-     .unit = "x", .doc = "igi/ais: trace K× the light paths and keep a budget of VPLs by their importance for the view (1: off)", .scope = ParameterScope::IgiFamily},
+     .unit = "x", .doc = "igi family (ic/tic: for a medium's light): trace K× the light paths and keep a budget of VPLs by their importance for the view (1: off)", .scope = ParameterScope::IgiFamily},
     // At most 1: no two points of the scene lie farther apart than D, so c = 1 clamps every
     // VPL already, and a larger c only lowers b towards 0 (1e30 underflowed to b = 0 and
     // took all indirect light away, the opposite of what 0 means).

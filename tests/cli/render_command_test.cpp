@@ -105,6 +105,32 @@ TEST_F(RenderCli, MediumSettingsOnAClearSceneGetANote) {
     EXPECT_EQ(fog.output.find("has no medium"), std::string::npos) << fog.output;
 }
 
+// ic and tic read igi's VPL settings only for a medium's light: on a clear scene the image
+// is the same to the bit, and a note says so; with fog there is no note.
+TEST_F(RenderCli, VplSettingsOfIcOnAClearSceneGetANote) {
+    const std::string base = "render --spp 1 --width 8 --height 8 --backend embree";
+    for (const char* method : {"ic", "tic"}) {
+        SCOPED_TRACE(method);
+        const std::string m = std::string(" --method ") + method;
+        const CliResult plain = run_tessera(base + m + " --out " + (dir_ / "a.exr").string());
+        const CliResult noted =
+            run_tessera(base + m + " --vpl-paths 8 --vpl-importance 2 --out " + (dir_ / "b.exr").string());
+        ASSERT_EQ(plain.exit_code, 0) << plain.output;
+        ASSERT_EQ(noted.exit_code, 0) << noted.output;
+        for (const char* option : {"--vpl-paths", "--vpl-importance"})
+            EXPECT_NE(noted.output.find(std::string("tessera: note: ") + option + ": --method " + method +
+                                        " reads it only on a scene with a medium"),
+                      std::string::npos)
+                << noted.output;
+        EXPECT_EQ(tessera::test::file_bytes(dir_ / "a.exr"), tessera::test::file_bytes(dir_ / "b.exr"));
+        const CliResult fog = run_tessera("render " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-fog.json" +
+                                          " --spp 1 --width 8 --height 8 --backend embree" + m + " --vpl-paths 8 --out " +
+                                          (dir_ / "c.exr").string());
+        ASSERT_EQ(fog.exit_code, 0) << fog.output;
+        EXPECT_EQ(fog.output.find("reads it only"), std::string::npos) << fog.output;
+    }
+}
+
 // A medium of |g| > 0.9 with an igi-family method gets a note that these methods return
 // only part of its multiple scattering (docs/igi.md §6); pt, and g = 0.9, get none.
 TEST_F(RenderCli, APeakedPhaseFunctionGetsANoteWithTheIgiFamily) {
