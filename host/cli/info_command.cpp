@@ -99,7 +99,7 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
 void add_info_command(CLI::App& app) {
     auto args = std::make_shared<InfoArgs>();
     CLI::App* cmd = app.add_subcommand("info", "Describe a scene and the effects it calls for");
-    cmd->add_option("scene", args->scene, "Scene file (.json)");
+    cmd->add_option("scene", args->scene, "Scene file (.json); default " + default_scene_path().string());
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data");
     cmd->callback([args, cmd] { run_info(*args, *cmd); });
 }

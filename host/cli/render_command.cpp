@@ -394,8 +394,8 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
 
 void add_render_command(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
-    CLI::App* cmd = app.add_subcommand("render", "Render a scene (default: the built-in Cornell box)");
-    cmd->add_option("scene", args->scene, "Scene file (.json)");
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene (default: the Cornell box of the source tree this binary was built from)");
+    cmd->add_option("scene", args->scene, "Scene file (.json); default " + default_scene_path().string());
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
     cmd->add_option("--method", args->method, "Rendering method: " + method_names())

@@ -306,7 +306,7 @@ void add_view_command(CLI::App& app) {
     auto args = std::make_shared<ViewArgs>();
     args->settings.spp = 1024;  // the viewer accumulates until it holds this many passes
     CLI::App* cmd = app.add_subcommand("view", "Interactive viewer: fly through a scene with progressive refinement");
-    cmd->add_option("scene", args->scene, "Scene file (.json)");
+    cmd->add_option("scene", args->scene, "Scene file (.json); default " + default_scene_path().string());
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
     cmd->add_option("--method", args->method, "Starting method: " + method_names() + " (M/N switch)")
