@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <exception>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <vector>
 #include <unistd.h>
@@ -15,6 +16,7 @@
 #include "cli/option_checks.h"
 #include "render/cluster.h"
 #include "render/interrupt.h"
+#include "scene/json_field.h"
 #include "util/error.h"
 #include "util/heap.h"
 
@@ -47,6 +49,28 @@ std::string parse_message(const std::string& what) {
     std::smatch m;
     if (!std::regex_match(what, m, twice)) return what;
     return m[1].str() + ": given " + m[2].str() + " times; give it once";
+}
+
+// CLI11's "The following argument(s) was/were not expected: --sppp" with, for each
+// misspelt long option, the closest one the command has ("--sppp: did you mean --spp?"),
+// as scene files' unknown keys get (scene/json_field.h).
+std::string with_suggestions(const CLI::App& app, const std::string& what) {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands())
+        for (const CLI::Option* opt : sub->get_options())
+            for (const std::string& n : opt->get_lnames()) names.push_back(n);
+    const std::vector<std::string_view> known(names.begin(), names.end());
+    std::string suggestions;
+    const size_t colon = what.find(": ");
+    std::istringstream words(colon == std::string::npos ? "" : what.substr(colon + 2));
+    for (std::string word; words >> word;) {
+        if (word.rfind("--", 0) != 0) continue;
+        // Names without their "--": it would make any two look alike ("--bogus", "--out").
+        const std::string name = word.substr(0, word.find('='));
+        if (const std::string best = tessera::scene_detail::closest_match(name.substr(2), known); !best.empty())
+            suggestions += "; " + name + ": did you mean --" + best + "?";
+    }
+    return what + suggestions;
 }
 
 // "unknown command 'rnder'; the commands are render, devices, ..." when the first
@@ -83,6 +107,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::ArgumentMismatch& e) {
         // An option given twice: CLI11 says "--spp: At Most 1 required but received 2".
         return fail(parse_message(e.what()) + " (see --help)", 2);
+    } catch (const CLI::ExtrasError& e) {
+        return fail(with_suggestions(app, e.what()) + " (see --help)", 2);
     } catch (const CLI::ParseError& e) {
         // CLI11's own codes (105-120) would say nothing a script can use: every parse error
         // is bad input, exit 2 as docs/input-limits.md says. A "success" (help) exits 0.

@@ -12,8 +12,8 @@ void add_devices_command(CLI::App& app) {
     cmd->callback([] {
         auto devs = list_cl_devices();
         if (devs.empty()) {
-            std::printf("no OpenCL platform found (install an ICD, e.g. pocl-opencl-icd); "
-                        "--backend embree needs none\n");
+            std::printf("no OpenCL platform found (install an ICD, e.g. pocl-opencl-icd%s); "
+                        "--backend embree needs none\n", no_device_hint().c_str());
             return;
         }
         // Listed in the default order (rank_cl_devices), the default marked; [i] is the

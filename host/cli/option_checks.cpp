@@ -124,6 +124,18 @@ void check_output(const OutputFile& o) {
     const fs::file_status st = fs::status(o.path, ec);
     if (fs::is_directory(st)) throw InputError(name + ": is a directory");
     if (fs::exists(st) && !fs::is_regular_file(st)) throw InputError(name + ": not a regular file");
+    // A link to a file not there yet is written through, as a shell's > would, but only
+    // into a directory that exists: the run makes directories for its own paths, not for
+    // where a link points (a link to /nonexistent/x made /nonexistent).
+    if (!fs::exists(st) && fs::is_symlink(fs::symlink_status(o.path, ec))) {
+        const fs::path target = output_target(o.path);
+        if (fs::is_symlink(fs::symlink_status(target, ec)))
+            throw InputError(name + ": is a symbolic link in a loop");
+        const fs::path target_dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+        if (!fs::is_directory(target_dir, ec))
+            throw InputError(name + ": is a symbolic link to " + target.string() + ", whose directory " +
+                             target_dir.string() + " does not exist");
+    }
     // The directory: the nearest existing ancestor must be a directory (the rest is made).
     const fs::path dir = existing_ancestor(o.path.parent_path());
     const fs::file_status target = fs::status(dir, ec);  // through links

@@ -1,5 +1,6 @@
 #include "cli/parameter_options.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <type_traits>
@@ -48,10 +49,18 @@ void add_options_command(CLI::App& app) {
             std::fputs(options_markdown().c_str(), stdout);
             return;
         }
+        // Columns as wide as their longest entry ("--checkpoint-interval SECONDS").
+        int name_width = 0, default_width = 0;
+        const auto name_of = [](const Parameter& p) {
+            return *p.value_name ? std::string(p.option) + " " + p.value_name : std::string(p.option);
+        };
         for (const Parameter& p : render_parameters()) {
-            const std::string name = *p.value_name ? std::string(p.option) + " " + p.value_name : p.option;
-            std::printf("%-26s default %-6s %s\n", name.c_str(), default_text(p).c_str(), parameter_help(p).c_str());
+            name_width = std::max(name_width, int(name_of(p).size()));
+            default_width = std::max(default_width, int(default_text(p).size()));
         }
+        for (const Parameter& p : render_parameters())
+            std::printf("%-*s  default %-*s  %s\n", name_width, name_of(p).c_str(), default_width,
+                        default_text(p).c_str(), parameter_help(p).c_str());
     });
 }
 

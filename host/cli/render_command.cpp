@@ -67,8 +67,30 @@ void print_progress(uint32_t done, uint32_t total, double elapsed, uint32_t rest
 // progressive method: reaching `spp` passes costs about spp x median_pass_seconds.
 // `tracer` is the backend's description (device and traversal).
 // `ranks`: the MPI ranks that rendered it (1 alone), which divide the passes between them.
+// The settings of the method, by option name without "--" ("tile": 3, "no-filter":
+// false): each parameter the method reads (parameter_applies), as a flag whether the
+// option is in effect, --width and --height as rendered (the camera's where not given).
+nlohmann::json settings_json(const RenderSettings& s, int width, int height) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const Parameter& p : render_parameters()) {
+        if (!parameter_applies(p, s.method)) continue;
+        const std::string key = std::string(p.option).substr(2);
+        const double v = parameter_value(p, s);
+        if (std::holds_alternative<bool& (*)(RenderSettings&)>(p.field))
+            j[key] = (v != 0) != p.negated;
+        else if (std::holds_alternative<uint32_t& (*)(RenderSettings&)>(p.field) ||
+                 std::holds_alternative<int& (*)(RenderSettings&)>(p.field))
+            j[key] = static_cast<long long>(v);
+        else
+            j[key] = v;
+    }
+    j["width"] = width;
+    j["height"] = height;
+    return j;
+}
+
 void write_stats_json(const fs::path& path, const RenderArgs& a, const RenderSettings& s, const RenderStats& stats,
-                      const std::string& tracer, int ranks) {
+                      const std::string& tracer, int ranks, int width, int height) {
     const nlohmann::json j = {
         {"median_pass_seconds", stats.median_pass_seconds},
         {"passes", stats.passes},  // rendered by this run (excludes passes restored by --resume)
@@ -79,6 +101,7 @@ void write_stats_json(const fs::path& path, const RenderArgs& a, const RenderSet
         {"spp", s.spp},
         {"shadow_samples", s.shadow_samples},
         {"mpi_ranks", ranks},
+        {"settings", settings_json(s, width, height)},
     };
     const std::string text = j.dump(2) + "\n";
     write_file_atomic(path, text.data(), text.size());
@@ -371,7 +394,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     outputs.write(png, [&](const fs::path& t) { write_png(t, img, a.exposure); });
     if (!a.stats_json.empty())
         outputs.write(a.stats_json, [&](const fs::path& t) {
-            write_stats_json(t, a, settings, stats, backend->description(), cluster.size());
+            write_stats_json(t, a, settings, stats, backend->description(), cluster.size(), img.width, img.height);
         });
     {
         const InterruptDeferral defer;
@@ -412,7 +435,8 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--frames", args->frames,
                     "Animated scene: render frames A:B (A to B inclusive) to <out stem>.####.exr (+ .png)");
     cmd->add_option("--stats-json", args->stats_json,
-                    "Write timing as JSON: {median_pass_seconds, passes, seconds, ...} (seconds exclude set-up)");
+                    "Write timing as JSON: {median_pass_seconds, passes, seconds, ..., settings} (seconds exclude set-up; settings: "
+                    "the value of every option the method reads)");
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");
     cmd->callback([args, cmd] { run_render(*args, *cmd); });
 }

@@ -1,10 +1,13 @@
 #include "opencl/device.h"
 
-#include <cerrno>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdlib>
+#include <string>
 
 #include "util/error.h"
 
@@ -108,12 +111,25 @@ std::vector<size_t> rank_cl_devices(const std::vector<ClDeviceInfo>& devs) {
     return order;
 }
 
+std::string no_device_hint() {
+    // PoCL offers no device when it cannot make its kernel cache under $HOME (a service
+    // account's HOME=/nonexistent): an installed ICD that lists nothing.
+    const char* home = std::getenv("HOME");
+    if (!home || !*home || std::getenv("POCL_CACHE_DIR")) return "";
+    std::string dir = home;
+    while (::access(dir.c_str(), F_OK) != 0 && dir.find('/') != std::string::npos && dir != "/")
+        dir = dir.substr(0, std::max<size_t>(dir.rfind('/'), 1));  // the part that exists
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode) && ::access(dir.c_str(), W_OK) == 0) return "";
+    return std::string("; PoCL also lists none when it cannot write under HOME (") + home +
+           "): set HOME or POCL_CACHE_DIR to a writable directory";
+}
+
 ClDeviceInfo select_cl_device(const std::string& spec) {
     auto devs = list_cl_devices();
     if (devs.empty())
-        throw RuntimeError(
-            "no OpenCL device found (is an ICD such as pocl-opencl-icd installed?); "
-            "use --backend embree to render on the CPU without OpenCL");
+        throw RuntimeError("no OpenCL device found (is an ICD such as pocl-opencl-icd installed?" + no_device_hint() +
+                           "); use --backend embree to render on the CPU without OpenCL");
     if (spec.empty()) return devs[rank_cl_devices(devs).front()];
     if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c); })) {
         // Digits only: an index (a run of them too long for one is out of range, not a crash).

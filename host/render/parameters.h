@@ -80,8 +80,9 @@ std::string check_parameter_text(const Parameter& p, const std::string& text);
 /// its settings and the CLI runs before loading the scene.
 void validate_settings(const RenderSettings& s);
 
-/// Valid range as README and the messages print it: "1..8" (integers), "[0.001, 2]"
-/// (reals), ">= 0" / "> 0" (no upper bound), "flag" for a flag.
+/// Valid range as README and the messages print it: "1..8" (integers; with no upper
+/// bound the field type's, "0..4294967295"), "[0.001, 2]" (reals), ">= 0" / "> 0" (reals
+/// with no upper bound), "flag" for a flag.
 std::string range_text(const Parameter& p);
 
 /// The default, from RenderSettings{}: "3", "0.05", "120"; "off" for a flag; "camera"

@@ -33,6 +33,10 @@ void JsonField::fail(const std::string& what) const {
 bool is_comment_key(std::string_view key) { return key == "comment" || (!key.empty() && key.front() == '_'); }
 
 std::string closest_match(std::string_view word, std::initializer_list<std::string_view> candidates) {
+    return closest_match(word, std::vector<std::string_view>(candidates));
+}
+
+std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
     // Optimal string alignment distance (Damerau-Levenshtein without repeated edits of
     // one substring): "materails" is one swap from "materials".
     const auto distance = [](std::string_view a, std::string_view b) {

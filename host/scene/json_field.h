@@ -7,6 +7,7 @@
 #include <optional>
 #include <initializer_list>
 #include <string>
+#include <vector>
 #include <string_view>
 
 #include <glm/glm.hpp>
@@ -65,6 +66,8 @@ bool is_comment_key(std::string_view key);
 /// substitutions and swaps of neighbours each count 1), or "" when none is within
 /// max(2, half the longer word) edits, i.e. close enough to be a likely typo.
 std::string closest_match(std::string_view word, std::initializer_list<std::string_view> candidates);
+/// The same over a list built at run time (the command line's option names).
+std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates);
 
 /// What an [r, g, b] triple holds, which sets its upper bound.
 enum class Colour {

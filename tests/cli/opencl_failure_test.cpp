@@ -39,6 +39,25 @@ TEST_F(OpenCLFailureCli, NoPlatformSuggestsEmbree) {
     EXPECT_FALSE(fs::exists(out));
 }
 
+// PoCL lists no device when it cannot write its kernel cache under $HOME (here: under a
+// file, so even root cannot): the message says so, and not where HOME is fine.
+TEST_F(OpenCLFailureCli, AHomePoclCannotWriteIsNamed) {
+    const std::string hint = "PoCL also lists none when it cannot write under HOME (/etc/passwd/x): set HOME or "
+                             "POCL_CACHE_DIR to a writable directory";
+    const std::string env = "env -u POCL_CACHE_DIR HOME=/etc/passwd/x";
+    const CliResult devices = run_tessera("devices", env);
+    EXPECT_NE(devices.output.find(hint), std::string::npos) << devices.output;
+    const CliResult render =
+        run_tessera("render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " +
+                        (dir_ / "img.exr").string(), env);
+    EXPECT_EQ(render.exit_code, 1) << render.output;
+    EXPECT_NE(render.output.find("tessera: error: no OpenCL device found (is an ICD such as pocl-opencl-icd "
+                                 "installed?; " + hint + "); use --backend embree"),
+              std::string::npos) << render.output;
+    const CliResult missing_icd = run_tessera("devices", kNoPlatform);
+    EXPECT_EQ(missing_icd.output.find("HOME"), std::string::npos) << missing_icd.output;
+}
+
 TEST_F(OpenCLFailureCli, NoPlatformStillRendersWithEmbree) {
     const fs::path out = dir_ / "img.exr";
     const CliResult r =

@@ -188,6 +188,13 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
         {kRender + "--out $D/loop/sub/img.exr", "--out $D/loop/sub/img.exr: $D/loop is a symbolic link to nothing (a "
                                                 "missing target or a loop)", 2,
          [](const fs::path& d) { fs::create_directory_symlink(d / "loop", d / "loop"); }},
+        // An output that is a link to a file not there yet: written through only into a
+        // directory that exists (no directory is made where a link points).
+        {kRender + "--out $D/d.exr", "--out $D/d.exr: is a symbolic link to $D/nowhere/x.exr, whose directory "
+                                     "$D/nowhere does not exist", 2,
+         [](const fs::path& d) { fs::create_symlink(d / "nowhere" / "x.exr", d / "d.exr"); }},
+        {kRender + "--out $D/self.exr", "--out $D/self.exr: is a symbolic link in a loop", 2,
+         [](const fs::path& d) { fs::create_symlink(d / "self.exr", d / "self.exr"); }},
         // Failures found after the outputs are checked make no directory for them (the
         // writers make it at their first write): a missing checkpoint, an unknown device.
         {kRender + "--resume --out $D/new/img.exr",

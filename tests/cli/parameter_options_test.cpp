@@ -155,6 +155,12 @@ TEST(ParameterOptions, OptionsCommandPrintsTheMarkdownTable) {
     const CliResult plain = run_tessera("options");
     EXPECT_EQ(plain.exit_code, 0) << plain.output;
     for (const Parameter& p : render_parameters()) EXPECT_NE(plain.output.find(p.option), std::string::npos);
+    // Aligned columns: "default" at one place on every line (--checkpoint-interval SECONDS,
+    // the longest name, pushed it right).
+    std::istringstream lines(plain.output);
+    std::set<size_t> columns;
+    for (std::string line; std::getline(lines, line);) columns.insert(line.find(" default "));
+    EXPECT_EQ(columns.size(), 1u) << plain.output;
 }
 
 // README's usage block for `tessera render` names every option `render --help` lists, and

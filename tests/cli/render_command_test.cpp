@@ -57,6 +57,15 @@ TEST_F(RenderCli, UnknownBackend) { expect_rejected(kData + "/light.json --backe
 TEST_F(RenderCli, UnknownMethod) { expect_rejected(kData + "/light.json --method magic", "--method"); }
 TEST_F(RenderCli, ZeroSpp) { expect_rejected(kData + "/light.json", "--spp", "--spp 0"); }
 TEST_F(RenderCli, UnknownOption) { expect_rejected(kData + "/light.json --bogus", "--bogus"); }
+// A misspelt option gets the closest one the command has, as a misspelt scene key does.
+TEST_F(RenderCli, MisspeltOptionGetsASuggestion) {
+    expect_rejected(kData + "/light.json --sppp 4", "--sppp; --sppp: did you mean --spp? (see --help)");
+    expect_rejected(kData + "/light.json --shadow-sample=4", "--shadow-sample: did you mean --shadow-samples?");
+    CliResult r = run_tessera("render " + kData + "/light.json --bogus-thing --width 8 --out " +
+                              (dir_ / "img.exr").string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(r.output.find("did you mean"), std::string::npos) << r.output;  // nothing close
+}
 
 TEST_F(RenderCli, UnwritableOutputKeepsNothingBehind) {
     CliResult r = run_tessera("render " + kData + "/light.json --spp 1 --width 8 --height 8 --backend embree --out " +
@@ -330,8 +339,8 @@ TEST(DevicesCli, UnknownDeviceIsOneLineListingTheDevices) {
 // record names the default, ais.
 TEST_F(RenderCli, StatsJson) {
     const fs::path out = dir_ / "img.exr", stats = dir_ / "stats.json";
-    CliResult r = run_tessera("render " + kData + "/light.json --spp 3 --width 8 --height 8 --backend embree --out " +
-                              out.string() + " --stats-json " + stats.string());
+    CliResult r = run_tessera("render " + kData + "/light.json --spp 3 --width 8 --backend embree --tile 2 --no-filter "
+                              "--out " + out.string() + " --stats-json " + stats.string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
     std::ifstream f(stats);
     ASSERT_TRUE(f) << r.output;
@@ -344,6 +353,17 @@ TEST_F(RenderCli, StatsJson) {
     EXPECT_EQ(j["tracer"].get<std::string>().substr(0, 7), "embree ") << j["tracer"];  // Backend::description()
     EXPECT_GT(j["median_pass_seconds"].get<double>(), 0.0);
     EXPECT_LE(j["median_pass_seconds"].get<double>(), j["seconds"].get<double>());
+    // Every option ais reads, as in effect; the size as rendered; none that ais ignores.
+    const nlohmann::json& set = j["settings"];
+    EXPECT_EQ(set["tile"], 2);
+    EXPECT_EQ(set["no-filter"], true);
+    EXPECT_EQ(set["vpl-paths"], 32);
+    EXPECT_EQ(set["aov"], false);
+    EXPECT_EQ(set["seed"], 1);
+    EXPECT_EQ(set["width"], 8);
+    EXPECT_EQ(set["height"], 4);  // the camera's 64x32 scaled to --width 8
+    EXPECT_FALSE(set.contains("max-scatter")) << set;  // pt only
+    EXPECT_FALSE(set.contains("ic-paths")) << set;     // ic and tic only
 }
 
 // --frames: one EXR + PNG per frame, the frame number before the extension.
