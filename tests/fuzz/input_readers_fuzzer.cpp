@@ -43,12 +43,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The scratch directory of this process, removed when it exits (a fuzzing run of
+// -max_total_time returns through exit(), which runs static destructors).
+struct ScratchDir {
+    ScratchDir() : dir(fs::temp_directory_path() / ("tessera-fuzz-readers-" + std::to_string(::getpid()))) {
+        fs::create_directories(dir);
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+    fs::path dir;
+};
+
 const fs::path& input_file() {
-    static const fs::path file = [] {
-        const fs::path d = fs::temp_directory_path() / ("tessera-fuzz-readers-" + std::to_string(::getpid()));
-        fs::create_directories(d);
-        return d / "input";
-    }();
+    static const ScratchDir scratch;
+    static const fs::path file = scratch.dir / "input";
     return file;
 }
 

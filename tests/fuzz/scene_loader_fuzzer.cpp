@@ -33,13 +33,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The scratch directory of this process, removed when it exits (a fuzzing run of
+// -max_total_time returns through exit(), which runs static destructors).
+struct ScratchDir {
+    ScratchDir() : dir(fs::temp_directory_path() / ("tessera-fuzz-" + std::to_string(::getpid()))) {
+        fs::create_directories(dir);
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+    fs::path dir;
+};
+
 const fs::path& scratch_dir() {
-    static const fs::path dir = [] {
-        fs::path d = fs::temp_directory_path() / ("tessera-fuzz-" + std::to_string(::getpid()));
-        fs::create_directories(d);
-        return d;
-    }();
-    return dir;
+    static const ScratchDir scratch;
+    return scratch.dir;
 }
 
 void write_file(const fs::path& p, std::string_view bytes) {
