@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Writes the committed fly-throughs of the standard scenes, bench/flythroughs/<scene>.json,
-for `tessera view --headless --camera-path` (bench/interactive). Each path starts at the
+"""Writes the committed fly-throughs of the standard scenes, bench/flythroughs/<scene>.json
+(with the scene's name as "scene"), for `tessera view --headless --camera-path` (bench/interactive). Each path starts at the
 scene's camera and moves forward by 2% of the look distance per frame while turning left
 by 1 degree per frame: every frame is a moving frame (one fresh interleaved frame of the
 method), as under a user's continuous motion. Deterministic; run it again only to change
@@ -46,7 +46,10 @@ def main():
     for name in STANDARD_SCENES:
         scene = json.loads((ROOT / "scenes" / f"{name}.json").read_text())
         cams = path_for(scene["camera"], args.frames)["cameras"]
-        text = "{\"cameras\": [\n" + ",\n".join("  " + json.dumps(c) for c in cams) + "\n]}\n"
+        # "scene": the scene's name, so that the viewer can say when a path is replayed on
+        # another scene.
+        text = ("{\"scene\": " + json.dumps(scene.get("name", name)) + ",\n \"cameras\": [\n" +
+                ",\n".join("  " + json.dumps(c) for c in cams) + "\n]}\n")
         (out / f"{name}.json").write_text(text)
         print(out / f"{name}.json")
 

@@ -240,7 +240,14 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     LoopOptions lo;
     lo.headless = a.headless;
     if (!a.input_script.empty()) lo.script = read_input_script(a.input_script);
-    if (!a.camera_path.empty() && !a.record) lo.path = read_camera_path(a.camera_path);
+    if (!a.camera_path.empty() && !a.record) {
+        std::string recorded_on;
+        lo.path = read_camera_path(a.camera_path, &recorded_on);
+        // A path of another scene flies through that scene's space: likely the wrong file.
+        if (!recorded_on.empty() && recorded_on != scene.name)
+            std::fprintf(stderr, "tessera view: note: --camera-path %s was recorded on scene %s; this run's scene is "
+                                 "%s\n", a.camera_path.c_str(), recorded_on.c_str(), scene.name.c_str());
+    }
     for (const PathFrame& f : lo.path)
         if (f.frame < o.first_frame || f.frame > o.last_frame)
             throw InputError("--camera-path " + a.camera_path + ": animation frame " + std::to_string(f.frame) +

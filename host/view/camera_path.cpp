@@ -34,10 +34,14 @@ PathFrame read_entry(const JsonField& e) {
     return f;
 }
 
-std::vector<PathFrame> read_entries(const std::filesystem::path& path) {
+std::vector<PathFrame> read_entries(const std::filesystem::path& path, std::string* scene) {
     const nlohmann::json doc = scene_detail::parse_json_file(path, "camera path");
     const JsonField root(doc, path, "");
-    root.require_known_keys({"cameras"});
+    root.require_known_keys({"scene", "cameras"});
+    if (const auto name = root.find("scene")) {
+        const std::string text = name->string();  // a string, checked as every key is
+        if (scene) *scene = text;
+    }
     const JsonField cameras = root["cameras"];
     if (cameras.size() == 0) cameras.fail("a camera path needs at least one camera");
     if (cameras.size() > limits::kPathEntries)
@@ -50,16 +54,20 @@ std::vector<PathFrame> read_entries(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::vector<PathFrame> read_camera_path(const std::filesystem::path& path) {
+std::vector<PathFrame> read_camera_path(const std::filesystem::path& path, std::string* scene) {
     try {
-        return read_entries(path);
+        if (scene) scene->clear();
+        return read_entries(path, scene);
     } catch (const InputError& e) {
         throw InputError(std::string("--camera-path ") + e.what());
     }
 }
 
-void write_camera_path(const std::filesystem::path& path, const std::vector<PathFrame>& frames) {
-    std::string text = "{\"cameras\": [\n";
+void write_camera_path(const std::filesystem::path& path, const std::vector<PathFrame>& frames,
+                       const std::string& scene) {
+    std::string text = "{";
+    if (!scene.empty()) text += "\"scene\": " + nlohmann::json(scene).dump() + ",\n ";
+    text += "\"cameras\": [\n";
     char buf[512];
     for (size_t i = 0; i < frames.size(); ++i) {
         const Camera& c = frames[i].camera;

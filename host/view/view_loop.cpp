@@ -56,7 +56,7 @@ void ViewLoop::step(double wall_dt) {
 }
 
 void ViewLoop::finish(const std::string& scene_name) const {
-    if (!options_.record.empty() && !recorded_.empty()) write_camera_path(options_.record, recorded_);
+    if (!options_.record.empty() && !recorded_.empty()) write_camera_path(options_.record, recorded_, scene_name);
     double moving_sum = 0, all_sum = 0;
     int moving = 0;
     nlohmann::json frames = nlohmann::json::array();

@@ -138,6 +138,20 @@ TEST_F(ViewCli, HeadlessFlyThroughWritesTimesAndImages) {
         EXPECT_TRUE(fs::exists(tessera::frame_output_path(dir_ / "frames/frame.exr", i)));
     }
     EXPECT_NE(r.output.find("5 frames, 2 moving"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("was recorded on scene"), std::string::npos) << r.output;  // the path names none
+}
+
+// A path that names the scene it was recorded on: a note when replayed on another one.
+TEST_F(ViewCli, APathOfAnotherSceneGetsANote) {
+    std::string text = fly_through();
+    text.insert(1, "\"scene\": \"sibenik\", ");
+    const fs::path path = write("path.json", text);
+    const CliResult r = run_tessera("view --headless --backend embree --width 16 --height 16 --camera-path " +
+                                    path.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("tessera view: note: --camera-path " + path.string() +
+                            " was recorded on scene sibenik; this run's scene is cornell-box"),
+              std::string::npos) << r.output;
 }
 
 std::string file_bytes(const fs::path& p);

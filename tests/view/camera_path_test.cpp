@@ -36,8 +36,13 @@ TEST_F(CameraPath, RoundTripsExactly) {
         frames[i].camera.vfov_deg = 39.3077f;
         frames[i].frame = i;
     }
-    write_camera_path(dir_ / "p.json", frames);
-    const std::vector<PathFrame> back = read_camera_path(dir_ / "p.json");
+    write_camera_path(dir_ / "p.json", frames, "cornell \"box\"");
+    std::string scene = "stale";
+    const std::vector<PathFrame> back = read_camera_path(dir_ / "p.json", &scene);
+    EXPECT_EQ(scene, "cornell \"box\"");  // the scene it was recorded on, escaped and back
+    write_camera_path(dir_ / "q.json", frames);
+    read_camera_path(dir_ / "q.json", &scene);
+    EXPECT_EQ(scene, "");  // none recorded
     ASSERT_EQ(back.size(), 3u);
     for (int i = 0; i < 3; ++i) {
         EXPECT_EQ(back[i].camera.position, frames[i].camera.position);
@@ -66,7 +71,8 @@ TEST_F(CameraPath, RejectsBadEntriesNamingThem) {
         {R"({"cameras": [)" + ok + R"(, "frame": 1.5}]})", "'cameras[0].frame' = 1.5", "integer"},
         {R"({"cameras": [)" + ok + R"(, "fov": 30}]})", "'cameras[0].fov'", "did you mean 'vfov'"},
         {R"({"cameras": [)" + ok + R"(, "positon": [0,0,0]}]})", "'cameras[0].positon'", "did you mean 'position'"},
-        {R"({"cameras": [)" + ok + "}], \"speed\": 2}", "'speed'", "known keys here: cameras"},
+        {R"({"cameras": [)" + ok + "}], \"speed\": 2}", "'speed'", "known keys here: scene, cameras"},
+        {R"({"scene": 3, "cameras": [)" + ok + "}]}", "'scene' = 3", "string"},
         // The third camera is degenerate: found before anything renders.
         {R"({"cameras": [)" + ok + "}, " + ok + R"(}, {"position": [0,0,0], "look_at": [0,1,0], "up": [0,1,0], "vfov": 40}]})",
          "'cameras[2]'", "parallel"},
