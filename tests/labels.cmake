@@ -18,8 +18,8 @@ set(tessera_statistical_tests
     "^(BackendAgreement|PtAgreement|Traversal|IgiAgreement|IgiConvergence|IgiMedia|Ais|LightSelection|PassConvergence)\\."
     "^G/HenyeyGreenstein\\.SamplesMatchThePhaseFunction/"
     "^Sampling\\.(CosineHemisphereMatchesItsPdf|UniformHemisphereMatchesItsPdf|TriangleBarycentricsAreUniformInArea|LightSelectionFollowsPower)$"
-    "^SphericalTriangle\\.(SamplesAreUniformInSolidAngle|RelabelledTrianglesAreUniformInSolidAngle)$"
-    "^LightSampleFrom\\.NearALightMatchesLambertAndEachSampleIsBounded$"
+    "^SphericalTriangle\\.(SamplesAreUniformInSolidAngle|RelabelledTrianglesAreUniformInSolidAngle|SliversSeenEdgeOnAreUniformInSolidAngle)$"
+    "^LightSampleFrom\\.(NearALightMatchesLambertAndEachSampleIsBounded|SliversSeenEdgeOnMatchLambert)$"
     "^Medium\\.(FreeFlightDistancesAreExponential|RgbWeightsAreUnbiased|EquiangularDistancesFollowTheirPdf)$"
     "^EdgeSamples\\.EachSampleIsUniformOverThePixel$")
 list(JOIN tessera_statistical_tests "|" tessera_statistical_tests)
