@@ -2,6 +2,7 @@
 // "tessera: error: ...", and a non-zero exit: 2 for bad input, 1 for runtime failures.
 // A render stopped by SIGINT/SIGTERM (after saving a checkpoint) exits with 130. In a
 // distributed render (mpirun) only rank 0 prints, naming the rank that failed.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <regex>
@@ -54,20 +55,34 @@ std::string parse_message(const std::string& what) {
 // CLI11's "The following argument(s) was/were not expected: --sppp" with, for each
 // misspelt long option, the closest one the command has ("--sppp: did you mean --spp?"),
 // as scene files' unknown keys get (scene/json_field.h).
-std::string with_suggestions(const CLI::App& app, const std::string& what) {
+std::string with_suggestions(CLI::App& app, const std::string& what) {
     std::vector<std::string> names;
     for (const CLI::App* sub : app.get_subcommands())
         for (const CLI::Option* opt : sub->get_options())
             for (const std::string& n : opt->get_lnames()) names.push_back(n);
     const std::vector<std::string_view> known(names.begin(), names.end());
+    // Which other commands take a name exactly ("compare ... --spp": render's, view's).
+    const auto commands_taking = [&app](const std::string& name) {
+        std::string commands;
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+            if (!sub->parsed())
+                for (const CLI::Option* opt : sub->get_options())
+                    for (const std::string& n : opt->get_lnames())
+                        if (n == name) commands += (commands.empty() ? "" : ", ") + sub->get_name();
+        return commands;
+    };
     std::string suggestions;
     const size_t colon = what.find(": ");
     std::istringstream words(colon == std::string::npos ? "" : what.substr(colon + 2));
     for (std::string word; words >> word;) {
         if (word.rfind("--", 0) != 0) continue;
         // Names without their "--": it would make any two look alike ("--bogus", "--out").
-        const std::string name = word.substr(0, word.find('='));
-        if (const std::string best = tessera::scene_detail::closest_match(name.substr(2), known); !best.empty())
+        // At most one edit in three letters: "spp" is not a typo of "map".
+        const std::string name = word.substr(0, word.find('=')), bare = name.substr(2);
+        if (const std::string others = commands_taking(bare); !others.empty())
+            suggestions += "; " + name + " is an option of tessera " + others;
+        else if (const std::string best = tessera::scene_detail::closest_match(bare, known, std::max<size_t>(1, bare.size() / 3));
+                 !best.empty())
             suggestions += "; " + name + ": did you mean --" + best + "?";
     }
     return what + suggestions;

@@ -123,7 +123,10 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
     });
     std::optional<metrics::HdrvdpResult> hdrvdp;
     if (a.hdrvdp) hdrvdp = metrics::compute_hdrvdp(metrics::hdrvdp_tool(), a.ref, a.test);
-    maps.commit();
+    {
+        const SignalsHeld whole;  // all the maps land, or none: a signal waits for the commit
+        maps.commit();
+    }
 
     if (a.json) {
         nlohmann::json j = {

@@ -90,11 +90,12 @@ void require_exr_name(const std::string& option, const std::filesystem::path& pa
     std::string lower = ext;
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     std::error_code ec;
-    const std::string why = lower == ".exr"                                 ? "must end in .exr (lower case)"
-                            : name == ".exr"                                ? "needs a file name before .exr"
-                            : name.empty() || fs::is_directory(path, ec) ? "is a directory; name the file, e.g. " +
-                                                                               (path / "image.exr").string()
-                                                                         : "must end in .exr";
+    const std::string example = "name the file, e.g. " + (path / "image.exr").string();
+    const std::string why = lower == ".exr"                ? "must end in .exr (lower case)"
+                            : name == ".exr"               ? "needs a file name before .exr"
+                            : name.empty()                 ? "ends in '/'; " + example
+                            : fs::is_directory(path, ec) ? "is a directory; " + example
+                                                         : "must end in .exr";
     throw InputError(option + " " + path.string() + ": " + why);
 }
 

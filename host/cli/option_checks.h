@@ -45,7 +45,8 @@ void print_scene_notes(const std::vector<std::string>& notes);
 /// An EXR output path given to `option` ("--out", "--screenshot") must name a file whose
 /// extension is ".exr", in lower case. InputError "--out x.EXR: must end in .exr (lower
 /// case)", or for "dir/.exr" (a hidden name, no extension) "...: needs a file name before
-/// .exr".
+/// .exr", for "dir/" "...: ends in '/'; name the file, e.g. dir/image.exr", and for an
+/// existing directory "...: is a directory; name the file, ...".
 void require_exr_name(const std::string& option, const std::filesystem::path& path);
 
 /// The output a command writes when its option is not given: out/<scene file's name,

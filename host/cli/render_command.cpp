@@ -332,6 +332,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
                          "hold its state, tic's cache, so it could not be resumed); ignored\n", a.method.c_str());
         const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
         scene = load_scene(scene_path, data);
+        (void)render_image_size(settings, scene.camera);  // a side scaled out of range fails here, before any work
         out = a.out.empty() ? default_output(scene, ".exr") : fs::path(a.out);
         require_exr_name("--out", out);
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);

@@ -24,6 +24,7 @@
 #include "integrators/method.h"
 #include "render/interrupt.h"
 #include "render/parameters.h"
+#include "render/renderer.h"
 #include "render/sequence.h"
 #include "scene/loader.h"
 #include "util/error.h"
@@ -152,11 +153,19 @@ void run_window(const WindowModule& module, ViewSession& session, ViewLoop& loop
     if (rc != 0) no_window(error);
 }
 
+// The scene's name as a file name in bench/results/accuracy ("" when it cannot be one:
+// a "/" in it, "." or ".."), so that a name never reaches outside that directory.
+std::string result_file_stem(const Scene& scene) {
+    const std::string& n = scene.name;
+    return n.find('/') != std::string::npos || n == "." || n == ".." ? "" : n;
+}
+
 std::vector<BudgetPoint> load_pareto(const ViewArgs& a, const Scene& scene) {
     fs::path csv = a.pareto;
     if (csv.empty()) {
         const fs::path dir = fs::path(TESSERA_SOURCE_DIR) / "bench/results/accuracy";
-        csv = fs::exists(dir / (scene.name + ".csv")) ? dir / (scene.name + ".csv") : dir / "cornell-box.csv";
+        const std::string stem = result_file_stem(scene);
+        csv = !stem.empty() && fs::exists(dir / (stem + ".csv")) ? dir / (stem + ".csv") : dir / "cornell-box.csv";
     }
     if (!fs::exists(csv)) throw InputError("--target-fps needs an accuracy sweep: " + csv.string() + " does not exist (--pareto FILE.csv)");
     // A method without rows (ic, tic, pt, direct) keeps its own settings: the budget then
@@ -168,8 +177,10 @@ std::vector<BudgetPoint> load_pareto(const ViewArgs& a, const Scene& scene) {
 // (0 when there is none): the first moving frame's prediction scales the sweep's times by
 // the window's pixels over these.
 double pareto_pixels(const ViewArgs& a, const Scene& scene) {
-    fs::path json = a.pareto.empty() ? fs::path(TESSERA_SOURCE_DIR) / "bench/results/accuracy" / (scene.name + ".json")
-                                     : fs::path(a.pareto);
+    if (a.pareto.empty() && result_file_stem(scene).empty()) return 0.0;
+    fs::path json = a.pareto.empty()
+                        ? fs::path(TESSERA_SOURCE_DIR) / "bench/results/accuracy" / (result_file_stem(scene) + ".json")
+                        : fs::path(a.pareto);
     json.replace_extension(".json");
     std::ifstream in(json);
     if (!in) return 0.0;
@@ -220,6 +231,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (!a.headless) window = load_window_module();
     const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
     const Scene scene = load_scene(scene_path, data);
+    (void)render_image_size(o.settings, scene.camera);  // a side scaled out of range fails here, before any work
     print_scene_notes(scene.notes);
     if (!a.frames.empty()) {
         const FrameRange r = parse_frame_range(a.frames, scene);

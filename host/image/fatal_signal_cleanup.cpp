@@ -1,9 +1,12 @@
 #include "image/fatal_signal_cleanup.h"
 
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -25,11 +28,18 @@ constexpr std::uintptr_t kRemovedBit = 1, kDirectoryBit = 2, kFlags = kRemovedBi
 static_assert(alignof(std::max_align_t) >= 4, "new[] leaves the two low bits of a pointer free");
 static_assert(std::atomic<std::uintptr_t>::is_always_lock_free);
 
+// At least 4 bytes: a marked pointer (+1, +2 or +3) must still point into the block, or
+// LeakSanitizer would not count the path as reachable ("/a" is 3 bytes).
 char* copy_of(const std::string& s) {
-    char* p = new char[s.size() + 1];
+    char* p = new char[std::max<size_t>(s.size() + 1, 4)];
     std::memcpy(p, s.c_str(), s.size() + 1);
     return p;
 }
+
+// The process group of a child tool running now (0: none), killed before the files are
+// removed: a tool still running could otherwise write a temporary again after it went.
+std::atomic<pid_t> g_child_group{0};
+static_assert(std::atomic<pid_t>::is_always_lock_free);
 
 }  // namespace
 
@@ -75,7 +85,22 @@ RemovedOnFatalSignal& RemovedOnFatalSignal::operator=(RemovedOnFatalSignal&& oth
     return *this;
 }
 
+KilledOnFatalSignal::KilledOnFatalSignal(pid_t group) : group_(group) { g_child_group = group; }
+
+KilledOnFatalSignal::~KilledOnFatalSignal() {
+    pid_t expected = group_;
+    g_child_group.compare_exchange_strong(expected, 0);
+}
+
 void remove_registered_temporaries() noexcept {
+    // A tool's whole group first (a tool that runs Octave has children of its own), and
+    // reaped, so that none of it writes after the files are gone.
+    if (const pid_t group = g_child_group.exchange(0); group > 0) {
+        ::kill(-group, SIGKILL);
+        int status = 0;
+        while (::waitpid(group, &status, 0) < 0 && errno == EINTR) {
+        }
+    }
     // Taking every registration first keeps each path alive while it is used below.
     for (std::atomic<std::uintptr_t>& slot : g_slots) {
         std::uintptr_t path = slot.load();
@@ -102,10 +127,24 @@ namespace {
 constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
 struct sigaction g_old_actions[3];
 
-extern "C" void remove_temporaries_and_end(int sig) {
+// One word for the holds and a signal held meanwhile, (holds << 8) | signal, so that the
+// handler (on any thread) and the end of the last hold agree by compare-and-swap on
+// whether a signal is left to act on: no signal is lost between them.
+std::atomic<int> g_hold_state{0};
+static_assert(std::atomic<int>::is_always_lock_free);
+
+// In the handler the signal is blocked until it returns, and is delivered then, with its
+// default action; from ~SignalsHeld, at once.
+void remove_temporaries_and_raise(int sig) {
     remove_registered_temporaries();
     ::signal(sig, SIG_DFL);
     ::raise(sig);
+}
+
+extern "C" void remove_temporaries_and_end(int sig) {
+    for (int state = g_hold_state.load(); state >> 8 > 0;)
+        if (g_hold_state.compare_exchange_weak(state, (state & ~0xff) | sig)) return;  // held: acted on at its end
+    remove_temporaries_and_raise(sig);
 }
 
 }  // namespace
@@ -115,13 +154,27 @@ TemporariesRemovedOnSignal::TemporariesRemovedOnSignal() {
     sa.sa_handler = remove_temporaries_and_end;
     sigemptyset(&sa.sa_mask);
     for (int i = 0; i < 3; ++i) {
-        sigaction(kCleanupSignals[i], &sa, &g_old_actions[i]);
-        if (g_old_actions[i].sa_handler == SIG_IGN) sigaction(kCleanupSignals[i], &g_old_actions[i], nullptr);
+        // Read first: a signal ignored on entry is never unignored, not even for a moment.
+        sigaction(kCleanupSignals[i], nullptr, &g_old_actions[i]);
+        if (g_old_actions[i].sa_handler != SIG_IGN) sigaction(kCleanupSignals[i], &sa, nullptr);
     }
 }
 
 TemporariesRemovedOnSignal::~TemporariesRemovedOnSignal() {
     for (int i = 0; i < 3; ++i) sigaction(kCleanupSignals[i], &g_old_actions[i], nullptr);
+}
+
+SignalsHeld::SignalsHeld() { g_hold_state += 1 << 8; }
+
+SignalsHeld::~SignalsHeld() {
+    for (int state = g_hold_state.load();;) {
+        const int left = (state >> 8) - 1, sig = state & 0xff;
+        if (left == 0 && sig != 0) {
+            if (g_hold_state.compare_exchange_weak(state, 0)) remove_temporaries_and_raise(sig);
+        } else if (g_hold_state.compare_exchange_weak(state, (left << 8) | sig)) {
+            return;
+        }
+    }
 }
 
 }  // namespace tessera

@@ -4,6 +4,8 @@
 // destructors that would remove them, so the signal handler removes them instead, with
 // only async-signal-safe calls (unlink). SIGKILL runs no handler: nothing can be done then.
 #pragma once
+#include <sys/types.h>
+
 #include <filesystem>
 
 namespace tessera {
@@ -48,17 +50,45 @@ inline constexpr int kMaxRegisteredTemporaries = 16384;
 void remove_registered_temporaries() noexcept;
 
 /// For a command with no clean stop of its own (`tessera compare`): while alive, SIGINT,
-/// SIGTERM and SIGHUP remove the registered temporaries and then end the process by the
-/// signal's default action, so an interrupted run leaves none of its files behind. A
-/// signal ignored on entry (nohup, `cmd &` in a script) stays ignored; the old handlers
-/// are put back at its end. Not for use inside an InterruptScope (render/interrupt.h),
-/// which removes them itself on a second signal. Not thread-safe: create it on one thread.
+/// SIGTERM and SIGHUP kill the registered child tool (KilledOnFatalSignal), remove the
+/// registered temporaries and then end the process by the signal's default action, so an
+/// interrupted run leaves none of its files behind. A signal ignored on entry (nohup,
+/// `cmd &` in a script) stays ignored; the old handlers are put back at its end. Not for
+/// use inside an InterruptScope (render/interrupt.h), which removes them itself on a
+/// second signal. Not thread-safe: create it on one thread.
 class TemporariesRemovedOnSignal {
 public:
     TemporariesRemovedOnSignal();
     ~TemporariesRemovedOnSignal();
     TemporariesRemovedOnSignal(const TemporariesRemovedOnSignal&) = delete;
     TemporariesRemovedOnSignal& operator=(const TemporariesRemovedOnSignal&) = delete;
+};
+
+/// While alive, a signal that TemporariesRemovedOnSignal's handler would end the process
+/// on is held, and acted on when the last SignalsHeld ends: for a commit of several
+/// outputs (CommitGroup::commit), which a signal must not cut in half. Nests.
+class SignalsHeld {
+public:
+    SignalsHeld();
+    ~SignalsHeld();
+    SignalsHeld(const SignalsHeld&) = delete;
+    SignalsHeld& operator=(const SignalsHeld&) = delete;
+};
+
+/// Registers a child process that leads its own process group (a metric tool spawned by
+/// `compare`) for the lifetime of the object: remove_registered_temporaries() kills the
+/// group (SIGKILL) and reaps the child before it removes any file, so that the tool does
+/// not write a temporary again after it was removed. One at a time (a later registration
+/// replaces an earlier one).
+class KilledOnFatalSignal {
+public:
+    explicit KilledOnFatalSignal(pid_t group);
+    ~KilledOnFatalSignal();
+    KilledOnFatalSignal(const KilledOnFatalSignal&) = delete;
+    KilledOnFatalSignal& operator=(const KilledOnFatalSignal&) = delete;
+
+private:
+    pid_t group_;
 };
 
 }  // namespace tessera

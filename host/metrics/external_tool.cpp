@@ -71,15 +71,26 @@ ToolRun run_tool(const std::vector<std::string>& args) {
     const OutputFile out_file{out_path}, err_file{err_path};
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
+    // No terminal input: in a group of its own (below) a read from the terminal would stop it.
+    posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
     posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
     posix_spawn_file_actions_addopen(&fa, STDERR_FILENO, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    // In a process group of its own, which a signal that ends `compare` kills whole
+    // (KilledOnFatalSignal): `kill PID` reaches compare alone, and the tool (Octave under
+    // Python for HDR-VDP) would run on for minutes and write its map after compare went.
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
     pid_t pid = 0;
-    const int rc = posix_spawnp(&pid, argv[0], &fa, nullptr, argv.data(), environ);
+    const int rc = posix_spawnp(&pid, argv[0], &fa, &attr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&attr);
     if (rc != 0) {
         r.spawn_error = std::strerror(rc);
         return r;
     }
+    const KilledOnFatalSignal killed_on_signal(pid);
     r.started = true;
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {

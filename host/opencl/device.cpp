@@ -112,17 +112,21 @@ std::vector<size_t> rank_cl_devices(const std::vector<ClDeviceInfo>& devs) {
 }
 
 std::string no_device_hint() {
-    // PoCL offers no device when it cannot make its kernel cache under $HOME (a service
-    // account's HOME=/nonexistent): an installed ICD that lists nothing.
-    const char* home = std::getenv("HOME");
-    if (!home || !*home || std::getenv("POCL_CACHE_DIR")) return "";
+    // PoCL offers no device when it cannot make its kernel cache (a service account's
+    // HOME=/nonexistent): an installed ICD that lists nothing. It takes POCL_CACHE_DIR,
+    // else $XDG_CACHE_HOME/pocl, else $HOME/.cache/pocl.
+    if (std::getenv("POCL_CACHE_DIR")) return "";
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    const bool use_xdg = xdg && *xdg;
+    const char* home = use_xdg ? xdg : std::getenv("HOME");
+    if (!home || !*home) return "";
     std::string dir = home;
     while (::access(dir.c_str(), F_OK) != 0 && dir.find('/') != std::string::npos && dir != "/")
         dir = dir.substr(0, std::max<size_t>(dir.rfind('/'), 1));  // the part that exists
     struct stat st {};
     if (::stat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode) && ::access(dir.c_str(), W_OK) == 0) return "";
-    return std::string("; PoCL also lists none when it cannot write under HOME (") + home +
-           "): set HOME or POCL_CACHE_DIR to a writable directory";
+    return std::string("; PoCL also lists none when it cannot write its cache under ") +
+           (use_xdg ? "XDG_CACHE_HOME (" : "HOME (") + home + "): set POCL_CACHE_DIR to a writable directory";
 }
 
 ClDeviceInfo select_cl_device(const std::string& spec) {

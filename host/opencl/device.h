@@ -57,8 +57,8 @@ ClDeviceInfo select_cl_device(const std::string& spec);
 
 /// Why no device may be listed although an ICD is installed, as a clause to append to
 /// "no OpenCL device found (...": PoCL lists none when it cannot write its kernel cache
-/// under $HOME (HOME unwritable or under a missing directory, POCL_CACHE_DIR unset). ""
-/// when that is not the case.
+/// (POCL_CACHE_DIR unset, and $XDG_CACHE_HOME, else $HOME, unwritable or under a missing
+/// directory). "" when that is not the case.
 std::string no_device_hint();
 
 }  // namespace tessera

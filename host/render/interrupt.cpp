@@ -51,11 +51,14 @@ InterruptScope::InterruptScope() {
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESTART;
-    sigaction(SIGINT, &sa, &g_old_int);
-    sigaction(SIGTERM, &sa, &g_old_term);
-    if (g_old_int.sa_handler == SIG_IGN) sigaction(SIGINT, &g_old_int, nullptr);
-    sigaction(SIGHUP, &sa, &g_old_hup);
-    if (g_old_hup.sa_handler == SIG_IGN) sigaction(SIGHUP, &g_old_hup, nullptr);  // nohup
+    // The old actions read first: an ignored SIGINT (`cmd &` in a script) or SIGHUP (nohup)
+    // is never unignored, not even for a moment.
+    sigaction(SIGINT, nullptr, &g_old_int);
+    sigaction(SIGTERM, nullptr, &g_old_term);
+    sigaction(SIGHUP, nullptr, &g_old_hup);
+    if (g_old_int.sa_handler != SIG_IGN) sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+    if (g_old_hup.sa_handler != SIG_IGN) sigaction(SIGHUP, &sa, nullptr);
 }
 
 InterruptScope::~InterruptScope() {

@@ -36,7 +36,8 @@ std::string closest_match(std::string_view word, std::initializer_list<std::stri
     return closest_match(word, std::vector<std::string_view>(candidates));
 }
 
-std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates) {
+std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates,
+                          size_t max_edits) {
     // Optimal string alignment distance (Damerau-Levenshtein without repeated edits of
     // one substring): "materails" is one swap from "materials".
     const auto distance = [](std::string_view a, std::string_view b) {
@@ -58,7 +59,7 @@ std::string closest_match(std::string_view word, const std::vector<std::string_v
     for (const auto c : candidates) {
         // Up to half the longer word may differ ("rotation" for "rotate" is 3 edits),
         // at least 2 ("fov" for "vfov").
-        const size_t limit = std::max<size_t>(2, std::max(word.size(), c.size()) / 2);
+        const size_t limit = std::min(max_edits, std::max<size_t>(2, std::max(word.size(), c.size()) / 2));
         if (const size_t d = distance(word, c); d <= limit && d < best_d) {
             best_d = d;
             best = std::string(c);

@@ -3,6 +3,7 @@
 // so the loader itself never has to format an error message about JSON types.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <initializer_list>
@@ -66,8 +67,10 @@ bool is_comment_key(std::string_view key);
 /// substitutions and swaps of neighbours each count 1), or "" when none is within
 /// max(2, half the longer word) edits, i.e. close enough to be a likely typo.
 std::string closest_match(std::string_view word, std::initializer_list<std::string_view> candidates);
-/// The same over a list built at run time (the command line's option names).
-std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates);
+/// The same over a list built at run time (the command line's option names), within
+/// `max_edits` edits when given (short option names need a stricter bound than keys).
+std::string closest_match(std::string_view word, const std::vector<std::string_view>& candidates,
+                          size_t max_edits = SIZE_MAX);
 
 /// What an [r, g, b] triple holds, which sets its upper bound.
 enum class Colour {

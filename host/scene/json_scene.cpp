@@ -269,11 +269,12 @@ bool has_emitter(const Scene& scene) {
     return any;
 }
 
-// A name that prints as one word of a log line and stays one component of a path.
-bool is_plain_name(const std::string& name) {
-    if (name.empty() || name == "." || name == "..") return false;
+// A name that prints as itself in a log line: no control characters (a terminal's
+// escape sequences), not empty. Paths are not made from it (cli/option_checks.h).
+bool is_printable_name(const std::string& name) {
+    if (name.empty()) return false;
     for (const char c : name)
-        if (c == '/' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
     return true;
 }
 
@@ -290,9 +291,8 @@ Scene load_scene(const fs::path& scene_file, const DataPath& data) {
     scene.name = scene_file.stem().string();
     if (auto name = root.find("name")) {
         scene.name = name->string();
-        if (!is_plain_name(scene.name))
-            name->fail("must be a plain name (not empty, no '/' or control characters, not '.' or '..'): the "
-                       "logs and the viewer's result files use it");
+        if (!is_printable_name(scene.name))
+            name->fail("must be a name to print: not empty, no control characters (the logs show it)");
     }
     if (auto s = root.find("stands_in_for")) (void)s->string();  // free text, type-checked only
     scene.camera = read_camera(root["camera"]);

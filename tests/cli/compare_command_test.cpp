@@ -343,6 +343,16 @@ TEST_F(CompareCli, CvvdpUnavailableIsOneErrorBeforeAnyWork) {
     EXPECT_EQ(j["cvvdp"]["unavailable"], "not requested (--cvvdp)");
 }
 
+// Another command's option is named as such, not taken for a typo of one of compare's
+// ("--spp: did you mean --map?").
+TEST_F(CompareCli, AnotherCommandsOptionIsSaidToBeTheirs) {
+    const std::string a = write("a.exr", constant(4, 4, 0.25f));
+    expect_error(a + " " + a + " --spp 4", "--spp is an option of tessera render, view");
+    const CliResult r = run_compare(a + " " + a + " --spp 4");
+    EXPECT_EQ(r.output.find("did you mean"), std::string::npos) << r.output;
+    expect_error(a + " " + a + " --mapp x.png", "--mapp: did you mean --map?");
+}
+
 TEST_F(CompareCli, CvvdpOptionsNeedCvvdp) {
     const std::string a = write("a.exr", constant(4, 4, 0.25f));
     expect_error(a + " " + a + " --cvvdp-map " + (dir_ / "m.png").string(), "--cvvdp-map");
@@ -377,24 +387,29 @@ TEST_F(CompareCli, CvvdpValuesReachTextAndJson) {
 }
 
 // Ctrl-C or SIGTERM while a metric tool runs (HDR-VDP takes minutes) ends compare by the
-// signal with nothing left behind: not the map's temporary, nor the directories made for
-// it, nor the tool's captured output in $TMPDIR.
+// signal with nothing left behind: not the map's temporary, nor the tool's captured
+// output in $TMPDIR; and the tool ends with it (a `kill PID` reaches compare alone), so
+// it cannot write its map again after compare removed it.
 TEST_F(CompareCli, ASignalDuringAToolLeavesNoFile) {
     const fs::path py = dir_ / "slowpy";
+    // Arguments: script, reference, test, --heatmap, map.
     std::ofstream(py) << "#!/bin/sh\n"
                          "[ \"$2\" = --check ] && { echo 'cvvdp 0.5.7'; exit 0; }\n"
-                         "echo partial > \"$6\"; touch \"$(dirname \"$0\")/started\"; exec sleep 3\n";
+                         "d=$(dirname \"$0\"); echo partial > \"$5\"; touch \"$d/started\"\n"
+                         "sleep 1; echo late > \"$5\"; touch \"$d/survived\"\n";
     ::chmod(py.c_str(), 0755);
     const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
     fs::create_directories(dir_ / "tmp");
+    fs::create_directories(dir_ / "maps");
     const CliResult r = run_shell("cd " + dir_.string() + " && (TMPDIR=" + (dir_ / "tmp").string() + " " +
                                   TESSERA_EXE + " compare " + a + " " + b + " --no-flip --cvvdp --cvvdp-python " +
-                                  py.string() + " --cvvdp-map new/deeper/m.png & pid=$!; " +
+                                  py.string() + " --cvvdp-map maps/m.png & pid=$!; " +
                                   "for i in $(seq 200); do [ -e started ] && break; sleep 0.05; done; " +
-                                  "kill -TERM $pid; wait $pid; echo \"status $?\")");
+                                  "kill -TERM $pid; wait $pid; echo \"status $?\"; sleep 1.5)");
     ASSERT_TRUE(fs::exists(dir_ / "started")) << r.output;
     EXPECT_NE(r.output.find("status 143"), std::string::npos) << r.output;  // 128 + SIGTERM
-    EXPECT_FALSE(fs::exists(dir_ / "new")) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "survived")) << "the tool ran on after compare ended";
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "maps"), {}), 0) << r.output;
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_ / "tmp"), {}), 0) << r.output;
 }
 

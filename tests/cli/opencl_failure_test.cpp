@@ -42,10 +42,12 @@ TEST_F(OpenCLFailureCli, NoPlatformSuggestsEmbree) {
 // PoCL lists no device when it cannot write its kernel cache under $HOME (here: under a
 // file, so even root cannot): the message says so, and not where HOME is fine.
 TEST_F(OpenCLFailureCli, AHomePoclCannotWriteIsNamed) {
-    const std::string hint = "PoCL also lists none when it cannot write under HOME (/etc/passwd/x): set HOME or "
+    const std::string hint = "PoCL also lists none when it cannot write its cache under HOME (/etc/passwd/x): set "
                              "POCL_CACHE_DIR to a writable directory";
-    const std::string env = "env -u POCL_CACHE_DIR HOME=/etc/passwd/x";
+    const std::string env = "env -u POCL_CACHE_DIR -u XDG_CACHE_HOME HOME=/etc/passwd/x";
     const CliResult devices = run_tessera("devices", env);
+    // Another ICD (a GPU's driver) lists its devices whatever HOME is: nothing to test.
+    if (devices.output.find("[0]") != std::string::npos) GTEST_SKIP() << "a device is listed:\n" << devices.output;
     EXPECT_NE(devices.output.find(hint), std::string::npos) << devices.output;
     const CliResult render =
         run_tessera("render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " +

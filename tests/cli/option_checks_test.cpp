@@ -162,7 +162,7 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
         {kRender + kOut + " --stats-json /proc/tessera/stats.json",
          "--stats-json /proc/tessera/stats.json: cannot create the directory /proc/tessera", 1},
         {kRender + kOut + " --stats-json /dev/null", "--stats-json /dev/null: not a regular file"},
-        {kRender + "--out $D/", "--out $D/: is a directory; name the file, e.g. $D/image.exr"},
+        {kRender + "--out $D/", "--out $D/: ends in '/'; name the file, e.g. $D/image.exr"},
         {kRender + "--out $D/sub", "--out $D/sub: is a directory; name the file, e.g. $D/sub/image.exr", 2,
          mkdir("sub")},
         {kRender + "--out $D/img.EXR", "--out $D/img.EXR: must end in .exr (lower case)"},

@@ -57,6 +57,18 @@ TEST_F(RenderCli, UnknownBackend) { expect_rejected(kData + "/light.json --backe
 TEST_F(RenderCli, UnknownMethod) { expect_rejected(kData + "/light.json --method magic", "--method"); }
 TEST_F(RenderCli, ZeroSpp) { expect_rejected(kData + "/light.json", "--spp", "--spp 0"); }
 TEST_F(RenderCli, UnknownOption) { expect_rejected(kData + "/light.json --bogus", "--bogus"); }
+// One side given alone scales the other; one scaled beyond the limit is refused before
+// any work (no banner, no backend), naming the option.
+TEST_F(RenderCli, AScaledSideOutOfRangeIsRefusedBeforeAnyWork) {
+    const CliResult r = run_tessera("render " + kData + "/light.json --backend embree --height 16384 --out " +
+                                    (dir_ / "img.exr").string());  // the camera is 64x32
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("tessera: error: --height 16384: at the camera's aspect ratio the --width would be "
+                            "32768 px, above 16384; give --width too"),
+              std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("triangles"), std::string::npos) << r.output;
+}
+
 // A misspelt option gets the closest one the command has, as a misspelt scene key does.
 TEST_F(RenderCli, MisspeltOptionGetsASuggestion) {
     expect_rejected(kData + "/light.json --sppp 4", "--sppp; --sppp: did you mean --spp? (see --help)");
@@ -204,6 +216,10 @@ TEST_F(RenderCli, DefaultOutputIsNamedAfterTheSceneFile) {
     // The copy's meshes are found from its own directory: name them by absolute path.
     for (size_t at = 0; (at = json.find("\"cornell-box.obj\"", at)) != std::string::npos;)
         json.replace(at, 17, "\"" + std::string(TESSERA_SCENES_DIR) + "/cornell-box.obj\""), at += 17;
+    // A name that reads like a path changes nothing: outputs are not made from it.
+    const size_t name = json.find("\"cornell-box\"");
+    ASSERT_NE(name, std::string::npos);
+    json.replace(name, 13, "\"../../Cornell / box\"");
     std::ofstream(dir_ / "mybox.json") << json;
     const CliResult r = run_shell("cd " + dir_.string() + " && " + TESSERA_EXE +
                                   " render mybox.json --spp 1 --width 8 --height 8 --backend embree");
@@ -211,6 +227,8 @@ TEST_F(RenderCli, DefaultOutputIsNamedAfterTheSceneFile) {
     EXPECT_TRUE(fs::exists(dir_ / "out" / "mybox.exr")) << r.output;
     EXPECT_TRUE(fs::exists(dir_ / "out" / "mybox.png")) << r.output;
     EXPECT_FALSE(fs::exists(dir_ / "out" / "cornell-box.exr")) << r.output;
+    EXPECT_NE(r.output.find("tessera: ../../Cornell / box, 32 triangles"), std::string::npos) << r.output;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 2) << "mybox.json and out/ only";
 }
 
 TEST(InfoCli, ListsEffectsOfTheDefaultScene) {

@@ -107,6 +107,35 @@ TEST_F(FatalSignalCleanup, OneSignalEndsACommandWithoutItsTemporaries) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 0);
 }
 
+// A signal during a commit (SignalsHeld) waits for it: the process ends after the files
+// landed, not between them.
+TEST_F(FatalSignalCleanup, ASignalDuringAHoldEndsTheProcessAfterIt) {
+    const std::string style = GTEST_FLAG_GET(death_test_style);
+    GTEST_FLAG_SET(death_test_style, "fast");
+    EXPECT_EXIT(
+        {
+            ::signal(SIGTERM, SIG_DFL);
+            const TemporariesRemovedOnSignal on_signal;
+            CommitGroup maps;
+            std::ofstream(maps.add(dir_ / "a.png")) << "a";
+            std::ofstream(maps.add(dir_ / "b.png")) << "b";
+            {
+                const SignalsHeld whole;
+                ::raise(SIGTERM);  // held
+                maps.commit();
+                std::ofstream(dir_ / "after-commit") << "still running";
+            }
+            std::ofstream(dir_ / "after-hold") << "must not be written";
+            std::_Exit(0);
+        },
+        ::testing::KilledBySignal(SIGTERM), "");
+    GTEST_FLAG_SET(death_test_style, style);
+    EXPECT_TRUE(fs::exists(dir_ / "a.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "b.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "after-commit"));
+    EXPECT_FALSE(fs::exists(dir_ / "after-hold"));
+}
+
 // A signal ignored on entry (nohup, a background job) stays ignored, and the old
 // handler is back at the scope's end.
 TEST_F(FatalSignalCleanup, ASignalIgnoredOnEntryStaysIgnored) {
