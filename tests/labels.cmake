@@ -9,7 +9,7 @@
 # Run the tessera executable.
 set(tessera_cli_tests "^([A-Za-z]+/)?[A-Za-z]+Cli\\.")
 # Run the bench/ scripts.
-set(tessera_bench_tests "^(AccuracyReport|AccuracySweep|AisBound|Flicker)\\.")
+set(tessera_bench_tests "^(AccuracyReport|AccuracySweep|AisBound|Flicker|BoxDownsample)\\.")
 # Render many samples and compare statistics: hard cases, analytic and furnace tests,
 # chi-square and moment tests of the sampling routines, backend agreement, error orders.
 set(tessera_statistical_tests

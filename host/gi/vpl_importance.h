@@ -96,7 +96,7 @@ struct ViewVisibility {
 /// `e_vpls`: E_j sums over the first e_vpls VPLs only (all by default). E_j only weighs
 /// the points, so any estimate of it keeps the selection unbiased; the instant cache's M
 /// path subsets take it from the first subset's candidates, at 1/M of the sum's cost
-/// (docs/instant-caching.md §2b).
+/// (docs/instant-caching.md §2).
 ///
 /// `visibility` (with rays S > 0): each surface VPL's Φ_i times the fraction of S shadow
 /// rays that reach it from view points drawn in proportion to its terms c_ij·w_j

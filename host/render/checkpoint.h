@@ -5,13 +5,15 @@
 // seed, pixel and pass, kernels/shared/rng.h): restoring the Accumulator bit for bit and
 // adding passes N, N+1, ... in order gives the same double sums as never stopping.
 //
-// File format, version 3. All integers and doubles are little-endian (the host's own
+// File format, version 4. All integers and doubles are little-endian (the host's own
 // byte order; big-endian hosts are rejected at compile time). Strings are a u32 byte
 // count followed by the bytes (no terminator).
 //
 //   char[8]  magic "TSCKPT01"
-//   u32      format version (3; 2, still read, lacks K and the method's sums; 1 also
-//            lacked the method's settings)
+//   u32      format version (4; 3 has the same layout, but an igi-family run (igi,
+//            ais, ais-max, ic, tic) refuses 2 and 3, whose passes differ; 2, still read
+//            for pt and direct, lacks K and the method's sums; 1 also lacked the
+//            method's settings and is refused)
 //   u32      floats per pixel and pass (TS_PASS_FLOATS, 10)
 //   i32      width, i32 height
 //   u32      passes done (N: passes 0..N-1 are in the sums)

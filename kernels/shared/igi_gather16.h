@@ -7,7 +7,7 @@
  * packet, traced as one packet and gathered per lane. A lane takes part in the light
  * links if its mask has TS_COMPONENT_SS, in the VPL links if it has TS_COMPONENT_ID: the
  * links ts_igi_link (shared/igi.h) gives it, in the same order, so its sums equal
- * ts_igi_surface_set's bit for bit (tests/backend/packets_test.cpp,
+ * ts_igi_surface_set's bit for bit (tests/backend/embree_packets_test.cpp,
  * tests/backend/opencl_packets_test.cpp).
  *
  * Besides the tracer interface of shared/direct.h, the tracer provides a 16-ray packet

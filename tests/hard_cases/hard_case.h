@@ -29,7 +29,8 @@ struct HardCaseMethod {
     bool media;  ///< the method renders participating media (else it ignores them)
     /// Media through VPLs and ray lights (the igi family): a phase function peaked near
     /// |g| = 1 puts the light it scatters into a few links' spikes, which they cannot carry
-    /// (docs/igi.md §6: a scattering furnace renders 0.64-0.79 of its radiance at g = ±0.999).
+    /// (docs/igi.md §6: 0.59-0.63 of pt's radiance in the foggy Cornell box at g = ±0.999; a
+    /// scattering furnace renders 0.64-0.79 of its radiance there, extreme_values_test.cpp).
     /// There the suite asks only the energy bound; at moderate g the furnace value.
     bool peaked_phase_limit = false;
 };
