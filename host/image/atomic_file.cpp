@@ -284,6 +284,14 @@ void CommitGroup::commit() {
         e.on_signal = {};  // its name is gone: nothing for a signal to remove
         sync_directory(e.target);
     }
+    // The old files' second names are not needed once all landed: removed now, not in
+    // the destructor, which a signal held through the commit (SignalsHeld) never reaches.
+    std::error_code ec;
+    for (Entry& e : entries_)
+        if (!e.backup.empty()) {
+            fs::remove(e.backup, ec);
+            e.backup.clear();
+        }
 }
 
 void CommitGroup::roll_back() {

@@ -2,6 +2,7 @@
 
 #include <signal.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -85,6 +86,38 @@ RemovedOnFatalSignal& RemovedOnFatalSignal::operator=(RemovedOnFatalSignal&& oth
     return *this;
 }
 
+namespace {
+
+// Stops a child tool's process group as a terminal's Ctrl-C would, SIGINT, so that it can
+// clean up (Python removes its temporary directories); whatever of it is left after
+// kToolGraceNanoseconds, or ignores SIGINT, is killed. The leader is reaped. Only
+// async-signal-safe calls (kill, waitpid, nanosleep).
+constexpr long kToolGraceNanoseconds = 2'000'000'000;
+constexpr long kToolPollNanoseconds = 10'000'000;
+
+void stop_group(pid_t group) {
+    ::kill(-group, SIGINT);
+    int status = 0;
+    bool ended = false;
+    for (long waited = 0; !ended && waited < kToolGraceNanoseconds; waited += kToolPollNanoseconds) {
+        const pid_t r = ::waitpid(group, &status, WNOHANG);
+        if (r == group || (r < 0 && errno != EINTR)) {
+            ended = true;  // reaped (or not ours to wait for)
+        } else {
+            timespec t{0, kToolPollNanoseconds};
+            ::nanosleep(&t, nullptr);
+        }
+    }
+    ::kill(-group, SIGKILL);  // what is left of the group (Octave under Python)
+    if (!ended) {
+        ::kill(group, SIGKILL);  // a leader that left its group
+        while (::waitpid(group, &status, 0) < 0 && errno == EINTR) {
+        }
+    }
+}
+
+}  // namespace
+
 KilledOnFatalSignal::KilledOnFatalSignal(pid_t group) : group_(group) { g_child_group = group; }
 
 KilledOnFatalSignal::~KilledOnFatalSignal() {
@@ -95,12 +128,7 @@ KilledOnFatalSignal::~KilledOnFatalSignal() {
 void remove_registered_temporaries() noexcept {
     // A tool's whole group first (a tool that runs Octave has children of its own), and
     // reaped, so that none of it writes after the files are gone.
-    if (const pid_t group = g_child_group.exchange(0); group > 0) {
-        ::kill(-group, SIGKILL);
-        int status = 0;
-        while (::waitpid(group, &status, 0) < 0 && errno == EINTR) {
-        }
-    }
+    if (const pid_t group = g_child_group.exchange(0); group > 0) stop_group(group);
     // Taking every registration first keeps each path alive while it is used below.
     for (std::atomic<std::uintptr_t>& slot : g_slots) {
         std::uintptr_t path = slot.load();
@@ -124,8 +152,10 @@ void remove_registered_temporaries() noexcept {
 
 namespace {
 
-constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
-struct sigaction g_old_actions[3];
+// SIGQUIT too (Ctrl-\): it ends the process as well, and would leave the tool running.
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+constexpr int kCleanupSignalCount = sizeof kCleanupSignals / sizeof kCleanupSignals[0];
+struct sigaction g_old_actions[kCleanupSignalCount];
 
 // One word for the holds and a signal held meanwhile, (holds << 8) | signal, so that the
 // handler (on any thread) and the end of the last hold agree by compare-and-swap on
@@ -153,7 +183,8 @@ TemporariesRemovedOnSignal::TemporariesRemovedOnSignal() {
     struct sigaction sa {};
     sa.sa_handler = remove_temporaries_and_end;
     sigemptyset(&sa.sa_mask);
-    for (int i = 0; i < 3; ++i) {
+    sa.sa_flags = SA_RESTART;  // a held signal must not fail a commit's system calls
+    for (int i = 0; i < kCleanupSignalCount; ++i) {
         // Read first: a signal ignored on entry is never unignored, not even for a moment.
         sigaction(kCleanupSignals[i], nullptr, &g_old_actions[i]);
         if (g_old_actions[i].sa_handler != SIG_IGN) sigaction(kCleanupSignals[i], &sa, nullptr);
@@ -161,7 +192,7 @@ TemporariesRemovedOnSignal::TemporariesRemovedOnSignal() {
 }
 
 TemporariesRemovedOnSignal::~TemporariesRemovedOnSignal() {
-    for (int i = 0; i < 3; ++i) sigaction(kCleanupSignals[i], &g_old_actions[i], nullptr);
+    for (int i = 0; i < kCleanupSignalCount; ++i) sigaction(kCleanupSignals[i], &g_old_actions[i], nullptr);
 }
 
 SignalsHeld::SignalsHeld() { g_hold_state += 1 << 8; }
@@ -170,7 +201,10 @@ SignalsHeld::~SignalsHeld() {
     for (int state = g_hold_state.load();;) {
         const int left = (state >> 8) - 1, sig = state & 0xff;
         if (left == 0 && sig != 0) {
-            if (g_hold_state.compare_exchange_weak(state, 0)) remove_temporaries_and_raise(sig);
+            if (g_hold_state.compare_exchange_weak(state, 0)) {
+                remove_temporaries_and_raise(sig);
+                return;  // only if the signal is blocked on this thread
+            }
         } else if (g_hold_state.compare_exchange_weak(state, (left << 8) | sig)) {
             return;
         }

@@ -43,19 +43,21 @@ private:
 /// checkpoint; 16,384 words (128 KiB of zero pages) cost nothing until used.
 inline constexpr int kMaxRegisteredTemporaries = 16384;
 
-/// Unlinks every registered temporary, then removes the registered directories that are
-/// empty (innermost first, whatever the order of registration). Async-signal-safe
+/// Stops the registered child tool's group (KilledOnFatalSignal; up to 2 s), unlinks every
+/// registered temporary, then removes the registered directories that are empty
+/// (innermost first, whatever the order of registration). Async-signal-safe
 /// (lock-free compare-and-swaps, unlink, rmdir): for a signal handler about to end the
 /// process. A registration it has taken is not freed; the process is expected to end.
 void remove_registered_temporaries() noexcept;
 
 /// For a command with no clean stop of its own (`tessera compare`): while alive, SIGINT,
-/// SIGTERM and SIGHUP kill the registered child tool (KilledOnFatalSignal), remove the
-/// registered temporaries and then end the process by the signal's default action, so an
-/// interrupted run leaves none of its files behind. A signal ignored on entry (nohup,
-/// `cmd &` in a script) stays ignored; the old handlers are put back at its end. Not for
-/// use inside an InterruptScope (render/interrupt.h), which removes them itself on a
-/// second signal. Not thread-safe: create it on one thread.
+/// SIGTERM, SIGHUP and SIGQUIT stop the registered child tool (KilledOnFatalSignal),
+/// remove the registered temporaries and then end the process by the signal's default
+/// action, so an interrupted run leaves none of its files behind. A signal ignored on
+/// entry (nohup, `cmd &` in a script) stays ignored; the old handlers are put back at its
+/// end. Does not nest. Not for use inside an InterruptScope (render/interrupt.h), which
+/// removes them itself on a second signal. Not thread-safe: create it on one thread.
+/// (Ctrl-Z stops this process, not a tool in its own group: the tool runs on meanwhile.)
 class TemporariesRemovedOnSignal {
 public:
     TemporariesRemovedOnSignal();
@@ -76,10 +78,11 @@ public:
 };
 
 /// Registers a child process that leads its own process group (a metric tool spawned by
-/// `compare`) for the lifetime of the object: remove_registered_temporaries() kills the
-/// group (SIGKILL) and reaps the child before it removes any file, so that the tool does
-/// not write a temporary again after it was removed. One at a time (a later registration
-/// replaces an earlier one).
+/// `compare`) for the lifetime of the object: remove_registered_temporaries() stops the
+/// group before it removes any file (SIGINT, as a terminal's Ctrl-C, so that the tool can
+/// clean up its own temporaries; SIGKILL for what is left after 2 s) and reaps the child,
+/// so that the tool does not write a temporary again after it was removed. One at a time
+/// (a later registration replaces an earlier one).
 class KilledOnFatalSignal {
 public:
     explicit KilledOnFatalSignal(pid_t group);

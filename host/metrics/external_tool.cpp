@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "image/fatal_signal_cleanup.h"
@@ -83,21 +84,27 @@ ToolRun run_tool(const std::vector<std::string>& args) {
     posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
     posix_spawnattr_setpgroup(&attr, 0);
     pid_t pid = 0;
-    const int rc = posix_spawnp(&pid, argv[0], &fa, &attr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    posix_spawnattr_destroy(&attr);
-    if (rc != 0) {
-        r.spawn_error = std::strerror(rc);
-        return r;
+    std::optional<KilledOnFatalSignal> killed_on_signal;
+    {
+        const SignalsHeld registered;  // no signal between the spawn and the registration
+        const int rc = posix_spawnp(&pid, argv[0], &fa, &attr, argv.data(), environ);
+        posix_spawn_file_actions_destroy(&fa);
+        posix_spawnattr_destroy(&attr);
+        if (rc != 0) {
+            r.spawn_error = std::strerror(rc);
+            return r;
+        }
+        killed_on_signal.emplace(pid);
     }
-    const KilledOnFatalSignal killed_on_signal(pid);
     r.started = true;
     int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    pid_t waited = 0;
+    while ((waited = ::waitpid(pid, &status, 0)) < 0 && errno == EINTR) {
     }
     r.out = read_text(out_path);
     r.err = read_text(err_path);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    // A failed wait (SIGCHLD ignored: the child was not ours to wait for) has no status.
+    r.exit_code = waited >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
 }
 

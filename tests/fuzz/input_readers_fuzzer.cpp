@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_scratch_dir.h"
 #include "util/error.h"
 #include "util/input_limits.h"
 
@@ -43,22 +44,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The scratch directory of this process, removed when it exits (a fuzzing run of
-// -max_total_time returns through exit(), which runs static destructors).
-struct ScratchDir {
-    ScratchDir() : dir(fs::temp_directory_path() / ("tessera-fuzz-readers-" + std::to_string(::getpid()))) {
-        fs::create_directories(dir);
-    }
-    ~ScratchDir() {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-    fs::path dir;
-};
-
 const fs::path& input_file() {
-    static const ScratchDir scratch;
-    static const fs::path file = scratch.dir / "input";
+    static const fs::path file = tessera::fuzz::scratch_dir("-readers") / "input";
     return file;
 }
 

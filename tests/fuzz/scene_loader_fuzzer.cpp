@@ -26,6 +26,7 @@
 #include <string_view>
 #include <vector>
 
+#include "fuzz_scratch_dir.h"
 #include "scene/loader.h"
 #include "util/error.h"
 
@@ -33,23 +34,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The scratch directory of this process, removed when it exits (a fuzzing run of
-// -max_total_time returns through exit(), which runs static destructors).
-struct ScratchDir {
-    ScratchDir() : dir(fs::temp_directory_path() / ("tessera-fuzz-" + std::to_string(::getpid()))) {
-        fs::create_directories(dir);
-    }
-    ~ScratchDir() {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-    fs::path dir;
-};
-
-const fs::path& scratch_dir() {
-    static const ScratchDir scratch;
-    return scratch.dir;
-}
+const fs::path& scratch_dir() { return tessera::fuzz::scratch_dir(""); }
 
 void write_file(const fs::path& p, std::string_view bytes) {
     std::ofstream out(p, std::ios::binary | std::ios::trunc);

@@ -33,6 +33,19 @@ protected:
     }
 };
 
+// Death tests in the "fast" style while alive: the child forks from here and writes into
+// this test's scratch directory ("threadsafe" would re-run SetUp in a new process).
+class FastDeathTests {
+public:
+    FastDeathTests() : style_(GTEST_FLAG_GET(death_test_style)) { GTEST_FLAG_SET(death_test_style, "fast"); }
+    ~FastDeathTests() { GTEST_FLAG_SET(death_test_style, style_); }
+    FastDeathTests(const FastDeathTests&) = delete;
+    FastDeathTests& operator=(const FastDeathTests&) = delete;
+
+private:
+    std::string style_;
+};
+
 TEST_F(FatalSignalCleanup, RemovesRegisteredFilesOnlyWhileTheyAreRegistered) {
     const fs::path kept = touch(".kept.tmp.1"), taken = touch(".taken.tmp.2"), moved = touch(".moved.tmp.3");
     { const RemovedOnFatalSignal ended(kept); }
@@ -68,10 +81,8 @@ TEST_F(FatalSignalCleanup, RemovesRegisteredDirectoriesThatAreLeftEmpty) {
 // time ends the process at once. Its temporaries must go with it.
 TEST_F(FatalSignalCleanup, ASecondSignalLeavesNoTemporaryBehind) {
     // SIGTERM, not SIGINT: a test run in the background of a script inherits an ignored
-    // SIGINT, which InterruptScope keeps ignored. A "fast" death test forks, so the child
-    // writes into this test's scratch directory ("threadsafe" would re-run SetUp).
-    const std::string style = GTEST_FLAG_GET(death_test_style);
-    GTEST_FLAG_SET(death_test_style, "fast");
+    // SIGINT, which InterruptScope keeps ignored.
+    const FastDeathTests fast;
     const fs::path out = dir_ / "frames" / "frame.0001.exr";  // the directory is the run's too
     EXPECT_EXIT(
         {
@@ -84,15 +95,13 @@ TEST_F(FatalSignalCleanup, ASecondSignalLeavesNoTemporaryBehind) {
             std::_Exit(0);
         },
         ::testing::KilledBySignal(SIGTERM), "no checkpoint written");
-    GTEST_FLAG_SET(death_test_style, style);
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 0);
 }
 
 // `tessera compare` has no clean stop: one signal ends it, without the maps' temporaries
 // or the directories made for them.
 TEST_F(FatalSignalCleanup, OneSignalEndsACommandWithoutItsTemporaries) {
-    const std::string style = GTEST_FLAG_GET(death_test_style);
-    GTEST_FLAG_SET(death_test_style, "fast");
+    const FastDeathTests fast;
     EXPECT_EXIT(
         {
             ::signal(SIGTERM, SIG_DFL);
@@ -103,19 +112,18 @@ TEST_F(FatalSignalCleanup, OneSignalEndsACommandWithoutItsTemporaries) {
             std::_Exit(0);
         },
         ::testing::KilledBySignal(SIGTERM), "");
-    GTEST_FLAG_SET(death_test_style, style);
     EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 0);
 }
 
 // A signal during a commit (SignalsHeld) waits for it: the process ends after the files
 // landed, not between them.
 TEST_F(FatalSignalCleanup, ASignalDuringAHoldEndsTheProcessAfterIt) {
-    const std::string style = GTEST_FLAG_GET(death_test_style);
-    GTEST_FLAG_SET(death_test_style, "fast");
+    const FastDeathTests fast;
     EXPECT_EXIT(
         {
             ::signal(SIGTERM, SIG_DFL);
             const TemporariesRemovedOnSignal on_signal;
+            std::ofstream(dir_ / "a.png") << "old a";  // replaced: the commit keeps it aside meanwhile
             CommitGroup maps;
             std::ofstream(maps.add(dir_ / "a.png")) << "a";
             std::ofstream(maps.add(dir_ / "b.png")) << "b";
@@ -129,11 +137,11 @@ TEST_F(FatalSignalCleanup, ASignalDuringAHoldEndsTheProcessAfterIt) {
             std::_Exit(0);
         },
         ::testing::KilledBySignal(SIGTERM), "");
-    GTEST_FLAG_SET(death_test_style, style);
-    EXPECT_TRUE(fs::exists(dir_ / "a.png"));
-    EXPECT_TRUE(fs::exists(dir_ / "b.png"));
+    EXPECT_EQ(test::file_bytes(dir_ / "a.png"), "a");
+    EXPECT_EQ(test::file_bytes(dir_ / "b.png"), "b");
     EXPECT_TRUE(fs::exists(dir_ / "after-commit"));
     EXPECT_FALSE(fs::exists(dir_ / "after-hold"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), {}), 3) << "a.png, b.png, after-commit: no backup left";
 }
 
 // A signal ignored on entry (nohup, a background job) stays ignored, and the old

@@ -301,6 +301,34 @@ struct NearCase {
     const char* what;
 };
 
+// The light's contribution at surface s (point p) over kGrid² stratified (u, v): its
+// mean, how many samples were drawn in solid angle (the near branch), the largest sample,
+// and the largest that plain area sampling would have given.
+constexpr int kGrid = 128;
+struct GridEstimate {
+    double mean = 0.0, largest = 0.0, largest_area = 0.0;
+    int drawn = 0;
+    bool finite = true;
+};
+
+GridEstimate grid_estimate(const Light& light, const ts::TsSurface& s, float3 p) {
+    GridEstimate g;
+    double sum = 0.0;
+    for (int i = 0; i < kGrid; ++i)
+        for (int j = 0; j < kGrid; ++j) {
+            const ts::TsLightSample q = light.sample((i + 0.5f) / kGrid, (j + 0.5f) / kGrid);
+            ts::TsRay shadow;
+            const float3 e = ts::ts_light_contribution_from(light.buf.data(), &s, q, &shadow);
+            g.finite = g.finite && std::isfinite(e.x);
+            g.drawn += ts::ts_light_sample_from(light.buf.data(), q, p).inv_pdf_solid_angle > 0.0f;
+            sum += e.x;
+            g.largest = std::max(g.largest, static_cast<double>(e.x));
+            g.largest_area = std::max(g.largest_area, static_cast<double>(ts::ts_light_contribution(&s, q, &shadow).x));
+        }
+    g.mean = sum / (kGrid * kGrid);
+    return g;
+}
+
 // Near the light, the mean contribution over 128² stratified (u, v) equals Lambert's
 // irradiance within 0.5%, and no sample exceeds Le Ω (≤ 2π) (or 2π where the hemisphere
 // is sampled), while area sampling's largest is over 10 times that at the wall:
@@ -327,26 +355,14 @@ TEST(LightSampleFrom, NearALightMatchesLambertAndEachSampleIsBounded) {
         if (std::string(k.what) == "floor at 1 mm") {
             EXPECT_GT(omega, TS_SPHERICAL_SAMPLE_MAX) << "the case meant for hemisphere sampling";
         }
-        constexpr int kGrid = 128;
-        double sum = 0.0, largest = 0.0, largest_area = 0.0;
-        int drawn = 0;
-        for (int i = 0; i < kGrid; ++i)
-            for (int j = 0; j < kGrid; ++j) {
-                const ts::TsLightSample q = light.sample((i + 0.5f) / kGrid, (j + 0.5f) / kGrid);
-                ts::TsRay shadow;
-                const float3 e = ts::ts_light_contribution_from(light.buf.data(), &s, q, &shadow);
-                ASSERT_TRUE(std::isfinite(e.x)) << k.what;
-                drawn += ts::ts_light_sample_from(light.buf.data(), q, k.p).inv_pdf_solid_angle > 0.0f;
-                sum += e.x;
-                largest = std::max(largest, static_cast<double>(e.x));
-                largest_area = std::max(largest_area, static_cast<double>(ts::ts_light_contribution(&s, q, &shadow).x));
-            }
+        const GridEstimate g = grid_estimate(light, s, k.p);
         const double want = lambert_irradiance(k.p, k.n, corners);
-        EXPECT_EQ(drawn, kGrid * kGrid) << k.what;
-        EXPECT_NEAR(sum / (kGrid * kGrid), want, 5e-3 * want) << k.what;
-        EXPECT_LE(largest, bound) << k.what;
+        EXPECT_TRUE(g.finite) << k.what;
+        EXPECT_EQ(g.drawn, kGrid * kGrid) << k.what;
+        EXPECT_NEAR(g.mean, want, 5e-3 * want) << k.what;
+        EXPECT_LE(g.largest, bound) << k.what;
         if (k.n.x != 0.0f) {
-            EXPECT_GT(largest_area, 10 * bound) << k.what << ": area sampling there has no bound";
+            EXPECT_GT(g.largest_area, 10 * bound) << k.what << ": area sampling there has no bound";
         }
     }
 }
@@ -374,22 +390,11 @@ TEST(LightSampleFrom, SliversSeenEdgeOnMatchLambert) {
                               {near_short, ts::make_float3(0, 0, 1), "wall 1e-4 below, 0.02 beside a short edge"},
                               {near_short, up, "floor 1e-4 below, 0.02 beside a short edge"}};
     for (const NearCase& k : cases) {
-        const ts::TsSurface s = surface(k.p, k.n);
-        constexpr int kGrid = 128;
-        double sum = 0.0;
-        int drawn = 0;
-        for (int i = 0; i < kGrid; ++i)
-            for (int j = 0; j < kGrid; ++j) {
-                const ts::TsLightSample q = light.sample((i + 0.5f) / kGrid, (j + 0.5f) / kGrid);
-                ts::TsRay shadow;
-                const float3 e = ts::ts_light_contribution_from(light.buf.data(), &s, q, &shadow);
-                ASSERT_TRUE(std::isfinite(e.x)) << k.what;
-                drawn += ts::ts_light_sample_from(light.buf.data(), q, k.p).inv_pdf_solid_angle > 0.0f;
-                sum += e.x;
-            }
+        const GridEstimate g = grid_estimate(light, surface(k.p, k.n), k.p);
         const double want = lambert_irradiance(k.p, k.n, corners);
-        EXPECT_EQ(drawn, kGrid * kGrid) << k.what << ": not all drawn in solid angle";
-        EXPECT_NEAR(sum / (kGrid * kGrid), want, 1e-3 * want) << k.what;
+        EXPECT_TRUE(g.finite) << k.what;
+        EXPECT_EQ(g.drawn, kGrid * kGrid) << k.what << ": not all drawn in solid angle";
+        EXPECT_NEAR(g.mean, want, 1e-3 * want) << k.what;
     }
 }
 
