@@ -73,7 +73,9 @@ public:
     CliWindowHost(ViewSession& session, ViewLoop& loop, const ViewArgs& a) : session_(session), loop_(loop), args_(a) {}
     int width() const override { return session_.width(); }
     int height() const override { return session_.height(); }
-    std::string title() const override { return "Tessera: " + args_.scene; }
+    std::string title() const override {
+        return "Tessera: " + (args_.scene.empty() ? default_scene_path().string() : args_.scene);
+    }
     void input(const InputEvent& e) override { guard([&] { session_.handle(e); }); }
     void frame(double dt) override { guard([&] { loop_.step(dt); }); }
     bool done() const override { return error_ || loop_.done(); }
@@ -328,7 +330,8 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("scene", args->scene, "Scene file (.json); default " + default_scene_path().string());
     cmd->add_option("--backend", args->backend, "opencl or embree")->capture_default_str();
     cmd->add_option("--device", args->device, "OpenCL device: index or name substring (see `tessera devices`)");
-    cmd->add_option("--method", args->method, "Starting method: " + method_names() + " (M/N switch)")
+    cmd->add_option("--method", args->method, "Starting method: " + method_names() +
+                                                  " (M/N switch); default igi, the lightest to move in (render's is ais)")
         ->capture_default_str();
     cmd->add_option("--components", args->components, "igi/ais: starting components (1/2/3/4 toggle)")
         ->capture_default_str();

@@ -1,4 +1,5 @@
-// ViewSession's heads-up display lines (docs/viewer.md §3).
+// ViewSession's heads-up display lines (docs/viewer.md §3). Parts of a line are separated
+// by " | ", where the window breaks a line that does not fit.
 #include "view/view_session.h"
 
 #include <cstdio>
@@ -19,9 +20,9 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
     const double rate = per_pass > 0 && last_.total > 0 ? per_pass / last_.total * 1e-6 : 0.0;
     const char* unit = counts_rays ? "Mrays/s" : "Msamples/s";
     if (last_rendered_)
-        std::snprintf(buf, sizeof buf, "%.1f fps, pass %.1f ms, %.2f %s", fps, ms, rate, unit);
+        std::snprintf(buf, sizeof buf, "%.1f fps | pass %.1f ms | %.2f %s", fps, ms, rate, unit);
     else  // nothing rendered: the window's rate says nothing about the renderer
-        std::snprintf(buf, sizeof buf, "idle (%s), last pass %.1f ms, %.2f %s",
+        std::snprintf(buf, sizeof buf, "idle (%s) | last pass %.1f ms | %.2f %s",
                       paused_ ? "paused" : "all passes accumulated", ms, rate, unit);
     lines.push_back(buf);
     if (igi_family(settings_.method)) {
@@ -34,7 +35,7 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
                   options_.backend.kind == BackendKind::OpenCL ? "opencl" : "embree");
     lines.push_back(buf);
     lines.push_back("device: " + backend_->description());
-    std::snprintf(buf, sizeof buf, "passes %u/%u%s%s, %dx%d, frame %d", passes(), settings_.spp,
+    std::snprintf(buf, sizeof buf, "passes %u/%u%s%s | %dx%d | frame %d", passes(), settings_.spp,
                   paused_ ? " (paused)" : "", playing_ ? " (playing)" : "", width_, height_, anim_frame_);
     lines.push_back(buf);
     const uint32_t c = settings_.igi.components;
@@ -47,8 +48,9 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
     lines.push_back(buf);
     if (budget_ && last_budget_.applied) {  // what the last moving frame used
         const BudgetReport& b = last_budget_;
-        std::snprintf(buf, sizeof buf, "budget %.3g fps: scale %.2f (%dx%d), tile %u, %u VPL paths, %u light samples",
-                      options_.target_fps, b.scale, b.width, b.height, b.tile, b.vpl_paths, b.shadow_samples);
+        std::snprintf(buf, sizeof buf, "budget %.3g fps: scale %.2f (%dx%d), tile %u, %u VPL paths, %u light sample%s",
+                      options_.target_fps, b.scale, b.width, b.height, b.tile, b.vpl_paths, b.shadow_samples,
+                      b.shadow_samples == 1 ? "" : "s");
         lines.push_back(buf);
         if (misses_at_cheapest_ >= 3) {
             std::snprintf(buf, sizeof buf, "budget out of reach: %.1f fps at the cheapest choice", 1.0 / last_budget_.seconds);

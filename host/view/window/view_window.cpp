@@ -70,6 +70,30 @@ std::vector<uint8_t> read_window(int w, int h) {
     return flipped;
 }
 
+// The rows a HUD line takes in `width` pixels of text: broken between its " | " parts
+// (ImGui's own wrap also breaks after a '.', which split numbers: "PM 0." / "0 ms"), a
+// part wider than the width alone cut to fit with "...", so that no row wraps.
+std::vector<std::string> hud_rows(const std::string& line, float width) {
+    std::vector<std::string> rows;
+    std::string row;
+    for (size_t at = 0; at <= line.size(); at += 3) {
+        const size_t bar = std::min(line.find(" | ", at), line.size());
+        std::string part = line.substr(at, bar - at);
+        while (part.size() > 1 && ImGui::CalcTextSize((part + "...").c_str()).x > width) part.pop_back();
+        if (part.size() < bar - at) part += "...";
+        const std::string longer = row.empty() ? part : row + " | " + part;
+        if (!row.empty() && ImGui::CalcTextSize(longer.c_str()).x > width) {
+            rows.push_back(row);
+            row = part;
+        } else {
+            row = longer;
+        }
+        at = bar;
+    }
+    rows.push_back(row);
+    return rows;
+}
+
 void draw_hud(WindowHost& host, double fps) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.6f);
@@ -77,10 +101,14 @@ void draw_hud(WindowHost& host, double fps) {
                                    ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                                    ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
     if (ImGui::Begin("Tessera", nullptr, flags)) {
-        // Wrap at the window's right margin (TextWrapped would collapse an auto-sized window).
-        ImGui::PushTextWrapPos(ImGui::GetIO().DisplaySize.x - 32);
-        for (const std::string& line : host.hud(fps)) ImGui::TextUnformatted(line.c_str());
-        ImGui::PopTextWrapPos();
+        // Under 400 pixels wide the HUD's 9-12 lines would cover the image: three quarters
+        // of the font's size there.
+        if (ImGui::GetIO().DisplaySize.x < 400) ImGui::SetWindowFontScale(0.75f);
+        // The text's width: the window less the HUD's place (8), its padding (2 x 8) and a
+        // margin (8); the auto-sized HUD grows to its longest row.
+        const float width = ImGui::GetIO().DisplaySize.x - 32;
+        for (const std::string& line : host.hud(fps))
+            for (const std::string& row : hud_rows(line, width)) ImGui::TextUnformatted(row.c_str());
     }
     ImGui::End();
 }
