@@ -63,10 +63,6 @@ void print_progress(uint32_t done, uint32_t total, double elapsed, uint32_t rest
     }
 }
 
-// Timing of this run for the accuracy sweeps (bench/accuracy). A pass is one frame of a
-// progressive method: reaching `spp` passes costs about spp x median_pass_seconds.
-// `tracer` is the backend's description (device and traversal).
-// `ranks`: the MPI ranks that rendered it (1 alone), which divide the passes between them.
 // The settings of the method, by option name without "--" ("tile": 3, "no-filter":
 // false): each parameter the method reads (parameter_applies), as a flag whether the
 // option is in effect, --width and --height as rendered (the camera's where not given).
@@ -76,10 +72,9 @@ nlohmann::json settings_json(const RenderSettings& s, int width, int height) {
         if (!parameter_applies(p, s.method)) continue;
         const std::string key = std::string(p.option).substr(2);
         const double v = parameter_value(p, s);
-        if (std::holds_alternative<bool& (*)(RenderSettings&)>(p.field))
+        if (is_flag(p))
             j[key] = (v != 0) != p.negated;
-        else if (std::holds_alternative<uint32_t& (*)(RenderSettings&)>(p.field) ||
-                 std::holds_alternative<int& (*)(RenderSettings&)>(p.field))
+        else if (is_integer(p))
             j[key] = static_cast<long long>(v);
         else
             j[key] = v;
@@ -89,6 +84,10 @@ nlohmann::json settings_json(const RenderSettings& s, int width, int height) {
     return j;
 }
 
+// Timing of this run for the accuracy sweeps (bench/accuracy). A pass is one frame of a
+// progressive method: reaching `spp` passes costs about spp x median_pass_seconds.
+// `tracer` is the backend's description (device and traversal).
+// `ranks`: the MPI ranks that rendered it (1 alone), which divide the passes between them.
 void write_stats_json(const fs::path& path, const RenderArgs& a, const RenderSettings& s, const RenderStats& stats,
                       const std::string& tracer, int ranks, int width, int height) {
     const nlohmann::json j = {

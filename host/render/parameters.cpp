@@ -102,13 +102,6 @@ const Parameter kParameters[] = {
 
 #undef TS_SETTING
 
-bool is_flag(const Parameter& p) { return std::holds_alternative<bool& (*)(RenderSettings&)>(p.field); }
-
-bool is_integer(const Parameter& p) {
-    return std::holds_alternative<uint32_t& (*)(RenderSettings&)>(p.field) ||
-           std::holds_alternative<int& (*)(RenderSettings&)>(p.field);
-}
-
 // Shortest text that reads back as the same value ("0.05" for 0.05f, not 0.0500000007).
 template <class T>
 std::string shortest(T v) {
@@ -138,6 +131,13 @@ std::string value_text(const Parameter& p, const RenderSettings& s) {
 }
 
 }  // namespace
+
+bool is_flag(const Parameter& p) { return std::holds_alternative<bool& (*)(RenderSettings&)>(p.field); }
+
+bool is_integer(const Parameter& p) {
+    return std::holds_alternative<uint32_t& (*)(RenderSettings&)>(p.field) ||
+           std::holds_alternative<int& (*)(RenderSettings&)>(p.field);
+}
 
 std::span<const Parameter> render_parameters() { return kParameters; }
 

@@ -51,6 +51,12 @@ struct Parameter {
 /// Every parameter, in the order of `tessera render --help` and README's table.
 std::span<const Parameter> render_parameters();
 
+/// Whether p's field is a bool (a flag: the option takes no value).
+bool is_flag(const Parameter& p);
+
+/// Whether p's field is an integer (uint32_t or int).
+bool is_integer(const Parameter& p);
+
 /// Whether `method` reads p (p.scope).
 bool parameter_applies(const Parameter& p, Method method);
 

@@ -35,7 +35,6 @@ void set_value(const Parameter& p, RenderSettings& s, double v) {
     }, p.field);
 }
 
-bool is_flag(const Parameter& p) { return std::holds_alternative<bool& (*)(RenderSettings&)>(p.field); }
 bool is_real(const Parameter& p) {
     return std::holds_alternative<float& (*)(RenderSettings&)>(p.field) ||
            std::holds_alternative<double& (*)(RenderSettings&)>(p.field);
