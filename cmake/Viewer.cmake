@@ -1,7 +1,7 @@
 # The interactive viewer's window (`tessera view` without --headless): a module,
 # libtessera_view_window.so beside the tessera executable, built from
 # host/view/window/view_window.cpp with GLFW, OpenGL and Dear ImGui (Debian's
-# libglfw3-dev, libgl-dev, libimgui-dev). `tessera view` loads it with dlopen, so no other
+# libglfw3-dev, libgl-dev, libimgui-dev), and Xlib (libx11-dev) for its X error handlers. `tessera view` loads it with dlopen, so no other
 # command needs these libraries at run time. TESSERA_VIEWER: AUTO builds it when all are
 # found (else a message says why not, and `tessera view` without --headless explains it
 # at run time), ON requires them, OFF never builds it.
@@ -13,6 +13,7 @@ if(NOT TESSERA_VIEWER STREQUAL "OFF")
   find_package(PkgConfig QUIET)
   if(PkgConfig_FOUND)
     pkg_check_modules(GLFW3 QUIET IMPORTED_TARGET glfw3)
+    pkg_check_modules(X11 QUIET IMPORTED_TARGET x11)
   endif()
   set(OpenGL_GL_PREFERENCE GLVND)
   find_package(OpenGL QUIET)
@@ -24,6 +25,9 @@ if(NOT TESSERA_VIEWER STREQUAL "OFF")
             PATHS /usr/share/doc/libimgui-dev/examples/backends NO_DEFAULT_PATH)
   if(NOT GLFW3_FOUND)
     list(APPEND tessera_viewer_missing "GLFW (libglfw3-dev)")
+  endif()
+  if(NOT X11_FOUND)
+    list(APPEND tessera_viewer_missing "Xlib (libx11-dev)")
   endif()
   if(NOT OpenGL_FOUND)
     list(APPEND tessera_viewer_missing "OpenGL (libgl-dev)")
@@ -43,7 +47,8 @@ elseif(tessera_viewer_missing)
   message(STATUS "Viewer window: not built (not found: ${tessera_viewer_missing_text}); "
                  "`tessera view --headless` still works")
 else()
-  set(tessera_viewer_sources ${CMAKE_SOURCE_DIR}/host/view/window/view_window.cpp)
+  set(tessera_viewer_sources ${CMAKE_SOURCE_DIR}/host/view/window/view_window.cpp
+                             ${CMAKE_SOURCE_DIR}/host/view/window/x11_errors.cpp)
   if(IMGUI_BACKEND_SOURCES)
     list(APPEND tessera_viewer_sources ${IMGUI_BACKEND_SOURCES}/imgui_impl_glfw.cpp
                                        ${IMGUI_BACKEND_SOURCES}/imgui_impl_opengl3.cpp)
@@ -59,7 +64,7 @@ else()
     set_source_files_properties(${IMGUI_BACKEND_SOURCES}/imgui_impl_glfw.cpp
                                 ${IMGUI_BACKEND_SOURCES}/imgui_impl_opengl3.cpp PROPERTIES COMPILE_OPTIONS "-w")
   endif()
-  target_link_libraries(tessera_view_window PRIVATE PkgConfig::GLFW3 OpenGL::GL ${IMGUI_LIBRARY})
+  target_link_libraries(tessera_view_window PRIVATE PkgConfig::GLFW3 PkgConfig::X11 OpenGL::GL ${IMGUI_LIBRARY})
   add_dependencies(tessera tessera_view_window)
   target_compile_definitions(tessera_core PRIVATE TESSERA_VIEW_WINDOW=1)
   set(TESSERA_VIEWER_BUILT ON)

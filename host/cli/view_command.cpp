@@ -147,12 +147,17 @@ WindowModule load_window_module() {
     return m;
 }
 
-void run_window(const WindowModule& module, ViewSession& session, ViewLoop& loop, const ViewArgs& a) {
+// Runs the window's frame loop. Returns "" when it ended as asked (Esc, the window
+// closed), or why the display went away mid-run (the run's frames are then still written
+// before the error); throws when no window could be opened.
+std::string run_window(const WindowModule& module, ViewSession& session, ViewLoop& loop, const ViewArgs& a) {
     CliWindowHost host(session, loop, a);
     char error[512] = {0};
     const int rc = module.run(&host, error, sizeof error);
     host.rethrow();
+    if (rc == kWindowLostDisplay) return error;
     if (rc != 0) no_window(error);
+    return "";
 }
 
 // The scene's name as a file name in bench/results/accuracy ("" when it cannot be one:
@@ -204,6 +209,20 @@ int frame_image_count(const LoopOptions& lo) {
     return !lo.path.empty()                     ? static_cast<int>(lo.path.size())
            : (lo.headless && !lo.script.empty()) ? lo.script.back().frame + 1
                                                  : 1;
+}
+
+// The end of the line for a run cut short (a signal, a lost display): what it wrote
+// for the frames it rendered, "; written: times (t.json), frame images (dir)", or ""
+// when it was asked for none of them.
+std::string outputs_written(const ViewArgs& a) {
+    std::string text;
+    auto add = [&](const std::string& what, const std::string& path) {
+        text += (text.empty() ? "; written: " : ", ") + what + " (" + path + ")";
+    };
+    if (!a.times.empty()) add("times", a.times);
+    if (a.record) add("recorded path", a.camera_path);
+    if (!a.frame_images.empty()) add("frame images", a.frame_images);
+    return text;
 }
 
 void run_view(const ViewArgs& a, const CLI::App& cmd) {
@@ -306,19 +325,22 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     if (session.stacked_emitters() > 0)
         std::fprintf(stderr, "tessera view: note: %s\n", stacked_emitters_text(session.stacked_emitters()).c_str());
     ViewLoop loop(session, lo);
+    std::string lost_display;
     if (a.headless) {
         while (!loop.done()) loop.step(0.0);
     } else {
         for (const std::string& line : ViewSession::key_help()) std::fprintf(stderr, "  %s\n", line.c_str());
-        run_window(window, session, loop, a);
+        lost_display = run_window(window, session, loop, a);
     }
     {
         const InterruptDeferral writing;  // --times and --record are written whole
         loop.finish(scene.name);
     }
+    if (!lost_display.empty())
+        throw RuntimeError(lost_display + " after " + std::to_string(loop.frame()) + " viewer frames" +
+                           outputs_written(a));
     if (interrupt_signal())
-        throw Interrupted("interrupted after " + std::to_string(loop.frame()) +
-                          " viewer frames; their times, recorded path and frame images are written");
+        throw Interrupted("interrupted after " + std::to_string(loop.frame()) + " viewer frames" + outputs_written(a));
 }
 
 }  // namespace

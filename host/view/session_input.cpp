@@ -52,7 +52,12 @@ void ViewSession::handle(const InputEvent& e) {
         case '[': exposure_ = std::max(exposure_ - kExposureStep, float(-limits::kExposureStops)); break;
         case ']': exposure_ = std::min(exposure_ + kExposureStep, float(limits::kExposureStops)); break;
         case ' ': paused_ = !paused_; break;
-        case 'T': playing_ = !playing_ && options_.last_frame > options_.first_frame; break;
+        case 'T':
+            playing_ = !playing_ && options_.last_frame > options_.first_frame;
+            if (options_.last_frame <= options_.first_frame)  // else the key would do nothing, silently
+                std::fprintf(stderr, "tessera view: T plays an animation's frames: start the viewer with --frames "
+                                     "FIRST:LAST (this run shows frame %d only)\n", options_.first_frame);
+            break;
         case 'H': hud_visible_ = !hud_visible_; break;
         case kKeyEscape: quit_ = true; break;
         default: break;

@@ -102,9 +102,13 @@ void ViewLoop::finish(const std::string& scene_name) const {
     const unsigned passes = session_.passes();
     std::string reference;
     if (error >= 0) reference = ", relMSE vs reference " + std::to_string(error);
-    std::fprintf(stderr, "tessera view: %zu frames, %d moving: %.1f ms per moving frame (%.1f fps), %u %s at the end%s\n",
-                 times_.size(), moving, moving_ms, moving_ms > 0 ? 1e3 / moving_ms : 0.0, passes,
-                 passes == 1 ? "pass" : "passes", reference.c_str());
+    char rate[96] = "none moving";  // a view never moved has no moving-frame rate
+    if (moving)
+        std::snprintf(rate, sizeof rate, "%d moving: %.1f ms per moving frame (%.1f fps)", moving, moving_ms,
+                      1e3 / moving_ms);
+    std::fprintf(stderr, "tessera view: %zu %s, %s, %u %s at the end%s\n", times_.size(),
+                 times_.size() == 1 ? "frame" : "frames", rate, passes, passes == 1 ? "pass" : "passes",
+                 reference.c_str());
 }
 
 }  // namespace tessera::view

@@ -213,7 +213,8 @@ FrameReport ViewSession::advance(double dt) {
     if (playing_)
         anim_frame_ = anim_frame_ >= options_.last_frame ? options_.first_frame : anim_frame_ + 1;
     if (anim_frame_ != acc_anim_frame_) build_backend();
-    const bool moved = dirty_ || !acc_ || camera_differs(camera_, acc_camera_);
+    const bool first = !acc_;  // the run's first frame starts the accumulation; it is not a move
+    const bool moved = dirty_ || first || camera_differs(camera_, acc_camera_);
     const auto frame_start = std::chrono::steady_clock::now();  // the budget's time: set-up and pass
     if (moved) {
         acc_budgeted_ = budget_ != nullptr;
@@ -224,7 +225,7 @@ FrameReport ViewSession::advance(double dt) {
         acc_budgeted_ = false;
         restart();
     }
-    report.moving = moved;
+    report.moving = moved && !first;
     last_rendered_ = false;
     if (acc_->passes() < settings_.spp) {
         const auto t0 = std::chrono::steady_clock::now();

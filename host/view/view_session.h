@@ -77,7 +77,11 @@ struct BudgetReport {
 /// What advance() did this frame.
 struct FrameReport {
     bool rendered = false;   ///< a pass was rendered (false: paused or all spp accumulated)
-    bool moving = false;     ///< the accumulation was restarted this frame (camera, animation or switch)
+    /// The accumulation was restarted this frame by a change (camera, animation or a
+    /// switch). False on the run's first frame, which starts it: rendered as a moving
+    /// frame is (--target-fps budgets it), but left out of the moving-frame rate, as it
+    /// pays first-use costs (bench/interactive leaves it out likewise).
+    bool moving = false;
     uint32_t passes = 0;     ///< passes in the accumulation after this frame
     StageTimes stages;
     BudgetReport budget;

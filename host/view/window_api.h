@@ -14,7 +14,10 @@
 namespace tessera::view {
 
 /// Bumped whenever WindowHost changes; the module and the executable must agree.
-constexpr int kWindowAbiVersion = 1;
+constexpr int kWindowAbiVersion = 2;
+
+/// tessera_view_window_run's code for a display lost mid-run.
+constexpr int kWindowLostDisplay = 2;
 
 /// What the window asks of the program: the frame loop, the image and the HUD.
 class WindowHost {
@@ -50,7 +53,9 @@ int tessera_view_window_abi();
 /// before the program loads the scene. Returns 0, or non-zero with the reason in `error`.
 int tessera_view_window_probe(char* error, size_t error_size);
 /// Opens the window and runs host's frame loop until host->done() or the window is
-/// closed. Returns 0, or non-zero with a one-line reason in `error` (no display, no
-/// OpenGL context).
+/// closed (or destroyed from outside). Returns 0; kWindowLostDisplay with the reason in
+/// `error` when the X server's connection was lost mid-run (the frames so far stand); or
+/// another non-zero code with a one-line reason in `error` (no display, no OpenGL
+/// context).
 int tessera_view_window_run(tessera::view::WindowHost* host, char* error, size_t error_size);
 }

@@ -14,6 +14,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <stb_image.h>
 #include <nlohmann/json.hpp>
 
 #include "image/image_io.h"
@@ -129,7 +130,9 @@ TEST_F(ViewCli, HeadlessFlyThroughWritesTimesAndImages) {
     std::ifstream in(dir_ / "times.json");
     const nlohmann::json j = nlohmann::json::parse(in);
     ASSERT_EQ(j["frames"].size(), 5u);
-    EXPECT_EQ(j["moving_frames"].get<int>(), 2);
+    // Frame 0 starts the accumulation (not a move); frame 1 moves.
+    EXPECT_EQ(j["moving_frames"].get<int>(), 1);
+    EXPECT_FALSE(j["frames"][0]["moving"].get<bool>());
     for (int i = 0; i < 5; ++i) {
         EXPECT_GT(j["frames"][i]["ms"].get<double>(), 0.0);
         // Frame 1's 1 cm step keeps frame 0's view points (ViewPointHistory): frame 2, the
@@ -137,8 +140,30 @@ TEST_F(ViewCli, HeadlessFlyThroughWritesTimesAndImages) {
         EXPECT_EQ(j["frames"][i]["passes"].get<int>(), i < 3 ? 1 : i - 1);
         EXPECT_TRUE(fs::exists(tessera::frame_output_path(dir_ / "frames/frame.exr", i)));
     }
-    EXPECT_NE(r.output.find("5 frames, 2 moving"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("5 frames, 1 moving"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("was recorded on scene"), std::string::npos) << r.output;  // the path names none
+}
+
+// A view never moved has no moving-frame rate: the closing line says so (it counted
+// frame 0, the run's start, as a move: "4 frames, 1 moving").
+TEST_F(ViewCli, AStillRunHasNoMovingFrames) {
+    const fs::path script = write("still.json", R"({"events": [{"frame": 3, "quit": true}]})");
+    const CliResult r = run_tessera("view --headless --backend embree --width 16 --height 16 --input-script " +
+                                    script.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("tessera view: 3 frames, none moving, 3 passes at the end"), std::string::npos) << r.output;
+}
+
+// T plays --frames; without them it did nothing, silently.
+TEST_F(ViewCli, TWithoutFramesSaysWhatItNeeds) {
+    const fs::path script = write("t.json", R"({"events": [{"frame": 1, "tap": "t"}, {"frame": 2, "quit": true}]})");
+    const CliResult r = run_tessera("view --headless --backend embree --width 16 --height 16 --input-script " +
+                                    script.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("T plays an animation's frames: start the viewer with --frames FIRST:LAST (this run "
+                            "shows frame 0 only)"),
+              std::string::npos)
+        << r.output;
 }
 
 // A path that names the scene it was recorded on: a note when replayed on another one.
@@ -366,15 +391,17 @@ TEST_F(ViewWindowCli, FlyThroughGivesTheHeadlessImages) {
 }
 
 // Real key events through the X server: W moves, C prints the camera, P takes a
-// screenshot, Escape quits. The screenshot must equal a render of the printed camera with
-// the pass count the viewer reports (however many passes the machine managed).
+// screenshot, Escape quits; Alt+M is the desktop's, not the viewer's (M switches igi to
+// ais). The screenshot must equal an igi render of the printed camera with the pass count
+// the viewer reports (however many passes the machine managed).
 TEST_F(ViewWindowCli, XdotoolKeysMoveAndScreenshot) {
     if (tessera::test::shell_status("command -v xdotool >/dev/null") != 0) GTEST_SKIP() << "no xdotool";
     const std::string view = std::string(TESSERA_EXE) + " view --backend embree --width 32 --height 32 --spp 6 --seed 3" +
                              " --screenshot " + (dir_ / "key.exr").string();
     const std::string keys =
         "id=$(xdotool search --sync --onlyvisible --name 'Tessera') && xdotool windowfocus --sync $id && "
-        "xdotool keydown w && sleep 0.3 && xdotool keyup w && sleep 1 && xdotool key c && xdotool key p && "
+        "xdotool keydown w && sleep 0.3 && xdotool keyup w && sleep 1 && xdotool key alt+m && xdotool key c && "
+        "xdotool key p && "
         "sleep 0.5 && xdotool key Escape";
     const std::string script = write("keys.sh", "#!/bin/sh\n" + view + " &\npid=$!\n(" + keys + ")\nwait $pid\n").string();
     const CliResult r = run_shell("timeout 120 " + with_xvfb("sh " + script));
@@ -393,6 +420,81 @@ TEST_F(ViewWindowCli, XdotoolKeysMoveAndScreenshot) {
                                          passes[1].str() + " --out " + (dir_ / "render.exr").string());
     ASSERT_EQ(render.exit_code, 0) << render.output;
     expect_same_image(dir_ / "key.0000.exr", dir_ / "render.exr");
+}
+
+// A window viewer run steered from a shell script under its own Xvfb (XVFB_PID is the
+// server's): `steps` runs once the window is up, with $id the window and $pid the viewer.
+class ViewWindowScript : public ViewWindowCli {
+protected:
+    void SetUp() override {
+        ViewWindowCli::SetUp();
+        if (tessera::test::shell_status("command -v xdotool >/dev/null") != 0) GTEST_SKIP() << "no xdotool";
+    }
+    CliResult run_steered(const std::string& view_args, const std::string& steps) {
+        const std::string view = std::string(TESSERA_EXE) + " view --backend embree --width 32 --height 32 --spp 2 " +
+                                 view_args + " --times " + (dir_ / "times.json").string();
+        const std::string script =
+            write("steer.sh", "#!/bin/sh\n" + view + " &\npid=$!\nid=$(xdotool search --sync --onlyvisible --name "
+                              "'Tessera') && xdotool windowfocus --sync $id && " + steps + "\nwait $pid\n")
+                .string();
+        return run_shell("timeout 120 " + with_xvfb("sh " + script));
+    }
+    size_t frames_in_times() {
+        std::ifstream in(dir_ / "times.json");
+        return in ? nlohmann::json::parse(in)["frames"].size() : 0;
+    }
+};
+
+// A window resized from outside (it is made not resizable, but a window manager or a
+// client can resize it anyway) shows the image at its aspect, centred between black
+// bars: the 32x32 image in a 96x48 window is 48x48 at columns 24..71 (it was stretched
+// over all 96). The window is read back at frame 150, some 5 s of the converged view's
+// 30 frames a second, long after the resize.
+TEST_F(ViewWindowScript, AResizedWindowKeepsTheImageAspect) {
+    const fs::path shot = dir_ / "window.png";
+    const CliResult r = run_steered("--screenshot-window " + shot.string() + " --screenshot-window-frame 150",
+                                    "xdotool windowsize --sync $id 96 48 && xdotool key h && "
+                                    "while [ ! -s " + shot.string() + " ]; do sleep 0.2; done && xdotool key Escape");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    int w = 0, h = 0, comp = 0;
+    unsigned char* rgba = stbi_load(shot.c_str(), &w, &h, &comp, 4);
+    ASSERT_NE(rgba, nullptr) << stbi_failure_reason();
+    std::vector<int> lit(w, 0);  // pixels other than black, per column
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) lit[x] += rgba[4 * (y * w + x)] + rgba[4 * (y * w + x) + 1] + rgba[4 * (y * w + x) + 2] > 0;
+    stbi_image_free(rgba);
+    ASSERT_EQ(w, 96);
+    ASSERT_EQ(h, 48);
+    for (int x = 0; x < w; ++x) {
+        if (x < 24 || x >= 72)
+            EXPECT_EQ(lit[x], 0) << "column " << x << " is outside the image";
+        else
+            EXPECT_GT(lit[x], h / 2) << "column " << x << " is inside the image";
+    }
+}
+
+// A window destroyed from outside ends the run as closing it does (Xlib's default
+// handler exited 1 with BadWindow, writing no --times and no closing line).
+TEST_F(ViewWindowScript, ADestroyedWindowEndsTheRunAsClosed) {
+    const CliResult r = run_steered("", "sleep 1 && xdotool windowclose $id");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("the window was destroyed (X error: BadWindow"), std::string::npos) << r.output;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m, std::regex("tessera view: ([0-9]+) frames"))) << r.output;
+    EXPECT_EQ(frames_in_times(), std::stoul(m[1])) << r.output;
+}
+
+// A lost X server ends the run with one error line, the frames' --times written.
+TEST_F(ViewWindowScript, ALostDisplayEndsTheRunWritingItsFrames) {
+    const CliResult r = run_steered("", "sleep 1 && kill $XVFB_PID");
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.output, m,
+                                  std::regex("tessera: error: lost the connection to the X server after ([0-9]+) "
+                                             "viewer frames; written: times \\(")))
+        << r.output;
+    EXPECT_GT(std::stoul(m[1]), 0u);
+    EXPECT_EQ(frames_in_times(), std::stoul(m[1])) << r.output;
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <GLFW/glfw3.h>
 
 #include <algorithm>
+#include <cmath>
+#include <csetjmp>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -14,10 +16,12 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include "view/window/x11_errors.h"
 #include "view/window_api.h"
 
 using tessera::view::InputEvent;
 using tessera::view::WindowHost;
+namespace x11 = tessera::view::x11;
 
 namespace {
 
@@ -35,10 +39,13 @@ void on_glfw_error(int, const char* description) {
 }
 
 // GLFW's codes of printable keys are their upper-case ASCII codes, and GLFW_KEY_ESCAPE is
-// 256 like kKeyEscape; other keys (arrows, function keys) are not bound.
-void on_key(GLFWwindow* w, int key, int, int action, int) {
+// 256 like kKeyEscape; other keys (arrows, function keys) are not bound. A press with
+// Ctrl, Alt or Super is the desktop's or a terminal's shortcut, not ours (Alt+M switched
+// the method); releases always pass, so a held key never sticks.
+void on_key(GLFWwindow* w, int key, int, int action, int mods) {
     if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
     if (action == GLFW_REPEAT || !(key == GLFW_KEY_ESCAPE || (key >= 32 && key < 128))) return;
+    if (action == GLFW_PRESS && (mods & (GLFW_MOD_CONTROL | GLFW_MOD_ALT | GLFW_MOD_SUPER))) return;
     const InputEvent::Kind kind = action == GLFW_PRESS ? InputEvent::Kind::Press : InputEvent::Kind::Release;
     state_of(w)->host->input({kind, key});
 }
@@ -113,9 +120,72 @@ void draw_hud(WindowHost& host, double fps) {
     ImGui::End();
 }
 
+// Where the image goes in a window of `display` pixels: as large as fits at its own
+// aspect, centred on whole pixels, black bars elsewhere. The window is made at the
+// image's size and is not resizable, but a window manager or a client (`xdotool
+// windowsize`) can resize it anyway, which stretched the image.
+ImVec4 image_rect(ImVec2 display, int w, int h) {
+    const float scale = std::min(display.x / float(w), display.y / float(h));
+    const float iw = std::round(w * scale), ih = std::round(h * scale);
+    const float x = std::floor(0.5f * (display.x - iw)), y = std::floor(0.5f * (display.y - ih));
+    return {x, y, x + iw, y + ih};
+}
+
 int fail(char* error, size_t size, const std::string& message) {
     std::snprintf(error, size, "%s", message.c_str());
     return 1;
+}
+
+// The frame loop: events, the host's frame, the image and the HUD, until the host is
+// done, the window is closed, or an X error says the window is gone. An X I/O error
+// longjmps out of it (x11_errors.h), so no local here may have a destructor.
+void frame_loop(GLFWwindow* window, WindowHost* host, GLuint texture, std::jmp_buf* lost_display) {
+    // The HUD's rate: 1 / an exponential average of the frame interval (weight 0.3 for the
+    // newest), from the second frame on (the first interval includes the window's set-up).
+    double last = glfwGetTime(), mean_dt = 0.0;
+    int frame = 0;
+    while (!glfwWindowShouldClose(window) && !host->done()) {
+        x11::watch_errors(lost_display);
+        if (x11::window_gone()) break;
+        if (host->idle())
+            glfwWaitEventsTimeout(1.0 / 30.0);  // converged or paused: no busy loop
+        else
+            glfwPollEvents();
+        const double now = glfwGetTime(), dt = now - last;
+        last = now;
+        if (frame == 1) mean_dt = dt;
+        else if (frame > 1) mean_dt = 0.7 * mean_dt + 0.3 * dt;
+        const double fps = mean_dt > 0 ? 1.0 / mean_dt : 0.0;
+        host->frame(dt);
+        if (host->done()) break;
+        const std::vector<uint8_t>& pixels = host->pixels();
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, host->width(), host->height(), GL_RGBA, GL_UNSIGNED_BYTE,
+                        pixels.data());
+
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        const ImVec2 size = ImGui::GetIO().DisplaySize;
+        const ImVec4 at = image_rect(size, host->width(), host->height());
+        ImGui::GetBackgroundDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture)),
+                                                 ImVec2(at.x, at.y), ImVec2(at.z, at.w));
+        if (host->hud_visible()) draw_hud(*host, fps);
+        ImGui::Render();
+        int fw = 0, fh = 0;
+        glfwGetFramebufferSize(window, &fw, &fh);
+        glViewport(0, 0, fw, fh);
+        glClearColor(0, 0, 0, 1);
+        glClear(GL_COLOR_BUFFER_BIT);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (frame == host->capture_frame()) {
+            glFinish();
+            host->window_captured(read_window(fw, fh), fw, fh);
+        }
+        glfwSwapBuffers(window);
+        ++frame;
+    }
 }
 
 }  // namespace
@@ -170,49 +240,24 @@ extern "C" int tessera_view_window_run(WindowHost* host, char* error, size_t err
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, host->width(), host->height(), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
 
-    // The HUD's rate: 1 / an exponential average of the frame interval (weight 0.3 for the
-    // newest), from the second frame on (the first interval includes the window's set-up).
-    double last = glfwGetTime(), mean_dt = 0.0;
-    int frame = 0;
-    while (!glfwWindowShouldClose(window) && !host->done()) {
-        if (host->idle())
-            glfwWaitEventsTimeout(1.0 / 30.0);  // converged or paused: no busy loop
-        else
-            glfwPollEvents();
-        const double now = glfwGetTime(), dt = now - last;
-        last = now;
-        if (frame == 1) mean_dt = dt;
-        else if (frame > 1) mean_dt = 0.7 * mean_dt + 0.3 * dt;
-        const double fps = mean_dt > 0 ? 1.0 / mean_dt : 0.0;
-        host->frame(dt);
-        if (host->done()) break;
-        const std::vector<uint8_t>& pixels = host->pixels();
-        glBindTexture(GL_TEXTURE_2D, texture);
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, host->width(), host->height(), GL_RGBA, GL_UNSIGNED_BYTE,
-                        pixels.data());
-
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        const ImVec2 size = ImGui::GetIO().DisplaySize;
-        ImGui::GetBackgroundDrawList()->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(texture)),
-                                                 ImVec2(0, 0), size);
-        if (host->hud_visible()) draw_hud(*host, fps);
-        ImGui::Render();
-        int fw = 0, fh = 0;
-        glfwGetFramebufferSize(window, &fw, &fh);
-        glViewport(0, 0, fw, fh);
-        glClearColor(0, 0, 0, 1);
-        glClear(GL_COLOR_BUFFER_BIT);
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        if (frame == host->capture_frame()) {
-            glFinish();
-            host->window_captured(read_window(fw, fh), fw, fh);
-        }
-        glfwSwapBuffers(window);
-        ++frame;
+    // A lost X server jumps back here (x11_errors.h): nothing of X or OpenGL is touched
+    // after it, not even to clean up, and the program ends its run without the window.
+    std::jmp_buf lost_display;
+    if (setjmp(lost_display)) {
+        x11::unwatch_errors();
+        fail(error, error_size, "lost the connection to the X server");
+        return tessera::view::kWindowLostDisplay;
     }
+    frame_loop(window, host, texture, &lost_display);
+    if (x11::window_gone()) {
+        // Destroyed from outside: its OpenGL context and GLFW's state would raise more X
+        // errors on the way down, so they are left to the process's exit.
+        x11::unwatch_errors();
+        std::fprintf(stderr, "tessera view: the window was destroyed (X error: %s); ending the run as if closed\n",
+                     x11::first_error());
+        return 0;
+    }
+    x11::unwatch_errors();
     glDeleteTextures(1, &texture);
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
