@@ -384,7 +384,7 @@ void add_view_command(CLI::App& app) {
         ->capture_default_str()
         ->check(finite_number_in("--min-scale", 0, 1, true));
     cmd->add_option("--pareto", args->pareto, "Accuracy sweep CSV for --target-fps (default bench/results/accuracy/<scene>.csv)");
-    cmd->add_option("--speed", args->speed, "Movement speed, scene units per second (default: a quarter of the scene diagonal)")
+    cmd->add_option("--speed", args->speed, "Movement speed, scene units per second (default: a tenth of the scene diagonal)")
         ->check(finite_number_in("--speed", 0, kMaxSpeed, true));
     cmd->add_option("--data-dir", args->data_dir, "Directory searched for scene data (before $TESSERA_DATA)");
     cmd->callback([args, cmd] { run_view(*args, *cmd); });

@@ -56,6 +56,6 @@ std::string camera_json(const Camera& c) {
     return buf;
 }
 
-float default_speed(const Scene& scene) { return 0.25f * (scene.positions.empty() ? 1.0f : scene.diagonal()); }
+float default_speed(const Scene& scene) { return 0.1f * (scene.positions.empty() ? 1.0f : scene.diagonal()); }
 
 }  // namespace tessera::view
