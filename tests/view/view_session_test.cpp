@@ -168,6 +168,19 @@ TEST(ViewSession, MethodAndComponentSwitchesRestartWithTheNewSettings) {
     expect_equal_images(session.accumulation(), still(scene, scene.camera, o.settings, 2));
 }
 
+// On a scene without a medium, PM alone would render black: the last of SS and ID stays
+// on there (render refuses `--components pm` on it likewise).
+TEST(ViewSession, PmAloneIsRefusedWithoutAMedium) {
+    const Scene scene = cornell();
+    ViewSession session(scene, options(Method::Igi, 1));
+    session.handle({InputEvent::Kind::Press, '1'});  // SS off
+    session.handle({InputEvent::Kind::Press, '2'});  // ID off: refused
+    session.advance(0);
+    ViewOptions o = options(Method::Igi, 1);
+    o.settings.igi.components = TS_COMPONENT_ID | TS_COMPONENT_PM | TS_COMPONENT_EDGE;
+    expect_equal_images(session.accumulation(), still(scene, scene.camera, o.settings, 1));
+}
+
 TEST(ViewSession, BudgetedMovingFramesThenFullSettingsAtRest) {
     const Scene scene = cornell();
     ViewOptions o = options(Method::Igi, 2);
