@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -55,6 +56,13 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     EXPECT_TRUE(doc["rows"][0]["cvvdp_jod"].is_null());
     const auto& rows = doc["rows"];
     ASSERT_EQ(rows.size(), 2u * (4 + 2)) << "2 backends x (4 pt + 2 direct settings)";
+    // Provenance: one run, what it measured, where and under what load.
+    ASSERT_EQ(doc["runs"].size(), 1u) << doc["runs"].dump();
+    EXPECT_EQ(doc["runs"][0]["methods"], nlohmann::json::array({"pt", "direct"}));
+    EXPECT_EQ(doc["runs"][0]["backends"], nlohmann::json::array({"opencl", "embree"}));
+    EXPECT_EQ(doc["runs"][0]["date"], doc["date"]);
+    EXPECT_GT(doc["runs"][0]["cores"].get<int>(), 0);
+    EXPECT_EQ(doc["runs"][0]["load_average_1min"].size(), 2u);
 
     // CSV: header plus one line per row, same relMSE values as the JSON.
     std::ifstream cf(out / "cornell-box.csv");
@@ -113,6 +121,9 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
         EXPECT_TRUE(fs::exists(out / "cornell-box.png"));
     }
     EXPECT_NE(md.str().find("## Table 2b"), std::string::npos);
+    // pt and direct only: none of Table 2b's pairs, said in one line rather than an empty section.
+    EXPECT_NE(md.str().find("None of its pairs (ais vs igi"), std::string::npos) << md.str();
+    EXPECT_NE(md.str().find("Measured in one run:"), std::string::npos) << md.str();
     EXPECT_NE(md.str().find("## Table 3b: ColorVideoVDP"), std::string::npos);
     EXPECT_NE(md.str().find("Not measured: cannot run /nonexistent/python3"), std::string::npos) << md.str();
 
@@ -134,9 +145,49 @@ TEST_F(AccuracySweep, TinyCornellSweepParsesAndPtErrorFalls) {
     EXPECT_EQ(pt_rows, 8u) << "pt kept from the first sweep";
     EXPECT_EQ(direct_rows, 2u) << "direct replaced by the new sweep";
     EXPECT_TRUE(merged["methods"].contains("pt"));
+    // The kept rows' run stays on record beside the new one, narrowed to what it still holds.
+    ASSERT_EQ(merged["runs"].size(), 2u) << merged["runs"].dump();
+    EXPECT_EQ(merged["runs"][0]["methods"], nlohmann::json::array({"direct"}));
+    EXPECT_EQ(merged["runs"][1]["methods"], nlohmann::json::array({"pt"}));
+    EXPECT_EQ(merged["runs"][1]["date"], doc["date"]) << "the first sweep's run";
+    ASSERT_EQ(shell_status("python3 " + src + "/bench/accuracy_report --no-plots --dir " + out.string() + " > " +
+                           log.string() + " 2>&1"),
+              0)
+        << std::ifstream(log).rdbuf();
+    std::stringstream merged_md;
+    merged_md << std::ifstream(out / "report.md").rdbuf();
+    EXPECT_NE(merged_md.str().find("Measured in 2 runs:"), std::string::npos) << merged_md.str();
+    EXPECT_NE(merged_md.str().find("(rows kept by `bench/accuracy --merge`)"), std::string::npos) << merged_md.str();
     // ... and refuses to mix errors measured against another reference.
     EXPECT_NE(shell_status(base + " --reference-spp 64 > " + log.string() + " 2>&1"), 0);
     std::stringstream err;
     err << std::ifstream(log).rdbuf();
     EXPECT_NE(err.str().find("another reference"), std::string::npos) << err.str();
+}
+
+// Mistakes in the command line fail at once, exit status 2, with one line naming the option
+// and value: not inside tessera after the reference has been rendered.
+TEST_F(AccuracySweep, MistakesFailBeforeRendering) {
+    const std::string src = TESSERA_SOURCE_DIR;
+    const fs::path work = dir_ / "work";
+    const std::string base = "python3 " + src + "/bench/accuracy --tessera " + TESSERA_EXE + " --scenes " + src +
+                             "/scenes/cornell-box.json --width 32 --height 32 --out-dir " + (dir_ / "out").string() +
+                             " --work-dir " + work.string() + " ";
+    const std::pair<std::string, std::string> cases[] = {
+        {"--methods pt --grid pt:sp=1,2", "--grid pt:sp=1,2: sp is neither a setting of pt (spp)"},
+        {"--methods pt --grid pt:spp=0,2", "--grid pt:spp=0,2: spp values must be whole numbers of at least 1"},
+        {"--backends cuda", "invalid choice: 'cuda'"},
+        {"--frames 0", "--frames 0: must be at least 1"},
+    };
+    for (const auto& [words, message] : cases) {
+        const auto r = tessera::test::run_shell(base + words);
+        EXPECT_EQ(r.exit_code, 2) << words << "\n" << r.output;
+        EXPECT_NE(r.output.find(message), std::string::npos) << words << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(work)) << words << ": the sweep started (its work directory exists)";
+    }
+    // An option of tessera render that no method sweeps is a valid new axis: the grid passes
+    // its check (made first) and the next mistake is the one reported.
+    const auto ok = tessera::test::run_shell(base + "--methods pt --grid pt:max-depth=1,2 --frames -1");
+    EXPECT_NE(ok.output.find("--frames -1: must be at least 1"), std::string::npos) << ok.output;
+    EXPECT_EQ(ok.output.find("error: --grid"), std::string::npos) << ok.output;
 }
