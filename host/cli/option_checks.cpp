@@ -14,6 +14,7 @@
 #include <set>
 #include <system_error>
 
+#include "device/effect_plan.h"
 #include "image/atomic_file.h"
 #include "image/fatal_signal_cleanup.h"
 #include "util/error.h"
@@ -187,6 +188,20 @@ void check_output_directories(const std::vector<OutputFile>& outputs) {
         ::close(fd);
         ::unlink(probe.c_str());
     }
+}
+
+void check_scene_options(const RenderSettings& s, const std::string& components, const Scene& scene,
+                         const fs::path& scene_path) {
+    if (igi_family(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
+        throw InputError("--march-steps 0: scene " + scene_path.string() +
+                         " has a medium, which --method " + method_name(s.method) +
+                         " ray-marches; give at least 1 step");
+    // Components the scene does not call for are skipped (docs/ais.md); where that leaves
+    // none of the light's, the image would be the emitters alone.
+    if (igi_family(s.method) && !(s.igi.components & (TS_COMPONENT_SS | TS_COMPONENT_ID)) &&
+        !plan_effects(scene).medium)
+        throw InputError("--components " + components + ": scene " + scene_path.string() +
+                         " has no medium, so these compute nothing there; add ss or id");
 }
 
 }  // namespace tessera::cli

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "render/settings.h"
 #include "scene/scene.h"
 
 namespace tessera::cli {
@@ -76,5 +77,12 @@ void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<std
 /// write (image/atomic_file.h), so a run that fails before it writes leaves nothing
 /// behind. RuntimeError naming the output, the directory and the OS reason.
 void check_output_directories(const std::vector<OutputFile>& outputs);
+
+/// Settings that make no sense for this scene, for render and view alike: `--march-steps
+/// 0` on a scene with a medium (the igi family ray-marches it), and `--components`
+/// without SS or ID on a scene without one (the image would be the emitters alone).
+/// InputError naming the option, its value and `scene_path`.
+void check_scene_options(const RenderSettings& s, const std::string& components, const Scene& scene,
+                         const std::filesystem::path& scene_path);
 
 }  // namespace tessera::cli

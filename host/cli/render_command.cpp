@@ -162,21 +162,6 @@ void note_ignored_parameters(const CLI::App& cmd, Method method, const std::stri
                          parameter_scope_text(p), method_text.c_str());
 }
 
-// Settings that make no sense for this scene.
-void check_scene_options(const RenderSettings& s, const std::string& components, const Scene& scene,
-                         const fs::path& scene_path) {
-    if (igi_family(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
-        throw InputError("--march-steps 0: scene " + scene_path.string() +
-                         " has a medium, which --method " + method_name(s.method) +
-                         " ray-marches; give at least 1 step");
-    // Components the scene does not call for are skipped (docs/ais.md); where that leaves
-    // none of the light's, the image would be the emitters alone.
-    if (igi_family(s.method) && !(s.igi.components & (TS_COMPONENT_SS | TS_COMPONENT_ID)) &&
-        !plan_effects(scene).medium)
-        throw InputError("--components " + components + ": scene " + scene_path.string() +
-                         " has no medium, so these compute nothing there; add ss or id");
-}
-
 // The medium's settings on a scene without one: a note, as for a setting the method does
 // not read (the same script may render foggy and clear scenes).
 void note_medium_options(const CLI::App& cmd, const Scene& scene, const fs::path& scene_path, Method method) {

@@ -131,7 +131,7 @@ struct WindowModule {
 
 WindowModule load_window_module() {
     if (!TESSERA_VIEW_WINDOW)
-        no_window("this build has no viewer window (GLFW, OpenGL or Dear ImGui were not found when it was configured)");
+        no_window("this build has no viewer window (GLFW, Xlib, OpenGL or Dear ImGui were not found when it was configured)");
     const fs::path module = fs::read_symlink("/proc/self/exe").parent_path() / "libtessera_view_window.so";
     // The module stays loaded to the end: GLFW and Mesa may have registered exit handlers.
     void* handle = dlopen(module.c_str(), RTLD_NOW | RTLD_LOCAL);
@@ -211,17 +211,18 @@ int frame_image_count(const LoopOptions& lo) {
                                                  : 1;
 }
 
-// The end of the line for a run cut short (a signal, a lost display): what it wrote
-// for the frames it rendered, "; written: times (t.json), frame images (dir)", or ""
-// when it was asked for none of them.
-std::string outputs_written(const ViewArgs& a) {
+// The end of the line for a run cut short (a signal, a lost display) after `frames`
+// frames: what it wrote for them, "; written: times (t.json), frame images (dir)", or ""
+// when it was asked for none of them (--times is written even for none; a path and
+// frame images only for some).
+std::string outputs_written(const ViewArgs& a, int frames) {
     std::string text;
     auto add = [&](const std::string& what, const std::string& path) {
         text += (text.empty() ? "; written: " : ", ") + what + " (" + path + ")";
     };
     if (!a.times.empty()) add("times", a.times);
-    if (a.record) add("recorded path", a.camera_path);
-    if (!a.frame_images.empty()) add("frame images", a.frame_images);
+    if (a.record && frames > 0) add("recorded path", a.camera_path);
+    if (!a.frame_images.empty() && frames > 0) add("frame images", a.frame_images);
     return text;
 }
 
@@ -253,6 +254,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
     const Scene scene = load_scene(scene_path, data);
     (void)render_image_size(o.settings, scene.camera);  // a side scaled out of range fails here, before any work
+    check_scene_options(o.settings, a.components, scene, scene_path);
     print_scene_notes(scene.notes);
     if (!a.frames.empty()) {
         const FrameRange r = parse_frame_range(a.frames, scene);
@@ -338,9 +340,10 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     }
     if (!lost_display.empty())
         throw RuntimeError(lost_display + " after " + std::to_string(loop.frame()) + " viewer frames" +
-                           outputs_written(a));
+                           outputs_written(a, loop.frame()));
     if (interrupt_signal())
-        throw Interrupted("interrupted after " + std::to_string(loop.frame()) + " viewer frames" + outputs_written(a));
+        throw Interrupted("interrupted after " + std::to_string(loop.frame()) + " viewer frames" +
+                          outputs_written(a, loop.frame()));
 }
 
 }  // namespace

@@ -54,9 +54,13 @@ void ViewSession::handle(const InputEvent& e) {
         case ' ': paused_ = !paused_; break;
         case 'T':
             playing_ = !playing_ && options_.last_frame > options_.first_frame;
-            if (options_.last_frame <= options_.first_frame)  // else the key would do nothing, silently
-                std::fprintf(stderr, "tessera view: T plays an animation's frames: start the viewer with --frames "
-                                     "FIRST:LAST (this run shows frame %d only)\n", options_.first_frame);
+            if (options_.last_frame > options_.first_frame) break;
+            if (rest_.animation.animated())  // else the key would do nothing, silently
+                std::fprintf(stderr, "tessera view: T plays the frames of --frames FIRST:LAST (this scene has frames "
+                                     "0..%d; this run shows frame %d only)\n", rest_.animation.frame_count - 1,
+                             options_.first_frame);
+            else
+                std::fprintf(stderr, "tessera view: T plays an animation; this scene has none\n");
             break;
         case 'H': hud_visible_ = !hud_visible_; break;
         case kKeyEscape: quit_ = true; break;

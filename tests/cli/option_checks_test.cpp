@@ -237,6 +237,10 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {view + "--speed inf", "--speed inf: must be a finite number > 0 and <= 1e+12", 2, files},
         {view + "--speed nan", "--speed nan: must be a finite number > 0 and <= 1e+12", 2, files},
         {view + "--screenshot-window-frame -1", "--screenshot-window-frame -1: must be an integer in 0..999999", 2, files},
+        // As render: PM alone on a scene without a medium (the default Cornell box) is black.
+        {view + "--components pm", "--components pm: scene " + std::string(TESSERA_SCENES_DIR) +
+                                       "/cornell-box.json has no medium, so these compute nothing there; add ss or id",
+         2, files},
         {view + "--target-fps 0", "--target-fps 0: must be a finite number > 0 and <= 1000", 2, files},
         {view + "--target-fps nan", "--target-fps nan: must be a finite number > 0 and <= 1000", 2, files},
         {view + "--target-fps inf", "--target-fps inf: must be a finite number > 0 and <= 1000", 2, files},

@@ -154,16 +154,21 @@ TEST_F(ViewCli, AStillRunHasNoMovingFrames) {
     EXPECT_NE(r.output.find("tessera view: 3 frames, none moving, 3 passes at the end"), std::string::npos) << r.output;
 }
 
-// T plays --frames; without them it did nothing, silently.
+// T plays --frames; without them it did nothing, silently. On a static scene it says
+// there is no animation (--frames 0:1 is refused there); on an animated one, which
+// frames --frames may give.
 TEST_F(ViewCli, TWithoutFramesSaysWhatItNeeds) {
     const fs::path script = write("t.json", R"({"events": [{"frame": 1, "tap": "t"}, {"frame": 2, "quit": true}]})");
-    const CliResult r = run_tessera("view --headless --backend embree --width 16 --height 16 --input-script " +
-                                    script.string());
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("T plays an animation's frames: start the viewer with --frames FIRST:LAST (this run "
-                            "shows frame 0 only)"),
+    const std::string view = "view --headless --backend embree --width 16 --height 16 --input-script " + script.string();
+    const CliResult still = run_tessera(view);
+    ASSERT_EQ(still.exit_code, 0) << still.output;
+    EXPECT_NE(still.output.find("T plays an animation; this scene has none"), std::string::npos) << still.output;
+    const CliResult animated = run_tessera(view + " " + (fs::path(kScenes) / "cornell-box-animated.json").string());
+    ASSERT_EQ(animated.exit_code, 0) << animated.output;
+    EXPECT_NE(animated.output.find("T plays the frames of --frames FIRST:LAST (this scene has frames 0.."),
               std::string::npos)
-        << r.output;
+        << animated.output;
+    EXPECT_NE(animated.output.find("this run shows frame 0 only)"), std::string::npos) << animated.output;
 }
 
 // A path that names the scene it was recorded on: a note when replayed on another one.
@@ -485,17 +490,22 @@ TEST_F(ViewWindowScript, ADestroyedWindowEndsTheRunAsClosed) {
     EXPECT_EQ(frames_in_times(), std::stoul(m[1])) << r.output;
 }
 
-// A lost X server ends the run with one error line, the frames' --times written.
+// A lost X connection (the server ended, or a client killed the viewer's:
+// `xdotool windowkill`) ends the run with one error line, the frames' --times written.
 TEST_F(ViewWindowScript, ALostDisplayEndsTheRunWritingItsFrames) {
-    const CliResult r = run_steered("", "sleep 1 && kill $XVFB_PID");
-    EXPECT_EQ(r.exit_code, 1) << r.output;
-    std::smatch m;
-    ASSERT_TRUE(std::regex_search(r.output, m,
-                                  std::regex("tessera: error: lost the connection to the X server after ([0-9]+) "
-                                             "viewer frames; written: times \\(")))
-        << r.output;
-    EXPECT_GT(std::stoul(m[1]), 0u);
-    EXPECT_EQ(frames_in_times(), std::stoul(m[1])) << r.output;
+    for (const char* cut : {"kill $XVFB_PID", "xdotool windowkill $id"}) {
+        SCOPED_TRACE(cut);
+        const CliResult r = run_steered("", std::string("sleep 1 && ") + cut);
+        EXPECT_EQ(r.exit_code, 1) << r.output;
+        std::smatch m;
+        ASSERT_TRUE(std::regex_search(r.output, m,
+                                      std::regex("tessera: error: lost the connection to the X server \\(the server "
+                                                 "ended, or a client killed this one\\) after ([0-9]+) viewer frames; "
+                                                 "written: times \\(")))
+            << r.output;
+        EXPECT_GT(std::stoul(m[1]), 0u);
+        EXPECT_EQ(frames_in_times(), std::stoul(m[1])) << r.output;
+    }
 }
 
 }  // namespace

@@ -68,13 +68,15 @@ void on_scroll(GLFWwindow* w, double, double dy) {
     state_of(w)->host->input({InputEvent::Kind::Scroll, 0, 0.0f, static_cast<float>(dy)});
 }
 
-std::vector<uint8_t> read_window(int w, int h) {
-    std::vector<uint8_t> rows(size_t(w) * h * 4), flipped(rows.size());
+// Reads the window's w x h pixels into `rgba` (RGBA, row 0 at the top), in place: no
+// buffer of the frame loop's own, which an X I/O error's longjmp could leave unfreed.
+void read_window(int w, int h, std::vector<uint8_t>& rgba) {
+    rgba.resize(size_t(w) * h * 4);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rows.data());
-    for (int y = 0; y < h; ++y)  // OpenGL's row 0 is the bottom
-        std::memcpy(&flipped[size_t(y) * w * 4], &rows[size_t(h - 1 - y) * w * 4], size_t(w) * 4);
-    return flipped;
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    for (int y = 0; y < h / 2; ++y)  // OpenGL's row 0 is the bottom
+        std::swap_ranges(rgba.begin() + size_t(y) * w * 4, rgba.begin() + size_t(y + 1) * w * 4,
+                         rgba.begin() + size_t(h - 1 - y) * w * 4);
 }
 
 // The rows a HUD line takes in `width` pixels of text: broken between its " | " parts
@@ -137,16 +139,19 @@ int fail(char* error, size_t size, const std::string& message) {
 }
 
 // The frame loop: events, the host's frame, the image and the HUD, until the host is
-// done, the window is closed, or an X error says the window is gone. An X I/O error
-// longjmps out of it (x11_errors.h), so no local here may have a destructor.
-void frame_loop(GLFWwindow* window, WindowHost* host, GLuint texture, std::jmp_buf* lost_display) {
+// done, the window is closed, or the window is gone (x11_errors.h). An X I/O error
+// longjmps out of it from any call that reaches X (GLFW's, ImGui's GLFW backend's, or
+// OpenGL's through Mesa), so no C++ object with a destructor is alive across them here:
+// the capture buffer is the caller's.
+void frame_loop(GLFWwindow* window, WindowHost* host, GLuint texture, std::jmp_buf* lost_display,
+                std::vector<uint8_t>& capture) {
     // The HUD's rate: 1 / an exponential average of the frame interval (weight 0.3 for the
     // newest), from the second frame on (the first interval includes the window's set-up).
     double last = glfwGetTime(), mean_dt = 0.0;
     int frame = 0;
     while (!glfwWindowShouldClose(window) && !host->done()) {
         x11::watch_errors(lost_display);
-        if (x11::window_gone()) break;
+        if (x11::window_gone(window)) break;
         if (host->idle())
             glfwWaitEventsTimeout(1.0 / 30.0);  // converged or paused: no busy loop
         else
@@ -156,6 +161,13 @@ void frame_loop(GLFWwindow* window, WindowHost* host, GLuint texture, std::jmp_b
         if (frame == 1) mean_dt = dt;
         else if (frame > 1) mean_dt = 0.7 * mean_dt + 0.3 * dt;
         const double fps = mean_dt > 0 ? 1.0 / mean_dt : 0.0;
+        // The window's sizes, before the host's frame: round trips that meet a window
+        // destroyed since, which must end the loop before their unfilled sizes are used.
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        int fw = 0, fh = 0;
+        glfwGetFramebufferSize(window, &fw, &fh);
+        if (x11::window_gone(window)) break;
         host->frame(dt);
         if (host->done()) break;
         const std::vector<uint8_t>& pixels = host->pixels();
@@ -164,8 +176,6 @@ void frame_loop(GLFWwindow* window, WindowHost* host, GLuint texture, std::jmp_b
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, host->width(), host->height(), GL_RGBA, GL_UNSIGNED_BYTE,
                         pixels.data());
 
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
         const ImVec2 size = ImGui::GetIO().DisplaySize;
         const ImVec4 at = image_rect(size, host->width(), host->height());
@@ -173,15 +183,14 @@ void frame_loop(GLFWwindow* window, WindowHost* host, GLuint texture, std::jmp_b
                                                  ImVec2(at.x, at.y), ImVec2(at.z, at.w));
         if (host->hud_visible()) draw_hud(*host, fps);
         ImGui::Render();
-        int fw = 0, fh = 0;
-        glfwGetFramebufferSize(window, &fw, &fh);
         glViewport(0, 0, fw, fh);
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (frame == host->capture_frame()) {
             glFinish();
-            host->window_captured(read_window(fw, fh), fw, fh);
+            read_window(fw, fh, capture);
+            host->window_captured(capture, fw, fh);
         }
         glfwSwapBuffers(window);
         ++frame;
@@ -240,29 +249,31 @@ extern "C" int tessera_view_window_run(WindowHost* host, char* error, size_t err
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, host->width(), host->height(), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
 
-    // A lost X server jumps back here (x11_errors.h): nothing of X or OpenGL is touched
-    // after it, not even to clean up, and the program ends its run without the window.
+    // A lost X connection jumps back here (x11_errors.h), from the frame loop or the
+    // clean-up below: nothing of X or OpenGL is touched after it, not even to clean up,
+    // and the program ends its run without the window.
+    std::vector<uint8_t> capture;
     std::jmp_buf lost_display;
     if (setjmp(lost_display)) {
         x11::unwatch_errors();
-        fail(error, error_size, "lost the connection to the X server");
+        fail(error, error_size, "lost the connection to the X server (the server ended, or a client killed this one)");
         return tessera::view::kWindowLostDisplay;
     }
-    frame_loop(window, host, texture, &lost_display);
-    if (x11::window_gone()) {
+    frame_loop(window, host, texture, &lost_display, capture);
+    if (x11::window_gone(window)) {
         // Destroyed from outside: its OpenGL context and GLFW's state would raise more X
         // errors on the way down, so they are left to the process's exit.
         x11::unwatch_errors();
         std::fprintf(stderr, "tessera view: the window was destroyed (X error: %s); ending the run as if closed\n",
-                     x11::first_error());
+                     x11::gone_error());
         return 0;
     }
-    x11::unwatch_errors();
     glDeleteTextures(1, &texture);
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
     glfwDestroyWindow(window);
     glfwTerminate();
+    x11::unwatch_errors();  // only now: the server may end during the clean-up too
     return 0;
 }

@@ -1,29 +1,39 @@
 #include "view/window/x11_errors.h"
 
 #include <cstdio>
+#include <cstring>
 
 #include <X11/Xlib.h>
+
+// GLFW's X11 accessors (glfw3native.h declares them, but with GLFW_EXPOSE_NATIVE_X11 it
+// also includes Xrandr's header, a package the viewer needs nothing else from).
+extern "C" Display* glfwGetX11Display(void);
+extern "C" Window glfwGetX11Window(GLFWwindow* window);
 
 namespace tessera::view::x11 {
 namespace {
 
 // Set from Xlib's callbacks, read by the frame loop on the same thread.
-bool g_gone = false;
-char g_first[160] = "";
+bool g_pending = false, g_gone = false;
+int g_ignored = 0;
+char g_last[192] = "", g_gone_error[192] = "";
 std::jmp_buf* g_lost_display = nullptr;
 bool g_saved = false;
 XErrorHandler g_previous = nullptr;
 XIOErrorHandler g_previous_io = nullptr;
 
-// A protocol error: recorded, never fatal here. The handler may not send requests, and
-// XGetErrorText only reads Xlib's error database.
+// A protocol error: recorded for the frame loop, never fatal here. The handler may not
+// send requests; XGetErrorText and XGetErrorDatabaseText only read Xlib's database (an
+// extension's request has no name there and keeps its number).
 int on_error(Display* display, XErrorEvent* e) {
-    if (!g_gone) {
-        char text[96] = "";
+    if (!g_pending) {
+        char text[96] = "", number[16] = "", request[64] = "";
         XGetErrorText(display, e->error_code, text, sizeof text);
-        std::snprintf(g_first, sizeof g_first, "%s, request %d", text, int(e->request_code));
+        std::snprintf(number, sizeof number, "%d", int(e->request_code));
+        XGetErrorDatabaseText(display, "XRequest", number, number, request, sizeof request);
+        std::snprintf(g_last, sizeof g_last, "%s, request %s", text, request);
     }
-    g_gone = true;
+    g_pending = true;
     return 0;
 }
 
@@ -51,8 +61,22 @@ void unwatch_errors() {
     g_saved = false;
 }
 
-bool window_gone() { return g_gone; }
+bool window_gone(GLFWwindow* window) {
+    if (g_gone || !g_pending) return g_gone;
+    char error[sizeof g_last];
+    std::memcpy(error, g_last, sizeof error);
+    g_pending = false;
+    XWindowAttributes attributes;  // a round trip: its own error, if any, arrives before it returns
+    if (XGetWindowAttributes(glfwGetX11Display(), glfwGetX11Window(window), &attributes) != 0 && !g_pending) {
+        if (g_ignored < 3) std::fprintf(stderr, "tessera view: X error ignored (the window is still there): %s\n", error);
+        ++g_ignored;
+        return false;
+    }
+    std::memcpy(g_gone_error, error, sizeof error);
+    g_gone = true;
+    return true;
+}
 
-const char* first_error() { return g_first; }
+const char* gone_error() { return g_gone_error; }
 
 }  // namespace tessera::view::x11
