@@ -56,7 +56,9 @@ const Parameter kParameters[] = {
      .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene's extent (its bounds' diagonal, specks left out); 0 disables", .scope = ParameterScope::IgiFamily},
     {.option = "--clamp-decay", .value_name = "A", .field = TS_SETTING(igi.clamp_decay), .min = 0, .max = 1,
      .doc = "igi: pass p clamps with c·(p+1)^-A, so accumulated passes converge to the unclamped image; 0: fixed", .scope = ParameterScope::IgiFamily},
-    {.option = "--march-steps", .value_name = "N", .field = TS_SETTING(igi.march_steps), .min = 0, .max = kNoMax,
+    // At most 65536, as --vpl-paths: a pass cannot be interrupted, and 2^32 steps took
+    // 25 minutes for one pixel's pass (the march costs ~0.35 us a step on one core).
+    {.option = "--march-steps", .value_name = "N", .field = TS_SETTING(igi.march_steps), .min = 0, .max = 65536,
      .unit = "steps", .doc = "igi: medium ray-march steps per pixel (0: none, an error on a scene with a medium)", .scope = ParameterScope::IgiFamily},
     {.option = "--no-filter", .value_name = "", .field = TS_SETTING(igi.filter), .negated = true,
      .doc = "igi: skip the discontinuity filter", .scope = ParameterScope::IgiFamily},

@@ -97,6 +97,8 @@ TEST_F(ContractCli, BadOptionValuesAreRejectedBeforeAnyWork) {
         {kRender.substr(0, kRender.size() - 8) + "--spp ''" + kOut, "--spp '': must be an integer in 1..1000000"},
         {kRender.substr(0, kRender.size() - 8) + "--spp 2.5" + kOut, "--spp 2.5: must be an integer in 1..1000000"},
         {kRender + "--seed -1" + kOut, "--seed -1: must be in 0..4294967295"},
+        // A pass cannot be interrupted: 2^32 steps took 25 minutes for one pixel.
+        {kRender + "--method igi --march-steps 65537" + kOut, "--march-steps 65537: must be in 0..65536"},
         {kRender + "--seed 4294967296" + kOut, "--seed 4294967296: must be in 0..4294967295"},
         {kRender + "--clamp inf" + kOut, "--clamp inf: must be a finite number in [0, 1]"},
         {kRender + "--ic-error nan" + kOut, "--ic-error nan: must be a finite number in [0.001, 2]"},
