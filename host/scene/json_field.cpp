@@ -118,6 +118,7 @@ float JsonField::number() const {
     const double d = value_->get<double>();
     const float f = static_cast<float>(d);
     if (!std::isfinite(d) || !std::isfinite(f)) fail("number is not finite (or overflows a float, |x| > 3.4e38)");
+    if (limits::below_normal_float(d)) fail(std::string("number ") + limits::kBelowNormalFloat);
     return f;
 }
 

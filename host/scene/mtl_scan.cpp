@@ -75,6 +75,8 @@ private:
             fail(l.number, std::string(key) + " value " + in_quotes(token) + " is not a number");
         if (!std::isfinite(d) || !std::isfinite(static_cast<float>(d)))
             fail(l.number, std::string(key) + " value " + in_quotes(token) + " is not finite (or overflows a float)");
+        if (limits::below_normal_float(d))
+            fail(l.number, std::string(key) + " value " + in_quotes(token) + " " + limits::kBelowNormalFloat);
         return d;
     }
 

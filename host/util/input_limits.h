@@ -3,6 +3,8 @@
 // (docs/input-limits.md lists them for users). Each bound is far above any real input of
 // its kind; the reason for each value is beside it.
 #pragma once
+#include <cfloat>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -11,6 +13,16 @@
 #include "util/error.h"
 
 namespace tessera::limits {
+
+/// A number of a scene input that is not 0 but below the smallest normal float (1.2e-38),
+/// or that rounds to 0 as a float: refused. The CPU path runs with Embree's flush-to-zero
+/// and denormals-are-zero modes, and OpenCL devices need not keep subnormals either, so
+/// the backends rendered an emission of 1e-40 as 0 and as 1e-40; no physical scene value
+/// is that small. Readers say "give 0".
+inline bool below_normal_float(double d) { return d != 0.0 && std::fabs(d) < double(FLT_MIN); }
+
+/// The words of that refusal, after the value.
+constexpr const char* kBelowNormalFloat = "is below the smallest normal float, 1.2e-38 (give 0)";
 
 /// Bytes of one JSON file (scene, camera path, input script). The largest shipped scene
 /// file is a few kB and a 10,000-frame camera path about 2 MB; 64 MiB leaves 30x room.
