@@ -56,7 +56,10 @@ TS_INLINE TsIgiMarch ts_igi_march_begin(const TsTracer* tracer, const TsFrame* f
     m.lit = 0u;
     TsHit hit = ts_trace_closest(tracer, m.ray);
     m.t0 = 0.0f;
-    m.t1 = hit.prim != TS_NO_HIT ? hit.t : (med->bounded ? TS_INF : f->igi_march_far);
+    /* A ray that escapes ends at igi_march_far, inside a box too: one far larger than the
+     * scene (1e9 units) put the steps where no light is left (igi 1.5% dark at 64 spp
+     * against the unbounded medium's image, which this makes the same). */
+    m.t1 = hit.prim != TS_NO_HIT ? hit.t : f->igi_march_far;
     m.active = ts_medium_clip(med, m.ray.org, m.ray.dir, &m.t0, &m.t1) && f->igi_steps > 0u;
     m.step = m.active ? (m.t1 - m.t0) / (float)f->igi_steps : 0.0f;
     m.equiangular = f->igi_equiangular != 0u;
