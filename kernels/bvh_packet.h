@@ -168,13 +168,17 @@ static inline int16 ts_packet_triangle_uv(__global const float* tri, const TsRay
     const float16 z = (float16)(0.0f);
     int16 outside = ((U < z) | (V < z) | (W < z)) & ((U > z) | (V > z) | (W > z));
     float16 det = U + V + W;
-    float16 T = U * (p->sz * Az) + V * (p->sz * Bz) + W * (p->sz * Cz);
+    /* t from the triangle's plane, as ts_intersect_triangle. */
+    float3 ng = cross(b - a, c - a);
+    float16 den = ts_pick16((float16)(ng.x), (float16)(ng.y), (float16)(ng.z), p->kx) * p->sx +
+                  ts_pick16((float16)(ng.x), (float16)(ng.y), (float16)(ng.z), p->ky) * p->sy +
+                  ts_pick16((float16)(ng.x), (float16)(ng.y), (float16)(ng.z), p->kz);
+    float16 tt = (ng.x * Ax0 + ng.y * Ay0 + ng.z * Az0) * p->sz / den;
     float16 rcp = 1.0f / det;
-    float16 tt = T * rcp;
     *t = tt;
     *u = V * rcp;
     *v = W * rcp;
-    return ~outside & (det != z) & (tt >= r->tmin) & (tt < r->tmax);
+    return ~outside & (det != z) & (den != z) & (tt >= r->tmin) & (tt < r->tmax);
 }
 
 /* ts_packet_triangle_uv's hit lanes alone (the any-hit test; u and v go unused). */

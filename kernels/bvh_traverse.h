@@ -10,7 +10,7 @@
  * by 1 + 2γ3 (Ize, "Robust BVH Ray Traversal", JCGT 2013) so rounding cannot cull a box
  * the ray grazes. Triangle test: watertight (Woop, Benthin, Wald, "Watertight
  * Ray/Triangle Intersection", JCGT 2013), so rays cannot slip between triangles that
- * share an edge; the double-precision fallback for exactly-zero edge functions is left
+ * share an edge, with the distance from the triangle's plane (ts_intersect_triangle); the double-precision fallback for exactly-zero edge functions is left
  * out (doubles are optional in OpenCL 1.2), which keeps watertightness and only
  * resolves exact-edge ties by a fixed rule.
  */
@@ -77,9 +77,17 @@ static inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float
     if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return 0;
     float det = U + V + W;
     if (det == 0.0f) return 0;
-    float T = U * (w->sz * Az) + V * (w->sz * Bz) + W * (w->sz * Cz);
+    /* t from the triangle's plane, (ng · (p0 − org)) / (ng · dir), as Embree's, not from
+     * Woop's sheared sum U Az + V Bz + W Cz: its terms grow with the triangle, so on a
+     * triangle 1e9 across they cancel to within ulps of 1e9, and a quad 1.5 units behind
+     * a bounce ray's origin gave t = -0, a hit at the origin (tmin inclusive) that ended
+     * the path (pt 11% dark on the OpenCL backend; AHugeTriangleBlocksNoRay). */
+    float3 P0 = vload3(0, tri + TS_BVH_TRI_VERTEX(0));
+    float3 ng = cross(vload3(0, tri + TS_BVH_TRI_VERTEX(1)) - P0, vload3(0, tri + TS_BVH_TRI_VERTEX(2)) - P0);
+    float den = ts_f3_get(ng, w->kx) * w->sx + ts_f3_get(ng, w->ky) * w->sy + ts_f3_get(ng, w->kz);
+    if (den == 0.0f) return 0;
+    float tt = dot(ng, A) * w->sz / den;
     float rcp = 1.0f / det;
-    float tt = T * rcp;
     /* tmin inclusive, as in Embree: a surface exactly at a ray's origin blocks it (an
      * offset origin never lies on its own triangle, see ts_offset_ray_origin). */
     if (!(tt >= tmin && tt < tmax)) return 0;

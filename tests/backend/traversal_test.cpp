@@ -18,13 +18,8 @@ namespace {
 
 constexpr size_t kRays = 100000;
 
-// Rays from uniform points in the scene bounds in uniform directions (8 floats each).
-std::vector<float> random_rays(const Scene& s, uint32_t seed) {
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const auto& p : s.positions) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
+// Rays from uniform points in [lo, hi] in uniform directions (8 floats each).
+std::vector<float> random_rays(glm::vec3 lo, glm::vec3 hi, uint32_t seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     std::normal_distribution<float> g;
@@ -51,19 +46,15 @@ uint32_t prim_of(const std::vector<float>& hits, size_t i) {
 // (Sibenik has overlapping duplicate faces), which each BVH breaks in its own order,
 // unless one of the pair emits and the other does not: the light would then show on one
 // backend only (make_scene_buffers moves such emitters off the surface).
-// Distances agree within 1e-4 relative plus 1e-6 of the scene extent: for a ray that
-// starts on a surface, t is a few ulps of the coordinates, not of t.
-void expect_traversal_agrees(const Scene& scene) {
+// Distances agree within 1e-4 relative plus 1e-6 of the rays' box: for a ray that
+// starts on a surface, t is a few ulps of the coordinates, not of t. The rays start in
+// [lo, hi].
+void expect_traversal_agrees(const Scene& scene, glm::vec3 lo, glm::vec3 hi) {
     SceneBuffers buffers = make_scene_buffers(scene);
     EffectPlan plan = plan_effects(scene);
     auto cl = make_backend({BackendKind::OpenCL, ""}, buffers, plan);
     auto em = make_backend({BackendKind::Embree, ""}, buffers, plan);
-    std::vector<float> rays = random_rays(scene, 42);
-    glm::vec3 lo(INFINITY), hi(-INFINITY);
-    for (const auto& p : scene.positions) {
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
+    std::vector<float> rays = random_rays(lo, hi, 42);
     const float abs_tol = 1e-6f * glm::length(hi - lo);
 
     std::vector<float> hc, he;
@@ -108,9 +99,45 @@ void expect_traversal_agrees(const Scene& scene) {
     EXPECT_LT(blocked, 3 * kRays / 4);
 }
 
+// Rays from points in the scene's bounds.
+void expect_traversal_agrees(const Scene& scene) {
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& p : scene.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    expect_traversal_agrees(scene, lo, hi);
+}
+
 TEST(Traversal, CornellBoxMatchesEmbree) {
     Scene s = load_scene(default_scene_path(), make_data_path(std::nullopt));
     expect_traversal_agrees(s);
+}
+
+// A quad 4e9 across, 1.5 units behind the Cornell box, and rays from inside the box:
+// Woop's sheared distance sum cancelled terms of 1e9 and put t at about 0 on rays that
+// head away from the quad (a hit at the origin: pt 11% dark on OpenCL). It must be
+// missed as Embree misses it, and hit where Embree hits it.
+TEST(Traversal, AHugeTriangleBlocksNoRay) {
+    Scene s = load_scene(default_scene_path(), make_data_path(std::nullopt));
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const auto& p : s.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    const uint32_t m = s.material[0];
+    const float z = hi.z + 1.5f;
+    // Its diagonal, x + y = 2e9, far from the box: near it, which of the two triangles
+    // a ray hits is a tie that each BVH breaks its own way.
+    const glm::vec3 quad[6] = {{-1e9f, -1e9f, z}, {3e9f, -1e9f, z}, {-1e9f, 3e9f, z},
+                               {3e9f, -1e9f, z},  {3e9f, 3e9f, z},  {-1e9f, 3e9f, z}};
+    for (int i = 0; i < 6; ++i) {
+        s.positions.push_back(quad[i]);
+        s.normals.push_back({0, 0, -1});
+        s.uvs.push_back({0, 0});
+        if (i % 3 == 0) s.material.push_back(m);
+    }
+    expect_traversal_agrees(s, lo, hi);
 }
 
 TEST(Traversal, SibenikMatchesEmbree) {
