@@ -168,7 +168,10 @@ static inline int16 ts_packet_triangle_uv(__global const float* tri, const TsRay
     const float16 z = (float16)(0.0f);
     int16 outside = ((U < z) | (V < z) | (W < z)) & ((U > z) | (V > z) | (W > z));
     float16 det = U + V + W;
-    /* t from the triangle's plane, as ts_intersect_triangle. */
+    int16 inside = ~outside & (det != z);
+    /* t from the triangle's plane, as ts_intersect_triangle (a second division: igi and
+     * ais frames 2-4% slower on PoCL, bench/results/huge_triangles.md; an early return
+     * where no lane is inside measured no better). */
     float3 ng = cross(b - a, c - a);
     float16 den = ts_pick16((float16)(ng.x), (float16)(ng.y), (float16)(ng.z), p->kx) * p->sx +
                   ts_pick16((float16)(ng.x), (float16)(ng.y), (float16)(ng.z), p->ky) * p->sy +
@@ -178,7 +181,7 @@ static inline int16 ts_packet_triangle_uv(__global const float* tri, const TsRay
     *t = tt;
     *u = V * rcp;
     *v = W * rcp;
-    return ~outside & (det != z) & (den != z) & (tt >= r->tmin) & (tt < r->tmax);
+    return inside & (den != z) & (tt >= r->tmin) & (tt < r->tmax);
 }
 
 /* ts_packet_triangle_uv's hit lanes alone (the any-hit test; u and v go unused). */
