@@ -89,7 +89,9 @@ static inline int ts_intersect_triangle(const TsWatertight* w, float3 org, float
     float3 ng = cross(vload3(0, tri + TS_BVH_TRI_VERTEX(1)) - P0, vload3(0, tri + TS_BVH_TRI_VERTEX(2)) - P0);
     float den = ts_f3_get(ng, w->kx) * w->sx + ts_f3_get(ng, w->ky) * w->sy + ts_f3_get(ng, w->kz);
     if (den == 0.0f) return 0;
-    float tt = dot(ng, A) * w->sz / den; /* (ng · (p0 − org)) / (ng · dir) */
+    /* (ng · (p0 − org)) / (ng · dir), written as the packet test writes it, term by
+     * term, so both round alike (OpenCLPackets.*EqualsPerRay*). */
+    float tt = (ng.x * A.x + ng.y * A.y + ng.z * A.z) * w->sz / den;
     float rcp = 1.0f / det;
     /* tmin inclusive, as in Embree: a surface exactly at a ray's origin blocks it (an
      * offset origin never lies on its own triangle, see ts_offset_ray_origin). */

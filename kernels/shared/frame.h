@@ -33,10 +33,9 @@ typedef struct TsFrame {
     unsigned int igi_steps;      /* igi: ray-march steps per pixel along the camera ray */
     float igi_g_clamp;           /* igi: bound b on the VPL geometry term (scene units^-2) */
     float igi_rotation[3];       /* igi: per-frame Cranley–Patterson shift of the set samples */
-    float igi_march_far;         /* igi: march limit for rays that escape the geometry, in a
-                                    medium filling space or a box: past it (twice the scene
-                                    diagonal beyond the camera's distance to the origin) no
-                                    geometry can light them */
+    float igi_march_far;         /* igi: march limit for rays that escape a medium filling space:
+                                    past it (twice the scene diagonal beyond the camera's
+                                    distance to the origin) no geometry can light them */
     unsigned int igi_components; /* igi/ais: TS_COMPONENT_* bits of what to compute */
     float ic_error_bound;        /* ic: Ward's a of the interpolation kernel (shared/ic_lookup.h) */
     unsigned int igi_media_vpls; /* igi: 1 = the ray march gathers VPLs too (multiple

@@ -183,22 +183,17 @@ TS_INLINE void ts_light_path_store_vpl(const TsLightPathState* st, float3 positi
 
 /* The ray light of segment `ray` up to the surface at hit_t (+inf: it escapes): its
  * stretch inside the medium, of flux α · inv_paths times the path's weight (docs/igi.md
- * §6). A stretch is cut at 20 mean free paths of the thinnest channel, past which it
- * keeps e^-20 of its light: one without end (a medium filling space) would have no
- * length, and one through a box far larger than the scene (1e9 units) spread its samples
- * where no light is left (igi 13% dark at 64 spp against the unbounded medium's image).
- * Returns 0 where the segment misses the medium. */
+ * §6), cut at the medium's reach (ts_medium_reach): a stretch without end (a medium
+ * filling space) would have no length, and one through a box far larger than the scene
+ * spread its samples where no light is left. Returns 0 where the segment misses the
+ * medium. */
 TS_INLINE int ts_light_path_store_vrl(const TsMedium* med, const TsLightPathState* st, float hit_t, float inv_paths,
                                       float* v) {
     float t0 = 0.0f, t1 = hit_t;
     if (!ts_medium_clip(med, st->ray.org, st->ray.dir, &t0, &t1)) return 0;
     float len = length(st->ray.dir);
-    float stretch = (t1 - t0) * len;
-    float thinnest = fmin(fmin(med->sigma_t.x, med->sigma_t.y), med->sigma_t.z);
-    if (thinnest > 0.0f)
-        stretch = fmin(stretch, 20.0f / thinnest);
-    else if (!isfinite(stretch))
-        return 0;
+    float stretch = fmin((t1 - t0) * len, ts_medium_reach(med));
+    if (!isfinite(stretch)) return 0;
     if (!(stretch > 0.0f)) return 0;
     ts_f3_store(v + TS_VRL_START, st->ray.org + st->ray.dir * t0);
     ts_f3_store(v + TS_VRL_DIR, st->ray.dir / len);

@@ -49,6 +49,16 @@ TS_INLINE int ts_medium_clip(const TsMedium* m, float3 org, float3 dir, float* t
     return *t0 < *t1;
 }
 
+/* How far (scene units) light carries in the medium: 20 mean free paths of its thinnest
+ * channel, past which e^-20 (2e-9) of it is left; +inf where a channel does not
+ * extinguish. The igi family's march and ray lights end there (shared/igi_march.h,
+ * light_path.h): a medium box far larger than the scene (1e9 units) spread their points
+ * over all of it, where no light is left (13-33% dark). */
+TS_INLINE float ts_medium_reach(const TsMedium* m) {
+    float thinnest = fmin(fmin(m->sigma_t.x, m->sigma_t.y), m->sigma_t.z);
+    return thinnest > 0.0f ? 20.0f / thinnest : TS_INF;
+}
+
 /* Beer–Lambert transmittance exp(-sigma_t · length) along the ray over (t0, t1); the
  * length counts only the part inside the medium. */
 TS_INLINE float3 ts_medium_transmittance(const TsMedium* m, float3 org, float3 dir, float t0, float t1) {

@@ -147,27 +147,31 @@ TEST_P(ExtremeValues, DenseAndThinMedia) {
     }
 }
 
-// A medium box far larger than the scene (1e9 units) is the medium filling space: the
-// same image. The box's back wall is left out, so camera rays and light paths escape
+// A medium box far larger than the scene (1e9 units) renders as the medium filling space
+// does (pt alike). The box's back wall is left out, so camera rays and light paths escape
 // through the hole into the fog. The igi family spread its escaped camera rays' march
-// steps and its escaped light paths' ray lights over the 1e9 units (13% dark at 64 spp).
-TEST_P(ExtremeValues, AHugeMediumBoxIsAMediumFillingSpace) {
-    Scene open = closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(4.0f), 0.4f);
-    open.positions.erase(open.positions.begin() + 12, open.positions.begin() + 18);  // the back wall
-    open.normals.erase(open.normals.begin() + 12, open.normals.begin() + 18);
-    open.uvs.erase(open.uvs.begin() + 12, open.uvs.begin() + 18);
-    open.material.erase(open.material.begin() + 4, open.material.begin() + 6);
-    open.has_medium = true;
-    open.medium.sigma_a = glm::vec3(0.0f);
-    open.medium.sigma_s = glm::vec3(1.0f);
-    open.medium.g = 0.5f;
-    Scene boxed = open;
-    boxed.medium.bounded = true;
-    boxed.medium.box_min = glm::vec3(-1e9f);
-    boxed.medium.box_max = glm::vec3(1e9f);
-    const Image filling = render(open, 8), huge = render(boxed, 8);
-    ASSERT_TRUE(all_finite(huge));
-    EXPECT_LT(rel_mse(huge, filling), 1e-8) << "means " << radiance_mean(huge) << " and " << radiance_mean(filling);
+// steps and its escaped light paths' ray lights over the 1e9 units: 33% dark here. Now
+// both end at the medium's reach (ts_medium_reach). The two differ in their samples (a
+// path may wander past where the unbounded march ends), so the means are compared:
+// within 3% (measured within 0.4% at 8 spp on every method and backend).
+TEST_P(ExtremeValues, AHugeMediumBoxRendersAsAMediumFillingSpace) {
+    Scene filling = closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(4.0f), 0.4f);
+    filling.positions.erase(filling.positions.begin() + 12, filling.positions.begin() + 18);  // the back wall
+    filling.normals.erase(filling.normals.begin() + 12, filling.normals.begin() + 18);
+    filling.uvs.erase(filling.uvs.begin() + 12, filling.uvs.begin() + 18);
+    filling.material.erase(filling.material.begin() + 4, filling.material.begin() + 6);
+    filling.has_medium = true;
+    filling.medium.sigma_a = glm::vec3(0.0f);
+    filling.medium.sigma_s = glm::vec3(1.0f);  // a reach of 20 units
+    filling.medium.g = 0.5f;
+    Scene huge = filling;
+    huge.medium.bounded = true;
+    huge.medium.box_min = glm::vec3(-1e9f);
+    huge.medium.box_max = glm::vec3(1e9f);
+    const Image a = render(filling, 8), b = render(huge, 8);
+    ASSERT_TRUE(all_finite(b));
+    std::printf("  means: filling %.5f, box 1e9 %.5f\n", radiance_mean(a), radiance_mean(b));
+    EXPECT_NEAR(radiance_mean(b), radiance_mean(a), 0.03 * radiance_mean(a));
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, ExtremeValues, ::testing::ValuesIn(hard_case_params()), hard_case_name);
