@@ -10,9 +10,10 @@
  * by 1 + 2γ3 (Ize, "Robust BVH Ray Traversal", JCGT 2013) so rounding cannot cull a box
  * the ray grazes. Triangle test: watertight (Woop, Benthin, Wald, "Watertight
  * Ray/Triangle Intersection", JCGT 2013), so rays cannot slip between triangles that
- * share an edge, with the distance from the triangle's plane (ts_intersect_triangle); the double-precision fallback for exactly-zero edge functions is left
- * out (doubles are optional in OpenCL 1.2), which keeps watertightness and only
- * resolves exact-edge ties by a fixed rule.
+ * share an edge, with the distance from the triangle's plane (ts_intersect_triangle);
+ * the double-precision fallback for exactly-zero edge functions is left out (doubles are
+ * optional in OpenCL 1.2), which keeps watertightness and only resolves exact-edge ties
+ * by a fixed rule.
  */
 #ifndef TS_BVH_TRAVERSE_H
 #define TS_BVH_TRAVERSE_H

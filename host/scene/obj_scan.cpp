@@ -5,7 +5,6 @@
 #include <set>
 
 #include "scene/obj_text.h"
-#include "util/input_limits.h"
 
 namespace tessera::scene_detail {
 
@@ -36,9 +35,6 @@ void check_reals(const fs::path& obj, const TextLine& l, size_t min, size_t max,
         if (i < finite && !(std::isfinite(d) && std::isfinite(static_cast<float>(d))))
             line_error(obj, l.number, std::string(what) + " value " + in_quotes(values[i]) +
                                           " is not finite (or overflows a float)");
-        if (i < finite && limits::below_normal_float(d))
-            line_error(obj, l.number, std::string(what) + " value " + in_quotes(values[i]) + " " +
-                                          limits::kBelowNormalFloat);
     }
 }
 

@@ -14,12 +14,14 @@
 
 namespace tessera::limits {
 
-/// A number of a scene input that is not 0 but below the smallest normal float (1.2e-38),
-/// or that rounds to 0 as a float: refused. The CPU path runs with Embree's flush-to-zero
-/// and denormals-are-zero modes, and OpenCL devices need not keep subnormals either, so
-/// the backends rendered an emission of 1e-40 as 0 and as 1e-40; no physical scene value
-/// is that small. Readers say "give 0".
-inline bool below_normal_float(double d) { return d != 0.0 && std::fabs(d) < double(FLT_MIN); }
+/// A number of a scene file (JSON) or material (MTL) that is not 0 but below the smallest
+/// normal float (1.2e-38) as a float, or that rounds to 0: refused. The CPU path runs
+/// with Embree's flush-to-zero and denormals-are-zero modes, and OpenCL devices need not
+/// keep subnormals either, so the backends rendered an emission of 1e-40 as 0 and as
+/// 1e-40; no physical scene value is that small. Readers say "give 0". (OBJ geometry is
+/// not checked: exporters print such values for 0, and a position 1e-45 from 0 renders
+/// as 0 on both backends.)
+inline bool below_normal_float(double d) { return d != 0.0 && !(std::fabs(float(d)) >= FLT_MIN); }
 
 /// The words of that refusal, after the value.
 constexpr const char* kBelowNormalFloat = "is below the smallest normal float, 1.2e-38 (give 0)";

@@ -49,14 +49,18 @@ TS_INLINE int ts_medium_clip(const TsMedium* m, float3 org, float3 dir, float* t
     return *t0 < *t1;
 }
 
-/* How far (scene units) light carries in the medium: 20 mean free paths of its thinnest
- * channel, past which e^-20 (2e-9) of it is left; +inf where a channel does not
- * extinguish. The igi family's march and ray lights end there (shared/igi_march.h,
- * light_path.h): a medium box far larger than the scene (1e9 units) spread their points
- * over all of it, where no light is left (13-33% dark). */
+/* How far (scene units) in-scattered light carries in the medium: 20 mean free paths of
+ * its thinnest scattering channel, past which e^-20 (2e-9) of it is left; +inf where
+ * nothing scatters. A channel with sigma_s = 0 scatters no light however far it sees, so
+ * it does not lift the cut for the others. The igi family's march and ray lights end
+ * there (shared/igi_march.h, light_path.h): a medium box far larger than the scene (1e9
+ * units) spread their points over all of it, where no light is left (13-33% dark). */
 TS_INLINE float ts_medium_reach(const TsMedium* m) {
-    float thinnest = fmin(fmin(m->sigma_t.x, m->sigma_t.y), m->sigma_t.z);
-    return thinnest > 0.0f ? 20.0f / thinnest : TS_INF;
+    float x = m->sigma_s.x > 0.0f ? m->sigma_t.x : TS_INF;
+    float y = m->sigma_s.y > 0.0f ? m->sigma_t.y : TS_INF;
+    float z = m->sigma_s.z > 0.0f ? m->sigma_t.z : TS_INF;
+    float thinnest = fmin(fmin(x, y), z); /* sigma_t >= sigma_s > 0 where finite */
+    return isfinite(thinnest) ? 20.0f / thinnest : TS_INF;
 }
 
 /* Beer–Lambert transmittance exp(-sigma_t · length) along the ray over (t0, t1); the

@@ -58,8 +58,6 @@ INSTANTIATE_TEST_SUITE_P(
         // Below the smallest normal float: the backends rendered 1e-40 as 0 and as 1e-40.
         CliCase{"MtlKeSubnormal", kScene, kObj, "newmtl m\nKe 1e-40 1 1\n", "m.mtl:2:",
                 "'1e-40' is below the smallest normal float, 1.2e-38 (give 0)"},
-        CliCase{"ObjVertexSubnormal", kScene, "mtllib m.mtl\nv 0 0 0\nv 1 0 1e-45\nv 0 0 1\nusemtl m\nf 1 3 2\n",
-                kMtl, "m.obj:3:", "'1e-45' is below the smallest normal float"},
         CliCase{"JsonEmissionSubnormal",
                 R"({"camera": {"position": [0,1,3], "look_at": [0,0,0]}, "objects": [{"mesh": "m.obj"}],
                     "materials": {"m": {"emission": [1e-40, 0, 1]}}})",
