@@ -192,16 +192,19 @@ void check_output_directories(const std::vector<OutputFile>& outputs) {
 
 void check_scene_options(const RenderSettings& s, const std::string& components, const Scene& scene,
                          const fs::path& scene_path) {
-    if (igi_family(s.method) && s.igi.march_steps == 0 && plan_effects(scene).medium)
+    if (!igi_family(s.method)) return;
+    const EffectPlan plan = plan_effects(scene);
+    if (s.igi.march_steps == 0 && plan.medium)
         throw InputError("--march-steps 0: scene " + scene_path.string() +
                          " has a medium, which --method " + method_name(s.method) +
                          " ray-marches; give at least 1 step");
     // Components the scene does not call for are skipped (docs/ais.md); where that leaves
     // none of the light's, the image would be the emitters alone.
-    if (igi_family(s.method) && !(s.igi.components & (TS_COMPONENT_SS | TS_COMPONENT_ID)) &&
-        !plan_effects(scene).medium)
-        throw InputError("--components " + components + ": scene " + scene_path.string() +
-                         " has no medium, so these compute nothing there; add ss or id");
+    if (!plan.components_compute(s.igi.components))
+        throw InputError("--components " + components + ": " +
+                         (plan.medium ? std::string("edge samples only refine the other components' pixels")
+                                      : "scene " + scene_path.string() + " has no medium") +
+                         ", so these compute nothing there; add " + (plan.medium ? "ss, id or pm" : "ss or id"));
 }
 
 }  // namespace tessera::cli

@@ -1,5 +1,7 @@
 #include "device/effect_plan.h"
 
+#include "kernels/shared/layout_igi.h"
+
 namespace tessera {
 
 EffectPlan plan_effects(const Scene& scene) {
@@ -19,6 +21,10 @@ EffectPlan plan_effects(const Scene& scene) {
     p.medium_declared = scene.has_medium;
     p.medium = scene.has_medium && (scene.medium.sigma_a != glm::vec3(0.0f) || scene.medium.sigma_s != glm::vec3(0.0f));
     return p;
+}
+
+bool EffectPlan::components_compute(uint32_t components) const {
+    return (components & (TS_COMPONENT_SS | TS_COMPONENT_ID)) != 0 || (medium && (components & TS_COMPONENT_PM) != 0);
 }
 
 std::vector<std::string> EffectPlan::cl_defines() const {

@@ -2,6 +2,7 @@
 // defines and the work scheduled all follow from this, so a scene without an effect
 // never pays for it.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,11 @@ struct EffectPlan {
     bool reflects = false;     ///< some used material has albedo > 0 (for describe()'s reason)
     bool medium_declared = false;  ///< the scene declares a medium, zero or not (for describe())
 
+    /// Whether `components` (TS_COMPONENT_* bits) leaves any light to compute on this
+    /// scene: SS or ID, or PM where a medium is called for. Where it does not, an igi-family
+    /// image holds the emitters alone (docs/ais.md: components a scene does not call for
+    /// are skipped), so render and view both refuse such a choice.
+    bool components_compute(uint32_t components) const;
     /// OpenCL build options that follow from the plan, e.g. "-DTS_HAS_TEXTURES".
     std::vector<std::string> cl_defines() const;
     /// One line per effect, "name: yes|no (reason)", for `tessera info` and the log.

@@ -156,9 +156,9 @@ void ViewSession::toggle_component(uint32_t bit) {
         std::fprintf(stderr, "tessera view: at least one of SS, ID and PM stays on\n");
         return;
     }
-    // PM alone on a scene without a medium computes nothing: a black image (render
-    // refuses `--components pm` there for the same reason).
-    if ((next & (TS_COMPONENT_SS | TS_COMPONENT_ID)) == 0 && !plan_.medium) {
+    // PM alone on a scene without a medium computes nothing: the emitters alone (render
+    // refuses `--components pm` there by the same predicate).
+    if (!plan_.components_compute(next)) {
         std::fprintf(stderr, "tessera view: at least one of SS and ID stays on (this scene has no medium for PM)\n");
         return;
     }

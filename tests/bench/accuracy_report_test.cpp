@@ -1,7 +1,9 @@
 // bench/accuracy_report's equal-error arithmetic on synthetic rows, through Python: the
 // speedup at a target is the ratio of the times the two Pareto fronts need to reach it
 // (log-log interpolation), and the full-rate IGI comparator holds igi's tile-1 rows only.
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -15,7 +17,33 @@ using tessera::test::shell_status;
 
 namespace {
 
-class AccuracyReport : public tessera::test::ScratchDirTest {};
+// Loads bench/accuracy_report (a script without a .py name) as the module `r`.
+constexpr const char* kLoadReport = R"PY(import importlib.machinery, importlib.util, sys
+loader = importlib.machinery.SourceFileLoader("accuracy_report", sys.argv[1])
+spec = importlib.util.spec_from_loader("accuracy_report", loader)
+r = importlib.util.module_from_spec(spec)
+loader.exec_module(r)
+)PY";
+
+class AccuracyReport : public tessera::test::ScratchDirTest {
+protected:
+    /// Runs kLoadReport + `body` with python3 (sys.argv[2]: a report path in the scratch
+    /// directory) and returns its exit status; log() holds what it printed.
+    int run_python(const std::string& body) {
+        const fs::path py = dir_ / "check.py";
+        std::ofstream(py) << kLoadReport << body;
+        const std::string report = std::string(TESSERA_SOURCE_DIR) + "/bench/accuracy_report";
+        return shell_status("python3 " + py.string() + " " + report + " " + (dir_ / "report.md").string() + " > " +
+                            log_path().string() + " 2>&1");
+    }
+    std::string log() const {
+        std::ifstream in(log_path());
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }
+
+private:
+    fs::path log_path() const { return dir_ / "log.txt"; }
+};
 
 }  // namespace
 
@@ -24,11 +52,6 @@ TEST_F(AccuracyReport, EqualErrorSpeedupsAndTheFullRateIgiComparator) {
     // and 20 s; igi tile 1 in 8 s and 80 s (plus a dominated tile-1 point). Log-log lines
     // through each pair, so at every target in [0.01, 0.1] A vs igi = 2, A vs igi-t1 = 8.
     const std::string script = R"PY(
-import importlib.machinery, importlib.util, sys
-loader = importlib.machinery.SourceFileLoader("accuracy_report", sys.argv[1])
-spec = importlib.util.spec_from_loader("accuracy_report", loader)
-r = importlib.util.module_from_spec(spec)
-loader.exec_module(r)
 def row(m, setting, t, e):
     return {"method": m, "backend": "embree", "setting": setting, "spp": 1, "time_s": t, "relmse": e}
 rows = [row("ais", "tile=3", 1.0, 0.1), row("ais", "tile=3", 10.0, 0.01),
@@ -46,11 +69,7 @@ for b, want in (("igi", 2.0), (r.FULL_RATE_IGI, 8.0)):
     assert rng[0][2] == "t3 x1", rng
 print("ok")
 )PY";
-    const fs::path py = dir_ / "check.py", log = dir_ / "log.txt";
-    std::ofstream(py) << script;
-    const std::string report = std::string(TESSERA_SOURCE_DIR) + "/bench/accuracy_report";
-    EXPECT_EQ(shell_status("python3 " + py.string() + " " + report + " > " + log.string() + " 2>&1"), 0)
-        << std::ifstream(log).rdbuf();
+    EXPECT_EQ(run_python(script), 0) << log();
 }
 
 // The report's rows: the standard scenes in the seed's row order (the same list as the C++
@@ -61,11 +80,6 @@ TEST_F(AccuracyReport, SeedRowOrderAndAverage) {
     for (const std::string& path : tessera::bench::standard_scenes())
         cpp_names += "'" + fs::path(path).stem().string() + "', ";
     const std::string script = R"PY(
-import importlib.machinery, importlib.util, sys
-loader = importlib.machinery.SourceFileLoader("accuracy_report", sys.argv[1])
-spec = importlib.util.spec_from_loader("accuracy_report", loader)
-r = importlib.util.module_from_spec(spec)
-loader.exec_module(r)
 import standard_scenes
 assert standard_scenes.STANDARD_SCENES == [)PY" + cpp_names + R"PY(], standard_scenes.STANDARD_SCENES
 names = ["zeta", "sibenik", "office-fog", "alpha", "cornell-box", "deskar", "shirley6"]
@@ -75,11 +89,7 @@ assert r.mean_or_none([1.0, None, 3.0]) == 2.0
 assert r.mean_or_none([None, None]) is None
 print("ok")
 )PY";
-    const fs::path py = dir_ / "order.py", log = dir_ / "log.txt";
-    std::ofstream(py) << script;
-    const std::string report = std::string(TESSERA_SOURCE_DIR) + "/bench/accuracy_report";
-    EXPECT_EQ(shell_status("python3 " + py.string() + " " + report + " > " + log.string() + " 2>&1"), 0)
-        << std::ifstream(log).rdbuf();
+    EXPECT_EQ(run_python(script), 0) << log();
 }
 
 // The report's text where a sweep is partial or merged: no broken table without comparable
@@ -88,12 +98,7 @@ print("ok")
 // 3b's reason said once; and the plots' colours tell every method apart.
 TEST_F(AccuracyReport, PartialAndMergedSweepsReadRight) {
     const std::string script = R"PY(
-import importlib.machinery, importlib.util, sys
 from pathlib import Path
-loader = importlib.machinery.SourceFileLoader("accuracy_report", sys.argv[1])
-spec = importlib.util.spec_from_loader("accuracy_report", loader)
-r = importlib.util.module_from_spec(spec)
-loader.exec_module(r)
 out = Path(sys.argv[2])
 def row(m, spp, t, e):
     return {"method": m, "backend": "embree", "setting": "-", "spp": spp, "time_s": t, "relmse": e, "psnr_db": 20.0}
@@ -155,11 +160,5 @@ assert len(set(colours)) == len(accuracy_methods.METHODS), styles
 assert styles["pt"][0] == "black" and not any(c in ("#7f7f7f", "0.5", "grey", "gray") for c in colours), styles
 print("ok")
 )PY";
-    const fs::path py = dir_ / "partial.py", log = dir_ / "log.txt";
-    std::ofstream(py) << script;
-    const std::string report = std::string(TESSERA_SOURCE_DIR) + "/bench/accuracy_report";
-    EXPECT_EQ(shell_status("python3 " + py.string() + " " + report + " " + (dir_ / "report.md").string() + " > " +
-                           log.string() + " 2>&1"),
-              0)
-        << std::ifstream(log).rdbuf();
+    EXPECT_EQ(run_python(script), 0) << log();
 }

@@ -270,6 +270,11 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
          "--components pm: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
         {kRender + "--method ais --components edge,pm" + kOut,
          "--components edge,pm: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
+        // With a medium, edge samples alone still refine nothing.
+        {"render " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-fog.json --backend embree --spp 1 --method ais "
+         "--components edge" + kOut,
+         "--components edge: edge samples only refine the other components' pixels, so these compute nothing there; "
+         "add ss, id or pm"},
         {kRender + "--method pt --components ss" + kOut,
          "--components ss: --method pt has no components (they select what igi, ais, ais-max, ic and tic compute)"},
         {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},

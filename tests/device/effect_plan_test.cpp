@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "device/scene_buffers.h"
+#include "kernels/shared/layout_igi.h"
 #include "support/test_scenes.h"
 
 namespace tessera {
@@ -38,6 +39,24 @@ TEST(EffectPlan, MediumIsCompiledInOnlyWhenItDoesSomething) {
 TEST(EffectPlan, BlackSurfacesNeedNoIndirectLight) {
     Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
     EXPECT_FALSE(plan_effects(s).indirect);
+}
+
+// PM computes light only where a medium is called for; SS and ID always do (a scene
+// without lights gives them nothing, but that is the scene's image, not a choice left empty);
+// edge samples alone refine nothing.
+TEST(EffectPlan, ComponentsComputeOnlyWhatTheSceneHas) {
+    Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(5.0f), 0.3f);
+    EffectPlan p = plan_effects(s);
+    EXPECT_TRUE(p.components_compute(TS_COMPONENT_SS));
+    EXPECT_TRUE(p.components_compute(TS_COMPONENT_ID | TS_COMPONENT_PM));
+    EXPECT_FALSE(p.components_compute(TS_COMPONENT_PM));
+    EXPECT_FALSE(p.components_compute(TS_COMPONENT_PM | TS_COMPONENT_EDGE));
+    EXPECT_FALSE(p.components_compute(0u));
+    s.has_medium = true;
+    s.medium.sigma_a = glm::vec3(0.1f);
+    p = plan_effects(s);
+    EXPECT_TRUE(p.components_compute(TS_COMPONENT_PM));
+    EXPECT_FALSE(p.components_compute(TS_COMPONENT_EDGE));
 }
 
 // describe() names the one reason that holds, so `tessera info` tells the user what to change.
