@@ -20,6 +20,16 @@ float luminance_of(const glm::vec3& c) { return ts::ts_luminance(ts::make_float3
 void push3(std::vector<float>& v, const glm::vec3& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
 void put3(float* f, const glm::vec3& a) { f[0] = a.x, f[1] = a.y, f[2] = a.z; }
 
+// Appends triangle corners uv[0..2], shifted by the integer part of their smallest value
+// on each axis. Textures repeat (ts_texture_bilinear), so the image is the same, and the
+// kernels interpolate numbers near [0, 1]: at UVs of 1e6 a float's step is 1/16, and each
+// backend's barycentrics (equal to about 1e-7) put the lookup texels apart (pt relMSE 1e-3
+// between Embree and OpenCL). One triangle spanning a huge UV range keeps that limit.
+void push_uvs(std::vector<float>& out, const glm::vec2* uv) {
+    const glm::vec2 shift = glm::floor(glm::min(uv[0], glm::min(uv[1], uv[2])));
+    for (int k = 0; k < 3; ++k) out.insert(out.end(), {uv[k].x - shift.x, uv[k].y - shift.y});
+}
+
 template <class T>
 void ensure_nonempty(std::vector<T>& v) {
     if (v.empty()) v.push_back(T{});
@@ -129,8 +139,8 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
     for (size_t i = 0; i < 3 * n; ++i) {
         push3(b.tri_pos, positions[i]);
         push3(b.tri_nrm, scene.normals[i]);
-        b.tri_uv.insert(b.tri_uv.end(), {scene.uvs[i].x, scene.uvs[i].y});
     }
+    for (size_t i = 0; i < n; ++i) push_uvs(b.tri_uv, &scene.uvs[3 * i]);
     b.tri_mat = scene.material;
     add_materials(scene, b);
     add_textures(scene, b);

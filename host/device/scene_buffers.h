@@ -15,7 +15,7 @@ namespace tessera {
 struct SceneBuffers {
     std::vector<float> tri_pos;      ///< 9 floats per triangle
     std::vector<float> tri_nrm;      ///< 9 floats per triangle
-    std::vector<float> tri_uv;       ///< 6 floats per triangle
+    std::vector<float> tri_uv;       ///< 6 floats per triangle, moved by whole repeats toward [0, 1)
     std::vector<uint32_t> tri_mat;   ///< 1 per triangle
     std::vector<float> materials;    ///< TS_MATERIAL_FLOATS per material
     std::vector<uint32_t> tex_info;  ///< 4 per texture

@@ -1,5 +1,5 @@
 // The length the VPL clamps are relative to (clamp_extent): the bounds' diagonal, with
-// outlying bits of surface left out.
+// outlying bits of surface left out; and the texture coordinates the kernels read.
 #include "device/scene_buffers.h"
 
 #include <filesystem>
@@ -69,6 +69,24 @@ TEST(ClampExtent, ASceneWithoutAreaKeepsTheBoundsDiagonal) {
     }
     s.material.push_back(m);
     EXPECT_FLOAT_EQ(clamp_extent(make_scene_buffers(s)), 6.0f);
+}
+
+// Texture coordinates far from 0 are moved by whole repeats toward [0, 1): textures repeat,
+// and interpolating numbers near 1e6 (a float's step is 1/16 there) rendered a textured
+// floor at relMSE 1e-2 from the same floor at UVs near 0. Now their buffers are equal, so
+// their images are on both backends. The offsets are whole numbers, and the fixture's UVs
+// multiples of 1/16, so every shifted value is exact.
+TEST(SceneBuffers, TextureCoordinatesMoveByWholeRepeatsTowardZero) {
+    const Scene plain = test::checker_floor();
+    Scene far = plain;
+    for (glm::vec2& uv : far.uvs) uv += glm::vec2(1.0e6f, -3.0e6f);
+    ASSERT_NE(far.uvs[0], plain.uvs[0]);
+    const SceneBuffers a = make_scene_buffers(plain), b = make_scene_buffers(far);
+    EXPECT_EQ(a.tri_uv, b.tri_uv);
+    for (float t : a.tri_uv) {
+        EXPECT_GE(t, 0.0f);
+        EXPECT_LE(t, 1.0f);
+    }
 }
 
 }  // namespace
