@@ -24,7 +24,8 @@
  * Shading data, indexed by the original (scene) triangle index `prim`:
  *   tri_pos   TS_TRI_POS_FLOATS (9) floats: p0, p1, p2 (world space, scene units)
  *   tri_nrm   TS_TRI_NRM_FLOATS (9) floats: shading normals n0, n1, n2 (unit length)
- *   tri_uv    TS_TRI_UV_FLOATS (6) floats: uv0, uv1, uv2
+ *   tri_uv    TS_TRI_UV_FLOATS (6) floats: uv0, uv1, uv2 (textures repeat; the host moves
+ *             each triangle's by whole repeats toward [0, 1), so they interpolate precisely)
  *   tri_mat   1 uint:   material index
  * materials: TS_MATERIAL_FLOATS floats:
  *   TS_MAT_ALBEDO     3 floats: albedo (Kd, linear)
