@@ -191,20 +191,17 @@ void check_output_directories(const std::vector<OutputFile>& outputs) {
 }
 
 void check_scene_options(const RenderSettings& s, const std::string& components, const Scene& scene,
-                         const fs::path& scene_path) {
-    if (!igi_family(s.method)) return;
+                         const fs::path& scene_path, bool switches_methods) {
+    if (!igi_family(s.method) && !switches_methods) return;
     const EffectPlan plan = plan_effects(scene);
     if (s.igi.march_steps == 0 && plan.medium)
         throw InputError("--march-steps 0: scene " + scene_path.string() +
-                         " has a medium, which --method " + method_name(s.method) +
+                         " has a medium, which " +
+                         (igi_family(s.method) ? std::string("--method ") + method_name(s.method)
+                                               : std::string("the igi family (the viewer's M key reaches it)")) +
                          " ray-marches; give at least 1 step");
-    // Components the scene does not call for are skipped (docs/ais.md); where that leaves
-    // none of the light's, the image would be the emitters alone.
-    if (!plan.components_compute(s.igi.components))
-        throw InputError("--components " + components + ": " +
-                         (plan.medium ? std::string("edge samples only refine the other components' pixels")
-                                      : "scene " + scene_path.string() + " has no medium") +
-                         ", so these compute nothing there; add " + (plan.medium ? "ss, id or pm" : "ss or id"));
+    if (const std::string why = plan.idle_reason(s.igi.components); !why.empty())
+        throw InputError("--components " + components + ": scene " + scene_path.string() + ": " + why);
 }
 
 }  // namespace tessera::cli

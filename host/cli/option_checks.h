@@ -78,11 +78,13 @@ void check_outputs(const std::vector<OutputFile>& outputs, const std::vector<std
 /// behind. RuntimeError naming the output, the directory and the OS reason.
 void check_output_directories(const std::vector<OutputFile>& outputs);
 
-/// Settings that make no sense for this scene, for render and view alike: `--march-steps
-/// 0` on a scene with a medium (the igi family ray-marches it), and `--components`
-/// without SS or ID on a scene without one (the image would be the emitters alone).
-/// InputError naming the option, its value and `scene_path`.
+/// Settings of the igi family that make no sense for this scene, for render and view
+/// alike: `--march-steps 0` on a scene with a medium (the igi family ray-marches it), and
+/// `--components` that compute no light there (EffectPlan::components_compute: the image
+/// would be the emitters alone). Render checks them for an igi-family --method only;
+/// `switches_methods` (the viewer, whose M key reaches the igi family from any --method)
+/// checks them whatever the method. InputError naming the option, its value and `scene_path`.
 void check_scene_options(const RenderSettings& s, const std::string& components, const Scene& scene,
-                         const std::filesystem::path& scene_path);
+                         const std::filesystem::path& scene_path, bool switches_methods = false);
 
 }  // namespace tessera::cli

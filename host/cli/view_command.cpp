@@ -254,7 +254,7 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
     const DataPath data = make_data_path(a.data_dir.empty() ? std::nullopt : std::optional<fs::path>(a.data_dir));
     const Scene scene = load_scene(scene_path, data);
     (void)render_image_size(o.settings, scene.camera);  // a side scaled out of range fails here, before any work
-    check_scene_options(o.settings, a.components, scene, scene_path);
+    check_scene_options(o.settings, a.components, scene, scene_path, /*switches_methods=*/true);
     print_scene_notes(scene.notes);
     if (!a.frames.empty()) {
         const FrameRange r = parse_frame_range(a.frames, scene);

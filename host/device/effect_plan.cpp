@@ -1,6 +1,8 @@
 #include "device/effect_plan.h"
 
+#include "device/scene_buffers.h"
 #include "kernels/shared/layout_igi.h"
+#include "kernels/shared/layout_scene.h"
 
 namespace tessera {
 
@@ -14,7 +16,10 @@ EffectPlan plan_effects(const Scene& scene) {
         const Material& m = scene.materials[i];
         if (m.emission.x > 0.0f || m.emission.y > 0.0f || m.emission.z > 0.0f) p.area_lights = true;
         if (m.texture >= 0) p.textures = true;
-        if (m.albedo.x > 0.0f || m.albedo.y > 0.0f || m.albedo.z > 0.0f) reflects = true;
+        // A mirror's or a dielectric's Kd is not read (bsdf.h): they bend light paths on to
+        // diffuse surfaces, which alone hold VPLs and gather them.
+        if (material_kind(m) == TS_MAT_DIFFUSE && (m.albedo.x > 0.0f || m.albedo.y > 0.0f || m.albedo.z > 0.0f))
+            reflects = true;
     }
     p.reflects = reflects;
     p.indirect = p.area_lights && reflects;
@@ -23,8 +28,62 @@ EffectPlan plan_effects(const Scene& scene) {
     return p;
 }
 
+namespace {
+
+// Why ID or PM is not called for, as describe() and idle_reason() both say it.
+std::string no_indirect_reason(const EffectPlan& p) {
+    return !p.area_lights ? "no light" : !p.reflects ? "no diffuse surface reflects" : "";
+}
+std::string no_medium_reason(const EffectPlan& p) {
+    return p.medium_declared ? "declared, but sigma_a and sigma_s are zero" : "none declared";
+}
+
+// The components in --components order, with their names there and in messages.
+struct ComponentName {
+    uint32_t bit;
+    const char* option;  // --components' name
+    const char* label;   // the name docs and the HUD use
+};
+constexpr ComponentName kComponents[] = {
+    {TS_COMPONENT_SS, "ss", "SS"}, {TS_COMPONENT_ID, "id", "ID"}, {TS_COMPONENT_PM, "pm", "PM"}};
+
+}  // namespace
+
+bool EffectPlan::computes(uint32_t bit) const {
+    switch (bit) {
+        case TS_COMPONENT_SS: return area_lights;
+        case TS_COMPONENT_ID: return indirect;
+        case TS_COMPONENT_PM: return medium;
+        default: return false;
+    }
+}
+
 bool EffectPlan::components_compute(uint32_t components) const {
-    return (components & (TS_COMPONENT_SS | TS_COMPONENT_ID)) != 0 || (medium && (components & TS_COMPONENT_PM) != 0);
+    for (const ComponentName& c : kComponents)
+        if ((components & c.bit) && computes(c.bit)) return true;
+    return false;
+}
+
+std::string EffectPlan::idle_reason(uint32_t components) const {
+    if (components_compute(components) || !components_compute(TS_COMPONENT_SS | TS_COMPONENT_ID | TS_COMPONENT_PM))
+        return "";
+    std::string why;
+    for (const ComponentName& c : kComponents) {
+        if (!(components & c.bit)) continue;
+        const std::string reason = c.bit == TS_COMPONENT_SS   ? "no light"
+                                   : c.bit == TS_COMPONENT_ID ? no_indirect_reason(*this)
+                                                              : "medium: " + no_medium_reason(*this);
+        why += (why.empty() ? "" : ", ") + std::string(c.label) + " computes nothing there (" + reason + ")";
+    }
+    if (components & TS_COMPONENT_EDGE)
+        why += (why.empty() ? "" : ", ") + std::string("edge samples only refine the other components' pixels");
+    std::vector<std::string> add;
+    for (const ComponentName& c : kComponents)
+        if (computes(c.bit)) add.push_back(c.option);
+    std::string list;
+    for (size_t i = 0; i < add.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == add.size() ? " or " : ", ") + add[i];
+    return why + "; add " + list;
 }
 
 std::vector<std::string> EffectPlan::cl_defines() const {
@@ -37,8 +96,8 @@ std::vector<std::string> EffectPlan::cl_defines() const {
 std::vector<std::string> EffectPlan::describe() const {
     auto yn = [](bool b) { return b ? std::string("yes") : std::string("no"); };
     // The reason names the one cause that holds, so a user knows what to change.
-    const std::string no_indirect = !area_lights ? " (no light)" : !reflects ? " (no reflecting surface)" : "";
-    const std::string no_medium = medium_declared ? " (declared, but sigma_a and sigma_s are zero)" : " (none declared)";
+    const std::string no_indirect = indirect ? "" : " (" + no_indirect_reason(*this) + ")";
+    const std::string no_medium = " (" + no_medium_reason(*this) + ")";
     return {
         "area lights (SS):     " + yn(area_lights),
         "textures:             " + yn(textures),

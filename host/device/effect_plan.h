@@ -15,21 +15,29 @@ struct EffectPlan {
     bool textures = false;     ///< some material has map_Kd: texture lookups compiled in
     bool indirect = false;     ///< lights and a non-black surface: indirect diffuse (ID)
     bool medium = false;       ///< a medium with non-zero coefficients is declared (PM)
-    bool reflects = false;     ///< some used material has albedo > 0 (for describe()'s reason)
+    bool reflects = false;     ///< some used diffuse material has albedo > 0 (mirrors' and dielectrics' Kd is unread)
     bool medium_declared = false;  ///< the scene declares a medium, zero or not (for describe())
 
-    /// Whether `components` (TS_COMPONENT_* bits) leaves any light to compute on this
-    /// scene: SS or ID, or PM where a medium is called for. Where it does not, an igi-family
-    /// image holds the emitters alone (docs/ais.md: components a scene does not call for
-    /// are skipped), so render and view both refuse such a choice.
+    /// Whether component `bit` (one TS_COMPONENT_* bit) computes light on this scene: SS
+    /// where some triangle emits, ID where that light meets a reflecting surface, PM where a
+    /// medium is called for; edge samples (TS_COMPONENT_EDGE) only refine the others' pixels.
+    bool computes(uint32_t bit) const;
+    /// Whether `components` (TS_COMPONENT_* bits) leave any light to compute: some computes().
     bool components_compute(uint32_t components) const;
+    /// Why `components` compute no light on this scene while another choice would: the
+    /// image would be the emitters alone (components a scene does not call for are skipped,
+    /// docs/ais.md), so render and view refuse such a choice. One clause per component with
+    /// its reason, then the components to add, e.g. "PM computes nothing there (no medium
+    /// declared); add ss or id". "" where they compute some light, or where no choice
+    /// would (a scene without lights renders its emitters whatever the components).
+    std::string idle_reason(uint32_t components) const;
     /// OpenCL build options that follow from the plan, e.g. "-DTS_HAS_TEXTURES".
     std::vector<std::string> cl_defines() const;
     /// One line per effect, "name: yes|no (reason)", for `tessera info` and the log.
     std::vector<std::string> describe() const;
 };
 
-/// Decides the plan. Indirect light is called for only if some surface reflects
+/// Decides the plan. Indirect light is called for only if some diffuse surface reflects
 /// (albedo > 0 in any channel) while lights exist; an all-black scene shoots no VPLs.
 EffectPlan plan_effects(const Scene& scene);
 

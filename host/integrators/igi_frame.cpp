@@ -374,6 +374,8 @@ uint32_t IgiFrame::effective_components() const {
     uint32_t bits = settings_.components;
     if (!plan_.medium) bits &= ~TS_COMPONENT_PM;
     if (!plan_.area_lights) bits &= ~TS_COMPONENT_SS;
+    // Nothing reflects diffusely: ID is black, and AIS would still guide and refine it.
+    if (!plan_.indirect) bits &= ~TS_COMPONENT_ID;
     return bits;
 }
 

@@ -156,10 +156,10 @@ void ViewSession::toggle_component(uint32_t bit) {
         std::fprintf(stderr, "tessera view: at least one of SS, ID and PM stays on\n");
         return;
     }
-    // PM alone on a scene without a medium computes nothing: the emitters alone (render
-    // refuses `--components pm` there by the same predicate).
-    if (!plan_.components_compute(next)) {
-        std::fprintf(stderr, "tessera view: at least one of SS and ID stays on (this scene has no medium for PM)\n");
+    // Components that compute nothing on this scene (PM alone without a medium): the
+    // emitters alone. Render refuses them by the same reason.
+    if (const std::string why = plan_.idle_reason(next); !why.empty()) {
+        std::fprintf(stderr, "tessera view: %s\n", why.c_str());
         return;
     }
     settings_.igi.components = next;

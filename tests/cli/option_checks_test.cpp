@@ -241,7 +241,12 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {view + "--screenshot-window-frame -1", "--screenshot-window-frame -1: must be an integer in 0..999999", 2, files},
         // As render: PM alone on a scene without a medium (the default Cornell box) is black.
         {view + "--components pm", "--components pm: scene " + std::string(TESSERA_SCENES_DIR) +
-                                       "/cornell-box.json has no medium, so these compute nothing there; add ss or id",
+                                       "/cornell-box.json: PM computes nothing there (medium: none declared); add ss or id",
+         2, files},
+        // The M key reaches the igi family from any --method, so the viewer checks them whatever it starts with.
+        {view + "--method direct --components pm", "--components pm: scene " + std::string(TESSERA_SCENES_DIR) +
+                                                       "/cornell-box.json: PM computes nothing there (medium: none "
+                                                       "declared); add ss or id",
          2, files},
         {view + "--target-fps 0", "--target-fps 0: must be a finite number > 0 and <= 1000", 2, files},
         {view + "--target-fps nan", "--target-fps nan: must be a finite number > 0 and <= 1000", 2, files},
@@ -267,14 +272,15 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {kRender + "--method ais --ais-edge-samples 16" + kOut, "--ais-edge-samples 16: must be in 1..15"},
         // Only components a scene without a medium skips: the image would be black.
         {kRender + "--method igi --components pm" + kOut,
-         "--components pm: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
+         "--components pm: scene " + kData + "/light.json: PM computes nothing there (medium: none declared); add ss or id"},
         {kRender + "--method ais --components edge,pm" + kOut,
-         "--components edge,pm: scene " + kData + "/light.json has no medium, so these compute nothing there; add ss or id"},
+         "--components edge,pm: scene " + kData + "/light.json: PM computes nothing there (medium: none declared), edge samples "
+         "only refine the other components' pixels; add ss or id"},
         // With a medium, edge samples alone still refine nothing.
         {"render " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-fog.json --backend embree --spp 1 --method ais "
          "--components edge" + kOut,
-         "--components edge: edge samples only refine the other components' pixels, so these compute nothing there; "
-         "add ss, id or pm"},
+         "--components edge: scene " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-fog.json: edge samples only "
+         "refine the other components' pixels; add ss, id or pm"},
         {kRender + "--method pt --components ss" + kOut,
          "--components ss: --method pt has no components (they select what igi, ais, ais-max, ic and tic compute)"},
         {"compare $D/img.exr $D/img.exr --map $D/m.exr", "--map $D/m.exr: the map is written as PNG; name it .png"},

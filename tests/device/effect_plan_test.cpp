@@ -41,9 +41,8 @@ TEST(EffectPlan, BlackSurfacesNeedNoIndirectLight) {
     EXPECT_FALSE(plan_effects(s).indirect);
 }
 
-// PM computes light only where a medium is called for; SS and ID always do (a scene
-// without lights gives them nothing, but that is the scene's image, not a choice left empty);
-// edge samples alone refine nothing.
+// PM computes light only where a medium is called for, ID only where light meets a
+// diffuse surface that reflects; edge samples alone refine nothing.
 TEST(EffectPlan, ComponentsComputeOnlyWhatTheSceneHas) {
     Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(5.0f), 0.3f);
     EffectPlan p = plan_effects(s);
@@ -52,11 +51,40 @@ TEST(EffectPlan, ComponentsComputeOnlyWhatTheSceneHas) {
     EXPECT_FALSE(p.components_compute(TS_COMPONENT_PM));
     EXPECT_FALSE(p.components_compute(TS_COMPONENT_PM | TS_COMPONENT_EDGE));
     EXPECT_FALSE(p.components_compute(0u));
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_PM), "PM computes nothing there (medium: none declared); add ss or id");
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_SS | TS_COMPONENT_PM), "");
     s.has_medium = true;
     s.medium.sigma_a = glm::vec3(0.1f);
     p = plan_effects(s);
     EXPECT_TRUE(p.components_compute(TS_COMPONENT_PM));
     EXPECT_FALSE(p.components_compute(TS_COMPONENT_EDGE));
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_EDGE), "edge samples only refine the other components' pixels; add ss, id or pm");
+}
+
+// Black walls: ID computes nothing, and --components id is refused where SS would light
+// the image; a scene without lights refuses no choice (every one renders its emitters).
+TEST(EffectPlan, IdOnBlackSurfacesIsIdle) {
+    Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
+    EffectPlan p = plan_effects(s);
+    EXPECT_FALSE(p.computes(TS_COMPONENT_ID));
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_ID), "ID computes nothing there (no diffuse surface reflects); add ss");
+    s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(0.0f), 0.3f);
+    p = plan_effects(s);
+    EXPECT_FALSE(p.components_compute(TS_COMPONENT_SS | TS_COMPONENT_ID | TS_COMPONENT_PM));
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_ID), "");
+}
+
+// A mirror's Kd is not read (bsdf.h): black diffuse walls with a mirror call for no ID,
+// whatever the mirror's Kd; the same walls in grey do.
+TEST(EffectPlan, AMirrorsKdIsNotReflection) {
+    Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
+    const uint32_t mirror = test::add_material(s, glm::vec3(0.5f));
+    s.materials[mirror].illum = 3;
+    s.materials[mirror].specular = glm::vec3(1.0f);
+    test::add_quad(s, {-0.5f, 0.5f, -0.9f}, {1, 0, 0}, {0, 1, 0}, mirror);
+    EXPECT_FALSE(plan_effects(s).indirect);
+    s.materials[mirror].illum = 2;  // the same Kd on a diffuse material reflects
+    EXPECT_TRUE(plan_effects(s).indirect);
 }
 
 // describe() names the one reason that holds, so `tessera info` tells the user what to change.
@@ -74,7 +102,7 @@ TEST(EffectPlan, DescribeNamesTheReasonThatHolds) {
     EXPECT_EQ(line(plan_effects(s), "medium"), "medium (PM):          yes");
     EXPECT_EQ(line(plan_effects(s), "indirect"), "indirect diffuse (ID): yes");
     Scene black = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
-    EXPECT_EQ(line(plan_effects(black), "indirect"), "indirect diffuse (ID): no (no reflecting surface)");
+    EXPECT_EQ(line(plan_effects(black), "indirect"), "indirect diffuse (ID): no (no diffuse surface reflects)");
     Scene dark = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(0.0f), 0.3f);
     EXPECT_EQ(line(plan_effects(dark), "indirect"), "indirect diffuse (ID): no (no light)");
 }

@@ -75,6 +75,25 @@ TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
     }
 }
 
+// Components a scene does not call for get no guidance and no extra sets: with black
+// walls ID (and SS) are black, and the schedule flags no pixel (with ID left in, 25% of a
+// 64² Cornell box with black walls was flagged for ID, for an unchanged image).
+TEST(Ais, NoGuidanceForIndirectLightOnBlackWalls) {
+    Scene s = test::cornell_box();
+    for (Material& m : s.materials) m.albedo = glm::vec3(0.0f);
+    ASSERT_FALSE(plan_effects(s).indirect);
+    SceneBuffers b = make_scene_buffers(s);
+    auto be = host_path_backend(BackendKind::Embree, b, s);
+    IgiSettings is;
+    AisFrame ais(*be, b, plan_effects(s), is);
+    TsFrame f = make_frame(s.camera, 64, 64, is.set_shadow_samples, 1, b.light_count);
+    f.light_power = b.light_power;
+    std::vector<float> out;
+    ais.render_pass(f, out);
+    EXPECT_EQ(ais.stats().flagged[kAisID], 0.0);
+    EXPECT_EQ(ais.stats().ais_items, 0u);
+}
+
 TEST(Ais, SchedulesAgreeAcrossBackends) {
     // The host path's schedule over each backend's base pass; the base passes differ only
     // by traversal rounding, so the schedules agree on >= 99.9% of pixels.
