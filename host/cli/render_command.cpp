@@ -162,6 +162,14 @@ void note_ignored_parameters(const CLI::App& cmd, Method method, const std::stri
                          parameter_scope_text(p), method_text.c_str());
 }
 
+// --ic-view-rays weighs the candidate paths --ic-importance K > 1 chooses among; with
+// K = 1 every path is kept and no view ray is traced (docs/instant-caching.md §2).
+void note_view_rays_without_importance(const CLI::App& cmd, const RenderSettings& s) {
+    if (cmd.count("--ic-view-rays") && (s.method == Method::Ic || s.method == Method::Tic) && s.ic.path_importance == 1)
+        std::fprintf(stderr, "tessera: note: --ic-view-rays is read only with --ic-importance above 1 (it weighs the "
+                             "candidate paths a view keeps); --ic-importance 1 keeps every path, so it changes nothing\n");
+}
+
 // The medium's settings on a scene without one: a note, as for a setting the method does
 // not read (the same script may render foggy and clear scenes).
 void note_medium_options(const CLI::App& cmd, const Scene& scene, const fs::path& scene_path, Method method) {
@@ -304,6 +312,7 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
                              "ais-max), not --method " + a.method);
         validate_settings(settings);  // before the scene loads: a bad option fails at once
         if (lead) note_ignored_parameters(cmd, settings.method, a.method);
+        if (lead) note_view_rays_without_importance(cmd, settings);
         check_render_options(a, cmd, bo);
         check_distributed_options(a, settings, cluster);
         if (method_info(settings.method).temporal && a.resume)

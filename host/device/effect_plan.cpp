@@ -25,6 +25,7 @@ EffectPlan plan_effects(const Scene& scene) {
     p.indirect = p.area_lights && reflects;
     p.medium_declared = scene.has_medium;
     p.medium = scene.has_medium && (scene.medium.sigma_a != glm::vec3(0.0f) || scene.medium.sigma_s != glm::vec3(0.0f));
+    p.medium_scatters = p.medium && glm::any(glm::greaterThan(scene.medium.sigma_s, glm::vec3(0.0f)));
     return p;
 }
 
@@ -53,7 +54,7 @@ bool EffectPlan::computes(uint32_t bit) const {
     switch (bit) {
         case TS_COMPONENT_SS: return area_lights;
         case TS_COMPONENT_ID: return indirect;
-        case TS_COMPONENT_PM: return medium;
+        case TS_COMPONENT_PM: return medium_scatters;
         default: return false;
     }
 }
@@ -72,6 +73,7 @@ std::string EffectPlan::idle_reason(uint32_t components) const {
         if (!(components & c.bit)) continue;
         const std::string reason = c.bit == TS_COMPONENT_SS   ? "no light"
                                    : c.bit == TS_COMPONENT_ID ? no_indirect_reason(*this)
+                                   : medium                   ? "the medium only absorbs: sigma_s is zero"
                                                               : "medium: " + no_medium_reason(*this);
         why += (why.empty() ? "" : ", ") + std::string(c.label) + " computes nothing there (" + reason + ")";
     }
@@ -102,7 +104,8 @@ std::vector<std::string> EffectPlan::describe() const {
         "area lights (SS):     " + yn(area_lights),
         "textures:             " + yn(textures),
         "indirect diffuse (ID): " + yn(indirect) + no_indirect,
-        "medium (PM):          " + yn(medium) + (medium ? "" : no_medium),
+        "medium (PM):          " + yn(medium) +
+            (!medium ? no_medium : medium_scatters ? "" : " (absorbs only: its transmittance, no in-scattered light)"),
     };
 }
 

@@ -15,19 +15,23 @@ struct EffectPlan {
     bool textures = false;     ///< some material has map_Kd: texture lookups compiled in
     bool indirect = false;     ///< lights and a non-black surface: indirect diffuse (ID)
     bool medium = false;       ///< a medium with non-zero coefficients is declared (PM)
+    /// The medium scatters (sigma_s > 0 in some channel): else PM is its transmittance
+    /// alone, with no in-scattered light to march, and no medium VPLs or ray lights.
+    bool medium_scatters = false;
     bool reflects = false;     ///< some used diffuse material has albedo > 0 (mirrors' and dielectrics' Kd is unread)
     bool medium_declared = false;  ///< the scene declares a medium, zero or not (for describe())
 
     /// Whether component `bit` (one TS_COMPONENT_* bit) computes light on this scene: SS
     /// where some triangle emits, ID where that light meets a reflecting surface, PM where a
-    /// medium is called for; edge samples (TS_COMPONENT_EDGE) only refine the others' pixels.
+    /// medium scatters (one that only absorbs still needs PM's transmittance, but adds no
+    /// light); edge samples (TS_COMPONENT_EDGE) only refine the others' pixels.
     bool computes(uint32_t bit) const;
     /// Whether `components` (TS_COMPONENT_* bits) leave any light to compute: some computes().
     bool components_compute(uint32_t components) const;
     /// Why `components` compute no light on this scene while another choice would: the
     /// image would be the emitters alone (components a scene does not call for are skipped,
-    /// docs/ais.md), so render and view refuse such a choice. One clause per component with
-    /// its reason, then the components to add, e.g. "PM computes nothing there (no medium
+    /// docs/igi.md §1), so render and view refuse such a choice. One clause per component with
+    /// its reason, then the components to add, e.g. "PM computes nothing there (medium: none
     /// declared); add ss or id". "" where they compute some light, or where no choice
     /// would (a scene without lights renders its emitters whatever the components).
     std::string idle_reason(uint32_t components) const;

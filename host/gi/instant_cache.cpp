@@ -30,6 +30,10 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 constexpr size_t kPairBatch = size_t(1) << 20;
 // Visibility words per gather-kernel launch (64 MiB): at least one record's row.
 constexpr size_t kGatherBatch = size_t(1) << 24;
+// The smallest validity ball (a·R_i, in pixel footprints) the probe's bound may make:
+// half a pixel, a leak no pixel centre one footprint away sees; below it records would
+// crowd into concave corners without end (the reason for ic_record_radius's lower clamp).
+constexpr float kProbeBallFloorPx = 0.5f;
 
 bool has_surface(const float* g) { return ts::as_uint(g[TS_IC_GBUF_PRIM]) != TS_NO_HIT; }
 
@@ -192,9 +196,16 @@ float InstantCache::radius_of(const IcRecord& r, float harmonic_mean) const {
     // The validity ball a·R_i stays within half the probe's nearest hit: the probe's 32
     // rays see the nearest surface only to within ~1.3× its distance (a ray seldom grazes
     // toward it), and half leaves that margin.
-    const float bound = r.probe / (2.0f * settings_.error_bound);
-    return ic_record_radius(std::min(harmonic_mean, bound), r.pixel_size, settings_.min_radius_px,
-                            settings_.max_radius_px);
+    const float a = settings_.error_bound;
+    const float bound = r.probe / (2.0f * a);
+    // The lower clamp gives way to that bound down to a ball of half a pixel: at a = 2 the
+    // clamp's 1.5 footprints made a ball of 3 pixels, which reached across a 2 mm wall
+    // (10% of the lit floor's radiance on the dark side's first pixel). For a <= 1/3 the
+    // floor is the clamp itself, so the default's radii are as before (docs/instant-caching.md §4).
+    const float floor = std::min(settings_.min_radius_px, kProbeBallFloorPx / a) * r.pixel_size;
+    const float ward = ic_record_radius(harmonic_mean, r.pixel_size, settings_.min_radius_px, settings_.max_radius_px);
+    // Never 0 (a probe hit at the record): ic_record_radius's own floor.
+    return std::max({std::min(ward, std::max(bound, floor)), 1e-6f * r.pixel_size, std::numeric_limits<float>::min()});
 }
 
 // Launches the pair kernel over pairs 0 .. total-1, at most kPairBatch at a time

@@ -54,7 +54,8 @@ struct IcSettings {
     /// path whose VPLs the view cannot see weighs nothing (vpl_view_importance; 0: off).
     uint32_t view_rays = 2;
     float error_bound = 0.3f;    ///< Ward's a: a record serves points with ε < a (shared/ic_lookup.h)
-    float min_radius_px = 1.5f;  ///< record radius bounds in pixel footprints (ic_record_radius)
+    float min_radius_px = 1.5f;  ///< record radius bounds in pixel footprints (ic_record_radius); the
+                                 ///< probe's bound goes below the lower one (InstantCache::radius_of)
     float max_radius_px = 20.0f;
     bool temporal = false;       ///< tic: keep VPL paths, records and visibility across frames
     /// tic: a record outside the view frustum for this many frames in a row is evicted

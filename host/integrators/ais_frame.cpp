@@ -77,7 +77,8 @@ std::vector<uint32_t> AisFrame::schedule_sets(AisBaseBuffers base) {
     base.geometry = std::move(geometry_);
     const uint32_t bits = effective_components();
     const std::array<bool, kAisComponents> enabled = {(bits & TS_COMPONENT_SS) != 0, (bits & TS_COMPONENT_ID) != 0,
-                                                      (bits & TS_COMPONENT_PM) != 0 && !base.lit_fraction.empty()};
+                                                      (bits & TS_COMPONENT_PM) != 0 && plan_.medium_scatters &&
+                                                          !base.lit_fraction.empty()};
     const AisThresholds t = thresholds();
     guidance_ = compute_guidance(base, settings_.discontinuity, t, enabled);
     geometry_ = std::move(base.geometry);

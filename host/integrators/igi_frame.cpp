@@ -195,7 +195,8 @@ bool IgiFrame::needs_vpl_sets(uint32_t components) const {
     // Surfaces gather the sets for ID where the sets make it; the ray march gathers them
     // for light scattered more than once, whatever makes ID (ic's cache, or nothing).
     const bool for_id = plan_.indirect && (components & TS_COMPONENT_ID) && interleaved_indirect();
-    const bool for_media = plan_.area_lights && (components & TS_COMPONENT_PM) && settings_.multiple_scattering;
+    const bool for_media =
+        plan_.area_lights && plan_.medium_scatters && (components & TS_COMPONENT_PM) && settings_.multiple_scattering;
     return for_id || for_media;
 }
 

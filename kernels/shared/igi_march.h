@@ -24,16 +24,19 @@ TS_NAMESPACE_BEGIN
  * packet, on Embree and on OpenCL CPU devices. Every lane makes the calls
  * ts_igi_media_set makes, in the same order, so its sums are the same bit for bit.
  * ray: the camera ray; prng: the set's phase-sample stream; [t0, t1]: the camera
- * segment in the medium (scene units along ray), marched in steps of `step` when
- * `active`; L: the in-scattered radiance so far; lit: the steps whose light sample was
- * visible; equiangular: f->igi_equiangular (ts_igi_march_light_link). */
+ * segment in the medium (scene units along ray) up to the medium's reach, marched in
+ * steps of `step` when `marched`; t_end: the segment's end before that cut, to which
+ * its transmittance runs (`active`: it meets the medium); L: the in-scattered radiance
+ * so far; lit: the steps whose light sample was visible; equiangular:
+ * f->igi_equiangular (ts_igi_march_light_link). */
 typedef struct TsIgiMarch {
     TsRay ray;
     TsRng prng;
-    float t0, t1, step;
+    float t0, t1, t_end, step;
     float3 L;
     uint lit;
     int active;
+    int marched; /* active, and the medium scatters: a medium that only absorbs has no steps */
     int equiangular;
     uint key; /* the pixel and set, (py·width + px)·64 + k: keys the ray lights' numbers */
     float t_step;  /* the current step's own distance (ts_igi_march_step_begin; NaN before) */
@@ -58,10 +61,16 @@ TS_INLINE TsIgiMarch ts_igi_march_begin(const TsTracer* tracer, const TsFrame* f
     m.t0 = 0.0f;
     m.t1 = hit.prim != TS_NO_HIT ? hit.t : (med->bounded ? TS_INF : f->igi_march_far);
     m.active = ts_medium_clip(med, m.ray.org, m.ray.dir, &m.t0, &m.t1) && f->igi_steps > 0u;
+    m.t_end = m.t1;
     /* No farther than the medium's reach: a box far larger than the scene (1e9 units)
      * put the steps where no light is left. (Not the geometry's bounds: a box around a
-     * small light is lit well past them, and a march ended there came out 8x low.) */
+     * small light is lit well past them, and a march ended there came out 8x low.) The
+     * transmittance still runs to t_end: a channel that only absorbs may be thinner than
+     * the scattering ones the reach is of. */
     if (m.active) m.t1 = fmin(m.t1, m.t0 + ts_medium_reach(med) / length(m.ray.dir));
+    /* sigma_s = 0: every step would add sigma_s · ... = 0 (44% of a pass's time in an
+     * absorbing box), so only the transmittance is computed. */
+    m.marched = m.active && ts_medium_scatters(med);
     m.step = m.active ? (m.t1 - m.t0) / (float)f->igi_steps : 0.0f;
     m.equiangular = f->igi_equiangular != 0u;
     m.t_step = TS_NAN; /* no step yet: ts_igi_march_tr computes until ts_igi_march_step_begin */

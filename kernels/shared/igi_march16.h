@@ -247,7 +247,7 @@ TS_INLINE void ts_igi_march_packet(const TsSceneView* sv, const TsTracer* tracer
     for (int l = 0; l < TS_PACKET_LANES; ++l) {
         if (!(on >> l & 1u)) continue;
         m[l] = ts_igi_march_begin(tracer, f, &med, px[l], py[l], k[l]);
-        if (m[l].active) todo |= 1u << l;
+        if (m[l].marched) todo |= 1u << l;
     }
     for (int first = 0; first < TS_PACKET_LANES; ++first) {
         if (!(todo >> first & 1u)) continue;

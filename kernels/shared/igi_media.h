@@ -71,7 +71,7 @@ TS_INLINE void ts_igi_march_step_end(TsIgiMarch* m, const TsMedium* med, float t
 TS_INLINE void ts_igi_march_end(const TsFrame* f, const TsIgiMarch* m, const TsMedium* med, float* out) {
     float3 T = make_float3(1.0f, 1.0f, 1.0f);
     if (m->active) {
-        T = ts_exp3(med->sigma_t * (-(m->t1 - m->t0)));
+        T = ts_exp3(med->sigma_t * (-(m->t_end - m->t0)));
         out[TS_IGI_MEDIA_LIT] = (float)m->lit / (float)f->igi_steps;
         out[TS_IGI_MEDIA_LENGTH] = m->t1 - m->t0;
     }
@@ -94,7 +94,7 @@ TS_INLINE void ts_igi_media_set(const TsSceneView* sv, const TsTracer* tracer, c
                                 uint py, uint k, float* out) {
     TsMedium med = ts_medium_load(sv->medium);
     TsIgiMarch m = ts_igi_march_begin(tracer, f, &med, px, py, k);
-    for (uint i = 0u; m.active && i < f->igi_steps; ++i) {
+    for (uint i = 0u; m.marched && i < f->igi_steps; ++i) {
         float t = ts_igi_march_t(f, &m, k, i);
         ts_igi_march_step_begin(&m, &med, t);
         float3 x = m.ray.org + m.ray.dir * t;

@@ -49,6 +49,12 @@ TS_INLINE int ts_medium_clip(const TsMedium* m, float3 org, float3 dir, float* t
     return *t0 < *t1;
 }
 
+/* Whether the medium scatters light in some channel (sigma_s > 0): else it only absorbs,
+ * and in-scattered light is 0 everywhere. */
+TS_INLINE int ts_medium_scatters(const TsMedium* m) {
+    return m->sigma_s.x > 0.0f || m->sigma_s.y > 0.0f || m->sigma_s.z > 0.0f;
+}
+
 /* How far (scene units) in-scattered light carries in the medium: 20 mean free paths of
  * its thinnest scattering channel, past which e^-20 (2e-9) of it is left; +inf where
  * nothing scatters. A channel with sigma_s = 0 scatters no light however far it sees, so

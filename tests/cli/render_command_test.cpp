@@ -104,6 +104,23 @@ TEST_F(RenderCli, SettingsTheMethodIgnoresGetANote) {
     EXPECT_EQ(read.output.find("tessera: note: --"), std::string::npos) << read.output;  // (quad.mtl's Kd has one)
 }
 
+// --ic-view-rays weighs the paths --ic-importance K > 1 chooses among: with K = 1 it
+// changes nothing (the same bytes), and says so; with K > 1 it is read, without a note.
+TEST_F(RenderCli, ViewRaysWithoutPathImportanceGetANote) {
+    const std::string base = "render " + kData + "/light.json --spp 1 --width 8 --height 8 --backend embree --method ic "
+                             "--ic-paths 8 --out ";
+    const CliResult plain = run_tessera(base + (dir_ / "a.exr").string() + " --ic-importance 1");
+    const CliResult noted = run_tessera(base + (dir_ / "b.exr").string() + " --ic-importance 1 --ic-view-rays 5");
+    ASSERT_EQ(plain.exit_code, 0) << plain.output;
+    ASSERT_EQ(noted.exit_code, 0) << noted.output;
+    EXPECT_NE(noted.output.find("tessera: note: --ic-view-rays is read only with --ic-importance above 1"),
+              std::string::npos) << noted.output;
+    EXPECT_EQ(tessera::test::file_bytes(dir_ / "a.exr"), tessera::test::file_bytes(dir_ / "b.exr"));
+    const CliResult read = run_tessera(base + (dir_ / "c.exr").string() + " --ic-importance 2 --ic-view-rays 5");
+    ASSERT_EQ(read.exit_code, 0) << read.output;
+    EXPECT_EQ(read.output.find("--ic-view-rays is read only"), std::string::npos) << read.output;
+}
+
 // The medium's settings on a clear scene change nothing; each given one gets a note (they
 // were taken without a word). On a foggy scene they are read, without a note.
 TEST_F(RenderCli, MediumSettingsOnAClearSceneGetANote) {

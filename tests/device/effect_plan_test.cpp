@@ -53,8 +53,14 @@ TEST(EffectPlan, ComponentsComputeOnlyWhatTheSceneHas) {
     EXPECT_FALSE(p.components_compute(0u));
     EXPECT_EQ(p.idle_reason(TS_COMPONENT_PM), "PM computes nothing there (medium: none declared); add ss or id");
     EXPECT_EQ(p.idle_reason(TS_COMPONENT_SS | TS_COMPONENT_PM), "");
+    // A medium that only absorbs: PM is its transmittance, no light of its own.
     s.has_medium = true;
     s.medium.sigma_a = glm::vec3(0.1f);
+    p = plan_effects(s);
+    EXPECT_TRUE(p.medium);
+    EXPECT_FALSE(p.components_compute(TS_COMPONENT_PM));
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_PM), "PM computes nothing there (the medium only absorbs: sigma_s is zero); add ss or id");
+    s.medium.sigma_s = glm::vec3(0.1f);
     p = plan_effects(s);
     EXPECT_TRUE(p.components_compute(TS_COMPONENT_PM));
     EXPECT_FALSE(p.components_compute(TS_COMPONENT_EDGE));
@@ -99,6 +105,9 @@ TEST(EffectPlan, DescribeNamesTheReasonThatHolds) {
     s.has_medium = true;
     EXPECT_EQ(line(plan_effects(s), "medium"), "medium (PM):          no (declared, but sigma_a and sigma_s are zero)");
     s.medium.sigma_a = glm::vec3(0.1f);
+    EXPECT_EQ(line(plan_effects(s), "medium"),
+              "medium (PM):          yes (absorbs only: its transmittance, no in-scattered light)");
+    s.medium.sigma_s = glm::vec3(0.0f, 0.1f, 0.0f);
     EXPECT_EQ(line(plan_effects(s), "medium"), "medium (PM):          yes");
     EXPECT_EQ(line(plan_effects(s), "indirect"), "indirect diffuse (ID): yes");
     Scene black = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
