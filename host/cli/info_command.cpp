@@ -46,15 +46,7 @@ void run_info(const InfoArgs& a, const CLI::App& cmd) {
     }
     double light_area = 0.0;
     for (uint32_t i = 0; i < b.light_count; ++i) light_area += b.lights[i * TS_LIGHT_FLOATS + TS_LIGHT_AREA];
-    // Over the whole animation: a light dark at rest but lit in later frames is a light,
-    // and a surface black at rest but coloured later reflects.
-    Scene lit = s;
-    for (Material& m : lit.materials) m.emission = m.emission_bound();
-    for (const MaterialTrack& t : s.animation.materials)
-        for (const MaterialKey& k : t.keys)
-            if (k.albedo)
-                for (uint32_t m : t.materials) lit.materials[m].albedo = glm::max(lit.materials[m].albedo, *k.albedo);
-    const EffectPlan plan = plan_effects(lit);
+    const EffectPlan plan = plan_effects_over_animation(s);
     std::printf("scene:      %s (%s)\n", s.name.c_str(), s.source.c_str());
     std::printf("triangles:  %zu\n", s.triangle_count());
     std::printf("lights:     %u emissive triangles, %.4g scene units^2\n", b.light_count, light_area);

@@ -193,15 +193,16 @@ void check_output_directories(const std::vector<OutputFile>& outputs) {
 void check_scene_options(const RenderSettings& s, const std::string& components, const Scene& scene,
                          const fs::path& scene_path, bool switches_methods) {
     if (!igi_family(s.method) && !switches_methods) return;
-    const EffectPlan plan = plan_effects(scene);
+    // Over the animation: a still renders frame 0's keys, a sequence every frame's.
+    const EffectPlan plan = plan_effects_over_animation(scene);
     if (s.igi.march_steps == 0 && plan.medium)
         throw InputError("--march-steps 0: scene " + scene_path.string() +
-                         " has a medium, which " +
+                         " has a medium, whose light and transmittance " +
                          (igi_family(s.method) ? std::string("--method ") + method_name(s.method)
                                                : std::string("the igi family (the viewer's M key reaches it)")) +
-                         " ray-marches; give at least 1 step");
+                         " computes by a ray march; give at least 1 step");
     if (const std::string why = plan.idle_reason(s.igi.components); !why.empty())
-        throw InputError("--components " + components + ": scene " + scene_path.string() + ": " + why);
+        throw InputError("--components " + components + ": on scene " + scene_path.string() + ", " + why);
 }
 
 }  // namespace tessera::cli

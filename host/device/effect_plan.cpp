@@ -44,9 +44,10 @@ struct ComponentName {
     uint32_t bit;
     const char* option;  // --components' name
     const char* label;   // the name docs and the HUD use
+    const char* key;     // the viewer's toggle (docs/viewer.md)
 };
 constexpr ComponentName kComponents[] = {
-    {TS_COMPONENT_SS, "ss", "SS"}, {TS_COMPONENT_ID, "id", "ID"}, {TS_COMPONENT_PM, "pm", "PM"}};
+    {TS_COMPONENT_SS, "ss", "SS", "SS (1)"}, {TS_COMPONENT_ID, "id", "ID", "ID (2)"}, {TS_COMPONENT_PM, "pm", "PM", "PM (3)"}};
 
 }  // namespace
 
@@ -65,7 +66,7 @@ bool EffectPlan::components_compute(uint32_t components) const {
     return false;
 }
 
-std::string EffectPlan::idle_reason(uint32_t components) const {
+std::string EffectPlan::idle_reason(uint32_t components, Naming naming) const {
     if (components_compute(components) || !components_compute(TS_COMPONENT_SS | TS_COMPONENT_ID | TS_COMPONENT_PM))
         return "";
     std::string why;
@@ -75,17 +76,27 @@ std::string EffectPlan::idle_reason(uint32_t components) const {
                                    : c.bit == TS_COMPONENT_ID ? no_indirect_reason(*this)
                                    : medium                   ? "the medium only absorbs: sigma_s is zero"
                                                               : "medium: " + no_medium_reason(*this);
-        why += (why.empty() ? "" : ", ") + std::string(c.label) + " computes nothing there (" + reason + ")";
+        why += (why.empty() ? "" : ", ") + std::string(c.label) + " computes nothing (" + reason + ")";
     }
     if (components & TS_COMPONENT_EDGE)
         why += (why.empty() ? "" : ", ") + std::string("edge samples only refine the other components' pixels");
     std::vector<std::string> add;
     for (const ComponentName& c : kComponents)
-        if (computes(c.bit)) add.push_back(c.option);
+        if (computes(c.bit)) add.push_back(naming == Naming::Key ? c.key : c.option);
     std::string list;
     for (size_t i = 0; i < add.size(); ++i)
         list += (i == 0 ? "" : i + 1 == add.size() ? " or " : ", ") + add[i];
-    return why + "; add " + list;
+    return why + (naming == Naming::Key ? "; turn on " : "; add ") + list;
+}
+
+EffectPlan plan_effects_over_animation(const Scene& scene) {
+    Scene lit = scene;
+    for (Material& m : lit.materials) m.emission = m.emission_bound();
+    for (const MaterialTrack& t : scene.animation.materials)
+        for (const MaterialKey& k : t.keys)
+            if (k.albedo)
+                for (uint32_t m : t.materials) lit.materials[m].albedo = glm::max(lit.materials[m].albedo, *k.albedo);
+    return plan_effects(lit);
 }
 
 std::vector<std::string> EffectPlan::cl_defines() const {

@@ -20,14 +20,20 @@ float luminance_of(const glm::vec3& c) { return ts::ts_luminance(ts::make_float3
 void push3(std::vector<float>& v, const glm::vec3& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
 void put3(float* f, const glm::vec3& a) { f[0] = a.x, f[1] = a.y, f[2] = a.z; }
 
-// Appends triangle corners uv[0..2], shifted by the integer part of their smallest value
-// on each axis. Textures repeat (ts_texture_bilinear), so the image is the same, and the
+// Appends triangle corners uv[0..2], shifted by the floor of their smallest value on each
+// axis. Textures repeat (ts_texture_bilinear), so the image is the same, and the
 // kernels interpolate numbers near [0, 1]: at UVs of 1e6 a float's step is 1/16, and each
 // backend's barycentrics (equal to about 1e-7) put the lookup texels apart (pt relMSE 1e-3
-// between Embree and OpenCL). One triangle spanning a huge UV range keeps that limit.
+// between Embree and OpenCL). One triangle spanning a huge UV range keeps that limit, and
+// one spanning more than a float holds (vt -3e38 and 3e38) keeps its own UVs.
 void push_uvs(std::vector<float>& out, const glm::vec2* uv) {
     const glm::vec2 shift = glm::floor(glm::min(uv[0], glm::min(uv[1], uv[2])));
-    for (int k = 0; k < 3; ++k) out.insert(out.end(), {uv[k].x - shift.x, uv[k].y - shift.y});
+    bool finite = true;
+    for (int k = 0; k < 3; ++k) finite = finite && std::isfinite(uv[k].x - shift.x) && std::isfinite(uv[k].y - shift.y);
+    for (int k = 0; k < 3; ++k) {
+        const glm::vec2 t = finite ? uv[k] - shift : uv[k];
+        out.insert(out.end(), {t.x, t.y});
+    }
 }
 
 template <class T>

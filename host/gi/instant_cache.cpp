@@ -202,10 +202,10 @@ float InstantCache::radius_of(const IcRecord& r, float harmonic_mean) const {
     // clamp's 1.5 footprints made a ball of 3 pixels, which reached across a 2 mm wall
     // (10% of the lit floor's radiance on the dark side's first pixel). For a <= 1/3 the
     // floor is the clamp itself, so the default's radii are as before (docs/instant-caching.md §4).
-    const float floor = std::min(settings_.min_radius_px, kProbeBallFloorPx / a) * r.pixel_size;
+    const float ball_floor = std::min(settings_.min_radius_px, kProbeBallFloorPx / a) * r.pixel_size;
     const float ward = ic_record_radius(harmonic_mean, r.pixel_size, settings_.min_radius_px, settings_.max_radius_px);
     // Never 0 (a probe hit at the record): ic_record_radius's own floor.
-    return std::max({std::min(ward, std::max(bound, floor)), 1e-6f * r.pixel_size, std::numeric_limits<float>::min()});
+    return std::max({std::min(ward, std::max(bound, ball_floor)), 1e-6f * r.pixel_size, std::numeric_limits<float>::min()});
 }
 
 // Launches the pair kernel over pairs 0 .. total-1, at most kPairBatch at a time

@@ -200,7 +200,9 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     const auto t0 = Clock::now();
     const bool media = frame.igi_components & TS_COMPONENT_PM;
     const uint32_t bits = effective_components();
-    const uint32_t guided = bits & (TS_COMPONENT_SS | TS_COMPONENT_ID | (media ? TS_COMPONENT_PM : 0u));
+    // PM is guided where the medium scatters: one that only absorbs has no light to refine.
+    const uint32_t guided =
+        bits & (TS_COMPONENT_SS | TS_COMPONENT_ID | (media && plan_.medium_scatters ? TS_COMPONENT_PM : 0u));
     schedule_table_ = ais_schedule_table(thresholds(), settings_.ais_mode, static_cast<int>(settings_.tile), guided,
                                          settings_.edges, 0.0f);
     // No host schedule: the masks stay on the device, the host reads each (set, tile)'s

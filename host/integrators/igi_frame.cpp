@@ -120,7 +120,8 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         vs.frame = frame.pass;
         vs.seed = frame.seed;
         vs.medium_scattering = settings_.multiple_scattering;
-        vs.ray_lights = settings_.multiple_scattering && settings_.ray_lights;
+        // Ray lights carry the light a medium scatters: none where it only absorbs.
+        vs.ray_lights = settings_.multiple_scattering && settings_.ray_lights && plan_.medium_scatters;
         ViewPoints view;
         if (settings_.vpl_importance > 1) {
             const auto tv = Clock::now();
@@ -158,7 +159,8 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     const uint64_t pixels = uint64_t(frame.width) * frame.height;
     const bool surface_vpls = surface_frame.igi_components & TS_COMPONENT_ID;
     stats_.pixel_rays = pixels * (1 + settings_.set_shadow_samples + (surface_vpls ? stats_.vpls / sets : 0));
-    if (frame.igi_components & TS_COMPONENT_PM) stats_.pixel_rays += pixels * (1 + settings_.march_steps);
+    if (frame.igi_components & TS_COMPONENT_PM)
+        stats_.pixel_rays += pixels * (1 + (plan_.medium_scatters ? settings_.march_steps : 0));
     if (!reconstructs_on_host()) return resolve_on_device(frame, surface_frame, out);
 
     t0 = Clock::now();

@@ -158,8 +158,8 @@ void ViewSession::toggle_component(uint32_t bit) {
     }
     // Components that compute nothing on this scene (PM alone without a medium): the
     // emitters alone. Render refuses them by the same reason.
-    if (const std::string why = plan_.idle_reason(next); !why.empty()) {
-        std::fprintf(stderr, "tessera view: %s\n", why.c_str());
+    if (const std::string why = plan_.idle_reason(next, EffectPlan::Naming::Key); !why.empty()) {
+        std::fprintf(stderr, "tessera view: on this scene %s\n", why.c_str());
         return;
     }
     settings_.igi.components = next;
@@ -170,7 +170,7 @@ bool ViewSession::aov_available(Aov aov) const {
     const bool ais = method_info(settings_.method).adaptive;
     switch (aov) {
         case Aov::GuidanceSS: case Aov::GuidanceID: case Aov::SetsSS: case Aov::SetsID: return ais;
-        case Aov::GuidancePM: case Aov::SetsPM: return ais && plan_.medium;
+        case Aov::GuidancePM: case Aov::SetsPM: return ais && plan_.medium_scatters;
         case Aov::Error: return reference_.has_value();
         default: return true;
     }

@@ -129,8 +129,8 @@ TEST_F(ContractCli, BadOptionValuesAreRejectedBeforeAnyWork) {
         {kRender + "--data-dir $D/nowhere" + kOut, "--data-dir $D/nowhere: no such directory"},
         {kRender + "--data-dir $D/img.exr" + kOut, "--data-dir $D/img.exr: not a directory"},
         {"render " + kScenes + "/cornell-box-fog.json --backend embree --spp 1 --method igi --march-steps 0" + kOut,
-         "--march-steps 0: scene " + kScenes + "/cornell-box-fog.json has a medium, which --method igi ray-marches; "
-         "give at least 1 step"},
+         "--march-steps 0: scene " + kScenes + "/cornell-box-fog.json has a medium, whose light and transmittance "
+         "--method igi computes by a ray march; give at least 1 step"},
         {"info ''", "scene '': must not be empty"},
         {"rendr " + kData + "/light.json",
          "unknown command 'rendr'; the commands are render, devices, info, compare, options, view (see --help)"},
@@ -240,12 +240,12 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {view + "--speed nan", "--speed nan: must be a finite number > 0 and <= 1e+12", 2, files},
         {view + "--screenshot-window-frame -1", "--screenshot-window-frame -1: must be an integer in 0..999999", 2, files},
         // As render: PM alone on a scene without a medium (the default Cornell box) is black.
-        {view + "--components pm", "--components pm: scene " + std::string(TESSERA_SCENES_DIR) +
-                                       "/cornell-box.json: PM computes nothing there (medium: none declared); add ss or id",
+        {view + "--components pm", "--components pm: on scene " + std::string(TESSERA_SCENES_DIR) +
+                                       "/cornell-box.json, PM computes nothing (medium: none declared); add ss or id",
          2, files},
         // The M key reaches the igi family from any --method, so the viewer checks them whatever it starts with.
-        {view + "--method direct --components pm", "--components pm: scene " + std::string(TESSERA_SCENES_DIR) +
-                                                       "/cornell-box.json: PM computes nothing there (medium: none "
+        {view + "--method direct --components pm", "--components pm: on scene " + std::string(TESSERA_SCENES_DIR) +
+                                                       "/cornell-box.json, PM computes nothing (medium: none "
                                                        "declared); add ss or id",
          2, files},
         {view + "--target-fps 0", "--target-fps 0: must be a finite number > 0 and <= 1000", 2, files},
@@ -272,14 +272,14 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {kRender + "--method ais --ais-edge-samples 16" + kOut, "--ais-edge-samples 16: must be in 1..15"},
         // Only components a scene without a medium skips: the image would be black.
         {kRender + "--method igi --components pm" + kOut,
-         "--components pm: scene " + kData + "/light.json: PM computes nothing there (medium: none declared); add ss or id"},
+         "--components pm: on scene " + kData + "/light.json, PM computes nothing (medium: none declared); add ss or id"},
         {kRender + "--method ais --components edge,pm" + kOut,
-         "--components edge,pm: scene " + kData + "/light.json: PM computes nothing there (medium: none declared), edge samples "
+         "--components edge,pm: on scene " + kData + "/light.json, PM computes nothing (medium: none declared), edge samples "
          "only refine the other components' pixels; add ss or id"},
         // With a medium, edge samples alone still refine nothing.
         {"render " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-fog.json --backend embree --spp 1 --method ais "
          "--components edge" + kOut,
-         "--components edge: scene " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-fog.json: edge samples only "
+         "--components edge: on scene " + std::string(TESSERA_SCENES_DIR) + "/cornell-box-fog.json, edge samples only "
          "refine the other components' pixels; add ss, id or pm"},
         {kRender + "--method pt --components ss" + kOut,
          "--components ss: --method pt has no components (they select what igi, ais, ais-max, ic and tic compute)"},

@@ -51,7 +51,9 @@ TEST(EffectPlan, ComponentsComputeOnlyWhatTheSceneHas) {
     EXPECT_FALSE(p.components_compute(TS_COMPONENT_PM));
     EXPECT_FALSE(p.components_compute(TS_COMPONENT_PM | TS_COMPONENT_EDGE));
     EXPECT_FALSE(p.components_compute(0u));
-    EXPECT_EQ(p.idle_reason(TS_COMPONENT_PM), "PM computes nothing there (medium: none declared); add ss or id");
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_PM), "PM computes nothing (medium: none declared); add ss or id");
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_PM, EffectPlan::Naming::Key),
+              "PM computes nothing (medium: none declared); turn on SS (1) or ID (2)");
     EXPECT_EQ(p.idle_reason(TS_COMPONENT_SS | TS_COMPONENT_PM), "");
     // A medium that only absorbs: PM is its transmittance, no light of its own.
     s.has_medium = true;
@@ -59,7 +61,7 @@ TEST(EffectPlan, ComponentsComputeOnlyWhatTheSceneHas) {
     p = plan_effects(s);
     EXPECT_TRUE(p.medium);
     EXPECT_FALSE(p.components_compute(TS_COMPONENT_PM));
-    EXPECT_EQ(p.idle_reason(TS_COMPONENT_PM), "PM computes nothing there (the medium only absorbs: sigma_s is zero); add ss or id");
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_PM), "PM computes nothing (the medium only absorbs: sigma_s is zero); add ss or id");
     s.medium.sigma_s = glm::vec3(0.1f);
     p = plan_effects(s);
     EXPECT_TRUE(p.components_compute(TS_COMPONENT_PM));
@@ -73,11 +75,31 @@ TEST(EffectPlan, IdOnBlackSurfacesIsIdle) {
     Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
     EffectPlan p = plan_effects(s);
     EXPECT_FALSE(p.computes(TS_COMPONENT_ID));
-    EXPECT_EQ(p.idle_reason(TS_COMPONENT_ID), "ID computes nothing there (no diffuse surface reflects); add ss");
+    EXPECT_EQ(p.idle_reason(TS_COMPONENT_ID), "ID computes nothing (no diffuse surface reflects); add ss");
     s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.5f), glm::vec3(0.0f), 0.3f);
     p = plan_effects(s);
     EXPECT_FALSE(p.components_compute(TS_COMPONENT_SS | TS_COMPONENT_ID | TS_COMPONENT_PM));
     EXPECT_EQ(p.idle_reason(TS_COMPONENT_ID), "");
+}
+
+// Over the animation, walls black at rest but coloured by a later key reflect: the option
+// checks read this plan, so --components id is not refused for a scene whose frame 0 (or
+// any frame) lights it.
+TEST(EffectPlan, AWallColouredByALaterKeyReflectsOverTheAnimation) {
+    Scene s = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.0f), glm::vec3(5.0f), 0.3f);
+    s.animation.frame_count = 3;
+    MaterialTrack t;
+    t.name = "walls";
+    t.materials = {0};
+    MaterialKey rest, coloured;
+    rest.frame = 0;
+    coloured.frame = 2;
+    coloured.albedo = glm::vec3(0.5f);
+    t.keys = {rest, coloured};
+    s.animation.materials.push_back(t);
+    EXPECT_FALSE(plan_effects(s).indirect);
+    EXPECT_TRUE(plan_effects_over_animation(s).indirect);
+    EXPECT_EQ(plan_effects_over_animation(s).idle_reason(TS_COMPONENT_ID), "");
 }
 
 // A mirror's Kd is not read (bsdf.h): black diffuse walls with a mirror call for no ID,
