@@ -1,8 +1,6 @@
 #include "device/effect_plan.h"
 
-#include "device/scene_buffers.h"
 #include "kernels/shared/layout_igi.h"
-#include "kernels/shared/layout_scene.h"
 
 namespace tessera {
 
@@ -18,7 +16,7 @@ EffectPlan plan_effects(const Scene& scene) {
         if (m.texture >= 0) p.textures = true;
         // A mirror's or a dielectric's Kd is not read (bsdf.h): they bend light paths on to
         // diffuse surfaces, which alone hold VPLs and gather them.
-        if (material_kind(m) == TS_MAT_DIFFUSE && (m.albedo.x > 0.0f || m.albedo.y > 0.0f || m.albedo.z > 0.0f))
+        if (!m.is_mirror() && !m.is_dielectric() && (m.albedo.x > 0.0f || m.albedo.y > 0.0f || m.albedo.z > 0.0f))
             reflects = true;
     }
     p.reflects = reflects;
