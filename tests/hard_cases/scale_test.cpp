@@ -30,15 +30,15 @@ Scene scale_box() {
 
 TEST_P(Scale, BoxRendersTheSameImageAtEveryScale) {
     const Scene base = scale_box();
-    const Image ref = render(base, 32, 1);
-    const Image indep = render(base, 32, 2);  // the same scene, independent samples
+    const Image ref = render(base, 8, 1);
+    const Image indep = render(base, 8, 2);  // the same scene, independent samples
     ASSERT_TRUE(all_finite(ref));
     // "Within noise": a render at another scale, with the same seed, must be closer to the
     // reference than an independent render of the reference itself is (its relMSE is the
     // noise level), and the image means must agree within 4 standard errors.
     const double noise = rel_mse(indep, ref);
     for (float scale : kScales) {
-        const Image img = render(transformed(base, scale, offset_for(scale)), 32, 1);
+        const Image img = render(transformed(base, scale, offset_for(scale)), 8, 1);
         ASSERT_TRUE(all_finite(img)) << "scale " << scale;
         const double e = rel_mse(img, ref);
         EXPECT_LT(e, noise) << "scale " << scale << ": relMSE " << e << " vs noise " << noise;
