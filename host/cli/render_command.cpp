@@ -172,8 +172,8 @@ void note_view_rays_without_importance(const CLI::App& cmd, const RenderSettings
 
 // The medium's settings on a scene without one: a note, as for a setting the method does
 // not read (the same script may render foggy and clear scenes).
-void note_medium_options(const CLI::App& cmd, const Scene& scene, const fs::path& scene_path, Method method) {
-    if (plan_effects(scene).medium) return;
+void note_medium_options(const CLI::App& cmd, const EffectPlan& plan, const fs::path& scene_path, Method method) {
+    if (plan.medium) return;
     for (const char* option : {"--max-scatter", "--march-steps", "--single-scattering", "--point-medium-vpls",
                                "--uniform-march", "--ais-pm-trigger", "--ais-pm-cov"})
         if (cmd.count(option))
@@ -191,8 +191,8 @@ void note_medium_options(const CLI::App& cmd, const Scene& scene, const fs::path
 
 // A strongly forward or backward scattering medium with an igi-family method: a note, as
 // these methods return only part of its multiple scattering (docs/igi.md §6, "Limit").
-void note_peaked_phase(const RenderSettings& s, const Scene& scene) {
-    if (!igi_family(s.method) || !plan_effects(scene).medium || !(std::fabs(scene.medium.g) > 0.9f)) return;
+void note_peaked_phase(const RenderSettings& s, const Scene& scene, const EffectPlan& plan) {
+    if (!igi_family(s.method) || !plan.medium || !(std::fabs(scene.medium.g) > 0.9f)) return;
     std::fprintf(stderr,
                  "tessera: note: the medium's g = %g: --method %s returns only part of the multiple scattering of "
                  "a medium this peaked (about 2/3 of pt's radiance at |g| = 0.99 in the foggy Cornell box; "
@@ -202,8 +202,8 @@ void note_peaked_phase(const RenderSettings& s, const Scene& scene) {
 
 // `direct` on a scene with a medium: a note, as it renders the scene as if clear
 // (docs/path-tracing.md §6) and nothing else in the image says so.
-void note_direct_without_medium(const RenderSettings& s, const Scene& scene) {
-    if (s.method != Method::Direct || !plan_effects(scene).medium) return;
+void note_direct_without_medium(const RenderSettings& s, const EffectPlan& plan) {
+    if (s.method != Method::Direct || !plan.medium) return;
     std::fprintf(stderr,
                  "tessera: note: --method direct ignores the scene's medium (no fog, no transmittance; "
                  "docs/path-tracing.md §6); pt, igi, ais, ais-max, ic and tic render it\n");
@@ -330,9 +330,12 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         require_exr_name("--out", out);
         if (!a.frames.empty()) frames = parse_frame_range(a.frames, scene);
         check_scene_options(settings, a.components, scene, scene_path);
-        if (lead) note_medium_options(cmd, scene, scene_path, settings.method);
-        if (lead) note_peaked_phase(settings, scene);
-        if (lead) note_direct_without_medium(settings, scene);
+        if (lead) {
+            const EffectPlan scene_plan = plan_effects(scene);
+            note_medium_options(cmd, scene_plan, scene_path, settings.method);
+            note_peaked_phase(settings, scene, scene_plan);
+            note_direct_without_medium(settings, scene_plan);
+        }
         if (lead) print_scene_notes(scene.notes);
         // Before the scene's banner; rank 0 alone reads the checkpoint (render_frame).
         if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));

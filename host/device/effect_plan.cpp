@@ -1,5 +1,6 @@
 #include "device/effect_plan.h"
 
+#include "device/components.h"
 #include "kernels/shared/layout_igi.h"
 
 namespace tessera {
@@ -37,16 +38,6 @@ std::string no_medium_reason(const EffectPlan& p) {
     return p.medium_declared ? "declared, but sigma_a and sigma_s are zero" : "none declared";
 }
 
-// The components in --components order, with their names there and in messages.
-struct ComponentName {
-    uint32_t bit;
-    const char* option;  // --components' name
-    const char* label;   // the name docs and the HUD use
-    const char* key;     // the viewer's toggle (docs/viewer.md)
-};
-constexpr ComponentName kComponents[] = {
-    {TS_COMPONENT_SS, "ss", "SS", "SS (1)"}, {TS_COMPONENT_ID, "id", "ID", "ID (2)"}, {TS_COMPONENT_PM, "pm", "PM", "PM (3)"}};
-
 }  // namespace
 
 bool EffectPlan::computes(uint32_t bit) const {
@@ -59,7 +50,7 @@ bool EffectPlan::computes(uint32_t bit) const {
 }
 
 bool EffectPlan::components_compute(uint32_t components) const {
-    for (const ComponentName& c : kComponents)
+    for (const ComponentName& c : kComponentNames)
         if ((components & c.bit) && computes(c.bit)) return true;
     return false;
 }
@@ -68,8 +59,8 @@ std::string EffectPlan::idle_reason(uint32_t components, Naming naming) const {
     if (components_compute(components) || !components_compute(TS_COMPONENT_SS | TS_COMPONENT_ID | TS_COMPONENT_PM))
         return "";
     std::string why;
-    for (const ComponentName& c : kComponents) {
-        if (!(components & c.bit)) continue;
+    for (const ComponentName& c : kComponentNames) {
+        if (!(components & c.bit) || c.bit == TS_COMPONENT_EDGE) continue;  // edge: below
         const std::string reason = c.bit == TS_COMPONENT_SS   ? "no light"
                                    : c.bit == TS_COMPONENT_ID ? no_indirect_reason(*this)
                                    : medium                   ? "the medium only absorbs: sigma_s is zero"
@@ -79,7 +70,7 @@ std::string EffectPlan::idle_reason(uint32_t components, Naming naming) const {
     if (components & TS_COMPONENT_EDGE)
         why += (why.empty() ? "" : ", ") + std::string("edge samples only refine the other components' pixels");
     std::vector<std::string> add;
-    for (const ComponentName& c : kComponents)
+    for (const ComponentName& c : kComponentNames)
         if (computes(c.bit)) add.push_back(naming == Naming::Key ? c.key : c.option);
     std::string list;
     for (size_t i = 0; i < add.size(); ++i)

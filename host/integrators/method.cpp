@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "device/components.h"
 #include "kernels/shared/layout_igi.h"
 #include "util/error.h"
 
@@ -32,12 +33,6 @@ std::string method_names() {
 
 bool igi_family(Method m) { return method_info(m).igi_family; }
 
-namespace {
-// --components' names, in the order components_text lists them.
-constexpr std::pair<uint32_t, const char*> kComponentNames[] = {
-    {TS_COMPONENT_SS, "ss"}, {TS_COMPONENT_ID, "id"}, {TS_COMPONENT_PM, "pm"}, {TS_COMPONENT_EDGE, "edge"}};
-}  // namespace
-
 uint32_t parse_components(const std::string& list) {
     uint32_t bits = 0;
     size_t start = 0;
@@ -45,8 +40,8 @@ uint32_t parse_components(const std::string& list) {
         const size_t end = std::min(list.find(',', start), list.size());
         const std::string c = list.substr(start, end - start);
         uint32_t bit = 0;
-        for (const auto& [b, name] : kComponentNames)
-            if (c == name) bit = b;
+        for (const ComponentName& n : kComponentNames)
+            if (c == n.option) bit = n.bit;
         if (bit == 0)
             throw InputError("--components " + list + ": expected a comma-separated list of ss, id, pm, edge" +
                              (c.empty() ? " (an entry is empty)" : ", got '" + c + "'"));
@@ -59,8 +54,8 @@ uint32_t parse_components(const std::string& list) {
 
 std::string components_text(uint32_t mask) {
     std::string out;
-    for (const auto& [bit, name] : kComponentNames)
-        if (mask & bit) out += (out.empty() ? "" : ",") + std::string(name);
+    for (const ComponentName& n : kComponentNames)
+        if (mask & n.bit) out += (out.empty() ? "" : ",") + std::string(n.option);
     return out.empty() ? "none" : out;
 }
 

@@ -25,6 +25,24 @@ std::unique_ptr<Backend> host_path_backend(BackendKind kind, SceneBuffers& b, co
     return make_backend(o, b, plan_effects(s));
 }
 
+// One base pass of AIS (default settings, 1 spp) at size² pixels on the host path: the
+// frame, for its schedules and stats, and the buffers and backend it holds references to.
+struct HostAisPass {
+    SceneBuffers buffers;
+    std::unique_ptr<Backend> backend;
+    IgiSettings settings;
+    std::unique_ptr<AisFrame> frame;
+
+    HostAisPass(BackendKind kind, const Scene& s, uint32_t size)
+        : buffers(make_scene_buffers(s)), backend(host_path_backend(kind, buffers, s)) {
+        frame = std::make_unique<AisFrame>(*backend, buffers, plan_effects(s), settings);
+        TsFrame f = make_frame(s.camera, size, size, settings.set_shadow_samples, 1, buffers.light_count);
+        f.light_power = buffers.light_power;
+        std::vector<float> out;
+        frame->render_pass(f, out);
+    }
+};
+
 TEST(Ais, AMaxWithEveryPixelFlaggedIsTheFullRateEstimate) {
     // Thresholds below 0 flag every pixel, and A-MAX then gives each all N sets: every
     // component must equal the non-interleaved estimate, the mean over all N sets of the
@@ -82,36 +100,22 @@ TEST(Ais, NoGuidanceForIndirectLightOnBlackWalls) {
     Scene s = test::cornell_box();
     for (Material& m : s.materials) m.albedo = glm::vec3(0.0f);
     ASSERT_FALSE(plan_effects(s).indirect);
-    SceneBuffers b = make_scene_buffers(s);
-    auto be = host_path_backend(BackendKind::Embree, b, s);
-    IgiSettings is;
-    AisFrame ais(*be, b, plan_effects(s), is);
-    TsFrame f = make_frame(s.camera, 64, 64, is.set_shadow_samples, 1, b.light_count);
-    f.light_power = b.light_power;
-    std::vector<float> out;
-    ais.render_pass(f, out);
-    EXPECT_EQ(ais.stats().flagged[kAisID], 0.0);
-    EXPECT_EQ(ais.stats().ais_items, 0u);
+    const HostAisPass pass(BackendKind::Embree, s, 64);
+    EXPECT_EQ(pass.frame->stats().flagged[kAisID], 0.0);
+    EXPECT_EQ(pass.frame->stats().ais_items, 0u);
 }
 
 TEST(Ais, SchedulesAgreeAcrossBackends) {
     // The host path's schedule over each backend's base pass; the base passes differ only
     // by traversal rounding, so the schedules agree on >= 99.9% of pixels.
     Scene s = test::cornell_box();
-    SceneBuffers b = make_scene_buffers(s);
     std::array<AisSchedule, 2> sched;
     std::array<EdgeSchedule, 2> edges;
     int i = 0;
     for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL}) {
-        auto be = host_path_backend(kind, b, s);
-        IgiSettings is;
-        AisFrame igi(*be, b, plan_effects(s), is);
-        TsFrame f = make_frame(s.camera, 96, 96, is.set_shadow_samples, 1, b.light_count);
-        f.light_power = b.light_power;
-        std::vector<float> out;
-        igi.render_pass(f, out);
-        edges[i] = igi.edge_schedule();
-        sched[i++] = igi.schedule();
+        const HostAisPass pass(kind, s, 96);
+        edges[i] = pass.frame->edge_schedule();
+        sched[i++] = pass.frame->schedule();
     }
     // The edge schedule reads the composited pass image: the same agreement.
     ASSERT_EQ(edges[0].samples.size(), size_t(96 * 96));
