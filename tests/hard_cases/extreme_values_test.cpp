@@ -24,8 +24,9 @@ class ExtremeValues : public HardCase {};
 // (host/gi/vpl_importance.cpp: keep_probabilities, systematic_sample): an importance that
 // rounds across a step, or a running sum across the draw's point, flips a choice. At 1e15
 // (also 5e14, 2e15 and 7e9; not 1e14 or 7e14) one flips on Embree and about 50 pixels move
-// by up to 1.4e-3 (measured at 16 passes; with --ic-importance 1, no selection, none move). Every other
-// method holds a few ulps per vertex (< 1e-4 relative after 128 vertices; measured < 3e-7).
+// by up to 1.4e-3 (measured at 16 passes; with --ic-importance 1, no selection, none
+// move). Every other method holds a few ulps per vertex (< 1e-4 relative after 128
+// vertices; measured < 3e-7).
 // 4 passes: the scaling is exact or not at any count, and ic/tic, whose passes each
 // gather from ~100-bounce paths (albedo 0.99), cost 4x less than at 16.
 constexpr uint32_t kScalingSpp = 4;
@@ -85,9 +86,8 @@ TEST_P(ExtremeValues, HenyeyGreensteinNearPlusMinusOne) {
         // Every method sees radiance 2 in every direction in the furnace, whatever the
         // medium does (a method that ignores media: the walls' 1 + 0.5 · 2); 256 pixels
         // x 32 spp give a standard error < 1% (measured 0.1–0.2% at 128 spp, so about
-        // twice that here): 3% is generous. At
-        // g = 0.4 it also tells multiple scattering from single (igi --single-scattering
-        // renders 0.61) and from none.
+        // twice that here): 3% is generous. At g = 0.4 it also tells multiple scattering
+        // from single (igi --single-scattering renders 0.61) and from none.
         if (method().peaked_phase_limit && std::abs(g) > 0.9f) {  // finite (above) and within the bound
             EXPECT_LE(radiance_max(img), radiance_bound(method().transport, 1.0, 0.5)) << "g " << g;
             continue;
