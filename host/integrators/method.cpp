@@ -33,6 +33,17 @@ std::string method_names() {
 
 bool igi_family(Method m) { return method_info(m).igi_family; }
 
+namespace {
+
+/// "ss, id, pm, edge": every --components name, for the parser's message.
+std::string component_options() {
+    std::string out;
+    for (const ComponentName& n : kComponentNames) out += (out.empty() ? "" : ", ") + std::string(n.option);
+    return out;
+}
+
+}  // namespace
+
 uint32_t parse_components(const std::string& list) {
     uint32_t bits = 0;
     size_t start = 0;
@@ -43,7 +54,7 @@ uint32_t parse_components(const std::string& list) {
         for (const ComponentName& n : kComponentNames)
             if (c == n.option) bit = n.bit;
         if (bit == 0)
-            throw InputError("--components " + list + ": expected a comma-separated list of ss, id, pm, edge" +
+            throw InputError("--components " + list + ": expected a comma-separated list of " + component_options() +
                              (c.empty() ? " (an entry is empty)" : ", got '" + c + "'"));
         if (bits & bit) throw InputError("--components " + list + ": '" + c + "' is listed twice");
         bits |= bit;
