@@ -1,20 +1,20 @@
 #include "device/frame.h"
 
 #include <cmath>
+#include <string>
 
+#include "scene/camera_view.h"
 #include "util/error.h"
 
 namespace tessera {
 
 TsFrame make_frame(const Camera& camera, int width, int height, uint32_t shadow_samples,
                    uint32_t seed, uint32_t light_count) {
-    glm::vec3 fw = camera.look_at - camera.position;
-    if (!(glm::length(fw) > 0.0f)) throw InputError("camera.look_at equals camera.position");
-    fw = glm::normalize(fw);
-    glm::vec3 right = glm::cross(fw, camera.up);
-    if (!(glm::length(right) > 1e-6f * glm::length(camera.up)))
-        throw InputError("camera.up is parallel to the viewing direction");
-    right = glm::normalize(right);
+    // The loader refuses such a camera with its key; this catches one built in code.
+    if (const char* problem = camera_view_problem(camera.position, camera.look_at, camera.up))
+        throw InputError(std::string("camera: ") + problem);
+    const glm::vec3 fw = glm::normalize(camera.look_at - camera.position);
+    glm::vec3 right = glm::normalize(glm::cross(fw, camera.up));
     glm::vec3 up = glm::normalize(glm::cross(right, fw));
     const float tan_half = std::tan(0.5f * glm::radians(camera.vfov_deg));
     right *= tan_half * static_cast<float>(width) / static_cast<float>(height);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "scene/camera_view.h"
 #include "util/error.h"
 #include "util/input_limits.h"
 
@@ -160,14 +161,7 @@ glm::vec3 read_colour(const JsonField& j, Colour kind) {
 
 void check_camera_view(const JsonField& where, glm::vec3 position, glm::vec3 look_at, glm::vec3 up,
                        const std::string& when) {
-    const glm::vec3 view = look_at - position;
-    const float view2 = glm::dot(view, view);
-    if (!std::isfinite(view2)) where.fail(when + "look_at - position overflows a float");
-    if (view2 == 0.0f) where.fail(when + "look_at equals position");
-    const glm::vec3 side = glm::cross(view, up);
-    const float side2 = glm::dot(side, side);
-    if (!std::isfinite(side2)) where.fail(when + "the view direction times up overflows a float");
-    if (side2 == 0.0f) where.fail(when + "up is zero or parallel to the view direction");
+    if (const char* problem = camera_view_problem(position, look_at, up)) where.fail(when + problem);
 }
 
 }  // namespace tessera::scene_detail

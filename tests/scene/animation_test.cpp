@@ -301,6 +301,8 @@ INSTANTIATE_TEST_SUITE_P(
                      "look_at equals position"},
         BadAnimation{R"({"frames": 3, "camera": [{"frame": 0, "position": [0.5, 1, 0.5]}]})", "animation.camera[0]",
                      "parallel"},
+        BadAnimation{R"({"frames": 3, "camera": [{"frame": 0, "position": [0.5, 3, 0.5], "look_at": [0.5, 0, 0.5000001]}]})",
+                     "animation.camera[0]", "parallel"},
         // Two valid keys whose interpolation passes through look_at: the frame is named.
         BadAnimation{R"({"frames": 3, "camera": [{"frame": 0, "position": [0, 0.5, -1], "look_at": [0, 0.5, 0]},
                                                  {"frame": 2, "position": [0, 0.5, 1], "look_at": [0, 0.5, 0]}]})",

@@ -106,6 +106,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "key 'camera'", "3e+38", "look_at - position overflows a float"},
         BadScene{"UpParallel", R"({"camera": {"position": [0,1,3], "look_at": [0,1,0], "up": [0,0,2]}, )" OBJ "}",
                  "key 'camera'", "\"up\":[0,0,2]", "up is zero or parallel"},
+        // 1e-7 rad off up: make_frame's basis would be round-off, so the loader refuses it
+        // (it once passed the loader and stopped the render after its set-up).
+        BadScene{"UpNearlyParallel", R"({"camera": {"position": [0.5,3,0.5], "look_at": [0.5,0,0.5000001]}, )" OBJ "}",
+                 "key 'camera'", "0.5000001", "up is zero or parallel"},
+        BadScene{"FarAboveLooksDown", R"({"camera": {"position": [0,2e18,3], "look_at": [0.5,0,0.5]}, )" OBJ "}",
+                 "key 'camera'", "2e+18", "up is zero or parallel"},
         // Wrong types and ranges.
         BadScene{"VfovString", R"({"camera": {"position": [0,1,3], "look_at": [0,0,0], "vfov": "wide"}, )" OBJ "}",
                  "key 'camera.vfov'", "\"wide\"", "expected a number, got string"},

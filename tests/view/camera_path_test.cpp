@@ -78,6 +78,8 @@ TEST_F(CameraPath, RejectsBadEntriesNamingThem) {
          "'cameras[2]'", "parallel"},
         {R"({"cameras": [{"position": [0,0,0], "look_at": [0,0,-1], "up": [0,0,0], "vfov": 40}]})", "'cameras[0]'",
          "zero"},
+        {R"({"cameras": [{"position": [0,3,0], "look_at": [0,0,1e-7], "up": [0,1,0], "vfov": 40}]})", "'cameras[0]'",
+         "parallel"},
         {R"({"cameras": [{"position": [1,2,3], "look_at": [1,2,3], "up": [0,1,0], "vfov": 40}]})", "'cameras[0]'",
          "equals position"},
         {R"({"cameras": [{"position": [0,0,1e39], "look_at": [0,0,-1], "up": [0,1,0], "vfov": 40}]})",
