@@ -52,6 +52,7 @@ CLI::Validator integer_in(const std::string& option, long long lo, long long hi)
         if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size() || v < lo || v > hi)
             throw InputError(option + " " + (text.empty() ? "''" : text) + ": must be an integer in " +
                              std::to_string(lo) + ".." + std::to_string(hi));
+        text = std::to_string(v);  // decimal, as CLI11 converts it: "010" is 10, not octal 8
         return std::string();
     }, "");
 }

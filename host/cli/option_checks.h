@@ -23,7 +23,8 @@ CLI::Validator finite_number(const std::string& option);
 CLI::Validator finite_number_in(const std::string& option, double lo, double hi, bool lo_open);
 
 /// A validator for an integer option within [lo, hi]: "--screenshot-window-frame -1: must be
-/// an integer in 0..999999".
+/// an integer in 0..999999". It rewrites the text in canonical decimal ("010" -> "10"), so
+/// add it with Option::transform (a check's rewrite is dropped and CLI11 reads "010" as octal).
 CLI::Validator integer_in(const std::string& option, long long lo, long long hi);
 
 /// Every option and positional of `cmd` that was given with an empty value:

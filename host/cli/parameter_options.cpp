@@ -27,7 +27,9 @@ void add_parameter_options(CLI::App& cmd, RenderSettings& settings, bool for_vie
                 CLI::Option* o = cmd.add_option(p.option, field, parameter_help(p));
                 // Checked as text, before CLI11 converts it: CLI11 would read "-1" for an
                 // unsigned as "Could not convert", "010" as octal, "" as 0, "inf" as inf.
-                o->check(CLI::Validator([&p](std::string& text) {
+                // A transform, not a check: CLI11 hands a check a copy, and the canonical
+                // decimal text ("010" -> "10") must be what it converts.
+                o->transform(CLI::Validator([&p](std::string& text) {
                     text = check_parameter_text(p, text);  // throws InputError naming option and value
                     return std::string();
                 }, ""));

@@ -377,7 +377,7 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--screenshot-window", args->screenshot_window, "Write the window with its HUD as PNG");
     cmd->add_option("--screenshot-window-frame", args->screenshot_window_frame, "Frame after which --screenshot-window is taken")
         ->capture_default_str()
-        ->check(integer_in("--screenshot-window-frame", 0, limits::kViewFrames - 1));
+        ->transform(integer_in("--screenshot-window-frame", 0, limits::kViewFrames - 1));
     cmd->add_option("--reference", args->reference, "Reference EXR of the same size: error AOV and relMSE in the HUD");
     cmd->add_option("--target-fps", args->target_fps,
                     "Moving-camera frame budget: pick tile, VPL paths and light samples from the accuracy sweep's Pareto front, "

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cli/option_checks.h"
 #include "integrators/method.h"
 #include "support/shell.h"
 
@@ -123,6 +124,25 @@ TEST(ParameterOptions, OptionsSetTheirFields) {
     EXPECT_EQ(s.width, 33);
     EXPECT_EQ(s.igi.ais.id_cov, 1.5f);
     EXPECT_EQ(s.spp, RenderSettings{}.spp);
+}
+
+// Integers are decimal whatever their leading zeros: CLI11 alone reads "010" as octal 8
+// and "08" as an error, while the range check reads them as 10 and 8.
+TEST(ParameterOptions, LeadingZerosAreDecimal) {
+    CLI::App app;
+    RenderSettings s;
+    add_parameter_options(app, s);
+    app.parse("--spp 010 --seed 0017 --width 08 --tile 03", false);
+    EXPECT_EQ(s.spp, 10u);
+    EXPECT_EQ(s.seed, 17u);
+    EXPECT_EQ(s.width, 8);
+    EXPECT_EQ(s.igi.tile, 3u);
+    // The viewer's own integer option (integer_in) alike.
+    CLI::App view;
+    int frame = -1;
+    view.add_option("--screenshot-window-frame", frame)->transform(integer_in("--screenshot-window-frame", 0, 99));
+    view.parse("--screenshot-window-frame 010", false);
+    EXPECT_EQ(frame, 10);
 }
 
 // Out of range on the command line: exit 2, "tessera: error: <option> <value>: must be ...",
