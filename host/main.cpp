@@ -20,6 +20,7 @@
 #include "scene/json_field.h"
 #include "util/error.h"
 #include "util/heap.h"
+#include "util/printable.h"
 
 namespace {
 
@@ -30,7 +31,7 @@ namespace {
 int fail(const std::string& message, int code) {
     auto print = [](const std::string& text, int status) {
         std::fprintf(stderr, "%stessera: %s%s\n", status == 130 && ::isatty(STDERR_FILENO) ? "\n" : "",
-                     status == 130 ? "" : "error: ", text.c_str());
+                     status == 130 ? "" : "error: ", tessera::printable(text).c_str());
         return status;
     };
     if (tessera::launched_by_mpi() && !tessera::world_cluster().stepped()) {
@@ -133,7 +134,8 @@ int main(int argc, char** argv) {
         // A distributed render (render/cluster.h): rank 0 gives the one message, naming the
         // rank that failed; the other ranks exit with the same status and say nothing.
         if (!e.silent())
-            std::fprintf(stderr, "tessera: %s%s\n", e.exit_code == 130 ? "" : "error: ", e.what());
+            std::fprintf(stderr, "tessera: %s%s\n", e.exit_code == 130 ? "" : "error: ",
+                         tessera::printable(e.what()).c_str());
         return e.exit_code;
     } catch (const tessera::Interrupted& e) {
         return fail(e.what(), 130);

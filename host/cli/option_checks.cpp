@@ -19,6 +19,7 @@
 #include "image/fatal_signal_cleanup.h"
 #include "util/error.h"
 #include "util/input_limits.h"
+#include "util/printable.h"
 
 namespace tessera::cli {
 namespace fs = std::filesystem;
@@ -107,7 +108,7 @@ fs::path default_output(const Scene& scene, const std::string& suffix) {
 }
 
 void print_scene_notes(const std::vector<std::string>& notes) {
-    for (const std::string& n : notes) std::fprintf(stderr, "tessera: note: %s\n", n.c_str());
+    for (const std::string& n : notes) std::fprintf(stderr, "tessera: note: %s\n", printable(n).c_str());
 }
 
 void check_data_dir(const std::string& data_dir) {

@@ -10,6 +10,7 @@
 #include "scene/transform.h"
 #include "util/error.h"
 #include "util/input_limits.h"
+#include "util/printable.h"
 
 namespace tessera {
 
@@ -270,13 +271,9 @@ bool has_emitter(const Scene& scene) {
 }
 
 // A name that prints as itself in a log line: no control characters (a terminal's
-// escape sequences), not empty. Paths are not made from it (cli/option_checks.h).
-bool is_printable_name(const std::string& name) {
-    if (name.empty()) return false;
-    for (const char c : name)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
-    return true;
-}
+// escape sequences; C1's U+009B is one too), not empty. Paths are not made from it
+// (cli/option_checks.h).
+bool is_printable_name(const std::string& name) { return !name.empty() && is_printable_line(name); }
 
 }  // namespace
 

@@ -57,6 +57,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "must be a name to print"},
         BadScene{"NameWithAnEscape", R"({"name": "a\u001b[2Jb", )" CAM ", " OBJ ", " LIGHT "}", "key 'name'",
                  "u001b", "must be a name to print"},
+        BadScene{"NameWithACsi", R"({"name": "a\u009bb", )" CAM ", " OBJ ", " LIGHT "}", "key 'name'",
+                 "a\xc2\x9b" "b", "must be a name to print"},  // raw here; main() prints it as \u009b
         BadScene{"TopLevelLightz", "{" CAM ", " OBJ R"(, "lightz": []})", "unknown key 'lightz'", "[]",
                  "did you mean 'lights'?"},
         BadScene{"TopLevelMaterails", "{" CAM ", " OBJ ", " LIGHT R"(, "materails": {}})", "unknown key 'materails'",
