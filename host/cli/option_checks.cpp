@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 #include <map>
 #include <set>
 #include <system_error>
@@ -120,6 +121,29 @@ void check_data_dir(const std::string& data_dir) {
 
 namespace {
 
+// The names the writer makes under `existing` (the nearest existing ancestor of `path`'s
+// directory) must fit its file system's limit: each directory it creates, and the file's
+// temporaries, whose names are up to kOutputNameExtra bytes longer (image/atomic_file.h).
+// Else the render would run and fail at its first write.
+void check_name_lengths(const std::string& name, const fs::path& path, const fs::path& existing) {
+    const long name_max = ::pathconf(existing.empty() ? "." : existing.c_str(), _PC_NAME_MAX);
+    const size_t limit = name_max > 0 ? size_t(name_max) : 255;
+    const fs::path rest = path.lexically_relative(existing.empty() ? fs::path(".") : existing);
+    for (auto it = rest.begin(); it != rest.end(); ++it) {
+        const size_t n = it->string().size();
+        if (std::next(it) == rest.end()) {
+            if (n + kOutputNameExtra > limit)
+                throw InputError(name + ": the file name is " + std::to_string(n) + " bytes; at most " +
+                                 std::to_string(limit - kOutputNameExtra) + " here (it is written through "
+                                 "temporaries whose names are up to " + std::to_string(kOutputNameExtra) +
+                                 " bytes longer)");
+        } else if (n > limit) {
+            throw InputError(name + ": the directory name " + it->string().substr(0, 16) + "... is " +
+                             std::to_string(n) + " bytes; at most " + std::to_string(limit) + " here");
+        }
+    }
+}
+
 void check_output(const OutputFile& o) {
     const std::string name = o.role + " " + o.path.string();
     const std::string file = o.path.filename().string();
@@ -142,6 +166,7 @@ void check_output(const OutputFile& o) {
     }
     // The directory: the nearest existing ancestor must be a directory (the rest is made).
     const fs::path dir = existing_ancestor(o.path.parent_path());
+    check_name_lengths(name, o.path, dir);
     const fs::file_status target = fs::status(dir, ec);  // through links
     if (!fs::exists(target) && fs::is_symlink(fs::symlink_status(dir, ec)))
         throw InputError(name + ": " + dir.string() + " is a symbolic link to nothing (a missing target or a loop)");

@@ -90,9 +90,9 @@ int make_temp(const fs::path& target, fs::path& temp, fs::path* made = nullptr) 
         if (ec) fail(target, "cannot create the directory '" + dir.string() + "'", ec.value());
         if (made) *made = outermost;
     }
-    std::string pattern =
-        (dir.empty() ? fs::path(".") : dir).string() + "/." + target.filename().string() +
-        ".tmp.XXXXXX";
+    static constexpr char kSuffix[] = ".tmp.XXXXXX";
+    static_assert(1 + sizeof kSuffix - 1 == kTemporaryNameExtra, "the leading '.' and the suffix");
+    std::string pattern = (dir.empty() ? fs::path(".") : dir).string() + "/." + target.filename().string() + kSuffix;
     std::vector<char> buf(pattern.begin(), pattern.end());
     buf.push_back('\0');
     int fd = ::mkstemp(buf.data());

@@ -36,6 +36,15 @@ std::string with_path_shown(std::string message, const std::filesystem::path& te
 /// OS reason on failure; an existing file at `path` is then left untouched.
 void write_file_atomic(const std::filesystem::path& path, const void* data, std::size_t size);
 
+/// The bytes a temporary's name, `.<name>.tmp.XXXXXX`, adds to its target's.
+inline constexpr std::size_t kTemporaryNameExtra = 12;
+/// The most an output's name grows on its way to the file: a run's EXR goes to a
+/// CommitGroup temporary, which write_exr fills through a temporary of its own
+/// (`..<name>.tmp.XXXXXX.tmp.XXXXXX`). A target whose name is within this of its
+/// directory's limit (NAME_MAX, 255 bytes on Linux's file systems) cannot be written, so
+/// the output checks refuse it before any work.
+inline constexpr std::size_t kOutputNameExtra = 2 * kTemporaryNameExtra;
+
 /// Creates a unique empty temporary file `.<name>.tmp.XXXXXX` beside `path`, calls
 /// `write(temp)` to fill it (the callback may reopen the file by name), fsyncs it and
 /// renames it over `path`. On any failure (including an exception from `write`) the

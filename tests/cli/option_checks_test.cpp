@@ -197,6 +197,14 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
          [](const fs::path& d) { fs::create_symlink(d / "nowhere" / "x.exr", d / "d.exr"); }},
         {kRender + "--out $D/self.exr", "--out $D/self.exr: is a symbolic link in a loop", 2,
          [](const fs::path& d) { fs::create_symlink(d / "self.exr", d / "self.exr"); }},
+        // Names the writer could not make (NAME_MAX 255 on the test's file system): the EXR's
+        // temporaries add 24 bytes, so a legal name of 232 bytes failed after the render.
+        {kRender + "--out $D/" + std::string(228, 'a') + ".exr",
+         "--out $D/" + std::string(228, 'a') + ".exr: the file name is 232 bytes; at most 231 here (it is written "
+         "through temporaries whose names are up to 24 bytes longer)"},
+        {kRender + "--out $D/" + std::string(300, 'b') + "/img.exr",
+         "--out $D/" + std::string(300, 'b') + "/img.exr: the directory name bbbbbbbbbbbbbbbb... is 300 bytes; at "
+         "most 255 here"},
         // Failures found after the outputs are checked make no directory for them (the
         // writers make it at their first write): a missing checkpoint, an unknown device.
         {kRender + "--resume --out $D/new/img.exr",
