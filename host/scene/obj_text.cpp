@@ -26,6 +26,11 @@ void line_error(const std::filesystem::path& file, size_t line, const std::strin
 }
 
 std::vector<TextLine> text_lines(const std::filesystem::path& file, std::string_view text) {
+    // tinyobjloader, which parses the file after this scan, reads a byte-order mark as part
+    // of the first keyword ("\xEF\xBB\xBFv" is no vertex): every later index would shift.
+    if (text.substr(0, 3) == "\xEF\xBB\xBF")
+        line_error(file, 1, "starts with a UTF-8 byte-order mark, which the OBJ/MTL parser reads as part of the "
+                            "first statement; save the file without it (as plain UTF-8 or ASCII)");
     std::vector<TextLine> lines;
     size_t number = 0;
     for (size_t pos = 0; pos < text.size();) {

@@ -91,6 +91,11 @@ TEST_F(MtlInput, NulByteIsRejected) {
     EXPECT_CONTAINS(e, "m.mtl:2: contains a NUL byte");
 }
 
+TEST_F(MtlInput, ByteOrderMarkIsRejected) {
+    const std::string e = test::load_error(write("\xEF\xBB\xBFnewmtl m\nKd 1 1 1\n"));
+    EXPECT_CONTAINS(e, "m.mtl:1: starts with a UTF-8 byte-order mark");
+}
+
 TEST_F(MtlInput, MissingMtlNamesTheObjLine) {
     write("newmtl m\n");
     std::filesystem::remove(dir_ / "m.mtl");

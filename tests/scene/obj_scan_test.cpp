@@ -114,6 +114,9 @@ INSTANTIATE_TEST_SUITE_P(
         // Whole-file problems.
         BadObj{"NulByte", std::string("v 0 0 0\nv 1 0 0") + '\0' + "\nv 0 0 1\nf 1 2 3\n", "broken.obj:2:", "NUL byte",
                "not a text file"},
+        // A byte-order mark made the first vertex an unknown statement: indices shifted by one.
+        BadObj{"ByteOrderMark", "\xEF\xBB\xBF" + T + "f 1 2 3\n", "broken.obj:1:", "byte-order mark",
+               "save the file without it"},
         BadObj{"NoFaces", "# no faces\nv 0 0 0\n", "broken.obj:", "no f lines", "has no faces"},
         BadObj{"OnlyPoints", T + "p 1 2 3\n", "broken.obj:", "no f lines", "has no faces"}),
     [](const auto& info) { return std::string(info.param.name); });
