@@ -242,6 +242,9 @@ void run_view(const ViewArgs& a, const CLI::App& cmd) {
         throw InputError("--min-scale " + cmd.get_option("--min-scale")->as<std::string>() + ": is read only with --target-fps (the floor of its resolution scale)");
     if (cmd.count("--pareto") && !cmd.count("--target-fps"))
         throw InputError("--pareto " + a.pareto + ": is read only with --target-fps (the frame budget it feeds)");
+    if (cmd.count("--screenshot-window-frame") && a.screenshot_window.empty())
+        throw InputError("--screenshot-window-frame " + std::to_string(a.screenshot_window_frame) +
+                         ": is read only with --screenshot-window (the frame after which it captures the window)");
     if (a.record && a.camera_path.empty()) throw InputError("--record needs --camera-path FILE.json to record into");
     if (a.record && a.headless) throw InputError("--record records a windowed session; it cannot be used with --headless");
     if (a.headless && !a.screenshot_window.empty())

@@ -85,6 +85,9 @@ std::vector<ScriptedEvent> read_events(const std::filesystem::path& path) {
     const JsonField root(doc, path, "");
     root.require_known_keys({"events"});
     const JsonField list = root["events"];
+    // As a camera path needs a camera: an empty script steers nothing (a headless run of
+    // one drew no frame, wrote nothing and exited 0).
+    if (list.size() == 0) list.fail("an input script needs at least one event");
     if (list.size() > limits::kPathEntries)
         list.fail("more than " + std::to_string(limits::kPathEntries) + " events (the limit for a script)");
     std::vector<ScriptedEvent> events;

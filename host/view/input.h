@@ -35,7 +35,7 @@ struct ScriptedEvent {
 /// and F in 0..limits::kViewFrames-1. Events are returned sorted by frame (stable). The
 /// whole file is checked first. Throws InputError "--input-script <file>: key
 /// 'events[3].quit' = false: <why>" for anything else (an unknown key, a second action,
-/// a value out of range, more than limits::kPathEntries events) and for the file errors
+/// a value out of range, no events or more than limits::kPathEntries) and for the file errors
 /// of scene_detail::parse_json_file.
 std::vector<ScriptedEvent> read_input_script(const std::filesystem::path& path);
 

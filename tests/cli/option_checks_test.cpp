@@ -247,6 +247,13 @@ TEST_F(ContractCli, ViewComponentsAndCompareSurfacesAreRejectedBeforeAnyWork) {
         {view + "--speed inf", "--speed inf: must be a finite number > 0 and <= 1e+12", 2, files},
         {view + "--speed nan", "--speed nan: must be a finite number > 0 and <= 1e+12", 2, files},
         {view + "--screenshot-window-frame -1", "--screenshot-window-frame -1: must be an integer in 0..999999", 2, files},
+        // Orphan options: read only with another one (they were ignored without a word).
+        {view + "--screenshot-window-frame 5",
+         "--screenshot-window-frame 5: is read only with --screenshot-window (the frame after which it captures the "
+         "window)", 2, files},
+        {"view --backend embree --headless --width 8 --height 8 --input-script $D/e.json",
+         "--input-script $D/e.json: key 'events' = []: an input script needs at least one event", 2,
+         [](const fs::path& d) { std::ofstream(d / "e.json") << R"({"events": []})"; }},
         // As render: PM alone on a scene without a medium (the default Cornell box) is black.
         {view + "--components pm", "--components pm: on scene " + std::string(TESSERA_SCENES_DIR) +
                                        "/cornell-box.json, PM computes nothing (medium: none declared); add ss or id",
