@@ -338,7 +338,10 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
         }
         if (lead) print_scene_notes(scene.notes);
         // Before the scene's banner; rank 0 alone reads the checkpoint (render_frame).
-        if (lead && a.resume) require_checkpoint(checkpoint_path_for(out));
+        if (lead && a.resume) {
+            require_checkpoint(checkpoint_path_for(out));
+            check_checkpoint_file(checkpoint_path_for(out));  // a truncated or foreign file fails before the set-up
+        }
         if (lead) {  // only rank 0 writes
             // Every output before the first ray: a run that cannot write its results does no work.
             const std::vector<OutputFile> files = outputs_of(a, out, frames, frame_number_digits(scene));

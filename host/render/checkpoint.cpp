@@ -1,5 +1,6 @@
 #include "render/checkpoint.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -214,28 +215,42 @@ void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_t
     });
 }
 
-uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulator& acc, MethodSums* method_sums,
-                         uint32_t* format_version) {
-    Reader r{std::ifstream(path, std::ios::binary), path.string()};
+namespace {
+
+/// A checkpoint's header, up to the pixel data, with the sizes it implies.
+struct Header {
+    uint32_t version = 0;
+    int32_t width = 0, height = 0;
+    uint32_t passes = 0;
+    uint64_t settings_hash = 0;
+    RunIdentity saved;
+    std::vector<uint64_t> method_lengths;  ///< values in each method sum array
+    std::size_t pixels = 0;
+};
+
+/// Reads the header from r (at the file's start) and checks the magic, the version, the
+/// sizes and that the file's length is the one they give.
+Header read_header(Reader& r, const fs::path& path) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec) || !r.in) r.fail("cannot be read (missing or not a file)");
     const uintmax_t file_size = fs::file_size(path, ec);
 
+    Header hd;
     char magic[8];
     r.raw(magic, sizeof magic);
     if (std::memcmp(magic, kMagic, 6) != 0) r.fail("not a Tessera checkpoint (bad magic)");
-    const uint32_t version = r.get<uint32_t>();
-    if (std::memcmp(magic, kMagic, sizeof magic) != 0 || version < kOldestVersion || version > kVersion)
-        r.fail("format version " + std::to_string(version) + " is not supported (this build reads versions " +
+    hd.version = r.get<uint32_t>();
+    if (std::memcmp(magic, kMagic, sizeof magic) != 0 || hd.version < kOldestVersion || hd.version > kVersion)
+        r.fail("format version " + std::to_string(hd.version) + " is not supported (this build reads versions " +
                std::to_string(kOldestVersion) + " to " + std::to_string(kVersion) + ")");
-    if (format_version) *format_version = version;
     if (r.get<uint32_t>() != TS_PASS_FLOATS) r.fail("corrupt (floats per pixel differ from this build's)");
     const int32_t w = r.get<int32_t>(), h = r.get<int32_t>();
     if (w < 1 || h < 1 || w > 16384 || h > 16384) r.fail("corrupt (image size out of range)");
-    const uint32_t passes = r.get<uint32_t>();
+    hd.width = w, hd.height = h;
+    hd.passes = r.get<uint32_t>();
     r.get<uint32_t>();  // spp target of the saving run: informational
-    const uint64_t settings_hash = r.get<uint64_t>();
-    RunIdentity saved;
+    hd.settings_hash = r.get<uint64_t>();
+    RunIdentity& saved = hd.saved;
     saved.scene_path = r.str();
     saved.scene_file_hash = r.get<uint64_t>();
     saved.scene_data_hash = r.get<uint64_t>();
@@ -249,12 +264,12 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
     saved.backend = r.str();
     saved.method_settings = r.str();
 
-    const std::size_t n = std::size_t(w) * std::size_t(h);
-    const uint32_t method_count = version >= 3 ? r.get<uint32_t>() : 0;
+    const std::size_t n = hd.pixels = std::size_t(w) * std::size_t(h);
+    const uint32_t method_count = hd.version >= 3 ? r.get<uint32_t>() : 0;
     if (method_count > kMaxMethodSums) r.fail("corrupt (" + std::to_string(method_count) + " method sum arrays)");
-    std::vector<uint64_t> method_lengths(method_count);
+    hd.method_lengths.resize(method_count);
     uintmax_t method_bytes = 0;
-    for (uint64_t& len : method_lengths) {
+    for (uint64_t& len : hd.method_lengths) {
         len = r.get<uint64_t>();
         // One or three values a pixel (guidance, components), or none yet.
         if (len != 0 && len != n && len != 3 * n) r.fail("corrupt (a method sum of " + std::to_string(len) + " values)");
@@ -264,15 +279,50 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
     if (ec || file_size != expected)
         r.fail("truncated or corrupt (" + std::to_string(file_size) + " bytes, expected " + std::to_string(expected) +
                " for " + std::to_string(w) + "x" + std::to_string(h) + ")");
+    return hd;
+}
+
+/// The checksum, after the data r has hashed so far, and the header's own consistency.
+void check_checksum(Reader& r, const Header& hd) {
+    const uint64_t computed = r.hash;
+    if (r.get<uint64_t>() != computed) r.fail("corrupt (checksum mismatch)");
+    if (hd.saved.width != hd.width || hd.saved.height != hd.height || hd.settings_hash != identity_hash(hd.saved))
+        r.fail("corrupt (header fields disagree)");
+}
+
+}  // namespace
+
+void check_checkpoint_file(const fs::path& path) {
+    Reader r{std::ifstream(path, std::ios::binary), path.string()};
+    const Header hd = read_header(r, path);
+    // The pixel data in pieces, for the checksum only: the whole checkpoint of a large
+    // image is not held twice.
+    std::error_code ec;
+    uintmax_t left = fs::file_size(path, ec) - uintmax_t(r.in.tellg()) - 8;
+    std::vector<char> piece(std::size_t(1) << 20);
+    while (left > 0) {
+        const std::size_t k = std::size_t(std::min<uintmax_t>(left, piece.size()));
+        r.raw(piece.data(), k);
+        left -= k;
+    }
+    check_checksum(r, hd);
+}
+
+uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulator& acc, MethodSums* method_sums,
+                         uint32_t* format_version) {
+    Reader r{std::ifstream(path, std::ios::binary), path.string()};
+    const Header hd = read_header(r, path);
+    if (format_version) *format_version = hd.version;
+    const int32_t w = hd.width, h = hd.height;
+    const uint32_t passes = hd.passes, version = hd.version;
+    const RunIdentity& saved = hd.saved;
+    const std::size_t n = hd.pixels;
     std::vector<double> sums = r.array<double>(n * TS_PASS_FLOATS);
     std::vector<double> sums_sq = r.array<double>(n * 3);
     std::vector<uint32_t> hits = r.array<uint32_t>(n);
     MethodSums method;
-    for (uint64_t len : method_lengths) method.push_back(r.array<double>(std::size_t(len)));
-    const uint64_t computed = r.hash;
-    if (r.get<uint64_t>() != computed) r.fail("corrupt (checksum mismatch)");
-    if (saved.width != w || saved.height != h || settings_hash != identity_hash(saved))
-        r.fail("corrupt (header fields disagree)");
+    for (uint64_t len : hd.method_lengths) method.push_back(r.array<double>(std::size_t(len)));
+    check_checksum(r, hd);
     check_sums(r, w, sums, TS_PASS_FLOATS, "sum");
     check_sums(r, w, sums_sq, 3, "sum of squares", true);
     for (const std::vector<double>& m : method) check_sums(r, w, m, m.size() / n, "method sum");
@@ -285,7 +335,7 @@ uint32_t load_checkpoint(const fs::path& path, const RunIdentity& id, Accumulato
         throw InputError("checkpoint " + r.name + " was made by an older build, whose --method " + id.method +
                          " passes differ from this build's (the filter at the image border, the VPL clamp's "
                          "length): delete it to render from the start");
-    if (settings_hash != identity_hash(id) || !(saved == id)) {
+    if (hd.settings_hash != identity_hash(id) || !(saved == id)) {
         const std::string what = describe_difference(r.name, saved, id);
         throw InputError(what.empty() ? "checkpoint " + r.name + " was made with different settings" : what);
     }

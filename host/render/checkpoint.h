@@ -65,6 +65,11 @@ std::filesystem::path checkpoint_path_for(const std::filesystem::path& out);
 void save_checkpoint(const std::filesystem::path& path, const RunIdentity& id, uint32_t spp_target,
                      const Accumulator& acc, const std::vector<const std::vector<double>*>& method_sums = {});
 
+/// Checks `path` as a file, before a run's set-up: the magic, version, sizes and checksum
+/// (not which run made it, nor the values, which load_checkpoint checks). Reads the file
+/// once, holding 1 MiB of it at a time. Throws InputError as load_checkpoint does.
+void check_checkpoint_file(const std::filesystem::path& path);
+
 /// Reads `path` into `acc` (which must be sized id.width × id.height) after checking the
 /// magic, version, sizes, checksum and that it was made by a run with identity `id`.
 /// The method's sums go to `method_sums` when given (replacing its contents), else are

@@ -180,6 +180,8 @@ TEST_F(CheckpointCli, CorruptCheckpointIsRefusedNamingIt) {
     CliRun r = run_tessera(render_args({"--resume"}));
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find("checkpoint " + (dir_ / "img.ckpt").string()), std::string::npos) << r.output;
+    // Before the scene's banner and the backend's set-up (it came after them).
+    EXPECT_EQ(r.output.find(" triangles"), std::string::npos) << r.output;
 }
 
 TEST_F(CheckpointCli, NegativeIntervalIsRejected) {

@@ -216,25 +216,49 @@ TEST_F(Checkpoint, CorruptTruncatedOrMissingFileIsInputErrorNamingIt) {
         f.put(byte);
     };
 
-    fs::resize_file(file, good_size - 3);
-    expect_input_error(load, {file.string(), "truncated"});
-    fs::resize_file(file, 20);
-    expect_input_error(load, {file.string(), "truncated"});
+    // check_checkpoint_file (the render command's check before its set-up) finds the same.
+    auto check = [&] { check_checkpoint_file(file); };
+    EXPECT_NO_THROW(check());
+    for (const auto& read : {std::function<void()>(load), std::function<void()>(check)}) {
+        fs::resize_file(file, good_size - 3);
+        expect_input_error(read, {file.string(), "truncated"});
+        fs::resize_file(file, 20);
+        expect_input_error(read, {file.string(), "truncated"});
 
+        save_checkpoint(file, some_identity(w, h), 4, a);
+        poke(std::streamoff(good_size / 2), 0x55);  // inside the sums
+        expect_input_error(read, {file.string(), "checksum"});
+
+        save_checkpoint(file, some_identity(w, h), 4, a);
+        poke(0, 'X');
+        expect_input_error(read, {file.string(), "magic"});
+
+        save_checkpoint(file, some_identity(w, h), 4, a);
+        poke(7, '2');  // "TSCKPT02"
+        expect_input_error(read, {file.string(), "version"});
+
+        fs::remove(file);
+        expect_input_error(read, {file.string()});
+        save_checkpoint(file, some_identity(w, h), 4, a);
+    }
+}
+
+// The early check reads a large checkpoint in 1 MiB pieces: a byte changed in the last
+// piece still fails its checksum, and an intact file passes.
+TEST_F(Checkpoint, FileCheckCoversEveryPieceOfALargeCheckpoint) {
+    const int w = 300, h = 200;  // ~10 MB of sums
+    Accumulator a(w, h);
+    a.add(synthetic_pass(w, h, 0));
+    const fs::path file = dir_ / "big.ckpt";
     save_checkpoint(file, some_identity(w, h), 4, a);
-    poke(std::streamoff(good_size / 2), 0x55);  // inside the sums
-    expect_input_error(load, {file.string(), "checksum"});
-
-    save_checkpoint(file, some_identity(w, h), 4, a);
-    poke(0, 'X');
-    expect_input_error(load, {file.string(), "magic"});
-
-    save_checkpoint(file, some_identity(w, h), 4, a);
-    poke(7, '2');  // "TSCKPT02"
-    expect_input_error(load, {file.string(), "version"});
-
-    fs::remove(file);
-    expect_input_error(load, {file.string()});
+    ASSERT_GT(fs::file_size(file), uintmax_t(3) << 20);
+    EXPECT_NO_THROW(check_checkpoint_file(file));
+    {
+        std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(std::streamoff(fs::file_size(file) - 20));  // the hit counts, before the checksum
+        f.put(0x55);
+    }
+    expect_input_error([&] { check_checkpoint_file(file); }, {file.string(), "checksum"});
 }
 
 // A file whose checksum is right but whose sums are not usable (a NaN, an Inf, a negative
