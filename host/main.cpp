@@ -3,7 +3,10 @@
 // A render stopped by SIGINT/SIGTERM (after saving a checkpoint) exits with 130. In a
 // distributed render (mpirun) only rank 0 prints, naming the rank that failed.
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <regex>
 #include <sstream>
@@ -102,9 +105,20 @@ std::string unknown_command(CLI::App& app, int argc, char** argv) {
     return std::string("unknown command '") + argv[1] + "'; the commands are " + names;
 }
 
-}  // namespace
+// Whether what the command printed on stdout (the files it wrote, compare's metrics, info)
+// reached it: a full disk or a closed stdout failed silently with exit 0. A reader that
+// left (`| head`, EPIPE) is not a failure: the work is done, as with `cmd | head` in a shell.
+int check_stdout(int status) {
+    errno = 0;
+    const bool flushed = std::fflush(stdout) == 0;
+    if (flushed && !std::ferror(stdout)) return status;
+    const int err = errno;
+    if (err == EPIPE || status != 0) return status;
+    return fail(std::string("cannot write to standard output") + (err ? std::string(": ") + std::strerror(err) : ""), 1);
+}
 
-int main(int argc, char** argv) {
+// The command line's work: parse, run the subcommand, report failures; the exit status.
+int run(int argc, char** argv) {
     tessera::keep_frame_memory();
     CLI::App app{"Tessera: interactive global illumination on OpenCL devices and Embree"};
     app.require_subcommand(1);
@@ -152,4 +166,14 @@ int main(int argc, char** argv) {
         return fail(e.what(), 1);
     }
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    // A closed pipe on stdout or stderr is EPIPE on the write, not SIGPIPE's death mid-pass
+    // (no checkpoint, the frame's temporaries left): progress lines are then lost, the
+    // render goes on, and check_stdout decides.
+    std::signal(SIGPIPE, SIG_IGN);
+    return check_stdout(run(argc, argv));
 }

@@ -7,11 +7,13 @@
 
 #include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <system_error>
 #include <sstream>
 
 #include "image/fatal_signal_cleanup.h"
@@ -64,8 +66,14 @@ ToolRun run_tool(const std::vector<std::string>& args) {
     // Output to files rather than pipes: no deadlock on a tool that writes much to both.
     // The counter keeps two runs of one process (FLIP, then cvvdp) apart.
     static std::atomic<int> serial{0};
-    const fs::path tmp = fs::temp_directory_path() /
-                         ("tessera-tool-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
+    std::error_code ec;
+    const fs::path tmp_dir = fs::temp_directory_path(ec);
+    if (ec) {  // the tool cannot run without its output files: said as a tool that did not start
+        const char* tmpdir = std::getenv("TMPDIR");
+        r.spawn_error = "no temporary directory: TMPDIR=" + std::string(tmpdir ? tmpdir : "") + ": " + ec.message();
+        return r;
+    }
+    const fs::path tmp = tmp_dir / ("tessera-tool-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));
     const std::string out_path = tmp.string() + ".out", err_path = tmp.string() + ".err";
     // Removed on every return: a failed spawn has created them too (the file actions run
     // before the exec that fails). And by a signal that ends `compare` during a tool's run.
@@ -81,8 +89,13 @@ ToolRun run_tool(const std::vector<std::string>& args) {
     // Python for HDR-VDP) would run on for minutes and write its map after compare went.
     posix_spawnattr_t attr;
     posix_spawnattr_init(&attr);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
     posix_spawnattr_setpgroup(&attr, 0);
+    // The tool gets SIGPIPE's default back: main() ignores it, and an exec keeps ignored signals.
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGPIPE);
+    posix_spawnattr_setsigdefault(&attr, &defaults);
     pid_t pid = 0;
     std::optional<KilledOnFatalSignal> killed_on_signal;
     {

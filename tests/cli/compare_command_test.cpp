@@ -258,6 +258,23 @@ TEST_F(CompareCli, FlipUnavailableKeepsOtherMetrics) {
         << text.output;
 }
 
+// A TMPDIR that is not a directory: FLIP, which needs its output files there, is
+// unavailable and says why; the other metrics stand (it failed the whole run, naming
+// neither TMPDIR nor its value). A full stdout fails the run: the metrics did not arrive.
+TEST_F(CompareCli, FlipWithoutATemporaryDirectoryKeepsOtherMetrics) {
+    const std::string a = write("a.exr", constant(4, 4, 0.25f)), b = write("b.exr", constant(4, 4, 0.5f));
+    const nlohmann::json j = compare_json(a, b, "TMPDIR=/nonexistent/tmp");
+    EXPECT_NEAR(j["relmse"].get<double>(), 0.0625 / 0.0725, 1e-9);
+    EXPECT_NE(j["flip"]["unavailable"].get<std::string>().find("TMPDIR=/nonexistent/tmp"), std::string::npos)
+        << j.dump();
+    const CliResult full =
+        run_shell("{ " + std::string(TESSERA_EXE) + " compare " + a + " " + b + " --json --no-flip > /dev/full; }");
+    EXPECT_EQ(full.exit_code, 1) << full.output;
+    EXPECT_NE(full.output.find("tessera: error: cannot write to standard output: No space left on device"),
+              std::string::npos)
+        << full.output;
+}
+
 // A FLIP map asked for and not written fails the run (exit 1), and leaves --map unwritten
 // too (and their new directory unmade); asked for with --no-flip it is refused before any work (exit 2).
 TEST_F(CompareCli, FlipMapThatCannotBeWrittenFailsTheRun) {

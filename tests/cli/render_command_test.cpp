@@ -488,3 +488,25 @@ TEST_F(IgiCli, AovWritesEachComponentBeforeAndAfterFiltering) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace {
+
+// A log reader that leaves (`tessera render ... 2>&1 | head -c 1`) does not end the render:
+// SIGPIPE killed it at its next line, with no image, no checkpoint and the frame's
+// temporaries left. The render finishes, writes its image and exits 0.
+TEST_F(RenderCli, AReaderThatLeavesDoesNotEndTheRender) {
+    const fs::path out = dir_ / "img.exr";
+    const CliResult r = run_shell("{ " + std::string(TESSERA_EXE) + " render " + kData +
+                                  "/light.json --backend embree --spp 4 --width 8 --height 8 --out " + out.string() +
+                                  " 2>&1; echo $? > " + (dir_ / "rc").string() + "; } | head -c 1");
+    std::ifstream rc(dir_ / "rc");
+    int status = -1;
+    rc >> status;
+    EXPECT_EQ(status, 0) << r.output;
+    EXPECT_TRUE(fs::exists(out));
+    EXPECT_TRUE(fs::exists(dir_ / "img.png"));
+    for (const auto& e : fs::directory_iterator(dir_))
+        EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+}
+
+}  // namespace
