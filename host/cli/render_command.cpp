@@ -389,18 +389,25 @@ void run_render(const RenderArgs& a, const CLI::App& cmd) {
     Image img = render_frame(*backend, scene, buffers, settings, &stats, progress, ckpt ? &*ckpt : nullptr, &cluster);
     if (!lead) return;
     const fs::path png = png_beside(out);
-    CommitGroup outputs;  // all of them or none
-    outputs.write(out, [&](const fs::path& t) { write_exr(t, img); });
-    outputs.write(png, [&](const fs::path& t) { write_png(t, img, a.exposure); });
-    if (!a.stats_json.empty())
-        outputs.write(a.stats_json, [&](const fs::path& t) {
-            write_stats_json(t, a, settings, stats, backend->description(), cluster.size(), img.width, img.height);
-        });
-    {
+    std::error_code ec;
+    try {
+        CommitGroup outputs;  // all of them or none
+        outputs.write(out, [&](const fs::path& t) { write_exr(t, img); });
+        outputs.write(png, [&](const fs::path& t) { write_png(t, img, a.exposure); });
+        if (!a.stats_json.empty())
+            outputs.write(a.stats_json, [&](const fs::path& t) {
+                write_stats_json(t, a, settings, stats, backend->description(), cluster.size(), img.width, img.height);
+            });
         const InterruptDeferral defer;
         outputs.commit();
+    } catch (const RuntimeError& e) {
+        // A periodic (or the resumed) checkpoint outlives the failed write: said, since the
+        // next run of the command is refused beside it.
+        if (ckpt && fs::exists(ckpt->path, ec))
+            throw RuntimeError(std::string(e.what()) + "; the render's checkpoint " + ckpt->path.string() +
+                               " is kept (the passes to its last save): once the outputs can be written, add --resume");
+        throw;
     }
-    std::error_code ec;
     if (ckpt) fs::remove(ckpt->path, ec);  // the render is complete: its checkpoint is of no further use
     if (!stats.detail.empty()) std::fprintf(stderr, "tessera: %s\n", stats.detail.c_str());
     std::fprintf(stderr, "tessera: %u spp in %.2f s (median %.1f ms per pass)", stats.passes, stats.seconds,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -198,6 +199,7 @@ void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_t
     for (const std::vector<double>* m : method_sums) head.put(uint64_t(m->size()));
 
     replace_file_atomic(path, [&](const fs::path& temp) {
+        errno = 0;  // what the failing write leaves, for the message
         std::ofstream out(temp, std::ios::binary | std::ios::trunc);
         uint64_t h = fnv1a64(nullptr, 0);
         auto write = [&](const void* p, std::size_t n) {
@@ -211,7 +213,11 @@ void save_checkpoint(const fs::path& path, const RunIdentity& id, uint32_t spp_t
         for (const std::vector<double>* m : method_sums) write(m->data(), m->size() * sizeof(double));
         out.write(reinterpret_cast<const char*>(&h), sizeof h);
         out.close();
-        if (!out) throw RuntimeError("cannot write checkpoint " + path.string() + ": write failed");
+        if (!out) {
+            const int err = errno;
+            throw RuntimeError("cannot write checkpoint " + path.string() + ": write failed" +
+                               (err ? std::string(": ") + std::strerror(err) : std::string()));
+        }
     });
 }
 

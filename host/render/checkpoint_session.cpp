@@ -1,5 +1,6 @@
 #include "render/checkpoint_session.h"
 
+#include <cstdio>
 #include <system_error>
 
 #include "render/interrupt.h"
@@ -60,7 +61,17 @@ void CheckpointSession::after_pass(const Accumulator& acc) {
     if (interrupted) interrupt(acc);
     if (interval_s_ > 0 && std::chrono::duration<double>(now - last_save_).count() >= interval_s_) {
         const InterruptDeferral defer;
-        save_checkpoint(options_->path, id_, spp_, acc, kept_);
+        try {
+            save_checkpoint(options_->path, id_, spp_, acc, kept_);
+        } catch (const RuntimeError& e) {
+            // A checkpoint is insurance, not the result: a full disk (a checkpoint is ~4x the
+            // EXR) must not end a render whose image would still fit. Said once; tried again
+            // at the next interval.
+            if (!save_failed_)
+                std::fprintf(stderr, "tessera: note: %s; the render goes on (an interrupt now may keep no "
+                                     "checkpoint)\n", e.what());
+            save_failed_ = true;
+        }
         last_save_ = std::chrono::steady_clock::now();
     }
 }

@@ -71,6 +71,7 @@ private:
     uint32_t spp_ = 0;
     double interval_s_ = 0.0;
     std::chrono::steady_clock::time_point last_save_;
+    bool save_failed_ = false;  ///< a periodic save failed (said once; tried again each interval)
     std::optional<InterruptScope> interrupts_;
     MethodSums restored_;                          // from the checkpoint, until kept
     uint32_t restored_version_ = 3;                // its format (2: no method sums)

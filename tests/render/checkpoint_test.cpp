@@ -491,6 +491,26 @@ TEST_P(ResumeCornell, IntervalCheckpointsResumeToTheSameImage) {
     expect_bit_identical(whole, resumed);
 }
 
+// A periodic checkpoint that cannot be written (here its directory is a file; a full disk
+// alike) is a note, not the end of the render: it ended the run and lost every pass.
+TEST_P(ResumeCornell, AnUnwritableIntervalCheckpointDoesNotEndTheRender) {
+    RenderSettings rs;
+    rs.width = rs.height = 16;
+    rs.spp = 3;
+    rs.shadow_samples = 2;
+    const Image plain = render_frame(*backend, scene, buffers, rs);
+    std::ofstream(dir_ / "file") << "not a directory";
+    rs.checkpoint_interval_s = 1e-9;
+    CheckpointOptions ck{dir_ / "file" / "cornell.ckpt", GetParam(), false};
+    testing::internal::CaptureStderr();
+    const Image img = render_ckpt(*backend, scene, buffers, rs, ck);
+    const std::string log = testing::internal::GetCapturedStderr();
+    expect_bit_identical(plain, img);
+    EXPECT_NE(log.find("tessera: note: cannot write '" + ck.path.string() + "'"), std::string::npos) << log;
+    EXPECT_EQ(log.find("cannot write", log.find("the render goes on")), std::string::npos)
+        << "said once:\n" << log;
+}
+
 // The igi family's own AOV channels (components before and after the filter, AIS's
 // guidance and sets) are sums the method keeps beside the accumulator: the checkpoint
 // holds them too, so a resumed --aov render has every channel of the uninterrupted one,
