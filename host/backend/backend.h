@@ -146,6 +146,12 @@ public:
     /// them, one item a view point, unless BackendOptions::cl_importance_chunk sets it.
     virtual uint32_t importance_chunk() const { return 0; }
 
+    /// Seconds spent so far building or loading compiled programs (OpenCL compiles a
+    /// kernel's program at its first launch: a cold cache adds seconds to a render's first
+    /// pass). The renderer takes it out of its pass timings, which exclude set-up. 0 where
+    /// nothing is compiled (Embree).
+    virtual double program_build_seconds() const { return 0.0; }
+
     /// Whether trace_light_paths_in_kernel reads back only the headers and records of the
     /// paths' output (BackendOptions::cl_light_path_gather; gi/light_paths.h).
     virtual bool gathers_light_paths() const { return false; }

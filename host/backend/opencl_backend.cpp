@@ -9,6 +9,7 @@
 // traversal (-DTS_GPU_TRAVERSAL, kernels/bvh_short_stack.h). Launches run in tiles of
 // about a time budget (opencl/launch.h); device buffers persist across frames, growing
 // when an input outgrows them.
+#include <chrono>
 #include <algorithm>
 #include <array>
 #include <cstdlib>
@@ -152,6 +153,8 @@ protected:
             in_flight_.clear();
         });
     }
+
+    double program_build_seconds() const override { return program_seconds_; }
 
     double last_launch_seconds(KernelId id) override {
         std::vector<cl::Event>& events = launch_events_[static_cast<int>(id)];
@@ -369,7 +372,9 @@ private:
         if (p == programs_.end()) {
             std::vector<std::string> defines = plan_.cl_defines();
             if (gpu_variant_) defines.push_back("-DTS_GPU_TRAVERSAL");
+            const auto t0 = std::chrono::steady_clock::now();
             p = programs_.emplace(program, build_program(ctx_, dev_, program, defines).program).first;
+            program_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         }
         cl::Kernel k(p->second, name.c_str());
         check_kernel_limits(k, dev_, name);
@@ -505,6 +510,7 @@ private:
     // Launches since the queue was last waited for, oldest first: which kernel failed.
     InFlightLaunches in_flight_;
     std::map<std::string, cl::Program> programs_;
+    double program_seconds_ = 0.0;  // building or loading programs_, for program_build_seconds()
     std::map<std::string, cl::Kernel> kernels_;
 };
 

@@ -135,9 +135,13 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     std::vector<double> pass_seconds;  // of the passes rendered here
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
+    // Programs compiled at their first launch are set-up, not pass time (--stats-json's
+    // seconds exclude set-up): a cold OpenCL cache put seconds into pass 0.
+    const double build_before = backend.program_build_seconds();
     try {
         for (uint32_t i = first; i < settings.spp; ++i) {
             const auto t0 = clock::now();
+            const double build_t0 = backend.program_build_seconds();
             frame.pass = i;
             const int owner = distributed ? pass_owner(i, first, cluster->size()) : 0;
             if (owner == 0)
@@ -145,7 +149,9 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
             else if (!collector->receive(owner, i, pass))
                 session.interrupt(acc);  // the owner got SIGINT/SIGTERM: save, as for our own
             acc.add(pass);
-            if (owner == 0) pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count());
+            if (owner == 0)
+                pass_seconds.push_back(std::chrono::duration<double>(clock::now() - t0).count() -
+                                       (backend.program_build_seconds() - build_t0));
             if (progress)
                 progress(i + 1, settings.spp, std::chrono::duration<double>(clock::now() - start).count(), first);
             session.after_pass(acc);
@@ -157,7 +163,8 @@ Image render_frame(Backend& backend, const Scene& scene, const SceneBuffers& buf
     if (collector) collector->stop(0);
     if (stats) {
         stats->passes = settings.spp - first;
-        stats->seconds = std::chrono::duration<double>(clock::now() - start).count();
+        stats->seconds = std::chrono::duration<double>(clock::now() - start).count() -
+                         (backend.program_build_seconds() - build_before);
         std::nth_element(pass_seconds.begin(), pass_seconds.begin() + pass_seconds.size() / 2, pass_seconds.end());
         stats->median_pass_seconds = pass_seconds.empty() ? 0.0 : pass_seconds[pass_seconds.size() / 2];
     }

@@ -63,5 +63,24 @@ TEST_P(SetScene, RendersWhatAFreshBackendRenders) {
 
 INSTANTIATE_TEST_SUITE_P(Backends, SetScene, ::testing::Values(BackendKind::OpenCL, BackendKind::Embree));
 
+// program_build_seconds counts the programs a run built or loaded (render_frame takes it
+// out of its pass times): some for OpenCL's first frame, none more for a second frame
+// that launches the same kernels; none at all on Embree, which compiles nothing.
+TEST(ProgramBuildSeconds, CountsOnlyTheFirstBuildOfEachProgram) {
+    const Scene scene = scene_file("cornell-box.json");
+    const SceneBuffers buffers = make_scene_buffers(scene);
+    std::unique_ptr<Backend> cl, embree;
+    give_scene(cl, {BackendKind::OpenCL, ""}, buffers, plan_effects(scene));
+    give_scene(embree, {BackendKind::Embree, ""}, buffers, plan_effects(scene));
+    EXPECT_EQ(cl->program_build_seconds(), 0.0);
+    (void)render_frame(*cl, scene, buffers, igi_settings());
+    const double first = cl->program_build_seconds();
+    EXPECT_GT(first, 0.0);
+    (void)render_frame(*cl, scene, buffers, igi_settings());
+    EXPECT_EQ(cl->program_build_seconds(), first);
+    (void)render_frame(*embree, scene, buffers, igi_settings());
+    EXPECT_EQ(embree->program_build_seconds(), 0.0);
+}
+
 }  // namespace
 }  // namespace tessera
