@@ -1,10 +1,14 @@
 // `tessera render [SCENE] [options]`: renders a scene to EXR (+ PNG preview).
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 #include <unistd.h>
 
@@ -63,10 +67,21 @@ void print_progress(uint32_t done, uint32_t total, double elapsed, uint32_t rest
     }
 }
 
+// `v`, a float setting widened to double, as the decimal the float was given as: 0.3f
+// is 0.30000001192092896 as a double, "0.3" as the shortest text that reads back as it.
+double as_given(double v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, static_cast<float>(v));
+    return std::strtod(std::string(buf, r.ptr).c_str(), nullptr);
+}
+
 // The settings of the method, by option name without "--" ("tile": 3, "no-filter":
 // false): each parameter the method reads (parameter_applies), as a flag whether the
-// option is in effect, --width and --height as rendered (the camera's where not given).
-nlohmann::json settings_json(const RenderSettings& s, int width, int height) {
+// option is in effect, --width and --height as rendered (the camera's where not given),
+// values in effect (--ic-subsets 0 as the subsets it resolved to, resolve_ic_subsets).
+nlohmann::json settings_json(const RenderSettings& given, int width, int height) {
+    RenderSettings s = given;
+    resolve_ic_subsets(s, width, height);
     nlohmann::json j = nlohmann::json::object();
     for (const Parameter& p : render_parameters()) {
         if (!parameter_applies(p, s.method)) continue;
@@ -77,7 +92,10 @@ nlohmann::json settings_json(const RenderSettings& s, int width, int height) {
         else if (is_integer(p))
             j[key] = static_cast<long long>(v);
         else
-            j[key] = v;
+            j[key] = std::visit([&](auto get) {
+                using T = std::remove_reference_t<decltype(get(s))>;
+                return std::is_same_v<T, float> ? as_given(v) : v;
+            }, p.field);
     }
     j["width"] = width;
     j["height"] = height;

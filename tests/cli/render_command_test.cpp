@@ -399,6 +399,22 @@ TEST_F(RenderCli, StatsJson) {
     EXPECT_EQ(set["height"], 4);  // the camera's 64x32 scaled to --width 8
     EXPECT_FALSE(set.contains("max-scatter")) << set;  // pt only
     EXPECT_FALSE(set.contains("ic-paths")) << set;     // ic and tic only
+    EXPECT_EQ(set["clamp"].dump(), "0.1") << set;      // the float as given, not 0.10000000149011612
+}
+
+// ic's settings as in effect: --ic-subsets 0 is the subsets it resolved to (2 below 16 spp,
+// docs/instant-caching.md §2b), the log's "in each of 2 subsets"; floats as given.
+TEST_F(RenderCli, StatsJsonShowsTheIcSettingsInEffect) {
+    const fs::path stats = dir_ / "stats.json";
+    const CliResult r = run_tessera("render " + kData + "/light.json --method ic --spp 4 --width 16 --height 16 "
+                                    "--backend embree --ic-error 0.3 --out " + (dir_ / "img.exr").string() +
+                                    " --stats-json " + stats.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("in each of 2 subsets"), std::string::npos) << r.output;
+    std::ifstream f(stats);
+    const nlohmann::json set = nlohmann::json::parse(f)["settings"];
+    EXPECT_EQ(set["ic-subsets"], 2) << set;
+    EXPECT_EQ(set["ic-error"].dump(), "0.3") << set;
 }
 
 // --frames: one EXR + PNG per frame, the frame number before the extension.
