@@ -111,25 +111,55 @@ std::vector<size_t> rank_cl_devices(const std::vector<ClDeviceInfo>& devs) {
     return order;
 }
 
+namespace {
+
+// Why PoCL could not make or write cache directory `dir` ("" where it can): the
+// directory, or the part of its path that exists (PoCL makes the rest), must be a
+// writable directory.
+std::string unwritable_cache_dir(std::string dir) {
+    while (::access(dir.c_str(), F_OK) != 0 && dir.find('/') != std::string::npos && dir != "/")
+        dir = dir.substr(0, std::max<size_t>(dir.rfind('/'), 1));
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) != 0) return dir.find('/') == std::string::npos ? "" : "cannot be made";
+    if (!S_ISDIR(st.st_mode)) return dir + " is not a directory";
+    if (::access(dir.c_str(), W_OK) != 0) return dir + " is not writable";
+    return "";
+}
+
+}  // namespace
+
 std::string no_device_hint() {
     // PoCL offers no device when it cannot make its kernel cache (a service account's
     // HOME=/nonexistent): an installed ICD that lists nothing. It takes POCL_CACHE_DIR,
     // else $XDG_CACHE_HOME/pocl, else $HOME/.cache/pocl.
-    if (std::getenv("POCL_CACHE_DIR")) return "";
+    if (const char* pocl = std::getenv("POCL_CACHE_DIR"); pocl && *pocl) {
+        const std::string why = unwritable_cache_dir(pocl);
+        return why.empty() ? "" : std::string("; PoCL also lists none when it cannot write its cache: POCL_CACHE_DIR=") +
+                                      pocl + ": " + why;
+    }
     const char* xdg = std::getenv("XDG_CACHE_HOME");
     const bool use_xdg = xdg && *xdg;
     const char* home = use_xdg ? xdg : std::getenv("HOME");
-    if (!home || !*home) return "";
-    std::string dir = home;
-    while (::access(dir.c_str(), F_OK) != 0 && dir.find('/') != std::string::npos && dir != "/")
-        dir = dir.substr(0, std::max<size_t>(dir.rfind('/'), 1));  // the part that exists
-    struct stat st {};
-    if (::stat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode) && ::access(dir.c_str(), W_OK) == 0) return "";
+    if (!home || !*home || unwritable_cache_dir(home).empty()) return "";
     return std::string("; PoCL also lists none when it cannot write its cache under ") +
            (use_xdg ? "XDG_CACHE_HOME (" : "HOME (") + home + "): set POCL_CACHE_DIR to a writable directory";
 }
 
-ClDeviceInfo select_cl_device(const std::string& spec) {
+namespace {
+
+// PoCL builds its kernels under POCL_CACHE_DIR where that is set: one it cannot write
+// (a regular file, a read-only directory) failed the first kernel build with a multi-line
+// "failed to build the program" that named neither. Refused when the device is chosen.
+void check_pocl_cache_dir(const ClDeviceInfo& dev) {
+    const char* dir = std::getenv("POCL_CACHE_DIR");
+    if (!dir || !*dir || dev.platform_name.find("Portable Computing Language") == std::string::npos) return;
+    if (const std::string why = unwritable_cache_dir(dir); !why.empty())
+        throw RuntimeError(std::string("POCL_CACHE_DIR=") + dir + ": " + why + "; PoCL builds the kernels of " +
+                           dev.name + " there (point it at a writable directory or unset it)");
+}
+
+// The device `spec` names (select_cl_device's contract).
+ClDeviceInfo pick_cl_device(const std::string& spec) {
     auto devs = list_cl_devices();
     if (devs.empty())
         throw RuntimeError("no OpenCL device found (is an ICD such as pocl-opencl-icd installed?" + no_device_hint() +
@@ -161,6 +191,14 @@ ClDeviceInfo select_cl_device(const std::string& spec) {
     }
     throw RuntimeError("--device " + spec + ": no such OpenCL device; available: " + device_list_text(devs) +
                        " (or use --backend embree)");
+}
+
+}  // namespace
+
+ClDeviceInfo select_cl_device(const std::string& spec) {
+    ClDeviceInfo dev = pick_cl_device(spec);
+    check_pocl_cache_dir(dev);
+    return dev;
 }
 
 }  // namespace tessera

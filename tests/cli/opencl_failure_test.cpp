@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <tuple>
 
@@ -58,6 +59,28 @@ TEST_F(OpenCLFailureCli, AHomePoclCannotWriteIsNamed) {
               std::string::npos) << render.output;
     const CliResult missing_icd = run_tessera("devices", kNoPlatform);
     EXPECT_EQ(missing_icd.output.find("HOME"), std::string::npos) << missing_icd.output;
+}
+
+// POCL_CACHE_DIR where PoCL cannot write: a regular file let PoCL list its device and fail
+// the first kernel build (a multi-line build failure naming neither); a path under a file
+// made it list none, and the hint said nothing. Both now name POCL_CACHE_DIR and why.
+TEST_F(OpenCLFailureCli, AnUnwritablePoclCacheDirIsNamed) {
+    std::ofstream(dir_ / "file") << "not a directory";
+    const std::string render =
+        "render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " + (dir_ / "out" / "img.exr").string();
+    const std::string file = (dir_ / "file").string();
+    const CliResult r = run_tessera(render, "POCL_CACHE_DIR=" + file);
+    // The device chosen is another driver's (a GPU's), which POCL_CACHE_DIR does not concern.
+    if (r.exit_code == 0) GTEST_SKIP() << "not PoCL:\n" << r.output;
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("tessera: error: POCL_CACHE_DIR=" + file + ": " + file + " is not a directory; PoCL builds "
+                            "the kernels of "),
+              std::string::npos) << r.output;
+    const CliResult under = run_tessera(render, "POCL_CACHE_DIR=" + file + "/sub");
+    EXPECT_EQ(under.exit_code, 1) << under.output;
+    EXPECT_NE(under.output.find("POCL_CACHE_DIR=" + file + "/sub: " + file + " is not a directory"), std::string::npos)
+        << under.output;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
 TEST_F(OpenCLFailureCli, NoPlatformStillRendersWithEmbree) {
