@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <poll.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -23,7 +25,7 @@
 #include "scene/json_field.h"
 #include "util/error.h"
 #include "util/heap.h"
-#include "util/printable.h"
+#include "util/terminal_safe.h"
 
 namespace {
 
@@ -34,7 +36,7 @@ namespace {
 int fail(const std::string& message, int code) {
     auto print = [](const std::string& text, int status) {
         std::fprintf(stderr, "%stessera: %s%s\n", status == 130 && ::isatty(STDERR_FILENO) ? "\n" : "",
-                     status == 130 ? "" : "error: ", tessera::printable(text).c_str());
+                     status == 130 ? "" : "error: ", tessera::terminal_safe(text).c_str());
         return status;
     };
     if (tessera::launched_by_mpi() && !tessera::world_cluster().stepped()) {
@@ -105,16 +107,30 @@ std::string unknown_command(CLI::App& app, int argc, char** argv) {
     return std::string("unknown command '") + argv[1] + "'; the commands are " + names;
 }
 
+// Whether stdout's reader has left: a pipe or socket whose other end is closed (poll says
+// POLLERR). glibc drops a stream's buffer at a failed write, so a later fflush has nothing
+// to write and leaves errno 0: EPIPE is then asked of the descriptor.
+bool stdout_reader_left() {
+    struct stat st {};
+    if (::fstat(STDOUT_FILENO, &st) != 0 || !(S_ISFIFO(st.st_mode) || S_ISSOCK(st.st_mode))) return false;
+    pollfd p{STDOUT_FILENO, POLLOUT, 0};
+    return ::poll(&p, 1, 0) == 1 && (p.revents & (POLLERR | POLLHUP)) != 0;
+}
+
 // Whether what the command printed on stdout (the files it wrote, compare's metrics, info)
 // reached it: a full disk or a closed stdout failed silently with exit 0. A reader that
 // left (`| head`, EPIPE) is not a failure: the work is done, as with `cmd | head` in a shell.
+// Printed here, by the rank whose stdout failed, not through fail(): the work is done, and
+// under mpirun fail() would join a collective step the other ranks, finished, never reach.
 int check_stdout(int status) {
     errno = 0;
     const bool flushed = std::fflush(stdout) == 0;
     if (flushed && !std::ferror(stdout)) return status;
     const int err = errno;
-    if (err == EPIPE || status != 0) return status;
-    return fail(std::string("cannot write to standard output") + (err ? std::string(": ") + std::strerror(err) : ""), 1);
+    if (status != 0 || err == EPIPE || (err == 0 && stdout_reader_left())) return status;
+    std::fprintf(stderr, "tessera: error: cannot write to standard output%s%s\n", err ? ": " : "",
+                 err ? std::strerror(err) : "");
+    return 1;
 }
 
 // The command line's work: parse, run the subcommand, report failures; the exit status.
@@ -149,7 +165,7 @@ int run(int argc, char** argv) {
         // rank that failed; the other ranks exit with the same status and say nothing.
         if (!e.silent())
             std::fprintf(stderr, "tessera: %s%s\n", e.exit_code == 130 ? "" : "error: ",
-                         tessera::printable(e.what()).c_str());
+                         tessera::terminal_safe(e.what()).c_str());
         return e.exit_code;
     } catch (const tessera::Interrupted& e) {
         return fail(e.what(), 130);

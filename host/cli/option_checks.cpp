@@ -20,7 +20,7 @@
 #include "image/fatal_signal_cleanup.h"
 #include "util/error.h"
 #include "util/input_limits.h"
-#include "util/printable.h"
+#include "util/terminal_safe.h"
 
 namespace tessera::cli {
 namespace fs = std::filesystem;
@@ -109,7 +109,7 @@ fs::path default_output(const Scene& scene, const std::string& suffix) {
 }
 
 void print_scene_notes(const std::vector<std::string>& notes) {
-    for (const std::string& n : notes) std::fprintf(stderr, "tessera: note: %s\n", printable(n).c_str());
+    for (const std::string& n : notes) std::fprintf(stderr, "tessera: note: %s\n", terminal_safe(n).c_str());
 }
 
 void check_data_dir(const std::string& data_dir) {
@@ -167,6 +167,9 @@ void check_output(const OutputFile& o) {
     // The directory: the nearest existing ancestor must be a directory (the rest is made).
     const fs::path dir = existing_ancestor(o.path.parent_path());
     check_name_lengths(name, o.path, dir);
+    // A link is written through: its target's name gets the temporaries.
+    if (const fs::path target = output_target(o.path); target != o.path)
+        check_name_lengths(name, target, existing_ancestor(target.parent_path()));
     const fs::file_status target = fs::status(dir, ec);  // through links
     if (!fs::exists(target) && fs::is_symlink(fs::symlink_status(dir, ec)))
         throw InputError(name + ": " + dir.string() + " is a symbolic link to nothing (a missing target or a loop)");

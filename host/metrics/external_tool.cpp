@@ -69,8 +69,14 @@ ToolRun run_tool(const std::vector<std::string>& args) {
     std::error_code ec;
     const fs::path tmp_dir = fs::temp_directory_path(ec);
     if (ec) {  // the tool cannot run without its output files: said as a tool that did not start
-        const char* tmpdir = std::getenv("TMPDIR");
-        r.spawn_error = "no temporary directory: TMPDIR=" + std::string(tmpdir ? tmpdir : "") + ": " + ec.message();
+        // The variable libstdc++ took it from (the first set of these), else its /tmp.
+        std::string source = "/tmp";
+        for (const char* var : {"TMPDIR", "TMP", "TEMP", "TEMPDIR"})
+            if (const char* v = std::getenv(var); v && *v) {
+                source = std::string(var) + "=" + v;
+                break;
+            }
+        r.spawn_error = "no temporary directory: " + source + ": " + ec.message();
         return r;
     }
     const fs::path tmp = tmp_dir / ("tessera-tool-" + std::to_string(::getpid()) + "-" + std::to_string(serial++));

@@ -83,9 +83,10 @@ enum class Colour {
 /// InputError naming the key and the value otherwise.
 glm::vec3 read_colour(const JsonField& j, Colour kind);
 
-/// Checks a pinhole view (the `camera` block or an animation key, named by `where`):
-/// look_at − position must be non-zero and finite, and not parallel to `up` (nor `up`
-/// zero), with a finite cross product. Throws InputError naming `where` otherwise.
+/// Checks a pinhole view (the `camera` block or an animation key, named by `where`) with
+/// camera_view_problem (scene/camera_view.h), make_frame's own test: look_at − position
+/// non-zero and finite, up of finite length and more than ~1e-6 rad from the view
+/// direction. Throws InputError naming `where`, `when` and the problem otherwise.
 void check_camera_view(const JsonField& where, glm::vec3 position, glm::vec3 look_at, glm::vec3 up,
                        const std::string& when = "");
 

@@ -10,7 +10,7 @@
 #include "scene/transform.h"
 #include "util/error.h"
 #include "util/input_limits.h"
-#include "util/printable.h"
+#include "util/terminal_safe.h"
 
 namespace tessera {
 

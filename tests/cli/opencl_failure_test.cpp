@@ -70,12 +70,15 @@ TEST_F(OpenCLFailureCli, AnUnwritablePoclCacheDirIsNamed) {
         "render " + kScene + " --backend opencl --spp 1 --width 8 --height 8 --out " + (dir_ / "out" / "img.exr").string();
     const std::string file = (dir_ / "file").string();
     const CliResult r = run_tessera(render, "POCL_CACHE_DIR=" + file);
-    // The device chosen is another driver's (a GPU's), which POCL_CACHE_DIR does not concern.
+    // The device chosen is another driver's (a GPU's), which POCL_CACHE_DIR does not
+    // concern; or there is no OpenCL here at all.
     if (r.exit_code == 0) GTEST_SKIP() << "not PoCL:\n" << r.output;
+    if (run_tessera("devices", kNoPlatform).output == run_tessera("devices").output)
+        GTEST_SKIP() << "no OpenCL platform here";
+    // PoCL may list its device (the error when it is chosen) or none (the no-device hint).
     EXPECT_EQ(r.exit_code, 1) << r.output;
-    EXPECT_NE(r.output.find("tessera: error: POCL_CACHE_DIR=" + file + ": " + file + " is not a directory; PoCL builds "
-                            "the kernels of "),
-              std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("POCL_CACHE_DIR=" + file + ": " + file + " is not a directory"), std::string::npos)
+        << r.output;
     const CliResult under = run_tessera(render, "POCL_CACHE_DIR=" + file + "/sub");
     EXPECT_EQ(under.exit_code, 1) << under.output;
     EXPECT_NE(under.output.find("POCL_CACHE_DIR=" + file + "/sub: " + file + " is not a directory"), std::string::npos)

@@ -4,6 +4,7 @@
 // and no file created or changed: each case first writes sentinel files where the run
 // would write, and checks their bytes and the directory listing afterwards.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -150,6 +151,9 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
             fs::create_directory(d / name);
         };
     };
+    // The scratch file system's name limit (255 on most; eCryptfs 143).
+    const long name_max = ::pathconf(dir_.c_str(), _PC_NAME_MAX) > 0 ? ::pathconf(dir_.c_str(), _PC_NAME_MAX) : 255;
+    const std::string long_file(size_t(name_max - 23 - 4), 'a'), long_dir(size_t(name_max + 45), 'b');
     const std::string anim = "render " + kScenes + "/cornell-box-animated.json --backend embree --spp 1 "
                              "--width 8 --height 8 --frames 0:2 --out $D/anim.exr";
     const std::vector<Case> cases = {
@@ -197,14 +201,15 @@ TEST_F(ContractCli, UnwritableOutputsAreRejectedBeforeAnyWork) {
          [](const fs::path& d) { fs::create_symlink(d / "nowhere" / "x.exr", d / "d.exr"); }},
         {kRender + "--out $D/self.exr", "--out $D/self.exr: is a symbolic link in a loop", 2,
          [](const fs::path& d) { fs::create_symlink(d / "self.exr", d / "self.exr"); }},
-        // Names the writer could not make (NAME_MAX 255 on the test's file system): the EXR's
-        // temporaries add 24 bytes, so a legal name of 232 bytes failed after the render.
-        {kRender + "--out $D/" + std::string(228, 'a') + ".exr",
-         "--out $D/" + std::string(228, 'a') + ".exr: the file name is 232 bytes; at most 231 here (it is written "
-         "through temporaries whose names are up to 24 bytes longer)"},
-        {kRender + "--out $D/" + std::string(300, 'b') + "/img.exr",
-         "--out $D/" + std::string(300, 'b') + "/img.exr: the directory name bbbbbbbbbbbbbbbb... is 300 bytes; at "
-         "most 255 here"},
+        // Names the writer could not make: the EXR's temporaries add 24 bytes, so a legal
+        // name of 232 bytes (NAME_MAX 255) failed after the render.
+        {kRender + "--out $D/" + long_file + ".exr",
+         "--out $D/" + long_file + ".exr: the file name is " + std::to_string(name_max - 23) + " bytes; at most " +
+             std::to_string(name_max - 24) + " here (it is written through temporaries whose names are up to 24 "
+             "bytes longer)"},
+        {kRender + "--out $D/" + long_dir + "/img.exr",
+         "--out $D/" + long_dir + "/img.exr: the directory name bbbbbbbbbbbbbbbb... is " +
+             std::to_string(long_dir.size()) + " bytes; at most " + std::to_string(name_max) + " here"},
         // Failures found after the outputs are checked make no directory for them (the
         // writers make it at their first write): a missing checkpoint, an unknown device.
         {kRender + "--resume --out $D/new/img.exr",

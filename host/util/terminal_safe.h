@@ -12,7 +12,7 @@ namespace tessera {
 /// `text` with its C0 controls other than newline and tab (a build log's lines stay
 /// lines), DEL and the C1 controls U+0080..U+009F (UTF-8 C2 80..C2 9F) written as \xNN
 /// (C0, DEL) and \u00NN (C1); every other byte, other UTF-8 included, as it is.
-inline std::string printable(std::string_view text) {
+inline std::string terminal_safe(std::string_view text) {
     std::string out;
     out.reserve(text.size());
     char buf[8];
@@ -33,10 +33,10 @@ inline std::string printable(std::string_view text) {
     return out;
 }
 
-/// Whether `text` prints as itself on one line: printable() leaves it unchanged and it
+/// Whether `text` prints as itself on one line: terminal_safe() leaves it unchanged and it
 /// holds no newline or tab.
 inline bool is_printable_line(std::string_view text) {
-    return text.find_first_of("\n\t") == std::string_view::npos && printable(text) == text;
+    return text.find_first_of("\n\t") == std::string_view::npos && terminal_safe(text) == text;
 }
 
 }  // namespace tessera
