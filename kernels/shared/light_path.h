@@ -57,31 +57,34 @@ TS_INLINE int ts_light_path_start(const TsSceneView* sv, float u_select, float u
 /* Multiple scattering (docs/igi.md §6; Raab et al. 2008, "Unbiased global illumination
  * with participating media"): free-flight sampling along the segment *ray up to the
  * surface at parameter hit_t (+inf when the ray escapes), as the path tracer does
- * (ts_medium_sample_distance; `u` holds five numbers in [0, 1): channel, distance, two
- * for the Henyey–Greenstein direction, roulette). A scattering event at x multiplies
+ * (ts_medium_sample_distance, with the path's spectral state *sm; `u` holds five numbers
+ * in [0, 1): channel (read on the path's first medium segment), distance, two for the
+ * Henyey–Greenstein direction, roulette). A scattering event at x multiplies
  * *alpha by the event's weight w and leaves a medium VPL at *vpl_pos of flux
  * *vpl_flux = α·w · inv_paths, the light's propagation direction being ray->dir; the
- * path then goes on with probability q = min(1, luminance(w)) in a phase-sampled
- * direction, α ← α/q. Returns TS_LIGHT_PATH_MEDIUM | TS_LIGHT_PATH_VPL (| _CONTINUES),
+ * path then goes on with probability q = min(1, max_c w_c) in a phase-sampled
+ * direction, α ← α/q (the largest channel, not the luminance: a red-drawn path in a
+ * red-scattering medium has w ≈ (0.99, ε, ε), and 1/luminance lifted its red ~4.7× an
+ * event; docs/igi.md §6, "Chromatic media"). Returns TS_LIGHT_PATH_MEDIUM | TS_LIGHT_PATH_VPL (| _CONTINUES),
  * with *t_event the event's ray parameter; or, the segment passed, TS_LIGHT_PATH_CONTINUES
  * with *alpha times the pass weight (the surface vertex then must not apply the
  * transmittance again); or 0 when the path is lost in an unbounded medium. */
 TS_INLINE uint ts_light_path_medium(const TsMedium* med, float hit_t, const float* u, float inv_paths, float3* alpha,
-                                    TsRay* ray, float* t_event, float3* vpl_pos, float3* vpl_flux) {
+                                    TsSpectralMis* sm, TsRay* ray, float* t_event, float3* vpl_pos, float3* vpl_flux) {
     float t0 = 0.0f, t1 = hit_t;
     *t_event = hit_t;
     if (!ts_medium_clip(med, ray->org, ray->dir, &t0, &t1)) return TS_LIGHT_PATH_CONTINUES;
     float len = length(ray->dir), w_len = (t1 - t0) * len;
     float3 w;
     int scattered;
-    float t = ts_medium_sample_distance(med, w_len, u[0], u[1], &w, &scattered);
+    float t = ts_medium_sample_distance(med, w_len, u[0], u[1], sm, &w, &scattered);
     *alpha = *alpha * w;
     if (!scattered) return isfinite(t1) ? TS_LIGHT_PATH_CONTINUES : 0u;
     *t_event = t0 + t / len;
     float3 dir = ray->dir / len;
     *vpl_pos = ray->org + ray->dir * *t_event;
     *vpl_flux = *alpha * inv_paths;
-    float q = fmin(1.0f, ts_luminance(w));
+    float q = fmin(1.0f, ts_max3(w));
     if (!(u[4] < q)) return TS_LIGHT_PATH_MEDIUM | TS_LIGHT_PATH_VPL;
     *alpha = *alpha / q;
     ray->org = *vpl_pos;
@@ -153,6 +156,7 @@ typedef struct TsLightPathState {
     uint set;
     float weight;
     float3 alpha;
+    TsSpectralMis spectral; /* free-flight sampling's channel state (shared/medium.h) */
     TsRay ray;
 } TsLightPathState;
 
@@ -212,6 +216,7 @@ TS_INLINE int ts_light_path_begin(const TsSceneView* sv, TS_GLOBAL const uint* h
     float u[5];
     for (uint d = 0u; d < 5u; ++d) u[d] = ts_halton_sample(halton, st->index, d);
     *light = ts_select_light(sv->light_cdf, sv->light_count, u[0]);
+    st->spectral = ts_spectral_mis_start();
     return ts_light_path_start(sv, u[0], u[1], u[2], u[3], u[4], &st->alpha, &st->ray);
 }
 
@@ -239,7 +244,8 @@ TS_INLINE uint ts_light_path_segment(const TsSceneView* sv, const TsMedium* med,
         for (int j = 0; j < 5; ++j) u[j] = ts_rng_next(&rng);
         float3 dir = st->ray.dir, pos, flux;
         float t_event;
-        uint m = ts_light_path_medium(med, hit_t, u, lp->inv_paths, &st->alpha, &st->ray, &t_event, &pos, &flux);
+        uint m = ts_light_path_medium(med, hit_t, u, lp->inv_paths, &st->alpha, &st->spectral, &st->ray, &t_event,
+                                      &pos, &flux);
         if (m & TS_LIGHT_PATH_MEDIUM) {
             ev->seg_t = t_event;
             ev->seg_prim = TS_NO_HIT;

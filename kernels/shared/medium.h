@@ -76,30 +76,65 @@ TS_INLINE float3 ts_medium_transmittance(const TsMedium* m, float3 org, float3 d
     return ts_exp3(m->sigma_t * (-(t1 - t0) * length(dir)));
 }
 
-/* Free-flight sampling over a segment of length `len` (scene units) inside the medium.
- * A colour channel is picked uniformly with `u_channel` and a distance drawn from its
- * exponential, t = -ln(1 - u) / sigma_t[c]; the other channels are accounted for by
- * dividing by the pdf averaged over channels ("spectral MIS", the one-sample balance
- * heuristic over channels; Mitsuba 3 volpath, pbrt-v4 §14.2). Returns the distance, or
- * `len` when the sample passes the whole segment; *weight is the throughput factor
- *   scatter: sigma_s · Tr(t) / mean_c(sigma_t[c] Tr_c(t))
- *   pass:    Tr(len) / mean_c(Tr_c(len)).
- * *scattered is set to 1 for a scattering event. */
-TS_INLINE float ts_medium_sample_distance(const TsMedium* m, float len, float u_channel, float u,
+/* A path's state for free-flight sampling in a chromatic medium: path-level one-sample MIS
+ * over the RGB channels (the "hero" channel of Wilkie et al. 2014, "Hero wavelength
+ * spectral sampling"; pbrt-v4 §14.2.2 and Mitsuba 3's volpath keep the same ratio). The
+ * channel whose exponential draws the distances is picked once per path (hero, 0-2;
+ * TS_HERO_UNSET until the path's first segment in the medium picks it), and `ratio` holds
+ * the three channels' pdfs of the path's distances so far, over their mean: a path's
+ * weight is f / mean_c(p_c(path)), where each channel's pdf is a product over its
+ * segments. Bounded: a channel's weight is at most 3 times its single-scattering
+ * albedo per event over the path (f_c / mean ≤ 3 f_c / p_c). Dividing each segment by
+ * its own channel mean instead (one channel per segment) is unbiased too, but its weights
+ * multiply, up to 3 an event: rare paths of huge weight, and images of a chromatic fog
+ * dark in most runs (docs/path-tracing.md §4). */
+#define TS_HERO_UNSET 3u
+typedef struct TsSpectralMis {
+    float3 ratio; /* the channels' path pdfs over their mean: (1, 1, 1) at the start */
+    uint hero;    /* the channel that samples distances, or TS_HERO_UNSET */
+} TsSpectralMis;
+
+TS_INLINE TsSpectralMis ts_spectral_mis_start(void) {
+    TsSpectralMis s;
+    s.ratio = make_float3(1.0f, 1.0f, 1.0f);
+    s.hero = TS_HERO_UNSET;
+    return s;
+}
+
+/* Free-flight sampling over a segment of length `len` (scene units) inside the medium, for
+ * a path whose spectral state is *sm (updated). The path's first segment picks the hero
+ * channel c with `u_channel` (later segments ignore it); the distance is drawn from c's
+ * exponential, t = -ln(1 - u) / sigma_t[c]. Returns the distance, or `len` when the sample
+ * passes the whole segment. *weight is the throughput factor f / mean_c(ratio_c · p_c),
+ *   scatter: f = sigma_s · Tr(t), p = sigma_t · Tr(t)
+ *   pass:    f = p = Tr(len),
+ * and ratio becomes ratio · p / mean_c(ratio_c · p_c); in a grey medium ratio stays 1 and
+ * the weight is sigma_s / sigma_t or 1. A weight the float range cannot hold (channel
+ * pdfs 1e38 apart) is 0: the path is dropped, not given an infinite weight. *scattered is
+ * set to 1 for a scattering event. */
+TS_INLINE float ts_medium_sample_distance(const TsMedium* m, float len, float u_channel, float u, TsSpectralMis* sm,
                                           float3* weight, int* scattered) {
     float3 st = m->sigma_t;
-    float sc = u_channel < (1.0f / 3.0f) ? st.x : (u_channel < (2.0f / 3.0f) ? st.y : st.z);
+    if (sm->hero > 2u) sm->hero = u_channel < (1.0f / 3.0f) ? 0u : (u_channel < (2.0f / 3.0f) ? 1u : 2u);
+    float sc = sm->hero == 0u ? st.x : (sm->hero == 1u ? st.y : st.z);
     float t = sc > 0.0f ? -log(1.0f - u) / sc : TS_INF;
-    if (t < len) {
-        float3 tr = ts_exp3(st * (-t));
-        *weight = m->sigma_s * tr / ts_mean3(st * tr);
-        *scattered = 1;
+    *scattered = t < len;
+    if (!*scattered) t = len;
+    float3 tr = ts_exp3(st * (-t));
+    float3 f = *scattered ? m->sigma_s * tr : tr, p = *scattered ? st * tr : tr;
+    if (st.x == st.y && st.y == st.z) {
+        *weight = f / p.x; /* grey: every channel's pdf is p.x, and ratio stays (1, 1, 1) */
         return t;
     }
-    float3 tr = ts_exp3(st * (-len));
-    *weight = tr / ts_mean3(tr);
-    *scattered = 0;
-    return len;
+    float3 rp = sm->ratio * p;
+    float mp = ts_mean3(rp);
+    if (!(mp > 0.0f) || !isfinite(mp)) {
+        *weight = make_float3(0.0f, 0.0f, 0.0f);
+        return t;
+    }
+    *weight = f / mp;
+    sm->ratio = rp / mp;
+    return t;
 }
 
 /* Equiangular sampling of a distance along a ray toward a point p (Kulla and Fajardo

@@ -9,8 +9,8 @@
  * the camera or through specular bounces count in full.
  *
  * Media (compiled in with TS_HAS_MEDIUM): one homogeneous medium, filling space or a box.
- * Each path segment samples a free-flight distance (shared/medium.h, spectral MIS over
- * RGB); a distance short of the next surface is a scattering vertex, otherwise the
+ * Each path segment samples a free-flight distance (shared/medium.h: one channel per path
+ * draws them, weighed by path-level MIS over RGB); a distance short of the next surface is a scattering vertex, otherwise the
  * surface is reached with the segment's transmittance carried by the weight. At a
  * scattering vertex: next-event estimation to a light point, multiplied by the
  * Henyey–Greenstein phase function and the Beer–Lambert transmittance of the shadow
@@ -104,6 +104,9 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
     float prev_pdf = 0.0f;
     int prev_delta = 1;
     uint scatters = 0u;
+#ifdef TS_HAS_MEDIUM
+    TsSpectralMis spectral = ts_spectral_mis_start(); /* free-flight sampling's channel state */
+#endif
     for (int i = 0; i < TS_PASS_DEPTH; ++i) out[i] = 0.0f;
     out[TS_PASS_DEPTH] = TS_INF;
 
@@ -121,7 +124,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                 float3 w;
                 int scattered;
                 float uc = ts_rng_next(&rng), ud = ts_rng_next(&rng);
-                float t = t0 + ts_medium_sample_distance(&med, t1 - t0, uc, ud, &w, &scattered);
+                float t = t0 + ts_medium_sample_distance(&med, t1 - t0, uc, ud, &spectral, &w, &scattered);
                 if (!scattered && !isfinite(t1)) break; /* lost in an unbounded medium */
                 beta = beta * w;
                 if (scattered) {
