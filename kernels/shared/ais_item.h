@@ -55,7 +55,7 @@ TS_INLINE void ts_ais_item(const TsSceneView* sv, const TsTracer* tracer, const 
         if (v.hit.prim != TS_NO_HIT) {
             float3 e_ss, e_id;
             float visible;
-            ts_igi_surface_set(sv, tracer, f, &v, ts_material_albedo(sv, &v.s), k, mask, &e_ss, &e_id, &visible);
+            ts_igi_surface_set(sv, tracer, f, &v, k, mask, &e_ss, &e_id, &visible);
             ts_ais_item_store_surface(e_ss, e_id, out);
         }
     }

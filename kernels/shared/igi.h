@@ -201,20 +201,21 @@ TS_INLINE TsIgiView ts_igi_view(const TsSceneView* sv, const TsTracer* tracer, c
 }
 
 /* E_ss and E_id of sample set k at the view's surface, for the components in `mask`,
- * tracing each link's shadow ray on its own. */
+ * tracing each link's shadow ray on its own. A black surface (an emitter's, or albedo 0)
+ * gathers too, though its own radiance is 0: the discontinuity filter averages the
+ * irradiance of the pixels around it, and a black pixel that gathered nothing reads as
+ * unlit to them (docs/igi.md §8, "Black surfaces"). */
 TS_INLINE void ts_igi_surface_set(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
-                                  const TsIgiView* v, float3 albedo, uint k, uint mask, float3* e_ss,
-                                  float3* e_id, float* visible) {
+                                  const TsIgiView* v, uint k, uint mask, float3* e_ss, float3* e_id,
+                                  float* visible) {
     TsMedium med = ts_medium_load(sv->medium);
     TsIgiGather g = ts_igi_gather_begin();
-    if (ts_max3(albedo) > 0.0f) {
-        uint n = ts_igi_link_count(sv, f, k, mask);
-        for (uint j = 0u; j < n; ++j) {
-            TsIgiLink l;
-            if (!ts_igi_link(sv, f, &v->s, k, mask, j, &l)) continue;
-            if (l.vpl == TS_NO_HIT) ++g.facing;
-            if (!ts_trace_occluded(tracer, l.shadow)) ts_igi_gather_add(&g, sv, &med, &l);
-        }
+    uint n = ts_igi_link_count(sv, f, k, mask);
+    for (uint j = 0u; j < n; ++j) {
+        TsIgiLink l;
+        if (!ts_igi_link(sv, f, &v->s, k, mask, j, &l)) continue;
+        if (l.vpl == TS_NO_HIT) ++g.facing;
+        if (!ts_trace_occluded(tracer, l.shadow)) ts_igi_gather_add(&g, sv, &med, &l);
     }
     ts_igi_gather_end(&g, f, e_ss, e_id, visible);
 }
@@ -238,7 +239,10 @@ TS_INLINE void ts_igi_surface_store(const TsIgiView* v, float3 albedo, float3 le
     ts_f3_store(out + TS_IGI_SURF_NORMAL, v->s.shading_normal);
     out[TS_IGI_SURF_DISTANCE] = v->distance;
     ts_f3_store(out + TS_IGI_SURF_THROUGHPUT, v->throughput);
-    out[TS_IGI_SURF_VISIBLE] = visible;
+    /* AIS's SS guidance reads 1 on a black surface, as when it gathered no links: more
+     * sets there change no radiance (with its true visibility a 64² black-walled box
+     * took 1,025 extra sets). */
+    out[TS_IGI_SURF_VISIBLE] = ts_max3(albedo) > 0.0f ? visible : 1.0f;
     ts_f3_store(out + TS_IGI_SURF_POSITION, v->s.position);
     ts_f3_store(out + TS_IGI_SURF_GEO_NORMAL, v->s.geo_normal);
     ts_f3_store(out + TS_IGI_SURF_ORIGIN, v->s.origin);
@@ -256,8 +260,8 @@ TS_INLINE void ts_igi_surface_pixel(const TsSceneView* sv, const TsTracer* trace
     float3 albedo = ts_material_albedo(sv, &v.s), le = ts_material_emission(sv, &v.s);
     float3 e_ss, e_id;
     float visible;
-    ts_igi_surface_set(sv, tracer, f, &v, albedo, ts_igi_set(px, py, f->igi_tile), f->igi_components, &e_ss,
-                       &e_id, &visible);
+    ts_igi_surface_set(sv, tracer, f, &v, ts_igi_set(px, py, f->igi_tile), f->igi_components, &e_ss, &e_id,
+                       &visible);
     ts_igi_surface_store(&v, albedo, le, e_ss, e_id, visible, out);
 }
 

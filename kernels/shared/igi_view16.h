@@ -38,8 +38,8 @@ TS_INLINE void ts_igi_view16(const TsSceneView* sv, const TsTracer* tracer, cons
 }
 
 /* After ts_igi_view16: for each lane i in `want` whose camera path found a surface, its
- * albedo and the number of links it gathers for set[i] and components mask[i] (none when
- * the albedo is black, as in ts_igi_surface_set); links[i] = 0 for every other lane.
+ * albedo and the number of links it gathers for set[i] and components mask[i] (a black
+ * surface's too, as in ts_igi_surface_set); links[i] = 0 for every other lane.
  * Returns the lanes that found a surface. */
 TS_INLINE uint ts_igi_view16_links(const TsSceneView* sv, const TsFrame* f, uint want, const TsIgiView* views,
                                    const uint* set, const uint* mask, float3* albedo, uint* links) {
@@ -49,7 +49,7 @@ TS_INLINE uint ts_igi_view16_links(const TsSceneView* sv, const TsFrame* f, uint
         if (!(want >> i & 1u) || views[i].hit.prim == TS_NO_HIT) continue;
         seen |= 1u << i;
         albedo[i] = ts_material_albedo(sv, &views[i].s);
-        if (ts_max3(albedo[i]) > 0.0f) links[i] = ts_igi_link_count(sv, f, set[i], mask[i]);
+        links[i] = ts_igi_link_count(sv, f, set[i], mask[i]);
     }
     return seen;
 }
