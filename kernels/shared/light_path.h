@@ -65,10 +65,11 @@ TS_INLINE int ts_light_path_start(const TsSceneView* sv, float u_select, float u
  * path then goes on with probability q = min(1, max_c w_c) in a phase-sampled
  * direction, α ← α/q (the largest channel, not the luminance: a red-drawn path in a
  * red-scattering medium has w ≈ (0.99, ε, ε), and 1/luminance lifted its red ~4.7× an
- * event; docs/igi.md §6, "Chromatic media"). Returns TS_LIGHT_PATH_MEDIUM | TS_LIGHT_PATH_VPL (| _CONTINUES),
- * with *t_event the event's ray parameter; or, the segment passed, TS_LIGHT_PATH_CONTINUES
- * with *alpha times the pass weight (the surface vertex then must not apply the
- * transmittance again); or 0 when the path is lost in an unbounded medium. */
+ * event; docs/igi.md §6, "Chromatic media"). Returns TS_LIGHT_PATH_MEDIUM |
+ * TS_LIGHT_PATH_VPL (| _CONTINUES), with *t_event the event's ray parameter; or, the
+ * segment passed, TS_LIGHT_PATH_CONTINUES with *alpha times the pass weight (the surface
+ * vertex then must not apply the transmittance again); or 0 when the path is lost in an
+ * unbounded medium. */
 TS_INLINE uint ts_light_path_medium(const TsMedium* med, float hit_t, const float* u, float inv_paths, float3* alpha,
                                     TsSpectralMis* sm, TsRay* ray, float* t_event, float3* vpl_pos, float3* vpl_flux) {
     float t0 = 0.0f, t1 = hit_t;

@@ -10,12 +10,13 @@
  *
  * Media (compiled in with TS_HAS_MEDIUM): one homogeneous medium, filling space or a box.
  * Each path segment samples a free-flight distance (shared/medium.h: one channel per path
- * draws them, weighed by path-level MIS over RGB); a distance short of the next surface is a scattering vertex, otherwise the
- * surface is reached with the segment's transmittance carried by the weight. At a
- * scattering vertex: next-event estimation to a light point, multiplied by the
- * Henyey–Greenstein phase function and the Beer–Lambert transmittance of the shadow
- * segment, then a phase-sampled continuation; the two are combined with the power
- * heuristic like surface vertices, the phase function being the continuation's pdf.
+ * draws them, weighed by path-level MIS over RGB); a distance short of the next surface
+ * is a scattering vertex, otherwise the surface is reached with the segment's
+ * transmittance carried by the weight. At a scattering vertex: next-event estimation to
+ * a light point, multiplied by the Henyey–Greenstein phase function and the Beer–Lambert
+ * transmittance of the shadow segment, then a phase-sampled continuation; the two are
+ * combined with the power heuristic like surface vertices, the phase function being the
+ * continuation's pdf.
  * (Light sampling alone has infinite variance there: near an emitting wall its weight
  * cosθ_y/d² is not tempered by any cosine at the scattering point.)
  *   max_scatter = 0: full multiple scattering.

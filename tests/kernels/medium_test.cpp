@@ -1,5 +1,6 @@
 // kernels/shared/medium.h compiled as C++: Beer–Lambert transmittance through the box,
-// the free-flight distance distribution, the unbiasedness of the RGB weights, and
+// the free-flight distance distribution, the unbiasedness of the RGB weights (one segment,
+// and a chromatic path's, with their bound), and
 // equiangular distance sampling (its pdf and its finite densities), and the distance
 // sampling toward a line of ray lights.
 #include <algorithm>
