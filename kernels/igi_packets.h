@@ -27,7 +27,7 @@ typedef struct TsIgiPacket {
     TsIgiView view[TS_PACKET_LANES];
     float3 albedo[TS_PACKET_LANES]; /* at the view's surface: looked up once (textures cost pow) */
     uint set[TS_PACKET_LANES], mask[TS_PACKET_LANES];
-    uint links[TS_PACKET_LANES]; /* 0: nothing to gather (idle lane, no surface, black albedo) */
+    uint links[TS_PACKET_LANES]; /* 0: nothing to gather (idle lane, no surface) */
     TsIgiGather gather[TS_PACKET_LANES];
 } TsIgiPacket;
 
@@ -82,7 +82,7 @@ static inline void ts_trace_occluded_ray_lanes(const TsTracer* tracer, TsRayLane
 
 /* The lanes in `want` see pixels (px[i], py[i]), their camera rays traced as one packet;
  * returns the lanes whose camera path found a surface, and sets each lane's links for
- * its set and components (p->set, p->mask; none when the albedo is black, as in
+ * its set and components (p->set, p->mask; a black surface's too, as in
  * ts_igi_surface_set, and none for lanes outside `want`). */
 static inline uint ts_igi_packet_views(const TsSceneView* sv, const TsTracer* tracer, const TsFrame* f,
                                        TsIgiPacket* p, uint want, const uint* px, const uint* py) {

@@ -47,7 +47,7 @@ void gather_links(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const T
 
 // The lanes in `want` see pixels (px[i], py[i]), their camera rays traced as one packet
 // (kernels/shared/igi_view16.h); sets each such lane's links for its set and components
-// (p.set, p.mask; none when the albedo is black) and returns the lanes whose camera path
+// (p.set, p.mask; a black surface's too) and returns the lanes whose camera path
 // found a surface. `coherent`: the tracer's packet mode for the camera rays.
 uint32_t view_lanes(const ts::TsSceneView& sv, const ts::TsTracer& tracer, const TsFrame& frame, Packet& p,
                     uint32_t want, const uint32_t* px, const uint32_t* py, bool coherent) {

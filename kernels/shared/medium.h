@@ -78,13 +78,13 @@ TS_INLINE float3 ts_medium_transmittance(const TsMedium* m, float3 org, float3 d
 
 /* A path's state for free-flight sampling in a chromatic medium: path-level one-sample MIS
  * over the RGB channels (the "hero" channel of Wilkie et al. 2014, "Hero wavelength
- * spectral sampling"; pbrt-v4 §14.2.2 and Mitsuba 3's volpath keep the same ratio). The
+ * spectral sampling"; pbrt-v4 §14.2.2 and Mitsuba 3's volpathmis keep the same ratio). The
  * channel whose exponential draws the distances is picked once per path (hero, 0-2;
  * TS_HERO_UNSET until the path's first segment in the medium picks it), and `ratio` holds
  * the three channels' pdfs of the path's distances so far, over their mean: a path's
  * weight is f / mean_c(p_c(path)), where each channel's pdf is a product over its
- * segments. Bounded: a channel's weight is at most 3 times its single-scattering
- * albedo per event over the path (f_c / mean ≤ 3 f_c / p_c). Dividing each segment by
+ * segments. Bounded: a channel's weight is at most 3 times the product of its
+ * single-scattering albedos over the path's events (f_c / mean ≤ 3 f_c / p_c). Dividing each segment by
  * its own channel mean instead (one channel per segment) is unbiased too, but its weights
  * multiply, up to 3 an event: rare paths of huge weight, and images of a chromatic fog
  * dark in most runs (docs/path-tracing.md §4). */

@@ -47,7 +47,7 @@ TEST(LightPathMedium, ChromaticEventsLeaveUnbiasedBoundedVpls) {
         ray.tmax = ts::TS_INF;
         for (int j = 0; j < events; ++j) {
             float u[5];
-            for (float& x : u) x = uni(rng);
+            for (float& x : u) x = std::min(uni(rng), 0x1.fffffep-1f);  // [0, 1) whatever the library
             float t_event;
             ts::float3 pos, flux;
             const uint32_t what = ts::ts_light_path_medium(&m, ts::TS_INF, u, 1.0f, &alpha, &sm, &ray, &t_event, &pos, &flux);
