@@ -16,15 +16,6 @@
 #include "kernels/shared/discontinuity.h"
 
 namespace tessera {
-bool discontinuity_accepts(const GeometryBuffer& g, const DiscontinuitySettings& s, size_t p, size_t q) {
-    const bool plane = !g.position.empty();
-    auto at = [](const std::vector<float>& v, size_t i) { return ts::ts_f3_load(&v[3 * i]); };
-    const ts::float3 none = ts::make_float3(0.0f, 0.0f, 0.0f);
-    return ts::ts_discontinuity_accepts(g.depth[p], at(g.normal, p), plane ? at(g.position, p) : none, g.depth[q],
-                                        at(g.normal, q), plane ? at(g.position, q) : none, plane, s.normal_cos,
-                                        s.depth_rel) != 0;
-}
-
 void discontinuity_window(int n, int* lo, int* hi) { ts::ts_discontinuity_window(n, lo, hi); }
 
 std::array<ptrdiff_t, 64> discontinuity_window_offsets(int n, int width) {

@@ -176,10 +176,10 @@ void AisFrame::finish(const TsFrame& frame, std::vector<float>& out) {
     // Where each camera path ends on a light: a light's edge in its holder's plane.
     const size_t pixels = surf_.size() / TS_IGI_SURF_FLOATS;
     emitter_.assign(pixels, 0);
-    for (size_t p = 0; p < pixels; ++p) {
+    parallel_pixels(pixels, [&](size_t p) {
         const float* le = &surf_[p * TS_IGI_SURF_FLOATS + TS_IGI_SURF_EMISSION];
         emitter_[p] = le[0] + le[1] + le[2] > 0.0f;
-    }
+    });
     schedule_edges(out);
     const auto t_kernel = Clock::now();
     backend_.launch_items(KernelId::EdgeSample, frame, edge_schedule_.items, edge_samples_);

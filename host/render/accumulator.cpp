@@ -6,6 +6,9 @@
 #include <string>
 #include <utility>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "kernels/shared/layout_pass.h"
 
 namespace tessera {
@@ -23,20 +26,24 @@ void Accumulator::add(const std::vector<float>& pass) {
     if (pass.size() != n * stride)
         throw std::invalid_argument("Accumulator::add: a pass of " + std::to_string(pass.size()) + " floats for " +
                                     std::to_string(width_) + "x" + std::to_string(height_) + " pixels");
-    for (size_t p = 0; p < n; ++p) {
-        const float* in = &pass[p * stride];
-        double* s = &sum_[p * TS_PASS_FLOATS];
-        for (int c = 0; c < 3; ++c) {
-            s[TS_PASS_RADIANCE + c] += in[TS_PASS_RADIANCE + c];
-            sum_sq_[3 * p + c] += double(in[TS_PASS_RADIANCE + c]) * in[TS_PASS_RADIANCE + c];
+    // Pixels are independent sums: in parallel (serial, a 512² pass took 3.5 ms of the
+    // main thread while the workers waited), the same bits in any order.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t p = r.begin(); p < r.end(); ++p) {
+            const float* in = &pass[p * stride];
+            double* s = &sum_[p * TS_PASS_FLOATS];
+            for (int c = 0; c < 3; ++c) {
+                s[TS_PASS_RADIANCE + c] += in[TS_PASS_RADIANCE + c];
+                sum_sq_[3 * p + c] += double(in[TS_PASS_RADIANCE + c]) * in[TS_PASS_RADIANCE + c];
+            }
+            if (stride == TS_PASS_RADIANCE_FLOATS) continue;
+            for (int k = TS_PASS_ALBEDO; k < TS_PASS_DEPTH; ++k) s[k] += in[k];
+            if (std::isfinite(in[TS_PASS_DEPTH])) {
+                s[TS_PASS_DEPTH] += in[TS_PASS_DEPTH];
+                ++hits_[p];
+            }
         }
-        if (stride == TS_PASS_RADIANCE_FLOATS) continue;
-        for (int k = TS_PASS_ALBEDO; k < TS_PASS_DEPTH; ++k) s[k] += in[k];
-        if (std::isfinite(in[TS_PASS_DEPTH])) {
-            s[TS_PASS_DEPTH] += in[TS_PASS_DEPTH];
-            ++hits_[p];
-        }
-    }
+    });
     ++passes_;
 }
 

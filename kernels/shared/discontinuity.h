@@ -44,12 +44,17 @@ TS_INLINE long ts_discontinuity_shift(int x, int y, int w, int h, int n) {
     return (long)(ts_discontinuity_lo_at(y, h, n) - lo) * w + (ts_discontinuity_lo_at(x, w, n) - lo);
 }
 
+/* The window position of offset (dx, dy) in a window of edge n whose first offsets are
+ * lx, ly (ts_discontinuity_lo_at of the pixel's x and y), or -1 where it does not hold it. */
+TS_INLINE int ts_discontinuity_position_in(int lx, int ly, int n, int dx, int dy) {
+    if (dx < lx || dx >= lx + n || dy < ly || dy >= ly + n) return -1;
+    return (dy - ly) * n + (dx - lx);
+}
+
 /* The window position (as in ts_discontinuity_mask's bits) of offset (dx, dy) from pixel
  * (x, y), or -1 where the pixel's window does not hold that offset. */
 TS_INLINE int ts_discontinuity_position(int x, int y, int w, int h, int n, int dx, int dy) {
-    const int lx = ts_discontinuity_lo_at(x, w, n), ly = ts_discontinuity_lo_at(y, h, n);
-    if (dx < lx || dx >= lx + n || dy < ly || dy >= ly + n) return -1;
-    return (dy - ly) * n + (dx - lx);
+    return ts_discontinuity_position_in(ts_discontinuity_lo_at(x, w, n), ts_discontinuity_lo_at(y, h, n), n, dx, dy);
 }
 
 /* Whether p (depth zp, unit normal np, position xp) accepts q; use_plane 0 tests depths
