@@ -45,12 +45,14 @@ ts::TsAisGuideView guide_view(const AisBaseBuffers& b, const DiscontinuitySettin
 struct WindowRow {
     std::vector<float> lo, hi;
     std::vector<double> sum, sum2;
+    std::vector<int> count;  ///< accepted positions (moments)
+    std::vector<float> cov;  ///< ts_ais_cov_of_sums of the above (window_row_cov)
 };
 
 void window_row(const float* v, const uint64_t* masks, int y, int w, int h, int n, const ptrdiff_t* offset,
                 bool range, bool moments, WindowRow& r) {
     if (range) r.lo.assign(w, ts::TS_INF), r.hi.assign(w, -ts::TS_INF);
-    if (moments) r.sum.assign(w, 0.0), r.sum2.assign(w, 0.0);
+    if (moments) r.sum.assign(w, 0.0), r.sum2.assign(w, 0.0), r.count.assign(w, 0);
     int lo, hi;
     discontinuity_window(n, &lo, &hi);
     const float* row = v + size_t(y) * w;
@@ -73,14 +75,27 @@ void window_row(const float* v, const uint64_t* masks, int y, int w, int h, int 
             // A rejected position adds +0 (its value's bits masked off), which leaves a sum
             // that starts at +0 as it was; a conditional add would be a branch.
             double *__restrict a = r.sum.data(), *__restrict b = r.sum2.data();
+            int* __restrict k = r.count.data();
             for (int x = x0; x < x1; ++x) {
-                const uint64_t keep = 0ull - ((m[x] >> i) & 1u);
-                const double s = std::bit_cast<double>(std::bit_cast<uint64_t>(double(q[x])) & keep);
+                const uint64_t on = (m[x] >> i) & 1u;
+                const double s = std::bit_cast<double>(std::bit_cast<uint64_t>(double(q[x])) & (0ull - on));
                 a[x] += s;
                 b[x] += s * s;
+                k[x] += int(on);
             }
         }
     }
+}
+
+// Each pixel's ts_ais_cov_of_sums over the row's moments, in one loop the compiler runs in
+// SIMD (with -fno-trapping-math, CMakeLists.txt): per pixel in the guidance loop, its
+// four double divisions and square root were half of compute_guidance's time.
+void window_row_cov(WindowRow& r, int w, float cov) {
+    r.cov.resize(w);
+    const double *__restrict a = r.sum.data(), *__restrict b = r.sum2.data();
+    const int* __restrict k = r.count.data();
+    float* __restrict c = r.cov.data();
+    for (int x = 0; x < w; ++x) c[x] = ts::ts_ais_cov_of_sums(a[x], b[x], k[x], cov);
 }
 
 // For each own set (the pixel's position in its tile), the other sets ordered by the
@@ -157,7 +172,10 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
             // border (ts_discontinuity_lo_at) takes the per-pixel functions, as the device.
             const bool row_moved = ts::ts_discontinuity_lo_at(y, h, n) != lo;
             if (ss && !row_moved) window_row(base.visibility.data(), masks.data(), y, w, h, n, offset.data(), true, false, vis);
-            if (id && !row_moved) window_row(base.indirect.data(), masks.data(), y, w, h, n, offset.data(), false, true, ind);
+            if (id && !row_moved) {
+                window_row(base.indirect.data(), masks.data(), y, w, h, n, offset.data(), false, true, ind);
+                window_row_cov(ind, w, params.id_cov);
+            }
             const int sy = ts::ts_ais_window_origin(y, h, n);
             for (int x = 0; x < w; ++x) {
                 const size_t p = size_t(y) * w + x;
@@ -183,10 +201,7 @@ AisGuidance compute_guidance(const AisBaseBuffers& base, const DiscontinuitySett
                 if (id && surface) {
                     const ts::TsAisValue v =
                         moved ? ts::ts_ais_id(&view, &params, off, in_image, accepted, x, y)
-                              : ts::ts_ais_id_value(&view, &params,
-                                                    ts::ts_ais_cov_of_sums(ind.sum[x], ind.sum2[x],
-                                                                           std::popcount(accepted), params.id_cov),
-                                                    in_image, accepted, x, y);
+                              : ts::ts_ais_id_value(&view, &params, ind.cov[x], in_image, accepted, x, y);
                     out.g[kAisID][p] = v.g, out.grade[kAisID][p] = v.grade;
                 }
                 if (!out.g[kAisPM].empty()) {
