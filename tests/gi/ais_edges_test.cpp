@@ -6,10 +6,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
+#include <utility>
 #include <tuple>
 
 #include <gtest/gtest.h>
 
+#include "kernels/shared/edge_guidance.h"
 #include "kernels/shared/layout_igi.h"
 #include "kernels/shared/layout_pass.h"
 
@@ -166,6 +169,63 @@ TEST(AisEdgeGuidance, EscapedRaysAreAnEdgeAndDarkDifferencesAreNot) {
     img[0 + TS_PASS_RADIANCE] = img[1 + TS_PASS_RADIANCE] = img[2 + TS_PASS_RADIANCE] = 1.0f * W * H;  // the mean
     guidance = edge_guidance(g, kFilter, img, 0.01f);
     EXPECT_LT(guidance[size_t(3) * W + 3], 0.05f);
+}
+
+// edge_guidance against its definition, pixel by pixel: the largest contrast over the
+// pairs of ts_edge_pairs around p that lie in the image and that the first's discontinuity
+// test rejects or that straddle a light's edge. A scattered G-buffer (three depths, two
+// normals, escaped rays, lights) makes edges everywhere, at every border, on images whose
+// sides are no multiple of any tile, with and without the precomputed masks: the host's
+// per-pair flags and its quick test of the ring must not lose or add a pair.
+TEST(AisEdgeGuidance, EachPixelTakesItsRingsLargestEdgeContrast) {
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> pick(0, 9);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (const auto [w, h] : {std::pair{23, 17}, std::pair{2, 9}, std::pair{9, 1}}) {
+        GeometryBuffer g;
+        g.width = w, g.height = h;
+        std::vector<float> img(size_t(w) * h * TS_PASS_FLOATS, 0.0f);
+        std::vector<uint8_t> emitter(size_t(w) * h, 0);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const size_t p = size_t(y) * w + x;
+                const int k = pick(rng);  // mostly one wall, so that flagged pixels stay apart
+                const float z = k == 0 ? kInf : k == 1 ? 4.0f : k == 2 ? 1.5f : 2.0f;
+                const bool tilted = pick(rng) == 0;
+                g.normal.insert(g.normal.end(), {tilted ? 1.0f : 0.0f, 0.0f, tilted ? 0.0f : 1.0f});
+                g.position.insert(g.position.end(), {0.1f * x, 0.1f * y, -z});
+                g.depth.push_back(z);
+                emitter[p] = pick(rng) == 0;
+                for (int c = 0; c < 3; ++c) img[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] = u(rng);
+            }
+        for (int tile : {1, 2, 3, 4, 5, 8}) {
+            const DiscontinuitySettings filter{tile, 0.9f, 0.05f};
+            const float eps = edge_epsilon(img, w, 0.01f);
+            std::vector<float> expected(size_t(w) * h, 0.0f);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    for (int i = 0; i < 10; ++i) {
+                        size_t qa, qb;
+                        if (!ts::ts_edge_pair_pixels(x, y, w, h, i, &qa, &qb)) continue;
+                        if (discontinuity_accepts(g, filter, qa, qb) && emitter[qa] == emitter[qb]) continue;
+                        const float ya = ts::ts_luminance(ts::ts_f3_load(&img[qa * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
+                        const float yb = ts::ts_luminance(ts::ts_f3_load(&img[qb * TS_PASS_FLOATS + TS_PASS_RADIANCE]));
+                        float& e = expected[size_t(y) * w + x];
+                        e = ts::ts_edge_max(e, ts::ts_edge_contrast(ya, yb, eps));
+                    }
+            for (bool masks : {false, true}) {
+                SCOPED_TRACE(testing::Message() << w << "x" << h << ", tile " << tile << (masks ? ", masks" : ""));
+                GeometryBuffer gm = g;
+                if (masks) discontinuity_precompute(gm, filter);
+                const std::vector<float> guidance = edge_guidance(gm, filter, img, 0.01f, emitter);
+                EXPECT_EQ(guidance, expected);
+                size_t flagged = 0, clear = 0;
+                for (float v : guidance) (v > 0.0f ? flagged : clear) += 1;
+                EXPECT_GT(flagged, 0u);
+                if (w > 2 && h > 1) EXPECT_GT(clear, 0u);  // the quick test's case, too
+            }
+        }
+    }
 }
 
 TEST(AisEdgeSchedule, AGradesAndAMaxSaturates) {
