@@ -194,7 +194,7 @@ void run_compare(const CompareArgs& a, const CLI::App& cmd) {
 void add_compare_command(CLI::App& app) {
     auto args = std::make_shared<CompareArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "compare", "Error of TEST.exr against REF.exr: relMSE, RMSE, PSNR, HDR-FLIP (mean, % > 0.1, % > 0.3)");
+        "compare", "Error of a test image against a reference (compare REF.exr TEST.exr): relMSE, RMSE, PSNR, HDR-FLIP (mean, % > 0.1, % > 0.3)");
     cmd->add_option("reference", args->ref, "Reference EXR (R, G, B channels)")->required();
     cmd->add_option("test", args->test, "Test EXR, same size")->required();
     cmd->add_option("--map", args->map, "Write the per-pixel relative squared error as a false-colour PNG "
