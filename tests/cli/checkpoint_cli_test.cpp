@@ -168,6 +168,40 @@ TEST_F(CheckpointCli, InterruptedTicLeavesNoCheckpoint) {
     EXPECT_FALSE(fs::exists(ckpt));
 }
 
+// Outputs that cannot be written when the render ends (here the PNG's path became a
+// directory mid-run): no image is written, and the periodic checkpoint is kept, said with
+// what to do, so the passes are not lost; --resume then finishes once the path is free.
+TEST_F(CheckpointCli, AFailedImageWriteKeepsThePeriodicCheckpoint) {
+    const fs::path exr = dir_ / "img.exr", png = dir_ / "img.png", ckpt = dir_ / "img.ckpt";
+    const std::vector<std::string> args = render_args({"--checkpoint-interval", "1e-9"});
+    std::vector<std::string> words{TESSERA_EXE};
+    words.insert(words.end(), args.begin(), args.end());
+    bool blocked = false;
+    const CliRun r = tessera::test::run_watched(words, true, [&](pid_t, const std::string& out) {
+        // After the first pass's checkpoint, well before the last of 50 passes.
+        if (blocked || out.find("/50 spp") == std::string::npos) return;
+        fs::create_directories(png / "in-the-way");
+        blocked = true;
+    });
+    ASSERT_TRUE(blocked) << r.output;
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("the render's checkpoint " + ckpt.string() +
+                            " is kept (the passes to its last save): once the outputs can be written, add --resume"),
+              std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(ckpt));
+    EXPECT_FALSE(fs::exists(exr));
+    size_t files = 0;
+    for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();
+    EXPECT_EQ(files, 1u) << "the checkpoint, no temporary";
+
+    fs::remove_all(png);
+    const CliRun done = run_tessera(render_args({"--resume"}));
+    ASSERT_EQ(done.exit_code, 0) << done.output;
+    EXPECT_GT(fs::file_size(exr), 0u);
+    EXPECT_GT(fs::file_size(png), 0u);
+    EXPECT_FALSE(fs::exists(ckpt));
+}
+
 TEST_F(CheckpointCli, ResumeWithoutCheckpointNamesTheExpectedFile) {
     CliRun r = run_tessera(render_args({"--resume"}));
     EXPECT_EQ(r.exit_code, 2) << r.output;
