@@ -15,7 +15,10 @@ namespace tessera {
 /// The method and its settings (the part of RenderSettings below the frame loop).
 struct IntegratorSettings {
     Method method = Method::Direct;
-    uint32_t max_depth = 128;       ///< pt: scattering vertices per path (1: direct lighting)
+    /// pt: scattering vertices per path (1: direct lighting). Roulette ends paths long
+    /// before in any scene that absorbs; the cap bounds the work where nothing does (a
+    /// medium that only scatters: docs/path-tracing.md §3).
+    uint32_t max_depth = 8192;
     uint32_t max_scatter = 0;       ///< pt: medium scattering vertices per path, 0 = unlimited
     IgiSettings igi;                ///< igi (set_shadow_samples comes from shadow_samples)
     IcSettings ic;                  ///< ic, tic (temporal is set from the method)
