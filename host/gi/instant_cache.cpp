@@ -109,6 +109,7 @@ LightPathSettings InstantCache::path_settings() const {
     LightPathSettings ls;
     ls.inv_paths = 1.0f / static_cast<float>(uint64_t(settings_.paths) * oversampling_);
     ls.medium_scattering = settings_.multiple_scattering;
+    ls.max_bounces = settings_.light_path_depth;
     ls.seed = seed_;
     return ls;
 }

@@ -63,6 +63,7 @@ struct IcSettings {
     /// grows the cache, and the per-frame update with it, without bound.
     uint32_t evict_after_frames = 30;
     bool multiple_scattering = true;   ///< light paths scatter in the medium (IgiSettings)
+    uint32_t light_path_depth = kLightPathDepth;  ///< segments per light path (IgiSettings)
     /// Add to each pixel an estimate of what the geometry-term clamp removed from its
     /// indirect light (kernels/shared/ic_residual.h, docs/instant-caching.md §9): up to two
     /// rays and two shadow rays a pixel and pass. Without it the clamp darkens corners

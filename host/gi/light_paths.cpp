@@ -107,7 +107,7 @@ uint64_t trace_batched(Backend& backend, const SceneBuffers& scene, const LightP
     const ts::TsMedium med = ts::ts_medium_load(scene.medium.data());
     const uint32_t scramble = scramble_of(settings);
     const std::shared_ptr<const ScrambledHalton> owner =
-        halton_for(5 + 3 * static_cast<int>(settings.max_bounces), scramble);
+        halton_for(5 + 3 * static_cast<int>(std::min(settings.max_bounces, kHaltonLightPathBounces)), scramble);
     const ScrambledHalton& halton = *owner;
     const ts::TsLightPathParams lp = ts::ts_light_path_params(light_path_header(settings).data());
     std::vector<InFlight> live;

@@ -7,6 +7,7 @@
 
 #include "backend/backend.h"
 #include "device/scene_buffers.h"
+#include "gi/light_paths.h"
 #include "gi/vpl_importance.h"
 
 namespace tessera {
@@ -17,12 +18,7 @@ namespace tessera {
 struct VplSettings {
     uint32_t sets = 9;             ///< interleave sets N = n²
     uint32_t paths_per_set = 32;   ///< M light paths per set (docs/igi.md §3)
-    /// Surface hits per path. Paths end by Russian roulette; this cap only bounds the
-    /// work. IGI's customary 5 would drop the light of 6+ bounces (about ρ⁵ of the
-    /// indirect light, a few percent in a white room) and make IGI converge to something
-    /// other than the path-traced reference, so the cap is set where roulette has long
-    /// ended every path in practice.
-    uint32_t max_bounces = 64;
+    uint32_t max_bounces = kLightPathDepth;  ///< segments per path (kLightPathDepth)
     uint32_t frame = 0;            ///< selects the block of path indices
     uint32_t halton_seed = 0x7e55e7a;  ///< the digit scrambling, fixed for the project
     uint32_t seed = 1;                 ///< the render's --seed (LightPathSettings::seed)

@@ -117,6 +117,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
         VplSettings vs;
         vs.sets = sets;
         vs.paths_per_set = settings_.paths_per_set;
+        vs.max_bounces = settings_.light_path_depth;
         vs.frame = frame.pass;
         vs.seed = frame.seed;
         vs.medium_scattering = settings_.multiple_scattering;

@@ -28,6 +28,9 @@ namespace tessera {
 struct IgiSettings {
     uint32_t tile = 3;             ///< interleave tile edge n, 1..8 (n² sample sets)
     uint32_t paths_per_set = VplSettings{}.paths_per_set;  ///< light paths (VPL sources) per set
+    /// Segments per light path at most (surface hits and medium scattering events;
+    /// kLightPathDepth gives the default's reason). ic/tic take it too (IcSettings).
+    uint32_t light_path_depth = kLightPathDepth;
     uint32_t set_shadow_samples = 4;  ///< area-light samples per pixel (its set's share)
     uint32_t march_steps = 8;      ///< medium ray-march steps per pixel (the N sets stratify them)
     /// Geometry-term clamp b = 1 / (clamp_c · D)², D the scene's bounding-box diagonal with

@@ -42,6 +42,7 @@ std::shared_ptr<IcPassCaches> make_ic_caches(const IntegratorSettings& settings,
     IcSettings ics = settings.ic;
     ics.temporal = method_info(settings.method).temporal;
     ics.multiple_scattering = settings.igi.multiple_scattering;
+    ics.light_path_depth = settings.igi.light_path_depth;
     return std::make_shared<IcPassCaches>(ics, objects);
 }
 

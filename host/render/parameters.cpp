@@ -47,6 +47,10 @@ const Parameter kParameters[] = {
      .doc = "igi: interleave tile edge n (n² sample sets)", .scope = ParameterScope::IgiFamily},
     {.option = "--vpl-paths", .value_name = "N", .field = TS_SETTING(igi.paths_per_set), .min = 1, .max = 65536,
      .unit = "paths", .doc = "igi: light paths per sample set (ic/tic: for a medium's light)", .scope = ParameterScope::IgiFamily},
+    {.option = "--light-path-depth", .value_name = "N", .field = TS_SETTING(igi.light_path_depth), .min = 1,
+     .max = 100000, .unit = "segments",
+     .doc = "igi family: segments per light path at most (surface hits and medium scattering events)",
+     .scope = ParameterScope::IgiFamily},
     {.option = "--vpl-importance", .value_name = "K", .field = TS_SETTING(igi.vpl_importance), .min = 1, .max = 64,
      .unit = "x", .doc = "igi family (ic/tic: for a medium's light): trace K× the light paths and keep a budget of VPLs by their importance for the view (1: off)", .scope = ParameterScope::IgiFamily},
     // At most 1: no two points of the scene lie farther apart than D, so c = 1 clamps every

@@ -226,7 +226,8 @@ TS_INLINE int ts_light_path_begin(const TsSceneView* sv, TS_GLOBAL const uint* h
  * free-flight decision (ts_light_path_medium; its five numbers from the counter-based
  * generator keyed by path and bounce, not the Halton point, whose dimensions stay the
  * surface vertices': images without a medium, or with single scattering, keep their VPLs);
- * then the surface vertex (ts_light_path_vertex; Halton dimensions 5 + 3·bounce .. + 2).
+ * then the surface vertex (ts_light_path_vertex; Halton dimensions 5 + 3·bounce .. + 2
+ * while the table `halton` holds them, the counter-based generator past it).
  * Fills *ev, updates *st, and returns TS_LIGHT_PATH_* bits: _VRL, _VPL (ev->vrl, ev->vpl
  * hold them), _MEDIUM, _CONTINUES. */
 TS_INLINE uint ts_light_path_segment(const TsSceneView* sv, const TsMedium* med, TS_GLOBAL const uint* halton,
@@ -258,8 +259,19 @@ TS_INLINE uint ts_light_path_segment(const TsSceneView* sv, const TsMedium* med,
     }
     if (hit.prim == TS_NO_HIT) return what;
     uint dim = 5u + 3u * bounce;
-    float3 u = make_float3(ts_halton_sample(halton, st->index, dim), ts_halton_sample(halton, st->index, dim + 1u),
-                           ts_halton_sample(halton, st->index, dim + 2u));
+    float3 u;
+    if (dim + 2u < halton[TS_HALTON_DIMS]) {
+        u = make_float3(ts_halton_sample(halton, st->index, dim), ts_halton_sample(halton, st->index, dim + 1u),
+                        ts_halton_sample(halton, st->index, dim + 2u));
+    } else {
+        /* Past the table's dimensions (deep paths: a dense medium's random walk) the
+         * counter-based generator: a Halton base grows with its dimension, and a table
+         * for thousands of bounces would hold hundreds of millions of digits. */
+        TsRng rng = ts_rng_seed(lp->scramble ^ 0x73757266u, (uint)st->index, bounce);
+        u.x = ts_rng_next(&rng);
+        u.y = ts_rng_next(&rng);
+        u.z = ts_rng_next(&rng);
+    }
     TsSurface s;
     float3 flux;
     uint v = ts_light_path_vertex(sv, med, hit, u, lp->inv_paths, attenuated, &st->alpha, &st->ray, &s, &flux);

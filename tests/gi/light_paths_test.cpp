@@ -19,6 +19,7 @@
 #include "kernels/shared/medium.h"
 #include "render/renderer.h"
 #include "support/render_helpers.h"
+#include "support/test_scenes.h"
 
 namespace tessera {
 namespace {
@@ -180,6 +181,49 @@ TEST(LightPaths, EachSetKeepsItsShareOfRayLights) {
         EXPECT_NEAR(v[TS_VRL_FLUX + 1], 4.0f * c[TS_VRL_FLUX + 1], 1e-6f * v[TS_VRL_FLUX + 1]);
     }
     EXPECT_TRUE(found);
+}
+
+
+// A medium that scatters without absorbing (grey σs, σa 0: each event's weight is exactly
+// 1, so roulette ends no path inside it) carries all the light entering it to the walls:
+// each path's first surface VPL has the flux it has in vacuum, where every path hits a
+// wall first. Light random-walks ~(extent / mean free path)² events before; at σs 30 in
+// a unit box (30 mean free paths across) a cap of 64 segments held 34 of these 256 paths
+// in the medium (128: 14, 256: 2, 512: none), and the Cornell box filled that densely
+// rendered 11-15% dark (kLightPathDepth). The paths are fixed, so the ratio is too.
+TEST(LightPaths, DenseNonAbsorbingMediumPassesAllFluxToTheWalls) {
+    Scene vacuum = test::closed_box({0, 0, 0}, {1, 1, 1}, glm::vec3(0.5f), glm::vec3(1.0f), 0.2f);
+    vacuum.materials[1].albedo = glm::vec3(0.5f);  // a walk back to the light goes on too
+    Scene dense = vacuum;
+    dense.has_medium = true;
+    dense.medium.sigma_s = glm::vec3(30.0f);
+    dense.medium.g = 0.3f;
+    // The flux of each path's first surface VPL (R channel), summed over 256 paths.
+    auto first_wall_flux = [](const Scene& scene, uint32_t depth) {
+        const SceneBuffers buffers = make_scene_buffers(scene);
+        auto backend = make_backend({BackendKind::Embree, ""}, buffers, plan_effects(scene));
+        std::vector<LightPath> paths(256);
+        for (uint32_t j = 0; j < paths.size(); ++j) paths[j].index = j;
+        LightPathSettings ls;
+        ls.medium_scattering = true;
+        ls.max_bounces = depth;
+        ls.inv_paths = 1.0f / 256.0f;
+        trace_light_paths(*backend, buffers, ls, paths);
+        double sum = 0.0;
+        for (const LightPath& p : paths)
+            for (size_t i = 0; i < p.vpls.size(); i += TS_VPL_FLOATS)
+                if (p.vpls[i + TS_VPL_POS_SCALE] >= 0.0f) {  // medium VPLs carry -1
+                    sum += p.vpls[i + TS_VPL_FLUX];
+                    break;
+                }
+        return sum;
+    };
+    const double reference = first_wall_flux(vacuum, 1);
+    ASSERT_GT(reference, 0.0);
+    // Each event multiplies the weight by a rounded 1: 1e-3 allows ~10^4 roundings of
+    // 2^-24 in every path.
+    EXPECT_NEAR(first_wall_flux(dense, kLightPathDepth) / reference, 1.0, 1e-3);
+    EXPECT_LT(first_wall_flux(dense, 64) / reference, 0.95) << "the medium must hold paths past 64 segments here";
 }
 
 }  // namespace
