@@ -52,8 +52,8 @@ inline LightPath untraced(const LightPath& path) {
 /// converge to something other than the path-traced reference. A medium that scatters
 /// without absorbing ends no path by roulette: light random-walks ~(extent / mean free
 /// path)² events: a cap of 64 held 34 of 256 paths in a unit box with σs 30, 512 none,
-/// and left the Cornell box filled with σs 30 (16 mean free paths across) 11-15% below
-/// `pt` (docs/igi.md §3).
+/// and left the Cornell box filled with σs 30 (16 mean free paths across) ~20% below
+/// `pt`, 1,024 within noise of it (docs/igi.md §3).
 constexpr uint32_t kLightPathDepth = 1024;
 
 /// Bounces whose surface vertices take Halton dimensions (5 + 3·bounce ..); deeper ones

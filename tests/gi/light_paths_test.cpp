@@ -190,7 +190,7 @@ TEST(LightPaths, EachSetKeepsItsShareOfRayLights) {
 // wall first. Light random-walks ~(extent / mean free path)² events before; at σs 30 in
 // a unit box (30 mean free paths across) a cap of 64 segments held 34 of these 256 paths
 // in the medium (128: 14, 256: 2, 512: none), and the Cornell box filled that densely
-// rendered 11-15% dark (kLightPathDepth). The paths are fixed, so the ratio is too.
+// rendered ~20% below pt (kLightPathDepth). The paths are fixed, so the ratio is too.
 TEST(LightPaths, DenseNonAbsorbingMediumPassesAllFluxToTheWalls) {
     Scene vacuum = test::closed_box({0, 0, 0}, {1, 1, 1}, glm::vec3(0.5f), glm::vec3(1.0f), 0.2f);
     vacuum.materials[1].albedo = glm::vec3(0.5f);  // a walk back to the light goes on too
