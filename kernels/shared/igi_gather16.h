@@ -229,6 +229,58 @@ TS_INLINE void ts_igi_lanes_vpl_gather(TsIgiLanes* TS_RESTRICT ls, TS_GLOBAL con
     }
 }
 
+/* The box around the lanes' surfaces (positions and origins, scene units) in *lo, *hi,
+ * and their largest pos_scale in *scale, for ts_igi_vpl_medium: every lane holds a
+ * finite surface (a stand-in's at worst), so including them all only grows the box. */
+TS_INLINE void ts_igi_lanes_bounds(const TsIgiLanes* TS_RESTRICT ls, float3* lo, float3* hi, float* scale) {
+    float b[7] = {TS_INF, TS_INF, TS_INF, -TS_INF, -TS_INF, -TS_INF, 0.0f}, check = 0.0f;
+    for (int i = 0; i < TS_PACKET_LANES; ++i)
+        for (int a = 0; a < 3; ++a) {
+            const float p = ls->position[a][i], o = ls->origin[a][i];
+            check += p * 0.0f + o * 0.0f; /* NaN where a coordinate is not finite */
+            b[a] = b[a] < p ? b[a] : p;
+            b[a] = b[a] < o ? b[a] : o;
+            b[3 + a] = b[3 + a] > p ? b[3 + a] : p;
+            b[3 + a] = b[3 + a] > o ? b[3 + a] : o;
+        }
+    for (int i = 0; i < TS_PACKET_LANES; ++i) b[6] = b[6] > ls->pos_scale[i] ? b[6] : ls->pos_scale[i];
+    *lo = make_float3(b[0], b[1], b[2]);
+    *hi = make_float3(b[3], b[4], b[5]);
+    *scale = check == 0.0f ? b[6] : TS_INF; /* never apart (ts_medium_misses_box) */
+}
+
+/* The medium the lanes' links to `vpl` cross: `clear` (no medium) where the box around
+ * the lanes' surfaces (ts_igi_lanes_bounds) and the VPL lies apart from the medium's
+ * (ts_medium_misses_box), so that every link's transmittance is exactly 1 and
+ * ts_igi_lanes_vpl_gather takes its vector loop, with the same sums bit for bit; else
+ * med. A medium box in one part of a scene (or where no link goes) then costs the links
+ * elsewhere nothing: one far from every surface of the Cornell box made its igi frame
+ * 1.7× as long. */
+TS_INLINE const TsMedium* ts_igi_vpl_medium(const TsMedium* med, const TsMedium* clear, float3 lanes_lo,
+                                            float3 lanes_hi, float lanes_scale, TS_GLOBAL const float* vpl) {
+    if (!med->present || !med->bounded) return med;
+    const float3 p = ts_f3_load(vpl + TS_VPL_POSITION);
+    if (!((p.x + p.y + p.z) * 0.0f == 0.0f)) return med; /* a coordinate not finite */
+    const float scale = lanes_scale > vpl[TS_VPL_POS_SCALE] ? lanes_scale : vpl[TS_VPL_POS_SCALE];
+    return ts_medium_misses_box(med, fmin(lanes_lo, p), fmax(lanes_hi, p), scale) ? clear : med;
+}
+
+/* The medium the lanes' links to light sample q cross, as ts_igi_vpl_medium's, with the
+ * box around q's whole light (the parallelogram p0 + u·e1 + v·e2, u, v in [0, 1], holds
+ * its triangle): a lane near the light draws its own point on it (ts_light_sample_from). */
+TS_INLINE const TsMedium* ts_igi_light_medium(const TsMedium* med, const TsMedium* clear, float3 lanes_lo,
+                                              float3 lanes_hi, float lanes_scale, TS_GLOBAL const float* lights,
+                                              const TsLightSample* q) {
+    if (!med->present || !med->bounded) return med;
+    TS_GLOBAL const float* l = lights + (size_t)q->light * TS_LIGHT_FLOATS;
+    const float3 p0 = ts_f3_load(l + TS_LIGHT_P0), e1 = ts_f3_load(l + TS_LIGHT_E1), e2 = ts_f3_load(l + TS_LIGHT_E2);
+    const float3 lo = fmin(fmin(p0, p0 + e1), fmin(p0 + e2, p0 + e1 + e2));
+    const float3 hi = fmax(fmax(p0, p0 + e1), fmax(p0 + e2, p0 + e1 + e2));
+    if (!((lo.x + lo.y + lo.z + hi.x + hi.y + hi.z) * 0.0f == 0.0f)) return med; /* not finite */
+    const float scale = lanes_scale > q->pos_scale ? lanes_scale : q->pos_scale;
+    return ts_medium_misses_box(med, fmin(lanes_lo, lo), fmax(lanes_hi, hi), scale) ? clear : med;
+}
+
 /* Gathers the links of the lanes of sample set k among the first `lanes` (those with
  * links[i] > 0 and set[i] == k; at least one): the set's light samples, then its VPLs.
  * view[i].s is lane i's surface; the sums go to gather[i] of those lanes only. */
@@ -236,6 +288,8 @@ TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer
                                    const TsIgiView* view, const uint* set, const uint* mask, const uint* links,
                                    uint k, TsIgiGather* gather) {
     const TsMedium med = ts_medium_load(sv->medium);
+    TsMedium clear = med;
+    clear.present = 0;
     TsIgiLanes ls;
     TsIgiLinkLanes L;
     TsRayLanes r;
@@ -250,11 +304,16 @@ TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer
         any_id |= L.in_id[i] != 0;
         ts_igi_lanes_set(&ls, i, &view[lane ? i : stand_in].s);
     }
+    float3 lanes_lo, lanes_hi;
+    float lanes_scale;
+    ts_igi_lanes_bounds(&ls, &lanes_lo, &lanes_hi, &lanes_scale);
     ts_ray_lanes_init(&r);
     for (uint j = 0u; any_ss && j < f->shadow_samples; ++j) {
-        ts_igi_lanes_light_links(sv->lights, &ls, ts_igi_light_sample(sv, f, k, j), &L, &r);
+        const TsLightSample q = ts_igi_light_sample(sv, f, k, j);
+        ts_igi_lanes_light_links(sv->lights, &ls, q, &L, &r);
+        const TsMedium* m = ts_igi_light_medium(&med, &clear, lanes_lo, lanes_hi, lanes_scale, sv->lights, &q);
         ts_trace_occluded_ray_lanes(tracer, &r, L.traced, L.visible);
-        ts_igi_lanes_light_gather(&ls, &L, &med, &r);
+        ts_igi_lanes_light_gather(&ls, &L, m, &r);
     }
     for (uint v = sv->vpl_set_start[k]; any_id && v < sv->vpl_set_start[k + 1u]; ++v) {
 #ifdef __OPENCL_VERSION__
@@ -266,8 +325,9 @@ TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer
         for (int c = 0; c < TS_VPL_FLOATS; ++c) vpl[c] = sv->vpls[(size_t)v * TS_VPL_FLOATS + c];
 #endif
         ts_igi_lanes_vpl_links(&ls, vpl, f->igi_g_clamp, sv->medium[TS_MEDIUM_G], &L, &r);
+        const TsMedium* m = ts_igi_vpl_medium(&med, &clear, lanes_lo, lanes_hi, lanes_scale, vpl);
         ts_trace_occluded_ray_lanes(tracer, &r, L.traced, L.visible);
-        ts_igi_lanes_vpl_gather(&ls, vpl, &L, &med, &r);
+        ts_igi_lanes_vpl_gather(&ls, vpl, &L, m, &r);
     }
     for (int i = 0; i < lanes; ++i) {
         if (set[i] != k || links[i] == 0u) continue;

@@ -49,6 +49,26 @@ TS_INLINE int ts_medium_clip(const TsMedium* m, float3 org, float3 dir, float* t
     return *t0 < *t1;
 }
 
+/* Whether no segment whose ends lie within `scale` · 1e-4 of the box [lo, hi] (scene
+ * units) meets the medium, so that its transmittance is exactly 1 (ts_medium_clip fails
+ * for it): no medium, or the boxes apart on some axis by more than 1e-4 of the largest
+ * of `scale` and the coordinates of either. That is far above the slab test's rounding
+ * (a few ulps of the coordinates) and a ray's end offsets (32 ulps of a point's
+ * pos_scale, ts_offset_ray_origin, when `scale` holds the largest). A medium filling space
+ * meets every segment; a NaN or infinite coordinate is never apart. */
+TS_INLINE int ts_medium_misses_box(const TsMedium* m, float3 lo, float3 hi, float scale) {
+    if (!m->present) return 1;
+    if (!m->bounded) return 0;
+    float s = fmax(fmax(fmax(fabs(lo.x), fabs(lo.y)), fmax(fabs(lo.z), fabs(hi.x))), fmax(fabs(hi.y), fabs(hi.z)));
+    s = fmax(s, scale);
+    s = fmax(s, fmax(fmax(fabs(m->box_min.x), fabs(m->box_min.y)), fabs(m->box_min.z)));
+    s = fmax(s, fmax(fmax(fabs(m->box_max.x), fabs(m->box_max.y)), fabs(m->box_max.z)));
+    float e = 1e-4f * s;
+    if (!(e < TS_INF) || !(lo.x + lo.y + lo.z + hi.x + hi.y + hi.z < TS_INF)) return 0;
+    return lo.x > m->box_max.x + e || lo.y > m->box_max.y + e || lo.z > m->box_max.z + e ||
+           hi.x < m->box_min.x - e || hi.y < m->box_min.y - e || hi.z < m->box_min.z - e;
+}
+
 /* Whether the medium scatters light in some channel (sigma_s > 0): else it only absorbs,
  * and in-scattered light is 0 everywhere. */
 TS_INLINE int ts_medium_scatters(const TsMedium* m) {

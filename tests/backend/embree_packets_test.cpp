@@ -118,7 +118,8 @@ TEST(EmbreePackets, RaysEqualSingleRaysOnSibenik) {
 // medium VPLs and the per-lane transmittance of the gather; the fog-free box the
 // vectorised gather without a medium (embree_packets.cpp, vpl_gather); a light crossing a
 // wall the packets whose lanes draw their own light points (igi_gather16.h,
-// ts_igi_lanes_light_links_near).
+// ts_igi_lanes_light_links_near); fog over the floor only the links that pass clear of
+// the medium's box, whose gathers take the loops without a medium (ts_igi_vpl_medium).
 class PacketImages : public ::testing::TestWithParam<std::tuple<Method, const char*>> {};
 
 TEST_P(PacketImages, EqualSingleRayImagesBitForBit) {
@@ -134,13 +135,15 @@ TEST_P(PacketImages, EqualSingleRayImagesBitForBit) {
 INSTANTIATE_TEST_SUITE_P(Methods, PacketImages,
                          ::testing::Combine(::testing::Values(Method::Igi, Method::Ais, Method::AisMax, Method::Ic),
                                             ::testing::Values("cornell-box-fog.json", "cornell-box.json",
-                                                              TESSERA_TEST_DATA "/near_light.json")),
+                                                              TESSERA_TEST_DATA "/near_light.json",
+                                                              TESSERA_TEST_DATA "/fog_floor.json")),
                          [](const auto& info) {
                              const std::string scene = std::get<1>(info.param);
                              return test::method_param_name(std::get<0>(info.param)) +
-                                    (scene == "cornell-box.json"       ? "_Clear"
-                                     : scene == "cornell-box-fog.json" ? "_Fog"
-                                                                       : "_NearLight");
+                                    (scene == "cornell-box.json"                       ? "_Clear"
+                                     : scene == "cornell-box-fog.json"                 ? "_Fog"
+                                     : scene == TESSERA_TEST_DATA "/fog_floor.json" ? "_FogFloor"
+                                                                                       : "_NearLight");
                          });
 
 }  // namespace

@@ -247,6 +247,12 @@ TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBitNearALight) {
     expect_packet_image_equals_per_ray(std::filesystem::path(TESSERA_TEST_DATA) / "near_light.json", GetParam());
 }
 
+// Fog over the floor only: links clear of its box gather without the medium
+// (ts_igi_vpl_medium, ts_igi_light_medium), the others with it.
+TEST_P(OpenCLPacketImages, EqualPerRayImagesBitForBitWithFogOverTheFloor) {
+    expect_packet_image_equals_per_ray(std::filesystem::path(TESSERA_TEST_DATA) / "fog_floor.json", GetParam());
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, OpenCLPacketImages,
                          ::testing::Values(Method::Igi, Method::Ais, Method::AisMax, Method::Ic),
                          [](const auto& info) { return test::method_param_name(info.param); });

@@ -48,6 +48,52 @@ TEST(Medium, TransmittanceIsBeerLambertOverThePathInsideTheBox) {
                 1.0 - 2e-6, 1e-7);
 }
 
+// ts_medium_misses_box: boxes apart from the medium's (beyond 1e-4 of the coordinates)
+// are; boxes that overlap it, touch it or come within that margin are not, nor any box of
+// a medium filling space or with a non-finite corner; without a medium every box is. And
+// where it says apart, every segment between points of the box (ends offset as the
+// shadow rays' are) has a transmittance of exactly 1.
+TEST(Medium, BoxesApartFromTheMediumSeeNoMedium) {
+    const ts::TsMedium m = slab(make_float3(0.1f, 0.1f, 0.1f), make_float3(0.5f, 0.5f, 0.5f));
+    auto apart = [&](ts::float3 lo, ts::float3 hi, float scale = 0.0f) {
+        return ts::ts_medium_misses_box(&m, lo, hi, scale) != 0;
+    };
+    EXPECT_TRUE(apart(make_float3(1.01f, -1, -1), make_float3(3, 1, 1)));     // beside the slab in x
+    EXPECT_TRUE(apart(make_float3(-3, 5.1f, 0), make_float3(3, 6, 1)));       // above it in y
+    EXPECT_FALSE(apart(make_float3(0.5f, -1, -1), make_float3(3, 1, 1)));     // overlapping
+    EXPECT_FALSE(apart(make_float3(1.0f, -1, -1), make_float3(3, 1, 1)));     // touching
+    EXPECT_FALSE(apart(make_float3(1.0002f, -1, -1), make_float3(3, 1, 1)));  // within 1e-4 · 5
+    EXPECT_FALSE(apart(make_float3(1.01f, -1, -1), make_float3(3, 1, 1), 1000.0f));  // a larger pos_scale
+    EXPECT_FALSE(apart(make_float3(NAN, -1, -1), make_float3(3, 1, 1)));
+    EXPECT_FALSE(apart(make_float3(1.01f, -1, -1), make_float3(INFINITY, 1, 1)));
+    ts::TsMedium everywhere = m;
+    everywhere.bounded = 0;
+    EXPECT_FALSE(ts::ts_medium_misses_box(&everywhere, make_float3(10, 10, 10), make_float3(11, 11, 11), 0.0f));
+    ts::TsMedium none = m;
+    none.present = 0;
+    EXPECT_TRUE(ts::ts_medium_misses_box(&none, make_float3(-1, -1, -1), make_float3(1, 1, 1), 0.0f));
+
+    // Segments between random points of a box just apart (by 1e-3 of the slab's size, at
+    // sizes 1e-3 to 1e4; the margin is 6e-4 of it there) see transmittance 1.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (float k : {1e-3f, 1.0f, 1e4f}) {
+        float buf[TS_MEDIUM_FLOATS] = {0.1f, 0.1f, 0.1f, 0.5f / k, 0.5f / k, 0.5f / k, 0.0f, 1.0f,
+                                       -k,   -5 * k, -5 * k, k,    5 * k,    5 * k,    1.0f, 0.0f};
+        const ts::TsMedium mk = ts::ts_medium_load(buf);
+        const ts::float3 lo = make_float3(k * (1.0f + 1e-3f), -6 * k, -6 * k), hi = make_float3(3 * k, 6 * k, 6 * k);
+        ASSERT_TRUE(ts::ts_medium_misses_box(&mk, lo, hi, 6 * k)) << k;
+        for (int i = 0; i < 2000; ++i) {
+            const ts::float3 a = lo + (hi - lo) * make_float3(u(rng), u(rng), u(rng));
+            const ts::float3 b = lo + (hi - lo) * make_float3(u(rng), u(rng), u(rng));
+            const ts::TsRay r = ts::ts_shadow_ray(ts::ts_offset_ray_origin(a, make_float3(-1, 0, 0), 6 * k), b,
+                                                  make_float3(-1, 0, 0), 6 * k);
+            const ts::float3 tr = ts::ts_shadow_transmittance(&mk, r);
+            ASSERT_EQ(tr.x, 1.0f) << k << " " << i;
+        }
+    }
+}
+
 TEST(Medium, FreeFlightDistancesAreExponential) {
     // Grey medium: all channels share sigma_t = 0.7, so t ~ Exp(0.7). Fifty bins of equal
     // probability under that law, on an (effectively) infinite segment.
