@@ -307,11 +307,15 @@ TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer
     float3 lanes_lo, lanes_hi;
     float lanes_scale;
     ts_igi_lanes_bounds(&ls, &lanes_lo, &lanes_hi, &lanes_scale);
+    /* Lanes whose own box meets the medium's (all of them in a fog-filled room): any link
+     * may cross it, and no link's box need be looked at. */
+    const int lanes_apart = ts_medium_misses_box(&med, lanes_lo, lanes_hi, lanes_scale);
     ts_ray_lanes_init(&r);
     for (uint j = 0u; any_ss && j < f->shadow_samples; ++j) {
         const TsLightSample q = ts_igi_light_sample(sv, f, k, j);
         ts_igi_lanes_light_links(sv->lights, &ls, q, &L, &r);
-        const TsMedium* m = ts_igi_light_medium(&med, &clear, lanes_lo, lanes_hi, lanes_scale, sv->lights, &q);
+        const TsMedium* m =
+            lanes_apart ? ts_igi_light_medium(&med, &clear, lanes_lo, lanes_hi, lanes_scale, sv->lights, &q) : &med;
         ts_trace_occluded_ray_lanes(tracer, &r, L.traced, L.visible);
         ts_igi_lanes_light_gather(&ls, &L, m, &r);
     }
@@ -325,7 +329,8 @@ TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer
         for (int c = 0; c < TS_VPL_FLOATS; ++c) vpl[c] = sv->vpls[(size_t)v * TS_VPL_FLOATS + c];
 #endif
         ts_igi_lanes_vpl_links(&ls, vpl, f->igi_g_clamp, sv->medium[TS_MEDIUM_G], &L, &r);
-        const TsMedium* m = ts_igi_vpl_medium(&med, &clear, lanes_lo, lanes_hi, lanes_scale, vpl);
+        const TsMedium* m =
+            lanes_apart ? ts_igi_vpl_medium(&med, &clear, lanes_lo, lanes_hi, lanes_scale, vpl) : &med;
         ts_trace_occluded_ray_lanes(tracer, &r, L.traced, L.visible);
         ts_igi_lanes_vpl_gather(&ls, vpl, &L, m, &r);
     }

@@ -24,6 +24,16 @@
 namespace tessera {
 namespace {
 
+// Paths 0 .. n - 1 traced with `ls`, scattering in the medium, each weighing 1/n.
+std::vector<LightPath> medium_paths(Backend& backend, const SceneBuffers& buffers, uint32_t n, LightPathSettings ls) {
+    std::vector<LightPath> paths(n);
+    for (uint32_t j = 0; j < n; ++j) paths[j].index = j;
+    ls.medium_scattering = true;
+    ls.inv_paths = 1.0f / float(n);
+    trace_light_paths(backend, buffers, ls, paths);
+    return paths;
+}
+
 std::vector<float> vpls_of(Backend& backend, const SceneBuffers& buffers, uint32_t seed) {
     VplSettings vs;
     vs.sets = 2;
@@ -92,14 +102,9 @@ TEST(LightPaths, RayLightsFollowTheSegmentsInTheMediumAndChangeNoVpl) {
     const ts::TsMedium med = ts::ts_medium_load(buffers.medium.data());
     ASSERT_TRUE(med.present);
     auto trace = [&](bool ray_lights) {
-        std::vector<LightPath> paths(64);
-        for (uint32_t j = 0; j < paths.size(); ++j) paths[j].index = j;
         LightPathSettings ls;
-        ls.medium_scattering = true;
         ls.ray_lights = ray_lights;
-        ls.inv_paths = 1.0f / 64.0f;
-        trace_light_paths(*backend, buffers, ls, paths);
-        return paths;
+        return medium_paths(*backend, buffers, 64, ls);
     };
     const std::vector<LightPath> plain = trace(false), with = trace(true);
     double area = 0.0;
@@ -202,14 +207,10 @@ TEST(LightPaths, DenseNonAbsorbingMediumPassesAllFluxToTheWalls) {
     auto first_wall_flux = [](const Scene& scene, uint32_t depth) {
         const SceneBuffers buffers = make_scene_buffers(scene);
         auto backend = make_backend({BackendKind::Embree, ""}, buffers, plan_effects(scene));
-        std::vector<LightPath> paths(256);
-        for (uint32_t j = 0; j < paths.size(); ++j) paths[j].index = j;
         LightPathSettings ls;
-        ls.medium_scattering = true;
         ls.max_bounces = depth;
-        ls.inv_paths = 1.0f / 256.0f;
-        trace_light_paths(*backend, buffers, ls, paths);
         double sum = 0.0;
+        const std::vector<LightPath> paths = medium_paths(*backend, buffers, 256, ls);
         for (const LightPath& p : paths)
             for (size_t i = 0; i < p.vpls.size(); i += TS_VPL_FLOATS)
                 if (p.vpls[i + TS_VPL_POS_SCALE] >= 0.0f) {  // medium VPLs carry -1
