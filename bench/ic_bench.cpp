@@ -24,6 +24,7 @@
 #include "device/effect_plan.h"
 #include "render/renderer.h"
 #include "device/scene_buffers.h"
+#include "integrators/factory.h"
 #include "scene/loader.h"
 #include "util/heap.h"
 
@@ -72,11 +73,8 @@ std::vector<FrameResult> run_sequence(const Scene& rest, Method m, BackendKind k
         buffers = std::move(next);
         FrameResult r;
         r.setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (m == Method::Tic && !s.ic_state) {
-            IcSettings ics = s.ic;
-            ics.temporal = true;
-            s.ic_state = std::make_shared<IcPassCaches>(ics, rest.objects);
-        }
+        // tic: one cache for the sequence, with the igi settings it reads, as `render` makes it.
+        if (m == Method::Tic && !s.ic_state) prepare_sequence(s, rest);
         RenderStats st;
         Image img = render_frame(*backend, scene, *buffers, s, &st);
         r.seconds = st.seconds;

@@ -193,6 +193,11 @@ std::vector<PathOutput> gathered_output(Backend& backend, const TsFrame& frame, 
 
 uint32_t light_path_seed_mix(uint32_t seed) { return ts::ts_pcg_hash(seed) ^ ts::ts_pcg_hash(1u); }
 
+// The kernel's table is a prefix of the host's (ScrambledHalton draws its dimensions in
+// order): a path overflowing the kernel's slots is traced again on the host with the same
+// numbers only while every bounce the kernel traces is a Halton one there too.
+static_assert(TS_LP_MAX_BOUNCES <= kHaltonLightPathBounces, "kernel bounces past the host's Halton ones");
+
 uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene, const LightPathSettings& settings,
                                      std::vector<LightPath>& paths) {
     const uint32_t scramble = scramble_of(settings);

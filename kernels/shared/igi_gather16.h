@@ -243,7 +243,10 @@ TS_INLINE void ts_igi_lanes_bounds(const TsIgiLanes* TS_RESTRICT ls, float3* lo,
             b[3 + a] = b[3 + a] > p ? b[3 + a] : p;
             b[3 + a] = b[3 + a] > o ? b[3 + a] : o;
         }
-    for (int i = 0; i < TS_PACKET_LANES; ++i) b[6] = b[6] > ls->pos_scale[i] ? b[6] : ls->pos_scale[i];
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        b[6] = b[6] > ls->pos_scale[i] ? b[6] : ls->pos_scale[i];
+        check += ls->pos_scale[i] * 0.0f;
+    }
     *lo = make_float3(b[0], b[1], b[2]);
     *hi = make_float3(b[3], b[4], b[5]);
     *scale = check == 0.0f ? b[6] : TS_INF; /* never apart (ts_medium_misses_box) */

@@ -55,10 +55,10 @@ TS_INLINE int ts_medium_clip(const TsMedium* m, float3 org, float3 dir, float* t
  * of `scale` and the coordinates of either. That is far above the slab test's rounding
  * (a few ulps of the coordinates) and a ray's end offsets (32 ulps of a point's
  * pos_scale, ts_offset_ray_origin, when `scale` holds the largest). A medium filling space
- * meets every segment; a NaN or infinite coordinate is never apart. */
+ * meets every segment; a NaN or infinite coordinate or scale is never apart. */
 TS_INLINE int ts_medium_misses_box(const TsMedium* m, float3 lo, float3 hi, float scale) {
     if (!m->present) return 1;
-    if (!m->bounded) return 0;
+    if (!m->bounded || !(scale < TS_INF)) return 0; /* fmax below would drop a NaN scale */
     float s = fmax(fmax(fmax(fabs(lo.x), fabs(lo.y)), fmax(fabs(lo.z), fabs(hi.x))), fmax(fabs(hi.y), fabs(hi.z)));
     s = fmax(s, scale);
     s = fmax(s, fmax(fmax(fabs(m->box_min.x), fabs(m->box_min.y)), fabs(m->box_min.z)));

@@ -152,14 +152,16 @@ TEST(LightPathKernel, MirrorsAndGlassScatterAsOnTheHost) {
 
 TEST(LightPathKernel, PathsPastItsSlotsAreTracedAgainOnTheHost) {
     // A white furnace (albedo 1: roulette never ends a path) runs the paths that miss the
-    // light's back to max_bounces, past TS_LP_MAX_VPLS: the host traces those again, so
-    // the VPLs are still the host's.
+    // light's back to max_bounces, past TS_LP_MAX_VPLS and past the bounces that take
+    // Halton dimensions (kHaltonLightPathBounces; the counter-based generator after): the
+    // host traces those again, so the VPLs are still the host's.
     const Scene s = test::closed_box({0, 0, 0}, {1, 1, 1}, glm::vec3(1.0f), glm::vec3(1.0f), 0.2f);
     const SceneBuffers buffers = make_scene_buffers(s);
     auto embree = make_backend({BackendKind::Embree, ""}, buffers, plan_effects(s));
     LightPathSettings ls = media_settings(false);
-    ls.max_bounces = TS_LP_MAX_VPLS + 8;
-    const Traced host = trace(*embree, buffers, ls, false, 32), kernel = trace(*embree, buffers, ls, true, 32);
+    ls.max_bounces = kHaltonLightPathBounces + 16;
+    // 128 paths: of 32, two lived 80 bounces (the light's front, of albedo 0, ends the others).
+    const Traced host = trace(*embree, buffers, ls, false, 128), kernel = trace(*embree, buffers, ls, true, 128);
     size_t long_paths = 0;
     for (size_t j = 0; j < host.paths.size(); ++j) {
         long_paths += host.paths[j].vpls.size() == size_t(ls.max_bounces) * TS_VPL_FLOATS;
