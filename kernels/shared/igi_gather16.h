@@ -252,36 +252,38 @@ TS_INLINE void ts_igi_lanes_bounds(const TsIgiLanes* TS_RESTRICT ls, float3* lo,
     *scale = check == 0.0f ? b[6] : TS_INF; /* never apart (ts_medium_misses_box) */
 }
 
-/* The medium the lanes' links to `vpl` cross: `clear` (no medium) where the box around
- * the lanes' surfaces (ts_igi_lanes_bounds) and the VPL lies apart from the medium's
- * (ts_medium_misses_box), so that every link's transmittance is exactly 1 and
- * ts_igi_lanes_vpl_gather takes its vector loop, with the same sums bit for bit; else
- * med. A medium box in one part of a scene (or where no link goes) then costs the links
- * elsewhere nothing: one far from every surface of the Cornell box made its igi frame
- * 1.7× as long. */
-TS_INLINE const TsMedium* ts_igi_vpl_medium(const TsMedium* med, const TsMedium* clear, float3 lanes_lo,
-                                            float3 lanes_hi, float lanes_scale, TS_GLOBAL const float* vpl) {
-    if (!med->present || !med->bounded) return med;
-    const float3 p = ts_f3_load(vpl + TS_VPL_POSITION);
-    if (!((p.x + p.y + p.z) * 0.0f == 0.0f)) return med; /* a coordinate not finite */
-    const float scale = lanes_scale > vpl[TS_VPL_POS_SCALE] ? lanes_scale : vpl[TS_VPL_POS_SCALE];
-    return ts_medium_misses_box(med, fmin(lanes_lo, p), fmax(lanes_hi, p), scale) ? clear : med;
+/* The medium the lanes' links to a far end within [lo, hi] (pos_scale up to `scale`)
+ * cross: `clear` (no medium) where the box around the lanes' surfaces
+ * (ts_igi_lanes_bounds) and the far end lies apart from the medium's
+ * (ts_medium_misses_box), so that every link's transmittance is exactly 1 and the gathers
+ * take their vector loops, with the same sums bit for bit; else med. A medium box in one
+ * part of a scene (or where no link goes) then costs the links elsewhere nothing: one far
+ * from every surface of the Cornell box made its igi frame 1.7× as long. */
+TS_INLINE const TsMedium* ts_igi_link_medium(const TsMedium* med, const TsMedium* clear, float3 lanes_lo,
+                                             float3 lanes_hi, float lanes_scale, float3 lo, float3 hi, float scale) {
+    if (!((lo.x + lo.y + lo.z + hi.x + hi.y + hi.z) * 0.0f == 0.0f)) return med; /* not finite */
+    scale = lanes_scale > scale ? lanes_scale : scale;
+    return ts_medium_misses_box(med, fmin(lanes_lo, lo), fmax(lanes_hi, hi), scale) ? clear : med;
 }
 
-/* The medium the lanes' links to light sample q cross, as ts_igi_vpl_medium's, with the
- * box around q's whole light (the parallelogram p0 + u·e1 + v·e2, u, v in [0, 1], holds
- * its triangle): a lane near the light draws its own point on it (ts_light_sample_from). */
+/* ts_igi_link_medium for the links to `vpl` (its position). */
+TS_INLINE const TsMedium* ts_igi_vpl_medium(const TsMedium* med, const TsMedium* clear, float3 lanes_lo,
+                                            float3 lanes_hi, float lanes_scale, TS_GLOBAL const float* vpl) {
+    const float3 p = ts_f3_load(vpl + TS_VPL_POSITION);
+    return ts_igi_link_medium(med, clear, lanes_lo, lanes_hi, lanes_scale, p, p, vpl[TS_VPL_POS_SCALE]);
+}
+
+/* ts_igi_link_medium for the links to light sample q, with the box around q's whole light
+ * (the parallelogram p0 + u·e1 + v·e2, u, v in [0, 1], holds its triangle): a lane near
+ * the light draws its own point on it (ts_light_sample_from). */
 TS_INLINE const TsMedium* ts_igi_light_medium(const TsMedium* med, const TsMedium* clear, float3 lanes_lo,
                                               float3 lanes_hi, float lanes_scale, TS_GLOBAL const float* lights,
                                               const TsLightSample* q) {
-    if (!med->present || !med->bounded) return med;
     TS_GLOBAL const float* l = lights + (size_t)q->light * TS_LIGHT_FLOATS;
     const float3 p0 = ts_f3_load(l + TS_LIGHT_P0), e1 = ts_f3_load(l + TS_LIGHT_E1), e2 = ts_f3_load(l + TS_LIGHT_E2);
     const float3 lo = fmin(fmin(p0, p0 + e1), fmin(p0 + e2, p0 + e1 + e2));
     const float3 hi = fmax(fmax(p0, p0 + e1), fmax(p0 + e2, p0 + e1 + e2));
-    if (!((lo.x + lo.y + lo.z + hi.x + hi.y + hi.z) * 0.0f == 0.0f)) return med; /* not finite */
-    const float scale = lanes_scale > q->pos_scale ? lanes_scale : q->pos_scale;
-    return ts_medium_misses_box(med, fmin(lanes_lo, lo), fmax(lanes_hi, hi), scale) ? clear : med;
+    return ts_igi_link_medium(med, clear, lanes_lo, lanes_hi, lanes_scale, lo, hi, q->pos_scale);
 }
 
 /* Gathers the links of the lanes of sample set k among the first `lanes` (those with
@@ -311,8 +313,9 @@ TS_INLINE void ts_igi_gather16_set(const TsSceneView* sv, const TsTracer* tracer
     float lanes_scale;
     ts_igi_lanes_bounds(&ls, &lanes_lo, &lanes_hi, &lanes_scale);
     /* Lanes whose own box meets the medium's (all of them in a fog-filled room): any link
-     * may cross it, and no link's box need be looked at. */
-    const int lanes_apart = ts_medium_misses_box(&med, lanes_lo, lanes_hi, lanes_scale);
+     * may cross it, and no link's box need be looked at. Without a medium, med itself
+     * takes the loops without one. */
+    const int lanes_apart = med.present && ts_medium_misses_box(&med, lanes_lo, lanes_hi, lanes_scale);
     ts_ray_lanes_init(&r);
     for (uint j = 0u; any_ss && j < f->shadow_samples; ++j) {
         const TsLightSample q = ts_igi_light_sample(sv, f, k, j);
