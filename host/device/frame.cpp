@@ -37,4 +37,22 @@ TsFrame make_frame(const Camera& camera, int width, int height, uint32_t shadow_
     return f;
 }
 
+ts::TsFarRegion far_region_of(glm::vec3 lo, glm::vec3 hi) {
+    const float diagonal = glm::length(hi - lo);
+    ts::TsFarRegion r;
+    r.lo = ts::make_float3(lo.x, lo.y, lo.z);
+    r.hi = ts::make_float3(hi.x, hi.y, hi.z);
+    r.margin = lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z && std::isfinite(diagonal) ? diagonal : 0.0f;
+    return r;
+}
+
+void set_far_region(TsFrame& frame, const ts::TsFarRegion& region) {
+    const float lo[3] = {region.lo.x, region.lo.y, region.lo.z}, hi[3] = {region.hi.x, region.hi.y, region.hi.z};
+    for (int i = 0; i < 3; ++i) {
+        frame.far_lo[i] = lo[i];
+        frame.far_hi[i] = hi[i];
+    }
+    frame.far_margin = region.margin;
+}
+
 }  // namespace tessera

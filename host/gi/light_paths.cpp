@@ -14,7 +14,9 @@
 #include "kernels/shared/layout_light_path.h"
 #include "kernels/shared/light_path.h"
 #include "kernels/shared/rng.h"
+#include "device/frame.h"
 #include "device/ray_records.h"
+#include "device/scene_buffers.h"
 #include "device/scene_view.h"
 
 namespace tessera {
@@ -63,15 +65,31 @@ uint32_t scramble_of(const LightPathSettings& settings) {
     return settings.halton_seed ^ light_path_seed_mix(settings.seed);
 }
 
-// The light-path table's header (layout_light_path.h) for `settings`: what
+// The far roulette's region for light paths (ts_far_importance, shared/medium.h): the
+// bounds of the scene's surfaces, their diagonal the margin (far_region_of).
+ts::TsFarRegion far_region(const SceneBuffers& scene) {
+    const SceneBounds b = scene_bounds(scene);
+    return far_region_of(b.lo, b.hi);
+}
+
+void put_float(float f, uint32_t* word) { std::memcpy(word, &f, 4); }
+
+// The light-path table's header (layout_light_path.h) for `settings` in `scene`: what
 // ts_light_path_params reads.
-std::array<uint32_t, TS_LPT_HALTON> light_path_header(const LightPathSettings& settings) {
+std::array<uint32_t, TS_LPT_HALTON> light_path_header(const LightPathSettings& settings, const SceneBuffers& scene) {
     std::array<uint32_t, TS_LPT_HALTON> h{};
     h[TS_LPT_SCRAMBLE] = scramble_of(settings);
     h[TS_LPT_MAX_BOUNCES] = settings.max_bounces;
     h[TS_LPT_FLAGS] = (settings.medium_scattering ? TS_LPT_MEDIUM_SCATTERING : 0u) |
                       (settings.ray_lights ? TS_LPT_RAY_LIGHTS : 0u);
-    std::memcpy(&h[TS_LPT_INV_PATHS], &settings.inv_paths, 4);
+    put_float(settings.inv_paths, &h[TS_LPT_INV_PATHS]);
+    const ts::TsFarRegion r = far_region(scene);
+    const float box[6] = {r.lo.x, r.lo.y, r.lo.z, r.hi.x, r.hi.y, r.hi.z};
+    for (int i = 0; i < 3; ++i) {
+        put_float(box[i], &h[TS_LPT_REGION_LO + i]);
+        put_float(box[3 + i], &h[TS_LPT_REGION_HI + i]);
+    }
+    put_float(r.margin, &h[TS_LPT_REGION_MARGIN]);
     return h;
 }
 
@@ -109,7 +127,7 @@ uint64_t trace_batched(Backend& backend, const SceneBuffers& scene, const LightP
     const std::shared_ptr<const ScrambledHalton> owner =
         halton_for(5 + 3 * static_cast<int>(std::min(settings.max_bounces, kHaltonLightPathBounces)), scramble);
     const ScrambledHalton& halton = *owner;
-    const ts::TsLightPathParams lp = ts::ts_light_path_params(light_path_header(settings).data());
+    const ts::TsLightPathParams lp = ts::ts_light_path_params(light_path_header(settings, scene).data());
     std::vector<InFlight> live;
     for (LightPath& p : paths) {
         clear(p);
@@ -204,7 +222,7 @@ uint64_t trace_light_paths_in_kernel(Backend& backend, const SceneBuffers& scene
     const uint32_t bounces = std::min<uint32_t>(settings.max_bounces, TS_LP_MAX_BOUNCES);
     // The kernel's table holds only the dimensions of the segments it traces; a path that
     // needs more overflows (max_bounces > TS_LP_MAX_BOUNCES) and is traced here.
-    const std::array<uint32_t, TS_LPT_HALTON> header = light_path_header(settings);
+    const std::array<uint32_t, TS_LPT_HALTON> header = light_path_header(settings, scene);
     std::vector<uint32_t> table(header.begin(), header.end());
     const std::shared_ptr<const ScrambledHalton> halton = halton_for(5 + 3 * static_cast<int>(bounces), scramble);
     table.insert(table.end(), halton->table().begin(), halton->table().end());

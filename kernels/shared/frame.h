@@ -64,23 +64,29 @@ typedef struct TsFrame {
                                       the grid of the IcPairRecords input's n records and every
                                       VPL, pair g = (record g mod n, VPL g / n) (shared/ic.h) */
     unsigned int ic_pair_first;    /* ic pair grid: the launch's first pair g */
+    float far_lo[3];               /* pt: the far roulette's region (shared/medium.h,
+                                      ts_far_importance): the box of the scene's surfaces and
+                                      the camera (scene units), */
+    float far_hi[3];
+    float far_margin;              /* grown by this margin (its diagonal); 0: no far roulette */
 } TsFrame;
 
 #ifdef __cplusplus
 /* Compile-time checks of the layouts above (shared/layout_check.h). */
 #include "shared/layout_check.h"
 
-/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 41 4-byte
+/* TsFrame crosses to OpenCL by value (clSetKernelArg with sizeof(TsFrame)): 48 4-byte
  * scalars with no padding, so its layout is the same in both languages. */
 static_assert(std::is_standard_layout_v<TsFrame> && std::is_trivially_copyable_v<TsFrame>,
               "frame.h: TsFrame must stay a plain struct");
-static_assert(sizeof(TsFrame) == 41 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
+static_assert(sizeof(TsFrame) == 48 * 4 && offsetof(TsFrame, width) == 12 * 4 &&
                   offsetof(TsFrame, light_power) == 20 * 4 && offsetof(TsFrame, igi_components) == 28 * 4 &&
                   offsetof(TsFrame, ic_error_bound) == 29 * 4 && offsetof(TsFrame, pixel_cone) == 31 * 4 &&
                   offsetof(TsFrame, igi_filter_depth) == 34 * 4 && offsetof(TsFrame, igi_equiangular) == 35 * 4 &&
                   offsetof(TsFrame, igi_march_rotation) == 36 * 4 && offsetof(TsFrame, igi_clamp_screen) == 37 * 4 &&
-                  offsetof(TsFrame, igi_ais) == 38 * 4 && offsetof(TsFrame, ic_pair_first) == 40 * 4,
-              "frame.h: TsFrame is not 41 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
+                  offsetof(TsFrame, igi_ais) == 38 * 4 && offsetof(TsFrame, ic_pair_first) == 40 * 4 &&
+                  offsetof(TsFrame, far_lo) == 41 * 4 && offsetof(TsFrame, far_margin) == 47 * 4,
+              "frame.h: TsFrame is not 48 packed 4-byte scalars; update the kernels' copy (same struct) and this check");
 #endif /* __cplusplus */
 
 #endif /* TS_FRAME_H */

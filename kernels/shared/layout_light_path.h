@@ -51,12 +51,18 @@
 /* The light-path table (uint words): TS_LPT_SCRAMBLE the Halton digits' and medium
  * events' scramble (host/gi/light_paths.h), TS_LPT_MAX_BOUNCES segments per path,
  * TS_LPT_FLAGS TS_LPT_MEDIUM_SCATTERING | TS_LPT_RAY_LIGHTS, TS_LPT_INV_PATHS (float bits)
- * 1 / paths per set; from TS_LPT_HALTON the Halton table of shared/halton.h. */
+ * 1 / paths per set, TS_LPT_REGION_LO and TS_LPT_REGION_HI (3 float bits each) the box of
+ * the scene's surfaces and TS_LPT_REGION_MARGIN (float bits, scene units) the distance
+ * from it past which medium events take the far roulette (shared/light_path.h;
+ * ts_far_importance, shared/medium.h); from TS_LPT_HALTON the Halton table of shared/halton.h. */
 #define TS_LPT_SCRAMBLE 0
 #define TS_LPT_MAX_BOUNCES 1
 #define TS_LPT_FLAGS 2
 #define TS_LPT_INV_PATHS 3
-#define TS_LPT_HALTON 4
+#define TS_LPT_REGION_LO 4
+#define TS_LPT_REGION_HI 7
+#define TS_LPT_REGION_MARGIN 10
+#define TS_LPT_HALTON 11
 #define TS_LPT_MEDIUM_SCATTERING 1u
 #define TS_LPT_RAY_LIGHTS 2u
 

@@ -62,16 +62,20 @@ TS_INLINE int ts_light_path_start(const TsSceneView* sv, float u_select, float u
  * Henyey–Greenstein direction, roulette). A scattering event at x multiplies
  * *alpha by the event's weight w and leaves a medium VPL at *vpl_pos of flux
  * *vpl_flux = α·w · inv_paths, the light's propagation direction being ray->dir; the
- * path then goes on with probability q = min(1, max_c w_c) in a phase-sampled
- * direction, α ← α/q (the largest channel, not the luminance: a red-drawn path in a
+ * path then goes on with probability q = min(1, max_c w_c) · f in a phase-sampled
+ * direction, α ← α/q. The largest channel, not the luminance: a red-drawn path in a
  * red-scattering medium has w ≈ (0.99, ε, ε), and 1/luminance lifted its red ~4.7× an
- * event; docs/igi.md §6, "Chromatic media"). Returns TS_LIGHT_PATH_MEDIUM |
+ * event (docs/igi.md §6, "Chromatic media"). f = min(1, I(x) · B) is the far roulette's
+ * share (I the importance of `region`, ts_far_importance in shared/medium.h; B =
+ * *far_boost, the product of the path's earlier 1/f, which becomes B/f): 1 within the
+ * region's margin while B is 1. Returns TS_LIGHT_PATH_MEDIUM |
  * TS_LIGHT_PATH_VPL (| _CONTINUES), with *t_event the event's ray parameter; or, the
  * segment passed, TS_LIGHT_PATH_CONTINUES with *alpha times the pass weight (the surface
  * vertex then must not apply the transmittance again); or 0 when the path is lost in an
  * unbounded medium. */
-TS_INLINE uint ts_light_path_medium(const TsMedium* med, float hit_t, const float* u, float inv_paths, float3* alpha,
-                                    TsSpectralMis* sm, TsRay* ray, float* t_event, float3* vpl_pos, float3* vpl_flux) {
+TS_INLINE uint ts_light_path_medium(const TsMedium* med, const TsFarRegion* region, float hit_t, const float* u,
+                                    float inv_paths, float3* alpha, TsSpectralMis* sm, float* far_boost, TsRay* ray,
+                                    float* t_event, float3* vpl_pos, float3* vpl_flux) {
     float t0 = 0.0f, t1 = hit_t;
     *t_event = hit_t;
     if (!ts_medium_clip(med, ray->org, ray->dir, &t0, &t1)) return TS_LIGHT_PATH_CONTINUES;
@@ -86,8 +90,11 @@ TS_INLINE uint ts_light_path_medium(const TsMedium* med, float hit_t, const floa
     *vpl_pos = ray->org + ray->dir * *t_event;
     *vpl_flux = *alpha * inv_paths;
     float q = fmin(1.0f, ts_max3(w));
+    float far_share = fmin(1.0f, ts_far_importance(region, *vpl_pos) * *far_boost);
+    q = q * far_share; /* × 1 within the margin: the same bits */
     if (!(u[4] < q)) return TS_LIGHT_PATH_MEDIUM | TS_LIGHT_PATH_VPL;
     *alpha = *alpha / q;
+    *far_boost = *far_boost / far_share;
     ray->org = *vpl_pos;
     ray->dir = ts_sample_hg(dir, med->g, u[2], u[3]);
     ray->tmin = 0.0f;
@@ -139,6 +146,7 @@ typedef struct TsLightPathParams {
     uint max_bounces;  /* segments per path */
     uint flags;        /* TS_LPT_MEDIUM_SCATTERING | TS_LPT_RAY_LIGHTS */
     float inv_paths;   /* 1 / (paths per set) */
+    TsFarRegion region; /* the far roulette's (ts_far_importance, shared/medium.h) */
 } TsLightPathParams;
 
 TS_INLINE TsLightPathParams ts_light_path_params(TS_GLOBAL const uint* table) {
@@ -147,6 +155,11 @@ TS_INLINE TsLightPathParams ts_light_path_params(TS_GLOBAL const uint* table) {
     p.max_bounces = table[TS_LPT_MAX_BOUNCES];
     p.flags = table[TS_LPT_FLAGS];
     p.inv_paths = as_float(table[TS_LPT_INV_PATHS]);
+    p.region.lo = make_float3(as_float(table[TS_LPT_REGION_LO]), as_float(table[TS_LPT_REGION_LO + 1]),
+                              as_float(table[TS_LPT_REGION_LO + 2]));
+    p.region.hi = make_float3(as_float(table[TS_LPT_REGION_HI]), as_float(table[TS_LPT_REGION_HI + 1]),
+                              as_float(table[TS_LPT_REGION_HI + 2]));
+    p.region.margin = as_float(table[TS_LPT_REGION_MARGIN]);
     return p;
 }
 
@@ -158,6 +171,7 @@ typedef struct TsLightPathState {
     float weight;
     float3 alpha;
     TsSpectralMis spectral; /* free-flight sampling's channel state (shared/medium.h) */
+    float far_boost;        /* the far roulette's 1/f so far (ts_light_path_medium) */
     TsRay ray;
 } TsLightPathState;
 
@@ -218,6 +232,7 @@ TS_INLINE int ts_light_path_begin(const TsSceneView* sv, TS_GLOBAL const uint* h
     for (uint d = 0u; d < 5u; ++d) u[d] = ts_halton_sample(halton, st->index, d);
     *light = ts_select_light(sv->light_cdf, sv->light_count, u[0]);
     st->spectral = ts_spectral_mis_start();
+    st->far_boost = 1.0f;
     return ts_light_path_start(sv, u[0], u[1], u[2], u[3], u[4], &st->alpha, &st->ray);
 }
 
@@ -246,8 +261,8 @@ TS_INLINE uint ts_light_path_segment(const TsSceneView* sv, const TsMedium* med,
         for (int j = 0; j < 5; ++j) u[j] = ts_rng_next(&rng);
         float3 dir = st->ray.dir, pos, flux;
         float t_event;
-        uint m = ts_light_path_medium(med, hit_t, u, lp->inv_paths, &st->alpha, &st->spectral, &st->ray, &t_event,
-                                      &pos, &flux);
+        uint m = ts_light_path_medium(med, &lp->region, hit_t, u, lp->inv_paths, &st->alpha, &st->spectral,
+                                      &st->far_boost, &st->ray, &t_event, &pos, &flux);
         if (m & TS_LIGHT_PATH_MEDIUM) {
             ev->seg_t = t_event;
             ev->seg_prim = TS_NO_HIT;

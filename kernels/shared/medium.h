@@ -96,6 +96,39 @@ TS_INLINE float3 ts_medium_transmittance(const TsMedium* m, float3 org, float3 d
     return ts_exp3(m->sigma_t * (-(t1 - t0) * length(dir)));
 }
 
+/* The far roulette (docs/path-tracing.md §3): where a path's medium vertices need a
+ * roulette beyond the throughput's. A medium that scatters without absorbing ends no path
+ * by that roulette (a scattering event's weight is 1), and where it extends past the
+ * scene (a medium filling space, a box with an open side) a path walks away from
+ * everything it could light until its cap: `pt` to 8,192 vertices (90x the time of a
+ * 64-vertex cap on an open Cornell box in such fog), the igi family's light paths to
+ * 1,024 segments and as many VPLs and ray lights (10x the frame time). The region is the
+ * box [lo, hi] (scene units: the scene's surfaces, and for camera paths the camera) grown
+ * by `margin` (the box's diagonal); margin 0 (a zeroed frame or table) turns it off. */
+typedef struct TsFarRegion {
+    float3 lo, hi;
+    float margin;
+} TsFarRegion;
+
+/* The far roulette's importance of a medium vertex at x: 1 within the region's margin of
+ * its box (or without a region, or for a NaN x), (margin / d)² beyond it, d the distance
+ * from the box. A path there survives with probability min(1, its weight relative to
+ * its start × this), its weight divided by that (ts_roulette in shared/pt.h,
+ * ts_light_path_medium in shared/light_path.h): unbiased, and a path within the margin
+ * keeps its numbers and bits. The survivals telescope, so a walk reaches distance d with
+ * probability (margin / d)² at a weight of (d / margin)², never more (a constant factor
+ * per event would compound instead); the square, not the first power, because a random
+ * walk takes ~d² events to wander to d, and with it each doubling of d costs about as
+ * many events as the last rather than twice as many. */
+TS_INLINE float ts_far_importance(const TsFarRegion* r, float3 x) {
+    if (!(r->margin > 0.0f)) return 1.0f;
+    float3 out = fmax(fmax(r->lo - x, x - r->hi), make_float3(0.0f, 0.0f, 0.0f));
+    float d = length(out);
+    if (!(d > r->margin)) return 1.0f;
+    float f = r->margin / d;
+    return f * f;
+}
+
 /* A path's state for free-flight sampling in a chromatic medium: path-level one-sample MIS
  * over the RGB channels (the "hero" channel of Wilkie et al. 2014, "Hero wavelength
  * spectral sampling"; pbrt-v4 §14.2.2 and Mitsuba 3's volpathmis keep the same ratio). The

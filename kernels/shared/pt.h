@@ -31,7 +31,8 @@
  * half of that vertex's MIS pair, or the light behind a mirror), and ends there
  * (pbrt-v4's maxDepth; Mitsuba 3's max_depth is ours + 1). max_depth = 1 is direct
  * lighting. Paths also end by Russian roulette from the fourth vertex on, with survival
- * probability min(1, max(throughput)) but at least 0.05.
+ * probability min(1, max(throughput)) but at least 0.05, and at medium vertices far from
+ * the scene and the camera by the far roulette (ts_roulette).
  *
  * Uses the tracer interface documented in shared/direct.h.
  */
@@ -83,14 +84,29 @@ TS_INLINE TsLightConnection ts_connect_light(const TsSceneView* sv, const TsTrac
     return c;
 }
 
-/* Russian roulette; returns 0 when the path ends. */
-TS_INLINE int ts_roulette(float3* beta, uint depth, TsRng* rng) {
+/* Russian roulette; returns 0 when the path ends. From the fourth vertex on the path
+ * survives with probability min(1, max(throughput)) but at least 0.05. At a medium vertex
+ * the far roulette's importance `far` (ts_far_importance, shared/medium.h; 1 elsewhere,
+ * which leaves the numbers as they were) caps that at max(throughput) · far, at any depth
+ * and without the floor, so a survivor's throughput is at most 1 / far. */
+TS_INLINE int ts_roulette(float3* beta, uint depth, float far, TsRng* rng) {
     float u = ts_rng_next(rng);
-    if (depth < 3u) return 1;
-    float survive = clamp(ts_max3(*beta), 0.05f, 1.0f);
+    float b = ts_max3(*beta);
+    float survive = depth < 3u ? 1.0f : clamp(b, 0.05f, 1.0f);
+    if (far < 1.0f) survive = fmin(survive, b * far);
+    if (!(survive < 1.0f)) return 1;
     if (u >= survive) return 0;
     *beta = *beta / survive;
     return 1;
+}
+
+/* The frame's far roulette region (TsFrame.far_*). */
+TS_INLINE TsFarRegion ts_frame_far_region(const TsFrame* f) {
+    TsFarRegion r;
+    r.lo = make_float3(f->far_lo[0], f->far_lo[1], f->far_lo[2]);
+    r.hi = make_float3(f->far_hi[0], f->far_hi[1], f->far_hi[2]);
+    r.margin = f->far_margin;
+    return r;
 }
 
 /* One pass (1 spp) of the path tracer for pixel (px, py); writes TS_PASS_FLOATS values
@@ -107,6 +123,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
     uint scatters = 0u;
 #ifdef TS_HAS_MEDIUM
     TsSpectralMis spectral = ts_spectral_mis_start(); /* free-flight sampling's channel state */
+    const TsFarRegion far_region = ts_frame_far_region(f);
 #endif
     for (int i = 0; i < TS_PASS_DEPTH; ++i) out[i] = 0.0f;
     out[TS_PASS_DEPTH] = TS_INF;
@@ -148,7 +165,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
                     ray.tmin = 0.0f;
                     ray.tmax = TS_INF;
                     prev_delta = 0;
-                    if (!ts_roulette(&beta, depth, &rng)) break;
+                    if (!ts_roulette(&beta, depth, ts_far_importance(&far_region, x), &rng)) break;
                     continue;
                 }
             }
@@ -206,7 +223,7 @@ TS_INLINE void ts_pt_pixel(const TsSceneView* sv, const TsTracer* tracer, const 
         }
         ray.tmin = 0.0f;
         ray.tmax = TS_INF;
-        if (!ts_roulette(&beta, depth, &rng)) break;
+        if (!ts_roulette(&beta, depth, 1.0f, &rng)) break;
     }
     ts_f3_store(out + TS_PASS_RADIANCE, L);
 }

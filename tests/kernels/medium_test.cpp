@@ -1,8 +1,8 @@
 // kernels/shared/medium.h compiled as C++: Beer–Lambert transmittance through the box,
 // the free-flight distance distribution, the unbiasedness of the RGB weights (one segment,
 // and a chromatic path's, with their bound), and
-// equiangular distance sampling (its pdf and its finite densities), and the distance
-// sampling toward a line of ray lights.
+// equiangular distance sampling (its pdf and its finite densities), the distance
+// sampling toward a line of ray lights, and the far roulette's importance.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -92,6 +92,21 @@ TEST(Medium, BoxesApartFromTheMediumSeeNoMedium) {
             ASSERT_EQ(tr.x, 1.0f) << k << " " << i;
         }
     }
+}
+
+TEST(Medium, FarImportanceIsOneWithinTheMarginAndFallsAsTheSquareBeyond) {
+    ts::TsFarRegion r;
+    r.lo = make_float3(-1.0f, -1.0f, -1.0f);
+    r.hi = make_float3(1.0f, 1.0f, 1.0f);
+    r.margin = 2.0f;
+    EXPECT_EQ(ts::ts_far_importance(&r, make_float3(0.0f, 0.0f, 0.0f)), 1.0f);
+    EXPECT_EQ(ts::ts_far_importance(&r, make_float3(3.0f, 0.0f, 0.0f)), 1.0f);  // 2 from the box
+    EXPECT_FLOAT_EQ(ts::ts_far_importance(&r, make_float3(5.0f, 0.0f, 0.0f)), 0.25f);  // (2 / 4)²
+    EXPECT_FLOAT_EQ(ts::ts_far_importance(&r, make_float3(-4.0f, 5.0f, 1.0f)), 0.16f);  // (3, 4, 0) out: (2 / 5)²
+    const float nan = std::nanf("");
+    EXPECT_EQ(ts::ts_far_importance(&r, make_float3(nan, 0.0f, 0.0f)), 1.0f);
+    r.margin = 0.0f;  // no region: a zeroed frame or light-path table
+    EXPECT_EQ(ts::ts_far_importance(&r, make_float3(1e30f, -1e30f, 0.0f)), 1.0f);
 }
 
 TEST(Medium, FreeFlightDistancesAreExponential) {
