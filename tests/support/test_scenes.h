@@ -61,6 +61,17 @@ inline Scene closed_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 albedo, glm::vec3 
     return s;
 }
 
+/// closed_box without its back wall (z = lo.z, the wall the camera faces): camera rays
+/// and light paths leave through the opening.
+inline Scene open_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 albedo, glm::vec3 le, float light_half) {
+    Scene s = closed_box(lo, hi, albedo, le, light_half);
+    s.positions.erase(s.positions.begin() + 12, s.positions.begin() + 18);  // the back wall's two triangles
+    s.normals.erase(s.normals.begin() + 12, s.normals.begin() + 18);
+    s.uvs.erase(s.uvs.begin() + 12, s.uvs.begin() + 18);
+    s.material.erase(s.material.begin() + 4, s.material.begin() + 6);
+    return s;
+}
+
 // A 100 × 100 floor with a 256 × 256 one-texel black/white checker, seen straight down
 // from 80 units with a 60° field of view at 32 × 32 pixels (the view, 92 units wide,
 // lies inside the floor): one pixel spans 2·80·tan 30° / 32 = 2.9 units = 7.4 texels, so
