@@ -112,21 +112,25 @@ typedef struct TsFarRegion {
 
 /* The far roulette's importance of a medium vertex at x: 1 within the region's margin of
  * its box (or without a region, or for a NaN x), (margin / d)² beyond it, d the distance
- * from the box. A path there survives with probability min(1, its weight relative to
- * its start × this), its weight divided by that (ts_roulette in shared/pt.h,
- * ts_light_path_medium in shared/light_path.h): unbiased, and a path within the margin
- * keeps its numbers and bits. The survivals telescope, so a walk reaches distance d with
- * probability (margin / d)² at a weight of (d / margin)², never more (a constant factor
- * per event would compound instead); the square, not the first power, because a random
- * walk takes ~d² events to wander to d, and with it each doubling of d costs about as
- * many events as the last rather than twice as many. */
+ * from the box; 0 (the path ends) past 1e10 margins, where the importance would fall
+ * toward float's denormals and the survivors' weights, up to 1 / importance, toward its
+ * overflow. A path there survives with probability min(1, w × this), its weight divided
+ * by that (ts_roulette in shared/pt.h: w the throughput; ts_light_path_medium in
+ * shared/light_path.h: w the product of the path's earlier far factors' inverses):
+ * unbiased, and a path within the margin keeps its numbers and bits. The survivals
+ * telescope, so a walk reaches distance d with probability (margin / d)², and the far
+ * roulette raises a weight to at most (d / margin)² (a constant factor per event would
+ * compound instead); the square, not the first power, because a random walk takes ~d²
+ * events to wander to d, and with it each doubling of d costs about as many events as
+ * the last rather than twice as many. */
 TS_INLINE float ts_far_importance(const TsFarRegion* r, float3 x) {
     if (!(r->margin > 0.0f)) return 1.0f;
     float3 out = fmax(fmax(r->lo - x, x - r->hi), make_float3(0.0f, 0.0f, 0.0f));
     float d = length(out);
     if (!(d > r->margin)) return 1.0f;
     float f = r->margin / d;
-    return f * f;
+    float importance = f * f;
+    return importance < 1e-20f ? 0.0f : importance;
 }
 
 /* A path's state for free-flight sampling in a chromatic medium: path-level one-sample MIS

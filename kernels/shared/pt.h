@@ -86,14 +86,15 @@ TS_INLINE TsLightConnection ts_connect_light(const TsSceneView* sv, const TsTrac
 
 /* Russian roulette; returns 0 when the path ends. From the fourth vertex on the path
  * survives with probability min(1, max(throughput)) but at least 0.05. At a medium vertex
- * the far roulette's importance `far` (ts_far_importance, shared/medium.h; 1 elsewhere,
- * which leaves the numbers as they were) caps that at max(throughput) · far, at any depth
- * and without the floor, so a survivor's throughput is at most 1 / far. */
-TS_INLINE int ts_roulette(float3* beta, uint depth, float far, TsRng* rng) {
+ * the far roulette's importance (ts_far_importance, shared/medium.h; 1 elsewhere, which
+ * leaves the numbers as they were) caps that at max(throughput) · importance, at any
+ * depth and without the floor: the far roulette raises a throughput to at most
+ * 1 / importance. */
+TS_INLINE int ts_roulette(float3* beta, uint depth, float importance, TsRng* rng) {
     float u = ts_rng_next(rng);
     float b = ts_max3(*beta);
     float survive = depth < 3u ? 1.0f : clamp(b, 0.05f, 1.0f);
-    if (far < 1.0f) survive = fmin(survive, b * far);
+    if (importance < 1.0f) survive = fmin(survive, b * importance);
     if (!(survive < 1.0f)) return 1;
     if (u >= survive) return 0;
     *beta = *beta / survive;

@@ -105,6 +105,7 @@ TEST(Medium, FarImportanceIsOneWithinTheMarginAndFallsAsTheSquareBeyond) {
     EXPECT_FLOAT_EQ(ts::ts_far_importance(&r, make_float3(-4.0f, 5.0f, 1.0f)), 0.16f);  // (3, 4, 0) out: (2 / 5)²
     const float nan = std::nanf("");
     EXPECT_EQ(ts::ts_far_importance(&r, make_float3(nan, 0.0f, 0.0f)), 1.0f);
+    EXPECT_EQ(ts::ts_far_importance(&r, make_float3(3e10f, 0.0f, 0.0f)), 0.0f);  // past 1e10 margins: ends
     r.margin = 0.0f;  // no region: a zeroed frame or light-path table
     EXPECT_EQ(ts::ts_far_importance(&r, make_float3(1e30f, -1e30f, 0.0f)), 1.0f);
 }
