@@ -50,7 +50,7 @@ constexpr size_t kMinSortedRays = 16384;
 // The packet variant of kernel `id` (kernels/igi_packets.h), or null where it has none,
 // and its work-item count for a launch over `count` pixels or items.
 RayKeyGrid scene_key_grid(const SceneBuffers& scene) {
-    const SceneBounds b = scene_bounds(scene);
+    const SceneBounds& b = scene.bounds;
     return RayKeyGrid(&b.lo.x, &b.hi.x);
 }
 

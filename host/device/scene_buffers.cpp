@@ -152,6 +152,9 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
     add_textures(scene, b);
     add_lights(scene, positions, b);
     add_medium(scene, b);
+    for (size_t i = 0; i < b.tri_pos.size(); i += 3) b.bounds.grow(glm::make_vec3(&b.tri_pos[i]));
+    b.reach = b.bounds;
+    b.reach.grow(scene.motion_bounds);
     for (auto* v : {&b.tri_pos, &b.tri_nrm, &b.tri_uv, &b.materials, &b.lights, &b.light_cdf})
         ensure_nonempty(*v);
     for (auto* v : {&b.tri_mat, &b.tex_info, &b.tex_texels}) ensure_nonempty(*v);
@@ -159,8 +162,8 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
 }
 
 float clamp_extent(const SceneBuffers& b) {
-    const SceneBounds full = scene_bounds(b);
-    const float whole = full.lo.x <= full.hi.x ? glm::length(full.hi - full.lo) : 0.0f;
+    const SceneBounds& full = b.bounds;
+    const float whole = full.empty() ? 0.0f : glm::length(full.hi - full.lo);
     const size_t n = b.tri_pos.size() / 9;
     std::vector<double> area(n);
     double total = 0.0;
@@ -196,15 +199,6 @@ float clamp_extent(const SceneBuffers& b) {
     }
     const float d = glm::length(glm::max(hi - lo, glm::vec3(0.0f)));
     return d > 0.0f ? d : whole;
-}
-
-SceneBounds scene_bounds(const SceneBuffers& b) {
-    SceneBounds out;
-    for (size_t i = 0; i + 2 < b.tri_pos.size(); i += 3) {
-        const glm::vec3 p(b.tri_pos[i], b.tri_pos[i + 1], b.tri_pos[i + 2]);
-        out.lo = glm::min(out.lo, p), out.hi = glm::max(out.hi, p);
-    }
-    return out;
 }
 
 }  // namespace tessera

@@ -28,6 +28,12 @@ struct SceneBuffers {
     float light_power = 0.0f;        ///< Σ luminance(Le_max) × area over lights (the pick weights)
     uint32_t separated_emitters = 0; ///< emitters moved off a coincident surface (coincident_emitters.h)
     uint32_t stacked_emitters = 0;   ///< emitters on a light facing the same way (coincident_emitters.h)
+    /// The bounds of every vertex in tri_pos, scene units (empty without triangles).
+    SceneBounds bounds;
+    /// bounds joined to Scene::motion_bounds: a box the same in every frame of an
+    /// animation (equal to bounds where nothing moves). The light paths' far roulette
+    /// region (docs/path-tracing.md §3), so tic's kept paths match a rebuild's.
+    SceneBounds reach;
 };
 
 /// TS_MAT_* for a material: MTL illum 3 and 5 are mirrors, illum 7 a dielectric
@@ -48,13 +54,6 @@ uint32_t material_kind(const Material& m);
 /// light list alike. Buffers that would be empty get one zero element, so every device
 /// buffer can be created.
 SceneBuffers make_scene_buffers(const Scene& scene);
-
-/// Axis-aligned bounds of every triangle vertex, scene units (lo > hi without triangles).
-struct SceneBounds {
-    glm::vec3 lo{INFINITY};
-    glm::vec3 hi{-INFINITY};
-};
-SceneBounds scene_bounds(const SceneBuffers& b);
 
 /// The length D the VPL clamps are relative to (b = 1/(c·D)², docs/igi.md §4), scene units:
 /// the diagonal of the surface's bounds with its outlying 10^-4 of area trimmed from each

@@ -512,7 +512,7 @@ void InstantCache::indirect(Backend& backend, const SceneBuffers& scene, const T
 
     t0 = Clock::now();
     ic_gbuffer_from_surface(surf, gbuffer);
-    const SceneBounds bounds = scene_bounds(scene);
+    const SceneBounds& bounds = scene.bounds;
     const auto t_octree = Clock::now();
     cache_.rebuild(bounds.lo, bounds.hi);
     stats_.octree_seconds = since(t_octree);

@@ -66,10 +66,11 @@ uint32_t scramble_of(const LightPathSettings& settings) {
 }
 
 // The far roulette's region for light paths (ts_far_importance, shared/medium.h): the
-// bounds of the scene's surfaces, their diagonal the margin (far_region_of).
+// bounds of the scene's surfaces in every frame of its animation (SceneBuffers::reach),
+// their diagonal the margin (far_region_of). The same region every frame keeps a path
+// with the same Halton point and hits the same path, as tic's update relies on.
 ts::TsFarRegion far_region(const SceneBuffers& scene) {
-    const SceneBounds b = scene_bounds(scene);
-    return far_region_of(b.lo, b.hi);
+    return far_region_of(scene.reach.lo, scene.reach.hi);
 }
 
 void put_float(float f, uint32_t* word) { std::memcpy(word, &f, 4); }

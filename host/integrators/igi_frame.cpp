@@ -54,7 +54,7 @@ void extract_fields(const std::vector<float>& src, int stride, std::initializer_
 IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan& plan, const IgiSettings& settings)
     : backend_(backend), scene_(scene), plan_(plan), settings_(settings) {
     settings_.discontinuity.tile = static_cast<int>(settings.tile);
-    const SceneBounds b = scene_bounds(scene);
+    const SceneBounds& b = scene.bounds;
     float diag2 = 0.0f;
     for (int a = 0; a < 3; ++a) diag2 += (b.hi[a] - b.lo[a]) * (b.hi[a] - b.lo[a]);
     // The clamps' D leaves outlying bits of surface out (clamp_extent); the march's reach

@@ -83,7 +83,7 @@ TsFrame make_render_frame(const Camera& camera, int width, int height, const Sce
     if (!settings.texture_filter) frame.pixel_cone = 0.0f;
     // pt's far roulette around the surfaces and the camera: a camera path's first
     // vertices lie near the camera, however far it stands from the scene.
-    const SceneBounds b = scene_bounds(buffers);
+    const SceneBounds& b = buffers.bounds;
     set_far_region(frame, far_region_of(glm::min(b.lo, camera.position), glm::max(b.hi, camera.position)));
     return frame;
 }

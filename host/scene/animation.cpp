@@ -77,6 +77,38 @@ bool key_pose_is_inside_limit(const Scene& s, const SceneObject& o, const Object
     return inside;
 }
 
+// Key `i` of `keys` turns the object relative to a neighbouring key: a slerp lies between.
+bool key_turns(const std::vector<ObjectKey>& keys, size_t i) {
+    return (i > 0 && keys[i - 1].rotation != keys[i].rotation) ||
+           (i + 1 < keys.size() && keys[i + 1].rotation != keys[i].rotation);
+}
+
+// Grows `reach` by every pose the keys give object o (motion_bounds).
+void grow_by_object_motion(const Scene& rest, const SceneObject& o, const std::vector<ObjectKey>& keys,
+                           SceneBounds& reach) {
+    if (o.triangle_count == 0) return;
+    SceneBounds box;
+    for (size_t v = first_vertex(o); v < last_vertex(o); ++v) box.grow(rest.positions[v]);
+    const glm::vec3 pivot = 0.5f * (box.lo + box.hi), half = 0.5f * (box.hi - box.lo);
+    for (size_t i = 0; i < keys.size(); ++i) {
+        const ObjectKey& k = keys[i];
+        glm::vec3 extent;  // the posed box's half-size about pivot + translate
+        if (key_turns(keys, i)) {
+            extent = glm::vec3(k.scale * glm::length(half));
+        } else {
+            const glm::mat3 r = glm::mat3_cast(k.rotation);
+            // A rotated box's extent on axis a: Σ_b |R_ab| × half_b (columns are r[b]).
+            extent = k.scale * (glm::abs(r[0]) * half.x + glm::abs(r[1]) * half.y + glm::abs(r[2]) * half.z);
+        }
+        // Posing rounds at the magnitudes it adds: 1e-5 of them is ~80 float ulps.
+        const glm::vec3 m = glm::abs(pivot) + glm::abs(k.translate) + extent;
+        const glm::vec3 slack(1e-5f * std::max({m.x, m.y, m.z}));
+        const glm::vec3 centre = pivot + k.translate;
+        reach.grow(centre - extent - slack);
+        reach.grow(centre + extent + slack);
+    }
+}
+
 ObjectKey object_key_at(const std::vector<ObjectKey>& keys, int frame) {
     size_t i, j;
     float t;
@@ -243,7 +275,15 @@ Scene scene_at_frame(const Scene& rest, int frame) {
         }
     }
     out.camera = camera_at(rest.camera, a.camera, frame);
+    out.motion_bounds = motion_bounds(rest);
     return out;
+}
+
+SceneBounds motion_bounds(const Scene& rest) {
+    SceneBounds reach;
+    for (const ObjectTrack& track : rest.animation.objects)
+        for (const uint32_t o : track.objects) grow_by_object_motion(rest, rest.objects[o], track.keys, reach);
+    return reach;
 }
 
 namespace scene_detail {

@@ -57,6 +57,17 @@ struct Material {
     bool operator==(const Material&) const = default;
 };
 
+/// An axis-aligned box, scene units; lo > hi (the default) is the empty box.
+struct SceneBounds {
+    glm::vec3 lo{INFINITY};
+    glm::vec3 hi{-INFINITY};
+
+    bool empty() const { return !(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z); }
+    void grow(glm::vec3 p) { lo = glm::min(lo, p), hi = glm::max(hi, p); }
+    void grow(const SceneBounds& b) { lo = glm::min(lo, b.lo), hi = glm::max(hi, b.hi); }
+    bool operator==(const SceneBounds&) const = default;
+};
+
 /// A homogeneous participating medium. Coefficients are per scene unit (1/length);
 /// the extinction is sigma_a + sigma_s. Henyey–Greenstein phase function with
 /// asymmetry g in (-1, 1). Without a box the medium fills all space; with one it fills
@@ -119,6 +130,11 @@ struct Scene {
     /// Keyframes (frame_count 0: static). The arrays above are the rest pose; use
     /// scene_at_frame() (scene/animation.h) for the scene at a frame.
     Animation animation;
+    /// A box every pose of the objects the animation moves lies in, in every frame
+    /// (motion_bounds, scene/animation.h); set by scene_at_frame, empty where no object
+    /// moves. The scene buffers' reach joins it to the frame's bounds, so that box is the
+    /// same in every frame.
+    SceneBounds motion_bounds;
     bool has_medium = false;   ///< true when the scene file declares a "medium"
     Medium medium;
 

@@ -14,7 +14,7 @@ namespace tessera {
 namespace {
 
 float bounds_diagonal(const SceneBuffers& b) {
-    const SceneBounds s = scene_bounds(b);
+    const SceneBounds& s = b.bounds;
     return glm::length(s.hi - s.lo);
 }
 

@@ -324,6 +324,29 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildOverAnAnimation) {
     EXPECT_LT(lit.retraced, lit.paths);
 }
 
+// Fog filling space: light paths leave through the box's open front and scatter far out,
+// where the far roulette (docs/path-tracing.md §3) thins them by their distance from the
+// scene. The cube then slides 20 units out through a wall. Were the roulette's region
+// this frame's bounds, it would grow 20-fold, and the kept paths (traced in the small
+// region) would differ from a rebuild's. The region holds every frame's surfaces
+// (SceneBuffers::reach), so the update still equals a rebuild, re-tracing few paths.
+TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildInFogWhileAnObjectLeavesTheScene) {
+    Scene rest = test::shipped_scene("cornell-box-animated.json");
+    rest.animation.materials.clear();
+    rest.animation.frame_count = 3;
+    // Frame 1 slides the cube across the floor, frame 2 takes it out.
+    rest.animation.objects.at(0).keys = {
+        {0, glm::vec3(0.0f)}, {1, glm::vec3(-0.2f, 0.0f, 0.0f)}, {2, glm::vec3(-20.0f, 0.0f, 0.0f)}};
+    rest.has_medium = true;
+    rest.medium.sigma_s = glm::vec3(0.6f);
+    const TemporalRun run = run_and_compare_with_rebuild(GetParam(), rest);
+    // The update saw the move (records near the cube went) and kept most paths: a fix
+    // that re-traced every path when the region changed would fail here.
+    EXPECT_GT(run.removed, 0u);
+    EXPECT_GT(run.paths, 0u);
+    EXPECT_LT(run.retraced, run.paths / 2);
+}
+
 TEST_P(InstantCacheOn, ChangeFreeFrameTracesNoIndirectRays) {
     const Scene scene = scene_at_frame(test::shipped_scene("cornell-box-animated.json"), 7);
     RenderSettings s = small(Method::Tic, 40);

@@ -256,7 +256,7 @@ TEST(IgiGather16, OcclusionEqualsSingleRays) {
     const SceneBuffers buffers = make_scene_buffers(scene);
     ts::TsTracer tracer{};
     tracer.scene = build_embree_scene(buffers);
-    const SceneBounds box = scene_bounds(buffers);
+    const SceneBounds& box = buffers.bounds;
     std::mt19937 rng(9);
     std::uniform_real_distribution<float> u(0.02f, 0.98f);
     auto inside = [&] {

@@ -1,6 +1,8 @@
 // Scene animation: keyframe interpolation, the pivot rule, material and camera keys,
 // stable triangle and light lists across frames, and every validation error.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 
 #include "device/scene_buffers.h"
@@ -183,6 +185,64 @@ TEST_F(AnimationTest, EmissionMaxIsTheLargestKeyedEmission) {
     EXPECT_VEC3_NEAR(material_named(rest, "grey").emission_max, glm::vec3(0));
     const Scene still = load_scene(fixture("light.json"), DataPath{});
     for (const Material& m : still.materials) EXPECT_EQ(m.emission_max, m.emission);
+}
+
+// Whether every vertex of `s`'s first `count` (all by default) lies in `b`.
+bool holds_every_vertex(const SceneBounds& b, const Scene& s, size_t count = SIZE_MAX) {
+    for (size_t v = 0; v < std::min(count, s.positions.size()); ++v)
+        if (glm::any(glm::lessThan(s.positions[v], b.lo)) || glm::any(glm::greaterThan(s.positions[v], b.hi)))
+            return false;
+    return true;
+}
+
+// Without a turn, poses between keys mix the key poses linearly: the motion bounds are
+// the key poses' boxes (plus the 1e-5 slack, here 4e-5), and the scene buffers' reach,
+// the far roulette's region for light paths, is the same box in every frame.
+TEST_F(AnimationTest, MotionBoundsAreTheKeyPosesWithoutATurn) {
+    const Scene rest = load(R"({"frames": 11, "objects": {"floor": [
+        {"frame": 0}, {"frame": 10, "translate": [2, 0, 0], "scale": 2}]}})");
+    // Key 10: pivot (0.5, 0, 0.5) + (2, 0, 0), half-size 2 × (0.5, 0, 0.5).
+    const SceneBounds m = motion_bounds(rest);
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(m.lo[a], glm::vec3(0, 0, -0.5f)[a], 5e-5f) << a;
+        EXPECT_NEAR(m.hi[a], glm::vec3(3.5f, 0, 1.5f)[a], 5e-5f) << a;
+    }
+    const SceneBuffers first = make_scene_buffers(scene_at_frame(rest, 0));
+    for (int f = 0; f < 11; ++f) {
+        const Scene s = scene_at_frame(rest, f);
+        EXPECT_EQ(s.motion_bounds, m) << "frame " << f;
+        const SceneBuffers b = make_scene_buffers(s);
+        EXPECT_TRUE(holds_every_vertex(b.reach, s)) << "frame " << f;
+        EXPECT_EQ(b.reach, first.reach) << "frame " << f;
+        // The frame's own bounds reach the last key's pose only at its frame.
+        EXPECT_EQ(b.bounds.hi.x < b.reach.hi.x - 0.1f, f < 10) << "frame " << f;
+    }
+}
+
+// A turn between keys: a slerp carries the corners outside both key poses' boxes, and
+// the bounds hold the sphere about the pivot instead (radius: the half-diagonal √½).
+// The floor's vertices are the scene's first 6 (the lights stand still).
+TEST_F(AnimationTest, MotionBoundsHoldATurningObject) {
+    const Scene rest = load(R"({"frames": 9, "objects": {"floor": [
+        {"frame": 0}, {"frame": 8, "translate": [0, 1, 0], "rotate": {"axis": [0, 1, 0], "degrees": 90}}]}})");
+    const SceneBounds m = motion_bounds(rest);
+    const float r = std::sqrt(0.5f);
+    EXPECT_NEAR(m.lo.x, 0.5f - r, 5e-5f);
+    EXPECT_NEAR(m.hi.y, 1.0f + r, 5e-5f);
+    for (int f = 0; f < 9; ++f) EXPECT_TRUE(holds_every_vertex(m, scene_at_frame(rest, f), 6)) << "frame " << f;
+    // Frame 4 turns the floor 45°: its corner (0, 0, 0) lies at x = 0.5 − √½, outside
+    // both key poses' boxes (x ≥ 0).
+    EXPECT_LT(scene_at_frame(rest, 4).positions[vertex_at(rest, {0, 0, 0})].x, -0.2f);
+}
+
+// No object moves (a material track alone): no motion bounds, and the reach is the
+// frame's own bounds.
+TEST_F(AnimationTest, NoMotionBoundsWhereNothingMoves) {
+    const Scene rest = load(R"({"frames": 3, "materials": {"grey": [{"frame": 2, "albedo": [0, 0, 0]}]}})");
+    EXPECT_TRUE(motion_bounds(rest).empty());
+    const SceneBuffers b = make_scene_buffers(scene_at_frame(rest, 1));
+    EXPECT_FALSE(b.bounds.empty());
+    EXPECT_EQ(b.reach, b.bounds);
 }
 
 TEST_F(AnimationTest, LightListStaysWhileALightDimsToZero) {
