@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -123,6 +124,29 @@ void add_lights(const Scene& scene, const std::vector<glm::vec3>& positions, Sce
     }
 }
 
+// The first coordinate, in `before` order of (coordinate, area) pairs, past which more
+// than `trim` of the area lies (the last one where none does). Only the outermost
+// triangles matter: where the first 1/64 of them in that order hold more than `trim`,
+// they alone are sorted (Sibenik's D took 24 ms with six full sorts; clamp_extent).
+template <class Before>
+float trimmed_end(std::vector<std::pair<float, double>>& ends, double trim, Before before) {
+    auto by_coordinate = [&](const auto& a, const auto& c) { return before(a.first, c.first); };
+    size_t k = ends.size();
+    if (const size_t part = ends.size() / 64; part > 0) {
+        std::nth_element(ends.begin(), ends.begin() + part, ends.end(), by_coordinate);
+        double area = 0.0;
+        for (size_t i = 0; i < part; ++i) area += ends[i].second;
+        if (area > trim) k = part;
+    }
+    std::sort(ends.begin(), ends.begin() + k, by_coordinate);
+    double passed = 0.0;
+    for (size_t i = 0; i < k; ++i) {
+        if (passed + ends[i].second > trim) return ends[i].first;
+        passed += ends[i].second;
+    }
+    return ends[k - 1].first;
+}
+
 }  // namespace
 
 uint32_t material_kind(const Material& m) {
@@ -155,6 +179,7 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
     for (size_t i = 0; i < b.tri_pos.size(); i += 3) b.bounds.grow(glm::make_vec3(&b.tri_pos[i]));
     b.reach = b.bounds;
     b.reach.grow(scene.motion_bounds);
+    b.clamp_length = clamp_extent(b);
     for (auto* v : {&b.tri_pos, &b.tri_nrm, &b.tri_uv, &b.materials, &b.lights, &b.light_cdf})
         ensure_nonempty(*v);
     for (auto* v : {&b.tri_mat, &b.tex_info, &b.tex_texels}) ensure_nonempty(*v);
@@ -173,19 +198,7 @@ float clamp_extent(const SceneBuffers& b) {
         total += area[t];
     }
     if (!(total > 0.0) || !std::isfinite(total)) return whole;
-    // The first coordinate, in sort order, past which more than 10^-4 of the area lies.
     const double trim = 1e-4 * total;
-    auto trimmed_end = [&](std::vector<std::pair<float, double>>& ends, bool descending) {
-        std::sort(ends.begin(), ends.end(), [&](const auto& a, const auto& c) {
-            return descending ? a.first > c.first : a.first < c.first;
-        });
-        double passed = 0.0;
-        for (const auto& [v, a] : ends) {
-            if (passed + a > trim) return v;
-            passed += a;
-        }
-        return ends.back().first;
-    };
     glm::vec3 lo, hi;
     std::vector<std::pair<float, double>> lows(n), highs(n);
     for (int a = 0; a < 3; ++a) {
@@ -194,8 +207,8 @@ float clamp_extent(const SceneBuffers& b) {
             lows[t] = {std::min({p[0], p[3], p[6]}), area[t]};
             highs[t] = {std::max({p[0], p[3], p[6]}), area[t]};
         }
-        lo[a] = trimmed_end(lows, false);
-        hi[a] = trimmed_end(highs, true);
+        lo[a] = trimmed_end(lows, trim, std::less<>());
+        hi[a] = trimmed_end(highs, trim, std::greater<>());
     }
     const float d = glm::length(glm::max(hi - lo, glm::vec3(0.0f)));
     return d > 0.0f ? d : whole;

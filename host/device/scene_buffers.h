@@ -34,6 +34,9 @@ struct SceneBuffers {
     /// animation (equal to bounds where nothing moves). The light paths' far roulette
     /// region (docs/path-tracing.md §3), so tic's kept paths match a rebuild's.
     SceneBounds reach;
+    /// clamp_extent(*this), scene units: made once here, not per integrator (the viewer
+    /// makes one at every camera move).
+    float clamp_length = 0.0f;
 };
 
 /// TS_MAT_* for a material: MTL illum 3 and 5 are mirrors, illum 7 a dielectric

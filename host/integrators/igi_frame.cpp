@@ -59,7 +59,7 @@ IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan
     for (int a = 0; a < 3; ++a) diag2 += (b.hi[a] - b.lo[a]) * (b.hi[a] - b.lo[a]);
     // The clamps' D leaves outlying bits of surface out (clamp_extent); the march's reach
     // below needs the whole bounds.
-    const float d = clamp_extent(scene), c = settings.clamp_c;
+    const float d = scene.clamp_length, c = settings.clamp_c;
     g_clamp_ = c > 0.0f ? 1.0f / (c * c * d * d) : std::numeric_limits<float>::infinity();
     importance_clamp_ = 1.0f / (kImportanceClampC * kImportanceClampC * d * d);
     // A ray that leaves the scene's bounds never returns: march at most this far.

@@ -58,6 +58,26 @@ TEST(ClampExtent, IsTheBoundsDiagonalOfTheShippedScenes) {
     EXPECT_GE(loaded, 10);
 }
 
+// A 40 × 40 floor of unit quads (3,200 triangles, trim 0.16) with `specks` quads of two
+// triangles of area 1e-6 at x = -1000. With 10 the first 1/64 of the triangles by x (50)
+// holds floor triangles and more than the trim: those alone are sorted. With 60 it holds
+// specks alone, under the trim: all are sorted. Either way the specks are left out.
+TEST(ClampExtent, LeavesSpecksOutWhetherItSortsTheEndsOrAll) {
+    for (int specks : {10, 60}) {
+        Scene s;
+        const uint32_t m = test::add_material(s, glm::vec3(0.5f));
+        for (int x = 0; x < 40; ++x)
+            for (int z = 0; z < 40; ++z) test::add_quad(s, glm::vec3(x, 0, z), {0, 0, 1}, {1, 0, 0}, m);
+        for (int i = 0; i < specks; ++i)
+            test::add_quad(s, glm::vec3(-1000.0f, 0, 0.5f * i), {0, 0, 1e-3f}, {2e-3f, 0, 0}, m);
+        const SceneBuffers b = make_scene_buffers(s);
+        ASSERT_EQ(b.triangle_count, 3200u + 2u * specks);
+        EXPECT_GT(bounds_diagonal(b), 1000.0f);
+        EXPECT_FLOAT_EQ(clamp_extent(b), 40.0f * std::sqrt(2.0f)) << specks;
+        EXPECT_EQ(b.clamp_length, clamp_extent(b)) << specks;
+    }
+}
+
 // A scene without area (one degenerate triangle) keeps the bounds' diagonal.
 TEST(ClampExtent, ASceneWithoutAreaKeepsTheBoundsDiagonal) {
     Scene s;
