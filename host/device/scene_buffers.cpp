@@ -140,11 +140,14 @@ float trimmed_end(std::vector<std::pair<float, double>>& ends, double trim, Befo
     }
     std::sort(ends.begin(), ends.begin() + k, by_coordinate);
     double passed = 0.0;
-    for (size_t i = 0; i < k; ++i) {
+    for (size_t i = 0; i < ends.size(); ++i) {
+        // Summed in another order, the first part may fall back under trim by rounding:
+        // then the rest, all later in the order, is sorted too.
+        if (i == k) std::sort(ends.begin() + k, ends.end(), by_coordinate);
         if (passed + ends[i].second > trim) return ends[i].first;
         passed += ends[i].second;
     }
-    return ends[k - 1].first;
+    return ends.back().first;
 }
 
 }  // namespace
@@ -178,7 +181,10 @@ SceneBuffers make_scene_buffers(const Scene& scene) {
     add_medium(scene, b);
     for (size_t i = 0; i < b.tri_pos.size(); i += 3) b.bounds.grow(glm::make_vec3(&b.tri_pos[i]));
     b.reach = b.bounds;
-    b.reach.grow(scene.motion_bounds);
+    if (!scene.motion_bounds.empty()) {
+        b.reach = still_bounds(scene);
+        b.reach.grow(scene.motion_bounds);
+    }
     b.clamp_length = clamp_extent(b);
     for (auto* v : {&b.tri_pos, &b.tri_nrm, &b.tri_uv, &b.materials, &b.lights, &b.light_cdf})
         ensure_nonempty(*v);

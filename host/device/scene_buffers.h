@@ -30,9 +30,12 @@ struct SceneBuffers {
     uint32_t stacked_emitters = 0;   ///< emitters on a light facing the same way (coincident_emitters.h)
     /// The bounds of every vertex in tri_pos, scene units (empty without triangles).
     SceneBounds bounds;
-    /// bounds joined to Scene::motion_bounds: a box the same in every frame of an
-    /// animation (equal to bounds where nothing moves). The light paths' far roulette
-    /// region (docs/path-tracing.md §3), so tic's kept paths match a rebuild's.
+    /// A box the same in every frame of an animation: Scene::motion_bounds joined to the
+    /// still triangles' bounds (still_bounds, as the scene places them, before emitters
+    /// are moved off coincident surfaces), or `bounds` where motion_bounds is empty. The
+    /// light paths' far roulette region (docs/path-tracing.md §3), so tic's kept paths
+    /// match a rebuild's; the roulette is unbiased for any region, so it need not hold
+    /// every vertex to the ulp.
     SceneBounds reach;
     /// clamp_extent(*this), scene units: made once here, not per integrator (the viewer
     /// makes one at every camera move).
@@ -58,7 +61,8 @@ uint32_t material_kind(const Material& m);
 /// buffer can be created.
 SceneBuffers make_scene_buffers(const Scene& scene);
 
-/// The length D the VPL clamps are relative to (b = 1/(c·D)², docs/igi.md §4), scene units:
+/// The length D the VPL clamps are relative to (b = 1/(c·D)², docs/igi.md §4), scene units,
+/// of buffers from make_scene_buffers (it reads their `bounds`):
 /// the diagonal of the surface's bounds with its outlying 10^-4 of area trimmed from each
 /// end of each axis, the triangles taken by their lowest (and highest) vertex. A stray
 /// triangle 1 km from a 0.5 m box made the whole bounds' diagonal 1,000 times the box's

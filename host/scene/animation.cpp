@@ -89,7 +89,9 @@ void grow_by_object_motion(const Scene& rest, const SceneObject& o, const std::v
     if (o.triangle_count == 0) return;
     SceneBounds box;
     for (size_t v = first_vertex(o); v < last_vertex(o); ++v) box.grow(rest.positions[v]);
-    const glm::vec3 pivot = 0.5f * (box.lo + box.hi), half = 0.5f * (box.hi - box.lo);
+    // pose_positions' pivot, and the largest offset from it as posing rounds it (float
+    // subtraction is monotone): the rounded pivot may lie off the box's centre.
+    const glm::vec3 pivot = 0.5f * (box.lo + box.hi), half = glm::max(box.hi - pivot, pivot - box.lo);
     for (size_t i = 0; i < keys.size(); ++i) {
         const ObjectKey& k = keys[i];
         glm::vec3 extent;  // the posed box's half-size about pivot + translate
@@ -277,6 +279,19 @@ Scene scene_at_frame(const Scene& rest, int frame) {
     out.camera = camera_at(rest.camera, a.camera, frame);
     out.motion_bounds = motion_bounds(rest);
     return out;
+}
+
+SceneBounds still_bounds(const Scene& scene) {
+    std::vector<bool> moves(scene.triangle_count(), false);
+    for (const ObjectTrack& track : scene.animation.objects)
+        for (const uint32_t o : track.objects) {
+            const SceneObject& obj = scene.objects[o];
+            std::fill_n(moves.begin() + obj.first_triangle, obj.triangle_count, true);
+        }
+    SceneBounds still;
+    for (size_t v = 0; v < scene.positions.size(); ++v)
+        if (!moves[v / 3]) still.grow(scene.positions[v]);
+    return still;
 }
 
 SceneBounds motion_bounds(const Scene& rest) {

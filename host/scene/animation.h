@@ -81,7 +81,7 @@ Scene scene_at_frame(const Scene& rest, int frame);
 struct SceneBounds;
 
 /// A box, scene units, that every pose of every object an object track of `rest`
-/// moves lies in, at every frame; empty when no object moves. Each key poses the
+/// moves lies in, at every frame; empty where no object track holds a triangle. Each key poses the
 /// object's rest bounding box (whose centre is the pivot): between two keys of one
 /// rotation a pose is the linear mix of theirs, so the two posed boxes bound it; where
 /// the rotation changes, a slerp can carry a corner outside both, so each key gives the
@@ -92,6 +92,10 @@ struct SceneBounds;
 /// roulette region (docs/path-tracing.md §3) must be the same in every frame, or tic's
 /// updated cache would differ from a rebuild (docs/instant-caching.md §8).
 SceneBounds motion_bounds(const Scene& rest);
+
+/// The bounds, scene units, of the triangles of `scene` (any frame's) that no object
+/// track moves: the same in every frame (empty where every triangle moves).
+SceneBounds still_bounds(const Scene& scene);
 
 namespace scene_detail {
 

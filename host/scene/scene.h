@@ -132,8 +132,8 @@ struct Scene {
     Animation animation;
     /// A box every pose of the objects the animation moves lies in, in every frame
     /// (motion_bounds, scene/animation.h); set by scene_at_frame, empty where no object
-    /// moves. The scene buffers' reach joins it to the frame's bounds, so that box is the
-    /// same in every frame.
+    /// track holds a triangle. The scene buffers' reach joins it to the bounds of the
+    /// triangles that stay (still_bounds), so that box is the same in every frame.
     SceneBounds motion_bounds;
     bool has_medium = false;   ///< true when the scene file declares a "medium"
     Medium medium;

@@ -210,7 +210,8 @@ TEST_F(AnimationTest, MotionBoundsAreTheKeyPosesWithoutATurn) {
     const SceneBuffers first = make_scene_buffers(scene_at_frame(rest, 0));
     for (int f = 0; f < 11; ++f) {
         const Scene s = scene_at_frame(rest, f);
-        EXPECT_EQ(s.motion_bounds, m) << "frame " << f;
+        EXPECT_TRUE(holds_every_vertex(m, s, 6)) << "frame " << f;  // the floor's
+        // The reach is built from the still lights and m alone, yet holds every vertex.
         const SceneBuffers b = make_scene_buffers(s);
         EXPECT_TRUE(holds_every_vertex(b.reach, s)) << "frame " << f;
         EXPECT_EQ(b.reach, first.reach) << "frame " << f;
