@@ -80,17 +80,18 @@ Scene scene_at_frame(const Scene& rest, int frame);
 
 struct SceneBounds;
 
-/// A box, scene units, that every pose of every object an object track of `rest`
-/// moves lies in, at every frame; empty where no object track holds a triangle. Each key poses the
-/// object's rest bounding box (whose centre is the pivot): between two keys of one
-/// rotation a pose is the linear mix of theirs, so the two posed boxes bound it; where
-/// the rotation changes, a slerp can carry a corner outside both, so each key gives the
-/// cube about its translated pivot that holds the sphere of radius scale × the rest
-/// box's half-diagonal, and the centre and radius move linearly between keys. Each box
-/// is grown by 1e-5 of the magnitudes posing adds, for its float rounding. Cost: one pass over the
-/// moving objects' vertices and one step per key. What for: the light paths' far
-/// roulette region (docs/path-tracing.md §3) must be the same in every frame, or tic's
-/// updated cache would differ from a rebuild (docs/instant-caching.md §8).
+/// A box, scene units, that every pose of every object an object track of `rest` moves
+/// lies in, at every frame; empty where no object track holds a triangle. Each key poses
+/// the object's rest bounding box (whose centre is the pivot): between two keys of one
+/// rotation a pose is the linear mix of theirs, so the two posed boxes bound it; where the
+/// rotation changes, a slerp can carry a corner outside both, so each key gives the cube
+/// about its translated pivot that holds the sphere of radius scale × the rest box's
+/// half-diagonal, and the centre and radius move linearly between keys. Each box is grown
+/// by 1e-5 of the magnitudes posing adds, for its float rounding. Cost: one pass over the
+/// moving objects' vertices and one step per key (scene_at_frame makes it every frame,
+/// beside its copy of every vertex). What for: the light paths' far roulette region
+/// (docs/path-tracing.md §3) must be the same in every frame, or tic's updated cache would
+/// differ from a rebuild (docs/instant-caching.md §8).
 SceneBounds motion_bounds(const Scene& rest);
 
 /// The bounds, scene units, of the triangles of `scene` (any frame's) that no object
