@@ -18,7 +18,13 @@ namespace {
 
 float luminance_of(const glm::vec3& c) { return ts::ts_luminance(ts::make_float3(c.x, c.y, c.z)); }
 
-void push3(std::vector<float>& v, const glm::vec3& a) { v.insert(v.end(), {a.x, a.y, a.z}); }
+// The vectors' components, x y z after one another: glm::vec3 is three packed floats.
+std::vector<float> flat(const std::vector<glm::vec3>& v) {
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+    std::vector<float> out(3 * v.size());
+    if (!v.empty()) std::memcpy(out.data(), v.data(), out.size() * sizeof(float));
+    return out;
+}
 void put3(float* f, const glm::vec3& a) { f[0] = a.x, f[1] = a.y, f[2] = a.z; }
 
 // Appends triangle corners uv[0..2], shifted by the floor of their smallest value on each
@@ -74,7 +80,28 @@ void add_materials(const Scene& scene, SceneBuffers& b) {
     }
 }
 
-void add_textures(const Scene& scene, SceneBuffers& b) {
+// Whether `earlier`'s mip chains were made from textures equal to `scene`'s: the same
+// count, sizes and level-0 texels (a chain's level 0 is its texture; build_mip_chain).
+bool same_textures(const Scene& scene, const SceneBuffers& earlier) {
+    if (scene.textures.empty() || earlier.tex_info.size() != TS_TEX_INFO_UINTS * scene.textures.size()) return false;
+    for (size_t i = 0; i < scene.textures.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        const uint32_t* info = &earlier.tex_info[TS_TEX_INFO_UINTS * i];
+        if (info[TS_TEX_WIDTH] != uint32_t(t.width) || info[TS_TEX_HEIGHT] != uint32_t(t.height) ||
+            t.rgba8.size() != size_t(t.width) * size_t(t.height) ||
+            size_t(info[TS_TEX_OFFSET]) + t.rgba8.size() > earlier.tex_texels.size() ||
+            !std::equal(t.rgba8.begin(), t.rgba8.end(), earlier.tex_texels.begin() + info[TS_TEX_OFFSET]))
+            return false;
+    }
+    return true;
+}
+
+void add_textures(const Scene& scene, SceneBuffers& b, const SceneBuffers* earlier) {
+    if (earlier && same_textures(scene, *earlier)) {
+        b.tex_info = earlier->tex_info;
+        b.tex_texels = earlier->tex_texels;
+        return;
+    }
     for (const Texture& t : scene.textures) {
         uint32_t info[TS_TEX_INFO_UINTS] = {};
         info[TS_TEX_OFFSET] = static_cast<uint32_t>(b.tex_texels.size());
@@ -158,25 +185,21 @@ uint32_t material_kind(const Material& m) {
     return TS_MAT_DIFFUSE;
 }
 
-SceneBuffers make_scene_buffers(const Scene& scene) {
+SceneBuffers make_scene_buffers(const Scene& scene, const SceneBuffers* earlier) {
     SceneBuffers b;
     const size_t n = scene.triangle_count();
     b.triangle_count = static_cast<uint32_t>(n);
-    b.tri_pos.reserve(9 * n);
-    b.tri_nrm.reserve(9 * n);
     b.tri_uv.reserve(6 * n);
     std::vector<glm::vec3> positions = scene.positions;
     const CoincidentEmitters coincident = separate_coincident_emitters(scene, positions);
     b.separated_emitters = static_cast<uint32_t>(coincident.moved);
     b.stacked_emitters = static_cast<uint32_t>(coincident.stacked);
-    for (size_t i = 0; i < 3 * n; ++i) {
-        push3(b.tri_pos, positions[i]);
-        push3(b.tri_nrm, scene.normals[i]);
-    }
+    b.tri_pos = flat(positions);
+    b.tri_nrm = flat(scene.normals);
     for (size_t i = 0; i < n; ++i) push_uvs(b.tri_uv, &scene.uvs[3 * i]);
     b.tri_mat = scene.material;
     add_materials(scene, b);
-    add_textures(scene, b);
+    add_textures(scene, b, earlier);
     add_lights(scene, positions, b);
     add_medium(scene, b);
     for (size_t i = 0; i < b.tri_pos.size(); i += 3) b.bounds.grow(glm::make_vec3(&b.tri_pos[i]));

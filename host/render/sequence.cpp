@@ -66,13 +66,14 @@ void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& 
     // One backend for the sequence, given each frame's scene with set_scene: the BVH is
     // rebuilt and every scene buffer re-uploaded (simple and correct for moving
     // geometry; refitting and uploading only what changed is a later optimisation),
-    // while the device and its compiled programs stay.
+    // while the device and its compiled programs stay. Each frame's buffers take the
+    // textures' mip chains from the frame before's (make_scene_buffers).
     std::unique_ptr<SceneBuffers> buffers;  // declared before the backend, which reads it
     std::unique_ptr<Backend> backend;
     for (int frame = range.first; frame <= range.last; ++frame) {
         const auto start = std::chrono::steady_clock::now();
         const Scene scene = scene_at_frame(rest, frame);
-        auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene));
+        auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene, buffers.get()));
         const EffectPlan plan = plan_effects(scene);
         give_scene(backend, backend_options, *next, plan);
         buffers = std::move(next);  // the previous frame's buffers go only now

@@ -51,7 +51,7 @@ ViewSession::~ViewSession() {
 void ViewSession::build_backend() {
     integrator_.reset();
     scene_ = rest_.animation.animated() ? scene_at_frame(rest_, anim_frame_) : rest_;
-    auto buffers = std::make_unique<SceneBuffers>(make_scene_buffers(scene_));
+    auto buffers = std::make_unique<SceneBuffers>(make_scene_buffers(scene_, buffers_.get()));
     plan_ = plan_effects(scene_);
     give_scene(backend_, options_.backend, *buffers, plan_);
     buffers_ = std::move(buffers);  // the previous frame's buffers go only now

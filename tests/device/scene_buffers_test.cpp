@@ -2,10 +2,14 @@
 // outlying bits of surface left out; and the texture coordinates the kernels read.
 #include "device/scene_buffers.h"
 
+#include <cstring>
 #include <filesystem>
 
 #include <gtest/gtest.h>
 
+#include "kernels/shared/kernel_inputs.h"
+#include "kernels/shared/layout_scene.h"
+#include "scene/animation.h"
 #include "scene/loader.h"
 #include "support/data_files.h"
 #include "support/test_scenes.h"
@@ -106,6 +110,59 @@ TEST(SceneBuffers, TextureCoordinatesMoveByWholeRepeatsTowardZero) {
     for (float t : a.tri_uv) {
         EXPECT_GE(t, 0.0f);
         EXPECT_LE(t, 1.0f);
+    }
+}
+
+// Bit for bit: materials hold integers (a texture index of -1 reads as a NaN float).
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+// An animation's frames take the mip chains of the frame before (textures do not animate).
+// The earlier buffers' coarsest texel is changed so a copy shows: taken where the textures
+// are the same, remade where one texel of level 0 differs or a texture is added.
+TEST(SceneBuffers, TakesTheEarlierMipChainsOnlyForTheSameTextures) {
+    const Scene scene = test::checker_floor();
+    const SceneBuffers fresh = make_scene_buffers(scene);
+    SceneBuffers earlier = fresh;
+    ASSERT_GT(earlier.tex_texels.size(), 256u * 256u);
+    earlier.tex_texels.back() ^= 0x00010101u;  // the 1x1 level, which make_scene_buffers never makes so
+
+    const SceneBuffers same = make_scene_buffers(scene, &earlier);
+    EXPECT_EQ(same.tex_info, earlier.tex_info);
+    EXPECT_EQ(same.tex_texels, earlier.tex_texels);
+    EXPECT_EQ(same.tri_pos, fresh.tri_pos);
+
+    Scene changed = scene;
+    changed.textures[0].rgba8[1000] ^= 0x00000001u;
+    const SceneBuffers remade = make_scene_buffers(changed, &earlier);
+    EXPECT_EQ(remade.tex_texels, make_scene_buffers(changed).tex_texels);
+    EXPECT_NE(remade.tex_texels.back(), earlier.tex_texels.back());
+
+    Scene more = scene;
+    more.textures.push_back(scene.textures[0]);
+    const SceneBuffers two = make_scene_buffers(more, &earlier);
+    EXPECT_EQ(two.tex_info.size(), 2u * TS_TEX_INFO_UINTS);
+    EXPECT_EQ(two.tex_texels, make_scene_buffers(more).tex_texels);
+}
+
+// The animated Sibenik's frames, each made from the one before as a sequence does, equal
+// frames made from nothing, in every buffer the backends read.
+TEST(SceneBuffers, AnAnimationsFramesFromTheFrameBeforeEqualFreshOnes) {
+    const DataPath data = make_data_path(std::nullopt);
+    if (!test::on_data_path(data, "sibenik/sibenik.obj")) GTEST_SKIP() << "no Sibenik on the data path";
+    const Scene rest = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "sibenik-animated.json", data);
+    ASSERT_FALSE(rest.textures.empty());
+    SceneBuffers before = make_scene_buffers(scene_at_frame(rest, 0));
+    for (int frame : {1, 17}) {
+        const Scene scene = scene_at_frame(rest, frame);
+        const SceneBuffers next = make_scene_buffers(scene, &before), fresh = make_scene_buffers(scene);
+#define TS_EXPECT_SAME_BUFFER(field, type, what) EXPECT_TRUE(same_bits(next.field, fresh.field)) << what;
+        TS_SCENE_BUFFERS(TS_EXPECT_SAME_BUFFER)
+#undef TS_EXPECT_SAME_BUFFER
+        EXPECT_NE(next.tri_pos, before.tri_pos);  // the frame moved something
+        before = next;
     }
 }
 
