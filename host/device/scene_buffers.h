@@ -37,8 +37,10 @@ struct SceneBuffers {
     /// match a rebuild's; the roulette is unbiased for any region, so it need not hold
     /// every vertex to the ulp.
     SceneBounds reach;
-    /// clamp_extent(*this), scene units: made once here, not per integrator (the viewer
-    /// makes one at every camera move).
+    /// The VPL clamps' length D, scene units: the scene's Scene::clamp_length where set
+    /// (an animation whose objects move: frame 0's, in every frame), else
+    /// clamp_extent(*this). Made once here, not per integrator (the viewer makes one at
+    /// every camera move).
     float clamp_length = 0.0f;
 };
 
@@ -68,15 +70,8 @@ uint32_t material_kind(const Material& m);
 SceneBuffers make_scene_buffers(const Scene& scene, const SceneBuffers* earlier = nullptr);
 
 /// The length D the VPL clamps are relative to (b = 1/(c·D)², docs/igi.md §4), scene units,
-/// of buffers from make_scene_buffers (it reads their `bounds`):
-/// the diagonal of the surface's bounds with its outlying 10^-4 of area trimmed from each
-/// end of each axis, the triangles taken by their lowest (and highest) vertex. A stray
-/// triangle 1 km from a 0.5 m box made the whole bounds' diagonal 1,000 times the box's
-/// and darkened igi's indirect light by up to 60%. 10^-4, not more: every shipped scene
-/// keeps its whole bounds (1% took Sibenik's outermost parts off, D 3.6% shorter),
-/// while a speck such as that triangle (2.5·10^-5 of the box's area) is left out.
-/// The bounds' diagonal where the scene has no area (or the trimmed bounds are a point); 0
-/// without triangles.
+/// of buffers from make_scene_buffers: trimmed_diagonal (scene/extent.h) of their
+/// triangles (tri_pos) and `bounds`.
 float clamp_extent(const SceneBuffers& b);
 
 }  // namespace tessera

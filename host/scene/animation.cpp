@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "scene/extent.h"
 #include "scene/json_field.h"
 #include "scene/scene.h"
 #include "util/error.h"
@@ -278,7 +279,21 @@ Scene scene_at_frame(const Scene& rest, int frame) {
     }
     out.camera = camera_at(rest.camera, a.camera, frame);
     out.motion_bounds = motion_bounds(rest);
+    if (!out.motion_bounds.empty()) out.clamp_length = frame_zero_clamp_length(rest);
     return out;
+}
+
+float frame_zero_clamp_length(const Scene& rest) {
+    std::vector<glm::vec3> positions = rest.positions;
+    for (const ObjectTrack& track : rest.animation.objects) {
+        const ObjectKey k = object_key_at(track.keys, 0);
+        for (const uint32_t o : track.objects)
+            pose_positions(rest, rest.objects[o], k, [&](size_t v, glm::vec3 p) { positions[v] = p; });
+    }
+    static_assert(sizeof(glm::vec3) == 3 * sizeof(float));  // positions as 9 floats a triangle
+    SceneBounds bounds;
+    for (const glm::vec3& p : positions) bounds.grow(p);
+    return trimmed_diagonal(reinterpret_cast<const float*>(positions.data()), positions.size() / 3, bounds);
 }
 
 SceneBounds still_bounds(const Scene& scene) {

@@ -135,6 +135,14 @@ struct Scene {
     /// track holds a triangle. The scene buffers' reach joins it to the bounds of the
     /// triangles that stay (still_bounds), so that box is the same in every frame.
     SceneBounds motion_bounds;
+    /// The VPL clamps' length D (docs/igi.md §4), scene units, for every frame of an
+    /// animation whose object tracks move triangles: frame 0's (trimmed_diagonal of its
+    /// triangles, scene/extent.h), set by scene_at_frame; 0 elsewhere, where the scene
+    /// buffers take the frame's own. Per frame, an object leaving the room lengthened D
+    /// frame by frame (the animated Cornell box's cube moved 3 units behind the camera:
+    /// 0.96 to 3.44 over 30 frames), so the clamp, and the light of a room nothing in view
+    /// had changed, changed with it, and tic re-summed every record in every frame.
+    float clamp_length = 0.0f;
     bool has_medium = false;   ///< true when the scene file declares a "medium"
     Medium medium;
 
@@ -148,9 +156,9 @@ struct Scene {
 
     /// The diagonal of the positions' bounding box in scene units; 0 with no positions.
     float diagonal() const {
-        glm::vec3 lo(INFINITY), hi(-INFINITY);
-        for (const glm::vec3& p : positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-        return positions.empty() ? 0.0f : glm::length(hi - lo);
+        SceneBounds b;
+        for (const glm::vec3& p : positions) b.grow(p);
+        return positions.empty() ? 0.0f : glm::length(b.hi - b.lo);
     }
 };
 

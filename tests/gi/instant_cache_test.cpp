@@ -345,6 +345,11 @@ TEST_P(InstantCacheOn, TemporalUpdateEqualsRebuildInFogWhileAnObjectLeavesTheSce
     EXPECT_GT(run.removed, 0u);
     EXPECT_GT(run.paths, 0u);
     EXPECT_LT(run.retraced, run.paths / 2);
+    // The clamp kept frame 0's length (Scene::clamp_length), so the records were re-summed
+    // over the changed VPLs only; with each frame's own the cube's leaving lengthened it
+    // 20-fold and every record was re-summed with the new clamp.
+    EXPECT_GT(run.resummed, 0u);
+    EXPECT_EQ(run.by_change, run.resummed);
 }
 
 TEST_P(InstantCacheOn, ChangeFreeFrameTracesNoIndirectRays) {

@@ -241,9 +241,39 @@ TEST_F(AnimationTest, MotionBoundsHoldATurningObject) {
 TEST_F(AnimationTest, NoMotionBoundsWhereNothingMoves) {
     const Scene rest = load(R"({"frames": 3, "materials": {"grey": [{"frame": 2, "albedo": [0, 0, 0]}]}})");
     EXPECT_TRUE(motion_bounds(rest).empty());
-    const SceneBuffers b = make_scene_buffers(scene_at_frame(rest, 1));
+    const Scene s = scene_at_frame(rest, 1);
+    const SceneBuffers b = make_scene_buffers(s);
     EXPECT_FALSE(b.bounds.empty());
     EXPECT_EQ(b.reach, b.bounds);
+    // Nor a clamp length of frame 0's: the frame's own, the same in every frame.
+    EXPECT_EQ(s.clamp_length, 0.0f);
+    EXPECT_EQ(b.clamp_length, clamp_extent(b));
+}
+
+// The VPL clamps' length D (b = 1/(c·D)²) is frame 0's in every frame where objects move.
+// Each frame's own would follow the floor 100 units away, 27 times as long, and with it
+// the clamp of the light everywhere else; an animation rendered from frame 3 on gets the
+// same D as one from frame 0.
+TEST_F(AnimationTest, ClampLengthIsFrameZerosInEveryFrame) {
+    const Scene rest = load(R"({"frames": 5, "objects": {"floor": [
+        {"frame": 1}, {"frame": 4, "translate": [100, 0, 0]}]}})");
+    const Scene zero = scene_at_frame(rest, 0);
+    ASSERT_GT(zero.clamp_length, 0.0f);
+    EXPECT_FLOAT_EQ(zero.clamp_length, clamp_extent(make_scene_buffers(zero)));
+    for (int f = 4; f >= 0; --f) {
+        const Scene s = scene_at_frame(rest, f);
+        EXPECT_EQ(s.clamp_length, zero.clamp_length) << "frame " << f;
+        EXPECT_EQ(make_scene_buffers(s).clamp_length, zero.clamp_length) << "frame " << f;
+    }
+    EXPECT_GT(clamp_extent(make_scene_buffers(scene_at_frame(rest, 4))), 20.0f * zero.clamp_length);
+
+    // Frame 0's pose, not the rest pose: here frame 0 is the far one.
+    const Scene away = load(R"({"frames": 3, "objects": {"floor": [
+        {"frame": 0, "translate": [100, 0, 0]}, {"frame": 2}]}})");
+    const Scene far0 = scene_at_frame(away, 0);
+    EXPECT_FLOAT_EQ(far0.clamp_length, clamp_extent(make_scene_buffers(far0)));
+    EXPECT_GT(far0.clamp_length, 20.0f * zero.clamp_length);
+    EXPECT_EQ(make_scene_buffers(scene_at_frame(away, 2)).clamp_length, far0.clamp_length);
 }
 
 TEST_F(AnimationTest, LightListStaysWhileALightDimsToZero) {
