@@ -67,7 +67,7 @@ std::vector<FrameResult> run_sequence(const Scene& rest, Method m, BackendKind k
     for (int f = 0; f < frames; ++f) {
         const auto t0 = std::chrono::steady_clock::now();
         const Scene scene = scene_at_frame(rest, f);
-        auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene));
+        auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene, buffers.get()));  // as render_sequence
         const EffectPlan plan = plan_effects(scene);
         give_scene(backend, {kind, device}, *next, plan);
         buffers = std::move(next);

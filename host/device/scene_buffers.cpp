@@ -17,11 +17,12 @@ namespace {
 
 float luminance_of(const glm::vec3& c) { return ts::ts_luminance(ts::make_float3(c.x, c.y, c.z)); }
 
-// The vectors' components, x y z after one another: glm::vec3 is three packed floats.
-std::vector<float> flat(const std::vector<glm::vec3>& v) {
+// The first `count` vectors' components, x y z after one another: glm::vec3 is three
+// packed floats.
+std::vector<float> flat(const std::vector<glm::vec3>& v, size_t count) {
     static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-    std::vector<float> out(3 * v.size());
-    if (!v.empty()) std::memcpy(out.data(), v.data(), out.size() * sizeof(float));
+    std::vector<float> out(3 * count);
+    if (count > 0) std::memcpy(out.data(), v.data(), out.size() * sizeof(float));
     return out;
 }
 void put3(float* f, const glm::vec3& a) { f[0] = a.x, f[1] = a.y, f[2] = a.z; }
@@ -167,8 +168,8 @@ SceneBuffers make_scene_buffers(const Scene& scene, const SceneBuffers* earlier)
     const CoincidentEmitters coincident = separate_coincident_emitters(scene, positions);
     b.separated_emitters = static_cast<uint32_t>(coincident.moved);
     b.stacked_emitters = static_cast<uint32_t>(coincident.stacked);
-    b.tri_pos = flat(positions);
-    b.tri_nrm = flat(scene.normals);
+    b.tri_pos = flat(positions, 3 * n);
+    b.tri_nrm = flat(scene.normals, 3 * n);
     for (size_t i = 0; i < n; ++i) push_uvs(b.tri_uv, &scene.uvs[3 * i]);
     b.tri_mat = scene.material;
     add_materials(scene, b);

@@ -62,11 +62,12 @@ uint32_t material_kind(const Material& m);
 /// light list alike. Buffers that would be empty get one zero element, so every device
 /// buffer can be created.
 ///
-/// `earlier`: buffers made from another frame of the same scene, or null. Where its mip
-/// chains were made from textures equal to `scene`'s (the same count, sizes and level-0
-/// texels, which is checked), tex_info and tex_texels are copied from it, not remade:
-/// textures do not animate, and remaking Sibenik's three took 25 of the call's 33 ms in
-/// every frame of an animation. The result is the same either way.
+/// `earlier`: buffers made by make_scene_buffers (unmodified) from another frame of the
+/// same scene, or null. Where its mip chains were made from textures equal to `scene`'s
+/// (the same count, sizes and level-0 texels, which is checked), tex_info and tex_texels
+/// are copied from it, not remade: textures do not animate, and remaking Sibenik's three
+/// took about 25 of the call's 33 ms in every frame of an animation
+/// (bench/results/frame_setup.md). The result is then the same either way.
 SceneBuffers make_scene_buffers(const Scene& scene, const SceneBuffers* earlier = nullptr);
 
 /// The length D the VPL clamps are relative to (b = 1/(c·D)², docs/igi.md §4), scene units,

@@ -57,7 +57,7 @@ IgiFrame::IgiFrame(Backend& backend, const SceneBuffers& scene, const EffectPlan
     const SceneBounds& b = scene.bounds;
     float diag2 = 0.0f;
     for (int a = 0; a < 3; ++a) diag2 += (b.hi[a] - b.lo[a]) * (b.hi[a] - b.lo[a]);
-    // The clamps' D leaves outlying bits of surface out (clamp_extent); the march's length
+    // The clamps' D leaves outlying bits of surface out (SceneBuffers::clamp_length); the march's length
     // below needs the whole bounds.
     const float d = scene.clamp_length, c = settings.clamp_c;
     g_clamp_ = c > 0.0f ? 1.0f / (c * c * d * d) : std::numeric_limits<float>::infinity();

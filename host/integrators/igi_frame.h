@@ -33,8 +33,9 @@ struct IgiSettings {
     uint32_t light_path_depth = kLightPathDepth;
     uint32_t set_shadow_samples = 4;  ///< area-light samples per pixel (its set's share)
     uint32_t march_steps = 8;      ///< medium ray-march steps per pixel (the N sets stratify them)
-    /// Geometry-term clamp b = 1 / (clamp_c · D)², D the scene's bounding-box diagonal with
-    /// outlying bits of surface left out (clamp_extent, device/scene_buffers.h):
+    /// Geometry-term clamp b = 1 / (clamp_c · D)², D = SceneBuffers::clamp_length, the
+    /// scene's bounding-box diagonal with outlying bits of surface left out
+    /// (trimmed_diagonal, scene/extent.h; frame 0's in an animation whose objects move):
     /// scene-relative, so the same c gives the same image at any scale (docs/igi.md §4,
     /// default c = 0.1). clamp_c = 0 disables clamping (b = +inf).
     float clamp_c = 0.1f;

@@ -53,11 +53,12 @@ const Parameter kParameters[] = {
      .scope = ParameterScope::IgiFamily},
     {.option = "--vpl-importance", .value_name = "K", .field = TS_SETTING(igi.vpl_importance), .min = 1, .max = 64,
      .unit = "x", .doc = "igi family (ic/tic: for a medium's light): trace K× the light paths and keep a budget of VPLs by their importance for the view (1: off)", .scope = ParameterScope::IgiFamily},
-    // At most 1: no two points of the scene lie farther apart than D, so c = 1 clamps every
+    // At most 1: no two points of the scene (of frame 0, in an animation whose objects
+    // move) lie farther apart than D, so c = 1 clamps every
     // VPL already, and a larger c only lowers b towards 0 (1e30 underflowed to b = 0 and
     // took all indirect light away, the opposite of what 0 means).
     {.option = "--clamp", .value_name = "C", .field = TS_SETTING(igi.clamp_c), .min = 0, .max = 1,
-     .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene's extent (its bounds' diagonal, specks left out); 0 disables", .scope = ParameterScope::IgiFamily},
+     .doc = "igi: VPL geometry clamp b = 1/(c·D)², D the scene's extent (its bounds' diagonal, specks left out; frame 0's where objects move); 0 disables", .scope = ParameterScope::IgiFamily},
     {.option = "--clamp-decay", .value_name = "A", .field = TS_SETTING(igi.clamp_decay), .min = 0, .max = 1,
      .doc = "igi: pass p clamps with c·(p+1)^-A, so accumulated passes converge to the unclamped image; 0: fixed", .scope = ParameterScope::IgiFamily},
     // At most 65536, as --vpl-paths: a pass cannot be interrupted, and 2^32 steps took

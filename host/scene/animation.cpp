@@ -279,7 +279,8 @@ Scene scene_at_frame(const Scene& rest, int frame) {
     }
     out.camera = camera_at(rest.camera, a.camera, frame);
     out.motion_bounds = motion_bounds(rest);
-    if (!out.motion_bounds.empty()) out.clamp_length = frame_zero_clamp_length(rest);
+    // Assigned either way: `rest` may itself be a posed copy carrying another frame 0's.
+    out.clamp_length = out.motion_bounds.empty() ? 0.0f : frame_zero_clamp_length(rest);
     return out;
 }
 

@@ -139,9 +139,11 @@ struct Scene {
     /// animation whose object tracks move triangles: frame 0's (trimmed_diagonal of its
     /// triangles, scene/extent.h), set by scene_at_frame; 0 elsewhere, where the scene
     /// buffers take the frame's own. Per frame, an object leaving the room lengthened D
-    /// frame by frame (the animated Cornell box's cube moved 3 units behind the camera:
-    /// 0.96 to 3.44 over 30 frames), so the clamp, and the light of a room nothing in view
-    /// had changed, changed with it, and tic re-summed every record in every frame.
+    /// frame by frame (an experiment, docs/igi.md §4: the animated Cornell box's cube
+    /// moved 3 units behind the camera, 0.96 to 3.44 over 30 frames), so the clamp, and
+    /// the light of a room nothing in view had changed, changed with it, and tic re-summed
+    /// every record in every frame. Code that edits a posed scene's positions must set it
+    /// to 0 (or to its own frame 0's), or the buffers keep the old length.
     float clamp_length = 0.0f;
     bool has_medium = false;   ///< true when the scene file declares a "medium"
     Medium medium;

@@ -1,5 +1,6 @@
 // The length the VPL clamps are relative to (clamp_extent): the bounds' diagonal, with
-// outlying bits of surface left out; and the texture coordinates the kernels read.
+// outlying bits of surface left out; the texture coordinates the kernels read; and the
+// mip chains an animation's frames take from the frame before.
 #include "device/scene_buffers.h"
 
 #include <cstring>

@@ -274,6 +274,12 @@ TEST_F(AnimationTest, ClampLengthIsFrameZerosInEveryFrame) {
     EXPECT_FLOAT_EQ(far0.clamp_length, clamp_extent(make_scene_buffers(far0)));
     EXPECT_GT(far0.clamp_length, 20.0f * zero.clamp_length);
     EXPECT_EQ(make_scene_buffers(scene_at_frame(away, 2)).clamp_length, far0.clamp_length);
+
+    // A posed frame used as a rest scene without its object tracks: no frame 0's length
+    // carried over from the animation it came from.
+    Scene still = far0;
+    still.animation.objects.clear();
+    EXPECT_EQ(scene_at_frame(still, 1).clamp_length, 0.0f);
 }
 
 TEST_F(AnimationTest, LightListStaysWhileALightDimsToZero) {
