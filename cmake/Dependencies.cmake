@@ -11,8 +11,8 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 # JPEG textures (host/scene/jpeg_decode.cpp): libjpeg62-turbo through libjpeg-dev.
 find_package(JPEG REQUIRED)
-# PNG textures (host/scene/png_decode.cpp): libpng16 through libpng-dev. (stb, above,
-# still writes the PNG previews.)
+# PNG textures (host/scene/png_decode.cpp) and the PNG previews (host/image/png_io.cpp):
+# libpng16 through libpng-dev. (stb, above, encodes the viewer's --screenshot-window capture.)
 find_package(PNG REQUIRED)
 if(NOT TARGET glm::glm)
   add_library(glm::glm INTERFACE IMPORTED)

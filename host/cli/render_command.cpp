@@ -17,6 +17,7 @@
 #include "cli/option_checks.h"
 #include "cli/parameter_options.h"
 #include "image/atomic_file.h"
+#include "image/background_writer.h"
 #include "image/image_io.h"
 #include "render/checkpoint.h"
 #include "render/checkpoint_session.h"
@@ -241,6 +242,9 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
     // interrupted one (a signal) keeps the frames it finished, as a still render keeps its
     // checkpoint: they are complete, and --frames from the next one continues the animation.
     CommitGroup outputs;
+    // Frame N's files are written while frame N+1 renders; declared after `outputs`, whose
+    // temporaries its writes fill, so that a failing run's write in flight ends first.
+    BackgroundWriter writes;
     std::string written;
     int frame_now = frames.first;
     auto stop_keeping_finished = [&](const std::string& when) {
@@ -251,6 +255,7 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
                               " renders a sequence from the start; it keeps no checkpoint)");
         {
             const InterruptDeferral defer;
+            writes.wait();  // the last finished frame's files
             outputs.commit();
         }
         std::fputs(written.c_str(), stdout);
@@ -260,6 +265,7 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
     };
     auto progress = [&](uint32_t done, uint32_t total, double elapsed, uint32_t restored) {
         print_progress(done, total, elapsed, restored);
+        writes.check();  // a failed write of the frame before stops the run now, not at the frame's end
         if (done < total)
             stop_keeping_finished("in frame " + std::to_string(frame_now) + " after " + std::to_string(done) + " of " +
                                   std::to_string(total) + " spp");
@@ -267,8 +273,13 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
     render_sequence(scene, frames, bo, settings, [&](int frame, const Image& img, const RenderStats& stats, double seconds) {
         const fs::path exr = frame_output_path(out, frame, frame_number_digits(scene));
         const fs::path png = png_beside(exr);
-        outputs.write(exr, [&](const fs::path& t) { write_exr(t, img); });
-        outputs.write(png, [&](const fs::path& t) { write_png(t, img, a.exposure); });
+        // A further signal waits for the write: the handler's clean-up would otherwise race
+        // it for the temporaries (image/fatal_signal_cleanup.h).
+        writes.start([&outputs, exr, png, exposure = a.exposure, image = img] {
+            const InterruptDeferral defer;
+            outputs.write(exr, [&](const fs::path& t) { write_exr(t, image); });
+            outputs.write(png, [&](const fs::path& t) { write_png(t, image, exposure); });
+        });
         std::fprintf(stderr, "tessera: frame %d: %.1f ms (%u spp in %.1f ms, the rest set-up)\n", frame, 1e3 * seconds,
                      stats.passes, 1e3 * stats.seconds);
         if (!stats.detail.empty()) std::fprintf(stderr, "  %s\n", stats.detail.c_str());
@@ -278,6 +289,7 @@ void run_sequence(const RenderArgs& a, const Scene& scene, FrameRange frames, co
     }, progress);
     {
         const InterruptDeferral defer;
+        writes.wait();
         outputs.commit();
     }
     if (interrupt_signal())

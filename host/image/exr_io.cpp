@@ -5,10 +5,14 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfThreading.h>
 
+#include <algorithm>
 #include <exception>
+#include <mutex>
 #include <string>
 #include <system_error>
+#include <thread>
 
 #include "image/atomic_file.h"
 #include "image/image_check.h"
@@ -20,8 +24,27 @@ namespace tessera {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// OpenEXR compresses a file's blocks of 16 rows (ZIP) on its global thread pool, which
+// has no threads until set: at 512² with six channels one thread took ~160 ms a file,
+// two ~90 ms (bench/results/frame_output.md). Each block is compressed alone and the
+// blocks are written in order, so the file's bytes do not depend on the thread count.
+void use_every_core() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        try {
+            Imf::setGlobalThreadCount(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+        } catch (const std::exception&) {  // no threads to be had: OpenEXR compresses on the caller's
+        }
+    });
+}
+
+}  // namespace
+
 void write_exr(const fs::path& path, const Image& image) {
     detail::check_image(path, image);
+    use_every_core();
     replace_file_atomic(path, [&](const fs::path& temp) {
         try {
             Imf::Header header(image.width, image.height);
