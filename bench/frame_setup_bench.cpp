@@ -1,8 +1,9 @@
 // What an animation pays per frame before its first pass (render_sequence and the
-// viewer's build_backend): scene_at_frame, make_scene_buffers with and without the
-// frame before's buffers (the mip chains taken from them, or remade), plan_effects and
-// Backend::set_scene, on both backends, in one process. Medians over frames 1..--frames
-// (frame 0 makes the backend), ms. Writes frame_setup_bench.md.
+// viewer's build_backend): the pose (PosedFrames::at, as both pose), make_scene_buffers
+// with and without the frame before's buffers (the mip chains taken from them, or
+// remade), plan_effects and Backend::set_scene, on both backends, in one process.
+// Medians over frames 1..--frames (frame 0 makes the backend), ms. Writes
+// frame_setup_bench.md.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "device/effect_plan.h"
 #include "scene/animation.h"
 #include "scene/loader.h"
+#include "scene/posed_frames.h"
 #include "util/heap.h"
 
 using namespace tessera;
@@ -45,9 +47,10 @@ Parts time_frames(const Scene& rest, BackendKind kind, int frames) {
     Parts p;
     std::unique_ptr<SceneBuffers> buffers;
     std::unique_ptr<Backend> backend;
+    const PosedFrames posed(rest);
     for (int frame = 0; frame <= frames; ++frame) {
         auto t0 = Clock::now();
-        const Scene scene = scene_at_frame(rest, frame % rest.animation.frame_count);
+        const Scene scene = posed.at(frame % rest.animation.frame_count);
         const double pose = ms_since(t0);
         t0 = Clock::now();
         const SceneBuffers fresh = make_scene_buffers(scene);

@@ -9,6 +9,7 @@
 #include "device/scene_buffers.h"
 #include "render/parameters.h"
 #include "render/renderer.h"
+#include "scene/posed_frames.h"
 #include "util/error.h"
 
 namespace tessera {
@@ -70,9 +71,10 @@ void render_sequence(const Scene& rest, FrameRange range, const BackendOptions& 
     // textures' mip chains from the frame before's (make_scene_buffers).
     std::unique_ptr<SceneBuffers> buffers;  // declared before the backend, which reads it
     std::unique_ptr<Backend> backend;
+    const PosedFrames frames(rest);  // the rest scene's motion bounds and frame 0's D, once
     for (int frame = range.first; frame <= range.last; ++frame) {
         const auto start = std::chrono::steady_clock::now();
-        const Scene scene = scene_at_frame(rest, frame);
+        const Scene scene = frames.at(frame);
         auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene, buffers.get()));
         const EffectPlan plan = plan_effects(scene);
         give_scene(backend, backend_options, *next, plan);

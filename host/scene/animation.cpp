@@ -257,31 +257,9 @@ void read_camera_track(const JsonField& list, Scene& scene, int frames) {
 }  // namespace
 
 Scene scene_at_frame(const Scene& rest, int frame) {
-    const Animation& a = rest.animation;
-    const int frames = std::max(a.frame_count, 1);
-    if (frame < 0 || frame >= frames)
-        throw InputError(rest.source.string() + ": frame " + std::to_string(frame) + " is outside the animation of " +
-                         rest.name + " (frames 0.." + std::to_string(frames - 1) + ")");
-    Scene out = rest;
-    for (const ObjectTrack& track : a.objects) {
-        const ObjectKey k = object_key_at(track.keys, frame);
-        for (const uint32_t o : track.objects) pose_object(rest, out, rest.objects[o], k);
-    }
-    for (const MaterialTrack& track : a.materials) {
-        size_t i, j;
-        float t;
-        find_segment(track.keys, frame, i, j, t);
-        for (const uint32_t m : track.materials) {
-            const Material& r = rest.materials[m];
-            out.materials[m].albedo = mix_opt(track.keys[i].albedo, track.keys[j].albedo, r.albedo, t);
-            out.materials[m].emission = mix_opt(track.keys[i].emission, track.keys[j].emission, r.emission, t);
-        }
-    }
-    out.camera = camera_at(rest.camera, a.camera, frame);
-    out.motion_bounds = motion_bounds(rest);
+    const SceneBounds motion = motion_bounds(rest);
     // Assigned either way: `rest` may itself be a posed copy carrying another frame 0's.
-    out.clamp_length = out.motion_bounds.empty() ? 0.0f : frame_zero_clamp_length(rest);
-    return out;
+    return scene_detail::pose_frame(rest, frame, motion, motion.empty() ? 0.0f : frame_zero_clamp_length(rest));
 }
 
 float frame_zero_clamp_length(const Scene& rest) {
@@ -318,6 +296,34 @@ SceneBounds motion_bounds(const Scene& rest) {
 }
 
 namespace scene_detail {
+
+Scene pose_frame(const Scene& rest, int frame, const SceneBounds& motion, float clamp_length) {
+    const Animation& a = rest.animation;
+    const int frames = std::max(a.frame_count, 1);
+    if (frame < 0 || frame >= frames)
+        throw InputError(rest.source.string() + ": frame " + std::to_string(frame) + " is outside the animation of " +
+                         rest.name + " (frames 0.." + std::to_string(frames - 1) + ")");
+    Scene out = rest;
+    for (const ObjectTrack& track : a.objects) {
+        const ObjectKey k = object_key_at(track.keys, frame);
+        for (const uint32_t o : track.objects) pose_object(rest, out, rest.objects[o], k);
+    }
+    for (const MaterialTrack& track : a.materials) {
+        size_t i, j;
+        float t;
+        find_segment(track.keys, frame, i, j, t);
+        for (const uint32_t m : track.materials) {
+            const Material& r = rest.materials[m];
+            out.materials[m].albedo = mix_opt(track.keys[i].albedo, track.keys[j].albedo, r.albedo, t);
+            out.materials[m].emission = mix_opt(track.keys[i].emission, track.keys[j].emission, r.emission, t);
+        }
+    }
+    out.camera = camera_at(rest.camera, a.camera, frame);
+    out.motion_bounds = motion;
+    out.clamp_length = clamp_length;
+    return out;
+}
+
 
 void read_animation(const JsonField& j, Scene& scene) {
     j.require_known_keys({"frames", "objects", "materials", "camera"});

@@ -76,7 +76,9 @@ struct Animation {
 /// `rest`. Throws InputError (naming the scene file and the frame) when `frame` is
 /// outside [0, frame_count) — for a static scene only frame 0 is valid, and returns
 /// a copy of `rest`. Sets the result's motion_bounds (motion_bounds(rest)) and
-/// clamp_length (frame_zero_clamp_length(rest) where object tracks move triangles, else 0).
+/// clamp_length (frame_zero_clamp_length(rest) where object tracks move triangles, else 0),
+/// both found from `rest` in every call: a sequence poses through PosedFrames
+/// (scene/posed_frames.h), which finds them once.
 Scene scene_at_frame(const Scene& rest, int frame);
 
 struct SceneBounds;
@@ -126,6 +128,10 @@ constexpr int kMaxAnimationFrames = 100000;
 /// [0, 1], negative emission, and a camera key whose look_at equals its position or
 /// whose view direction is parallel to camera.up.
 void read_animation(const JsonField& j, Scene& scene);
+
+/// scene_at_frame with the rest scene's motion_bounds and clamp_length given, as
+/// scene_at_frame finds them per call and PosedFrames (scene/posed_frames.h) once.
+Scene pose_frame(const Scene& rest, int frame, const SceneBounds& motion, float clamp_length);
 
 }  // namespace scene_detail
 }  // namespace tessera

@@ -50,7 +50,7 @@ ViewSession::~ViewSession() {
 // scene, keeping the device and its compiled programs (Backend::set_scene).
 void ViewSession::build_backend() {
     integrator_.reset();
-    scene_ = rest_.animation.animated() ? scene_at_frame(rest_, anim_frame_) : rest_;
+    scene_ = rest_.animation.animated() ? posed_.at(anim_frame_) : rest_;
     auto buffers = std::make_unique<SceneBuffers>(make_scene_buffers(scene_, buffers_.get()));
     plan_ = plan_effects(scene_);
     give_scene(backend_, options_.backend, *buffers, plan_);

@@ -27,6 +27,7 @@
 #include "integrators/integrator.h"
 #include "render/accumulator.h"
 #include "render/renderer.h"
+#include "scene/posed_frames.h"
 #include "scene/scene.h"
 #include "view/frame_budget.h"
 #include "view/input.h"
@@ -171,6 +172,7 @@ private:
     void observe_budget(double frame_seconds, FrameReport& report);
 
     Scene rest_, scene_;
+    PosedFrames posed_{rest_};  ///< rest_'s frames; after rest_, which it reads
     ViewOptions options_;
     RenderSettings settings_;
     int width_ = 0, height_ = 0;
