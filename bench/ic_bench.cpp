@@ -26,6 +26,7 @@
 #include "device/scene_buffers.h"
 #include "integrators/factory.h"
 #include "scene/loader.h"
+#include "scene/posed_frames.h"
 #include "util/heap.h"
 
 using namespace tessera;
@@ -64,9 +65,10 @@ std::vector<FrameResult> run_sequence(const Scene& rest, Method m, BackendKind k
     std::vector<FrameResult> out;
     std::unique_ptr<SceneBuffers> buffers;  // before the backend, which reads it
     std::unique_ptr<Backend> backend;
+    const PosedFrames posed(rest);  // as render_sequence
     for (int f = 0; f < frames; ++f) {
         const auto t0 = std::chrono::steady_clock::now();
-        const Scene scene = scene_at_frame(rest, f);
+        const Scene scene = posed.at(f);
         auto next = std::make_unique<SceneBuffers>(make_scene_buffers(scene, buffers.get()));  // as render_sequence
         const EffectPlan plan = plan_effects(scene);
         give_scene(backend, {kind, device}, *next, plan);

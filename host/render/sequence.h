@@ -41,7 +41,7 @@ using FrameDoneFn =
     std::function<void(int frame, const Image& image, const RenderStats& stats, double seconds)>;
 
 /// Renders frames range.first..range.last of `rest` in order: each frame is posed with
-/// scene_at_frame, flattened and rendered on one backend made for the first frame and
+/// PosedFrames (equal to scene_at_frame), flattened and rendered on one backend made for the first frame and
 /// given each later frame with Backend::set_scene. `settings` is
 /// the same for every frame; with --method tic one temporal instant cache is made for
 /// the sequence (settings.ic_state is ignored) and kept across its frames. Throws what

@@ -91,8 +91,8 @@ struct SceneBounds;
 /// about its translated pivot that holds the sphere of radius scale × the rest box's
 /// half-diagonal, and the centre and radius move linearly between keys. Each box is grown
 /// by 1e-5 of the magnitudes posing adds, for its float rounding. Cost: one pass over the
-/// moving objects' vertices and one step per key (scene_at_frame makes it every frame,
-/// beside its copy of every vertex). What for: the light paths' far roulette region
+/// moving objects' vertices and one step per key (once per sequence through PosedFrames;
+/// scene_at_frame makes it in every call, beside its copy of every vertex). What for: the light paths' far roulette region
 /// (docs/path-tracing.md §3) must be the same in every frame, or tic's updated cache would
 /// differ from a rebuild (docs/instant-caching.md §8).
 SceneBounds motion_bounds(const Scene& rest);
@@ -100,8 +100,8 @@ SceneBounds motion_bounds(const Scene& rest);
 /// trimmed_diagonal (scene/extent.h) of the triangles of frame 0 of `rest`'s animation,
 /// scene units: what scene_at_frame records as every frame's Scene::clamp_length where
 /// object tracks move triangles. Cost: a copy of every vertex and the extent's partial
-/// sorts (Sibenik: +3.5 ms a frame, bench/results/frame_setup.md), in place of the
-/// buffers' own (2 ms).
+/// sorts (Sibenik: ~3.3 ms, bench/results/frame_setup.md), in place of the buffers' own
+/// (2 ms): once per sequence through PosedFrames, in every call of scene_at_frame.
 float frame_zero_clamp_length(const Scene& rest);
 
 /// The bounds, scene units, of the triangles of `scene` (any frame's) that no object

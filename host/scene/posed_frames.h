@@ -1,7 +1,7 @@
-// An animation's frames posed one after another (render --frames): what scene_at_frame
-// finds from the rest scene alone, the objects' motion bounds and frame 0's VPL clamp
-// length (a copy of every vertex and its trimmed extent, ~1 ms a Sibenik frame), is found
-// once for the sequence instead of in every frame.
+// An animation's frames posed one after another (render --frames, the viewer's frames):
+// what scene_at_frame finds from the rest scene alone, the objects' motion bounds and
+// frame 0's VPL clamp length (a copy of every vertex and its trimmed extent; ~3.3 ms a
+// Sibenik frame, bench/results/frame_setup.md), is found once for the sequence.
 #pragma once
 #include "scene/scene.h"
 

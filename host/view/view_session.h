@@ -95,6 +95,9 @@ public:
     /// naming --reference when the reference cannot be read or has another size.
     ViewSession(const Scene& rest, const ViewOptions& options);
     ~ViewSession();
+    // posed_ holds a reference to rest_: a copy or move would leave it on the old one.
+    ViewSession(const ViewSession&) = delete;
+    ViewSession& operator=(const ViewSession&) = delete;
 
     /// Applies one input event (key bindings: key_help()).
     void handle(const InputEvent& event);
