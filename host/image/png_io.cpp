@@ -36,11 +36,13 @@ extern "C" void preview_warning(png_structp, png_const_charp) {}
 
 extern "C" void preview_append(png_structp png, png_bytep data, png_size_t n) {
     auto* out = static_cast<std::vector<unsigned char>*>(png_get_io_ptr(png));
+    bool grown = true;
     try {
         out->insert(out->end(), data, data + n);
     } catch (const std::bad_alloc&) {  // no exception may cross libpng's C frames
-        png_error(png, "out of memory");
+        grown = false;
     }
+    if (!grown) png_error(png, "out of memory");  // jumps: not from inside the handler
 }
 
 extern "C" void preview_flush(png_structp) {}
