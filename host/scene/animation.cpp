@@ -6,6 +6,7 @@
 
 #include "scene/extent.h"
 #include "scene/json_field.h"
+#include "scene/posed_frames.h"
 #include "scene/scene.h"
 #include "util/error.h"
 #include "util/input_limits.h"
@@ -257,9 +258,9 @@ void read_camera_track(const JsonField& list, Scene& scene, int frames) {
 }  // namespace
 
 Scene scene_at_frame(const Scene& rest, int frame) {
-    const SceneBounds motion = motion_bounds(rest);
-    // Assigned either way: `rest` may itself be a posed copy carrying another frame 0's.
-    return scene_detail::pose_frame(rest, frame, motion, motion.empty() ? 0.0f : frame_zero_clamp_length(rest));
+    // PosedFrames holds the rule for motion_bounds and clamp_length (assigned either way:
+    // `rest` may itself be a posed copy carrying another frame 0's).
+    return PosedFrames(rest).at(frame);
 }
 
 float frame_zero_clamp_length(const Scene& rest) {
