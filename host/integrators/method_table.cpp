@@ -43,6 +43,9 @@ std::shared_ptr<IcPassCaches> make_ic_caches(const IntegratorSettings& settings,
     ics.temporal = method_info(settings.method).temporal;
     ics.multiple_scattering = settings.igi.multiple_scattering;
     ics.light_path_depth = settings.igi.light_path_depth;
+    // One switch for the clamp's compensation: igi's screen-space estimate and ic's rays.
+    // Here, where every cache is made (a sequence's and the viewer's before any frame).
+    ics.clamp_compensation = settings.ic.clamp_compensation && settings.igi.clamp_compensation;
     return std::make_shared<IcPassCaches>(ics, objects);
 }
 

@@ -44,8 +44,6 @@ IntegratorSettings integrator_settings(const RenderSettings& settings, int width
     resolve_ic_subsets(resolved, width, height);
     IntegratorSettings s = resolved;
     s.igi.component_aovs = s.igi.component_aovs || settings.aovs;
-    // One switch for the clamp's compensation: igi's screen-space estimate and ic's rays.
-    s.ic.clamp_compensation = s.ic.clamp_compensation && s.igi.clamp_compensation;
     return s;
 }
 

@@ -105,5 +105,36 @@ TEST(Sequence, FramesEqualRendersOnAFreshBackend) {
     }
 }
 
+// --no-clamp-compensation reaches tic's cache, made once for the sequence
+// (prepare_sequence) before any frame: a sequence's first frame is the frame rendered
+// alone, whose cache is made with the frame, with and without the compensation.
+TEST(Sequence, TicFirstFrameEqualsTheFrameAloneWithAndWithoutClampCompensation) {
+    const Scene rest = load_scene(std::filesystem::path(TESSERA_SCENES_DIR) / "cornell-box-animated.json",
+                                  make_data_path(std::nullopt));
+    RenderSettings settings;
+    settings.method = Method::Tic;
+    settings.width = settings.height = 16;
+    settings.spp = 1;
+    settings.igi.paths_per_set = 4;
+    settings.ic.paths = 16;
+    std::vector<double> means;
+    for (bool compensation : {true, false}) {
+        settings.igi.clamp_compensation = compensation;
+        int checked = 0;
+        render_sequence(rest, {2, 2}, BackendOptions{BackendKind::Embree, ""}, settings,
+                        [&](int frame, const Image& img, const RenderStats&, double) {
+                            const Image alone =
+                                test::render_with(BackendKind::Embree, scene_at_frame(rest, frame), settings);
+                            EXPECT_EQ(img.find("R")->data, alone.find("R")->data) << "compensation " << compensation;
+                            means.push_back(test::channel_mean(img, "R"));
+                            ++checked;
+                        });
+        EXPECT_EQ(checked, 1);
+    }
+    // The compensation adds light: the two settings differ, so the test tells them apart.
+    ASSERT_EQ(means.size(), 2u);
+    EXPECT_GT(means[0], means[1]);
+}
+
 }  // namespace
 }  // namespace tessera
