@@ -59,7 +59,8 @@ const Steps& steps() {
 }
 
 inline std::uint8_t code_of(const Steps& s, double v) {
-    // Clamped to [0, 1) without branches (a preview's values cross 0 and 1 at random):
+    // Clamped to [0, 1) by selects, not early returns (a preview's values cross 0 and 1 at
+    // random, which branches would mispredict):
     // NaN and v <= 0 to 0, v >= 1 to the double below 1, whose code is 255 as 1's is.
     const double below_one = 0x1.fffffffffffffp-1;
     const double c = v > 0.0 ? (v < 1.0 ? v : below_one) : 0.0;
@@ -73,9 +74,15 @@ inline std::uint8_t code_of(const Steps& s, double v) {
 
 std::uint8_t srgb8(double v) { return code_of(steps(), v); }
 
-void srgb8_encode(const float* in, std::size_t n, double scale, std::uint8_t* out, std::size_t stride) {
+void srgb8_encode(const float* in, std::size_t n, double scale, std::uint8_t* out, std::size_t out_stride) {
     const Steps& s = steps();
-    for (std::size_t i = 0; i < n; ++i) out[i * stride] = code_of(s, static_cast<double>(in[i]) * scale);
+    for (std::size_t i = 0; i < n; ++i) out[i * out_stride] = code_of(s, static_cast<double>(in[i]) * scale);
+}
+
+void srgb8_encode(const double* in, std::size_t in_stride, std::size_t n, double scale, std::uint8_t* out,
+                  std::size_t out_stride) {
+    const Steps& s = steps();
+    for (std::size_t i = 0; i < n; ++i) out[i * out_stride] = code_of(s, in[i * in_stride] * scale);
 }
 
 }  // namespace tessera

@@ -20,9 +20,14 @@ std::uint8_t srgb8_exact(double v);
 /// checked once (2026-12-02).
 std::uint8_t srgb8(double v);
 
-/// out[i · stride] = srgb8(double(in[i]) · scale) for i < n: one channel of a preview.
+/// out[i · out_stride] = srgb8(double(in[i]) · scale) for i < n: one channel of a preview.
 /// A 512² RGB preview's encoding: ~25 ms with srgb8_exact, 2-3 ms so
 /// (bench/results/frame_output.md).
-void srgb8_encode(const float* in, std::size_t n, double scale, std::uint8_t* out, std::size_t stride);
+void srgb8_encode(const float* in, std::size_t n, double scale, std::uint8_t* out, std::size_t out_stride);
+
+/// out[i · out_stride] = srgb8(in[i · in_stride] · scale) for i < n: one channel read from
+/// interleaved doubles (the viewer's display of its accumulated sums).
+void srgb8_encode(const double* in, std::size_t in_stride, std::size_t n, double scale, std::uint8_t* out,
+                  std::size_t out_stride);
 
 }  // namespace tessera

@@ -44,7 +44,8 @@ std::shared_ptr<IcPassCaches> make_ic_caches(const IntegratorSettings& settings,
     ics.multiple_scattering = settings.igi.multiple_scattering;
     ics.light_path_depth = settings.igi.light_path_depth;
     // One switch for the clamp's compensation: igi's screen-space estimate and ic's rays.
-    // Here, where every cache is made (a sequence's and the viewer's before any frame).
+    // Here, where the renderer makes every cache (a sequence's and the viewer's before any
+    // frame); an IcPassCaches made directly takes ic.clamp_compensation as it is.
     ics.clamp_compensation = settings.ic.clamp_compensation && settings.igi.clamp_compensation;
     return std::make_shared<IcPassCaches>(ics, objects);
 }

@@ -4,12 +4,12 @@
 #include "view/view_session.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 
 #include "image/atomic_file.h"
 #include "image/resample.h"
+#include "image/srgb8.h"
 #include "metrics/image_metrics.h"
 #include "render/interrupt.h"
 #include "render/sequence.h"
@@ -17,28 +17,6 @@
 #include "util/error.h"
 
 namespace tessera::view {
-namespace {
-
-// Display transfer: the PNG preview's (clamp, sRGB OETF) from a table, one entry per
-// 1/16384 of the unit range: a pow per channel would cost ~10 ms a frame at 512².
-struct SrgbTable {
-    std::array<uint8_t, 16385> code;
-    SrgbTable() {
-        for (size_t i = 0; i < code.size(); ++i)
-            code[i] = static_cast<uint8_t>(std::lround(255.0 * metrics::tone_map_srgb(double(i) / 16384.0)));
-    }
-    uint8_t operator()(double v) const {
-        if (!(v > 0.0)) return 0;
-        if (v >= 1.0) return 255;
-        return code[static_cast<size_t>(v * 16384.0 + 0.5)];
-    }
-};
-const SrgbTable& srgb() {
-    static const SrgbTable table;
-    return table;
-}
-
-}  // namespace
 
 const char* aov_name(Aov aov) {
     static const char* names[] = {"radiance", "albedo",      "normal",  "depth",   "guidance.SS", "guidance.ID",
@@ -106,28 +84,33 @@ void ViewSession::display(std::vector<uint8_t>& rgba) const {
     rgba.assign(n * 4, 255);
     if (!acc_ || acc_->passes() == 0) return;
     const double scale = std::exp2(double(exposure_));
-    const SrgbTable& tm = srgb();
+    // The PNG preview's transfer (clamp, exact sRGB OETF, image/srgb8.h).
     if (aov_ == Aov::Radiance && acc_->width() != width_) {  // a budgeted moving frame: upsampled
         const Image image = to_window(acc_->mean_image(false, false));
-        const float* ch[3] = {image.find("R")->data.data(), image.find("G")->data.data(), image.find("B")->data.data()};
-        for (size_t p = 0; p < n; ++p)
-            for (int c = 0; c < 3; ++c) rgba[4 * p + c] = tm(ch[c][p] * scale);
+        for (int c = 0; c < 3; ++c)
+            srgb8_encode(image.find(std::string(1, "RGB"[c]))->data.data(), n, scale, &rgba[c], 4);
         return;
     }
     if (aov_ == Aov::Radiance) {  // from the sums directly: the common case, every frame
         const std::vector<double>& s = acc_->sums();
         const double k = scale / acc_->passes();
-        for (size_t p = 0; p < n; ++p)
-            for (int c = 0; c < 3; ++c) rgba[4 * p + c] = tm(s[p * TS_PASS_FLOATS + TS_PASS_RADIANCE + c] * k);
+        for (int c = 0; c < 3; ++c) srgb8_encode(&s[TS_PASS_RADIANCE + c], TS_PASS_FLOATS, n, k, &rgba[c], 4);
         return;
     }
     const Image image = aov_image();
-    auto put3 = [&](const char* a, const char* b, const char* c, double mul, double add, bool tone) {
-        const ImageChannel* ch[3] = {image.find(a), image.find(b), image.find(c)};
+    auto albedo = [&] {  // sRGB-encoded as the radiance is; a missing channel is black
+        for (int c = 0; c < 3; ++c) {
+            const ImageChannel* ch = image.find(std::string("albedo.") + "RGB"[c]);
+            if (ch) srgb8_encode(ch->data.data(), n, 1.0, &rgba[c], 4);
+            else for (size_t p = 0; p < n; ++p) rgba[4 * p + c] = 0;
+        }
+    };
+    auto normals = [&] {  // N mapped from [-1, 1] to [0, 1] linearly
+        const ImageChannel* ch[3] = {image.find("N.X"), image.find("N.Y"), image.find("N.Z")};
         for (size_t p = 0; p < n; ++p)
             for (int i = 0; i < 3; ++i) {
-                const double v = ch[i] ? ch[i]->data[p] * mul + add : 0.0;
-                rgba[4 * p + i] = tone ? tm(v) : static_cast<uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
+                const double v = ch[i] ? ch[i]->data[p] * 0.5 + 0.5 : 0.0;
+                rgba[4 * p + i] = static_cast<uint8_t>(std::lround(255.0 * std::clamp(v, 0.0, 1.0)));
             }
     };
     auto put1 = [&](const std::vector<float>& v) {  // scaled by the maximum finite value
@@ -140,8 +123,8 @@ void ViewSession::display(std::vector<uint8_t>& rgba) const {
         }
     };
     switch (aov_) {
-        case Aov::Albedo: put3("albedo.R", "albedo.G", "albedo.B", 1.0, 0.0, true); break;
-        case Aov::Normal: put3("N.X", "N.Y", "N.Z", 0.5, 0.5, false); break;
+        case Aov::Albedo: albedo(); break;
+        case Aov::Normal: normals(); break;
         case Aov::Error: {
             const std::vector<double> map = metrics::rel_se_map(metrics::rgb_for_metrics(*reference_, options_.reference),
                                                                 metrics::rgb_for_metrics(image, "the view"));

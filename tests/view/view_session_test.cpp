@@ -333,14 +333,19 @@ TEST(ViewSession, DisplayIsThePngToneMap) {
     session.display(rgba);
     const Image img = session.accumulation();
     ASSERT_EQ(rgba.size(), size_t(32 * 32 * 4));
-    int worst = 0;
+    int worst = 0, off = 0;
     for (size_t p = 0; p < 32 * 32; ++p)
         for (int c = 0; c < 3; ++c) {
             const double v = img.find(std::string(1, "RGB"[c]))->data[p];
             const int expected = int(std::lround(255.0 * metrics::tone_map_srgb(v, 1.0)));
             worst = std::max(worst, std::abs(int(rgba[4 * p + c]) - expected));
+            off += rgba[4 * p + c] != expected;
         }
-    EXPECT_LE(worst, 1);  // the table quantises to 1/16384 of the unit range
+    // The same curve (image/srgb8.h). The display reads the accumulated sums in double, the
+    // image holds their mean as float: a value within a float's rounding of a code's step
+    // may land on either side of it, and only such values.
+    EXPECT_LE(worst, 1);
+    EXPECT_LE(off, 32 * 32 * 3 / 100);
 }
 
 // The HUD's rate is in what the method counts: rays for the igi family, camera samples
