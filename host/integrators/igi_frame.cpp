@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "device/medium_view.h"
 #include "gi/clamp_screen.h"
 #include "integrators/settings.h"
 #include "kernels/shared/composite.h"
@@ -84,6 +85,10 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     frame.igi_g_clamp = g_clamp_for(frame.pass);
     // The kernels see the light-transport components only; edges are host scheduling.
     frame.igi_components = effective_components() & ~TS_COMPONENT_EDGE;
+    // A medium out of every camera ray's reach this frame: each pixel's march would give
+    // in-scattered light 0 and transmittance 1, so PM is skipped with the same image.
+    if ((frame.igi_components & TS_COMPONENT_PM) && !camera_may_meet_medium(frame, ts::ts_medium_load(scene_.medium.data())))
+        frame.igi_components &= ~TS_COMPONENT_PM;
     frame.igi_media_vpls = !settings_.multiple_scattering ? TS_MEDIA_VPLS_NONE
                            : settings_.ray_lights         ? TS_MEDIA_VPLS_RAYS
                                                           : TS_MEDIA_VPLS_POINTS;
@@ -154,6 +159,7 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     stats_.vpls = vpls.count();
     stats_.vpl_rays = vpls.rays;
     stats_.vpl_seconds = since(t0);
+    stats_.medium_out_of_view = (effective_components() & TS_COMPONENT_PM) && !(frame.igi_components & TS_COMPONENT_PM);
 
     TsFrame surface_frame = frame;
     if (!interleaved_indirect()) surface_frame.igi_components &= ~TS_COMPONENT_ID;
@@ -182,7 +188,8 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     const auto tr = Clock::now();
     refine(frame, surf, media);
     t0 += Clock::now() - tr;
-    const uint32_t bits = effective_components();
+    // This frame's components: PM may be out of view (prepare).
+    const uint32_t bits = frame.igi_components;
     for (int c = 0; c < kAisComponents; ++c) {
         if (bits & (1u << c)) reconstruct_component(c);
         else final_[c] = raw_[c];  // not computed: zeros, which the filter would keep
@@ -321,6 +328,7 @@ std::string IgiFrame::describe() const {
     kernel_share(paths_kernel, "kernel", stats_.paths_kernel_seconds);
     kernel_share(select_kernels, "kernels", stats_.select_kernel_seconds);
     kernel_share(resolve_kernels, "kernels", stats_.resolve_kernel_seconds);
+    const char* media_note = !plan_.medium ? " (no medium)" : stats_.medium_out_of_view ? " (out of view)" : "";
     // No light path traced (ic or tic on a clear scene, whose cache carries the indirect
     // light): the VPL settings were not read, so they are not shown.
     if (stats_.vpls == 0 && stats_.vpl_rays == 0) {
@@ -328,7 +336,7 @@ std::string IgiFrame::describe() const {
                       "igi: tile %ux%u, no VPL sets traced, last frame: surface %.1f ms, media %.1f ms%s, "
                       "filter+composite %.1f ms%s",
                       settings_.tile, settings_.tile, 1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds,
-                      plan_.medium ? "" : " (no medium)", 1e3 * stats_.filter_seconds, resolve_kernels);
+                      media_note, 1e3 * stats_.filter_seconds, resolve_kernels);
         return buf;
     }
     std::snprintf(buf, sizeof buf,
@@ -339,7 +347,7 @@ std::string IgiFrame::describe() const {
                   static_cast<unsigned long long>(stats_.vpl_rays), g_clamp_, 1e3 * stats_.vpl_seconds,
                   1e3 * stats_.view_seconds, 1e3 * stats_.paths_seconds, paths_kernel, 1e3 * stats_.select_seconds,
                   select_kernels,
-                  1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, plan_.medium ? "" : " (no medium)",
+                  1e3 * stats_.surface_seconds, 1e3 * stats_.media_seconds, media_note,
                   1e3 * stats_.filter_seconds, resolve_kernels);
     return buf;
 }

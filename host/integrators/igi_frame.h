@@ -122,6 +122,9 @@ struct IgiFrameStats {
     size_t vpls = 0;
     uint64_t vpl_rays = 0;   ///< light-path rays
     uint64_t pixel_rays = 0; ///< camera, shadow and VPL rays of the kernels (upper bound)
+    /// PM was called for but skipped: no camera ray of the frame can meet the medium
+    /// (camera_may_meet_medium, device/medium_view.h), so no ray march ran.
+    bool medium_out_of_view = false;
     double ais_seconds = 0;  ///< guidance, schedule and the extra sets (AIS only)
     /// Its parts (AIS only): guidance and schedule (a device frame's: their kernels and
     /// the host's prefix sums with their upload), the extra sets' kernel launch with its

@@ -84,6 +84,70 @@ TEST(IgiWork, FollowsTheScene) {
     EXPECT_EQ(igi.stats().vpl_rays, 0u);
 }
 
+Scene with_fog_box(Scene s, glm::vec3 lo, glm::vec3 hi) {
+    s.has_medium = true;
+    s.medium.sigma_s = glm::vec3(0.5f);
+    s.medium.sigma_a = glm::vec3(0.1f);
+    s.medium.bounded = true;
+    s.medium.box_min = lo;
+    s.medium.box_max = hi;
+    return s;
+}
+
+TEST(IgiWork, SkipsTheRayMarchWhereNoCameraRayMeetsTheMedium) {
+    // The room's camera sits at z = 0.98 looking down -z with an 80° view. A fog box
+    // beside it, out of view but in the lit room (the surfaces' links cross it, the light
+    // paths scatter in it), and one outside the room behind it: neither runs a ray march,
+    // while a box in view does. The march it skips returns in-scattered light 0 and
+    // transmittance 1 at every pixel, so the image is the same; with the box outside the
+    // room the image is the medium-free one, bit for bit.
+    const Scene plain = test::closed_box({-1, 0, -1}, {1, 2, 1}, glm::vec3(0.6f), glm::vec3(5.0f), 0.3f);
+    const Scene beside = with_fog_box(plain, {0.7f, 0.1f, 0.6f}, {0.95f, 1.9f, 0.95f});
+    const Scene outside = with_fog_box(plain, {-0.5f, 0.5f, 2.0f}, {0.5f, 1.5f, 3.0f});
+    const Scene seen = with_fog_box(plain, {-0.5f, 0.5f, -0.5f}, {0.5f, 1.5f, 0.5f});
+    RenderSettings rs;
+    rs.width = rs.height = 16;
+    rs.spp = 2;
+    for (BackendKind kind : {BackendKind::Embree, BackendKind::OpenCL})
+        for (Method method : {Method::Igi, Method::Ais}) {
+            SCOPED_TRACE(std::string(kind == BackendKind::Embree ? "embree " : "opencl ") + method_info(method).name);
+            rs.method = method;
+            Image without_medium;
+            for (const Scene* s : {&plain, &outside, &beside, &seen}) {
+                SceneBuffers b = make_scene_buffers(*s);
+                auto be = make_backend({kind, ""}, b, plan_effects(*s));
+                const Image img = render_frame(*be, *s, b, rs);
+                EXPECT_EQ(be->dispatch_count(KernelId::IgiMedia), s == &seen ? 2u : 0u);
+                if (s == &plain) without_medium = img;
+                if (s == &beside)  // the fog there dims and lights the room all the same
+                    EXPECT_NE(img.find("R")->data, without_medium.find("R")->data);
+                if (s != &outside) continue;
+                ASSERT_EQ(img.channels.size(), without_medium.channels.size());
+                for (size_t c = 0; c < img.channels.size(); ++c)
+                    EXPECT_EQ(img.channels[c].data, without_medium.channels[c].data) << img.channels[c].name;
+            }
+            // The march skipped beside the camera, run by hand on the frame.
+            SceneBuffers b = make_scene_buffers(beside);
+            auto be = make_backend({kind, ""}, b, plan_effects(beside));
+            IgiFrame igi(*be, b, plan_effects(beside), IgiSettings{});
+            const TsFrame raw = make_frame(beside.camera, 16, 16, 4, 1, b.light_count);
+            std::vector<float> out, media;
+            igi.render_pass(raw, out);  // leaves the pass's VPLs as the backend's inputs
+            EXPECT_TRUE(igi.stats().medium_out_of_view);
+            EXPECT_NE(igi.describe().find("media 0.0 ms (out of view)"), std::string::npos) << igi.describe();
+            TsFrame f = igi.prepare(raw);
+            ASSERT_EQ(f.igi_components & TS_COMPONENT_PM, 0u);
+            f.igi_components |= TS_COMPONENT_PM;
+            be->launch(KernelId::IgiMedia, f, media);
+            ASSERT_EQ(media.size(), size_t(16 * 16 * TS_IGI_MEDIA_FLOATS));
+            for (size_t p = 0; p < 16 * 16; ++p)
+                for (int c = 0; c < 3; ++c) {
+                    ASSERT_EQ(media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_RADIANCE + c], 0.0f) << "pixel " << p;
+                    ASSERT_EQ(media[p * TS_IGI_MEDIA_FLOATS + TS_IGI_MEDIA_TRANSMITTANCE + c], 1.0f) << "pixel " << p;
+                }
+        }
+}
+
 TEST(IgiAgreement, BackendsRenderTheSameFrame) {
     // Same seed: the same VPLs (previous test) and the same light samples, so the
     // backends differ only by traversal rounding; the yardstick is the frame-to-frame

@@ -1,0 +1,82 @@
+#include "device/medium_view.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace tessera {
+namespace {
+
+struct V3 {
+    double x, y, z;
+};
+V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+V3 operator*(V3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+double length(V3 a) { return std::sqrt(dot(a, a)); }
+V3 load(const float* v) { return {v[0], v[1], v[2]}; }
+V3 load(ts::float3 v) { return {v.x, v.y, v.z}; }
+
+// Whether `axis` separates the cone (apex o, edge directions d) from the box [lo, hi]:
+// the cone projects to a half-line from o·axis (or the whole line where its edges point
+// both ways), the box to [min, max] over its corners.
+// An edge within 1e-9 of its length of the axis's plane counts as in it: a crossed axis
+// holds its own edge at 0 up to double rounding (1e-16), which would otherwise pick the
+// side at random. Safe: an edge that dips 1e-9 below the plane reaches the box, at most
+// 2√3 of the scale from the camera, at most 3.5e-9 of the scale below the apex, far less
+// than the box's 1e-4 margin.
+bool separates(V3 axis, V3 o, const std::array<V3, 4>& d, V3 lo, V3 hi) {
+    bool up = true, down = true;
+    const double axis_length = length(axis);
+    if (!(axis_length > 0.0)) return false;
+    for (const V3& e : d) {
+        const double s = dot(e, axis), zero = 1e-9 * length(e) * axis_length;
+        up = up && s >= -zero;
+        down = down && s <= zero;
+    }
+    if (!up && !down) return false;
+    const V3 c = (lo + hi) * 0.5, h = (hi + lo * -1.0) * 0.5;
+    const double centre = dot(c, axis),
+                 radius = std::fabs(h.x * axis.x) + std::fabs(h.y * axis.y) + std::fabs(h.z * axis.z);
+    const double apex = dot(o, axis);
+    return (up && centre + radius < apex) || (down && centre - radius > apex);
+}
+
+}  // namespace
+
+bool camera_may_meet_medium(const TsFrame& f, const ts::TsMedium& m) {
+    if (!m.present) return false;
+    if (!m.bounded) return true;
+    const V3 o = load(f.cam_pos), fw = load(f.cam_forward), rt = load(f.cam_right), up = load(f.cam_up);
+    V3 lo = load(m.box_min), hi = load(m.box_max);
+    const double coords[] = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, o.x, o.y, o.z};
+    double scale = 0.0;
+    for (double c : coords) {
+        if (!std::isfinite(c)) return true;
+        scale = std::max(scale, std::fabs(c));
+    }
+    const double lr = length(rt), lu = length(up), lf = length(fw);
+    if (!(std::isfinite(lr + lu + lf) && lr > 0.0 && lu > 0.0 && lf > 0.0)) return true;
+    const double e = 1e-4 * scale;
+    lo = lo + V3{-e, -e, -e};
+    hi = hi + V3{e, e, e};
+    // A float ray's direction may lie off the image's cone by a few ulps of its summands'
+    // lengths, in any direction: widen the cone's image coordinates by ten times that.
+    const double slack = 1e-5 * (lf + lr + lu), a = 1.0 + slack / lr, b = 1.0 + slack / lu;
+    if (!(slack < 0.5 * lf)) return true;  // a cone near a half-space: every box may meet it
+    const V3 f0 = fw * (1.0 - slack / lf);
+    const std::array<V3, 4> d = {f0 + rt * a + up * b, f0 + rt * -a + up * b, f0 + rt * -a + up * -b,
+                                 f0 + rt * a + up * -b};
+    const std::array<V3, 3> box_axes = {V3{1, 0, 0}, V3{0, 1, 0}, V3{0, 0, 1}};
+    for (const V3& n : box_axes)
+        if (separates(n, o, d, lo, hi)) return false;
+    for (int i = 0; i < 4; ++i) {
+        if (separates(cross(d[i], d[(i + 1) % 4]), o, d, lo, hi)) return false;
+        for (const V3& n : box_axes)
+            if (separates(cross(n, d[i]), o, d, lo, hi)) return false;
+    }
+    return true;
+}
+
+}  // namespace tessera
