@@ -255,9 +255,10 @@ void AisFrame::resolve_on_device(const TsFrame& frame, const TsFrame& surface_fr
     stats_.ais_kernel_seconds = backend_.kernel_seconds(KernelId::AisCompactItem);
     stats_.ais_merge_seconds = 0.0;  // in the resolve
     stats_.ais_seconds = stats_.ais_schedule_seconds + stats_.ais_kernel_seconds;
-    // The rest of the wall time: the clamp's and the resolve's kernels, the edges, the
-    // read-backs and the gaps.
-    stats_.filter_seconds = std::max(0.0, wall - stats_.surface_seconds - stats_.media_seconds - stats_.ais_seconds);
+    // The rest of the wall time but the edges' stage: the clamp's and the resolve's
+    // kernels, the read-backs and the gaps.
+    stats_.filter_seconds = std::max(
+        0.0, wall - stats_.surface_seconds - stats_.media_seconds - stats_.ais_seconds - stats_.edge_seconds);
     stats_.resolve_kernel_seconds = resolve_kernels_seconds(ais, resolve);
 }
 

@@ -198,7 +198,8 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     composite(surf, out);
     finish(frame, out);
     if (settings_.component_aovs) add_to_sums();
-    stats_.filter_seconds = since(t0);
+    // finish() timed AIS's edges as a stage of their own.
+    stats_.filter_seconds = std::max(0.0, since(t0) - stats_.edge_seconds);
 }
 
 bool IgiFrame::needs_vpl_sets(uint32_t components) const {

@@ -105,7 +105,9 @@ struct IgiSettings {
 /// Timings and counts of the last frame, for the log and the benchmark. A frame resolved
 /// on the device (Backend::resolves_on_device) queues its kernels without host waits: its
 /// kernels' stages are their device times (Backend::kernel_seconds), its host parts wall
-/// times between the reads, and filter_seconds the rest of the frame's wall time.
+/// times between the reads, and filter_seconds the rest of the frame's wall time. The
+/// stages do not overlap: filter_seconds (the log's "filter+composite") leaves out AIS's
+/// edge samples, edge_seconds, which the log shows apart (it held them before 2026-12-02).
 struct IgiFrameStats {
     double vpl_seconds = 0, surface_seconds = 0, media_seconds = 0, filter_seconds = 0;
     /// The VPL stage's parts: the view points (their camera rays), the light paths, the

@@ -26,9 +26,10 @@ std::vector<std::string> ViewSession::hud_lines(double fps) const {
                       paused_ ? "paused" : "all passes accumulated", ms, rate, unit);
     lines.push_back(buf);
     if (igi_family(settings_.method)) {
-        std::snprintf(buf, sizeof buf, "VPLs %.1f | SS+ID %.1f | PM %.1f | filter %.1f | AIS %.1f | cache %.1f ms",
+        std::snprintf(buf, sizeof buf,
+                      "VPLs %.1f | SS+ID %.1f | PM %.1f | filter %.1f | AIS %.1f | edges %.1f | cache %.1f ms",
                       1e3 * last_.vpl, 1e3 * last_.surface, 1e3 * last_.media, 1e3 * last_.filter, 1e3 * last_.ais,
-                      1e3 * last_.cache);
+                      1e3 * last_.edges, 1e3 * last_.cache);
         lines.push_back(buf);
     }
     std::snprintf(buf, sizeof buf, "method %s on %s", method_name(settings_.method),

@@ -72,7 +72,8 @@ void ViewLoop::finish(const std::string& scene_name) const {
                           {"rays", s.rays},
                           {"stages_ms",
                            {{"vpl", 1e3 * s.vpl}, {"surface", 1e3 * s.surface}, {"media", 1e3 * s.media},
-                            {"filter", 1e3 * s.filter}, {"ais", 1e3 * s.ais}, {"cache", 1e3 * s.cache},
+                            {"filter", 1e3 * s.filter}, {"ais", 1e3 * s.ais}, {"edges", 1e3 * s.edges},
+                            {"cache", 1e3 * s.cache},
                             {"pass", 1e3 * s.total}}}});
         const BudgetReport& b = t.report.budget;
         if (b.applied)

@@ -248,6 +248,7 @@ FrameReport ViewSession::advance(double dt) {
         last_.media = stats.igi.media_seconds;
         last_.filter = stats.igi.filter_seconds;
         last_.ais = stats.igi.ais_seconds;
+        last_.edges = stats.igi.edge_seconds;
         last_.cache = stats.igi.cache_seconds;
         last_.rays = stats.igi.vpl_rays + stats.igi.pixel_rays + stats.ic.indirect_rays();
         last_.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -60,7 +60,7 @@ const char* aov_name(Aov aov);
 
 /// Stage times of the last pass in seconds (IgiFrameStats; 0 for stages a method lacks).
 struct StageTimes {
-    double vpl = 0, surface = 0, media = 0, filter = 0, ais = 0, cache = 0;
+    double vpl = 0, surface = 0, media = 0, filter = 0, ais = 0, edges = 0, cache = 0;
     double total = 0;      ///< the whole pass, integrator and accumulation
     uint64_t rays = 0;     ///< rays the pass traced as the integrator counts them (0: not counted)
 };

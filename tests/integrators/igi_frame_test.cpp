@@ -119,8 +119,9 @@ TEST(IgiWork, SkipsTheRayMarchWhereNoCameraRayMeetsTheMedium) {
                 const Image img = render_frame(*be, *s, b, rs);
                 EXPECT_EQ(be->dispatch_count(KernelId::IgiMedia), s == &seen ? 2u : 0u);
                 if (s == &plain) without_medium = img;
-                if (s == &beside)  // the fog there dims and lights the room all the same
+                if (s == &beside) {  // the fog there dims and lights the room all the same
                     EXPECT_NE(img.find("R")->data, without_medium.find("R")->data);
+                }
                 if (s != &outside) continue;
                 ASSERT_EQ(img.channels.size(), without_medium.channels.size());
                 for (size_t c = 0; c < img.channels.size(); ++c)
