@@ -316,6 +316,13 @@ void AisFrame::add_to_sums() {
         if (!guidance_.g[c].empty()) add(guidance_sums_[c], guidance_.g[c]);
         if (!schedule_.sets[c].empty()) add(guidance_sums_[3 + c], schedule_.sets[c]);
     }
+    // PM out of this frame's view (IgiFrame::prepare) was neither guided nor evaluated:
+    // guidance 0 and no sets, so its channels stay and their means count the frame.
+    if (stats_.medium_out_of_view && guidance_.g[kAisPM].empty()) {
+        const std::vector<float> zeros(raw_[kAisSS].size() / 3, 0.0f);
+        add(guidance_sums_[kAisPM], zeros);
+        add(guidance_sums_[3 + kAisPM], zeros);
+    }
     if (!edge_guidance_.empty()) {
         add(guidance_sums_[6], edge_guidance_);
         std::vector<float> samples(edge_schedule_.samples.begin(), edge_schedule_.samples.end());

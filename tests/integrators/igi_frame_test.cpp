@@ -127,6 +127,20 @@ TEST(IgiWork, SkipsTheRayMarchWhereNoCameraRayMeetsTheMedium) {
                 for (size_t c = 0; c < img.channels.size(); ++c)
                     EXPECT_EQ(img.channels[c].data, without_medium.channels[c].data) << img.channels[c].name;
             }
+            // AIS's PM maps stay among the AOVs out of view: guidance 0, no sets evaluated.
+            if (method == Method::Ais) {
+                RenderSettings with_aovs = rs;
+                with_aovs.aovs = true;
+                SceneBuffers b = make_scene_buffers(beside);
+                auto be = make_backend({kind, ""}, b, plan_effects(beside));
+                const Image img = render_frame(*be, beside, b, with_aovs);
+                for (const char* name : {"guidance.PM", "sets.PM"}) {
+                    ASSERT_NE(img.find(name), nullptr) << name;
+                    for (float v : img.find(name)->data) ASSERT_EQ(v, 0.0f) << name;
+                }
+                ASSERT_NE(img.find("sets.SS"), nullptr);
+                for (float v : img.find("sets.SS")->data) ASSERT_GE(v, 1.0f) << "the own set at least";
+            }
             // The march skipped beside the camera, run by hand on the frame.
             SceneBuffers b = make_scene_buffers(beside);
             auto be = make_backend({kind, ""}, b, plan_effects(beside));
