@@ -24,8 +24,9 @@ V3 load(ts::float3 v) { return {v.x, v.y, v.z}; }
 // An edge within 1e-9 of its length of the axis's plane counts as in it: a crossed axis
 // holds its own edge at 0 up to double rounding (1e-16), which would otherwise pick the
 // side at random. Safe: an edge that dips 1e-9 below the plane reaches the box, at most
-// 2√3 of the scale from the camera, at most 3.5e-9 of the scale below the apex, far less
-// than the box's 1e-4 margin.
+// 2√3 of the scale from the camera, at most 3.5e-9 of the scale below the apex; a ray
+// between the edges dips at most ~150× that in a view under 179° (the caller's guard),
+// still far below the box's 1e-4 margin.
 bool separates(V3 axis, V3 o, const std::array<V3, 4>& d, V3 lo, V3 hi) {
     bool up = true, down = true;
     const double axis_length = length(axis);
@@ -49,7 +50,10 @@ bool camera_may_meet_medium(const TsFrame& f, const ts::TsMedium& m) {
     if (!m.present) return false;
     if (!m.bounded) return true;
     const V3 o = load(f.cam_pos), fw = load(f.cam_forward), rt = load(f.cam_right), up = load(f.cam_up);
-    V3 lo = load(m.box_min), hi = load(m.box_max);
+    // The slab test reads a box given max before min as the swapped one.
+    const V3 a0 = load(m.box_min), a1 = load(m.box_max);
+    V3 lo = {std::min(a0.x, a1.x), std::min(a0.y, a1.y), std::min(a0.z, a1.z)},
+       hi = {std::max(a0.x, a1.x), std::max(a0.y, a1.y), std::max(a0.z, a1.z)};
     const double coords[] = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z, o.x, o.y, o.z};
     double scale = 0.0;
     for (double c : coords) {
@@ -64,7 +68,10 @@ bool camera_may_meet_medium(const TsFrame& f, const ts::TsMedium& m) {
     // A float ray's direction may lie off the image's cone by a few ulps of its summands'
     // lengths, in any direction: widen the cone's image coordinates by ten times that.
     const double slack = 1e-5 * (lf + lr + lu), a = 1.0 + slack / lr, b = 1.0 + slack / lu;
-    if (!(slack < 0.5 * lf)) return true;  // a cone near a half-space: every box may meet it
+    // A view wider than ~179° (an image coordinate's vector 100× forward's): its cone is
+    // near a half-space, where the edge tolerance of `separates` would no longer be small
+    // beside the box's margin; every box may meet it.
+    if (!(lr < 100.0 * lf && lu < 100.0 * lf)) return true;
     const V3 f0 = fw * (1.0 - slack / lf);
     const std::array<V3, 4> d = {f0 + rt * a + up * b, f0 + rt * -a + up * b, f0 + rt * -a + up * -b,
                                  f0 + rt * a + up * -b};

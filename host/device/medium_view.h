@@ -17,16 +17,18 @@ namespace tessera {
 ///
 /// The test, in double: the image's cone (apex cam_pos, edges forward ± right ± up)
 /// against the medium's box by separating axes: the box's 3 face normals, the cone's 4
-/// face normals and the 12 cross products of their edges. It is exact for the cone, so it
-/// answers true only where some ray could meet the box. Margins keep it safe under the
-/// kernels' float rounding: the box grows by 1e-4 of the largest absolute coordinate of
-/// the box and the camera (ts_medium_misses_box's margin, far above the slab test's few
-/// ulps), and the cone widens by 1e-5 of (1 + |right| + |up|) in each of its image
-/// coordinates, ten times the rounding of a camera ray's direction (its sum and its
-/// normalisation, a few ulps of those lengths).
+/// face normals and the 12 cross products of their edges. It is exact for the cone: it
+/// answers true where some direction of the cone meets the box or comes within the
+/// margins. The margins keep it safe under the kernels' float rounding: the box grows by
+/// 1e-4 of the largest absolute coordinate of the box and the camera
+/// (ts_medium_misses_box's margin, far above the slab test's few ulps), and the cone's
+/// edges move out by 1e-5 of |forward| + |right| + |up| (a length in direction space),
+/// ten times the rounding of a camera ray's direction (its sum and its normalisation, a
+/// few ulps of those lengths).
 ///
-/// True for a medium filling space (unbounded) and for NaN or infinite inputs; false
-/// without a medium (`present` 0). No errors.
+/// True for a medium filling space (unbounded), for NaN or infinite inputs and for a view
+/// wider than ~179°; false without a medium (`present` 0). A box given max before min is
+/// read as the swapped one, as the slab test reads it. No errors.
 bool camera_may_meet_medium(const TsFrame& frame, const ts::TsMedium& medium);
 
 }  // namespace tessera

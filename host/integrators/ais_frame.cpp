@@ -281,8 +281,6 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
     stats_.edge_flagged = edge_offsets_.flagged;
     if (edge_offsets_.samples() > 0) backend_.set_input(KernelInput::EdgeSegmentOffsets, edge_offsets_.offsets);
     host_seconds += since(t_host);
-    const auto t_read = Clock::now();
-    double read_seconds = 0.0;
     const KernelId merge = settings_.pass_aovs ? KernelId::AisEdgeMerge : KernelId::AisEdgeMergeRadiance;
     if (edge_offsets_.samples() > 0) {
         backend_.launch_count_into(KernelId::EdgeCompactSample, frame, edge_offsets_.samples(),
@@ -294,15 +292,15 @@ void AisFrame::edges_on_device(const TsFrame& frame, const TsFrame& ais, std::ve
             backend_.read_input(KernelInput::IgiPass, out);
         else
             backend_.launch(KernelId::PassRadiance, ais, out);
-        read_seconds = since(t_read);
     }
     stats_.edge_schedule_kernel_seconds = backend_.kernel_seconds(KernelId::EdgeRowSums) +
                                           backend_.kernel_seconds(KernelId::EdgeSchedule) +
                                           backend_.kernel_seconds(KernelId::EdgeSegmentCounts);
     stats_.edge_schedule_seconds = stats_.edge_schedule_kernel_seconds + host_seconds;
+    // The image's read-back is the filter's stage's, with or without samples to merge.
     stats_.edge_kernel_seconds = edge_offsets_.samples() > 0 ? backend_.kernel_seconds(KernelId::EdgeCompactSample) +
                                                                    backend_.kernel_seconds(merge)
-                                                             : read_seconds;
+                                                             : 0.0;
     stats_.edge_seconds = stats_.edge_schedule_seconds + stats_.edge_kernel_seconds;
 }
 
@@ -317,8 +315,9 @@ void AisFrame::add_to_sums() {
         if (!schedule_.sets[c].empty()) add(guidance_sums_[3 + c], schedule_.sets[c]);
     }
     // PM out of this frame's view (IgiFrame::prepare) was neither guided nor evaluated:
-    // guidance 0 and no sets, so its channels stay and their means count the frame.
-    if (stats_.medium_out_of_view && guidance_.g[kAisPM].empty()) {
+    // guidance 0 and no sets, so its channels stay and their means count the frame (a
+    // medium that only absorbs is never guided and has none).
+    if (stats_.medium_out_of_view && plan_.medium_scatters && guidance_.g[kAisPM].empty()) {
         const std::vector<float> zeros(raw_[kAisSS].size() / 3, 0.0f);
         add(guidance_sums_[kAisPM], zeros);
         add(guidance_sums_[3 + kAisPM], zeros);

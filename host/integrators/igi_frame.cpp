@@ -118,7 +118,10 @@ void IgiFrame::render_pass(const TsFrame& unprepared, std::vector<float>& out) {
     stats_.view_seconds = stats_.paths_seconds = stats_.select_seconds = 0.0;
     stats_.paths_kernel_seconds = stats_.select_kernel_seconds = stats_.resolve_kernel_seconds = 0.0;
     VplList vpls;
-    if (needs_vpl_sets(frame.igi_components)) {
+    // The scene's components, not this frame's: a frame with PM out of view still makes
+    // the sets the march would gather, so the view points' history (the viewer) and every
+    // later frame stay as they were.
+    if (needs_vpl_sets(effective_components())) {
         VplSettings vs;
         vs.sets = sets;
         vs.paths_per_set = settings_.paths_per_set;

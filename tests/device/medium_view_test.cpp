@@ -97,6 +97,21 @@ TEST(MediumView, BoxesInFrontMeetAndBoxesBehindOrBesideDoNot) {
     EXPECT_FALSE(some_ray_meets(turned, box_medium(c - h, c + h), rng));
     EXPECT_TRUE(camera_may_meet_medium(turned, box_medium(c - 2.5f * h, c + 2.5f * h)));
     EXPECT_TRUE(some_ray_meets(turned, box_medium(c - 2.5f * h, c + 2.5f * h), rng));
+    // Degenerate boxes: a point, one touching the camera, one given max before min (the
+    // slab test reads it swapped).
+    EXPECT_TRUE(camera_may_meet_medium(f, box_medium({0, 0, 3}, {0, 0, 3})));
+    EXPECT_FALSE(camera_may_meet_medium(f, box_medium({0, 0, -3}, {0, 0, -3})));
+    EXPECT_TRUE(camera_may_meet_medium(f, box_medium({-1, -1, -1}, {1, 1, 0}))) << "its face through the camera";
+    EXPECT_TRUE(camera_may_meet_medium(f, box_medium({1, 1, 5}, {-1, -1, 4})));
+    EXPECT_FALSE(camera_may_meet_medium(f, box_medium({1, 1, -4}, {-1, -1, -5})));
+    // Far from the origin, 1e6: the box's margin is 100 units there.
+    const glm::vec3 far(1e6f, -1e6f, 1e6f);
+    const TsFrame g = frame_at(far, far + glm::vec3(0, 0, 1), 90.0f, 64, 64);
+    EXPECT_TRUE(camera_may_meet_medium(g, box_medium(far + glm::vec3(-1, -1, 4), far + glm::vec3(1, 1, 5))));
+    EXPECT_FALSE(camera_may_meet_medium(g, box_medium(far + glm::vec3(-1, -1, -500), far + glm::vec3(1, 1, -400))));
+    EXPECT_FALSE(camera_may_meet_medium(g, box_medium(far + glm::vec3(600, -1, 200), far + glm::vec3(700, 1, 300))));
+    // A view near 180°: any box may meet it.
+    EXPECT_TRUE(camera_may_meet_medium(frame_at({0, 0, 0}, {0, 0, 1}, 179.5f, 64, 64), box_medium({-1, -1, -5}, {1, 1, -4})));
     ts::TsMedium none{};
     EXPECT_FALSE(camera_may_meet_medium(f, none)) << "no medium";
     ts::TsMedium space = box_medium({-1, -1, -5}, {1, 1, -4});
@@ -117,10 +132,13 @@ TEST(MediumView, NoKernelCameraRayMeetsABoxItCallsOutOfView) {
     int out_of_view = 0, in_view = 0, grazing_out = 0;
     for (int trial = 0; trial < 3000; ++trial) {
         const float scale = std::pow(10.0f, -2.0f + 5.0f * u(rng));  // 1e-2 .. 1e3
-        auto point = [&] { return scale * glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f) * 4.0f; };
+        // Every fifth trial far from the origin (1e4 of the scale): the rays' rounding and
+        // the margins grow with the coordinates.
+        const glm::vec3 shift = trial % 5 == 0 ? 1e4f * scale * glm::vec3(u(rng), u(rng) - 0.5f, -u(rng)) : glm::vec3(0.0f);
+        auto point = [&] { return shift + scale * glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f) * 4.0f; };
         const glm::vec3 pos = point(), look = point();
         if (glm::length(look - pos) < 1e-3f * scale || std::fabs(glm::normalize(look - pos).y) > 0.99f) continue;
-        const int width = 1 + int(u(rng) * 96), height = 1 + int(u(rng) * 96);
+        const int width = trial % 7 == 0 ? 1 : 1 + int(u(rng) * 96), height = trial % 11 == 0 ? 1 : 1 + int(u(rng) * 96);
         const TsFrame f = frame_at(pos, look, 5.0f + 170.0f * u(rng), width, height);
         glm::vec3 lo, hi;
         if (trial % 2 == 0) {  // anywhere
@@ -129,9 +147,11 @@ TEST(MediumView, NoKernelCameraRayMeetsABoxItCallsOutOfView) {
         } else {  // a small box touching the view's side plane through a random edge point
             const glm::vec3 fw(f.cam_forward[0], f.cam_forward[1], f.cam_forward[2]),
                 rt(f.cam_right[0], f.cam_right[1], f.cam_right[2]), up(f.cam_up[0], f.cam_up[1], f.cam_up[2]);
-            const float sx = trial % 4 == 1 ? 1.0f : 2.0f * u(rng) - 1.0f, sy = trial % 4 == 1 ? 2.0f * u(rng) - 1.0f : 1.0f;
+            // The left, right, top or bottom face.
+            const float sign = u(rng) < 0.5f ? -1.0f : 1.0f;
+            const float sx = trial % 4 == 1 ? sign : 2.0f * u(rng) - 1.0f, sy = trial % 4 == 1 ? 2.0f * u(rng) - 1.0f : sign;
             const glm::vec3 edge = fw + sx * rt + sy * up;
-            const glm::vec3 side = trial % 4 == 1 ? rt : up;  // the face's image direction
+            const glm::vec3 side = sign * (trial % 4 == 1 ? rt : up);  // the face's outward image direction
             glm::vec3 outward = glm::normalize(glm::cross(trial % 4 == 1 ? up : rt, edge));
             if (glm::dot(outward, side) < 0.0f) outward = -outward;
             const float t = scale * (0.1f + 3.0f * u(rng)), h = scale * 1e-3f * u(rng);
