@@ -25,7 +25,7 @@ V3 load(ts::float3 v) { return {v.x, v.y, v.z}; }
 // holds its own edge at 0 up to double rounding (1e-16), which would otherwise pick the
 // side at random. Safe: an edge that dips 1e-9 below the plane reaches the box, at most
 // 2√3 of the scale from the camera, at most 3.5e-9 of the scale below the apex; a ray
-// between the edges dips at most ~150× that in a view under 179° (the caller's guard),
+// between the edges dips at most ~150× that in a view under 179° (camera_may_meet_medium's guard),
 // still far below the box's 1e-4 margin.
 bool separates(V3 axis, V3 o, const std::array<V3, 4>& d, V3 lo, V3 hi) {
     bool up = true, down = true;

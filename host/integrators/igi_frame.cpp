@@ -87,7 +87,8 @@ TsFrame IgiFrame::prepare(TsFrame frame) const {
     frame.igi_components = effective_components() & ~TS_COMPONENT_EDGE;
     // A medium out of every camera ray's reach this frame: each pixel's march would give
     // in-scattered light 0 and transmittance 1, so PM is skipped with the same image.
-    if ((frame.igi_components & TS_COMPONENT_PM) && !camera_may_meet_medium(frame, ts::ts_medium_load(scene_.medium.data())))
+    if ((frame.igi_components & TS_COMPONENT_PM) &&
+        !camera_may_meet_medium(frame, ts::ts_medium_load(scene_.medium.data())))
         frame.igi_components &= ~TS_COMPONENT_PM;
     frame.igi_media_vpls = !settings_.multiple_scattering ? TS_MEDIA_VPLS_NONE
                            : settings_.ray_lights         ? TS_MEDIA_VPLS_RAYS
