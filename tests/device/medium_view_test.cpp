@@ -120,6 +120,9 @@ TEST(MediumView, BoxesInFrontMeetAndBoxesBehindOrBesideDoNot) {
     ts::TsMedium nan = box_medium({-1, -1, -5}, {1, 1, -4});
     nan.box_min.x = NAN;
     EXPECT_TRUE(camera_may_meet_medium(f, nan));
+    nan = box_medium({-1, -1, -5}, {1, 1, -4});
+    nan.box_max.z = NAN;
+    EXPECT_TRUE(camera_may_meet_medium(f, nan)) << "a NaN in either corner";
 }
 
 TEST(MediumView, NoKernelCameraRayMeetsABoxItCallsOutOfView) {
