@@ -49,13 +49,9 @@ namespace {
 struct NoPackets {};
 constexpr NoPackets no_packets{};
 
-// ic_gather_lanes gathers without transmittance: in a scene with a medium the per-item
-// kernel runs instead.
-bool ic_gather_packets(const ts::TsSceneView& sv, const ts::TsTracer&, const TsFrame& frame, size_t count,
+void ic_gather_packets(const ts::TsSceneView& sv, const ts::TsTracer&, const TsFrame& frame, size_t count,
                        std::vector<float>& out) {
-    if (ts::ts_medium_load(sv.medium).present) return false;
     ic_gather_lanes(sv, frame, count, out);
-    return true;
 }
 
 // Runs a kernel's packet function: a pixel kernel's (Words == 0) takes no item count. True

@@ -9,6 +9,7 @@ namespace tessera {
 
 void ic_gather_lanes(const ts::TsSceneView& sv, const TsFrame& frame, size_t count, std::vector<float>& out) {
     // The same denormal handling as the one-record dispatch (for_each_packet), the same sums.
+    const ts::TsMedium med = ts::ts_medium_load(sv.medium);
     for_each_packet(count, [&](size_t first, size_t n) {
         alignas(64) ts::TsIcLanes lanes;
         uint32_t row[TS_PACKET_LANES];
@@ -21,7 +22,7 @@ void ic_gather_lanes(const ts::TsSceneView& sv, const TsFrame& frame, size_t cou
             row[i] = item[TS_IC_GATHER_ROW];
             if (i < n) on |= 1u << i;
         }
-        ts::ts_ic_gather16(&lanes, on, sv.ic_visibility, row, sv.vpl_set_start[1], sv.vpls, frame.igi_g_clamp,
+        ts::ts_ic_gather16(&lanes, on, sv.ic_visibility, row, sv.vpl_set_start[1], sv.vpls, &med, frame.igi_g_clamp,
                            &out[first * TS_IC_GATHER_FLOATS]);
     });
 }

@@ -11,7 +11,8 @@ namespace tessera {
 
 /// Runs ts_ic_gather_item for items 0 .. count-1 of sv.items (TS_IC_GATHER_WORDS each),
 /// 16 items per batch; `out` must hold count × TS_IC_GATHER_FLOATS floats, item order.
-/// Requires a scene without a medium (ts_ic_gather16); frame.igi_g_clamp is the bound b.
+/// sv.medium is the scene's medium (the links' transmittance); frame.igi_g_clamp is the
+/// bound b.
 void ic_gather_lanes(const ts::TsSceneView& sv, const TsFrame& frame, size_t count, std::vector<float>& out);
 
 }  // namespace tessera

@@ -119,77 +119,161 @@ TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* visible, u
 }
 
 #ifdef TS_HAS_DOUBLE
-/* ts_ic_gather for the records of TS_PACKET_LANES lanes at once, in a scene without a
- * medium (no transmittance, and every VPL a surface VPL); the Embree backend batches
- * records this way (host/backend/embree_ic_gather.cpp). The loop runs over the VPLs; its
- * body, the same for every lane, runs over the lanes in loops GCC vectorises (the
- * one-record loop is bound by the latency of its divisions and square roots, about 36
- * cycles a visible pair; a tic re-sum of 18k records × 400 VPLs on the Cornell box:
+/* ts_ic_gather for the records of TS_PACKET_LANES lanes at once; the Embree backend
+ * batches records this way (host/backend/embree_ic_gather.cpp). The loop runs over the
+ * VPLs; its body, the same for every lane, runs over the lanes in loops GCC vectorises
+ * (the one-record loop is bound by the latency of its divisions and square roots, about
+ * 36 cycles a visible pair; a tic re-sum of 18k records × 400 VPLs on the Cornell box:
  * 24.5 → 16.5 ms). PoCL does not vectorise these loops: as an OpenCL kernel of 16 records
  * per work-item the same re-sum took 44 ms against 24 ms one record per work-item, so
  * the OpenCL backend keeps the latter. A hidden lane adds +0 to each sum, which leaves it
  * unchanged, so each lane's sums take the same terms in the same order as ts_ic_gather's:
- * the outputs are equal bit for bit. */
+ * the outputs are equal bit for bit, with a medium too (its transmittance below). */
 typedef struct TsIcLanes {
     float x[3][TS_PACKET_LANES], n[3][TS_PACKET_LANES], ng[3][TS_PACKET_LANES]; /* the records' surfaces */
-    uint word[TS_PACKET_LANES];                 /* each lane's visibility bits of the current 32 VPLs */
+    float o[3][TS_PACKET_LANES];   /* their shadow rays' origin (ts_offset_ray_origin) */
+    float pos_scale[TS_PACKET_LANES];
+    int held[TS_PACKET_LANES];     /* the origin in the medium (ts_medium_holds) */
+    uint word[TS_PACKET_LANES];    /* each lane's visibility bits of the current 32 VPLs */
     double e[3][TS_PACKET_LANES], inv_dist[TS_PACKET_LANES]; /* the sums of ts_ic_gather */
     uint seen[TS_PACKET_LANES];
 } TsIcLanes;
 
-/* Lane i's record surface (ts_ic_record_surface's position and normals). */
+/* Lane i's record surface (ts_ic_record_surface's position and normals, and the origin
+ * of ts_ic_gather's shadow rays). */
 TS_INLINE void ts_ic_lanes_set(TsIcLanes* L, int i, TS_GLOBAL const float* g) {
+    const TsSurface s = ts_ic_record_surface(g);
+    const float3 o = ts_offset_ray_origin(s.origin, s.geo_normal, s.pos_scale);
     for (int a = 0; a < 3; ++a) {
         L->x[a][i] = g[TS_IC_GBUF_POSITION + a];
         L->n[a][i] = g[TS_IC_GBUF_NORMAL + a];
         L->ng[a][i] = g[TS_IC_GBUF_GEO_NORMAL + a];
     }
+    L->o[0][i] = o.x;
+    L->o[1][i] = o.y;
+    L->o[2][i] = o.z;
+    L->pos_scale[i] = s.pos_scale;
 }
 
-/* VPL v (bit `bit` of the lanes' current words) added to every lane that sees it. */
-TS_INLINE void ts_ic_lanes_add(TsIcLanes* L, TS_GLOBAL const float* v, uint bit, float b) {
+/* The medium's transmittance tr[c][i] along lane i's shadow ray to VPL v, for the lanes
+ * with use[i] set (others keep 1), as ts_ic_gather takes it (ts_shadow_transmittance of
+ * ts_vpl_shadow_ray), bit for bit. A ray whose two ends lie in the medium skips the slab
+ * test (ts_medium_keeps_span): its length runs over the lanes, and only its exponential
+ * per lane; any other takes the one-ray function. In the foggy Cornell box, whose fog
+ * fills the room, that is every ray. */
+TS_INLINE void ts_ic_lanes_transmittance(const TsIcLanes* TS_RESTRICT L, TS_GLOBAL const float* v,
+                                         const TsMedium* med, const int* use, float tr[3][TS_PACKET_LANES]) {
+    const TsRay end = ts_vpl_shadow_ray(make_float3(0.0f, 0.0f, 0.0f), v); /* dir: the far end, exactly */
+    const int end_held = ts_medium_holds(med, end.dir);
+    float len[TS_PACKET_LANES];
+    int keeps[TS_PACKET_LANES];
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        const float3 dir = end.dir - make_float3(L->o[0][i], L->o[1][i], L->o[2][i]); /* ts_shadow_ray's */
+        len[i] = length(dir);
+        keeps[i] = ts_medium_keeps_span(L->held[i] & end_held, dir, end.tmin, end.tmax);
+    }
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        float3 t = make_float3(1.0f, 1.0f, 1.0f);
+        if (use[i] && keeps[i])
+            t = ts_medium_span_transmittance(med, len[i], end.tmin, end.tmax);
+        else if (use[i])
+            t = ts_shadow_transmittance(med, ts_vpl_shadow_ray(make_float3(L->o[0][i], L->o[1][i], L->o[2][i]), v));
+        tr[0][i] = t.x;
+        tr[1][i] = t.y;
+        tr[2][i] = t.z;
+    }
+}
+
+/* VPL v (bit `bit` of the lanes' current words) added to every lane that sees it; `kind`
+ * is ts_vpl_in_medium(v), a constant once inlined (ts_ic_lanes_add), hg the medium's
+ * Henyey–Greenstein g, med the medium the links cross (NULL: none, transmittance 1). */
+TS_INLINE void ts_ic_lanes_add_of(TsIcLanes* L, TS_GLOBAL const float* v, uint bit, float b, float hg, int kind,
+                                  const TsMedium* med) {
     const float3 y = ts_f3_load(v + TS_VPL_POSITION), c = ts_f3_load(v + TS_VPL_FLUX);
-    /* Three loops (G', the masks, the double sums): GCC vectorises each alone, not fused
+    /* Separate loops (G', the masks, the double sums): GCC vectorises each alone, not fused
      * (it threads the select of G' into branches, and one loop of floats and doubles finds
      * no vector type). Their outputs are local arrays: a store through L could alias v, and
      * the reload of v would stop the vectoriser. A hidden lane gets G' = +0 and a finite
      * stand-in distance (1) whose inverse is then multiplied by 0. */
-    float g[TS_PACKET_LANES], gm[TS_PACKET_LANES], dist2[TS_PACKET_LANES];
+    float g[TS_PACKET_LANES], gm[TS_PACKET_LANES], dist2[TS_PACKET_LANES], tr[3][TS_PACKET_LANES];
     uint seen[TS_PACKET_LANES];
+    int use[TS_PACKET_LANES];
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         float3 x = make_float3(L->x[0][i], L->x[1][i], L->x[2][i]);
         float3 n = make_float3(L->n[0][i], L->n[1][i], L->n[2][i]);
         float3 ng = make_float3(L->ng[0][i], L->ng[1][i], L->ng[2][i]);
-        g[i] = ts_vpl_geometry_term_of(x, n, ng, v, b, 0.0f, 0); /* no medium: a surface VPL */
+        g[i] = ts_vpl_geometry_term_of(x, n, ng, v, b, hg, kind);
     }
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         float3 x = make_float3(L->x[0][i], L->x[1][i], L->x[2][i]);
-        int use = (g[i] > 0.0f ? -1 : 0) & -(int)((L->word[i] >> bit) & 1u);
+        use[i] = (g[i] > 0.0f ? -1 : 0) & -(int)((L->word[i] >> bit) & 1u);
         float3 d = y - x;
-        gm[i] = as_float(as_int(g[i]) & use);
-        dist2[i] = as_float((as_int(dot(d, d)) & use) | (as_int(1.0f) & ~use));
-        seen[i] = (uint)use & 1u;
+        gm[i] = as_float(as_int(g[i]) & use[i]);
+        dist2[i] = as_float((as_int(dot(d, d)) & use[i]) | (as_int(1.0f) & ~use[i]));
+        seen[i] = (uint)use[i] & 1u;
+    }
+    if (med) {
+        ts_ic_lanes_transmittance(L, v, med, use, tr);
+        for (int i = 0; i < TS_PACKET_LANES; ++i) {
+            L->e[0][i] += ts_vpl_gather_term_double(c.x, tr[0][i], gm[i]);
+            L->e[1][i] += ts_vpl_gather_term_double(c.y, tr[1][i], gm[i]);
+            L->e[2][i] += ts_vpl_gather_term_double(c.z, tr[2][i], gm[i]);
+        }
+    } else {
+        for (int i = 0; i < TS_PACKET_LANES; ++i) {
+            L->e[0][i] += ts_vpl_gather_term_double(c.x, 1.0f, gm[i]);
+            L->e[1][i] += ts_vpl_gather_term_double(c.y, 1.0f, gm[i]);
+            L->e[2][i] += ts_vpl_gather_term_double(c.z, 1.0f, gm[i]);
+        }
     }
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
-        L->e[0][i] += ts_vpl_gather_term_double(c.x, 1.0f, gm[i]);
-        L->e[1][i] += ts_vpl_gather_term_double(c.y, 1.0f, gm[i]);
-        L->e[2][i] += ts_vpl_gather_term_double(c.z, 1.0f, gm[i]);
         L->inv_dist[i] += (double)seen[i] * (1.0 / sqrt((double)dist2[i]));
         L->seen[i] += seen[i];
     }
+}
+
+/* ts_ic_lanes_add_of for VPL v of either kind. */
+TS_INLINE void ts_ic_lanes_add(TsIcLanes* L, TS_GLOBAL const float* v, uint bit, float b, float hg,
+                               const TsMedium* med) {
+    if (ts_vpl_in_medium(v))
+        ts_ic_lanes_add_of(L, v, bit, b, hg, 1, med);
+    else
+        ts_ic_lanes_add_of(L, v, bit, b, hg, 0, med);
+}
+
+/* The medium the lanes' links to VPL v cross: NULL where none does, so that every link's
+ * transmittance is exactly 1: no medium, or the box around the lanes' shadow-ray origins
+ * (lo, hi; largest pos_scale `scale`) and v apart from the medium's (ts_medium_misses_box,
+ * whose margin covers the offset of v's end). A medium in one part of a scene then costs
+ * the records elsewhere nothing. */
+TS_INLINE const TsMedium* ts_ic_lanes_medium(const TsMedium* med, float3 lo, float3 hi, float scale,
+                                             TS_GLOBAL const float* v) {
+    if (!med->present) return 0;
+    const float3 p = ts_f3_load(v + TS_VPL_POSITION);
+    const float s = fmax(scale, fabs(v[TS_VPL_POS_SCALE]));
+    return ts_medium_misses_box(med, fmin(lo, p), fmax(hi, p), s) ? 0 : med;
 }
 
 /* The gathers of lanes 0..TS_PACKET_LANES-1 (surfaces set with ts_ic_lanes_set; a lane
  * without a record holds any finite surface and is not written): lane i's visibility row
  * is row[i] of `visibility` (TS_IC_VISIBLE_WORDS(count) uints per row), its output
  * (TS_IC_GATHER_FLOATS, as ts_ic_gather's) goes to out + i · TS_IC_GATHER_FLOATS where bit
- * i of `on` is set. b: the geometry-term bound. */
+ * i of `on` is set. b: the geometry-term bound; med: the scene's medium. */
 TS_INLINE void ts_ic_gather16(TsIcLanes* L, uint on, TS_GLOBAL const uint* visibility, const uint* row, uint count,
-                              TS_GLOBAL const float* vpls, float b, float* out) {
+                              TS_GLOBAL const float* vpls, const TsMedium* med, float b, float* out) {
     const size_t words = TS_IC_VISIBLE_WORDS(count);
+    float3 lo = make_float3(TS_INF, TS_INF, TS_INF), hi = -lo;
+    float scale = 0.0f;
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         L->e[0][i] = L->e[1][i] = L->e[2][i] = L->inv_dist[i] = 0.0;
         L->seen[i] = 0u;
+        const float3 o = make_float3(L->o[0][i], L->o[1][i], L->o[2][i]);
+        L->held[i] = -ts_medium_holds(med, o);
+        /* The box around the shadow rays' origins; a NaN one leaves no box (never apart). */
+        lo = fmin(lo, o);
+        hi = fmax(hi, o);
+        scale = fmax(scale, L->pos_scale[i]);
+        if (!((o.x + o.y + o.z) * 0.0f == 0.0f)) scale = TS_INF;
     }
     for (size_t w = 0; w < words; ++w) {
         uint any = 0u;
@@ -203,7 +287,8 @@ TS_INLINE void ts_ic_gather16(TsIcLanes* L, uint on, TS_GLOBAL const uint* visib
         while (any != 0u) {
             uint bit = (uint)ts_ctz64((ulong)any);
             any &= any - 1u;
-            ts_ic_lanes_add(L, vpls + (size_t)TS_VPL_FLOATS * (32u * w + bit), bit, b);
+            TS_GLOBAL const float* v = vpls + (size_t)TS_VPL_FLOATS * (32u * w + bit);
+            ts_ic_lanes_add(L, v, bit, b, med->g, ts_ic_lanes_medium(med, lo, hi, scale, v));
         }
     }
     for (int i = 0; i < TS_PACKET_LANES; ++i) {

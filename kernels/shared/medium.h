@@ -89,11 +89,45 @@ TS_INLINE float ts_medium_reach(const TsMedium* m) {
     return isfinite(thinnest) ? 20.0f / thinnest : TS_INF;
 }
 
+/* Beer–Lambert transmittance exp(-sigma_t · (t1 - t0) · len) over a ray's span (t0, t1),
+ * all of it inside the medium, len = |dir| (scene units): ts_medium_transmittance's value
+ * once clipped. */
+TS_INLINE float3 ts_medium_span_transmittance(const TsMedium* m, float len, float t0, float t1) {
+    return ts_exp3(m->sigma_t * (-(t1 - t0) * len));
+}
+
 /* Beer–Lambert transmittance exp(-sigma_t · length) along the ray over (t0, t1); the
  * length counts only the part inside the medium. */
 TS_INLINE float3 ts_medium_transmittance(const TsMedium* m, float3 org, float3 dir, float t0, float t1) {
     if (!ts_medium_clip(m, org, dir, &t0, &t1)) return make_float3(1.0f, 1.0f, 1.0f);
-    return ts_exp3(m->sigma_t * (-(t1 - t0) * length(dir)));
+    return ts_medium_span_transmittance(m, length(dir), t0, t1);
+}
+
+/* Whether p lies in the medium's closed box (scene units), or the medium fills space;
+ * 0 for a NaN coordinate or no medium. */
+TS_INLINE int ts_medium_holds(const TsMedium* m, float3 p) {
+    if (!m->present) return 0;
+    if (!m->bounded) return 1;
+    return (m->box_min.x <= p.x) & (p.x <= m->box_max.x) & (m->box_min.y <= p.y) & (p.y <= m->box_max.y) &
+           (m->box_min.z <= p.z) & (p.z <= m->box_max.z);
+}
+
+/* Whether ts_medium_transmittance(m, org, dir, t0, t1) equals
+ * ts_medium_span_transmittance(m, length(dir), t0, t1), bit for bit, without its slab test: where
+ * both ends org and org + dir lie in the medium (ts_medium_holds: `ends_held`), t0 is 0,
+ * 0 < t1 <= 1 - 1e-6 and every component of dir is 0 or a finite normal float. Then on each axis the slab's
+ * entry parameter rounds to <= 0 (the box's near side minus org has the sign of -dir)
+ * and its exit to >= 1 - 2^-23 (|far side - org| >= |dir| rounds the same way, and
+ * 1/dir is finite and within 2^-24 of itself), so the clip keeps (0, t1) whole; an axis
+ * with dir 0 passes its test as org lies in the box. Every shadow ray (t1 = 0.99999,
+ * ts_shadow_ray) between two points in fog qualifies; a box with an infinite side holds
+ * infinite points, whose dir is then refused. */
+TS_INLINE int ts_medium_keeps_span(int ends_held, float3 dir, float t0, float t1) {
+    const float tiny = 1.17549435e-38f; /* FLT_MIN: 1/dir is finite above it */
+    const float3 a = fabs(dir);
+    const int normal = (a.x == 0.0f || (a.x >= tiny && a.x < TS_INF)) & (a.y == 0.0f || (a.y >= tiny && a.y < TS_INF)) &
+                       (a.z == 0.0f || (a.z >= tiny && a.z < TS_INF));
+    return ends_held & normal & (t0 == 0.0f) & (0.0f < t1) & (t1 <= 0.999999f);
 }
 
 /* The far roulette (docs/path-tracing.md §3): where a path's medium vertices need a

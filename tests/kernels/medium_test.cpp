@@ -1,10 +1,12 @@
-// kernels/shared/medium.h compiled as C++: Beer–Lambert transmittance through the box,
+// kernels/shared/medium.h compiled as C++: Beer–Lambert transmittance through the box
+// (and without the slab test where a span lies in it),
 // the free-flight distance distribution, the unbiasedness of the RGB weights (one segment,
 // and a chromatic path's, with their bound), and
 // equiangular distance sampling (its pdf and its finite densities), the distance
 // sampling toward a line of ray lights, and the far roulette's importance.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -92,6 +94,67 @@ TEST(Medium, BoxesApartFromTheMediumSeeNoMedium) {
             ASSERT_EQ(tr.x, 1.0f) << k << " " << i;
         }
     }
+}
+
+// Shadow rays whose two ends lie in the box (drawn inside, on its faces, edges and
+// corners, at sizes 1e-3 to 1e4 and 1e4 from the origin) keep their whole span: the
+// transmittance without the slab test (ts_medium_span_transmittance) is the slab test's,
+// bit for bit, wherever ts_medium_keeps_span says so, and it says so for all of them.
+TEST(Medium, ASpanBetweenTwoPointsInTheBoxNeedsNoSlabTest) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (float k : {1e-3f, 1.0f, 1e4f})
+        for (float shift : {0.0f, 1e4f}) {
+            float buf[TS_MEDIUM_FLOATS] = {0.1f / k,  0.2f / k,  0.3f / k,  0.5f / k,  1.0f / k,  2.0f / k,
+                                           0.0f,      1.0f,      shift - k, shift - 2 * k, shift - 3 * k,
+                                           shift + k, shift + 2 * k, shift + 3 * k, 1.0f, 0.0f};
+            const ts::TsMedium m = ts::ts_medium_load(buf);
+            // A coordinate in the box: a face's (1 in 4), else uniform within.
+            auto coordinate = [&](float lo, float hi) {
+                const float r = u(rng);
+                return r < 0.125f ? lo : r < 0.25f ? hi : lo + (hi - lo) * u(rng);
+            };
+            auto point = [&] {
+                return make_float3(coordinate(m.box_min.x, m.box_max.x), coordinate(m.box_min.y, m.box_max.y),
+                                   coordinate(m.box_min.z, m.box_max.z));
+            };
+            for (int i = 0; i < 4000; ++i) {
+                const ts::float3 o = point(), p = point();
+                ASSERT_TRUE(ts::ts_medium_holds(&m, o) && ts::ts_medium_holds(&m, p));
+                const ts::TsRay r = ts::ts_shadow_ray(o, p, make_float3(0, 0, 0), 0.0f);
+                if (r.dir.x == 0.0f && r.dir.y == 0.0f && r.dir.z == 0.0f) continue;
+                ASSERT_TRUE(ts::ts_medium_keeps_span(1, r.dir, r.tmin, r.tmax)) << k << " " << i;
+                const ts::float3 slab_test = ts::ts_shadow_transmittance(&m, r);
+                const ts::float3 span = ts::ts_medium_span_transmittance(&m, ts::length(r.dir), r.tmin, r.tmax);
+                ASSERT_EQ(std::memcmp(&slab_test, &span, sizeof span), 0)
+                    << k << " " << shift << " " << i << ": " << slab_test.x << " vs " << span.x;
+            }
+        }
+
+    // Where it says no. A denormal component: 1/dir overflows, and with org on the box's
+    // face the slab's entry is 0 · inf = NaN, which the clip reads as a miss (1); the span
+    // would dim it.
+    const ts::TsMedium m = slab(make_float3(0.1f, 0.1f, 0.1f), make_float3(0.5f, 0.5f, 0.5f));
+    const ts::float3 org = make_float3(-1.0f, 0.0f, 0.0f), dir = make_float3(1e-40f, 0.5f, 0.0f);
+    EXPECT_FALSE(ts::ts_medium_keeps_span(1, dir, 0.0f, 0.99999f));
+    EXPECT_EQ(ts::ts_medium_transmittance(&m, org, dir, 0.0f, 0.99999f).x, 1.0f);
+    EXPECT_LT(ts::ts_medium_span_transmittance(&m, ts::length(dir), 0.0f, 0.99999f).x, 1.0f);
+    EXPECT_FALSE(ts::ts_medium_keeps_span(0, make_float3(1, 0, 0), 0.0f, 0.99999f));  // an end outside
+    EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(1, 0, 0), 0.1f, 0.99999f));  // t0 > 0
+    EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(1, 0, 0), 0.0f, 1.0f));      // t1 at the far end
+    EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(INFINITY, 0, 0), 0.0f, 0.5f));
+    EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(NAN, 0, 0), 0.0f, 0.5f));
+    EXPECT_TRUE(ts::ts_medium_keeps_span(1, make_float3(0, -1e-30f, 0), 0.0f, 0.5f));
+    // What the box holds: its closed faces, not a NaN, everything for fog filling space.
+    EXPECT_TRUE(ts::ts_medium_holds(&m, make_float3(1.0f, -5.0f, 5.0f)));
+    EXPECT_FALSE(ts::ts_medium_holds(&m, make_float3(std::nextafter(1.0f, 2.0f), 0.0f, 0.0f)));
+    EXPECT_FALSE(ts::ts_medium_holds(&m, make_float3(NAN, 0.0f, 0.0f)));
+    ts::TsMedium everywhere = m;
+    everywhere.bounded = 0;
+    EXPECT_TRUE(ts::ts_medium_holds(&everywhere, make_float3(1e30f, 0.0f, 0.0f)));
+    ts::TsMedium none = m;
+    none.present = 0;
+    EXPECT_FALSE(ts::ts_medium_holds(&none, make_float3(0.0f, 0.0f, 0.0f)));
 }
 
 TEST(Medium, FarImportanceIsOneWithinTheMarginAndFallsAsTheSquareBeyond) {
