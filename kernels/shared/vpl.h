@@ -40,6 +40,23 @@ TS_INLINE TsRay ts_vpl_shadow_ray(float3 org, TS_GLOBAL const float* vpl) {
     return ts_shadow_ray(org, y, ts_f3_load(vpl + TS_VPL_NORMAL), vpl[TS_VPL_POS_SCALE]);
 }
 
+/* The far end of every shadow ray to the VPL, as ts_vpl_shadow_ray builds it (org + dir
+ * before dir's rounding): the dir of the ray from the origin, exact as x - 0 is. */
+TS_INLINE float3 ts_vpl_shadow_end(TS_GLOBAL const float* vpl) {
+    return ts_vpl_shadow_ray(make_float3(0.0f, 0.0f, 0.0f), vpl).dir;
+}
+
+/* ts_shadow_transmittance along ts_vpl_shadow_ray(org, vpl), the same bits, without the
+ * slab test where both ends lie in the medium (ts_medium_keeps_span; org_held:
+ * ts_medium_holds(med, org)): a link between two points in fog (the foggy Cornell box's
+ * every link) costs a length and an exponential. */
+TS_INLINE float3 ts_vpl_link_transmittance(const TsMedium* med, float3 org, int org_held, TS_GLOBAL const float* vpl) {
+    const TsRay sh = ts_vpl_shadow_ray(org, vpl);
+    if (ts_medium_keeps_span(org_held & ts_medium_holds(med, ts_vpl_shadow_end(vpl)), sh.dir, sh.tmin, sh.tmax))
+        return ts_medium_span_transmittance(med, length(sh.dir), sh.tmin, sh.tmax);
+    return ts_shadow_transmittance(med, sh);
+}
+
 /* A medium VPL's clamp: b times this, a radius twice a surface VPL's (ours, docs/igi.md
  * §6). A surface VPL's cosine fades its 1/d² spike next to the surfaces that meet it; a
  * medium VPL has none, so a clamp radius of b lets each one paint a bright blob on the
