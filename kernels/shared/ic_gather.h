@@ -88,7 +88,6 @@ TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* visible, u
      * not built, and the transmittance is 1 as ts_shadow_transmittance would return (same
      * sums; a tic re-sum of 18k records on the Cornell box, Embree: 28 → 24.5 ms). */
     float3 org = ts_offset_ray_origin(s->origin, s->geo_normal, s->pos_scale);
-    const int org_held = ts_medium_holds(med, org);
     for (uint j = 0; j < count; ++j) {
         /* A word without a visible VPL is skipped whole: the temporal update's re-sums
          * over a few changed VPLs pass masks that are mostly zero. */
@@ -101,7 +100,8 @@ TS_INLINE void ts_ic_gather(const TsSurface* s, TS_GLOBAL const uint* visible, u
         TS_GLOBAL const float* v = vpls + (size_t)TS_VPL_FLOATS * j;
         float g = ts_vpl_geometry_term(s->position, s->shading_normal, s->geo_normal, v, b, med->g);
         if (!(g > 0.0f)) continue;
-        float3 tr = med->present ? ts_vpl_link_transmittance(med, org, org_held, v) : make_float3(1.0f, 1.0f, 1.0f);
+        float3 tr =
+            med->present ? ts_vpl_shadow_transmittance(med, ts_vpl_shadow_ray(org, v), v) : make_float3(1.0f, 1.0f, 1.0f);
         float3 d = ts_f3_load(v + TS_VPL_POSITION) - s->position;
 #ifdef TS_HAS_DOUBLE
         ts_vpl_gather_add_double(&sum, v, tr, g);

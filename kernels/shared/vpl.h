@@ -46,15 +46,19 @@ TS_INLINE float3 ts_vpl_shadow_end(TS_GLOBAL const float* vpl) {
     return ts_vpl_shadow_ray(make_float3(0.0f, 0.0f, 0.0f), vpl).dir;
 }
 
-/* ts_shadow_transmittance along ts_vpl_shadow_ray(org, vpl), the same bits, without the
- * slab test where both ends lie in the medium (ts_medium_keeps_span; org_held:
- * ts_medium_holds(med, org)): a link between two points in fog (the foggy Cornell box's
- * every link) costs a length and an exponential. */
-TS_INLINE float3 ts_vpl_link_transmittance(const TsMedium* med, float3 org, int org_held, TS_GLOBAL const float* vpl) {
-    const TsRay sh = ts_vpl_shadow_ray(org, vpl);
-    if (ts_medium_keeps_span(org_held & ts_medium_holds(med, ts_vpl_shadow_end(vpl)), sh.dir, sh.tmin, sh.tmax))
-        return ts_medium_span_transmittance(med, length(sh.dir), sh.tmin, sh.tmax);
-    return ts_shadow_transmittance(med, sh);
+/* ts_shadow_transmittance(med, shadow) for a ray ts_vpl_shadow_ray built to the VPL, the
+ * same bits, without the slab test where both its ends lie in the medium
+ * (ts_medium_keeps_span): a link between two points in fog (every link in the foggy
+ * Cornell box) costs a length and an exponential. */
+TS_INLINE float3 ts_vpl_shadow_transmittance(const TsMedium* med, TsRay shadow, TS_GLOBAL const float* vpl) {
+#ifdef TS_HAS_MEDIUM
+    const int held = ts_medium_holds(med, shadow.org) & ts_medium_holds(med, ts_vpl_shadow_end(vpl));
+    if (ts_medium_keeps_span(held, shadow.dir, shadow.tmin, shadow.tmax))
+        return ts_medium_span_transmittance(med, length(shadow.dir), shadow.tmin, shadow.tmax);
+#else
+    (void)vpl;
+#endif
+    return ts_shadow_transmittance(med, shadow);
 }
 
 /* A medium VPL's clamp: b times this, a radius twice a surface VPL's (ours, docs/igi.md
@@ -125,7 +129,7 @@ TS_INLINE float3 ts_vpl_gather_term(TS_GLOBAL const float* vpl, float3 tr, float
 
 TS_INLINE void ts_vpl_gather_add(float3* sum, TS_GLOBAL const float* vpl, const TsMedium* med, TsRay shadow,
                                  float g) {
-    *sum += ts_vpl_gather_term(vpl, ts_shadow_transmittance(med, shadow), g);
+    *sum += ts_vpl_gather_term(vpl, ts_vpl_shadow_transmittance(med, shadow, vpl), g);
 }
 
 TS_INLINE float3 ts_vpl_gather_result(float3 sum) { return sum * TS_INV_PI; }
