@@ -64,7 +64,11 @@ else()
     set_source_files_properties(${IMGUI_BACKEND_SOURCES}/imgui_impl_glfw.cpp
                                 ${IMGUI_BACKEND_SOURCES}/imgui_impl_opengl3.cpp PROPERTIES COMPILE_OPTIONS "-w")
   endif()
-  target_link_libraries(tessera_view_window PRIVATE PkgConfig::GLFW3 PkgConfig::TESSERA_X11 OpenGL::GL ${IMGUI_LIBRARY})
+  # Debian's libimgui.a takes its font rasteriser (stb_truetype) from libstb: the module
+  # links it itself rather than leaning on the executable's symbols (dlopen found them
+  # there only while the executable used stb).
+  target_link_libraries(tessera_view_window PRIVATE PkgConfig::GLFW3 PkgConfig::TESSERA_X11 OpenGL::GL ${IMGUI_LIBRARY}
+                        PkgConfig::STB)
   add_dependencies(tessera tessera_view_window)
   target_compile_definitions(tessera_core PRIVATE TESSERA_VIEW_WINDOW=1)
   set(TESSERA_VIEWER_BUILT ON)

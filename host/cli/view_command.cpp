@@ -13,14 +13,13 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
-#include <stb_image_write.h>
 
 #include "backend/backend.h"
 #include "cli/commands.h"
 #include "cli/option_checks.h"
 #include "cli/parameter_options.h"
 #include "device/coincident_emitters.h"
-#include "image/atomic_file.h"
+#include "image/image_io.h"
 #include "integrators/method.h"
 #include "render/interrupt.h"
 #include "render/parameters.h"
@@ -62,11 +61,6 @@ struct ViewArgs {
     RenderSettings settings;
 };
 
-void append_bytes(void* context, void* data, int size) {
-    auto* out = static_cast<std::vector<unsigned char>*>(context);
-    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
-}
-
 // Runs the loop in the window module; exceptions of the frame loop are carried across it.
 class CliWindowHost final : public WindowHost {
 public:
@@ -89,10 +83,11 @@ public:
     int capture_frame() const override { return args_.screenshot_window.empty() ? -1 : args_.screenshot_window_frame; }
     void window_captured(const std::vector<uint8_t>& rgba, int w, int h) override {
         guard([&] {
-            std::vector<unsigned char> png;
-            if (!stbi_write_png_to_func(append_bytes, &png, w, h, 4, rgba.data(), w * 4))
-                throw RuntimeError("cannot write '" + args_.screenshot_window + "': PNG encoding failed");
-            write_file_atomic(args_.screenshot_window, png.data(), png.size());
+            if (rgba.size() != size_t(w) * size_t(h) * 4u)
+                throw RuntimeError("cannot write '" + args_.screenshot_window + "': the window's capture holds " +
+                                   std::to_string(rgba.size()) + " bytes, not " + std::to_string(w) + "x" +
+                                   std::to_string(h) + " RGBA pixels");
+            write_png_rgba8(args_.screenshot_window, rgba.data(), w, h);
             std::printf("%s\n", args_.screenshot_window.c_str());
         });
     }

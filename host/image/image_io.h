@@ -3,6 +3,7 @@
 // successful write, so a failed or interrupted run never leaves a truncated image and
 // never damages an existing file.
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -43,5 +44,10 @@ Image read_exr(const std::filesystem::path& path);
 /// 2^exposure, clamped to [0, 1] and encoded with the sRGB transfer curve. Atomic, and
 /// throws like write_exr.
 void write_png(const std::filesystem::path& path, const Image& image, float exposure = 0.0f);
+
+/// Writes `width` x `height` 8-bit RGBA pixels (rows top first, 4 bytes a pixel, already
+/// sRGB-encoded: a window's capture) as a PNG, atomically. Throws RuntimeError naming
+/// `path` for an empty image, a failed encoding, or as write_exr.
+void write_png_rgba8(const std::filesystem::path& path, const std::uint8_t* rgba, int width, int height);
 
 }  // namespace tessera

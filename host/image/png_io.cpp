@@ -1,4 +1,4 @@
-// 8-bit sRGB PNG preview of the R, G, B channels, encoded by libpng.
+// 8-bit sRGB PNG preview of the R, G, B channels, and 8-bit RGBA captures, encoded by libpng.
 #include <png.h>
 
 #include <cmath>
@@ -40,11 +40,13 @@ extern "C" void preview_append(png_structp png, png_bytep data, png_size_t n) {
 
 extern "C" void preview_flush(png_structp) {}
 
-// RGB8 rows, top first, to PNG bytes appended to `out`; false with libpng's message in
-// `message` (256 bytes) on failure. zlib level 3 with libpng's per-row filter choice: a
-// 512² preview in 37-51 ms where stb_image_write took 79-138 (sRGB encoding included),
-// its files ~20% smaller (bench/results/frame_output.md); a sequence writes one a frame.
-bool encode_rgb8(const std::uint8_t* rgb, int width, int height, std::vector<unsigned char>& out, char* message) {
+// 8-bit rows of `channels` samples a pixel (3: RGB, 4: RGBA), top first, to PNG bytes
+// appended to `out`; false with libpng's message in `message` (256 bytes) on failure.
+// zlib level 3 with libpng's per-row filter choice: a 512² preview in 37-51 ms where
+// stb_image_write took 79-138 (sRGB encoding included), its files ~20% smaller
+// (bench/results/frame_output.md); a sequence writes one a frame.
+bool encode_8bit(const std::uint8_t* pixels, int width, int height, int channels, std::vector<unsigned char>& out,
+                 char* message) {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message, preview_error, preview_warning);
     if (!png) return false;
     png_infop info = png_create_info_struct(png);
@@ -54,11 +56,12 @@ bool encode_rgb8(const std::uint8_t* rgb, int width, int height, std::vector<uns
     }
     png_set_write_fn(png, &out, preview_append, preview_flush);
     png_set_compression_level(png, 3);
-    png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+    png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8,
+                 channels == 4 ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);  // the bytes are sRGB-encoded
     png_write_info(png, info);
-    for (int y = 0; y < height; ++y) png_write_row(png, rgb + size_t(y) * size_t(width) * 3);
+    for (int y = 0; y < height; ++y) png_write_row(png, pixels + size_t(y) * size_t(width) * size_t(channels));
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
     return true;
@@ -85,7 +88,18 @@ void write_png(const std::filesystem::path& path, const Image& image, float expo
 
     std::vector<unsigned char> encoded;
     char message[256] = "";
-    if (!encode_rgb8(pixels8.data(), image.width, image.height, encoded, message))
+    if (!encode_8bit(pixels8.data(), image.width, image.height, 3, encoded, message))
+        throw RuntimeError("cannot write '" + path.string() + "': PNG encoding failed: " + message);
+    write_file_atomic(path, encoded.data(), encoded.size());
+}
+
+void write_png_rgba8(const std::filesystem::path& path, const std::uint8_t* rgba, int width, int height) {
+    if (width <= 0 || height <= 0 || !rgba)
+        throw RuntimeError("cannot write '" + path.string() + "': an empty " + std::to_string(width) + "x" +
+                           std::to_string(height) + " image");
+    std::vector<unsigned char> encoded;
+    char message[256] = "";
+    if (!encode_8bit(rgba, width, height, 4, encoded, message))
         throw RuntimeError("cannot write '" + path.string() + "': PNG encoding failed: " + message);
     write_file_atomic(path, encoded.data(), encoded.size());
 }
