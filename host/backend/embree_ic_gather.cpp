@@ -9,8 +9,8 @@ namespace tessera {
 
 void ic_gather_lanes(const ts::TsSceneView& sv, const TsFrame& frame, size_t count, std::vector<float>& out) {
     // The same denormal handling as the one-record dispatch (for_each_packet), the same sums.
-    const ts::TsMedium med = ts::ts_medium_load(sv.medium);
     for_each_packet(count, [&](size_t first, size_t n) {
+        const ts::TsMedium med = ts::ts_medium_load(sv.medium);  // as ts_ic_gather_item, under FTZ/DAZ
         alignas(64) ts::TsIcLanes lanes;
         uint32_t row[TS_PACKET_LANES];
         uint32_t on = 0;

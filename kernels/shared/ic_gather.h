@@ -251,7 +251,8 @@ TS_INLINE const TsMedium* ts_ic_lanes_medium(const TsMedium* med, float3 lo, flo
                                              TS_GLOBAL const float* v) {
     if (!med->present) return 0;
     const float3 p = ts_f3_load(v + TS_VPL_POSITION);
-    const float s = fmax(scale, fabs(v[TS_VPL_POS_SCALE]));
+    const float vs = fabs(v[TS_VPL_POS_SCALE]);
+    const float s = scale > vs ? scale : vs; /* a NaN stays (never apart); fmax would drop it */
     return ts_medium_misses_box(med, fmin(lo, p), fmax(hi, p), s) ? 0 : med;
 }
 

@@ -113,20 +113,22 @@ TS_INLINE int ts_medium_holds(const TsMedium* m, float3 p) {
 }
 
 /* Whether ts_medium_transmittance(m, org, dir, t0, t1) equals
- * ts_medium_span_transmittance(m, length(dir), t0, t1), bit for bit, without its slab test: where
- * both ends org and org + dir lie in the medium (ts_medium_holds: `ends_held`), t0 is 0,
- * 0 < t1 <= 1 - 1e-6 and every component of dir is 0 or a finite normal float. Then on each axis the slab's
- * entry parameter rounds to <= 0 (the box's near side minus org has the sign of -dir)
- * and its exit to >= 1 - 2^-23 (|far side - org| >= |dir| rounds the same way, and
- * 1/dir is finite and within 2^-24 of itself), so the clip keeps (0, t1) whole; an axis
- * with dir 0 passes its test as org lies in the box. Every shadow ray (t1 = 0.99999,
- * ts_shadow_ray) between two points in fog qualifies; a box with an infinite side holds
- * infinite points, whose dir is then refused. */
+ * ts_medium_span_transmittance(m, length(dir), t0, t1), bit for bit, without its slab
+ * test: where both ends org and org + dir lie in the medium (ts_medium_holds:
+ * `ends_held`), t0 is 0, 0 < t1 <= 1 - 1e-6 and every component of dir is 0 or a normal
+ * float of magnitude at most 2^126. Then on each axis the slab's entry parameter rounds
+ * to <= 0 (the box's near side minus org has the sign of -dir, and rounding keeps it) and
+ * its exit to >= (1 - d)(1 - 2^-24), d the division's relative error (|far side - org| >=
+ * |dir| rounds the same way; 1/dir is a normal float, also under flush-to-zero, for
+ * |dir| <= 2^126): above 1 - 1e-6 for d up to ~8 ulp (OpenCL allows 2.5). So the clip
+ * keeps (0, t1) whole, and an axis with dir 0 passes its test as org lies in the box.
+ * Every shadow ray (t1 = 0.99999, ts_shadow_ray) between two points in fog qualifies; a
+ * box with an infinite side holds infinite points, whose dir is refused. */
 TS_INLINE int ts_medium_keeps_span(int ends_held, float3 dir, float t0, float t1) {
-    const float tiny = 1.17549435e-38f; /* FLT_MIN: 1/dir is finite above it */
+    const float tiny = 1.17549435e-38f, huge = 8.50705917e37f; /* 2^-126, 2^126: 1/dir normal */
     const float3 a = fabs(dir);
-    const int normal = (a.x == 0.0f || (a.x >= tiny && a.x < TS_INF)) & (a.y == 0.0f || (a.y >= tiny && a.y < TS_INF)) &
-                       (a.z == 0.0f || (a.z >= tiny && a.z < TS_INF));
+    const int normal = (a.x == 0.0f || (a.x >= tiny && a.x <= huge)) & (a.y == 0.0f || (a.y >= tiny && a.y <= huge)) &
+                       (a.z == 0.0f || (a.z >= tiny && a.z <= huge));
     return ends_held & normal & (t0 == 0.0f) & (0.0f < t1) & (t1 <= 0.999999f);
 }
 

@@ -219,6 +219,28 @@ TEST_F(ImageIoTest, PngRowZeroIsTop) {
     EXPECT_EQ(px[3], 0);
 }
 
+// A window's RGBA capture (the viewer's --screenshot-window) keeps its bytes, alpha
+// included, rows top first; an empty capture is refused before any file is made.
+TEST_F(ImageIoTest, PngRgba8KeepsItsBytes) {
+    const std::vector<std::uint8_t> rgba = {255, 0, 0, 255, 0, 128, 0, 64,  // top row
+                                            0, 0, 7, 0, 250, 251, 252, 253};
+    const fs::path p = dir / "capture.png";
+    tessera::write_png_rgba8(p, rgba.data(), 2, 2);
+    int w = 0, h = 0, comp = 0;
+    unsigned char* data = stbi_load(p.c_str(), &w, &h, &comp, 4);
+    ASSERT_NE(data, nullptr) << stbi_failure_reason();
+    EXPECT_EQ(w, 2);
+    EXPECT_EQ(h, 2);
+    EXPECT_EQ(comp, 4);
+    EXPECT_EQ(std::vector<std::uint8_t>(data, data + 16), rgba);
+    stbi_image_free(data);
+
+    const fs::path q = dir / "empty.png";
+    const std::string msg = error_of([&] { tessera::write_png_rgba8(q, rgba.data(), 0, 2); });
+    EXPECT_NE(msg.find(q.string()), std::string::npos) << msg;
+    EXPECT_FALSE(fs::exists(q));
+}
+
 TEST_F(ImageIoTest, PngWithoutRgbThrowsNamingPath) {
     Image img = uniform(2, 2, 1, 1, 1);
     img.channels.erase(img.channels.begin() + 1);  // drop G

@@ -132,8 +132,8 @@ TEST(Medium, ASpanBetweenTwoPointsInTheBoxNeedsNoSlabTest) {
         }
 
     // Where it says no. A denormal component: 1/dir overflows, and with org on the box's
-    // face the slab's entry is 0 · inf = NaN, which the clip reads as a miss (1); the span
-    // would dim it.
+    // face the slab's entry is 0 · inf = NaN, which fmin drops for the exit (+inf): the
+    // clip comes out empty (1) where the span would dim it.
     const ts::TsMedium m = slab(make_float3(0.1f, 0.1f, 0.1f), make_float3(0.5f, 0.5f, 0.5f));
     const ts::float3 org = make_float3(-1.0f, 0.0f, 0.0f), dir = make_float3(1e-40f, 0.5f, 0.0f);
     EXPECT_FALSE(ts::ts_medium_keeps_span(1, dir, 0.0f, 0.99999f));
@@ -143,6 +143,9 @@ TEST(Medium, ASpanBetweenTwoPointsInTheBoxNeedsNoSlabTest) {
     EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(1, 0, 0), 0.1f, 0.99999f));  // t0 > 0
     EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(1, 0, 0), 0.0f, 1.0f));      // t1 at the far end
     EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(INFINITY, 0, 0), 0.0f, 0.5f));
+    // Above 2^126, 1/dir is a denormal, which flush-to-zero makes 0: the slab's 0 · inf.
+    EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(1e38f, 0, 0), 0.0f, 0.5f));
+    EXPECT_TRUE(ts::ts_medium_keeps_span(1, make_float3(8.5e37f, 0, 0), 0.0f, 0.5f));
     EXPECT_FALSE(ts::ts_medium_keeps_span(1, make_float3(NAN, 0, 0), 0.0f, 0.5f));
     EXPECT_TRUE(ts::ts_medium_keeps_span(1, make_float3(0, -1e-30f, 0), 0.0f, 0.5f));
     // What the box holds: its closed faces, not a NaN, everything for fog filling space.
