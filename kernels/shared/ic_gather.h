@@ -244,16 +244,14 @@ TS_INLINE void ts_ic_lanes_add(TsIcLanes* L, TS_GLOBAL const float* v, uint bit,
 
 /* The medium the lanes' links to VPL v cross: NULL where none does, so that every link's
  * transmittance is exactly 1: no medium, or the box around the lanes' shadow-ray origins
- * (lo, hi; largest pos_scale `scale`) and v apart from the medium's (ts_medium_misses_box,
- * whose margin covers the offset of v's end). A medium in one part of a scene then costs
- * the records elsewhere nothing. */
+ * (lo, hi; largest pos_scale `scale`) and v apart from the medium's
+ * (ts_medium_misses_links, whose margin covers the offset of v's end). A medium in one
+ * part of a scene then costs the records elsewhere nothing. */
 TS_INLINE const TsMedium* ts_ic_lanes_medium(const TsMedium* med, float3 lo, float3 hi, float scale,
                                              TS_GLOBAL const float* v) {
     if (!med->present) return 0;
     const float3 p = ts_f3_load(v + TS_VPL_POSITION);
-    const float vs = fabs(v[TS_VPL_POS_SCALE]);
-    const float s = scale > vs ? scale : vs; /* a NaN stays (never apart); fmax would drop it */
-    return ts_medium_misses_box(med, fmin(lo, p), fmax(hi, p), s) ? 0 : med;
+    return ts_medium_misses_links(med, lo, hi, scale, p, p, fabs(v[TS_VPL_POS_SCALE])) ? 0 : med;
 }
 
 /* The gathers of lanes 0..TS_PACKET_LANES-1 (surfaces set with ts_ic_lanes_set; a lane

@@ -255,15 +255,13 @@ TS_INLINE void ts_igi_lanes_bounds(const TsIgiLanes* TS_RESTRICT ls, float3* lo,
 /* The medium the lanes' links to a far end within [lo, hi] (pos_scale up to `scale`)
  * cross: `clear` (no medium) where the box around the lanes' surfaces
  * (ts_igi_lanes_bounds) and the far end lies apart from the medium's
- * (ts_medium_misses_box), so that every link's transmittance is exactly 1 and the gathers
+ * (ts_medium_misses_links), so that every link's transmittance is exactly 1 and the gathers
  * take their vector loops, with the same sums bit for bit; else med. A medium box in one
  * part of a scene (or where no link goes) then costs the links elsewhere nothing: one far
  * from every surface of the Cornell box made its igi frame 1.7× as long. */
 TS_INLINE const TsMedium* ts_igi_link_medium(const TsMedium* med, const TsMedium* clear, float3 lanes_lo,
                                              float3 lanes_hi, float lanes_scale, float3 lo, float3 hi, float scale) {
-    if (!((lo.x + lo.y + lo.z + hi.x + hi.y + hi.z) * 0.0f == 0.0f)) return med; /* not finite */
-    scale = lanes_scale > scale ? lanes_scale : scale;
-    return ts_medium_misses_box(med, fmin(lanes_lo, lo), fmax(lanes_hi, hi), scale) ? clear : med;
+    return ts_medium_misses_links(med, lanes_lo, lanes_hi, lanes_scale, lo, hi, scale) ? clear : med;
 }
 
 /* ts_igi_link_medium for the links to `vpl` (its position). */

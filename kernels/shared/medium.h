@@ -69,6 +69,18 @@ TS_INLINE int ts_medium_misses_box(const TsMedium* m, float3 lo, float3 hi, floa
            hi.x < m->box_min.x - e || hi.y < m->box_min.y - e || hi.z < m->box_min.z - e;
 }
 
+/* ts_medium_misses_box for the links from points in [from_lo, from_hi] (pos_scale up to
+ * from_scale) to far ends in [lo, hi] (pos_scale up to scale), scene units: whether none
+ * meets the medium, so that each one's transmittance is exactly 1. A far end that is not
+ * finite, or a NaN far scale, is never apart (the larger scale is taken without fmax,
+ * which would drop the NaN). The lane gathers of igi and ic ask this per link target. */
+TS_INLINE int ts_medium_misses_links(const TsMedium* m, float3 from_lo, float3 from_hi, float from_scale, float3 lo,
+                                     float3 hi, float scale) {
+    if (!((lo.x + lo.y + lo.z + hi.x + hi.y + hi.z) * 0.0f == 0.0f)) return 0;
+    scale = from_scale > scale ? from_scale : scale;
+    return ts_medium_misses_box(m, fmin(from_lo, lo), fmax(from_hi, hi), scale);
+}
+
 /* Whether the medium scatters light in some channel (sigma_s > 0): else it only absorbs,
  * and in-scattered light is 0 everywhere. */
 TS_INLINE int ts_medium_scatters(const TsMedium* m) {
