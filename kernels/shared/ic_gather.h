@@ -159,9 +159,9 @@ TS_INLINE void ts_ic_lanes_set(TsIcLanes* L, int i, TS_GLOBAL const float* g) {
 /* The medium's transmittance tr[c][i] along lane i's shadow ray to VPL v, for the lanes
  * with use[i] set (others keep 1), as ts_ic_gather takes it (ts_shadow_transmittance of
  * ts_vpl_shadow_ray), bit for bit. A ray whose two ends lie in the medium skips the slab
- * test (ts_medium_keeps_span): its length runs over the lanes, and only its exponential
- * per lane; any other takes the one-ray function. In the foggy Cornell box, whose fog
- * fills the room, that is every ray. */
+ * test (ts_medium_keeps_span): its length runs over the lanes; any other takes the
+ * one-ray function's slab test. In the foggy Cornell box, whose fog fills the room, that
+ * is every ray. The exponentials run over the lanes at once (ts_lanes_exp_n). */
 TS_INLINE void ts_ic_lanes_transmittance(const TsIcLanes* TS_RESTRICT L, TS_GLOBAL const float* v,
                                          const TsMedium* med, const int* use, float tr[3][TS_PACKET_LANES]) {
     const TsRay end = ts_vpl_shadow_ray(make_float3(0.0f, 0.0f, 0.0f), v); /* dir: ts_vpl_shadow_end */
@@ -174,15 +174,16 @@ TS_INLINE void ts_ic_lanes_transmittance(const TsIcLanes* TS_RESTRICT L, TS_GLOB
         keeps[i] = ts_medium_keeps_span(L->held[i] & end_held, dir, end.tmin, end.tmax);
     }
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
-        float3 t = make_float3(1.0f, 1.0f, 1.0f);
+        float3 x = make_float3(0.0f, 0.0f, 0.0f); /* e^0 = 1 exactly */
         if (use[i] && keeps[i])
-            t = ts_medium_span_transmittance(med, len[i], end.tmin, end.tmax);
+            x = ts_medium_span_log_transmittance(med, len[i], end.tmin, end.tmax);
         else if (use[i])
-            t = ts_shadow_transmittance(med, ts_vpl_shadow_ray(make_float3(L->o[0][i], L->o[1][i], L->o[2][i]), v));
-        tr[0][i] = t.x;
-        tr[1][i] = t.y;
-        tr[2][i] = t.z;
+            x = ts_shadow_log_transmittance(med, ts_vpl_shadow_ray(make_float3(L->o[0][i], L->o[1][i], L->o[2][i]), v));
+        tr[0][i] = x.x;
+        tr[1][i] = x.y;
+        tr[2][i] = x.z;
     }
+    ts_medium_exp_lanes(med, tr);
 }
 
 /* VPL v (bit `bit` of the lanes' current words) added to every lane that sees it; `kind`

@@ -165,11 +165,18 @@ TS_INLINE void ts_igi_lanes_light_gather(TsIgiLanes* TS_RESTRICT ls, const TsIgi
         }
         return;
     }
+    float tr[3][TS_PACKET_LANES];
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        const float3 x =
+            L->visible[i] ? ts_shadow_log_transmittance(med, ts_ray_lanes_get(r, i)) : make_float3(0.0f, 0.0f, 0.0f);
+        tr[0][i] = x.x, tr[1][i] = x.y, tr[2][i] = x.z;
+    }
+    ts_medium_exp_lanes(med, tr); /* ts_shadow_transmittance's bits */
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         ls->facing[i] += (uint)L->traced[i] & 1u;
         if (!L->visible[i]) continue;
         const float3 ci = make_float3(L->c[0][i], L->c[1][i], L->c[2][i]);
-        const float3 t = ts_igi_light_term(ci, ts_shadow_transmittance(med, ts_ray_lanes_get(r, i)));
+        const float3 t = ts_igi_light_term(ci, make_float3(tr[0][i], tr[1][i], tr[2][i]));
         ls->ss[0][i] += t.x;
         ls->ss[1][i] += t.y;
         ls->ss[2][i] += t.z;
@@ -219,13 +226,19 @@ TS_INLINE void ts_igi_lanes_vpl_gather(TsIgiLanes* TS_RESTRICT ls, TS_GLOBAL con
         }
         return;
     }
+    float tr[3][TS_PACKET_LANES];
+    for (int i = 0; i < TS_PACKET_LANES; ++i) {
+        const float3 x = L->visible[i] ? ts_vpl_shadow_log_transmittance(med, ts_ray_lanes_get(r, i), vpl)
+                                       : make_float3(0.0f, 0.0f, 0.0f);
+        tr[0][i] = x.x, tr[1][i] = x.y, tr[2][i] = x.z;
+    }
+    ts_medium_exp_lanes(med, tr); /* ts_vpl_shadow_transmittance's bits */
     for (int i = 0; i < TS_PACKET_LANES; ++i) {
         if (!L->visible[i]) continue;
-        float3 sum = make_float3(ls->id[0][i], ls->id[1][i], ls->id[2][i]);
-        ts_vpl_gather_add(&sum, vpl, med, ts_ray_lanes_get(r, i), L->g[i]);
-        ls->id[0][i] = sum.x;
-        ls->id[1][i] = sum.y;
-        ls->id[2][i] = sum.z;
+        const float3 t = ts_vpl_gather_term(vpl, make_float3(tr[0][i], tr[1][i], tr[2][i]), L->g[i]);
+        ls->id[0][i] += t.x;
+        ls->id[1][i] += t.y;
+        ls->id[2][i] += t.z;
     }
 }
 

@@ -182,15 +182,19 @@ TS_INLINE int ts_igi_march_light_link(const TsMedium* med, const TsIgiMarch* m, 
     return 1;
 }
 
+/* ts_igi_march_light_add with the transmittance tr along the link's shadow ray given. */
+TS_INLINE void ts_igi_march_light_add_tr(TsIgiMarch* m, float3 tr, float3 radiance, float w, float3* in) {
+    ++m->lit;
+    if (m->equiangular) m->L += radiance * tr * w;
+    else *in += radiance * tr * w;
+}
+
 /* Adds a visible light-sample link (ts_igi_march_light_link), with the medium's
  * transmittance along its shadow ray: to the step's in-scattered light `in`, or with
  * m->equiangular, where the link carries its own distance, to the march's radiance. */
 TS_INLINE void ts_igi_march_light_add(TsIgiMarch* m, const TsMedium* med, TsRay shadow, float3 radiance, float w,
                                       float3* in) {
-    ++m->lit;
-    float3 tr = ts_medium_transmittance(med, shadow.org, shadow.dir, 0.0f, 1.0f);
-    if (m->equiangular) m->L += radiance * tr * w;
-    else *in += radiance * tr * w;
+    ts_igi_march_light_add_tr(m, ts_medium_transmittance(med, shadow.org, shadow.dir, 0.0f, 1.0f), radiance, w, in);
 }
 
 /* The phase-sampled direction of march m's step: a Henyey–Greenstein direction (weight

@@ -39,6 +39,35 @@ TS_INLINE uint ts_march16_visible(const TsTracer* tracer, const TsMarchStep* s, 
     return valid == 0u ? 0u : valid & ~ts_trace_occluded_lanes(tracer, s->shadow, valid);
 }
 
+/* The medium's transmittance tr[c][l] along the shadow ray s->shadow[l] of the lanes in
+ * `seen` (others 1), over (0, 1) where `unit` is set (the light sample's link,
+ * ts_igi_march_light_add) or the ray's (tmin, tmax) (ts_shadow_transmittance, the VPL and
+ * ray-light links): each one-lane function's bits, with the exponentials over the lanes
+ * at once. */
+TS_INLINE void ts_march16_transmittance(const TsMedium* med, const TsMarchStep* s, uint seen, int unit,
+                                        float tr[3][TS_PACKET_LANES]) {
+    for (int l = 0; l < TS_PACKET_LANES; ++l) {
+        float3 x = make_float3(0.0f, 0.0f, 0.0f);
+        if (seen >> l & 1u)
+            x = unit ? ts_medium_log_transmittance(med, s->shadow[l].org, s->shadow[l].dir, 0.0f, 1.0f)
+                     : ts_shadow_log_transmittance(med, s->shadow[l]);
+        tr[0][l] = x.x, tr[1][l] = x.y, tr[2][l] = x.z;
+    }
+    ts_medium_exp_lanes(med, tr);
+}
+
+/* ts_igi_march_vpl_add of the lanes in `seen` to sums[l], for VPL (or ray light) `vpl`
+ * and each lane's link in s, bit for bit. */
+TS_INLINE void ts_march16_vpl_add(const TsMedium* med, const TsMarchStep* s, uint seen, TS_GLOBAL const float* vpl,
+                                  float3* sums) {
+    if (seen == 0u) return;
+    float tr[3][TS_PACKET_LANES];
+    ts_march16_transmittance(med, s, seen, 0, tr);
+    for (int l = 0; l < TS_PACKET_LANES; ++l)
+        if (seen >> l & 1u)
+            sums[l] += ts_igi_march_vpl_term(vpl, make_float3(tr[0][l], tr[1][l], tr[2][l]), s->w[l], s->tint[l]);
+}
+
 /* ts_igi_may_meet_emitter for the rays of the lanes in `in`, lane l's from x[l] along
  * wi[l] (other lanes' entries are not read): the bit mask of those that may meet an
  * emitter. Each emitter's box is computed once for all the lanes, and its test
@@ -195,8 +224,14 @@ TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer
             valid |= 1u << l;
     }
     uint seen = ts_march16_visible(tracer, s, valid);
-    for (int l = 0; l < TS_PACKET_LANES; ++l)
-        if (seen >> l & 1u) ts_igi_march_light_add(&m[l], med, s->shadow[l], s->radiance[l], s->w[l], &s->light[l]);
+    if (seen != 0u) {
+        float tr[3][TS_PACKET_LANES];
+        ts_march16_transmittance(med, s, seen, 1, tr);
+        for (int l = 0; l < TS_PACKET_LANES; ++l)
+            if (seen >> l & 1u)
+                ts_igi_march_light_add_tr(&m[l], make_float3(tr[0][l], tr[1][l], tr[2][l]), s->radiance[l], s->w[l],
+                                          &s->light[l]);
+    }
     ts_igi_march_phase16(sv, tracer, f, med, in, m, s);
     if (f->igi_media_vpls) {
         uint first, stride;
@@ -205,9 +240,7 @@ TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer
         for (uint j = first; j < sv->vpl_set_start[k + 1u]; j += stride) {
             TS_GLOBAL const float* vpl = sv->vpls + j * TS_VPL_FLOATS;
             valid = ts_igi_march_vpl_links16(f, med, m, in, vpl, s);
-            seen = ts_march16_visible(tracer, s, valid);
-            for (int l = 0; l < TS_PACKET_LANES; ++l)
-                if (seen >> l & 1u) ts_igi_march_vpl_add(&s->vpl_sum[l], vpl, med, s->shadow[l], s->w[l], s->tint[l]);
+            ts_march16_vpl_add(med, s, ts_march16_visible(tracer, s, valid), vpl, s->vpl_sum);
         }
         for (int l = 0; l < TS_PACKET_LANES; ++l) s->vpl_sum[l] = s->vpl_sum[l] * (float)stride;
         if (f->igi_media_vpls == TS_MEDIA_VPLS_RAYS) {
@@ -216,10 +249,7 @@ TS_INLINE void ts_igi_march_step16(const TsSceneView* sv, const TsTracer* tracer
             for (uint j = first; j < sv->vrl_set_start[k + 1u]; j += stride) {
                 TS_GLOBAL const float* vrl = sv->vrls + j * TS_VRL_FLOATS;
                 valid = ts_igi_march_vrl_links16(f, med, m, in, j, (float)stride, vrl, s);
-                seen = ts_march16_visible(tracer, s, valid);
-                for (int l = 0; l < TS_PACKET_LANES; ++l)
-                    if (seen >> l & 1u)
-                        ts_igi_march_vpl_add(&s->vrl_sum[l], vrl, med, s->shadow[l], s->w[l], s->tint[l]);
+                ts_march16_vpl_add(med, s, ts_march16_visible(tracer, s, valid), vrl, s->vrl_sum);
             }
             for (int l = 0; l < TS_PACKET_LANES; ++l) s->vpl_sum[l] += s->vrl_sum[l];
         }

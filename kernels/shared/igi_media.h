@@ -10,10 +10,16 @@
 
 TS_NAMESPACE_BEGIN
 
+/* A visible VPL link's term (ts_igi_march_vpl_link): C · Tr · w · tint, Tr the medium's
+ * transmittance along its shadow ray. */
+TS_INLINE float3 ts_igi_march_vpl_term(TS_GLOBAL const float* vpl, float3 tr, float w, float3 tint) {
+    return ts_vpl_gather_term(vpl, tr, w) * tint;
+}
+
 /* Adds a visible VPL link (ts_igi_march_vpl_link) to *sum: C · Tr · w · tint. */
 TS_INLINE void ts_igi_march_vpl_add(float3* sum, TS_GLOBAL const float* vpl, const TsMedium* med, TsRay shadow,
                                     float w, float3 tint) {
-    *sum += ts_vpl_gather_term(vpl, ts_shadow_transmittance(med, shadow), w) * tint;
+    *sum += ts_igi_march_vpl_term(vpl, ts_shadow_transmittance(med, shadow), w, tint);
 }
 
 /* Adds the VPL share's sum of step i (the share's terms times its stride) where its links

@@ -1,8 +1,10 @@
 /* Arctangent, tangent and exponential in float without branches, for loops over 16 lanes
- * that GCC vectorises (the ray lights' links of the media march, shared/igi_march16.h),
- * and for the one-lane code that must give those lanes' numbers bit for bit (both call
- * ts_igi_march_vrl_weight, shared/igi_ray_lights.h). The equiangular sampler (shared/medium.h) takes
- * its arctangent and tangent from here, for every caller. libm's forms are calls GCC cannot vectorise, and
+ * that GCC vectorises (the ray lights' links of the media march, shared/igi_march16.h;
+ * every link's transmittance, ts_medium_exp_lanes in shared/medium.h), and for the
+ * one-lane code that must give those lanes' numbers bit for bit (both call
+ * ts_igi_march_vrl_weight, shared/igi_ray_lights.h; ts_exp3 is this exponential). The
+ * equiangular sampler (shared/medium.h) takes its arctangent and tangent from here, for
+ * every caller. libm's forms are calls GCC cannot vectorise, and
  * glibc's vector forms (libmvec) are reached only with finite-math flags, which must stay
  * off here (NaN and Inf are caught). The methods and coefficients are Cephes' single
  * precision atanf, tanf and expf (S. L. Moshier, "Methods and Programs for Mathematical
@@ -71,6 +73,12 @@ TS_INLINE float ts_lanes_exp(float x) {
     e = e * as_float((uint)(n1 + 127) << 23) * as_float((uint)(n2 + 127) << 23);
     e = x < -87.33654f ? 0.0f : e;
     return x > 88.72283f ? TS_INF : e;
+}
+
+/* x[i] = e^x[i] (ts_lanes_exp) for i < n, in one loop: GCC vectorises it where n is known
+ * once inlined (the gathers' 3 × 16 links' transmittances). */
+TS_INLINE void ts_lanes_exp_n(float* x, int n) {
+    for (int i = 0; i < n; ++i) x[i] = ts_lanes_exp(x[i]);
 }
 
 TS_NAMESPACE_END

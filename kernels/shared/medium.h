@@ -30,14 +30,29 @@ TS_INLINE TsMedium ts_medium_load(TS_GLOBAL const float* m) {
     return r;
 }
 
-/* Per channel; a grey argument (every medium of the standard scenes) takes one exp, the
- * same value three exps give: transmittance is a tenth of a foggy igi frame's time. */
+/* e^x per channel by ts_lanes_exp (shared/math_lanes.h, 8.2e-8 relative), not libm's or
+ * OpenCL's exp: the 16-lane gathers take their links' exponentials in loops GCC
+ * vectorises, and one link at a time must give them bit for bit (libm's expf was 6% of a
+ * foggy igi frame's samples, one call per link); every backend's transmittance is then
+ * the same bits too. A grey argument (every medium of the standard scenes) takes one
+ * exponential, the same value three give. */
 TS_INLINE float3 ts_exp3(float3 x) {
     if (x.x == x.y && x.y == x.z) {
-        float e = exp(x.x);
+        float e = ts_lanes_exp(x.x);
         return make_float3(e, e, e);
     }
-    return make_float3(exp(x.x), exp(x.y), exp(x.z));
+    return make_float3(ts_lanes_exp(x.x), ts_lanes_exp(x.y), ts_lanes_exp(x.z));
+}
+/* ts_exp3 of 16 lanes' logs of transmittance x[c][i] in place, bit for bit, in loops GCC
+ * vectorises. In a grey medium (the same sigma_t in every channel) each lane's three logs
+ * are the same product, so one row's exponentials serve all three. */
+TS_INLINE void ts_medium_exp_lanes(const TsMedium* m, float x[3][TS_PACKET_LANES]) {
+    if (m->sigma_t.x == m->sigma_t.y && m->sigma_t.y == m->sigma_t.z) {
+        ts_lanes_exp_n(x[0], TS_PACKET_LANES);
+        for (int i = 0; i < TS_PACKET_LANES; ++i) x[1][i] = x[2][i] = x[0][i];
+        return;
+    }
+    ts_lanes_exp_n(&x[0][0], 3 * TS_PACKET_LANES);
 }
 TS_INLINE float ts_mean3(float3 x) { return (x.x + x.y + x.z) * (1.0f / 3.0f); }
 
@@ -101,17 +116,32 @@ TS_INLINE float ts_medium_reach(const TsMedium* m) {
     return isfinite(thinnest) ? 20.0f / thinnest : TS_INF;
 }
 
+/* The log of the Beer–Lambert transmittance over a ray's span (t0, t1), all of it inside
+ * the medium, len = |dir| (scene units): -sigma_t · (t1 - t0) · len per channel (<= 0,
+ * the optical depth's negative). Its ts_exp3 is ts_medium_span_transmittance; callers
+ * over lanes take the exponentials together (ts_lanes_exp_n). */
+TS_INLINE float3 ts_medium_span_log_transmittance(const TsMedium* m, float len, float t0, float t1) {
+    return m->sigma_t * (-(t1 - t0) * len);
+}
+
 /* Beer–Lambert transmittance exp(-sigma_t · (t1 - t0) · len) over a ray's span (t0, t1),
  * all of it inside the medium, len = |dir| (scene units): ts_medium_transmittance's value
  * once clipped. */
 TS_INLINE float3 ts_medium_span_transmittance(const TsMedium* m, float len, float t0, float t1) {
-    return ts_exp3(m->sigma_t * (-(t1 - t0) * len));
+    return ts_exp3(ts_medium_span_log_transmittance(m, len, t0, t1));
+}
+
+/* The log of ts_medium_transmittance (its ts_exp3 is that, bit for bit): 0 where the ray
+ * misses the medium, whose exponential is exactly 1. */
+TS_INLINE float3 ts_medium_log_transmittance(const TsMedium* m, float3 org, float3 dir, float t0, float t1) {
+    if (!ts_medium_clip(m, org, dir, &t0, &t1)) return make_float3(0.0f, 0.0f, 0.0f);
+    return ts_medium_span_log_transmittance(m, length(dir), t0, t1);
 }
 
 /* Beer–Lambert transmittance exp(-sigma_t · length) along the ray over (t0, t1); the
  * length counts only the part inside the medium. */
 TS_INLINE float3 ts_medium_transmittance(const TsMedium* m, float3 org, float3 dir, float t0, float t1) {
-    if (!ts_medium_clip(m, org, dir, &t0, &t1)) return make_float3(1.0f, 1.0f, 1.0f);
+    if (!ts_medium_clip(m, org, dir, &t0, &t1)) return make_float3(1.0f, 1.0f, 1.0f); /* no exponential */
     return ts_medium_span_transmittance(m, length(dir), t0, t1);
 }
 
@@ -368,6 +398,18 @@ TS_INLINE float3 ts_shadow_transmittance(const TsMedium* med, TsRay shadow) {
     (void)med;
     (void)shadow;
     return make_float3(1.0f, 1.0f, 1.0f);
+#endif
+}
+
+/* The log of ts_shadow_transmittance (ts_medium_log_transmittance): 0 where the medium is
+ * compiled out. */
+TS_INLINE float3 ts_shadow_log_transmittance(const TsMedium* med, TsRay shadow) {
+#ifdef TS_HAS_MEDIUM
+    return ts_medium_log_transmittance(med, shadow.org, shadow.dir, shadow.tmin, shadow.tmax);
+#else
+    (void)med;
+    (void)shadow;
+    return make_float3(0.0f, 0.0f, 0.0f);
 #endif
 }
 

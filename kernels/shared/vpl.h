@@ -61,6 +61,19 @@ TS_INLINE float3 ts_vpl_shadow_transmittance(const TsMedium* med, TsRay shadow, 
     return ts_shadow_transmittance(med, shadow);
 }
 
+/* The log of ts_vpl_shadow_transmittance (its ts_exp3 is that, bit for bit), for the
+ * gathers over lanes, which take the exponentials together. */
+TS_INLINE float3 ts_vpl_shadow_log_transmittance(const TsMedium* med, TsRay shadow, TS_GLOBAL const float* vpl) {
+#ifdef TS_HAS_MEDIUM
+    const int held = ts_medium_holds(med, shadow.org) & ts_medium_holds(med, ts_vpl_shadow_end(vpl));
+    if (ts_medium_keeps_span(held, shadow.dir, shadow.tmin, shadow.tmax))
+        return ts_medium_span_log_transmittance(med, length(shadow.dir), shadow.tmin, shadow.tmax);
+#else
+    (void)vpl;
+#endif
+    return ts_shadow_log_transmittance(med, shadow);
+}
+
 /* A medium VPL's clamp: b times this, a radius twice a surface VPL's (ours, docs/igi.md
  * §6). A surface VPL's cosine fades its 1/d² spike next to the surfaces that meet it; a
  * medium VPL has none, so a clamp radius of b lets each one paint a bright blob on the

@@ -160,6 +160,53 @@ TEST(Medium, ASpanBetweenTwoPointsInTheBoxNeedsNoSlabTest) {
     EXPECT_FALSE(ts::ts_medium_holds(&none, make_float3(0.0f, 0.0f, 0.0f)));
 }
 
+// The logs of transmittance that the 16-lane gathers take their exponentials of: each
+// one's ts_exp3 is the transmittance bit for bit (rays through, into, along and past the
+// slab; a grey and a chromatic medium), and ts_medium_exp_lanes gives ts_exp3 lane by
+// lane, special values included. The exponential is within 1e-7 of double's.
+TEST(Medium, LogTransmittanceOverLanesGivesTheTransmittanceBitForBit) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-4.0f, 4.0f);
+    const ts::TsMedium grey = slab(make_float3(0.2f, 0.2f, 0.2f), make_float3(1.3f, 1.3f, 1.3f));
+    const ts::TsMedium chromatic = slab(make_float3(0.1f, 0.5f, 2.0f), make_float3(0.2f, 3.0f, 0.0f));
+    int misses = 0;
+    for (const ts::TsMedium* m : {&grey, &chromatic})
+        for (int batch = 0; batch < 200; ++batch) {
+            float x[3][TS_PACKET_LANES];
+            ts::float3 want[TS_PACKET_LANES];
+            for (int i = 0; i < TS_PACKET_LANES; ++i) {
+                const ts::TsRay r = ts::ts_shadow_ray(make_float3(u(rng), u(rng), u(rng)),
+                                                      make_float3(u(rng), u(rng), u(rng)), make_float3(0, 0, 0), 0.0f);
+                want[i] = ts::ts_shadow_transmittance(m, r);
+                const ts::float3 l = ts::ts_shadow_log_transmittance(m, r);
+                const ts::float3 one = ts::ts_exp3(l);
+                ASSERT_EQ(std::memcmp(&one, &want[i], sizeof one), 0) << batch << " " << i;
+                misses += want[i].x == 1.0f;
+                x[0][i] = l.x, x[1][i] = l.y, x[2][i] = l.z;
+            }
+            ts::ts_medium_exp_lanes(m, x);
+            for (int i = 0; i < TS_PACKET_LANES; ++i) {
+                const ts::float3 lanes = make_float3(x[0][i], x[1][i], x[2][i]);
+                ASSERT_EQ(std::memcmp(&lanes, &want[i], sizeof lanes), 0) << batch << " " << i;
+            }
+        }
+    EXPECT_GT(misses, 100);  // rays that miss the slab: log 0, exactly 1
+    // Special values through the lanes, a chromatic row set (no shortcut) and a grey one.
+    float x[3][TS_PACKET_LANES] = {};
+    const float special[] = {0.0f, -0.0f, -1e-30f, -87.3f, -88.0f, -INFINITY, NAN, -1e4f, -0.5f, -20.0f};
+    for (int i = 0; i < 10; ++i) x[0][i] = x[1][i] = x[2][i] = special[i];
+    ts::ts_medium_exp_lanes(&chromatic, x);
+    for (int i = 0; i < 10; ++i) {
+        const ts::float3 one = ts::ts_exp3(make_float3(special[i], special[i], special[i]));
+        EXPECT_EQ(std::memcmp(&one.x, &x[2][i], sizeof(float)), 0) << special[i];
+        if (std::isfinite(special[i]) && special[i] > -87.0f)
+            EXPECT_NEAR(x[2][i], std::exp(double(special[i])), 1e-7 * std::exp(double(special[i])) + 1e-30);
+    }
+    EXPECT_EQ(x[0][0], 1.0f);
+    EXPECT_EQ(x[0][5], 0.0f);
+    EXPECT_TRUE(std::isnan(x[0][6]));
+}
+
 TEST(Medium, FarImportanceIsOneWithinTheMarginAndFallsAsTheSquareBeyond) {
     ts::TsFarRegion r;
     r.lo = make_float3(-1.0f, -1.0f, -1.0f);
