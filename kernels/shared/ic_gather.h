@@ -161,7 +161,7 @@ TS_INLINE void ts_ic_lanes_set(TsIcLanes* L, int i, TS_GLOBAL const float* g) {
  * ts_vpl_shadow_ray), bit for bit. A ray whose two ends lie in the medium skips the slab
  * test (ts_medium_keeps_span): its length runs over the lanes; any other takes the
  * one-ray function's slab test. In the foggy Cornell box, whose fog fills the room, that
- * is every ray. The exponentials run over the lanes at once (ts_lanes_exp_n). */
+ * is every ray. The exponentials run over the lanes at once (ts_medium_exp_lanes). */
 TS_INLINE void ts_ic_lanes_transmittance(const TsIcLanes* TS_RESTRICT L, TS_GLOBAL const float* v,
                                          const TsMedium* med, const int* use, float tr[3][TS_PACKET_LANES]) {
     const TsRay end = ts_vpl_shadow_ray(make_float3(0.0f, 0.0f, 0.0f), v); /* dir: ts_vpl_shadow_end */

@@ -9,8 +9,8 @@
  *                    grid neighbours its discontinuity test accepts, or gathers itself,
  *                    and adds E_res to its filtered E_id.
  * Step for step what host/gi/clamp_screen.cpp does over the host's copies, so the images
- * are the same bits on devices whose exp rounds as the host's (fog) and on all others
- * without a medium. A pixel takes part (gets and sends E_res) when it sees a surface
+ * are the same bits (a medium's transmittance takes the shared exponential, ts_exp3, on
+ * both sides). A pixel takes part (gets and sends E_res) when it sees a surface
  * directly: finite distance and specular throughput exactly 1. Uses the tracer interface
  * documented in shared/direct.h for the kernel-table signature only: no ray is traced. */
 #ifndef TS_IGI_CLAMP_SCREEN_H

@@ -26,7 +26,7 @@
  * outputs are local arrays or fields apart from their inputs, and the Embree file that
  * includes this is built with -fno-trapping-math (CMakeLists.txt says why that changes no
  * value). Private memory: the lanes' surfaces and sums (1.3 KB) and one link's masks and
- * terms (0.5 KB), besides the tracer's packet. */
+ * terms (0.5 KB, 192 B of them the links' transmittances), besides the tracer's packet. */
 #ifndef TS_IGI_GATHER16_H
 #define TS_IGI_GATHER16_H
 #include "shared/igi.h"

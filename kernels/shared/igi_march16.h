@@ -17,7 +17,8 @@
  * returns the bit mask of those found blocked (the rays of other lanes are not read).
  *
  * Private memory: 16 marches (128 B each), one step's lane state (2.4 KB) and, within a
- * link's lanes function, up to 1.2 KB of the lanes' link values (ts_igi_march_vrl_links16). */
+ * link's lanes function, up to 1.2 KB of the lanes' link values (ts_igi_march_vrl_links16;
+ * the links' transmittances, ts_march16_transmittance, 192 B). */
 #ifndef TS_IGI_MARCH16_H
 #define TS_IGI_MARCH16_H
 #include "shared/igi_media.h"

@@ -76,7 +76,7 @@ TS_INLINE float ts_lanes_exp(float x) {
 }
 
 /* x[i] = e^x[i] (ts_lanes_exp) for i < n, in one loop: GCC vectorises it where n is known
- * once inlined (the gathers' 3 × 16 links' transmittances). */
+ * once inlined (a row of the gathers' 16 links' transmittances). */
 TS_INLINE void ts_lanes_exp_n(float* x, int n) {
     for (int i = 0; i < n; ++i) x[i] = ts_lanes_exp(x[i]);
 }

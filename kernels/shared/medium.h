@@ -52,7 +52,7 @@ TS_INLINE void ts_medium_exp_lanes(const TsMedium* m, float x[3][TS_PACKET_LANES
         for (int i = 0; i < TS_PACKET_LANES; ++i) x[1][i] = x[2][i] = x[0][i];
         return;
     }
-    ts_lanes_exp_n(&x[0][0], 3 * TS_PACKET_LANES);
+    for (int c = 0; c < 3; ++c) ts_lanes_exp_n(x[c], TS_PACKET_LANES);
 }
 TS_INLINE float ts_mean3(float3 x) { return (x.x + x.y + x.z) * (1.0f / 3.0f); }
 
@@ -119,7 +119,7 @@ TS_INLINE float ts_medium_reach(const TsMedium* m) {
 /* The log of the Beer–Lambert transmittance over a ray's span (t0, t1), all of it inside
  * the medium, len = |dir| (scene units): -sigma_t · (t1 - t0) · len per channel (<= 0,
  * the optical depth's negative). Its ts_exp3 is ts_medium_span_transmittance; callers
- * over lanes take the exponentials together (ts_lanes_exp_n). */
+ * over lanes take the exponentials together (ts_medium_exp_lanes). */
 TS_INLINE float3 ts_medium_span_log_transmittance(const TsMedium* m, float len, float t0, float t1) {
     return m->sigma_t * (-(t1 - t0) * len);
 }

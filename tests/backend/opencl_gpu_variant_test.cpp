@@ -164,9 +164,10 @@ TEST(OpenCLGpuVariant, RingSizeMustBeAPowerOfTwo) {
 
 // Images: igi, ais and ais-max with fog (surface, media and AIS item kernels) equal the
 // per-ray CPU variant's bit for bit: the same shading source over the same hits. On a GPU
-// the variant resolves igi on the device, whose exp rounds the clamp compensation's
-// transmittance otherwise than the host's (the H200 differed in the last bits): there,
-// within rounding (relMSE 1e-10; a different image is ~1e-3). Both
+// the variant resolves igi on the device (the H200 differed in the last bits while the
+// clamp compensation's transmittance took the device's exp; it takes the shared ts_exp3
+// since 2026-12-02, not yet measured on a GPU): there, within rounding (relMSE 1e-10; a
+// different image is ~1e-3). Both
 // trace their light paths on the host here (the light-path kernel's VPLs differ in the
 // last place of PoCL's libm: GpuVariantVplsFromTheKernel).
 class OpenCLGpuVariantImages : public ::testing::TestWithParam<Method> {};

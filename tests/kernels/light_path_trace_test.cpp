@@ -4,7 +4,7 @@
 // Embree both are the same C++ code over the same hits: bit for bit (the kernel runs under
 // Embree's flush-to-zero, the host's loop does not: a subnormal intermediate would differ,
 // none occurs in these scenes). On OpenCL (PoCL) the
-// kernel is OpenCL C, whose libm (sin, cos, exp) may round otherwise in the last place:
+// kernel is OpenCL C, whose libm (sin, cos, log) may round otherwise in the last place:
 // equal counts and records within float rounding. Paths past the kernel's slots are traced
 // again on the host. The Halton table reproduces the digits of the project's figures.
 #include <algorithm>

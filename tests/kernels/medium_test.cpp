@@ -161,16 +161,18 @@ TEST(Medium, ASpanBetweenTwoPointsInTheBoxNeedsNoSlabTest) {
 }
 
 // The logs of transmittance that the 16-lane gathers take their exponentials of: each
-// one's ts_exp3 is the transmittance bit for bit (rays through, into, along and past the
-// slab; a grey and a chromatic medium), and ts_medium_exp_lanes gives ts_exp3 lane by
-// lane, special values included. The exponential is within 1e-7 of double's.
+// one's ts_exp3 is the transmittance bit for bit (rays through, into, out of and past the
+// slab; a grey medium, one with two equal channels and a chromatic one), and
+// ts_medium_exp_lanes gives ts_exp3 lane by lane, special values included. The
+// exponential is within 1e-7 of double's.
 TEST(Medium, LogTransmittanceOverLanesGivesTheTransmittanceBitForBit) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-4.0f, 4.0f);
     const ts::TsMedium grey = slab(make_float3(0.2f, 0.2f, 0.2f), make_float3(1.3f, 1.3f, 1.3f));
     const ts::TsMedium chromatic = slab(make_float3(0.1f, 0.5f, 2.0f), make_float3(0.2f, 3.0f, 0.0f));
+    const ts::TsMedium two_equal = slab(make_float3(0.5f, 0.5f, 0.5f), make_float3(0.5f, 0.5f, 1.5f));
     int misses = 0;
-    for (const ts::TsMedium* m : {&grey, &chromatic})
+    for (const ts::TsMedium* m : {&grey, &two_equal, &chromatic})
         for (int batch = 0; batch < 200; ++batch) {
             float x[3][TS_PACKET_LANES];
             ts::float3 want[TS_PACKET_LANES];
@@ -191,20 +193,26 @@ TEST(Medium, LogTransmittanceOverLanesGivesTheTransmittanceBitForBit) {
             }
         }
     EXPECT_GT(misses, 100);  // rays that miss the slab: log 0, exactly 1
-    // Special values through the lanes, a chromatic row set (no shortcut) and a grey one.
-    float x[3][TS_PACKET_LANES] = {};
+    // Special values through the lanes, every row, with three exponentials per lane
+    // (chromatic) and with one row's copied (grey).
     const float special[] = {0.0f, -0.0f, -1e-30f, -87.3f, -88.0f, -INFINITY, NAN, -1e4f, -0.5f, -20.0f};
-    for (int i = 0; i < 10; ++i) x[0][i] = x[1][i] = x[2][i] = special[i];
-    ts::ts_medium_exp_lanes(&chromatic, x);
-    for (int i = 0; i < 10; ++i) {
-        const ts::float3 one = ts::ts_exp3(make_float3(special[i], special[i], special[i]));
-        EXPECT_EQ(std::memcmp(&one.x, &x[2][i], sizeof(float)), 0) << special[i];
-        if (std::isfinite(special[i]) && special[i] > -87.0f)
-            EXPECT_NEAR(x[2][i], std::exp(double(special[i])), 1e-7 * std::exp(double(special[i])) + 1e-30);
+    for (const ts::TsMedium* m : {&chromatic, &grey}) {
+        float x[3][TS_PACKET_LANES] = {};
+        for (int i = 0; i < 10; ++i) x[0][i] = x[1][i] = x[2][i] = special[i];
+        ts::ts_medium_exp_lanes(m, x);
+        for (int i = 0; i < 10; ++i) {
+            const ts::float3 one = ts::ts_exp3(make_float3(special[i], special[i], special[i]));
+            const ts::float3 lanes = make_float3(x[0][i], x[1][i], x[2][i]);
+            EXPECT_EQ(std::memcmp(&one, &lanes, sizeof one), 0) << special[i];
+            if (std::isfinite(special[i]) && special[i] > -87.0f) {
+                EXPECT_NEAR(x[2][i], std::exp(double(special[i])), 1e-7 * std::exp(double(special[i])) + 1e-30);
+            }
+        }
+        EXPECT_EQ(x[0][0], 1.0f);  // e^0 and e^-0: exactly 1 (a ray that misses the medium)
+        EXPECT_EQ(x[1][1], 1.0f);
+        EXPECT_EQ(x[2][5], 0.0f);
+        EXPECT_TRUE(std::isnan(x[0][6]));
     }
-    EXPECT_EQ(x[0][0], 1.0f);
-    EXPECT_EQ(x[0][5], 0.0f);
-    EXPECT_TRUE(std::isnan(x[0][6]));
 }
 
 TEST(Medium, FarImportanceIsOneWithinTheMarginAndFallsAsTheSquareBeyond) {
